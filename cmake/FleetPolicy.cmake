@@ -1,0 +1,46 @@
+# Shared build policy: language level, warnings, output folders, helpers for core libraries.
+set(CMAKE_CXX_STANDARD 20)
+set(CMAKE_CXX_STANDARD_REQUIRED ON)
+set(CMAKE_CXX_EXTENSIONS OFF)
+set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+set(CMAKE_EXPORT_COMPILE_COMMANDS ON)
+
+if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+  set(CMAKE_BUILD_TYPE Release CACHE STRING "Build type" FORCE)
+endif()
+
+option(FLEET_WARNINGS_AS_ERRORS "Treat compiler warnings as errors (CI turns this on)" OFF)
+option(FLEET_BUILD_TESTS "Build unit and integration tests" ON)
+option(FLEET_BUILD_BENCH "Build benchmarks" ON)
+option(FLEET_BUILD_FUZZ "Build libFuzzer targets (needs clang)" ON)
+
+set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin)
+set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/lib)
+set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/lib)
+
+# Warnings for the project's own targets only; third-party headers come in as SYSTEM.
+add_library(fleet_warnings INTERFACE)
+target_compile_options(fleet_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow)
+if(FLEET_WARNINGS_AS_ERRORS)
+  target_compile_options(fleet_warnings INTERFACE -Werror)
+endif()
+
+# fleet_core_library(NAME SOURCES ... DEPS ...): a core/ concern as a static library
+# named fleet_<NAME>, whose public headers are included as "<concern>/header.hpp".
+function(fleet_core_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(fleet_${name} STATIC ${ARG_SOURCES})
+  target_include_directories(fleet_${name} PUBLIC ${PROJECT_SOURCE_DIR}/core)
+  target_link_libraries(fleet_${name} PUBLIC ${ARG_DEPS} PRIVATE fleet_warnings)
+endfunction()
+
+# fleet_unit_test(NAME SOURCES ... DEPS ...): a GoogleTest executable registered with ctest.
+function(fleet_unit_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main fleet_warnings)
+  target_compile_definitions(${name} PRIVATE
+    FLEET_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    FLEET_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+endfunction()

@@ -1,0 +1,158 @@
+#include "config/fleet_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace fleet::config {
+
+namespace {
+
+std::string where(const std::string& source, const YAML::Node& node) {
+  return source + ":" + std::to_string(node.Mark().line + 1);
+}
+
+void flatten(const YAML::Node& node, const std::string& prefix, const std::string& source, Settings& settings) {
+  for (const auto& item : node) {
+    const std::string key = prefix.empty() ? item.first.as<std::string>() : prefix + "." + item.first.as<std::string>();
+    if (item.second.IsMap()) {
+      flatten(item.second, key, source, settings);
+    } else if (item.second.IsScalar()) {
+      settings.set(key, item.second.Scalar(), where(source, item.second));
+    } else {
+      throw ConfigError(where(source, item.second) + ": key '" + key + "' must be a single value");
+    }
+  }
+}
+
+double positive_number(const YAML::Node& node, const std::string& key, const std::string& source) {
+  if (!node || !node.IsScalar()) throw ConfigError(source + ": key '" + key + "' is missing");
+  double v = 0.0;
+  try {
+    v = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' is not a number");
+  }
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must be positive");
+  }
+  return v;
+}
+
+std::string required_text(const YAML::Node& map, const std::string& name, const std::string& key,
+                          const std::string& source) {
+  const YAML::Node node = map[name];
+  if (!node || !node.IsScalar() || node.Scalar().empty()) {
+    throw ConfigError(where(source, map) + ": key '" + key + "." + name + "' is missing");
+  }
+  return node.Scalar();
+}
+
+void check_keys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& key,
+                const std::string& source) {
+  for (const auto& item : map) {
+    const std::string name = item.first.as<std::string>();
+    if (!allowed.contains(name)) {
+      throw ConfigError(where(source, item.first) + ": unknown key '" + key + "." + name + "'");
+    }
+  }
+}
+
+std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& source) {
+  if (!node.IsSequence()) throw ConfigError(where(source, node) + ": key 'fleets' must be a list");
+  std::vector<FleetSpec> fleets;
+  std::set<std::string> fleet_ids, robot_ids;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node f = node[i];
+    const std::string key = "fleets[" + std::to_string(i) + "]";
+    if (!f.IsMap()) throw ConfigError(where(source, f) + ": key '" + key + "' must be a map");
+    check_keys(f, {"id", "robot_type", "footprint", "robots"}, key, source);
+    FleetSpec fleet;
+    fleet.id = required_text(f, "id", key, source);
+    fleet.robot_type = required_text(f, "robot_type", key, source);
+    if (fleet.robot_type != "forklift") {
+      throw ConfigError(where(source, f["robot_type"]) + ": key '" + key + ".robot_type': '" + fleet.robot_type +
+                        "' is not a known robot type (forklift)");
+    }
+    if (!fleet_ids.insert(fleet.id).second) {
+      throw ConfigError(where(source, f) + ": key '" + key + ".id': duplicate fleet id '" + fleet.id + "'");
+    }
+    const YAML::Node fp = f["footprint"];
+    if (!fp || !fp.IsMap()) throw ConfigError(where(source, f) + ": key '" + key + ".footprint' is missing");
+    check_keys(fp, {"length", "width"}, key + ".footprint", source);
+    fleet.footprint.length = positive_number(fp["length"], key + ".footprint.length", source);
+    fleet.footprint.width = positive_number(fp["width"], key + ".footprint.width", source);
+    const YAML::Node robots = f["robots"];
+    if (!robots || !robots.IsSequence() || robots.size() == 0) {
+      throw ConfigError(where(source, f) + ": key '" + key + ".robots' must be a non-empty list");
+    }
+    for (std::size_t j = 0; j < robots.size(); ++j) {
+      const std::string rkey = key + ".robots[" + std::to_string(j) + "]";
+      const YAML::Node r = robots[j];
+      if (!r.IsMap()) throw ConfigError(where(source, r) + ": key '" + rkey + "' must be a map");
+      check_keys(r, {"id", "home"}, rkey, source);
+      RobotSpec robot{required_text(r, "id", rkey, source), required_text(r, "home", rkey, source)};
+      if (!robot_ids.insert(robot.id).second) {
+        throw ConfigError(where(source, r) + ": key '" + rkey + ".id': duplicate robot id '" + robot.id + "'");
+      }
+      fleet.robots.push_back(std::move(robot));
+    }
+    fleets.push_back(std::move(fleet));
+  }
+  return fleets;
+}
+
+}  // namespace
+
+std::vector<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::all_robots() const {
+  std::vector<std::pair<const FleetSpec*, const RobotSpec*>> out;
+  for (const FleetSpec& f : fleets) {
+    for (const RobotSpec& r : f.robots) out.emplace_back(&f, &r);
+  }
+  return out;
+}
+
+std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_robot(const std::string& robot_id) const {
+  for (const auto& pair : all_robots()) {
+    if (pair.second->id == robot_id) return pair;
+  }
+  return std::nullopt;
+}
+
+FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& source) {
+  FleetConfig config;
+  config.source = source;
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw ConfigError(source + ": expected a map of keys at the top level");
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    if (key == "fleets") {
+      config.fleets = parse_fleets(item.second, source);
+    } else if (item.second.IsMap()) {
+      flatten(item.second, key, source, config.settings);
+    } else if (item.second.IsScalar()) {
+      config.settings.set(key, item.second.Scalar(), where(source, item.second));
+    } else {
+      throw ConfigError(where(source, item.second) + ": key '" + key + "' must be a single value");
+    }
+  }
+  if (config.fleets.empty()) throw ConfigError(source + ": key 'fleets' is missing: declare at least one fleet");
+  return config;
+}
+
+FleetConfig load_fleet_config(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the configuration file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_fleet_config(buffer.str(), path);
+}
+
+}  // namespace fleet::config

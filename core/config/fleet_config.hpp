@@ -1,0 +1,43 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/settings.hpp"
+#include "geometry/polygon.hpp"
+
+namespace fleet::config {
+
+struct RobotSpec {
+  std::string id;
+  std::string home;  ///< id of a home pose in the site file
+};
+
+/// A fleet: robots of one type sharing a footprint. The seed's forklifts are the first fleet.
+struct FleetSpec {
+  std::string id;
+  std::string robot_type;  ///< "forklift" (seed 000); later "stacker", "picker"
+  geometry::Footprint footprint;
+  std::vector<RobotSpec> robots;
+};
+
+struct FleetConfig {
+  std::string source;  ///< the file it was read from, for messages
+  Settings settings;
+  std::vector<FleetSpec> fleets;
+
+  /// Robots of every fleet in declaration order.
+  std::vector<std::pair<const FleetSpec*, const RobotSpec*>> all_robots() const;
+  /// The fleet a robot belongs to, or nothing.
+  std::optional<std::pair<const FleetSpec*, const RobotSpec*>> find_robot(const std::string& robot_id) const;
+};
+
+/// Reads fleet.yaml. Throws ConfigError naming the file, line and key for unknown keys, values out
+/// of range, duplicate robot ids and malformed YAML.
+FleetConfig load_fleet_config(const std::string& path);
+
+/// The same from YAML text; `source` names it in messages.
+FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& source);
+
+}  // namespace fleet::config

@@ -1,0 +1,97 @@
+#include "config/schema.hpp"
+
+#include <sstream>
+
+namespace fleet::config {
+
+namespace {
+
+KeySpec number(std::string key, double def, std::string unit, double lo, double hi, std::string what) {
+  std::ostringstream d;
+  d << def;
+  return {std::move(key), ValueType::Double, d.str(), std::move(unit), lo, hi, {}, std::move(what)};
+}
+KeySpec integer(std::string key, long def, std::string unit, long lo, long hi, std::string what) {
+  return {std::move(key), ValueType::Int, std::to_string(def), std::move(unit),
+          static_cast<double>(lo), static_cast<double>(hi), {}, std::move(what)};
+}
+KeySpec flag(std::string key, bool def, std::string what) {
+  return {std::move(key), ValueType::Bool, def ? "true" : "false", "", 0, 0, {}, std::move(what)};
+}
+KeySpec text(std::string key, std::string def, std::string what) {
+  return {std::move(key), ValueType::String, std::move(def), "", 0, 0, {}, std::move(what)};
+}
+KeySpec choice(std::string key, std::string def, std::vector<std::string> choices, std::string what) {
+  return {std::move(key), ValueType::Choice, std::move(def), "", 0, 0, std::move(choices), std::move(what)};
+}
+
+std::vector<KeySpec> make_schema() {
+  return {
+      // Whole system
+      text("site", "table_a", "site to load: maps/<site>.yaml"),
+      number("time_scale", 1.0, "", 0.01, 100.0, "sim_time = time_scale x wall_time, read by every process"),
+      integer("dds.domain", 0, "", 0, 232, "DDS domain id"),
+      integer("seed", 1, "", 0, 2147483647, "seed of every random engine; a run is reproducible from it"),
+
+      // Server
+      choice("server.dispatch_policy", "ascending-id", {"ascending-id", "nearest", "optimal"},
+             "how queued orders are matched with free robots"),
+      flag("server.auto_orders", false, "create random orders whenever a robot is free (seed 000, section 3)"),
+      flag("server.reject_when_busy", false,
+           "reject manual orders while no robot is free (the seed's mode) instead of queueing them"),
+      number("server.fleet_view_hz", 20.0, "Hz", 1.0, 100.0, "rate of FleetView, per map, in sim time"),
+      number("server.robot_lost_after_s", 1.0, "s", 0.1, 60.0,
+             "wall seconds without RobotState after which a robot is marked lost"),
+      number("server.order_ack_timeout_s", 2.0, "s", 0.1, 60.0,
+             "wall seconds an agent has to acknowledge an order before it is re-sent"),
+      integer("server.order_resend_limit", 2, "", 0, 100, "re-sends of an unacknowledged order before it is re-queued"),
+
+      // Agent
+      number("agent.state_hz", 20.0, "Hz", 1.0, 200.0, "RobotState publication rate, in sim time"),
+      number("agent.sim_step_s", 0.005, "s", 0.0005, 0.05, "integration step of the simulated body, sim time"),
+      number("agent.max_speed", 0.2, "m/s", 0.01, 2.0, "forward speed limit"),
+      number("agent.max_yaw_rate", 1.5, "rad/s", 0.1, 10.0, "turn rate limit"),
+      number("agent.goal_tolerance", 0.01, "m", 0.001, 0.5, "distance at which a target pose counts as reached"),
+  };
+}
+
+}  // namespace
+
+const std::vector<KeySpec>& schema() {
+  static const std::vector<KeySpec> table = make_schema();
+  return table;
+}
+
+const KeySpec* find_key(const std::string& key) {
+  for (const KeySpec& spec : schema()) {
+    if (spec.key == key) return &spec;
+  }
+  return nullptr;
+}
+
+std::string schema_markdown() {
+  std::ostringstream out;
+  out << "| key | default | unit | allowed | meaning |\n|---|---|---|---|---|\n";
+  for (const KeySpec& spec : schema()) {
+    std::string allowed;
+    switch (spec.type) {
+      case ValueType::Double:
+      case ValueType::Int: {
+        std::ostringstream r;
+        r << spec.min << " .. " << spec.max;
+        allowed = r.str();
+        break;
+      }
+      case ValueType::Bool: allowed = "true, false"; break;
+      case ValueType::String: allowed = "text"; break;
+      case ValueType::Choice:
+        for (std::size_t i = 0; i < spec.choices.size(); ++i) allowed += (i ? ", " : "") + spec.choices[i];
+        break;
+    }
+    out << "| `" << spec.key << "` | " << spec.default_value << " | " << spec.unit << " | " << allowed << " | "
+        << spec.description << " |\n";
+  }
+  return out.str();
+}
+
+}  // namespace fleet::config

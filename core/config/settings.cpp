@@ -1,0 +1,75 @@
+#include "config/settings.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "config/schema.hpp"
+
+namespace fleet::config {
+
+namespace {
+
+bool parse_double(const std::string& text, double& out) {
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  auto [ptr, ec] = std::from_chars(begin, end, out);
+  return ec == std::errc() && ptr == end && std::isfinite(out);
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return out;
+}
+
+}  // namespace
+
+Settings::Settings() {
+  for (const KeySpec& spec : schema()) values_[spec.key] = spec.default_value;
+}
+
+void Settings::set(const std::string& key, const std::string& value, const std::string& origin) {
+  const KeySpec* spec = find_key(key);
+  if (!spec) throw ConfigError(origin + ": unknown key '" + key + "'");
+  auto bad = [&](const std::string& why) {
+    return ConfigError(origin + ": key '" + key + "': value '" + value + "' " + why);
+  };
+  switch (spec->type) {
+    case ValueType::Double:
+    case ValueType::Int: {
+      double v = 0.0;
+      if (!parse_double(value, v)) throw bad("is not a finite number");
+      if (spec->type == ValueType::Int && v != std::floor(v)) throw bad("is not an integer");
+      if (v < spec->min || v > spec->max) {
+        throw bad("is outside " + std::to_string(spec->min) + " .. " + std::to_string(spec->max) +
+                  (spec->unit.empty() ? "" : " " + spec->unit));
+      }
+      break;
+    }
+    case ValueType::Bool:
+      if (value != "true" && value != "false") throw bad("is not true or false");
+      break;
+    case ValueType::Choice: {
+      bool found = false;
+      for (const auto& c : spec->choices) found = found || c == value;
+      if (!found) throw bad("is not one of " + join(spec->choices));
+      break;
+    }
+    case ValueType::String:
+      break;
+  }
+  values_[key] = value;
+}
+
+const std::string& Settings::raw(const std::string& key) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) throw std::logic_error("configuration key '" + key + "' is not declared");
+  return it->second;
+}
+
+double Settings::get_double(const std::string& key) const { return std::stod(raw(key)); }
+long Settings::get_int(const std::string& key) const { return std::stol(raw(key)); }
+bool Settings::get_bool(const std::string& key) const { return raw(key) == "true"; }
+const std::string& Settings::get_string(const std::string& key) const { return raw(key); }
+
+}  // namespace fleet::config

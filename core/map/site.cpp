@@ -1,0 +1,229 @@
+#include "map/site.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace fleet::map {
+
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  std::string at(const YAML::Node& node) const { return file_ + ":" + std::to_string(node.Mark().line + 1); }
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
+    throw MapError(at(node) + ": key '" + key + "': " + what);
+  }
+
+  void allow_keys(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, key, "must be a map");
+    for (const auto& item : map) {
+      const std::string name = item.first.as<std::string>();
+      if (!allowed.contains(name)) {
+        throw MapError(at(item.first) + ": unknown key '" + (key.empty() ? name : key + "." + name) + "'");
+      }
+    }
+  }
+
+  double number(const YAML::Node& parent, const std::string& name, const std::string& key) const {
+    const YAML::Node node = parent[name];
+    const std::string full = key + "." + name;
+    if (!node) throw MapError(at(parent) + ": key '" + full + "' is missing");
+    return number_value(node, full);
+  }
+
+  double number_value(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, key, "must be a number");
+    double v = 0.0;
+    try {
+      v = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, key, "'" + node.Scalar() + "' is not a number");
+    }
+    if (!std::isfinite(v)) fail(node, key, "'" + node.Scalar() + "' is not finite");
+    return v;
+  }
+
+  std::string text(const YAML::Node& parent, const std::string& name, const std::string& key) const {
+    const YAML::Node node = parent[name];
+    if (!node || !node.IsScalar() || node.Scalar().empty()) {
+      throw MapError(at(parent) + ": key '" + key + "." + name + "' is missing");
+    }
+    return node.Scalar();
+  }
+
+  bool boolean(const YAML::Node& parent, const std::string& name, const std::string& key, bool def) const {
+    const YAML::Node node = parent[name];
+    if (!node) return def;
+    try {
+      return node.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(node, key + "." + name, "'" + node.Scalar() + "' is not true or false");
+    }
+  }
+
+  const YAML::Node list(const YAML::Node& root, const std::string& key) const {
+    const YAML::Node node = root[key];
+    if (!node) return YAML::Node(YAML::NodeType::Sequence);
+    if (!node.IsSequence()) fail(node, key, "must be a list");
+    return node;
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+geometry::Pose2 pose_of(const Reader& r, const YAML::Node& node, const std::string& key) {
+  return {r.number(node, "x", key), r.number(node, "y", key), r.number(node, "yaw", key)};
+}
+
+void unique_id(const Reader& r, std::set<std::string>& seen, const std::string& id, const YAML::Node& node,
+               const std::string& key) {
+  if (!seen.insert(id).second) r.fail(node, key + ".id", "duplicate id '" + id + "'");
+}
+
+}  // namespace
+
+const LoadingArea* Site::find_area(const std::string& id) const {
+  for (const auto& a : loading_areas)
+    if (a.id == id) return &a;
+  return nullptr;
+}
+
+const StaticObstacle* Site::find_obstacle(const std::string& id) const {
+  for (const auto& o : static_obstacles)
+    if (o.id == id) return &o;
+  return nullptr;
+}
+
+const Home* Site::find_home(const std::string& id) const {
+  for (const auto& h : homes)
+    if (h.id == id) return &h;
+  return nullptr;
+}
+
+std::vector<std::string> Site::area_ids() const {
+  std::vector<std::string> ids;
+  for (const auto& a : loading_areas) ids.push_back(a.id);
+  return ids;
+}
+
+Site parse_site(const std::string& yaml_text, const std::string& path) {
+  const Reader r(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw MapError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
+  r.allow_keys(root, "",
+               {"name", "opendrive", "bounds", "road_width", "graph_spacing", "loading_areas", "static_obstacles",
+                "uwb_anchors", "homes"});
+
+  Site site;
+  site.file = path;
+  site.name = std::filesystem::path(path).stem().string();
+  if (root["name"]) site.name = r.text(root, "name", "");
+  if (root["opendrive"]) {
+    const std::filesystem::path xodr(r.text(root, "opendrive", ""));
+    site.opendrive_file = (xodr.is_absolute() ? xodr : std::filesystem::path(path).parent_path() / xodr).string();
+  }
+
+  const YAML::Node bounds = root["bounds"];
+  if (!bounds) throw MapError(path + ": key 'bounds' is missing");
+  r.allow_keys(bounds, "bounds", {"min_x", "min_y", "max_x", "max_y"});
+  site.bounds = {r.number(bounds, "min_x", "bounds"), r.number(bounds, "min_y", "bounds"),
+                 r.number(bounds, "max_x", "bounds"), r.number(bounds, "max_y", "bounds")};
+  if (!(site.bounds.max_x > site.bounds.min_x) || !(site.bounds.max_y > site.bounds.min_y)) {
+    r.fail(bounds, "bounds", "max must be greater than min");
+  }
+  if (root["road_width"]) {
+    site.road_width = r.number_value(root["road_width"], "road_width");
+    if (!(site.road_width > 0.0)) r.fail(root["road_width"], "road_width", "must be positive");
+  }
+  if (root["graph_spacing"]) {
+    site.graph_spacing = r.number_value(root["graph_spacing"], "graph_spacing");
+    if (!(site.graph_spacing > 0.0)) r.fail(root["graph_spacing"], "graph_spacing", "must be positive");
+  }
+
+  std::set<std::string> area_ids;
+  const YAML::Node areas = r.list(root, "loading_areas");
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    const std::string key = "loading_areas[" + std::to_string(i) + "]";
+    r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet"});
+    LoadingArea area{r.text(areas[i], "id", key), pose_of(r, areas[i], key), r.boolean(areas[i], "pallet", key, false)};
+    unique_id(r, area_ids, area.id, areas[i], key);
+    if (!site.bounds.contains(area.pose.position())) r.fail(areas[i], key, "loading area '" + area.id + "' lies outside the bounds");
+    site.loading_areas.push_back(std::move(area));
+  }
+
+  std::set<std::string> obstacle_ids;
+  const YAML::Node obstacles = r.list(root, "static_obstacles");
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    const std::string key = "static_obstacles[" + std::to_string(i) + "]";
+    r.allow_keys(obstacles[i], key, {"id", "polygon", "enabled"});
+    StaticObstacle obstacle;
+    obstacle.id = r.text(obstacles[i], "id", key);
+    unique_id(r, obstacle_ids, obstacle.id, obstacles[i], key);
+    obstacle.enabled_at_start = r.boolean(obstacles[i], "enabled", key, false);
+    const YAML::Node poly = obstacles[i]["polygon"];
+    if (!poly || !poly.IsSequence() || poly.size() < 3) {
+      r.fail(obstacles[i], key + ".polygon", "must be a list of at least 3 [x, y] points");
+    }
+    for (std::size_t j = 0; j < poly.size(); ++j) {
+      const std::string pkey = key + ".polygon[" + std::to_string(j) + "]";
+      if (!poly[j].IsSequence() || poly[j].size() != 2) r.fail(poly[j], pkey, "must be [x, y]");
+      const geometry::Vec2 p{r.number_value(poly[j][0], pkey), r.number_value(poly[j][1], pkey)};
+      if (!site.bounds.contains(p)) r.fail(poly[j], pkey, "obstacle '" + obstacle.id + "' lies outside the bounds");
+      obstacle.polygon.push_back(p);
+    }
+    site.static_obstacles.push_back(std::move(obstacle));
+  }
+
+  std::set<std::string> anchor_ids;
+  const YAML::Node anchors = r.list(root, "uwb_anchors");
+  for (std::size_t i = 0; i < anchors.size(); ++i) {
+    const std::string key = "uwb_anchors[" + std::to_string(i) + "]";
+    r.allow_keys(anchors[i], key, {"id", "x", "y", "z"});
+    UwbAnchor anchor{r.text(anchors[i], "id", key), r.number(anchors[i], "x", key), r.number(anchors[i], "y", key),
+                     r.number(anchors[i], "z", key)};
+    unique_id(r, anchor_ids, anchor.id, anchors[i], key);
+    site.uwb_anchors.push_back(std::move(anchor));
+  }
+
+  std::set<std::string> home_ids;
+  const YAML::Node homes = r.list(root, "homes");
+  for (std::size_t i = 0; i < homes.size(); ++i) {
+    const std::string key = "homes[" + std::to_string(i) + "]";
+    r.allow_keys(homes[i], key, {"id", "x", "y", "yaw"});
+    Home home{r.text(homes[i], "id", key), pose_of(r, homes[i], key)};
+    unique_id(r, home_ids, home.id, homes[i], key);
+    if (!site.bounds.contains(home.pose.position())) r.fail(homes[i], key, "home '" + home.id + "' lies outside the bounds");
+    site.homes.push_back(std::move(home));
+  }
+  return site;
+}
+
+Site load_site(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw MapError(path + ": cannot open the site file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_site(buffer.str(), path);
+}
+
+std::string site_path(const std::string& maps_dir, const std::string& name) {
+  return (std::filesystem::path(maps_dir) / (name + ".yaml")).string();
+}
+
+}  // namespace fleet::map

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "geometry/polygon.hpp"
+
+namespace fleet::map {
+
+/// A map or site input error; the message names the file, line and key.
+class MapError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Where a pallet stands and which way it faces (seed 000, section 3: "location and direction of
+/// the loading area and their ids"). `pose.yaw` points from the pallet towards the side a forklift
+/// approaches from, so a forklift picks facing `yaw + pi`.
+struct LoadingArea {
+  std::string id;
+  geometry::Pose2 pose;
+  bool pallet_at_start = false;
+};
+
+/// A designated static obstacle the user switches on and off (seed 000, section 3).
+struct StaticObstacle {
+  std::string id;
+  geometry::Polygon polygon;
+  bool enabled_at_start = false;
+};
+
+struct UwbAnchor {
+  std::string id;
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+};
+
+struct Home {
+  std::string id;
+  geometry::Pose2 pose;
+};
+
+/// A site file, maps/NAME.yaml: the road network it uses and what stands around it.
+struct Site {
+  std::string name;              ///< file stem, e.g. "table_a"
+  std::string file;              ///< path of the site file
+  std::string opendrive_file;    ///< path of the .xodr, resolved relative to the site file
+  geometry::Bounds bounds;       ///< the area, metres
+  double road_width = 0.30;      ///< metres
+  double graph_spacing = 0.10;   ///< road-graph sample spacing, metres
+  std::vector<LoadingArea> loading_areas;
+  std::vector<StaticObstacle> static_obstacles;
+  std::vector<UwbAnchor> uwb_anchors;
+  std::vector<Home> homes;
+
+  const LoadingArea* find_area(const std::string& id) const;
+  const StaticObstacle* find_obstacle(const std::string& id) const;
+  const Home* find_home(const std::string& id) const;
+  std::vector<std::string> area_ids() const;
+};
+
+/// Reads and validates a site file. Throws MapError naming the file, line and key for unknown
+/// keys, missing or non-numeric values, duplicate ids and obstacles outside the area.
+Site load_site(const std::string& path);
+
+/// The same from YAML text; `path` names it in messages and resolves the .xodr.
+Site parse_site(const std::string& yaml_text, const std::string& path);
+
+/// maps/<name>.yaml under `maps_dir`.
+std::string site_path(const std::string& maps_dir, const std::string& name);
+
+}  // namespace fleet::map

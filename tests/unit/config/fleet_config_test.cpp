@@ -1,0 +1,77 @@
+#include "config/fleet_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include "config/schema.hpp"
+
+using namespace fleet::config;
+
+namespace {
+const char* kFleets = R"(
+fleets:
+  - id: forklifts
+    robot_type: forklift
+    footprint: {length: 0.25, width: 0.16}
+    robots:
+      - {id: fl1, home: H1}
+      - {id: fl2, home: H2}
+)";
+
+std::string message_of(const std::string& yaml) {
+  try {
+    parse_fleet_config(yaml, "test.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(FleetConfig, ShippedDefaultsLoad) {
+  const FleetConfig config = load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  ASSERT_FALSE(config.fleets.empty());
+  EXPECT_EQ(config.fleets[0].robot_type, "forklift");
+  EXPECT_EQ(config.settings.get_string("server.dispatch_policy"), "ascending-id");
+  EXPECT_TRUE(config.find_robot("fl1").has_value());
+}
+
+TEST(FleetConfig, ReadsNestedKeysAndFleets) {
+  const FleetConfig config = parse_fleet_config(std::string("server:\n  dispatch_policy: optimal\ntime_scale: 5\n") + kFleets, "t");
+  EXPECT_EQ(config.settings.get_string("server.dispatch_policy"), "optimal");
+  EXPECT_DOUBLE_EQ(config.settings.get_double("time_scale"), 5.0);
+  EXPECT_EQ(config.all_robots().size(), 2u);
+  EXPECT_DOUBLE_EQ(config.fleets[0].footprint.width, 0.16);
+}
+
+TEST(FleetConfig, UnknownKeyNamesKeyAndFile) {
+  const std::string msg = message_of(std::string("server:\n  dispatch_polcy: optimal\n") + kFleets);
+  EXPECT_NE(msg.find("test.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("server.dispatch_polcy"), std::string::npos) << msg;
+}
+
+TEST(FleetConfig, OutOfRangeAndWrongChoiceAreRefused) {
+  EXPECT_NE(message_of(std::string("time_scale: 1000\n") + kFleets).find("time_scale"), std::string::npos);
+  EXPECT_NE(message_of(std::string("time_scale: nan\n") + kFleets).find("not a finite number"), std::string::npos);
+  EXPECT_NE(message_of(std::string("server: {dispatch_policy: fastest}\n") + kFleets).find("ascending-id"),
+            std::string::npos);
+}
+
+TEST(FleetConfig, DuplicateRobotIdsAreRefused) {
+  const std::string msg = message_of(R"(
+fleets:
+  - id: a
+    robot_type: forklift
+    footprint: {length: 0.25, width: 0.16}
+    robots: [{id: fl1, home: H1}, {id: fl1, home: H2}]
+)");
+  EXPECT_NE(msg.find("duplicate robot id 'fl1'"), std::string::npos) << msg;
+}
+
+TEST(Schema, EveryKeyHasADescriptionAndAValidDefault) {
+  Settings settings;
+  for (const KeySpec& spec : schema()) {
+    EXPECT_FALSE(spec.description.empty()) << spec.key;
+    EXPECT_NO_THROW(settings.set(spec.key, spec.default_value, "schema")) << spec.key;
+  }
+  EXPECT_NE(schema_markdown().find("server.dispatch_policy"), std::string::npos);
+}
