@@ -1,0 +1,32 @@
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace fleet::cli {
+
+/// Exit codes of every fleetctl command (documented in --help and the README).
+enum ExitCode : int {
+  kExitOk = 0,          ///< the operation succeeded
+  kExitFailed = 1,      ///< the operation ran and failed (order FAILED, target missed, ...)
+  kExitBadInput = 2,    ///< bad input: unknown area, malformed file, bad flag
+  kExitNoServer = 3,    ///< no fleet-server reachable
+};
+
+/// Arguments of one subcommand: everything after the subcommand name, global flags removed.
+struct CommandArgs {
+  std::vector<std::string> args;
+  bool json = false;        ///< --json: the last line printed is one JSON object
+  std::string config_file;  ///< --config, default config/fleet.yaml
+  std::string source_dir;   ///< project root (maps/, config/ live there)
+};
+
+// Offline subcommands working on core/ alone. Each returns an ExitCode and prints results to
+// `out`, errors to `err`.
+int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);       // map check|sample|render
+int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // loc-eval
+int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err); // plan-eval
+int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err); // ctrl-eval
+
+}  // namespace fleet::cli
