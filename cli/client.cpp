@@ -1,0 +1,122 @@
+#include "cli/client.hpp"
+
+#include <unistd.h>
+
+#include <random>
+#include <thread>
+
+#include "orders/order.hpp"
+
+namespace fleet::cli {
+
+using namespace std::chrono_literals;
+
+std::string make_request_id() {
+  static std::mt19937_64 rng(std::random_device{}() ^ static_cast<std::uint64_t>(getpid()));
+  static int counter = 0;
+  return "fleetctl-" + std::to_string(getpid()) + "-" + std::to_string(++counter) + "-" + std::to_string(rng() % 100000);
+}
+
+FleetClient::FleetClient(std::uint32_t domain)
+    : participant_(domain),
+      server_info_reader_(participant_, dds::qos::latched_state()),
+      reply_reader_(participant_, dds::qos::latched_state()),
+      order_info_reader_(participant_, dds::qos::latched_state()),
+      robot_state_reader_(participant_, dds::qos::live_state()),
+      request_writer_(participant_, dds::qos::requests()),
+      command_writer_(participant_, dds::qos::requests()) {}
+
+void FleetClient::poll_server_info() {
+  server_info_reader_.take([&](model::ServerInfo&& info, const dds::SampleInfo& sample) {
+    if (sample.valid_data) {
+      server_info_ = std::move(info);
+      server_alive_ = true;
+    } else if (!sample.alive) {
+      server_alive_ = false;
+    }
+  });
+}
+
+std::optional<model::ServerInfo> FleetClient::find_server(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    poll_server_info();
+    if (server_info_ && server_alive_) return server_info_;
+    std::this_thread::sleep_for(10ms);
+  }
+  return std::nullopt;
+}
+
+std::optional<model::RequestReply> FleetClient::await_reply(const std::string& request_id,
+                                                            std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::optional<model::RequestReply> found;
+    reply_reader_.take_data([&](model::RequestReply&& reply) {
+      if (reply.request_id == request_id) found = std::move(reply);
+    });
+    if (found) return found;
+    std::this_thread::sleep_for(5ms);
+  }
+  return std::nullopt;
+}
+
+std::optional<model::RequestReply> FleetClient::request_order(model::OrderRequest request,
+                                                              std::chrono::milliseconds timeout) {
+  if (request.request_id.empty()) request.request_id = make_request_id();
+  // Volatile requests reach only readers matched at write time: wait for the server's.
+  if (!request_writer_.wait_for_readers(1, timeout)) return std::nullopt;
+  request_writer_.write(request);
+  return await_reply(request.request_id, timeout);
+}
+
+std::optional<model::RequestReply> FleetClient::send_command(model::Command command,
+                                                             std::chrono::milliseconds timeout) {
+  if (command.request_id.empty()) command.request_id = make_request_id();
+  if (!command_writer_.wait_for_readers(1, timeout)) return std::nullopt;
+  command_writer_.write(command);
+  return await_reply(command.request_id, timeout);
+}
+
+std::optional<model::OrderInfo> FleetClient::follow_order(
+    std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change) {
+  std::string last_state, last_phase;
+  for (;;) {
+    std::optional<model::OrderInfo> latest;
+    order_info_reader_.take_data([&](model::OrderInfo&& info) {
+      if (info.order_id == order_id) latest = info;
+      orders_[info.order_id] = std::move(info);
+    });
+    if (latest && (latest->state != last_state || latest->phase != last_phase)) {
+      last_state = latest->state;
+      last_phase = latest->phase;
+      on_change(*latest);
+      const auto status = orders::parse_status(latest->state);
+      if (status && orders::is_final(*status)) return latest;
+    }
+    poll_server_info();
+    if (!server_alive_) return std::nullopt;
+    std::this_thread::sleep_for(10ms);
+  }
+}
+
+std::map<std::string, model::RobotState> FleetClient::robot_states(std::chrono::milliseconds window) {
+  std::map<std::string, model::RobotState> states;
+  const auto deadline = std::chrono::steady_clock::now() + window;
+  while (std::chrono::steady_clock::now() < deadline) {
+    robot_state_reader_.take_data([&](model::RobotState&& s) { states[s.robot_id] = std::move(s); });
+    std::this_thread::sleep_for(10ms);
+  }
+  return states;
+}
+
+std::map<std::int64_t, model::OrderInfo> FleetClient::orders(std::chrono::milliseconds window) {
+  const auto deadline = std::chrono::steady_clock::now() + window;
+  while (std::chrono::steady_clock::now() < deadline) {
+    order_info_reader_.take_data([&](model::OrderInfo&& info) { orders_[info.order_id] = std::move(info); });
+    std::this_thread::sleep_for(10ms);
+  }
+  return orders_;
+}
+
+}  // namespace fleet::cli

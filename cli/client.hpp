@@ -1,0 +1,62 @@
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "dds/topics.hpp"
+
+namespace fleet::cli {
+
+/// fleetctl's own DDS participant: finds the server, sends requests and commands, reads state.
+class FleetClient {
+ public:
+  explicit FleetClient(std::uint32_t domain);
+
+  std::uint32_t domain() const { return participant_.domain(); }
+
+  /// The server's ServerInfo, or nothing when no server answers within `timeout`.
+  std::optional<model::ServerInfo> find_server(std::chrono::milliseconds timeout);
+
+  /// Sends an order request and waits for the server's reply (nothing on timeout).
+  std::optional<model::RequestReply> request_order(model::OrderRequest request, std::chrono::milliseconds timeout);
+
+  /// Sends a command and waits for the server's reply (nothing on timeout).
+  std::optional<model::RequestReply> send_command(model::Command command, std::chrono::milliseconds timeout);
+
+  /// Follows one order until it ends, calling `on_change` on every new state or phase; returns
+  /// its final OrderInfo, or nothing when the server went away.
+  std::optional<model::OrderInfo> follow_order(std::int64_t order_id,
+                                               const std::function<void(const model::OrderInfo&)>& on_change);
+
+  /// Reads RobotState for `window` and returns the newest of each robot.
+  std::map<std::string, model::RobotState> robot_states(std::chrono::milliseconds window);
+
+  /// Latest OrderInfo of every order, read during `window`.
+  std::map<std::int64_t, model::OrderInfo> orders(std::chrono::milliseconds window);
+
+  /// Whether the server (its ServerInfo writer) is still alive; updated by the calls above.
+  bool server_alive() const { return server_alive_; }
+
+ private:
+  std::optional<model::RequestReply> await_reply(const std::string& request_id, std::chrono::milliseconds timeout);
+  void poll_server_info();
+
+  dds::Participant participant_;
+  dds::Reader<model::ServerInfo> server_info_reader_;
+  dds::Reader<model::RequestReply> reply_reader_;
+  dds::Reader<model::OrderInfo> order_info_reader_;
+  dds::Reader<model::RobotState> robot_state_reader_;
+  dds::Writer<model::OrderRequest> request_writer_;
+  dds::Writer<model::Command> command_writer_;
+  std::optional<model::ServerInfo> server_info_;
+  bool server_alive_ = false;
+  std::map<std::int64_t, model::OrderInfo> orders_;
+};
+
+/// A request id unique across processes and time.
+std::string make_request_id();
+
+}  // namespace fleet::cli

@@ -1,0 +1,215 @@
+#include "cli/fleet_run.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli/client.hpp"
+#include "cli/commands.hpp"
+#include "common/args.hpp"
+#include "common/clock.hpp"
+#include "common/paths.hpp"
+#include "map/site.hpp"
+#include "model/names.hpp"
+
+namespace fleet::cli {
+
+namespace {
+std::string tail_of(const std::string& file, std::size_t lines) {
+  std::ifstream in(file);
+  std::vector<std::string> all;
+  for (std::string line; std::getline(in, line);) all.push_back(line);
+  std::string out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += "  " + all[i] + "\n";
+  return out;
+}
+
+std::string timestamp() {
+  const std::time_t t = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y%m%d-%H%M%S", std::gmtime(&t));
+  return buffer;
+}
+}  // namespace
+
+FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
+    : options_(std::move(options)), config_(std::move(config)), log_(std::move(log)) {
+  const auto robots = config_.all_robots();
+  if (options_.agents < 1 || options_.agents > static_cast<int>(robots.size())) {
+    throw ArgError("--agents " + std::to_string(options_.agents) + ": " + config_.source + " declares " +
+                   std::to_string(robots.size()) + " robots; choose 1 .. " + std::to_string(robots.size()));
+  }
+  for (int i = 0; i < options_.agents; ++i) robot_ids_.push_back(robots[static_cast<std::size_t>(i)].second->id);
+  run_dir_ = project_root() + "/var/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
+  std::filesystem::create_directories(run_dir_);
+}
+
+FleetRun::~FleetRun() { stop(); }
+
+std::string FleetRun::binary(const std::string& name) const {
+  return (std::filesystem::read_symlink("/proc/self/exe").parent_path() / name).string();
+}
+
+void FleetRun::start() {
+  participant_ = std::make_unique<dds::Participant>(options_.domain);
+  order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
+  truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
+
+  const std::vector<std::string> common{"--config", options_.config_file, "--domain", std::to_string(options_.domain),
+                                        "--site", options_.site, "--time-scale", std::to_string(options_.time_scale),
+                                        "--seed", std::to_string(options_.seed)};
+  std::vector<std::string> server_argv{binary("fleet-server")};
+  server_argv.insert(server_argv.end(), common.begin(), common.end());
+  if (options_.auto_orders) server_argv.push_back("--auto-orders");
+  server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
+  processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
+  for (const auto& id : robot_ids_) {
+    std::vector<std::string> argv{binary("fleet-agent"), "--id", id};
+    argv.insert(argv.end(), common.begin(), common.end());
+    argv.insert(argv.end(), options_.extra_agent_args.begin(), options_.extra_agent_args.end());
+    processes_.start("fleet-agent " + id, argv, run_dir_ + "/fleet-agent-" + id + ".log");
+  }
+  started_ = std::chrono::steady_clock::now();
+  start_sim_ = SimClock(options_.time_scale).now();
+
+  FleetClient probe(options_.domain);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+  while (!probe.find_server(std::chrono::milliseconds(200))) {
+    for (std::size_t i : processes_.reap()) {
+      const auto& child = processes_.children()[i];
+      throw std::runtime_error(child.name + " " + ProcessGroup::describe(child.exit_status) + "; its log " +
+                               child.log_file + " ends with:\n" + tail_of(child.log_file, 10));
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw std::runtime_error("fleet-server did not appear on DDS domain " + std::to_string(options_.domain) +
+                               " within 15 s; see " + run_dir_);
+    }
+  }
+}
+
+bool FleetRun::poll() {
+  order_reader_->take_data([&](model::OrderInfo&& info) { orders_[info.order_id] = std::move(info); });
+  truth_reader_->take_data([&](model::SimTruth&& truth) {
+    for (const auto& c : collisions_.update(truth.robot_id, truth.pose, truth.footprint, truth.sim_time)) {
+      log_->warn("collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f})",
+                 c.sim_time - start_sim_,
+                 c.robot_a, c.pose_a.x, c.pose_a.y, c.robot_b, c.pose_b.x, c.pose_b.y);
+    }
+  });
+  for (std::size_t i : processes_.reap()) {
+    const auto& child = processes_.children()[i];
+    const std::string what = child.name + " " + ProcessGroup::describe(child.exit_status);
+    crashes_.push_back(what);
+    log_->error("{} on its own; its log {} ends with:\n{}", what, child.log_file, tail_of(child.log_file, 5));
+  }
+  if (stop_requested()) return false;
+  if (options_.duration_s > 0.0 && wall_seconds() >= options_.duration_s) return false;
+  return true;
+}
+
+void FleetRun::stop() {
+  if (stopped_ || !participant_) return;
+  stopped_ = true;
+  ended_ = std::chrono::steady_clock::now();
+  // Read the final order states while the server still serves them.
+  const auto drain_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+  while (std::chrono::steady_clock::now() < drain_until) {
+    order_reader_->take_data([&](model::OrderInfo&& info) { orders_[info.order_id] = std::move(info); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  processes_.reap();
+  processes_.stop_all(5.0);
+}
+
+double FleetRun::wall_seconds() const {
+  const auto end = stopped_ ? ended_ : std::chrono::steady_clock::now();
+  return std::chrono::duration<double>(end - started_).count();
+}
+
+double FleetRun::sim_seconds() const { return wall_seconds() * options_.time_scale; }
+
+monitor::OrderTally FleetRun::tally() const { return monitor::tally_orders(orders_, 1); }
+
+int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
+  Args args(command.args);
+  RunOptions options;
+  config::FleetConfig config = config::load_fleet_config(command.config_file);
+  options.config_file = command.config_file;
+  options.domain = domain;
+  options.agents = static_cast<int>(args.integer("agents", 1, 64).value_or(4));
+  options.site = args.value("site").value_or(config.settings.get_string("site"));
+  options.duration_s = args.number("duration", 0.0, 1e7).value_or(0.0);
+  options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(config.settings.get_double("time_scale"));
+  options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+  if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
+    std::vector<std::string> sites;
+    for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
+      if (entry.path().extension() == ".yaml") sites.push_back(entry.path().stem().string());
+    }
+    std::sort(sites.begin(), sites.end());
+    throw ArgError("--site: " + model::unknown_name_message("site", options.site, sites));
+  }
+  {
+    FleetClient probe(domain);
+    if (probe.find_server(std::chrono::milliseconds(1200))) {
+      throw ArgError("a fleet-server already runs on DDS domain " + std::to_string(domain) +
+                     "; stop it or choose another --domain");
+    }
+  }
+
+  install_stop_handlers();
+  auto log = make_logger("fleetctl demo");
+  FleetRun run(options, config, log);
+  run.start();
+  err << "Fleet demo: fleet-server and " << options.agents << " fleet-agents (" << model::join(run.robot_ids())
+      << ") on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
+      << ", automatic orders on.\n"
+      << "  logs:    " << run.run_dir() << "/\n"
+      << "  watch:   fleetctl --domain " << domain << " robots\n"
+      << "  order:   fleetctl --domain " << domain << " order add --from A1 --to A2 --wait\n"
+      << (options.duration_s > 0 ? "  stops after " + std::to_string(static_cast<int>(options.duration_s)) + " s"
+                                 : std::string("  Ctrl-C stops it"))
+      << "\n";
+  double next_progress = 10.0;
+  while (run.poll()) {
+    if (run.wall_seconds() >= next_progress) {
+      const auto t = run.tally();
+      err << "  t=" << static_cast<int>(run.sim_seconds()) << " s sim: " << t.done << " orders done, " << t.open
+          << " open, " << t.failed << " failed, " << run.collisions().size() << " collisions\n";
+      next_progress += 10.0;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  run.stop();
+  const auto t = run.tally();
+  nlohmann::json summary{{"orders_created", t.created},     {"orders_done", t.done},
+                         {"orders_failed", t.failed},       {"orders_cancelled", t.cancelled},
+                         {"orders_open", t.open},           {"orders_lost", t.lost},
+                         {"collisions", run.collisions().size()},
+                         {"agents", options.agents},        {"site", options.site},
+                         {"sim_seconds", std::round(run.sim_seconds() * 10) / 10},
+                         {"wall_seconds", std::round(run.wall_seconds() * 10) / 10},
+                         {"time_scale", options.time_scale}, {"domain", domain},
+                         {"crashed", run.crashes()},         {"run_dir", run.run_dir()}};
+  if (command.json) {
+    out << summary.dump() << "\n";
+  } else {
+    out << "Fleet demo summary (" << summary["sim_seconds"] << " s sim, " << summary["wall_seconds"] << " s wall)\n"
+        << "  orders: " << t.created << " created, " << t.done << " done, " << t.failed << " failed, " << t.cancelled
+        << " cancelled, " << t.open << " open, " << t.lost << " lost\n"
+        << "  collisions: " << run.collisions().size() << "\n"
+        << "  processes that ended on their own: " << (run.crashes().empty() ? "none" : model::join(run.crashes()))
+        << "\n  logs: " << run.run_dir() << "/\n";
+  }
+  return (t.lost == 0 && run.crashes().empty()) ? kExitOk : kExitFailed;
+}
+
+}  // namespace fleet::cli

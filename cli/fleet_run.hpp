@@ -1,0 +1,80 @@
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/processes.hpp"
+#include "common/logging.hpp"
+#include "config/fleet_config.hpp"
+#include "dds/topics.hpp"
+#include "monitor/collision_monitor.hpp"
+#include "monitor/order_accounting.hpp"
+
+namespace fleet::cli {
+
+struct RunOptions {
+  std::string kind = "demo";  ///< names the run folder: var/runs/<kind>-<time>
+  int agents = 4;
+  std::string site;
+  double duration_s = 0.0;  ///< wall seconds; 0 runs until Ctrl-C
+  double time_scale = 1.0;
+  long seed = 1;
+  std::uint32_t domain = 0;
+  std::string config_file;
+  bool auto_orders = true;
+  std::vector<std::string> extra_server_args;
+  std::vector<std::string> extra_agent_args;
+};
+
+/// A whole Fleet on this host: one fleet-server and N fleet-agents as child processes on one DDS
+/// domain, watched by fleetctl (orders, ground-truth collisions, crashed processes).
+class FleetRun {
+ public:
+  FleetRun(RunOptions options, config::FleetConfig config, Logger log);
+  ~FleetRun();
+
+  /// Starts the processes and waits for the server to answer; throws with its log on failure.
+  void start();
+  /// Reads what the fleet publishes; call often. Returns false once the run should end.
+  bool poll();
+  /// Stops every child (clean SIGTERM first) after reading the final order states.
+  void stop();
+
+  double sim_seconds() const;
+  double wall_seconds() const;
+  monitor::OrderTally tally() const;
+  const std::vector<monitor::Collision>& collisions() const { return collisions_.collisions(); }
+  /// Children that ended on their own (not stopped by us), with how they ended.
+  const std::vector<std::string>& crashes() const { return crashes_; }
+  const std::string& run_dir() const { return run_dir_; }
+  ProcessGroup& processes() { return processes_; }
+  const std::vector<std::string>& robot_ids() const { return robot_ids_; }
+
+ private:
+  std::string binary(const std::string& name) const;
+
+  RunOptions options_;
+  config::FleetConfig config_;
+  Logger log_;
+  std::string run_dir_;
+  std::vector<std::string> robot_ids_;
+  ProcessGroup processes_;
+  std::chrono::steady_clock::time_point started_;
+  std::chrono::steady_clock::time_point ended_;
+  double start_sim_ = 0.0;
+  bool stopped_ = false;
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<dds::Reader<model::OrderInfo>> order_reader_;
+  std::unique_ptr<dds::Reader<model::SimTruth>> truth_reader_;
+  std::map<std::int64_t, model::OrderInfo> orders_;
+  monitor::CollisionMonitor collisions_;
+  std::vector<std::string> crashes_;
+};
+
+/// `fleetctl demo`.
+int demo_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);
+
+}  // namespace fleet::cli

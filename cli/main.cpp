@@ -1,0 +1,120 @@
+// fleetctl: the Fleet command line. Orders, robots, the demo, and offline evaluation tools.
+
+#include <iostream>
+#include <map>
+
+#include "cli/commands.hpp"
+#include "cli/fleet_run.hpp"
+#include "cli/online_commands.hpp"
+#include "common/args.hpp"
+#include "common/paths.hpp"
+#include "config/fleet_config.hpp"
+#include "config/schema.hpp"
+#include "dds/environment.hpp"
+#include "map/site.hpp"
+
+namespace {
+
+constexpr const char* kHelp = R"(usage: fleetctl [global flags] COMMAND [flags]
+
+Drive a Fleet from the terminal or from scripts. fleetctl is a DDS participant of its own.
+
+commands (need a running fleet-server):
+  order add --from AREA --to AREA [--priority P] [--robot R] [--fleet F] [--wait]
+                       create a transport order, print its id; --wait follows it to its end
+  robots               table of robots: fleet, state, pose, order, localization score, health
+
+commands that start a fleet:
+  demo [--agents N=4] [--site NAME] [--duration SECONDS] [--time-scale K] [--seed S]
+                       one fleet-server and N fleet-agents with automatic orders; Ctrl-C or
+                       --duration (wall seconds) stops them all and prints a summary
+
+offline tools (core libraries only, no DDS):
+  map check SITE.yaml | map sample FILE.xodr [--step M] | map render SITE.yaml -o FILE.svg
+  loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N] [--nlos F] [--plot FILE.svg]
+  plan-eval --site NAME [--queries N] [--seed S]
+  ctrl-eval [--seed S] [--runs N]
+  config keys          every configuration key with default, unit, range and meaning
+
+global flags:
+  --domain N           DDS domain id (default: dds.domain of the configuration)
+  --json               machine-readable output: one JSON document (the last line printed)
+  --timeout S          seconds to look for the server (default 3)
+  --config FILE        configuration (default: config/fleet.yaml)
+  --help               this text
+
+exit codes:
+  0  ok
+  1  the operation ran and failed (order FAILED or CANCELLED, a run lost orders)
+  2  bad input (unknown area, robot or key; malformed file; bad flag)
+  3  no fleet-server reachable on the DDS domain
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace fleet;
+  using namespace fleet::cli;
+  std::ostream& out = std::cout;
+  std::ostream& err = std::cerr;
+  try {
+    Args args(argc, argv);
+    CommandArgs command;
+    command.json = args.flag("json");
+    command.config_file = args.value("config").value_or(default_config_path());
+    command.source_dir = project_root();
+    const auto domain_flag = args.integer("domain", 0, 232);
+    const double timeout_s = args.number("timeout", 0.1, 3600.0).value_or(3.0);
+    const bool help = args.flag("help");
+    if (help || args.remaining().empty()) {
+      out << kHelp;
+      return help ? kExitOk : kExitBadInput;
+    }
+    const std::string name = args.remaining().front();
+    command.args.assign(args.remaining().begin() + 1, args.remaining().end());
+
+    // Offline tools need no configuration or DDS.
+#ifdef FLEET_HAVE_MAP
+    if (name == "map") return map_command(command, out, err);
+#endif
+#ifdef FLEET_HAVE_LOC_EVAL
+    if (name == "loc-eval") return loc_eval_command(command, out, err);
+#endif
+#ifdef FLEET_HAVE_PLAN_EVAL
+    if (name == "plan-eval") return plan_eval_command(command, out, err);
+#endif
+#ifdef FLEET_HAVE_CTRL_EVAL
+    if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
+#endif
+    if (name == "config") {
+      if (command.args.size() == 1 && command.args[0] == "keys") {
+        out << config::schema_markdown();
+        return kExitOk;
+      }
+      throw ArgError("config needs a subcommand: keys");
+    }
+
+    const config::FleetConfig config = config::load_fleet_config(command.config_file);
+    Connection connection;
+    connection.domain = static_cast<std::uint32_t>(domain_flag.value_or(config.settings.get_int("dds.domain")));
+    connection.timeout = std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
+    dds::use_fleet_dds_config();
+
+    if (name == "order") return order_command(command, connection, out, err);
+    if (name == "robots") return robots_command(command, connection, out, err);
+    if (name == "demo") return demo_command(command, out, err, connection.domain);
+    throw ArgError("unknown command '" + name + "'; see fleetctl --help");
+  } catch (const ArgError& e) {
+    err << "fleetctl: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const config::ConfigError& e) {
+    err << "fleetctl: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const map::MapError& e) {
+    err << "fleetctl: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    err << "fleetctl: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}

@@ -1,0 +1,169 @@
+#include "cli/online_commands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/client.hpp"
+#include "common/args.hpp"
+#include "common/clock.hpp"
+#include "model/names.hpp"
+
+namespace fleet::cli {
+
+namespace {
+
+/// Thrown to leave a command with an exit code after printing `message` to stderr.
+struct CommandExit {
+  int code;
+  std::string message;
+};
+
+model::ServerInfo require_server(FleetClient& client, const Connection& connection) {
+  auto info = client.find_server(connection.timeout);
+  if (!info) throw CommandExit{kExitNoServer, "no fleet-server on DDS domain " + std::to_string(connection.domain)};
+  return *info;
+}
+
+void require_known(const std::string& what, const std::string& name, const std::vector<std::string>& valid) {
+  if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
+    throw CommandExit{kExitBadInput, model::unknown_name_message(what, name, valid)};
+  }
+}
+
+nlohmann::json to_json(const model::OrderInfo& o) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& e : o.history) {
+    history.push_back({{"sim_time", e.sim_time}, {"state", e.state},     {"phase", e.phase},
+                       {"robot_id", e.robot_id}, {"reason", e.reason},   {"robot_x", e.robot_x},
+                       {"robot_y", e.robot_y}});
+  }
+  return {{"order_id", o.order_id}, {"pick_area", o.pick_area}, {"drop_area", o.drop_area},
+          {"robot_id", o.robot_id}, {"state", o.state},         {"phase", o.phase},
+          {"reason", o.reason},     {"priority", o.priority},   {"created_sim", o.created_sim},
+          {"updated_sim", o.updated_sim}, {"history", history}};
+}
+
+int order_add(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+  model::OrderRequest request;
+  const auto from = args.value("from");
+  const auto to = args.value("to");
+  if (!from || !to) throw ArgError("order add needs --from AREA and --to AREA");
+  request.pick_area = *from;
+  request.drop_area = *to;
+  request.priority = static_cast<int>(args.integer("priority", -1000, 1000).value_or(0));
+  request.robot_id = args.value("robot").value_or("");
+  request.fleet_id = args.value("fleet").value_or("");
+  const bool wait = args.flag("wait");
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+
+  FleetClient client(connection.domain);
+  const model::ServerInfo info = require_server(client, connection);
+  require_known("loading area", request.pick_area, info.loading_areas);
+  require_known("loading area", request.drop_area, info.loading_areas);
+  if (!request.robot_id.empty()) require_known("robot", request.robot_id, info.robots);
+
+  const auto reply = client.request_order(request, connection.timeout);
+  if (!reply) {
+    throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
+                                         " did not answer the order request"};
+  }
+  if (!reply->accepted) throw CommandExit{kExitBadInput, "order refused: " + reply->error};
+  if (command.json && !wait) {
+    out << nlohmann::json{{"order_id", reply->order_id}, {"state", "QUEUED"}}.dump() << "\n";
+  } else if (!command.json) {
+    out << reply->order_id << "\n" << std::flush;
+  }
+  if (!wait) return kExitOk;
+
+  const double started = SimClock::wall_now();
+  const auto final_info = client.follow_order(reply->order_id, [&](const model::OrderInfo& o) {
+    if (command.json) return;
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(1) << "[" << SimClock::wall_now() - started << " s] order " << o.order_id
+         << " " << o.state;
+    if (!o.phase.empty()) line << " " << o.phase;
+    if (!o.robot_id.empty()) line << " on " << o.robot_id;
+    if (!o.reason.empty()) line << ": " << o.reason;
+    std::cerr << line.str() << "\n";
+  });
+  if (!final_info) {
+    throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
+                                         " went away while order " + std::to_string(reply->order_id) + " was open"};
+  }
+  if (command.json) out << to_json(*final_info).dump() << "\n";
+  return final_info->state == "DONE" ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+int order_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    const auto sub = args.remaining().empty() ? std::string() : args.remaining().front();
+    Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
+    if (sub == "add") return order_add(rest, command, connection, out);
+    throw ArgError(sub.empty() ? "order needs a subcommand: add" : "unknown order subcommand '" + sub + "' (add)");
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+int robots_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+    FleetClient client(connection.domain);
+    const model::ServerInfo info = require_server(client, connection);
+    const auto states = client.robot_states(std::chrono::milliseconds(600));
+    const SimClock clock(info.time_scale);
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& id : info.robots) {
+      auto it = states.find(id);
+      if (it == states.end()) {
+        rows.push_back({{"robot_id", id}, {"health", "not seen"}});
+        continue;
+      }
+      const auto& s = it->second;
+      rows.push_back({{"robot_id", id},
+                      {"fleet_id", s.fleet_id},
+                      {"state", s.task_state},
+                      {"x", s.pose.x},
+                      {"y", s.pose.y},
+                      {"yaw", s.pose.yaw},
+                      {"order_id", s.order_id},
+                      {"carrying_pallet", s.carrying_pallet},
+                      {"localization_score", s.localization_score},
+                      {"age_s", std::max(0.0, clock.now() - s.sim_time)},
+                      {"health", "alive"}});
+    }
+    if (command.json) {
+      out << rows.dump() << "\n";
+      return kExitOk;
+    }
+    out << std::left << std::setw(8) << "ROBOT" << std::setw(11) << "FLEET" << std::setw(15) << "STATE"
+        << std::setw(24) << "POSE (x, y, yaw)" << std::setw(7) << "ORDER" << std::setw(7) << "LOC" << "HEALTH\n";
+    for (const auto& r : rows) {
+      std::ostringstream pose, order, loc;
+      if (r.contains("x")) {
+        pose << std::fixed << std::setprecision(2) << r["x"].get<double>() << ", " << r["y"].get<double>() << ", "
+             << r["yaw"].get<double>();
+        order << (r["order_id"].get<long>() ? std::to_string(r["order_id"].get<long>()) : "-");
+        loc << std::fixed << std::setprecision(2) << r["localization_score"].get<double>();
+      }
+      out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(11)
+          << r.value("fleet_id", "-") << std::setw(15) << r.value("state", "-") << std::setw(24) << pose.str()
+          << std::setw(7) << order.str() << std::setw(7) << loc.str() << r["health"].get<std::string>() << "\n";
+    }
+    return kExitOk;
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+}  // namespace fleet::cli

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace fleet::cli {
+
+/// Child processes started by fleetctl (demo, soak). Each child is told by the kernel to die
+/// with fleetctl (PR_SET_PDEATHSIG), so none outlives it, even when fleetctl is killed with
+/// SIGKILL; stop_all() ends them cleanly first (SIGTERM, then SIGKILL after a grace period).
+class ProcessGroup {
+ public:
+  struct Child {
+    std::string name;
+    std::vector<std::string> argv;
+    std::string log_file;
+    pid_t pid = -1;
+    bool running = false;
+    int exit_status = 0;  ///< as from waitpid, once ended
+  };
+
+  ProcessGroup() = default;
+  ~ProcessGroup();
+  ProcessGroup(const ProcessGroup&) = delete;
+  ProcessGroup& operator=(const ProcessGroup&) = delete;
+
+  /// Starts `argv` with stdout and stderr appended to `log_file`. Returns the child's index.
+  std::size_t start(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file);
+
+  /// Restarts an ended child with its original arguments.
+  void restart(std::size_t index);
+
+  /// Sends `signal` to one child.
+  void signal(std::size_t index, int signal);
+
+  /// Reaps ended children; returns the indices that ended since the last call.
+  std::vector<std::size_t> reap();
+
+  /// SIGTERM to every running child, then SIGKILL to those still running after `grace_s`.
+  void stop_all(double grace_s = 5.0);
+
+  const std::vector<Child>& children() const { return children_; }
+
+  /// "exited with 0", "killed by signal 9", ...
+  static std::string describe(int exit_status);
+
+ private:
+  std::vector<Child> children_;
+};
+
+/// Installs SIGINT and SIGTERM handlers that set a flag instead of killing fleetctl, so it can
+/// stop its children and print its summary.
+void install_stop_handlers();
+bool stop_requested();
+
+}  // namespace fleet::cli

@@ -1,0 +1,73 @@
+#include "common/args.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace fleet {
+
+std::optional<std::string> Args::value(const std::string& name) {
+  const std::string flag_name = "--" + name;
+  for (std::size_t i = 0; i < args_.size(); ++i) {
+    if (args_[i] == flag_name) {
+      if (i + 1 >= args_.size()) throw ArgError("flag " + flag_name + " needs a value");
+      std::string v = args_[i + 1];
+      args_.erase(args_.begin() + static_cast<long>(i), args_.begin() + static_cast<long>(i) + 2);
+      return v;
+    }
+    if (args_[i].rfind(flag_name + "=", 0) == 0) {
+      std::string v = args_[i].substr(flag_name.size() + 1);
+      args_.erase(args_.begin() + static_cast<long>(i));
+      return v;
+    }
+  }
+  return std::nullopt;
+}
+
+bool Args::flag(const std::string& name) {
+  for (std::size_t i = 0; i < args_.size(); ++i) {
+    if (args_[i] == "--" + name) {
+      args_.erase(args_.begin() + static_cast<long>(i));
+      return true;
+    }
+  }
+  return false;
+}
+
+std::optional<double> Args::number(const std::string& name, double min, double max) {
+  const auto text = value(name);
+  if (!text) return std::nullopt;
+  double v = 0.0;
+  auto [ptr, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
+  if (ec != std::errc() || ptr != text->data() + text->size() || !std::isfinite(v)) {
+    throw ArgError("flag --" + name + ": '" + *text + "' is not a number");
+  }
+  if (v < min || v > max) {
+    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
+  }
+  return v;
+}
+
+std::optional<long> Args::integer(const std::string& name, long min, long max) {
+  const auto text = value(name);
+  if (!text) return std::nullopt;
+  long v = 0;
+  auto [ptr, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
+  if (ec != std::errc() || ptr != text->data() + text->size()) {
+    throw ArgError("flag --" + name + ": '" + *text + "' is not an integer");
+  }
+  if (v < min || v > max) {
+    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
+  }
+  return v;
+}
+
+std::vector<std::string> Args::positionals() const {
+  for (const auto& a : args_) {
+    if (a.size() > 1 && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
+      throw ArgError("unknown flag '" + a + "'");
+    }
+  }
+  return args_;
+}
+
+}  // namespace fleet

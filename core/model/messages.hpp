@@ -1,0 +1,161 @@
+#pragma once
+
+// Plain C++ values of what crosses the wire, one struct per DDS topic (idl/fleet.idl). core/,
+// server/, agent/ and cli/ work with these; only dds/ knows the IDL's C structs.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/polygon.hpp"
+
+namespace fleet::model {
+
+struct ServerInfo {
+  std::string server_id;
+  std::string site;
+  std::vector<std::string> loading_areas;
+  std::vector<std::string> robots;
+  std::vector<std::string> obstacles;
+  std::vector<std::string> maps;
+  double time_scale = 1.0;
+  std::int64_t started_unix_ms = 0;
+};
+
+struct OrderRequest {
+  std::string request_id;
+  std::string pick_area;
+  std::string drop_area;
+  std::string fleet_id;  ///< empty: the server chooses
+  std::string robot_id;  ///< empty: the server chooses
+  int priority = 0;
+};
+
+struct Command {
+  std::string request_id;
+  std::string verb;  ///< cancel-order, obstacle, map, pause, resume, auto-orders
+  std::string target;
+  std::string value;
+  std::uint32_t update_id = 0;
+};
+
+struct RequestReply {
+  std::string request_id;
+  bool accepted = false;
+  std::int64_t order_id = 0;
+  std::string error;
+};
+
+/// An order as sent to its robot.
+struct OrderAssignment {
+  std::int64_t order_id = 0;
+  std::string robot_id;
+  std::string pick_area;
+  geometry::Pose2 pick_pose;  ///< the loading area's pose (see map::LoadingArea)
+  std::string drop_area;
+  geometry::Pose2 drop_pose;
+  std::uint32_t update_id = 0;
+  bool cancelled = false;
+};
+
+/// An agent's report on its order.
+struct OrderReport {
+  std::int64_t order_id = 0;
+  std::string robot_id;
+  std::string status;  ///< ACCEPTED, REJECTED, a phase name, DONE, FAILED
+  std::string reason;
+  std::uint32_t update_id = 0;
+  double sim_time = 0.0;
+  bool carrying_pallet = false;
+};
+
+struct OrderEvent {
+  double sim_time = 0.0;
+  std::string state;
+  std::string phase;
+  std::string robot_id;
+  std::string reason;
+  double robot_x = 0.0;
+  double robot_y = 0.0;
+};
+
+/// The server's view of an order's lifecycle.
+struct OrderInfo {
+  std::int64_t order_id = 0;
+  std::string request_id;
+  std::string pick_area;
+  std::string drop_area;
+  std::string fleet_id;
+  std::string robot_id;
+  std::string state;  ///< QUEUED, ASSIGNED, ACTIVE, DONE, FAILED, CANCELLED
+  std::string phase;
+  std::string reason;
+  int priority = 0;
+  double created_sim = 0.0;
+  double updated_sim = 0.0;
+  std::vector<OrderEvent> history;  ///< oldest first, at most kMaxOrderHistory
+};
+
+inline constexpr std::size_t kMaxOrderHistory = 64;
+
+struct RobotState {
+  std::string robot_id;
+  std::string fleet_id;
+  std::string map_id;
+  geometry::Pose2 pose;
+  std::array<double, 9> covariance{};  ///< x, y, yaw; row-major
+  double localization_score = 1.0;
+  double speed = 0.0;
+  double yaw_rate = 0.0;
+  std::string task_state;
+  std::string detail;
+  std::int64_t order_id = 0;
+  bool carrying_pallet = false;
+  double sim_time = 0.0;
+};
+
+struct RobotPath {
+  std::string robot_id;
+  std::vector<geometry::Vec2> points;
+  double sim_time = 0.0;
+};
+
+struct MapAssignment {
+  std::string robot_id;
+  std::string map_id;
+};
+
+struct StaticObstacleState {
+  std::string obstacle_id;
+  std::string map_id;
+  bool enabled = false;
+  geometry::Polygon polygon;
+};
+
+struct RobotSnapshot {
+  std::string robot_id;
+  std::string fleet_id;
+  geometry::Pose2 pose;
+  geometry::Footprint footprint;
+  double speed = 0.0;
+  std::string task_state;
+  double sim_time = 0.0;
+  std::vector<geometry::Vec2> path;
+};
+
+struct FleetView {
+  std::string map_id;
+  double sim_time = 0.0;
+  std::vector<RobotSnapshot> robots;
+};
+
+struct SimTruth {
+  std::string robot_id;
+  geometry::Pose2 pose;
+  geometry::Footprint footprint;
+  bool carrying_pallet = false;
+  double sim_time = 0.0;
+};
+
+}  // namespace fleet::model

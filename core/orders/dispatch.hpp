@@ -1,0 +1,47 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "orders/order.hpp"
+
+namespace fleet::orders {
+
+struct FreeRobot {
+  std::string id;
+  std::string fleet_id;
+};
+
+struct Assignment {
+  std::int64_t order_id = 0;
+  std::string robot_id;
+};
+
+/// Travel cost from a robot's position to an area's pick pose (road-graph metres); +inf when the
+/// robot cannot get there.
+using TravelCost = std::function<double(const std::string& robot_id, const std::string& area_id)>;
+
+/// Matches queued orders with free robots. One small interface; policies chosen by name in
+/// config (`server.dispatch_policy`).
+class DispatchPolicy {
+ public:
+  virtual ~DispatchPolicy() = default;
+  /// `queue` is in dispatch order (priority, then age). Each robot gets at most one order.
+  virtual std::vector<Assignment> assign(const std::vector<const Order*>& queue, std::vector<FreeRobot> free_robots,
+                                         const TravelCost& cost) const = 0;
+};
+
+/// "ascending-id" (seed 000, section 3), "nearest", "optimal" (Hungarian); throws
+/// std::invalid_argument for other names.
+std::unique_ptr<DispatchPolicy> make_dispatch_policy(std::string_view name);
+
+/// Natural order of robot ids, so that fl2 comes before fl10.
+bool robot_id_less(const std::string& a, const std::string& b);
+
+/// Whether `robot` may take `order` (a requested robot or fleet restricts it).
+bool eligible(const Order& order, const FreeRobot& robot);
+
+}  // namespace fleet::orders

@@ -1,0 +1,46 @@
+#include "orders/order.hpp"
+
+#include <array>
+
+namespace fleet::orders {
+
+namespace {
+constexpr std::array<std::string_view, 6> kStatusNames{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
+constexpr std::array<std::string_view, 6> kPhaseNames{"", "TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"};
+}  // namespace
+
+std::string_view to_string(OrderStatus status) { return kStatusNames[static_cast<std::size_t>(status)]; }
+std::string_view to_string(OrderPhase phase) { return kPhaseNames[static_cast<std::size_t>(phase)]; }
+
+std::optional<OrderStatus> parse_status(std::string_view text) {
+  for (std::size_t i = 0; i < kStatusNames.size(); ++i)
+    if (kStatusNames[i] == text) return static_cast<OrderStatus>(i);
+  return std::nullopt;
+}
+
+std::optional<OrderPhase> parse_phase(std::string_view text) {
+  for (std::size_t i = 1; i < kPhaseNames.size(); ++i)
+    if (kPhaseNames[i] == text) return static_cast<OrderPhase>(i);
+  return std::nullopt;
+}
+
+bool is_final(OrderStatus status) {
+  return status == OrderStatus::Done || status == OrderStatus::Failed || status == OrderStatus::Cancelled;
+}
+
+bool is_legal_transition(OrderStatus from, OrderStatus to) {
+  using S = OrderStatus;
+  switch (from) {
+    case S::Queued: return to == S::Assigned || to == S::Cancelled || to == S::Failed;
+    case S::Assigned:
+      return to == S::Active || to == S::Queued || to == S::Done || to == S::Failed || to == S::Cancelled;
+    case S::Active:
+      return to == S::Active || to == S::Queued || to == S::Done || to == S::Failed || to == S::Cancelled;
+    case S::Done:
+    case S::Failed:
+    case S::Cancelled: return false;
+  }
+  return false;
+}
+
+}  // namespace fleet::orders

@@ -1,0 +1,104 @@
+#include "orders/order_book.hpp"
+
+#include <algorithm>
+
+namespace fleet::orders {
+
+const Order& OrderBook::create(Order draft, double now_sim) {
+  draft.id = next_id_++;
+  draft.status = OrderStatus::Queued;
+  draft.phase = OrderPhase::None;
+  draft.created_sim = draft.updated_sim = now_sim;
+  draft.history = {{now_sim, OrderStatus::Queued, OrderPhase::None, "", "", 0.0, 0.0}};
+  return orders_[draft.id] = std::move(draft);
+}
+
+void OrderBook::restore(const Order& order) {
+  orders_[order.id] = order;
+  next_id_ = std::max(next_id_, order.id + 1);
+}
+
+TransitionResult OrderBook::transition(std::int64_t id, OrderStatus to, double now_sim, const std::string& reason) {
+  auto it = orders_.find(id);
+  if (it == orders_.end()) return TransitionResult::UnknownOrder;
+  Order& order = it->second;
+  if (!is_legal_transition(order.status, to)) return TransitionResult::Illegal;
+  order.status = to;
+  order.updated_sim = now_sim;
+  if (!reason.empty()) order.reason = reason;
+  if (to == OrderStatus::Queued) {
+    order.phase = OrderPhase::None;
+    if (!order.robot_requested) order.robot_id.clear();
+  }
+  if (is_final(to)) order.finished_sim = now_sim;
+  order.history.push_back({now_sim, to, order.phase, order.robot_id, reason, 0.0, 0.0});
+  return TransitionResult::Applied;
+}
+
+TransitionResult OrderBook::assign(std::int64_t id, const std::string& robot_id, double now_sim) {
+  auto it = orders_.find(id);
+  if (it == orders_.end()) return TransitionResult::UnknownOrder;
+  if (it->second.status != OrderStatus::Queued) return TransitionResult::Illegal;
+  const auto result = transition(id, OrderStatus::Assigned, now_sim);
+  it->second.robot_id = robot_id;
+  it->second.history.back().robot_id = robot_id;
+  it->second.assigned_sim = now_sim;
+  ++it->second.update_id;
+  return result;
+}
+
+TransitionResult OrderBook::set_phase(std::int64_t id, OrderPhase phase, double now_sim) {
+  auto it = orders_.find(id);
+  if (it == orders_.end()) return TransitionResult::UnknownOrder;
+  const auto result = transition(id, OrderStatus::Active, now_sim);
+  if (result == TransitionResult::Applied) {
+    it->second.phase = phase;
+    it->second.history.back().phase = phase;
+  }
+  return result;
+}
+
+TransitionResult OrderBook::requeue(std::int64_t id, double now_sim, const std::string& reason) {
+  auto it = orders_.find(id);
+  if (it == orders_.end()) return TransitionResult::UnknownOrder;
+  if (it->second.status != OrderStatus::Assigned && it->second.status != OrderStatus::Active) {
+    return TransitionResult::Illegal;
+  }
+  const auto result = transition(id, OrderStatus::Queued, now_sim, reason);
+  ++it->second.update_id;
+  return result;
+}
+
+void OrderBook::locate_last_event(std::int64_t id, double x, double y) {
+  auto it = orders_.find(id);
+  if (it == orders_.end() || it->second.history.empty()) return;
+  it->second.history.back().robot_x = x;
+  it->second.history.back().robot_y = y;
+}
+
+const Order* OrderBook::find(std::int64_t id) const {
+  auto it = orders_.find(id);
+  return it == orders_.end() ? nullptr : &it->second;
+}
+
+std::vector<const Order*> OrderBook::with_status(OrderStatus status) const {
+  std::vector<const Order*> out;
+  for (const auto& [id, order] : orders_)
+    if (order.status == status) out.push_back(&order);
+  return out;
+}
+
+std::vector<const Order*> OrderBook::queue() const {
+  std::vector<const Order*> out = with_status(OrderStatus::Queued);
+  std::stable_sort(out.begin(), out.end(), [](const Order* a, const Order* b) { return a->priority > b->priority; });
+  return out;
+}
+
+const Order* OrderBook::open_order_of(const std::string& robot_id) const {
+  for (const auto& [id, order] : orders_) {
+    if (!is_final(order.status) && order.status != OrderStatus::Queued && order.robot_id == robot_id) return &order;
+  }
+  return nullptr;
+}
+
+}  // namespace fleet::orders

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "orders/order.hpp"
+
+namespace fleet::orders {
+
+/// Outcome of a requested transition.
+enum class TransitionResult { Applied, UnknownOrder, Illegal };
+
+/// Every order the server knows, keyed by id. Ids are handed out increasing and never reused;
+/// `next_id` is restored from persistence so this also holds across restarts.
+class OrderBook {
+ public:
+  explicit OrderBook(std::int64_t next_id = 1) : next_id_(next_id) {}
+
+  /// Creates a QUEUED order and returns it.
+  const Order& create(Order draft, double now_sim);
+
+  /// Puts back an order read from storage (its id is kept; next_id moves past it).
+  void restore(const Order& order);
+
+  /// Moves an order to `to`; refuses illegal transitions (see is_legal_transition).
+  TransitionResult transition(std::int64_t id, OrderStatus to, double now_sim, const std::string& reason = "");
+
+  /// Assigns a QUEUED order to a robot (QUEUED -> ASSIGNED) and bumps its update id.
+  TransitionResult assign(std::int64_t id, const std::string& robot_id, double now_sim);
+
+  /// Records the robot's phase of an ASSIGNED or ACTIVE order (-> ACTIVE).
+  TransitionResult set_phase(std::int64_t id, OrderPhase phase, double now_sim);
+
+  /// Sends an ASSIGNED or ACTIVE order back to the queue, with the reason.
+  TransitionResult requeue(std::int64_t id, double now_sim, const std::string& reason);
+
+  /// Where the robot was at the order's latest event.
+  void locate_last_event(std::int64_t id, double x, double y);
+
+  const Order* find(std::int64_t id) const;
+  std::vector<const Order*> with_status(OrderStatus status) const;
+  /// Queued orders by priority (high first), then age (old first).
+  std::vector<const Order*> queue() const;
+  /// The open (not final) order held by a robot, if any.
+  const Order* open_order_of(const std::string& robot_id) const;
+  const std::map<std::int64_t, Order>& all() const { return orders_; }
+  std::int64_t next_id() const { return next_id_; }
+
+ private:
+  std::map<std::int64_t, Order> orders_;
+  std::int64_t next_id_;
+};
+
+}  // namespace fleet::orders

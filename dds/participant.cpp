@@ -1,0 +1,56 @@
+#include "dds/participant.hpp"
+
+namespace fleet::dds {
+
+dds_return_t check(dds_return_t rc, const std::string& what) {
+  if (rc < 0) throw DdsError(what + ": " + dds_strretcode(rc));
+  return rc;
+}
+
+Participant::Participant(std::uint32_t domain)
+    : handle_(check(dds_create_participant(domain, nullptr, nullptr),
+                    "create DDS participant on domain " + std::to_string(domain))),
+      domain_(domain) {}
+
+Participant::~Participant() { dds_delete(handle_); }
+
+dds_entity_t Participant::topic_for(const char* name, const dds_topic_descriptor_t* descriptor) {
+  auto it = topics_.find(name);
+  if (it != topics_.end()) return it->second;
+  const dds_entity_t topic =
+      check(dds_create_topic(handle_, descriptor, name, nullptr, nullptr), std::string("create topic ") + name);
+  topics_.emplace(name, topic);
+  return topic;
+}
+
+std::uint32_t matched_readers(dds_entity_t writer) {
+  dds_publication_matched_status_t status{};
+  if (dds_get_publication_matched_status(writer, &status) < 0) return 0;
+  return status.current_count;
+}
+
+std::uint32_t matched_writers(dds_entity_t reader) {
+  dds_subscription_matched_status_t status{};
+  if (dds_get_subscription_matched_status(reader, &status) < 0) return 0;
+  return status.current_count;
+}
+
+WaitSet::WaitSet(Participant& participant)
+    : handle_(check(dds_create_waitset(participant.handle()), "create waitset")) {}
+
+WaitSet::~WaitSet() {
+  for (dds_entity_t c : conditions_) dds_delete(c);
+  dds_delete(handle_);
+}
+
+void WaitSet::attach(dds_entity_t reader) {
+  const dds_entity_t condition = check(dds_create_readcondition(reader, DDS_ANY_STATE), "create read condition");
+  conditions_.push_back(condition);
+  check(dds_waitset_attach(handle_, condition, condition), "attach to waitset");
+}
+
+int WaitSet::wait(std::chrono::microseconds timeout) {
+  return dds_waitset_wait(handle_, nullptr, 0, DDS_USECS(timeout.count()));
+}
+
+}  // namespace fleet::dds

@@ -1,0 +1,146 @@
+#pragma once
+
+#include <dds/dds.h>
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dds/qos.hpp"
+
+namespace fleet::dds {
+
+class DdsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws DdsError naming `what` when `rc` is a negative DDS return code.
+dds_return_t check(dds_return_t rc, const std::string& what);
+
+/// Per-topic glue, specialised in dds/topics.hpp for each core/model type: its topic name, and how
+/// it is written and taken. Only topics.cpp sees the IDL's C structs.
+template <typename T>
+struct TopicTraits;
+
+/// Sample metadata a caller may care about.
+struct SampleInfo {
+  bool valid_data = true;  ///< false for instance-state changes (writer gone, disposed)
+  bool alive = true;       ///< the instance still has a live writer
+  std::int64_t source_timestamp_ns = 0;
+};
+
+/// A domain participant; owns every entity created through it.
+class Participant {
+ public:
+  explicit Participant(std::uint32_t domain);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  dds_entity_t handle() const { return handle_; }
+  std::uint32_t domain() const { return domain_; }
+
+  /// The topic for T, created once per participant.
+  template <typename T>
+  dds_entity_t topic() {
+    return topic_for(TopicTraits<T>::name, TopicTraits<T>::descriptor());
+  }
+
+ private:
+  dds_entity_t topic_for(const char* name, const dds_topic_descriptor_t* descriptor);
+  dds_entity_t handle_;
+  std::uint32_t domain_;
+  std::map<std::string, dds_entity_t> topics_;
+};
+
+/// Counts of matched remote endpoints.
+std::uint32_t matched_readers(dds_entity_t writer);
+std::uint32_t matched_writers(dds_entity_t reader);
+
+template <typename T>
+class Writer {
+ public:
+  Writer(Participant& participant, const Qos& qos)
+      : handle_(check(dds_create_writer(participant.handle(), participant.template topic<T>(), qos.get(), nullptr),
+                      std::string("create writer ") + TopicTraits<T>::name)) {}
+  ~Writer() { dds_delete(handle_); }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  /// False when the write failed (for example a reliable reader that stopped taking data).
+  bool write(const T& value) { return TopicTraits<T>::write(handle_, value) >= 0; }
+  /// Forgets the instance keyed by `value` (its history leaves the writer); readers see it not alive.
+  void unregister(const T& value) { TopicTraits<T>::unregister(handle_, value); }
+  /// Marks the instance keyed by `value` as deleted for every reader.
+  void dispose(const T& value) { TopicTraits<T>::dispose(handle_, value); }
+
+  std::uint32_t matched() const { return matched_readers(handle_); }
+
+  /// Waits until at least `count` readers are matched; volatile data written before a reader
+  /// matches is never delivered to it.
+  bool wait_for_readers(std::uint32_t count, std::chrono::milliseconds timeout) const {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (matched() < count) {
+      if (std::chrono::steady_clock::now() >= deadline) return false;
+      dds_sleepfor(DDS_MSECS(10));
+    }
+    return true;
+  }
+
+  dds_entity_t handle() const { return handle_; }
+
+ private:
+  dds_entity_t handle_;
+};
+
+template <typename T>
+class Reader {
+ public:
+  using Callback = std::function<void(T&&, const SampleInfo&)>;
+
+  Reader(Participant& participant, const Qos& qos)
+      : handle_(check(dds_create_reader(participant.handle(), participant.template topic<T>(), qos.get(), nullptr),
+                      std::string("create reader ") + TopicTraits<T>::name)) {}
+  ~Reader() { dds_delete(handle_); }
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  /// Takes every available sample, calling `fn` for each. Returns how many were taken.
+  int take(const Callback& fn) { return TopicTraits<T>::take(handle_, fn); }
+
+  /// Takes only valid data samples.
+  int take_data(const std::function<void(T&&)>& fn) {
+    return take([&](T&& value, const SampleInfo& info) {
+      if (info.valid_data) fn(std::move(value));
+    });
+  }
+
+  std::uint32_t matched() const { return matched_writers(handle_); }
+  dds_entity_t handle() const { return handle_; }
+
+ private:
+  dds_entity_t handle_;
+};
+
+/// Blocks until one of the attached readers has data or the timeout passes.
+class WaitSet {
+ public:
+  explicit WaitSet(Participant& participant);
+  ~WaitSet();
+  WaitSet(const WaitSet&) = delete;
+  WaitSet& operator=(const WaitSet&) = delete;
+
+  void attach(dds_entity_t reader);
+  /// Returns the number of triggered conditions (0 on timeout).
+  int wait(std::chrono::microseconds timeout);
+
+ private:
+  dds_entity_t handle_;
+  std::vector<dds_entity_t> conditions_;
+};
+
+}  // namespace fleet::dds

@@ -1,0 +1,31 @@
+#include "dds/qos.hpp"
+
+namespace fleet::dds::qos {
+
+Qos latched_state() {
+  Qos q;
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+  dds_qset_durability(q.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);
+  return q;
+}
+
+Qos live_state() {
+  Qos q;
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+  dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);
+  dds_qset_liveliness(q.get(), DDS_LIVELINESS_AUTOMATIC, DDS_SECS(1));
+  return q;
+}
+
+Qos requests() {
+  Qos q;
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+  dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_resource_limits(q.get(), 1000, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  return q;
+}
+
+}  // namespace fleet::dds::qos

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <dds/dds.h>
+
+namespace fleet::dds {
+
+/// An owned dds_qos_t.
+class Qos {
+ public:
+  Qos() : qos_(dds_create_qos()) {}
+  ~Qos() { dds_delete_qos(qos_); }
+  Qos(const Qos& other) : qos_(dds_create_qos()) { dds_copy_qos(qos_, other.qos_); }
+  Qos& operator=(const Qos& other) {
+    if (this != &other) dds_copy_qos(qos_, other.qos_);
+    return *this;
+  }
+  dds_qos_t* get() const { return qos_; }
+
+ private:
+  dds_qos_t* qos_;
+};
+
+/// The QoS classes of ARCHITECTURE.md, named once (STYLE.md 9). Every topic uses one of them.
+namespace qos {
+
+/// Latched state (MapAssignment, StaticObstacle, Order, OrderInfo, ServerInfo, RequestReply):
+/// reliable, transient-local, keep-last 1 per key, so a late joiner gets the current value.
+Qos latched_state();
+
+/// Live state (RobotState, FleetView, SimTruth, RobotPath): reliable, volatile, keep-last 1 per
+/// key: a slow reader skips to the newest value instead of queueing old poses. Writers assert
+/// liveliness automatically with a 1 s lease so a dead publisher is noticed.
+Qos live_state();
+
+/// Requests (OrderRequest, Command, OrderState): reliable, volatile, keep-all bounded to 1000.
+Qos requests();
+
+}  // namespace qos
+}  // namespace fleet::dds

@@ -1,0 +1,270 @@
+#include "dds/topics.hpp"
+
+#include <deque>
+
+#include "fleet.h"
+
+namespace fleet::dds {
+
+namespace {
+
+// --- to the wire: C structs borrow from the model value for the duration of one write ---------
+
+char* borrow(const std::string& s) { return const_cast<char*>(s.c_str()); }
+
+/// Owns the arrays a wire struct points into while it is written.
+struct Scratch {
+  std::deque<std::vector<char*>> strings;
+  std::deque<std::vector<fleet_msg_Point2D>> points;
+  std::deque<std::vector<fleet_msg_RobotSnapshot>> snapshots;
+  std::deque<std::vector<fleet_msg_OrderEvent>> events;
+
+  dds_sequence_string string_seq(const std::vector<std::string>& items) {
+    auto& buffer = strings.emplace_back();
+    for (const auto& s : items) buffer.push_back(borrow(s));
+    return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
+  }
+
+  dds_sequence_fleet_msg_Point2D point_seq(const std::vector<geometry::Vec2>& items) {
+    auto& buffer = points.emplace_back();
+    for (const auto& p : items) buffer.push_back({p.x, p.y});
+    return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
+  }
+};
+
+fleet_msg_Pose2D wire_pose(const geometry::Pose2& p) { return {p.x, p.y, p.yaw}; }
+
+// --- from the wire ---------------------------------------------------------------------------
+
+std::string text(const char* s) { return s ? std::string(s) : std::string(); }
+geometry::Pose2 model_pose(const fleet_msg_Pose2D& p) { return {p.x, p.y, p.yaw}; }
+
+std::vector<std::string> strings_of(const dds_sequence_string& seq) {
+  std::vector<std::string> out;
+  out.reserve(seq._length);
+  for (uint32_t i = 0; i < seq._length; ++i) out.push_back(text(seq._buffer[i]));
+  return out;
+}
+
+std::vector<geometry::Vec2> points_of(const dds_sequence_fleet_msg_Point2D& seq) {
+  std::vector<geometry::Vec2> out;
+  out.reserve(seq._length);
+  for (uint32_t i = 0; i < seq._length; ++i) out.push_back({seq._buffer[i].x, seq._buffer[i].y});
+  return out;
+}
+
+template <typename Wire, typename Model, typename FromWire>
+int take_samples(dds_entity_t reader, const std::function<void(Model&&, const SampleInfo&)>& fn, FromWire from_wire) {
+  constexpr int kBatch = 64;
+  int total = 0;
+  for (;;) {
+    void* samples[kBatch] = {nullptr};
+    dds_sample_info_t infos[kBatch];
+    const int n = dds_take(reader, samples, infos, kBatch, kBatch);
+    if (n <= 0) break;
+    for (int i = 0; i < n; ++i) {
+      const SampleInfo info{infos[i].valid_data, infos[i].instance_state == DDS_IST_ALIVE,
+                            infos[i].source_timestamp};
+      // Invalid samples carry only the key fields; the conversion tolerates empty strings.
+      fn(from_wire(*static_cast<const Wire*>(samples[i])), info);
+    }
+    dds_return_loan(reader, samples, n);
+    total += n;
+    if (n < kBatch) break;
+  }
+  return total;
+}
+
+// --- per-type conversions ----------------------------------------------------------------------
+
+fleet_msg_ServerInfo to_wire(const model::ServerInfo& v, Scratch& s) {
+  return {borrow(v.server_id), borrow(v.site), s.string_seq(v.loading_areas), s.string_seq(v.robots),
+          s.string_seq(v.obstacles), s.string_seq(v.maps), v.time_scale, v.started_unix_ms};
+}
+model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
+  return {text(w.server_id),      text(w.site),        strings_of(w.loading_areas), strings_of(w.robots),
+          strings_of(w.obstacles), strings_of(w.maps), w.time_scale,                w.started_unix_ms};
+}
+
+fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
+  return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id), borrow(v.robot_id),
+          v.priority};
+}
+model::OrderRequest from_wire(const fleet_msg_OrderRequest& w) {
+  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id), text(w.robot_id), w.priority};
+}
+
+fleet_msg_Command to_wire(const model::Command& v, Scratch&) {
+  return {borrow(v.request_id), borrow(v.verb), borrow(v.target), borrow(v.value), v.update_id};
+}
+model::Command from_wire(const fleet_msg_Command& w) {
+  return {text(w.request_id), text(w.verb), text(w.target), text(w.value), w.update_id};
+}
+
+fleet_msg_RequestReply to_wire(const model::RequestReply& v, Scratch&) {
+  return {borrow(v.request_id), v.accepted, v.order_id, borrow(v.error)};
+}
+model::RequestReply from_wire(const fleet_msg_RequestReply& w) {
+  return {text(w.request_id), w.accepted, w.order_id, text(w.error)};
+}
+
+fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
+  return {v.order_id,           borrow(v.robot_id),        borrow(v.pick_area), wire_pose(v.pick_pose),
+          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled};
+}
+model::OrderAssignment from_wire(const fleet_msg_Order& w) {
+  return {w.order_id,          text(w.robot_id),         text(w.pick_area), model_pose(w.pick_pose),
+          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled};
+}
+
+fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {
+  return {v.order_id, borrow(v.robot_id), borrow(v.status), borrow(v.reason), v.update_id, v.sim_time,
+          v.carrying_pallet};
+}
+model::OrderReport from_wire(const fleet_msg_OrderState& w) {
+  return {w.order_id, text(w.robot_id), text(w.status), text(w.reason), w.update_id, w.sim_time, w.carrying_pallet};
+}
+
+fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
+  auto& events = s.events.emplace_back();
+  // The IDL bounds the history; keep the newest entries.
+  const std::size_t first = v.history.size() > model::kMaxOrderHistory ? v.history.size() - model::kMaxOrderHistory : 0;
+  for (std::size_t i = first; i < v.history.size(); ++i) {
+    const auto& e = v.history[i];
+    events.push_back({e.sim_time, borrow(e.state), borrow(e.phase), borrow(e.robot_id), borrow(e.reason), e.robot_x,
+                      e.robot_y});
+  }
+  return {v.order_id,      borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
+          borrow(v.robot_id), borrow(v.state),   borrow(v.phase),     borrow(v.reason),    v.priority,
+          v.created_sim,   v.updated_sim,
+          {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false}};
+}
+model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
+  model::OrderInfo v{w.order_id,       text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
+                     text(w.robot_id), text(w.state),      text(w.phase),     text(w.reason),    w.priority,
+                     w.created_sim,    w.updated_sim,      {}};
+  for (uint32_t i = 0; i < w.history._length; ++i) {
+    const auto& e = w.history._buffer[i];
+    v.history.push_back({e.sim_time, text(e.state), text(e.phase), text(e.robot_id), text(e.reason), e.robot_x, e.robot_y});
+  }
+  return v;
+}
+
+fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch&) {
+  fleet_msg_RobotState w{};
+  w.robot_id = borrow(v.robot_id);
+  w.fleet_id = borrow(v.fleet_id);
+  w.map_id = borrow(v.map_id);
+  w.pose = wire_pose(v.pose);
+  for (std::size_t i = 0; i < 9; ++i) w.covariance[i] = v.covariance[i];
+  w.localization_score = v.localization_score;
+  w.speed = v.speed;
+  w.yaw_rate = v.yaw_rate;
+  w.task_state = borrow(v.task_state);
+  w.detail = borrow(v.detail);
+  w.order_id = v.order_id;
+  w.carrying_pallet = v.carrying_pallet;
+  w.sim_time = v.sim_time;
+  return w;
+}
+model::RobotState from_wire(const fleet_msg_RobotState& w) {
+  model::RobotState v;
+  v.robot_id = text(w.robot_id);
+  v.fleet_id = text(w.fleet_id);
+  v.map_id = text(w.map_id);
+  v.pose = model_pose(w.pose);
+  for (std::size_t i = 0; i < 9; ++i) v.covariance[i] = w.covariance[i];
+  v.localization_score = w.localization_score;
+  v.speed = w.speed;
+  v.yaw_rate = w.yaw_rate;
+  v.task_state = text(w.task_state);
+  v.detail = text(w.detail);
+  v.order_id = w.order_id;
+  v.carrying_pallet = w.carrying_pallet;
+  v.sim_time = w.sim_time;
+  return v;
+}
+
+fleet_msg_RobotPath to_wire(const model::RobotPath& v, Scratch& s) {
+  return {borrow(v.robot_id), s.point_seq(v.points), v.sim_time};
+}
+model::RobotPath from_wire(const fleet_msg_RobotPath& w) { return {text(w.robot_id), points_of(w.points), w.sim_time}; }
+
+fleet_msg_MapAssignment to_wire(const model::MapAssignment& v, Scratch&) {
+  return {borrow(v.robot_id), borrow(v.map_id)};
+}
+model::MapAssignment from_wire(const fleet_msg_MapAssignment& w) { return {text(w.robot_id), text(w.map_id)}; }
+
+fleet_msg_StaticObstacle to_wire(const model::StaticObstacleState& v, Scratch& s) {
+  return {borrow(v.obstacle_id), borrow(v.map_id), v.enabled, s.point_seq(v.polygon)};
+}
+model::StaticObstacleState from_wire(const fleet_msg_StaticObstacle& w) {
+  return {text(w.obstacle_id), text(w.map_id), w.enabled, points_of(w.polygon)};
+}
+
+fleet_msg_FleetView to_wire(const model::FleetView& v, Scratch& s) {
+  auto& robots = s.snapshots.emplace_back();
+  for (const auto& r : v.robots) {
+    robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length,
+                      r.footprint.width, r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
+  }
+  return {borrow(v.map_id), v.sim_time,
+          {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false}};
+}
+model::FleetView from_wire(const fleet_msg_FleetView& w) {
+  model::FleetView v{text(w.map_id), w.sim_time, {}};
+  for (uint32_t i = 0; i < w.robots._length; ++i) {
+    const auto& r = w.robots._buffer[i];
+    v.robots.push_back({text(r.robot_id), text(r.fleet_id), model_pose(r.pose), {r.length, r.width}, r.speed,
+                        text(r.task_state), r.sim_time, points_of(r.path)});
+  }
+  return v;
+}
+
+fleet_msg_SimTruth to_wire(const model::SimTruth& v, Scratch&) {
+  return {borrow(v.robot_id), wire_pose(v.pose), v.footprint.length, v.footprint.width, v.carrying_pallet, v.sim_time};
+}
+model::SimTruth from_wire(const fleet_msg_SimTruth& w) {
+  return {text(w.robot_id), model_pose(w.pose), {w.length, w.width}, w.carrying_pallet, w.sim_time};
+}
+
+}  // namespace
+
+#define FLEET_DDS_TOPIC_IMPL(Type, Wire, TopicName)                                                       \
+  const char* const TopicTraits<model::Type>::name = TopicName;                                           \
+  const dds_topic_descriptor_t* TopicTraits<model::Type>::descriptor() { return &Wire##_desc; }           \
+  dds_return_t TopicTraits<model::Type>::write(dds_entity_t writer, const model::Type& value) {           \
+    Scratch scratch;                                                                                      \
+    const Wire wire = to_wire(value, scratch);                                                            \
+    return dds_write(writer, &wire);                                                                      \
+  }                                                                                                       \
+  dds_return_t TopicTraits<model::Type>::unregister(dds_entity_t writer, const model::Type& value) {      \
+    Scratch scratch;                                                                                      \
+    const Wire wire = to_wire(value, scratch);                                                            \
+    return dds_unregister_instance(writer, &wire);                                                        \
+  }                                                                                                       \
+  dds_return_t TopicTraits<model::Type>::dispose(dds_entity_t writer, const model::Type& value) {         \
+    Scratch scratch;                                                                                      \
+    const Wire wire = to_wire(value, scratch);                                                            \
+    return dds_dispose(writer, &wire);                                                                    \
+  }                                                                                                       \
+  int TopicTraits<model::Type>::take(dds_entity_t reader,                                                 \
+                                     const std::function<void(model::Type&&, const SampleInfo&)>& fn) {   \
+    return take_samples<Wire, model::Type>(reader, fn, [](const Wire& w) { return from_wire(w); });       \
+  }
+
+FLEET_DDS_TOPIC_IMPL(ServerInfo, fleet_msg_ServerInfo, "fleet/ServerInfo")
+FLEET_DDS_TOPIC_IMPL(OrderRequest, fleet_msg_OrderRequest, "fleet/OrderRequest")
+FLEET_DDS_TOPIC_IMPL(Command, fleet_msg_Command, "fleet/Command")
+FLEET_DDS_TOPIC_IMPL(RequestReply, fleet_msg_RequestReply, "fleet/RequestReply")
+FLEET_DDS_TOPIC_IMPL(OrderAssignment, fleet_msg_Order, "fleet/Order")
+FLEET_DDS_TOPIC_IMPL(OrderReport, fleet_msg_OrderState, "fleet/OrderState")
+FLEET_DDS_TOPIC_IMPL(OrderInfo, fleet_msg_OrderInfo, "fleet/OrderInfo")
+FLEET_DDS_TOPIC_IMPL(RobotState, fleet_msg_RobotState, "fleet/RobotState")
+FLEET_DDS_TOPIC_IMPL(RobotPath, fleet_msg_RobotPath, "fleet/RobotPath")
+FLEET_DDS_TOPIC_IMPL(MapAssignment, fleet_msg_MapAssignment, "fleet/MapAssignment")
+FLEET_DDS_TOPIC_IMPL(StaticObstacleState, fleet_msg_StaticObstacle, "fleet/StaticObstacles")
+FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
+FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")
+
+}  // namespace fleet::dds

@@ -1,0 +1,37 @@
+#pragma once
+
+// The topics of ARCHITECTURE.md, one per core/model type.
+
+#include "dds/participant.hpp"
+#include "model/messages.hpp"
+
+#define FLEET_DDS_TOPIC(Type)                                                                         \
+  template <>                                                                                         \
+  struct TopicTraits<model::Type> {                                                                   \
+    static const char* const name;                                                                    \
+    static const dds_topic_descriptor_t* descriptor();                                                \
+    static dds_return_t write(dds_entity_t writer, const model::Type& value);                         \
+    static dds_return_t unregister(dds_entity_t writer, const model::Type& value);                    \
+    static dds_return_t dispose(dds_entity_t writer, const model::Type& value);                       \
+    static int take(dds_entity_t reader, const std::function<void(model::Type&&, const SampleInfo&)>& fn); \
+  };
+
+namespace fleet::dds {
+
+FLEET_DDS_TOPIC(ServerInfo)
+FLEET_DDS_TOPIC(OrderRequest)
+FLEET_DDS_TOPIC(Command)
+FLEET_DDS_TOPIC(RequestReply)
+FLEET_DDS_TOPIC(OrderAssignment)
+FLEET_DDS_TOPIC(OrderReport)
+FLEET_DDS_TOPIC(OrderInfo)
+FLEET_DDS_TOPIC(RobotState)
+FLEET_DDS_TOPIC(RobotPath)
+FLEET_DDS_TOPIC(MapAssignment)
+FLEET_DDS_TOPIC(StaticObstacleState)
+FLEET_DDS_TOPIC(FleetView)
+FLEET_DDS_TOPIC(SimTruth)
+
+}  // namespace fleet::dds
+
+#undef FLEET_DDS_TOPIC

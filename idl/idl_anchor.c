@@ -1,0 +1,1 @@
+/* The generated type support (fleet.c) is compiled into this library through fleet_idl_generated. */

@@ -1,0 +1,527 @@
+#include "server/fleet_server.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "model/names.hpp"
+
+namespace fleet::server {
+
+using orders::Order;
+using orders::OrderPhase;
+using orders::OrderStatus;
+using orders::TransitionResult;
+
+namespace {
+constexpr double kReplyRetentionWallS = 30.0;  // a requester has this long to read its reply
+constexpr double kMaxRoutingHzWall = 100.0;    // FleetView is capped in wall rate at high time scales
+
+model::OrderInfo info_of(const Order& o) {
+  std::vector<model::OrderEvent> history;
+  for (const auto& e : o.history) {
+    history.push_back({e.sim_time, std::string(orders::to_string(e.status)), std::string(orders::to_string(e.phase)),
+                       e.robot_id, e.reason, e.robot_x, e.robot_y});
+  }
+  return {o.id,
+          o.request_id,
+          o.pick_area,
+          o.drop_area,
+          o.fleet_id,
+          o.robot_id,
+          std::string(orders::to_string(o.status)),
+          std::string(orders::to_string(o.phase)),
+          o.reason,
+          o.priority,
+          o.created_sim,
+          o.updated_sim,
+          std::move(history)};
+}
+}  // namespace
+
+FleetServer::FleetServer(ServerOptions options, Logger log)
+    : options_(std::move(options)),
+      log_(std::move(log)),
+      clock_(options_.time_scale),
+      rng_(options_.seed),
+      policy_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
+      auto_orders_(options_.config.settings.get_bool("server.auto_orders")),
+      participant_(options_.domain),
+      server_info_writer_(participant_, dds::qos::latched_state()),
+      reply_writer_(participant_, dds::qos::latched_state()),
+      order_writer_(participant_, dds::qos::latched_state()),
+      order_info_writer_(participant_, dds::qos::latched_state()),
+      map_writer_(participant_, dds::qos::latched_state()),
+      obstacle_writer_(participant_, dds::qos::latched_state()),
+      fleet_view_writer_(participant_, dds::qos::live_state()),
+      request_reader_(participant_, dds::qos::requests()),
+      command_reader_(participant_, dds::qos::requests()),
+      robot_state_reader_(participant_, dds::qos::live_state()),
+      robot_path_reader_(participant_, dds::qos::live_state()),
+      order_report_reader_(participant_, dds::qos::requests()),
+      waitset_(participant_) {
+  for (const auto& area : options_.site.loading_areas) pallet_at_[area.id] = area.pallet_at_start;
+  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
+  for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
+                              robot_path_reader_.handle(), order_report_reader_.handle()}) {
+    waitset_.attach(reader);
+  }
+  publish_site_state();
+  publish_server_info();
+  log_->info("serving site '{}' on DDS domain {} at time scale {}, dispatch '{}', automatic orders {}",
+             options_.site.name, options_.domain, options_.time_scale,
+             options_.config.settings.get_string("server.dispatch_policy"), auto_orders_ ? "on" : "off");
+}
+
+FleetServer::~FleetServer() = default;
+
+void FleetServer::publish_server_info() {
+  model::ServerInfo info;
+  info.server_id = "fleet-server";
+  info.site = options_.site.name;
+  info.loading_areas = options_.site.area_ids();
+  for (const auto& [fleet, robot] : options_.config.all_robots()) info.robots.push_back(robot->id);
+  for (const auto& o : options_.site.static_obstacles) info.obstacles.push_back(o.id);
+  info.maps = {options_.site.name};
+  info.time_scale = options_.time_scale;
+  info.started_unix_ms = static_cast<std::int64_t>(SimClock::wall_now() * 1000.0);
+  server_info_writer_.write(info);
+}
+
+void FleetServer::publish_site_state() {
+  // Seed 000, section 3: the map is assigned at the start; obstacles are forwarded when they
+  // change and when robots start (latched topics give late joiners the current set).
+  for (const auto& [fleet, robot] : options_.config.all_robots()) {
+    map_writer_.write({robot->id, options_.site.name});
+  }
+  for (const auto& obstacle : options_.site.static_obstacles) {
+    obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
+  }
+}
+
+void FleetServer::run(const std::atomic<bool>& stop) {
+  while (!stop.load()) {
+    waitset_.wait(std::chrono::milliseconds(5));
+    handle_order_requests();
+    handle_commands();
+    handle_robot_states();
+    handle_robot_paths();
+    handle_order_reports();
+    check_robot_health();
+    check_acknowledgements();
+    if (auto_orders_) create_auto_orders();
+    dispatch();
+    publish_fleet_view();
+  }
+  log_->info("stopping; {} orders known", book_.all().size());
+}
+
+void FleetServer::reply(const std::string& request_id, bool accepted, std::int64_t order_id, const std::string& error) {
+  reply_writer_.write({request_id, accepted, order_id, error});
+  replies_written_[request_id] = SimClock::wall_now();
+}
+
+int FleetServer::expected_pallets(const std::string& area) const {
+  // What will stand at `area` once every open order is done: a pallet there now, minus open
+  // orders taking it away, plus open orders bringing one.
+  int balance = pallet_at_.at(area) ? 1 : 0;
+  for (const auto& [id, o] : book_.all()) {
+    if (orders::is_final(o.status)) continue;
+    if (o.pick_area == area) --balance;
+    if (o.drop_area == area) ++balance;
+  }
+  return balance;
+}
+
+std::string FleetServer::validate_areas(const std::string& pick, const std::string& drop) const {
+  const auto ids = options_.site.area_ids();
+  if (!options_.site.find_area(pick)) return model::unknown_name_message("loading area", pick, ids);
+  if (!options_.site.find_area(drop)) return model::unknown_name_message("loading area", drop, ids);
+  if (pick == drop) return "pick and drop area are the same ('" + pick + "')";
+  if (expected_pallets(pick) <= 0) return "loading area '" + pick + "' holds no pallet to pick";
+  if (expected_pallets(drop) > 0) return "loading area '" + drop + "' is occupied by a pallet";
+  return "";
+}
+
+void FleetServer::handle_order_requests() {
+  request_reader_.take_data([&](model::OrderRequest&& request) {
+    if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
+      log_->warn("order request {} refused: {}", request.request_id, error);
+      reply(request.request_id, false, 0, error);
+      return;
+    }
+    if (!request.robot_id.empty() && !options_.config.find_robot(request.robot_id)) {
+      std::vector<std::string> ids;
+      for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
+      const std::string error = model::unknown_name_message("robot", request.robot_id, ids);
+      reply(request.request_id, false, 0, error);
+      return;
+    }
+    if (options_.config.settings.get_bool("server.reject_when_busy")) {
+      const bool any_free = std::any_of(robots_.begin(), robots_.end(),
+                                        [&](const auto& entry) { return robot_is_free(entry.second); });
+      if (!any_free) {
+        reply(request.request_id, false, 0, "no robot is free (server.reject_when_busy is on)");
+        return;
+      }
+    }
+    Order draft;
+    draft.request_id = request.request_id;
+    draft.pick_area = request.pick_area;
+    draft.drop_area = request.drop_area;
+    draft.fleet_id = request.fleet_id;
+    draft.robot_id = request.robot_id;
+    draft.robot_requested = !request.robot_id.empty();
+    draft.priority = request.priority;
+    const Order& order = book_.create(std::move(draft), clock_.now());
+    log_->info("order {} created: {} -> {} (request {})", order.id, order.pick_area, order.drop_area,
+               order.request_id);
+    publish_order(order);
+    reply(request.request_id, true, order.id, "");
+  });
+}
+
+void FleetServer::handle_commands() {
+  command_reader_.take_data([&](model::Command&& command) {
+    std::string error;
+    if (command.verb == "cancel-order") {
+      std::int64_t id = 0;
+      try {
+        id = std::stoll(command.target);
+      } catch (const std::exception&) {
+        error = "order id '" + command.target + "' is not a number";
+      }
+      const Order* order = error.empty() ? book_.find(id) : nullptr;
+      if (error.empty() && !order) error = "unknown order " + command.target;
+      if (order) {
+        const bool was_assigned = !order->robot_id.empty() && order->status != OrderStatus::Queued;
+        if (book_.transition(id, OrderStatus::Cancelled, clock_.now(), "cancelled by operator") !=
+            TransitionResult::Applied) {
+          error = "order " + command.target + " is already " + std::string(orders::to_string(order->status));
+        } else {
+          log_->info("order {} cancelled by operator", id);
+          if (was_assigned) send_assignment(*order, true);
+          publish_order(*order);
+        }
+      }
+    } else if (command.verb == "obstacle") {
+      if (!options_.site.find_obstacle(command.target)) {
+        std::vector<std::string> ids;
+        for (const auto& o : options_.site.static_obstacles) ids.push_back(o.id);
+        error = model::unknown_name_message("obstacle", command.target, ids);
+      } else if (command.value != "on" && command.value != "off") {
+        error = "obstacle state '" + command.value + "' is not on or off";
+      } else {
+        obstacle_enabled_[command.target] = command.value == "on";
+        const auto* obstacle = options_.site.find_obstacle(command.target);
+        obstacle_writer_.write({obstacle->id, options_.site.name, command.value == "on", obstacle->polygon});
+        log_->info("static obstacle {} {}", command.target, command.value);
+      }
+    } else if (command.verb == "auto-orders") {
+      if (command.value != "on" && command.value != "off") {
+        error = "auto-orders value '" + command.value + "' is not on or off";
+      } else {
+        auto_orders_ = command.value == "on";
+        log_->info("automatic orders {}", command.value);
+      }
+    } else {
+      error = "unknown command '" + command.verb + "' (cancel-order, obstacle, auto-orders)";
+    }
+    reply(command.request_id, error.empty(), 0, error);
+  });
+}
+
+void FleetServer::handle_robot_states() {
+  robot_state_reader_.take([&](model::RobotState&& state, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;  // liveliness changes are judged by age in check_robot_health
+    if (!std::isfinite(state.pose.x) || !std::isfinite(state.pose.y) || !std::isfinite(state.pose.yaw)) {
+      log_->warn("robot {}: ignoring RobotState with a non-finite pose ({}, {}, {})", state.robot_id, state.pose.x,
+                 state.pose.y, state.pose.yaw);
+      return;
+    }
+    const auto known = options_.config.find_robot(state.robot_id);
+    if (!known) {
+      log_->warn("ignoring RobotState of robot '{}', which is not in {}", state.robot_id, options_.config.source);
+      return;
+    }
+    RobotEntry& robot = robots_[state.robot_id];
+    if (!robot.registered || robot.lost) {
+      log_->info("robot {} ({}) {} at ({:.2f}, {:.2f}), state {}", state.robot_id, known->first->id,
+                 robot.lost ? "is back" : "registered", state.pose.x, state.pose.y, state.task_state);
+      // A robot that comes back may still report an order the server has moved on from:
+      // tell it so (the latched Order carries the cancellation).
+      if (state.order_id != 0) {
+        const Order* order = book_.find(state.order_id);
+        if (order && (order->robot_id != state.robot_id || orders::is_final(order->status))) {
+          model::OrderAssignment cancel;
+          cancel.order_id = state.order_id;
+          cancel.robot_id = state.robot_id;
+          cancel.update_id = order->update_id + 1;
+          cancel.cancelled = true;
+          order_writer_.write(cancel);
+        }
+      }
+    }
+    robot.id = state.robot_id;
+    robot.fleet_id = known->first->id;
+    robot.registered = true;
+    robot.lost = false;
+    robot.last_seen_wall = SimClock::wall_now();
+    robot.last = std::move(state);
+  });
+}
+
+void FleetServer::handle_robot_paths() {
+  robot_path_reader_.take_data([&](model::RobotPath&& path) { paths_[path.robot_id] = std::move(path); });
+}
+
+void FleetServer::handle_order_reports() {
+  order_report_reader_.take_data([&](model::OrderReport&& report) {
+    const Order* order = book_.find(report.order_id);
+    if (!order) {
+      log_->warn("report on unknown order {} from {}", report.order_id, report.robot_id);
+      return;
+    }
+    if (order->robot_id != report.robot_id || report.update_id != order->update_id) {
+      // A late duplicate or a report from a robot the order was taken from (VDA 5050 style).
+      log_->debug("ignoring stale report {} on order {} from {} (update {} vs {})", report.status, report.order_id,
+                  report.robot_id, report.update_id, order->update_id);
+      return;
+    }
+    const double now = clock_.now();
+    const std::int64_t id = order->id;
+    awaiting_ack_since_.erase(id);
+    TransitionResult result = TransitionResult::Applied;
+    if (report.status == "ACCEPTED") {
+      log_->info("order {} accepted by {}", id, report.robot_id);
+      return;
+    } else if (report.status == "REJECTED") {
+      log_->warn("order {} rejected by {}: {}", id, report.robot_id, report.reason);
+      result = book_.requeue(id, now, "rejected by " + report.robot_id + ": " + report.reason);
+    } else if (report.status == "DONE") {
+      result = book_.transition(id, OrderStatus::Done, now);
+      if (result == TransitionResult::Applied) {
+        pallet_at_[order->drop_area] = true;
+        log_->info("order {} done by {}: pallet now at {}", id, report.robot_id, order->drop_area);
+      }
+    } else if (report.status == "FAILED") {
+      result = book_.transition(id, OrderStatus::Failed, now, report.reason);
+      if (result == TransitionResult::Applied) {
+        log_->warn("order {} failed on {}: {}", id, report.robot_id, report.reason);
+        if (report.reason.find("empty") != std::string::npos) pallet_at_[order->pick_area] = false;
+      }
+    } else if (const auto phase = orders::parse_phase(report.status)) {
+      if (*phase == order->phase) return;
+      result = book_.set_phase(id, *phase, now);
+      if (result == TransitionResult::Applied) {
+        log_->info("order {} on {}: {}", id, report.robot_id, report.status);
+        // Seed 000, section 8: the server keeps the pallet map up to date as robots pick.
+        if (report.carrying_pallet && pallet_at_[order->pick_area] &&
+            (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping)) {
+          pallet_at_[order->pick_area] = false;
+        }
+      }
+    } else {
+      log_->warn("order {}: unknown status '{}' from {}", id, report.status, report.robot_id);
+      return;
+    }
+    if (result == TransitionResult::Illegal) {
+      log_->warn("order {}: refused illegal transition {} -> {} reported by {}", id,
+                 orders::to_string(book_.find(id)->status), report.status, report.robot_id);
+      return;
+    }
+    publish_order(*book_.find(id));
+  });
+}
+
+void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
+  robot.lost = true;
+  log_->warn("robot {} lost: {}", robot.id, why);
+  if (const Order* order = book_.open_order_of(robot.id)) {
+    const std::int64_t id = order->id;
+    if (robot.last.carrying_pallet) {
+      book_.transition(id, OrderStatus::Failed, clock_.now(), "robot " + robot.id + " lost with pallet");
+      log_->warn("order {} failed: robot {} lost with its pallet", id, robot.id);
+    } else {
+      book_.requeue(id, clock_.now(), "robot " + robot.id + " lost");
+      log_->warn("order {} re-queued: robot {} lost", id, robot.id);
+      model::OrderAssignment cancel;
+      cancel.order_id = id;
+      cancel.robot_id = robot.id;
+      cancel.update_id = book_.find(id)->update_id;
+      cancel.cancelled = true;
+      order_writer_.write(cancel);
+    }
+    awaiting_ack_since_.erase(id);
+    publish_order(*book_.find(id));
+  }
+}
+
+void FleetServer::check_robot_health() {
+  const double now = SimClock::wall_now();
+  const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");
+  for (auto& [id, robot] : robots_) {
+    if (robot.registered && !robot.lost && now - robot.last_seen_wall > lost_after) {
+      robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");
+    }
+  }
+  // Replies are latched only long enough for their requester to read them; unregistering keeps
+  // the writer's history bounded.
+  for (auto it = replies_written_.begin(); it != replies_written_.end();) {
+    if (now - it->second > kReplyRetentionWallS) {
+      reply_writer_.unregister({it->first, false, 0, ""});
+      it = replies_written_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
+
+void FleetServer::check_acknowledgements() {
+  const double now = SimClock::wall_now();
+  const double timeout = options_.config.settings.get_double("server.order_ack_timeout_s");
+  const long limit = options_.config.settings.get_int("server.order_resend_limit");
+  for (auto it = awaiting_ack_since_.begin(); it != awaiting_ack_since_.end();) {
+    const std::int64_t id = it->first;
+    if (now - it->second < timeout) {
+      ++it;
+      continue;
+    }
+    const Order* order = book_.find(id);
+    if (!order || order->status != OrderStatus::Assigned) {
+      it = awaiting_ack_since_.erase(it);
+      continue;
+    }
+    if (resends_[id] < limit) {
+      ++resends_[id];
+      log_->warn("order {} not acknowledged by {} within {} s; re-sending ({}/{})", id, order->robot_id, timeout,
+                 resends_[id], limit);
+      send_assignment(*order);
+      it->second = now;
+      ++it;
+    } else {
+      const std::string robot = order->robot_id;
+      book_.requeue(id, clock_.now(), "not acknowledged by " + robot);
+      send_assignment(*book_.find(id), true);
+      log_->warn("order {} re-queued: never acknowledged by {}", id, robot);
+      publish_order(*book_.find(id));
+      resends_.erase(id);
+      it = awaiting_ack_since_.erase(it);
+    }
+  }
+}
+
+bool FleetServer::robot_is_free(const RobotEntry& robot) const {
+  if (!robot.registered || robot.lost) return false;
+  if (robot.last.task_state != "IDLE" && robot.last.task_state != "GO_HOME") return false;
+  if (robot.last.carrying_pallet) return false;
+  return book_.open_order_of(robot.id) == nullptr;
+}
+
+void FleetServer::create_auto_orders() {
+  // Seed 000, section 3: random orders whenever a forklift is free, from an area holding a
+  // pallet to a free one.
+  const long free_robots = std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
+  const long queued = static_cast<long>(book_.with_status(OrderStatus::Queued).size());
+  if (free_robots <= queued) return;
+  std::vector<std::string> picks, drops;
+  for (const auto& area : options_.site.loading_areas) {
+    (expected_pallets(area.id) > 0 ? picks : drops).push_back(area.id);
+  }
+  if (picks.empty() || drops.empty()) return;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    const std::string& pick = picks[rng_() % picks.size()];
+    const std::string& drop = drops[rng_() % drops.size()];
+    if (!validate_areas(pick, drop).empty()) continue;
+    Order draft;
+    draft.request_id = "auto";
+    draft.pick_area = pick;
+    draft.drop_area = drop;
+    const Order& order = book_.create(std::move(draft), clock_.now());
+    log_->info("order {} created automatically: {} -> {}", order.id, order.pick_area, order.drop_area);
+    publish_order(order);
+    return;
+  }
+}
+
+void FleetServer::dispatch() {
+  const auto queue = book_.queue();
+  if (queue.empty()) return;
+  std::vector<orders::FreeRobot> free;
+  for (const auto& [id, robot] : robots_) {
+    if (robot_is_free(robot)) free.push_back({robot.id, robot.fleet_id});
+  }
+  if (free.empty()) return;
+  const auto cost = [&](const std::string& robot_id, const std::string& area_id) {
+    const auto* area = options_.site.find_area(area_id);
+    const auto& pose = robots_.at(robot_id).last.pose;
+    return area ? geometry::distance(pose.position(), area->pose.position()) : std::numeric_limits<double>::infinity();
+  };
+  for (const auto& assignment : policy_->assign(queue, free, cost)) {
+    if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::Applied) continue;
+    const Order& order = *book_.find(assignment.order_id);
+    log_->info("order {} assigned to {}", order.id, order.robot_id);
+    resends_[order.id] = 0;
+    send_assignment(order);
+    publish_order(order);
+  }
+}
+
+void FleetServer::send_assignment(const Order& order, bool cancelled) {
+  model::OrderAssignment msg;
+  msg.order_id = order.id;
+  msg.robot_id = order.robot_id;
+  msg.pick_area = order.pick_area;
+  msg.drop_area = order.drop_area;
+  if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
+  if (const auto* drop = options_.site.find_area(order.drop_area)) msg.drop_pose = drop->pose;
+  msg.update_id = order.update_id;
+  msg.cancelled = cancelled;
+  order_writer_.write(msg);
+  if (!cancelled) awaiting_ack_since_[order.id] = SimClock::wall_now();
+}
+
+void FleetServer::publish_order(const Order& order) {
+  if (auto robot = robots_.find(order.robot_id); robot != robots_.end() && !order.history.empty() &&
+                                                  !order.history.back().robot_id.empty()) {
+    book_.locate_last_event(order.id, robot->second.last.pose.x, robot->second.last.pose.y);
+  }
+  order_info_writer_.write(info_of(*book_.find(order.id)));
+  if (orders::is_final(order.status)) {
+    // A finished order leaves the latched Order topic, so an agent that restarts never receives
+    // it again; OrderInfo keeps the record.
+    model::OrderAssignment key;
+    key.order_id = order.id;
+    order_writer_.unregister(key);
+  }
+}
+
+void FleetServer::publish_fleet_view() {
+  const double now_wall = SimClock::wall_now();
+  const double period_wall =
+      std::max(1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("server.fleet_view_hz")));
+  if (now_wall - last_fleet_view_wall_ < period_wall) return;
+  last_fleet_view_wall_ = now_wall;
+  std::map<std::string, model::FleetView> views;
+  for (const auto& [id, robot] : robots_) {
+    if (!robot.registered) continue;
+    const auto spec = options_.config.find_robot(id);
+    model::RobotSnapshot snap;
+    snap.robot_id = id;
+    snap.fleet_id = robot.fleet_id;
+    snap.pose = robot.last.pose;
+    if (spec) snap.footprint = spec->first->footprint;
+    snap.speed = robot.last.speed;
+    snap.task_state = robot.lost ? "LOST" : robot.last.task_state;
+    snap.sim_time = robot.last.sim_time;
+    if (auto p = paths_.find(id); p != paths_.end()) snap.path = p->second.points;
+    const std::string map_id = robot.last.map_id.empty() ? options_.site.name : robot.last.map_id;
+    auto& view = views[map_id];
+    view.map_id = map_id;
+    view.sim_time = clock_.now();
+    view.robots.push_back(std::move(snap));
+  }
+  for (const auto& [map_id, view] : views) fleet_view_writer_.write(view);
+}
+
+}  // namespace fleet::server

@@ -1,0 +1,104 @@
+#pragma once
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+
+#include "common/clock.hpp"
+#include "common/logging.hpp"
+#include "config/fleet_config.hpp"
+#include "dds/topics.hpp"
+#include "map/site.hpp"
+#include "orders/dispatch.hpp"
+#include "orders/order_book.hpp"
+
+namespace fleet::server {
+
+struct ServerOptions {
+  config::FleetConfig config;
+  map::Site site;
+  std::uint32_t domain = 0;
+  double time_scale = 1.0;
+  std::uint64_t seed = 1;
+};
+
+/// A robot as the server knows it: registered with its first RobotState.
+struct RobotEntry {
+  std::string id;
+  std::string fleet_id;
+  model::RobotState last;
+  double last_seen_wall = 0.0;  ///< wall seconds of the last RobotState
+  bool lost = false;
+  bool registered = false;
+};
+
+/// The command centre and message router of seed 000, chapter 3: takes orders, dispatches them,
+/// tracks robots, owns the site state (obstacles, pallets) and routes poses as FleetView.
+class FleetServer {
+ public:
+  FleetServer(ServerOptions options, Logger log);
+  ~FleetServer();
+
+  /// Runs until `stop` becomes true.
+  void run(const std::atomic<bool>& stop);
+
+ private:
+  void publish_site_state();
+  void publish_server_info();
+  void handle_order_requests();
+  void handle_commands();
+  void handle_robot_states();
+  void handle_robot_paths();
+  void handle_order_reports();
+  void check_robot_health();
+  void check_acknowledgements();
+  void create_auto_orders();
+  void dispatch();
+  void publish_fleet_view();
+
+  void publish_order(const orders::Order& order);
+  void send_assignment(const orders::Order& order, bool cancelled = false);
+  void reply(const std::string& request_id, bool accepted, std::int64_t order_id, const std::string& error);
+  /// Why a pick/drop pair cannot be ordered now, or empty.
+  std::string validate_areas(const std::string& pick, const std::string& drop) const;
+  /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
+  int expected_pallets(const std::string& area) const;
+  bool robot_is_free(const RobotEntry& robot) const;
+  void robot_lost(RobotEntry& robot, const std::string& why);
+
+  ServerOptions options_;
+  Logger log_;
+  SimClock clock_;
+  std::mt19937_64 rng_;
+  std::unique_ptr<orders::DispatchPolicy> policy_;
+  orders::OrderBook book_;
+  std::map<std::string, RobotEntry> robots_;
+  std::map<std::string, model::RobotPath> paths_;
+  std::map<std::string, bool> pallet_at_;          ///< loading area -> holds a pallet
+  std::map<std::string, bool> obstacle_enabled_;   ///< obstacle id -> enabled
+  std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
+  std::map<std::int64_t, int> resends_;
+  std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
+  bool auto_orders_ = false;
+  double last_fleet_view_wall_ = 0.0;
+
+  dds::Participant participant_;
+  dds::Writer<model::ServerInfo> server_info_writer_;
+  dds::Writer<model::RequestReply> reply_writer_;
+  dds::Writer<model::OrderAssignment> order_writer_;
+  dds::Writer<model::OrderInfo> order_info_writer_;
+  dds::Writer<model::MapAssignment> map_writer_;
+  dds::Writer<model::StaticObstacleState> obstacle_writer_;
+  dds::Writer<model::FleetView> fleet_view_writer_;
+  dds::Reader<model::OrderRequest> request_reader_;
+  dds::Reader<model::Command> command_reader_;
+  dds::Reader<model::RobotState> robot_state_reader_;
+  dds::Reader<model::RobotPath> robot_path_reader_;
+  dds::Reader<model::OrderReport> order_report_reader_;
+  dds::WaitSet waitset_;
+};
+
+}  // namespace fleet::server

@@ -1,0 +1,106 @@
+#include "fleet_harness.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace fleet::testing {
+
+std::string bin(const std::string& name) { return std::string(FLEET_BIN_DIR) + "/" + name; }
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+CommandResult run_command(const std::vector<std::string>& argv, double timeout_s) {
+  const std::string dir = std::filesystem::temp_directory_path() / ("fleet-cmd-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  static int counter = 0;
+  const std::string out_file = dir + "/out" + std::to_string(++counter);
+  const std::string err_file = dir + "/err" + std::to_string(counter);
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(127);
+    const int out = open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(out, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  CommandResult result;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) != pid) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      result.exit_code = -1;
+      result.out = slurp(out_file);
+      result.err = slurp(err_file) + "\n[killed after " + std::to_string(timeout_s) + " s]";
+      return result;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  result.out = slurp(out_file);
+  result.err = slurp(err_file);
+  return result;
+}
+
+FleetHarness::FleetHarness(int domain, double time_scale, std::string site)
+    : domain_(domain), time_scale_(time_scale), site_(std::move(site)) {
+  log_dir_ = std::filesystem::temp_directory_path() / ("fleet-test-" + std::to_string(getpid()) + "-" +
+                                                       std::to_string(domain));
+  std::filesystem::create_directories(log_dir_);
+}
+
+FleetHarness::~FleetHarness() { processes_.stop_all(5.0); }
+
+std::vector<std::string> FleetHarness::common_args() const {
+  return {"--config", std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml", "--domain", std::to_string(domain_),
+          "--site", site_, "--time-scale", std::to_string(time_scale_)};
+}
+
+void FleetHarness::start_server(const std::vector<std::string>& extra) {
+  std::vector<std::string> argv{bin("fleet-server")};
+  for (const auto& a : common_args()) argv.push_back(a);
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  processes_.start("fleet-server", argv, log_dir_ + "/fleet-server.log");
+}
+
+void FleetHarness::start_agent(const std::string& robot_id, const std::vector<std::string>& extra) {
+  std::vector<std::string> argv{bin("fleet-agent"), "--id", robot_id};
+  for (const auto& a : common_args()) argv.push_back(a);
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  processes_.start("fleet-agent " + robot_id, argv, log_dir_ + "/fleet-agent-" + robot_id + ".log");
+}
+
+CommandResult FleetHarness::fleetctl(std::vector<std::string> args, double timeout_s) const {
+  std::vector<std::string> argv{bin("fleetctl"), "--domain", std::to_string(domain_), "--config",
+                                std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return run_command(argv, timeout_s);
+}
+
+std::string FleetHarness::log_of(const std::string& name) const { return slurp(log_dir_ + "/" + name + ".log"); }
+
+}  // namespace fleet::testing

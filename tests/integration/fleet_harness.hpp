@@ -1,0 +1,48 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/processes.hpp"
+
+namespace fleet::testing {
+
+/// The output and exit code of a finished command.
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Runs a command to its end (with a wall-clock limit), capturing stdout and stderr.
+CommandResult run_command(const std::vector<std::string>& argv, double timeout_s = 120.0);
+
+/// A fleet of real processes for one test on its own DDS domain. Every process it started is
+/// stopped when it goes out of scope, also when the test fails.
+class FleetHarness {
+ public:
+  FleetHarness(int domain, double time_scale, std::string site = "table_a");
+  ~FleetHarness();
+
+  void start_server(const std::vector<std::string>& extra = {});
+  void start_agent(const std::string& robot_id, const std::vector<std::string>& extra = {});
+
+  /// fleetctl with --domain set.
+  CommandResult fleetctl(std::vector<std::string> args, double timeout_s = 120.0) const;
+
+  std::string log_of(const std::string& name) const;
+  cli::ProcessGroup& processes() { return processes_; }
+  int domain() const { return domain_; }
+
+ private:
+  std::vector<std::string> common_args() const;
+  int domain_;
+  double time_scale_;
+  std::string site_;
+  std::string log_dir_;
+  cli::ProcessGroup processes_;
+};
+
+std::string bin(const std::string& name);
+
+}  // namespace fleet::testing
