@@ -19,7 +19,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       participant_(options_.domain),
       state_writer_(participant_, dds::qos::live_state()),
       truth_writer_(participant_, dds::qos::live_state()),
-      report_writer_(participant_, dds::qos::requests()),
+      report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
@@ -49,6 +49,19 @@ void FleetAgent::report(std::int64_t order_id, std::uint32_t update_id, const st
   report_writer_.write({order_id, options_.robot_id, status, reason, update_id, clock_.now(), carrying_pallet_});
 }
 
+void FleetAgent::retire_report(std::int64_t order_id) {
+  // Order reports are latched so a restarted server learns how its orders ended; only the most
+  // recent ones need to stay, which keeps the writer's history bounded.
+  constexpr std::size_t kKeptReports = 8;
+  finished_orders_.push_back(order_id);
+  while (finished_orders_.size() > kKeptReports) {
+    model::OrderReport key;
+    key.order_id = finished_orders_.front();
+    report_writer_.unregister(key);
+    finished_orders_.pop_front();
+  }
+}
+
 void FleetAgent::set_phase(const std::string& phase, const std::string& task_state) {
   task_state_ = task_state;
   phase_timer_ = 0.0;
@@ -61,12 +74,14 @@ void FleetAgent::set_phase(const std::string& phase, const std::string& task_sta
 void FleetAgent::handle_orders() {
   order_reader_.take_data([&](model::OrderAssignment&& assignment) {
     if (assignment.robot_id != options_.robot_id) return;
-    auto seen = seen_updates_.find(assignment.order_id);
-    if (seen != seen_updates_.end() && assignment.update_id <= seen->second && !assignment.cancelled) return;
-    seen_updates_[assignment.order_id] = assignment.update_id;
     const bool is_current = order_ && order_->assignment.order_id == assignment.order_id;
+    auto seen = seen_updates_.find(assignment.order_id);
+    const bool duplicate = seen != seen_updates_.end() && assignment.update_id <= seen->second;
+    if (duplicate && !assignment.cancelled && !is_current) return;  // a late duplicate (VDA 5050 style)
+    seen_updates_[assignment.order_id] = std::max(assignment.update_id, duplicate ? seen->second : 0u);
     if (assignment.cancelled) {
-      if (is_current) {
+      // A withdrawal older than the assignment we run is a late duplicate.
+      if (is_current && assignment.update_id >= order_->assignment.update_id) {
         log_->warn("order {} withdrawn by the server; going home", assignment.order_id);
         order_.reset();
         task_state_ = "GO_HOME";
@@ -74,9 +89,11 @@ void FleetAgent::handle_orders() {
       return;
     }
     if (is_current) {
-      // Re-sent because our acknowledgement was lost: acknowledge again.
+      // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
+      // and repeat where we are.
       order_->assignment.update_id = assignment.update_id;
       report(assignment.order_id, assignment.update_id, "ACCEPTED");
+      report(assignment.order_id, assignment.update_id, order_->phase);
       return;
     }
     if (order_ || (task_state_ != "IDLE" && task_state_ != "GO_HOME")) {
@@ -163,6 +180,7 @@ void FleetAgent::step(double dt) {
       carrying_pallet_ = false;
       log_->info("order {} done: pallet placed at {}", a.order_id, a.drop_area);
       report(a.order_id, a.update_id, "DONE");
+      retire_report(a.order_id);
       order_.reset();
       task_state_ = "GO_HOME";
     }

@@ -45,6 +45,7 @@ class FleetAgent {
   void report(std::int64_t order_id, std::uint32_t update_id, const std::string& status,
               const std::string& reason = "");
   void publish_state(double now_sim);
+  void retire_report(std::int64_t order_id);
   /// Where the forklift stands to pick from or drop onto `area` (facing the pallet).
   geometry::Pose2 service_pose(const geometry::Pose2& area) const;
   /// Kinematic motion towards `target`: turn, drive, turn. Returns true on arrival.
@@ -65,6 +66,7 @@ class FleetAgent {
   double phase_timer_ = 0.0;
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
+  std::deque<std::int64_t> finished_orders_;
 
   dds::Participant participant_;
   dds::Writer<model::RobotState> state_writer_;

@@ -68,6 +68,7 @@ void FleetRun::start() {
   std::vector<std::string> server_argv{binary("fleet-server")};
   server_argv.insert(server_argv.end(), common.begin(), common.end());
   if (options_.auto_orders) server_argv.push_back("--auto-orders");
+  server_argv.insert(server_argv.end(), {"--db", run_dir_ + "/fleet.db"});
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
   for (const auto& id : robot_ids_) {

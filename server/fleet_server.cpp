@@ -42,6 +42,7 @@ model::OrderInfo info_of(const Order& o) {
 FleetServer::FleetServer(ServerOptions options, Logger log)
     : options_(std::move(options)),
       log_(std::move(log)),
+      store_(options_.db_path),
       clock_(options_.time_scale),
       rng_(options_.seed),
       policy_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
@@ -58,7 +59,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       command_reader_(participant_, dds::qos::requests()),
       robot_state_reader_(participant_, dds::qos::live_state()),
       robot_path_reader_(participant_, dds::qos::live_state()),
-      order_report_reader_(participant_, dds::qos::requests()),
+      order_report_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_) {
   for (const auto& area : options_.site.loading_areas) pallet_at_[area.id] = area.pallet_at_start;
   for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
@@ -66,6 +67,8 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
   }
+  started_wall_ = SimClock::wall_now();
+  restore_orders();
   publish_site_state();
   publish_server_info();
   log_->info("serving site '{}' on DDS domain {} at time scale {}, dispatch '{}', automatic orders {}",
@@ -74,6 +77,31 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
 }
 
 FleetServer::~FleetServer() = default;
+
+void FleetServer::restore_orders() {
+  const auto stored = store_.load_all();
+  book_ = orders::OrderBook(store_.next_id());
+  long open = 0;
+  for (const Order& order : stored) {
+    book_.restore(order);
+    if (orders::is_final(order.status)) {
+      order_info_writer_.write(info_of(order));
+      continue;
+    }
+    ++open;
+    if (order.status != OrderStatus::Queued) {
+      // Assigned before the restart: offer it to its robot again. A robot still working on it
+      // acknowledges and goes on; its latched OrderState tells us how far it got, also if it
+      // finished while we were down.
+      send_assignment(order);
+    }
+    order_info_writer_.write(info_of(order));
+  }
+  if (!stored.empty()) {
+    log_->info("restored {} orders from {} ({} open); next order id {}", stored.size(), store_.path(), open,
+               book_.next_id());
+  }
+}
 
 void FleetServer::publish_server_info() {
   model::ServerInfo info;
@@ -200,8 +228,8 @@ void FleetServer::handle_commands() {
           error = "order " + command.target + " is already " + std::string(orders::to_string(order->status));
         } else {
           log_->info("order {} cancelled by operator", id);
-          if (was_assigned) send_assignment(*order, true);
           publish_order(*order);
+          if (was_assigned) send_assignment(*order, true);
         }
       }
     } else if (command.verb == "obstacle") {
@@ -345,6 +373,10 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
     } else {
       book_.requeue(id, clock_.now(), "robot " + robot.id + " lost");
       log_->warn("order {} re-queued: robot {} lost", id, robot.id);
+    }
+    awaiting_ack_since_.erase(id);
+    publish_order(*book_.find(id));
+    if (book_.find(id)->status == OrderStatus::Queued) {
       model::OrderAssignment cancel;
       cancel.order_id = id;
       cancel.robot_id = robot.id;
@@ -352,8 +384,6 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
       cancel.cancelled = true;
       order_writer_.write(cancel);
     }
-    awaiting_ack_since_.erase(id);
-    publish_order(*book_.find(id));
   }
 }
 
@@ -363,6 +393,20 @@ void FleetServer::check_robot_health() {
   for (auto& [id, robot] : robots_) {
     if (robot.registered && !robot.lost && now - robot.last_seen_wall > lost_after) {
       robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");
+    }
+  }
+  // Orders restored from the database whose robot has not shown up since the restart: after a
+  // grace period the robot counts as lost. A robot in TO_DROP or DROPPING had the pallet on board.
+  if (now - started_wall_ > std::max(3.0, 3.0 * lost_after)) {
+    for (const auto& [order_id, order] : book_.all()) {
+      if (orders::is_final(order.status) || order.status == OrderStatus::Queued) continue;
+      if (robots_.contains(order.robot_id)) continue;
+      RobotEntry& ghost = robots_[order.robot_id];
+      ghost.id = order.robot_id;
+      ghost.registered = false;
+      ghost.last.carrying_pallet = order.phase == OrderPhase::ToDrop || order.phase == OrderPhase::Dropping;
+      robot_lost(ghost, "not seen since the server restarted");
+      break;  // book_ changed; the next pass handles the rest
     }
   }
   // Replies are latched only long enough for their requester to read them; unregistering keeps
@@ -402,9 +446,14 @@ void FleetServer::check_acknowledgements() {
     } else {
       const std::string robot = order->robot_id;
       book_.requeue(id, clock_.now(), "not acknowledged by " + robot);
-      send_assignment(*book_.find(id), true);
       log_->warn("order {} re-queued: never acknowledged by {}", id, robot);
       publish_order(*book_.find(id));
+      model::OrderAssignment withdraw;
+      withdraw.order_id = id;
+      withdraw.robot_id = robot;
+      withdraw.update_id = book_.find(id)->update_id;
+      withdraw.cancelled = true;
+      order_writer_.write(withdraw);
       resends_.erase(id);
       it = awaiting_ack_since_.erase(it);
     }
@@ -462,8 +511,8 @@ void FleetServer::dispatch() {
     const Order& order = *book_.find(assignment.order_id);
     log_->info("order {} assigned to {}", order.id, order.robot_id);
     resends_[order.id] = 0;
-    send_assignment(order);
     publish_order(order);
+    send_assignment(order);
   }
 }
 
@@ -486,7 +535,9 @@ void FleetServer::publish_order(const Order& order) {
                                                   !order.history.back().robot_id.empty()) {
     book_.locate_last_event(order.id, robot->second.last.pose.x, robot->second.last.pose.y);
   }
-  order_info_writer_.write(info_of(*book_.find(order.id)));
+  // Written before anyone is told: a crash after this line loses nothing that was announced.
+  store_.save(order);
+  order_info_writer_.write(info_of(order));
   if (orders::is_final(order.status)) {
     // A finished order leaves the latched Order topic, so an agent that restarts never receives
     // it again; OrderInfo keeps the record.

@@ -14,6 +14,7 @@
 #include "map/site.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
+#include "server/order_store.hpp"
 
 namespace fleet::server {
 
@@ -23,6 +24,7 @@ struct ServerOptions {
   std::uint32_t domain = 0;
   double time_scale = 1.0;
   std::uint64_t seed = 1;
+  std::string db_path;  ///< SQLite file of orders and events
 };
 
 /// A robot as the server knows it: registered with its first RobotState.
@@ -69,8 +71,11 @@ class FleetServer {
   bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
 
+  void restore_orders();
+
   ServerOptions options_;
   Logger log_;
+  OrderStore store_;
   SimClock clock_;
   std::mt19937_64 rng_;
   std::unique_ptr<orders::DispatchPolicy> policy_;
@@ -84,6 +89,7 @@ class FleetServer {
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;
   double last_fleet_view_wall_ = 0.0;
+  double started_wall_ = 0.0;
 
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;

@@ -1,6 +1,7 @@
 // fleet-server: orders, dispatch, fleet registry, site state and pose routing over DDS.
 
 #include <csignal>
+#include <filesystem>
 #include <iostream>
 
 #include "common/args.hpp"
@@ -26,6 +27,7 @@ options:
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of the random order generator (default: seed)
   --dispatch POLICY    ascending-id | nearest | optimal (default: server.dispatch_policy)
+  --db FILE            SQLite database of orders (default: server.db_path, var/fleet.db)
   --auto-orders        create random orders whenever a robot is free
   --verbose            log debug events too
   --help               this text
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
     if (auto v = args.value("time-scale")) config.settings.set("time_scale", *v, "--time-scale");
     if (auto v = args.value("seed")) config.settings.set("seed", *v, "--seed");
     if (auto v = args.value("dispatch")) config.settings.set("server.dispatch_policy", *v, "--dispatch");
+    if (auto v = args.value("db")) config.settings.set("server.db_path", *v, "--db");
     if (args.flag("auto-orders")) config.settings.set("server.auto_orders", "true", "--auto-orders");
     const bool verbose = args.flag("verbose");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
@@ -72,6 +75,8 @@ int main(int argc, char** argv) {
     options.domain = static_cast<std::uint32_t>(config.settings.get_int("dds.domain"));
     options.time_scale = config.settings.get_double("time_scale");
     options.seed = static_cast<std::uint64_t>(config.settings.get_int("seed"));
+    const std::filesystem::path db(config.settings.get_string("server.db_path"));
+    options.db_path = (db.is_absolute() ? db : std::filesystem::path(project_root()) / db).string();
     options.config = std::move(config);
     options.site = std::move(site);
     auto log = make_logger("fleet-server", "", verbose ? spdlog::level::debug : spdlog::level::info);
@@ -85,6 +90,9 @@ int main(int argc, char** argv) {
     std::cerr << "fleet-server: " << e.what() << "\n";
     return 2;
   } catch (const map::MapError& e) {
+    std::cerr << "fleet-server: " << e.what() << "\n";
+    return 2;
+  } catch (const server::StoreError& e) {
     std::cerr << "fleet-server: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

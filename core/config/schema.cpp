@@ -44,6 +44,8 @@ std::vector<KeySpec> make_schema() {
              "wall seconds without RobotState after which a robot is marked lost"),
       number("server.order_ack_timeout_s", 2.0, "s", 0.1, 60.0,
              "wall seconds an agent has to acknowledge an order before it is re-sent"),
+      text("server.db_path", "var/fleet.db",
+           "SQLite database of orders and their events, relative to the project root unless absolute"),
       integer("server.order_resend_limit", 2, "", 0, 100, "re-sends of an unacknowledged order before it is re-queued"),
 
       // Agent

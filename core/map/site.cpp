@@ -128,7 +128,7 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
   if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
   r.allow_keys(root, "",
                {"name", "opendrive", "bounds", "road_width", "graph_spacing", "loading_areas", "static_obstacles",
-                "uwb_anchors", "homes"});
+                "uwb_anchors", "homes", "racks"});
 
   Site site;
   site.file = path;
@@ -188,6 +188,28 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
       obstacle.polygon.push_back(p);
     }
     site.static_obstacles.push_back(std::move(obstacle));
+  }
+
+  std::set<std::string> rack_ids;
+  const YAML::Node racks = r.list(root, "racks");
+  for (std::size_t i = 0; i < racks.size(); ++i) {
+    const std::string key = "racks[" + std::to_string(i) + "]";
+    r.allow_keys(racks[i], key, {"id", "polygon"});
+    Rack rack;
+    rack.id = r.text(racks[i], "id", key);
+    unique_id(r, rack_ids, rack.id, racks[i], key);
+    const YAML::Node poly = racks[i]["polygon"];
+    if (!poly || !poly.IsSequence() || poly.size() < 3) {
+      r.fail(racks[i], key + ".polygon", "must be a list of at least 3 [x, y] points");
+    }
+    for (std::size_t j = 0; j < poly.size(); ++j) {
+      const std::string pkey = key + ".polygon[" + std::to_string(j) + "]";
+      if (!poly[j].IsSequence() || poly[j].size() != 2) r.fail(poly[j], pkey, "must be [x, y]");
+      const geometry::Vec2 p{r.number_value(poly[j][0], pkey), r.number_value(poly[j][1], pkey)};
+      if (!site.bounds.contains(p)) r.fail(poly[j], pkey, "rack '" + rack.id + "' lies outside the bounds");
+      rack.polygon.push_back(p);
+    }
+    site.racks.push_back(std::move(rack));
   }
 
   std::set<std::string> anchor_ids;

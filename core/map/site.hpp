@@ -30,6 +30,13 @@ struct StaticObstacle {
   bool enabled_at_start = false;
 };
 
+/// A permanent structure beside the roads (a rack row, seed 004): drawn, and never crossed by a
+/// road (check_site_map refuses a site whose roads run through one).
+struct Rack {
+  std::string id;
+  geometry::Polygon polygon;
+};
+
 struct UwbAnchor {
   std::string id;
   double x = 0.0;
@@ -54,6 +61,7 @@ struct Site {
   std::vector<StaticObstacle> static_obstacles;
   std::vector<UwbAnchor> uwb_anchors;
   std::vector<Home> homes;
+  std::vector<Rack> racks;
 
   const LoadingArea* find_area(const std::string& id) const;
   const StaticObstacle* find_obstacle(const std::string& id) const;

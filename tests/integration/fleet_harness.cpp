@@ -70,6 +70,7 @@ FleetHarness::FleetHarness(int domain, double time_scale, std::string site)
     : domain_(domain), time_scale_(time_scale), site_(std::move(site)) {
   log_dir_ = std::filesystem::temp_directory_path() / ("fleet-test-" + std::to_string(getpid()) + "-" +
                                                        std::to_string(domain));
+  std::filesystem::remove_all(log_dir_);
   std::filesystem::create_directories(log_dir_);
 }
 
@@ -81,7 +82,7 @@ std::vector<std::string> FleetHarness::common_args() const {
 }
 
 void FleetHarness::start_server(const std::vector<std::string>& extra) {
-  std::vector<std::string> argv{bin("fleet-server")};
+  std::vector<std::string> argv{bin("fleet-server"), "--db", log_dir_ + "/fleet.db"};
   for (const auto& a : common_args()) argv.push_back(a);
   argv.insert(argv.end(), extra.begin(), extra.end());
   processes_.start("fleet-server", argv, log_dir_ + "/fleet-server.log");

@@ -9,15 +9,16 @@ using namespace fleet::monitor;
 TEST(CollisionMonitor, OverlapCountsOnceUntilSeparated) {
   CollisionMonitor m;
   const geometry::Footprint fp{0.25, 0.16};
-  EXPECT_TRUE(m.update("a", {0, 0, 0}, fp, 1.0).empty());
-  EXPECT_TRUE(m.update("b", {1, 0, 0}, fp, 1.0).empty());
-  auto hits = m.update("b", {0.2, 0, 0}, fp, 1.1);
+  EXPECT_TRUE(m.update("a", {0, 0, 0}, fp, 1.00).empty());
+  EXPECT_TRUE(m.update("b", {1, 0, 0}, fp, 1.00).empty());
+  auto hits = m.update("b", {0.2, 0, 0}, fp, 1.05);
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_EQ(hits[0].robot_a, "b");
   EXPECT_EQ(hits[0].robot_b, "a");
-  EXPECT_TRUE(m.update("b", {0.21, 0, 0}, fp, 1.12).empty());  // still in contact: same collision
-  EXPECT_TRUE(m.update("b", {0.5, 0, 0}, fp, 1.2).empty());    // separated
-  EXPECT_EQ(m.update("b", {0.2, 0, 0}, fp, 1.25).size(), 1u);  // a second collision
+  EXPECT_TRUE(m.update("a", {0.01, 0, 0}, fp, 1.08).empty());  // still in contact: the same collision
+  EXPECT_TRUE(m.update("b", {0.5, 0, 0}, fp, 1.10).empty());   // separated
+  EXPECT_TRUE(m.update("a", {0.01, 0, 0}, fp, 1.12).empty());
+  EXPECT_EQ(m.update("b", {0.2, 0, 0}, fp, 1.15).size(), 1u);  // a second collision
   EXPECT_EQ(m.collisions().size(), 2u);
 }
 

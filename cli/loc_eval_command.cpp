@@ -1,0 +1,182 @@
+// fleetctl loc-eval: argument parsing and printing only; the evaluation is eval::run_loc_eval.
+#include <charconv>
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "eval/loc_eval.hpp"
+#include "map/site.hpp"
+
+namespace fleet::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: fleetctl loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N]\n"
+    "                         [--nlos FRACTION] [--plot FILE.svg] [--json]\n";
+
+bool parse_double(const std::string& text, double& out) {
+  try {
+    std::size_t used = 0;
+    out = std::stod(text, &used);
+    return used == text.size() && std::isfinite(out);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+bool parse_u64(const std::string& text, std::uint64_t& out) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, out);
+  return ec == std::errc() && ptr == end && !text.empty();
+}
+
+nlohmann::json stats_json(const eval::ErrorStats& s) {
+  return {{"pos_rmse_m", s.pos_rmse},
+          {"pos_max_m", s.pos_max},
+          {"heading_rmse_deg", s.heading_rmse_deg},
+          {"heading_max_deg", s.heading_max_deg}};
+}
+
+void print_row(std::ostream& out, const std::string& name, const eval::ErrorStats& s, bool heading, int gated,
+               double resolved_at) {
+  out << "  " << std::left << std::setw(22) << name << std::right << std::fixed << std::setprecision(1) << std::setw(9)
+      << s.pos_rmse * 100.0 << std::setw(9) << s.pos_max * 100.0;
+  if (heading) {
+    out << std::setprecision(2) << std::setw(10) << s.heading_rmse_deg << std::setw(10) << s.heading_max_deg
+        << std::setw(7) << gated << std::setprecision(2) << std::setw(9) << resolved_at;
+  }
+  out << '\n';
+}
+
+}  // namespace
+
+int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
+  eval::LocEvalParams params;
+  std::string plot_file;
+  bool json = args.json;
+  const auto& a = args.args;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string& flag = a[i];
+    if (flag == "--json") {
+      json = true;
+      continue;
+    }
+    if (flag == "--help" || flag == "-h") {
+      out << kUsage;
+      return kExitOk;
+    }
+    const bool takes_value =
+        flag == "--trajectory" || flag == "--duration" || flag == "--seed" || flag == "--nlos" || flag == "--plot";
+    if (!takes_value) {
+      err << "loc-eval: unknown flag '" << flag << "'\n" << kUsage;
+      return kExitBadInput;
+    }
+    if (i + 1 >= a.size()) {
+      err << "loc-eval: " << flag << " needs a value\n" << kUsage;
+      return kExitBadInput;
+    }
+    const std::string& value = a[++i];
+    if (flag == "--trajectory") {
+      const auto t = eval::parse_trajectory(value);
+      if (!t) {
+        err << "loc-eval: --trajectory '" << value << "' is not one of square, figure8, table_a_loop\n";
+        return kExitBadInput;
+      }
+      params.trajectory = *t;
+    } else if (flag == "--duration") {
+      if (!parse_double(value, params.duration) || params.duration <= 0.0 || params.duration > 36000.0) {
+        err << "loc-eval: --duration '" << value << "' must be a number of seconds in (0, 36000]\n";
+        return kExitBadInput;
+      }
+    } else if (flag == "--seed") {
+      if (!parse_u64(value, params.seed)) {
+        err << "loc-eval: --seed '" << value << "' must be a non-negative integer\n";
+        return kExitBadInput;
+      }
+    } else if (flag == "--nlos") {
+      if (!parse_double(value, params.nlos_fraction) || params.nlos_fraction < 0.0 || params.nlos_fraction > 1.0) {
+        err << "loc-eval: --nlos '" << value << "' must be a fraction in [0, 1]\n";
+        return kExitBadInput;
+      }
+    } else if (flag == "--plot") {
+      plot_file = value;
+    }
+  }
+
+  // Anchors from the demo site when it is readable; the same four corners otherwise.
+  if (!args.source_dir.empty()) {
+    try {
+      const map::Site site = map::load_site(map::site_path(args.source_dir + "/maps", "table_a"));
+      if (site.uwb_anchors.size() >= 3) params.anchors = site.uwb_anchors;
+    } catch (const std::exception& e) {
+      err << "loc-eval: using default anchors (" << e.what() << ")\n";
+    }
+  }
+
+  eval::LocEvalResult r;
+  try {
+    r = eval::run_loc_eval(params);
+  } catch (const std::exception& e) {
+    err << "loc-eval: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+
+  if (!plot_file.empty()) {
+    std::ofstream f(plot_file);
+    f << eval::loc_eval_svg(r);
+    if (!f) {
+      err << "loc-eval: cannot write --plot file '" << plot_file << "'\n";
+      return kExitBadInput;
+    }
+  }
+
+  out << "loc-eval: " << eval::to_string(params.trajectory) << ", " << params.duration << " s, seed " << params.seed
+      << ", NLOS fraction " << params.nlos_fraction << "\n";
+  out << "  UWB: " << r.uwb_fixes << " fixes, " << r.uwb_missing << " epochs without fix, " << r.ranges << " ranges ("
+      << r.nlos_ranges << " NLOS), LOS range noise " << std::fixed << std::setprecision(1) << r.range_noise_std * 100.0
+      << " cm\n";
+  out << "  " << std::left << std::setw(22) << "estimate" << std::right << std::setw(9) << "rmse cm" << std::setw(9)
+      << "max cm" << std::setw(10) << "hdg rmse" << std::setw(10) << "hdg max" << std::setw(7) << "gated"
+      << std::setw(9) << "hdg at s" << '\n';
+  print_row(out, "raw UWB", r.uwb, false, 0, 0.0);
+  print_row(out, "EKF full", r.full.ekf, true, r.full.fixes_gated, r.full.heading_resolved_at);
+  for (const auto& v : r.variants) {
+    print_row(out, "EKF " + v.name, v.ekf, true, v.fixes_gated, v.heading_resolved_at);
+  }
+  const double ratio = r.uwb.pos_rmse > 0.0 ? r.full.ekf.pos_rmse / r.uwb.pos_rmse : 0.0;
+  out << "  EKF / UWB RMSE ratio " << std::setprecision(3) << ratio << '\n';
+  if (!plot_file.empty()) out << "  plot written to " << plot_file << '\n';
+
+  if (json) {
+    nlohmann::json j;
+    j["trajectory"] = eval::to_string(params.trajectory);
+    j["duration_s"] = params.duration;
+    j["seed"] = params.seed;
+    j["nlos_fraction"] = params.nlos_fraction;
+    j["uwb_pos_rmse_m"] = r.uwb.pos_rmse;
+    j["uwb_pos_max_m"] = r.uwb.pos_max;
+    j["ekf_pos_rmse_m"] = r.full.ekf.pos_rmse;
+    j["ekf_pos_max_m"] = r.full.ekf.pos_max;
+    j["ekf_heading_rmse_deg"] = r.full.ekf.heading_rmse_deg;
+    j["ekf_heading_max_deg"] = r.full.ekf.heading_max_deg;
+    j["ekf_to_uwb_ratio"] = ratio;
+    j["heading_resolved_at_s"] = r.full.heading_resolved_at;
+    j["fixes_gated"] = r.full.fixes_gated;
+    j["uwb_fixes"] = r.uwb_fixes;
+    j["range_noise_std_m"] = r.range_noise_std;
+    j["nlos_ranges"] = r.nlos_ranges;
+    nlohmann::json variants = nlohmann::json::object();
+    for (const auto& v : r.variants) variants[v.name] = stats_json(v.ekf);
+    j["variants"] = variants;
+    out << j.dump() << '\n';
+  }
+  return kExitOk;
+}
+
+}  // namespace fleet::cli

@@ -1,0 +1,159 @@
+// fleetctl map check|sample|render: wiring only; the work is done in core/map.
+
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "map/reference_samples.hpp"
+#include "map/site_map.hpp"
+#include "map/svg_render.hpp"
+
+namespace fleet::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: fleetctl map check SITE.yaml|NAME ...\n"
+    "       fleetctl map sample FILE.xodr [--step METRES]\n"
+    "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points]\n";
+
+/// A site given by path, or by name as maps/NAME.yaml under the project root.
+std::string resolve_site(const CommandArgs& args, const std::string& site) {
+  if (std::filesystem::exists(site) || site.find('/') != std::string::npos || site.ends_with(".yaml")) return site;
+  const std::string root = args.source_dir.empty() ? "." : args.source_dir;
+  return map::site_path((std::filesystem::path(root) / "maps").string(), site);
+}
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+int check(const CommandArgs& args, const std::vector<std::string>& sites, std::ostream& out, std::ostream& err) {
+  if (sites.empty()) {
+    err << kUsage;
+    return kExitBadInput;
+  }
+  int code = kExitOk;
+  std::string json = "[";
+  for (const std::string& name : sites) {
+    const std::string path = resolve_site(args, name);
+    bool usable = false;
+    try {
+      const map::SiteMap site = map::load_site_map_unchecked(path);
+      const map::SiteReport report = map::check_site_map(site);
+      out << map::format_report(report);
+      for (const std::string& p : report.problems) err << p << "\n";
+      usable = report.usable();
+      if (json.size() > 1) json += ",";
+      json += "{\"site\":\"" + json_escape(path) + "\",\"usable\":" + (usable ? "true" : "false") +
+              ",\"roads\":" + std::to_string(report.roads) + ",\"points\":" + std::to_string(report.points) +
+              ",\"edges\":" + std::to_string(report.edges) +
+              ",\"components\":" + std::to_string(report.weak_components) + "}";
+    } catch (const map::MapError& e) {
+      err << e.what() << "\n";
+      if (json.size() > 1) json += ",";
+      json += "{\"site\":\"" + json_escape(path) + "\",\"usable\":false,\"error\":\"" + json_escape(e.what()) + "\"}";
+    }
+    if (!usable) code = kExitBadInput;
+  }
+  if (args.json) out << json << "]\n";
+  return code;
+}
+
+int sample(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+  std::string file;
+  double step = 1.0;
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    if (rest[i] == "--step" && i + 1 < rest.size()) {
+      try {
+        std::size_t used = 0;
+        step = std::stod(rest[++i], &used);
+        if (used != rest[i].size()) throw std::invalid_argument(rest[i]);
+      } catch (const std::exception&) {
+        err << "map sample: --step '" << rest[i] << "' is not a number\n";
+        return kExitBadInput;
+      }
+    } else if (file.empty() && !rest[i].starts_with("--")) {
+      file = rest[i];
+    } else {
+      err << "map sample: unexpected argument '" << rest[i] << "'\n" << kUsage;
+      return kExitBadInput;
+    }
+  }
+  if (file.empty()) {
+    err << kUsage;
+    return kExitBadInput;
+  }
+  try {
+    map::write_samples_csv(map::sample_reference_lines(map::load_opendrive(file), step), out);
+  } catch (const map::MapError& e) {
+    err << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
+int render(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+  std::string site, output;
+  map::RenderOptions options;
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    if (rest[i] == "-o" && i + 1 < rest.size()) {
+      output = rest[++i];
+    } else if (rest[i] == "--no-points") {
+      options.graph_points = false;
+    } else if (site.empty() && !rest[i].starts_with("-")) {
+      site = rest[i];
+    } else {
+      err << "map render: unexpected argument '" << rest[i] << "'\n" << kUsage;
+      return kExitBadInput;
+    }
+  }
+  if (site.empty() || output.empty()) {
+    err << kUsage;
+    return kExitBadInput;
+  }
+  try {
+    const map::SiteMap m = map::load_site_map_unchecked(resolve_site(args, site));
+    std::ofstream file(output);
+    file << map::render_svg(m, options);
+    if (!file) {
+      err << output << ": cannot write\n";
+      return kExitFailed;
+    }
+  } catch (const map::MapError& e) {
+    err << e.what() << "\n";
+    return kExitBadInput;
+  }
+  out << "wrote " << output << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
+  if (args.args.empty()) {
+    err << kUsage;
+    return kExitBadInput;
+  }
+  const std::string& sub = args.args.front();
+  const std::vector<std::string> rest(args.args.begin() + 1, args.args.end());
+  if (sub == "check") return check(args, rest, out, err);
+  if (sub == "sample") return sample(rest, out, err);
+  if (sub == "render") return render(args, rest, out, err);
+  err << "map: unknown subcommand '" << sub << "'\n" << kUsage;
+  return kExitBadInput;
+}
+
+}  // namespace fleet::cli

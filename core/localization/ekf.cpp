@@ -1,0 +1,375 @@
+#include "localization/ekf.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace fleet::localization {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+bool finite(const BodyVelocity& v) {
+  return std::isfinite(v.vx) && std::isfinite(v.vy) && std::isfinite(v.omega);
+}
+
+void symmetrize(StateCovariance& p) {
+  p = 0.5 * (p + p.transpose()).eval();
+}
+
+geometry::Vec2 rotate(double yaw, geometry::Vec2 v) {
+  const double c = std::cos(yaw);
+  const double s = std::sin(yaw);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+}  // namespace
+
+EkfParams EkfParams::seed() {
+  return EkfParams{};
+}
+
+EkfParams EkfParams::tuned() {
+  EkfParams p;
+  // R_t per 70 Hz step. Position: only what the constant-velocity model misses within one step.
+  // Heading: gyro white noise (5 mrad/s per sample) plus room to absorb its wandering bias.
+  // Body velocities: the forklift's accelerations (about 0.3 m/s^2) over one step.
+  p.process_noise = {1e-6, 1e-6, 2e-6, 2e-5, 2e-5, 1e-4};
+  p.use_fix_covariance = true;
+  p.uwb_std = 0.03;  // floor of Q_t; the solver's covariance is normally above it
+  p.init_heading_std = 0.05;
+  p.gating = true;
+  p.velocity_source = VelocitySource::commanded;
+  p.heading_init = true;
+  return p;
+}
+
+Ekf::Ekf(const EkfParams& params) : params_(params) {
+  auto require = [](bool ok, const char* key, double value) {
+    if (!ok) throw std::invalid_argument(std::string("EkfParams.") + key + " out of range: " + std::to_string(value));
+  };
+  for (double q : params_.process_noise) require(q >= 0.0 && std::isfinite(q), "process_noise", q);
+  require(params_.nominal_dt > 0.0 && std::isfinite(params_.nominal_dt), "nominal_dt", params_.nominal_dt);
+  require(params_.uwb_std > 0.0 && std::isfinite(params_.uwb_std), "uwb_std", params_.uwb_std);
+  require(params_.init_position_std > 0.0, "init_position_std", params_.init_position_std);
+  require(params_.init_heading_std > 0.0, "init_heading_std", params_.init_heading_std);
+  require(params_.init_velocity_std > 0.0, "init_velocity_std", params_.init_velocity_std);
+  require(params_.init_max_fix_std > 0.0, "init_max_fix_std", params_.init_max_fix_std);
+  require(std::isfinite(params_.initial_heading), "initial_heading", params_.initial_heading);
+  require(params_.gate_chi2 > 0.0, "gate_chi2", params_.gate_chi2);
+  require(params_.max_consecutive_rejections >= 1, "max_consecutive_rejections", params_.max_consecutive_rejections);
+  for (double s : params_.commanded_velocity_std) require(s > 0.0, "commanded_velocity_std", s);
+  for (double s : params_.encoder_velocity_std) require(s > 0.0, "encoder_velocity_std", s);
+  require(params_.heading_init_distance > 0.0, "heading_init_distance", params_.heading_init_distance);
+}
+
+StateVector Ekf::motion_model(const StateVector& x, double gyro_omega, double dt) {
+  // seed 000, eq. 4.8: body velocities rotated into the map frame; heading from the gyro.
+  StateVector out = x;
+  const double th = x(kTheta);
+  out(kX) = x(kX) + x(kVx) * dt * std::cos(th) + x(kVy) * dt * std::cos(th + kPi / 2.0);
+  out(kY) = x(kY) + x(kVx) * dt * std::sin(th) + x(kVy) * dt * std::sin(th + kPi / 2.0);
+  out(kTheta) = th + gyro_omega * dt;
+  return out;
+}
+
+StateCovariance Ekf::motion_jacobian(const StateVector& x, double dt) {
+  // seed 000, eq. 4.15. The printed matrix also has dt at (theta, omega); that entry is the
+  // derivative only if theta were propagated with the state's omega. Eq. 4.8 propagates it with
+  // the gyro reading, an input, so the true derivative there is 0 and that is what is used here
+  // (a Jacobian that disagrees with its model makes the filter over-confident about omega).
+  const double th = x(kTheta);
+  StateCovariance g = StateCovariance::Identity();
+  g(kX, kTheta) = -dt * (std::sin(th) * x(kVx) + std::sin(th + kPi / 2.0) * x(kVy));
+  g(kX, kVx) = std::cos(th) * dt;
+  g(kX, kVy) = std::cos(th + kPi / 2.0) * dt;
+  g(kY, kTheta) = dt * (std::cos(th) * x(kVx) + std::cos(th + kPi / 2.0) * x(kVy));
+  g(kY, kVx) = std::sin(th) * dt;
+  g(kY, kVy) = std::sin(th + kPi / 2.0) * dt;
+  return g;
+}
+
+Eigen::Vector2d Ekf::measurement_model(const StateVector& x, const geometry::Vec2& offset) {
+  // seed 000, eq. 4.13
+  const double th = x(kTheta);
+  return {offset.x * std::cos(th) - offset.y * std::sin(th) + x(kX),
+          offset.x * std::sin(th) + offset.y * std::cos(th) + x(kY)};
+}
+
+Eigen::Matrix<double, 2, 6> Ekf::measurement_jacobian(const StateVector& x, const geometry::Vec2& offset) {
+  // seed 000, eq. 4.17 (the printed matrix drops the omega column; it is zero).
+  const double th = x(kTheta);
+  Eigen::Matrix<double, 2, 6> h = Eigen::Matrix<double, 2, 6>::Zero();
+  h(0, kX) = 1.0;
+  h(1, kY) = 1.0;
+  h(0, kTheta) = -offset.x * std::sin(th) - offset.y * std::cos(th);
+  h(1, kTheta) = offset.x * std::cos(th) - offset.y * std::sin(th);
+  return h;
+}
+
+Eigen::Matrix2d Ekf::measurement_noise(const Eigen::Matrix2d& fix_covariance) const {
+  Eigen::Matrix2d q = params_.uwb_std * params_.uwb_std * Eigen::Matrix2d::Identity();
+  if (params_.use_fix_covariance) {
+    // The solver's covariance, but never more confident than the floor in any direction.
+    q += 0.5 * (fix_covariance + fix_covariance.transpose());
+  }
+  return q;
+}
+
+void Ekf::initialize(const geometry::Vec2& antenna, const Eigen::Matrix2d& covariance) {
+  // seed 000, eq. 4.14: position from the first valid fix, heading assumed, at rest. The printed
+  // vector puts the antenna position itself into x, y; inverting eq. 4.13 at the assumed heading
+  // removes the 5 cm antenna offset as well.
+  const double th = params_.initial_heading;
+  const geometry::Vec2 off = rotate(th, params_.antenna_offset);
+  x_ = StateVector::Zero();
+  x_(kX) = antenna.x - off.x;
+  x_(kY) = antenna.y - off.y;
+  x_(kTheta) = th;
+  const double pos2 = params_.init_position_std * params_.init_position_std;
+  const double vel2 = params_.init_velocity_std * params_.init_velocity_std;
+  P_ = StateCovariance::Zero();
+  P_.diagonal() << pos2, pos2, params_.init_heading_std * params_.init_heading_std, vel2, vel2, vel2;
+  if (params_.use_fix_covariance) P_.block<2, 2>(kX, kX) += measurement_noise(covariance);
+  initialized_ = true;
+  heading_resolved_ = !params_.heading_init;
+  consecutive_rejections_ = 0;
+  nis_mean_ = 2.0;
+  if (!heading_resolved_) {
+    P_(kTheta, kTheta) = kPi * kPi;
+    dr_yaw_ = 0.0;
+    dr_position_ = {};
+    track_.clear();
+    track_.push_back({params_.antenna_offset, antenna, 0.5 * measurement_noise(covariance).trace()});
+  }
+}
+
+bool Ekf::predict(double gyro_omega, double dt) {
+  if (!std::isfinite(gyro_omega) || !std::isfinite(dt) || dt <= 0.0) return false;
+  if (!initialized_) return false;
+  if (!heading_resolved_) track_heading(gyro_omega, dt);
+
+  const StateCovariance g = motion_jacobian(x_, dt);  // at mu_{t-1}, eq. 4.15
+  x_ = motion_model(x_, gyro_omega, dt);              // eq. 4.1 with 4.8
+  x_(kTheta) = geometry::normalize_angle(x_(kTheta));
+  StateCovariance r = StateCovariance::Zero();
+  const double scale = dt / params_.nominal_dt;
+  for (int i = 0; i < 6; ++i) r(i, i) = params_.process_noise[i] * scale;  // eq. 4.16
+  P_ = g * P_ * g.transpose() + r;                                         // eq. 4.2
+  symmetrize(P_);
+  if (!heading_resolved_) {
+    // The placeholder heading must not leak into the other states through correlations.
+    const double var = P_(kTheta, kTheta);
+    P_.row(kTheta).setZero();
+    P_.col(kTheta).setZero();
+    P_(kTheta, kTheta) = var;
+  }
+  return true;
+}
+
+void Ekf::track_heading(double gyro_omega, double dt) {
+  // Dead reckoning in the frame of the body at the first fix: gyro for rotation, the latest
+  // velocity measurement for translation (midpoint heading over the step).
+  const double mid = dr_yaw_ + 0.5 * gyro_omega * dt;
+  if (have_velocity_) {
+    dr_position_ = dr_position_ + dt * rotate(mid, {last_velocity_.vx, last_velocity_.vy});
+  }
+  dr_yaw_ += gyro_omega * dt;
+}
+
+void Ekf::try_resolve_heading() {
+  if (track_.size() < 3) return;
+  double theta_now = 0.0;
+  double theta_var = 0.0;
+  geometry::Vec2 position;
+  if (have_velocity_) {
+    // Distance travelled by dead reckoning, as seen from the first track point.
+    double spread = 0.0;
+    for (const TrackPoint& p : track_) {
+      spread = std::max(spread, geometry::distance(p.dead_reckoned_antenna, track_.front().dead_reckoned_antenna));
+    }
+    if (spread < params_.heading_init_distance) return;
+    // 2-D Procrustes: the rotation theta_0 and translation t minimising
+    // sum w_k |fix_k - (R(theta_0) d_k + t)|^2 over the dead-reckoned antenna points d_k, with
+    // w_k = 1 / variance_k. Fit, drop fixes outside their 99.7 % ellipse (NLOS), fit again.
+    std::vector<bool> use(track_.size(), true);
+    double theta0 = 0.0;
+    geometry::Vec2 t;
+    double sum_wd2 = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      geometry::Vec2 cd;
+      geometry::Vec2 cf;
+      double wsum = 0.0;
+      for (std::size_t i = 0; i < track_.size(); ++i) {
+        if (!use[i]) continue;
+        const double w = 1.0 / track_[i].variance;
+        cd = cd + w * track_[i].dead_reckoned_antenna;
+        cf = cf + w * track_[i].fix;
+        wsum += w;
+      }
+      if (wsum <= 0.0) return;
+      cd = (1.0 / wsum) * cd;
+      cf = (1.0 / wsum) * cf;
+      double sc = 0.0;
+      double sd = 0.0;
+      sum_wd2 = 0.0;
+      for (std::size_t i = 0; i < track_.size(); ++i) {
+        if (!use[i]) continue;
+        const double w = 1.0 / track_[i].variance;
+        const geometry::Vec2 d = track_[i].dead_reckoned_antenna - cd;
+        const geometry::Vec2 f = track_[i].fix - cf;
+        sc += w * geometry::cross(d, f);
+        sd += w * geometry::dot(d, f);
+        sum_wd2 += w * geometry::dot(d, d);
+      }
+      theta0 = std::atan2(sc, sd);
+      t = cf - rotate(theta0, cd);
+      int kept = 0;
+      for (std::size_t i = 0; i < track_.size(); ++i) {
+        const geometry::Vec2 r = track_[i].fix - (rotate(theta0, track_[i].dead_reckoned_antenna) + t);
+        use[i] = geometry::dot(r, r) <= 11.8 * track_[i].variance;  // chi-square 2 dof, 99.7 %
+        kept += use[i] ? 1 : 0;
+      }
+      if (kept < 3) break;  // keep the first fit rather than fit on too few points
+    }
+    position = rotate(theta0, dr_position_) + t;
+    theta_now = theta0 + dr_yaw_;
+    // Rotation uncertainty of the weighted fit, plus the dead-reckoning scale and slip errors it
+    // ignores.
+    theta_var = 1.0 / std::max(sum_wd2, 1e-6) + 0.02 * 0.02;
+  } else {
+    // No velocity source: assume the forklift drove forwards, as the seed's path follower does.
+    const geometry::Vec2 d = track_.back().fix - track_.front().fix;
+    if (geometry::norm(d) < params_.heading_init_distance) return;
+    theta_now = std::atan2(d.y, d.x) + 0.5 * dr_yaw_;
+    position = track_.back().fix - rotate(theta_now, params_.antenna_offset);
+    theta_var = 2.0 * params_.uwb_std * params_.uwb_std / geometry::dot(d, d) + 0.05 * 0.05;
+  }
+  // Keep the map-frame velocity: the body velocities were estimated against the placeholder.
+  const double old_theta = x_(kTheta);
+  const geometry::Vec2 v_map = rotate(old_theta, {x_(kVx), x_(kVy)});
+  const geometry::Vec2 v_body = rotate(-theta_now, v_map);
+  x_(kX) = position.x;
+  x_(kY) = position.y;
+  x_(kTheta) = geometry::normalize_angle(theta_now);
+  if (have_velocity_) {
+    x_(kVx) = last_velocity_.vx;
+    x_(kVy) = last_velocity_.vy;
+    x_(kOmega) = last_velocity_.omega;
+  } else {
+    x_(kVx) = v_body.x;
+    x_(kVy) = v_body.y;
+  }
+  P_.row(kTheta).setZero();
+  P_.col(kTheta).setZero();
+  P_(kTheta, kTheta) = theta_var;
+  heading_resolved_ = true;
+  track_.clear();
+}
+
+UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d& covariance) {
+  if (!std::isfinite(z_pos.x) || !std::isfinite(z_pos.y) || !covariance.allFinite()) {
+    return UpdateStatus::rejected_non_finite;
+  }
+  if (!initialized_) {
+    if (params_.use_fix_covariance) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (covariance + covariance.transpose()));
+      const double worst = eig.eigenvalues().maxCoeff();
+      if (!(worst <= params_.init_max_fix_std * params_.init_max_fix_std)) return UpdateStatus::not_initialized;
+    }
+    initialize(z_pos, covariance);  // Fig. 4.3, lines 1-3
+    return UpdateStatus::initialized;
+  }
+
+  const Eigen::Vector2d z(z_pos.x, z_pos.y);                                         // eq. 4.10
+  Eigen::Matrix<double, 2, 6> h = measurement_jacobian(x_, params_.antenna_offset);  // eq. 4.17
+  if (!heading_resolved_) h.col(kTheta).setZero();
+  const Eigen::Vector2d innovation = z - measurement_model(x_, params_.antenna_offset);  // eq. 4.13
+  const Eigen::Matrix2d q = measurement_noise(covariance);
+  Eigen::Matrix2d s = h * P_ * h.transpose() + q;
+  double nis = innovation.dot(s.ldlt().solve(innovation));
+  if (!std::isfinite(nis)) return UpdateStatus::rejected_non_finite;
+
+  if (params_.gating && nis > params_.gate_chi2) {
+    ++consecutive_rejections_;
+    if (consecutive_rejections_ < params_.max_consecutive_rejections) return UpdateStatus::gated;
+    // Too many rejections in a row: the estimate, not the fixes, is off. Widen the position
+    // uncertainty to cover the innovation and accept.
+    P_.block<2, 2>(kX, kX) += innovation * innovation.transpose();
+    s = h * P_ * h.transpose() + q;
+    nis = innovation.dot(s.ldlt().solve(innovation));
+  }
+  consecutive_rejections_ = 0;
+
+  if (!heading_resolved_) {
+    track_.push_back({rotate(dr_yaw_, params_.antenna_offset) + dr_position_, z_pos, 0.5 * q.trace()});
+  }
+
+  const Eigen::Matrix<double, 6, 2> k = P_ * h.transpose() * s.inverse();  // eq. 4.3
+  x_ += k * innovation;                                                    // eq. 4.4
+  x_(kTheta) = geometry::normalize_angle(x_(kTheta));
+  P_ = (StateCovariance::Identity() - k * h) * P_;  // eq. 4.5
+  symmetrize(P_);
+  nis_mean_ += 0.05 * (std::min(nis, 50.0) - nis_mean_);
+
+  if (!heading_resolved_) try_resolve_heading();
+  return UpdateStatus::accepted;
+}
+
+UpdateStatus Ekf::update_commanded(const BodyVelocity& cmd) {
+  if (params_.velocity_source != VelocitySource::commanded) return UpdateStatus::ignored;
+  return update_velocity(cmd, params_.commanded_velocity_std);
+}
+
+UpdateStatus Ekf::update_encoders(const BodyVelocity& measured) {
+  if (params_.velocity_source != VelocitySource::encoders) return UpdateStatus::ignored;
+  return update_velocity(measured, params_.encoder_velocity_std);
+}
+
+UpdateStatus Ekf::update_velocity(const BodyVelocity& z, const std::array<double, 3>& std) {
+  if (!finite(z)) return UpdateStatus::rejected_non_finite;
+  last_velocity_ = z;
+  have_velocity_ = true;
+  if (!initialized_) return UpdateStatus::not_initialized;
+  if (!heading_resolved_) return UpdateStatus::deferred;
+  // z = (vx, vy, omega), H = [0 | I3]: a linear update on the velocity block.
+  const Eigen::Vector3d innovation(z.vx - x_(kVx), z.vy - x_(kVy), z.omega - x_(kOmega));
+  const Eigen::Matrix<double, 6, 3> pht = P_.block<6, 3>(0, kVx);
+  Eigen::Matrix3d s = P_.block<3, 3>(kVx, kVx);
+  for (int i = 0; i < 3; ++i) s(i, i) += std[i] * std[i];
+  const Eigen::Matrix<double, 6, 3> k = pht * s.inverse();
+  x_ += k * innovation;
+  x_(kTheta) = geometry::normalize_angle(x_(kTheta));
+  P_ -= k * pht.transpose();
+  symmetrize(P_);
+  return UpdateStatus::accepted;
+}
+
+geometry::Pose2 Ekf::pose() const {
+  return {x_(kX), x_(kY), x_(kTheta)};
+}
+
+BodyVelocity Ekf::velocity() const {
+  return {x_(kVx), x_(kVy), x_(kOmega)};
+}
+
+double Ekf::score() const {
+  if (!initialized_) return 0.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(P_.block<2, 2>(kX, kX));
+  const double pos_std = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+  const double th_std = std::sqrt(std::max(P_(kTheta, kTheta), 0.0));
+  const double ref_pos = 0.05;
+  const double ref_th = 5.0 * kPi / 180.0;
+  const double cov_term =
+      1.0 / (1.0 + (pos_std / ref_pos) * (pos_std / ref_pos) + (th_std / ref_th) * (th_std / ref_th));
+  const double nis_term = std::exp(-std::max(0.0, nis_mean_ - 2.0) / 4.0);
+  double s = std::clamp(cov_term * nis_term, 0.0, 1.0);
+  if (!heading_resolved_) s = std::min(s, 0.2);
+  return s;
+}
+
+}  // namespace fleet::localization

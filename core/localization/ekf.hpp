@@ -1,0 +1,178 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "geometry/pose.hpp"
+
+namespace fleet::localization {
+
+/// State of seed 000 eq. 4.6: x, y, theta (map frame), vx, vy (body frame), omega.
+using StateVector = Eigen::Matrix<double, 6, 1>;
+using StateCovariance = Eigen::Matrix<double, 6, 6>;
+
+enum StateIndex : int { kX = 0, kY = 1, kTheta = 2, kVx = 3, kVy = 4, kOmega = 5 };
+
+/// A body-frame velocity: from the commands sent to the drive, or from wheel encoders.
+struct BodyVelocity {
+  double vx = 0.0;     ///< m/s, forward
+  double vy = 0.0;     ///< m/s, left
+  double omega = 0.0;  ///< rad/s
+};
+
+/// Where velocity updates come from (beyond the seed: its estimate lagged in curves "for want of
+/// wheel speeds", seed 000 section 4.1).
+enum class VelocitySource { none, commanded, encoders };
+
+struct EkfParams {
+  /// Antenna offset (a, b) in the body frame, seed 000 eq. 4.12.
+  geometry::Vec2 antenna_offset{0.05, 0.0};
+
+  /// R_t diagonal per prediction at `nominal_dt` (seed 000 eq. 4.16 at the 70 Hz IMU rate). A
+  /// prediction over dt uses R_t * dt / nominal_dt, so the filter behaves the same at other rates.
+  std::array<double, 6> process_noise{1e-5, 1e-5, 1e-4, 1e-8, 1e-3, 1e-6};
+  double nominal_dt = 1.0 / 70.0;
+
+  /// Q_t. The seed's values (eq. 4.18) are not legible in the text; with use_fix_covariance the
+  /// solver's covariance is used, floored at uwb_std^2, otherwise Q_t = uwb_std^2 I.
+  double uwb_std = 0.05;  ///< metres
+  bool use_fix_covariance = false;
+
+  /// Sigma_0 of the initialisation (eq. 4.14); the seed gives none. With use_fix_covariance the
+  /// first fix's Q_t is added to the position block, so that a fix spoiled by NLOS does not pin
+  /// the filter to the wrong place.
+  double init_position_std = 0.05;  ///< metres
+  /// Fig. 4.3 initialises on the first *valid* fix. With use_fix_covariance, valid means its
+  /// largest standard deviation is at most this: a fix whose ranges disagree (NLOS) waits.
+  double init_max_fix_std = 0.10;   ///< metres
+  double init_heading_std = 0.05;   ///< rad, when the start heading is trusted (seed: always 0)
+  double init_velocity_std = 0.05;  ///< m/s and rad/s; the seed starts at rest
+  double initial_heading = 0.0;     ///< rad; the seed's forklifts always start at heading 0
+
+  // Beyond the seed, each switchable so its effect can be measured.
+
+  /// 1. Mahalanobis gating of UWB fixes: a fix whose squared innovation distance exceeds
+  /// gate_chi2 (chi-square, 2 dof) is rejected. After max_consecutive_rejections in a row the
+  /// filter assumes it is the estimate that is wrong, inflates its position covariance and
+  /// accepts again, so gating cannot lock the filter out for good.
+  bool gating = false;
+  double gate_chi2 = 13.8;  ///< 99.9 % for 2 dof
+  int max_consecutive_rejections = 10;
+
+  /// 2. Velocity updates from commands or encoders, z = (vx, vy, omega), H = [0 | I3].
+  VelocitySource velocity_source = VelocitySource::none;
+  std::array<double, 3> commanded_velocity_std{0.02, 0.02, 0.10};  ///< m/s, m/s, rad/s
+  std::array<double, 3> encoder_velocity_std{0.01, 0.01, 0.05};
+
+  /// 3. Heading initialisation from motion: the first fix sets the position (eq. 4.14); the
+  /// heading stays unresolved (not corrected, velocity updates withheld) until the robot has
+  /// moved heading_init_distance. It is then the rotation that best aligns the dead-reckoned
+  /// antenna track (gyro + velocities, in the start frame) with the fixes (2-D Procrustes,
+  /// weighted by each fix's Q_t, refitted once without fixes outside their 99.7 % ellipse).
+  bool heading_init = false;
+  double heading_init_distance = 0.25;  ///< metres of dead-reckoned travel
+
+  /// The seed's filter exactly: R_t of eq. 4.16, fixed Q_t, no gating, no velocity updates,
+  /// heading 0 at start.
+  static EkfParams seed();
+  /// Every beyond-seed feature on, noise tuned to the simulated sensors (see the README).
+  static EkfParams tuned();
+};
+
+enum class UpdateStatus {
+  accepted,             ///< applied to the state
+  gated,                ///< UWB fix rejected by the Mahalanobis gate
+  rejected_non_finite,  ///< NaN or infinity in the input; nothing changed
+  not_initialized,      ///< no state yet (velocity before the first fix, or a first fix too
+                        ///< uncertain to initialise from)
+  initialized,          ///< this fix initialised the filter
+  deferred,             ///< velocity recorded for heading initialisation, state not updated yet
+  ignored,              ///< the source is switched off in EkfParams
+};
+
+/// The forklift's localization filter, seed 000 chapter 4, loop of Fig. 4.3:
+///   on a UWB fix:  initialise if needed (eq. 4.14), else update (eqs. 4.10-4.13, 4.17, 4.3-4.5);
+///   on a gyro reading: predict (eqs. 4.8, 4.15, 4.16, 4.1-4.2) and publish the pose.
+/// Every input is checked: a NaN or infinity is rejected and leaves the state untouched.
+/// Not thread-safe.
+class Ekf {
+ public:
+  /// Throws std::invalid_argument naming the field for a negative noise, a non-positive std or
+  /// threshold, or a non-finite value.
+  explicit Ekf(const EkfParams& params = EkfParams::tuned());
+
+  /// Prediction with the gyro's yaw rate over dt seconds. Returns false (and changes nothing)
+  /// for non-finite input or dt <= 0, and before initialisation except for the heading tracker.
+  bool predict(double gyro_omega, double dt);
+
+  /// UWB antenna position fix with its covariance (ignored unless use_fix_covariance).
+  UpdateStatus update_uwb(const geometry::Vec2& antenna_position,
+                          const Eigen::Matrix2d& covariance = Eigen::Matrix2d::Identity() * 0.0025);
+
+  /// Velocity update from the drive command. No-op unless velocity_source == commanded.
+  UpdateStatus update_commanded(const BodyVelocity& cmd);
+  /// Velocity update from wheel encoders (already through forward kinematics). No-op unless
+  /// velocity_source == encoders.
+  UpdateStatus update_encoders(const BodyVelocity& measured);
+
+  bool initialized() const { return initialized_; }
+  /// False while heading initialisation waits for motion: pose().yaw is then a placeholder.
+  bool heading_resolved() const { return heading_resolved_; }
+
+  geometry::Pose2 pose() const;
+  BodyVelocity velocity() const;
+  const StateVector& state() const { return x_; }
+  const StateCovariance& covariance() const { return P_; }
+
+  /// Localization quality in [0, 1]: 0 until initialised and while the heading is unresolved
+  /// (capped at 0.2); otherwise the product of a covariance term 1 / (1 + (sigma_pos / 5 cm)^2 +
+  /// (sigma_theta / 5 deg)^2) and an innovation-consistency term exp(-max(0, NIS - 2) / 4), NIS
+  /// being a running mean of UWB normalised innovations squared (2 when the filter is consistent).
+  double score() const;
+
+  /// Running mean of the UWB normalised innovation squared.
+  double mean_nis() const { return nis_mean_; }
+  int consecutive_rejections() const { return consecutive_rejections_; }
+
+  const EkfParams& params() const { return params_; }
+
+  // The models, public so that tests can check the Jacobians against numerical derivatives.
+  /// g(u_t, mu_{t-1}), seed 000 eq. 4.8.
+  static StateVector motion_model(const StateVector& x, double gyro_omega, double dt);
+  /// G_t = dg/dx, seed 000 eq. 4.15 (see ekf.cpp for the theta/omega entry).
+  static StateCovariance motion_jacobian(const StateVector& x, double dt);
+  /// h(mu), seed 000 eq. 4.13.
+  static Eigen::Vector2d measurement_model(const StateVector& x, const geometry::Vec2& offset);
+  /// H_t = dh/dx, seed 000 eq. 4.17.
+  static Eigen::Matrix<double, 2, 6> measurement_jacobian(const StateVector& x, const geometry::Vec2& offset);
+
+ private:
+  void initialize(const geometry::Vec2& antenna_position, const Eigen::Matrix2d& covariance);
+  Eigen::Matrix2d measurement_noise(const Eigen::Matrix2d& fix_covariance) const;
+  UpdateStatus update_velocity(const BodyVelocity& z, const std::array<double, 3>& std);
+  void track_heading(double gyro_omega, double dt);
+  void try_resolve_heading();
+
+  EkfParams params_;
+  bool initialized_ = false;
+  bool heading_resolved_ = false;
+  StateVector x_ = StateVector::Zero();
+  StateCovariance P_ = StateCovariance::Identity();
+  double nis_mean_ = 2.0;
+  int consecutive_rejections_ = 0;
+
+  // Heading initialisation from motion: dead reckoning in the frame of the body at the first fix.
+  struct TrackPoint {
+    geometry::Vec2 dead_reckoned_antenna;  ///< start-body frame
+    geometry::Vec2 fix;                    ///< map frame
+    double variance = 0.0;                 ///< per axis, of the fix, m^2
+  };
+  double dr_yaw_ = 0.0;         ///< rotation since the first fix (gyro)
+  geometry::Vec2 dr_position_;  ///< body origin in the start-body frame
+  BodyVelocity last_velocity_;  ///< latest velocity measurement
+  bool have_velocity_ = false;
+  std::vector<TrackPoint> track_;
+};
+
+}  // namespace fleet::localization

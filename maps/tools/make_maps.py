@@ -1,0 +1,306 @@
+#!/usr/bin/env python3
+"""Writes the shipped site maps: maps/{table_a,table_b,warehouse}.{xodr,yaml}.
+
+A map is drawn as straight road segments between nodes. Every road is one lane of the site's
+road width, with its lane centre on the reference line (laneOffset = half the width), driven both
+ways. Where two segments meet, a corner road (quarter arc or straight piece) links them; where
+three or four meet, a junction holds one connecting road for every pair of arms. Turn radius is
+half the road width, so a junction covers exactly the crossing of the two strips.
+
+Usage: maps/tools/make_maps.py [OUTPUT_DIR]   (default: the maps/ folder beside this script)
+"""
+
+import math
+import os
+import sys
+
+
+def fmt(v):
+    return f"{v:.6f}".rstrip("0").rstrip(".") if v != 0 else "0"
+
+
+class Network:
+    def __init__(self, name, road_width):
+        self.name = name
+        self.hw = road_width / 2.0
+        self.nodes = {}
+        self.edges = []  # (u, v, name)
+        self.roads = []  # dicts
+        self.junctions = []
+
+    def node(self, name, x, y):
+        self.nodes[name] = (x, y)
+
+    def edge(self, u, v, name=""):
+        self.edges.append((u, v, name))
+
+    def build(self):
+        r = self.hw
+        arms = {n: [] for n in self.nodes}
+        for i, (u, v, _) in enumerate(self.edges):
+            (ux, uy), (vx, vy) = self.nodes[u], self.nodes[v]
+            length = math.hypot(vx - ux, vy - uy)
+            d = ((vx - ux) / length, (vy - uy) / length)
+            arms[u].append((i, d, "start"))
+            arms[v].append((i, (-d[0], -d[1]), "end"))
+        # Edge roads, trimmed where they enter a corner or junction.
+        edge_road = {}
+        for i, (u, v, name) in enumerate(self.edges):
+            (ux, uy), (vx, vy) = self.nodes[u], self.nodes[v]
+            length = math.hypot(vx - ux, vy - uy)
+            d = ((vx - ux) / length, (vy - uy) / length)
+            t0 = r if len(arms[u]) >= 2 else 0.0
+            t1 = r if len(arms[v]) >= 2 else 0.0
+            if length - t0 - t1 <= 1e-6:
+                raise SystemExit(f"{self.name}: edge {u}-{v} is too short for its junctions")
+            road = {
+                "id": str(i + 1), "name": name or f"{u}-{v}", "junction": "-1",
+                "x": ux + t0 * d[0], "y": uy + t0 * d[1], "hdg": math.atan2(d[1], d[0]),
+                "length": length - t0 - t1, "curvature": 0.0, "pred": None, "succ": None,
+            }
+            edge_road[i] = road
+            self.roads.append(road)
+        next_id = 1000
+        for n, node_arms in arms.items():
+            if len(node_arms) < 2:
+                continue
+            px, py = self.nodes[n]
+            junction = None
+            if len(node_arms) >= 3:
+                junction = {"id": str(len(self.junctions) + 1), "name": n, "connections": []}
+                self.junctions.append(junction)
+            pairs = [(a, b) for ai, a in enumerate(node_arms) for b in node_arms[ai + 1:]]
+            for a, b in pairs:
+                ia, da, ea = a
+                ib, db, eb = b
+                h1 = math.atan2(-da[1], -da[0])
+                h2 = math.atan2(db[1], db[0])
+                turn = math.atan2(math.sin(h2 - h1), math.cos(h2 - h1))
+                if abs(abs(turn) - math.pi / 2) < 1e-9:
+                    length, curvature = r * math.pi / 2, turn / (r * math.pi / 2)
+                elif abs(turn) < 1e-9:
+                    length, curvature = 2 * r, 0.0
+                else:
+                    raise SystemExit(f"{self.name}: node {n} meets at an angle the generator does not draw")
+                road = {
+                    "id": str(next_id), "name": f"{n} {edge_road[ia]['name']} / {edge_road[ib]['name']}",
+                    "junction": junction["id"] if junction else "-1",
+                    "x": px + r * da[0], "y": py + r * da[1], "hdg": h1, "length": length,
+                    "curvature": curvature,
+                    "pred": ("road", edge_road[ia]["id"], ea), "succ": ("road", edge_road[ib]["id"], eb),
+                }
+                next_id += 1
+                self.roads.append(road)
+                if junction:
+                    junction["connections"].append((edge_road[ia]["id"], road["id"], "start"))
+                    junction["connections"].append((edge_road[ib]["id"], road["id"], "end"))
+                else:
+                    for arm, contact in ((a, "start"), (b, "end")):
+                        key = "pred" if arm[2] == "start" else "succ"
+                        edge_road[arm[0]][key] = ("road", road["id"], contact)
+            if junction:
+                for i, _, end in node_arms:
+                    edge_road[i]["pred" if end == "start" else "succ"] = ("junction", junction["id"], None)
+
+    def xodr(self):
+        out = ['<?xml version="1.0" encoding="UTF-8"?>', "<OpenDRIVE>",
+               f'  <header revMajor="1" revMinor="6" name="{self.name}" version="1" '
+               'date="2026-11-21" north="0" south="0" east="0" west="0"/>']
+        w = fmt(2 * self.hw)
+        for rd in self.roads:
+            out.append(f'  <road name="{rd["name"]}" length="{fmt(rd["length"])}" id="{rd["id"]}" '
+                       f'junction="{rd["junction"]}" rule="RHT">')
+            out.append("    <link>")
+            lane_link = []
+            for key, tag in (("pred", "predecessor"), ("succ", "successor")):
+                link = rd[key]
+                if not link:
+                    continue
+                kind, target, contact = link
+                cp = f' contactPoint="{contact}"' if contact else ""
+                out.append(f'      <{tag} elementType="{kind}" elementId="{target}"{cp}/>')
+                if kind == "road":
+                    lane_link.append(f'<{tag} id="-1"/>')
+            out.append("    </link>")
+            out.append("    <planView>")
+            out.append(f'      <geometry s="0" x="{fmt(rd["x"])}" y="{fmt(rd["y"])}" '
+                       f'hdg="{fmt(rd["hdg"])}" length="{fmt(rd["length"])}">')
+            if rd["curvature"] == 0.0:
+                out.append("        <line/>")
+            else:
+                out.append(f'        <arc curvature="{fmt(rd["curvature"])}"/>')
+            out.append("      </geometry>")
+            out.append("    </planView>")
+            out.append("    <lanes>")
+            out.append(f'      <laneOffset s="0" a="{fmt(self.hw)}" b="0" c="0" d="0"/>')
+            out.append('      <laneSection s="0">')
+            out.append('        <center><lane id="0" type="none" level="false"/></center>')
+            out.append("        <right>")
+            out.append('          <lane id="-1" type="driving" level="false">')
+            out.append("            <link>" + "".join(lane_link) + "</link>")
+            out.append(f'            <width sOffset="0" a="{w}" b="0" c="0" d="0"/>')
+            out.append("          </lane>")
+            out.append("        </right>")
+            out.append("      </laneSection>")
+            out.append("    </lanes>")
+            out.append("  </road>")
+        for j in self.junctions:
+            out.append(f'  <junction id="{j["id"]}" name="{j["name"]}">')
+            for k, (incoming, connecting, contact) in enumerate(j["connections"]):
+                out.append(f'    <connection id="{k}" incomingRoad="{incoming}" connectingRoad="{connecting}" '
+                           f'contactPoint="{contact}">')
+                out.append('      <laneLink from="-1" to="-1"/>')
+                out.append("    </connection>")
+            out.append("  </junction>")
+        out.append("</OpenDRIVE>")
+        return "\n".join(out) + "\n"
+
+
+N, E, S, W = math.pi / 2, 0.0, -math.pi / 2, math.pi
+
+
+def site_yaml(name, comment, bounds, road_width, spacing, areas, obstacles, anchors, homes, racks=()):
+    lines = [f"# {line}" for line in comment.strip().splitlines()]
+    lines += [
+        "# Loading areas: yaw points from the pallet towards the road a forklift approaches from;",
+        "# the forklift picks facing yaw + pi. Written by maps/tools/make_maps.py.",
+        f"name: {name}",
+        f"opendrive: {name}.xodr",
+        f"bounds: {{min_x: {fmt(bounds[0])}, min_y: {fmt(bounds[1])}, max_x: {fmt(bounds[2])}, max_y: {fmt(bounds[3])}}}",
+        f"road_width: {fmt(road_width)}",
+        f"graph_spacing: {fmt(spacing)}",
+        "loading_areas:",
+    ]
+    for i, (x, y, yaw, pallet) in enumerate(areas):
+        lines.append(f"  - {{id: A{i + 1}, x: {fmt(x)}, y: {fmt(y)}, yaw: {fmt(yaw)}, pallet: {'true' if pallet else 'false'}}}")
+    lines.append("static_obstacles:")
+    for i, (x0, y0, x1, y1) in enumerate(obstacles):
+        lines.append(f"  - {{id: O{i + 1}, enabled: false, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "
+                     f"[{fmt(x1)}, {fmt(y1)}], [{fmt(x0)}, {fmt(y1)}]]}}")
+    lines.append("uwb_anchors:")
+    for i, (x, y, z) in enumerate(anchors):
+        lines.append(f"  - {{id: U{i + 1}, x: {fmt(x)}, y: {fmt(y)}, z: {fmt(z)}}}")
+    lines.append("homes:")
+    for i, (x, y, yaw) in enumerate(homes):
+        lines.append(f"  - {{id: H{i + 1}, x: {fmt(x)}, y: {fmt(y)}, yaw: {fmt(yaw)}}}")
+    if racks:
+        lines.append("racks:")
+        for i, (x0, y0, x1, y1) in enumerate(racks):
+            lines.append(f"  - {{id: R{i + 1}, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "
+                         f"[{fmt(x1)}, {fmt(y1)}], [{fmt(x0)}, {fmt(y1)}]]}}")
+    return "\n".join(lines) + "\n"
+
+
+def table_a():
+    # Ring road with a cross: 4 T-junctions on the ring, a crossing in the middle, 4 rounded
+    # corners. Road centres at 0.45, 1.5 and 2.55 m leave 0.75 m square courtyards and a 0.30 m
+    # band outside the ring for pallets.
+    net = Network("table_a", 0.30)
+    lo, mid, hi = 0.45, 1.5, 2.55
+    for name, x, y in [("sw", lo, lo), ("s", mid, lo), ("se", hi, lo), ("w", lo, mid), ("c", mid, mid),
+                       ("e", hi, mid), ("nw", lo, hi), ("n", mid, hi), ("ne", hi, hi)]:
+        net.node(name, x, y)
+    for u, v, name in [("sw", "s", "ring south west"), ("s", "se", "ring south east"), ("se", "e", "ring east south"),
+                       ("e", "ne", "ring east north"), ("nw", "n", "ring north west"), ("n", "ne", "ring north east"),
+                       ("sw", "w", "ring west south"), ("w", "nw", "ring west north"), ("s", "c", "cross south"),
+                       ("c", "n", "cross north"), ("w", "c", "cross west"), ("c", "e", "cross east")]:
+        net.edge(u, v, name)
+    net.build()
+    q1, q2 = 0.975, 2.025  # middles of the ring's half sides
+    areas = [(q1, 0.15, N, True), (q2, 0.15, N, False), (2.85, q1, W, True), (2.85, q2, W, False),
+             (q2, 2.85, S, True), (q1, 2.85, S, False), (0.15, q2, E, True), (0.15, q1, E, False)]
+    # Each closes a road away from every loading area and home, so the ring still serves them all.
+    obstacles = [(1.40, 0.85, 1.60, 1.05), (1.40, 1.95, 1.60, 2.15), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
+    anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
+    # Homes beside the roads, inside the courtyards, facing +x (the seed starts forklifts at zero
+    # heading): 0.25 m from a road centre leaves 2 cm between a parked forklift and the road edge.
+    homes = [(0.78, 0.70, 0.0), (2.22, 0.70, 0.0), (2.22, 2.30, 0.0), (0.78, 2.30, 0.0),
+             (1.17, 0.70, 0.0), (1.83, 0.70, 0.0), (1.83, 2.30, 0.0), (1.17, 2.30, 0.0),
+             (0.975, 1.25, 0.0), (2.025, 1.25, 0.0), (2.025, 1.75, 0.0), (0.975, 1.75, 0.0)]
+    comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1a):
+a ring road with a cross through the middle, 4 T-junctions and a crossing."""
+    return net, site_yaml("table_a", comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
+
+
+def table_b():
+    # A ladder: ring road with two rungs at y = 1.15 and 1.85 joined by a short middle road.
+    net = Network("table_b", 0.30)
+    lo, hi = 0.45, 2.55
+    r1, r2, mid = 1.15, 1.85, 1.5
+    for name, x, y in [("sw", lo, lo), ("se", hi, lo), ("w1", lo, r1), ("m1", mid, r1), ("e1", hi, r1),
+                       ("w2", lo, r2), ("m2", mid, r2), ("e2", hi, r2), ("nw", lo, hi), ("ne", hi, hi)]:
+        net.node(name, x, y)
+    for u, v, name in [("sw", "se", "ring south"), ("sw", "w1", "ring west 1"), ("w1", "w2", "ring west 2"),
+                       ("w2", "nw", "ring west 3"), ("se", "e1", "ring east 1"), ("e1", "e2", "ring east 2"),
+                       ("e2", "ne", "ring east 3"), ("nw", "ne", "ring north"),
+                       ("w1", "m1", "rung 1 west"), ("m1", "e1", "rung 1 east"), ("w2", "m2", "rung 2 west"),
+                       ("m2", "e2", "rung 2 east"), ("m1", "m2", "middle")]:
+        net.edge(u, v, name)
+    net.build()
+    areas = [(0.15, 0.80, E, True), (0.15, 2.20, E, False), (2.85, 0.80, W, True), (2.85, 1.50, W, False),
+             (1.00, 0.15, N, False), (2.00, 0.15, N, True),
+             (1.00, 2.85, S, True), (2.00, 2.85, S, False), (1.00, 1.45, S, True), (2.05, 1.45, S, False),
+             (1.00, 2.15, S, False), (2.00, 2.15, S, True)]
+    obstacles = [(1.40, 1.40, 1.60, 1.60), (0.35, 1.40, 0.55, 1.60), (2.45, 2.10, 2.65, 2.30), (1.40, 2.45, 1.60, 2.65)]
+    anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
+    # Two rows of six parking places between the south ring road and rung 1, each beside a road.
+    homes = []
+    xs = [0.75, 1.05, 1.35, 1.65, 1.95, 2.25]
+    for i in range(6):
+        homes.append((xs[i], 0.70, 0.0))
+        homes.append((xs[i], 0.90, 0.0))
+    homes = [homes[i] for i in (0, 10, 3, 7, 2, 4, 6, 8, 1, 5, 9, 11)]
+    comment = """Demo table B: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1b):
+a ladder of two rungs inside a ring road, six T-junctions."""
+    return net, site_yaml("table_b", comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
+
+
+def warehouse():
+    # 40 m x 20 m: rack rows along x, 1.2 m deep, with 3 m aisles between their faces (seed 004).
+    # Aisle roads at y = 4.2, 8.4, 12.6, 16.8 join cross aisles at x = 2, 20 and 38.
+    net = Network("warehouse", 1.0)
+    ys = [4.2, 8.4, 12.6, 16.8]
+    xs = [2.0, 20.0, 38.0]
+    for i, y in enumerate(ys):
+        for k, x in enumerate(xs):
+            net.node(f"n{i}{k}", x, y)
+    for i, y in enumerate(ys):
+        net.edge(f"n{i}0", f"n{i}1", f"aisle {i + 1} west")
+        net.edge(f"n{i}1", f"n{i}2", f"aisle {i + 1} east")
+    for k, x in enumerate(xs):
+        for i in range(len(ys) - 1):
+            net.edge(f"n{i}{k}", f"n{i + 1}{k}", f"cross {k + 1}.{i + 1}")
+    net.build()
+    # Pallets in the racks: rack faces 1.5 m from an aisle centre, pallet centres 0.9 m from it.
+    areas = []
+    rack_xs = [4.5 + 1.5 * j for j in range(9)] + [22.5 + 1.5 * j for j in range(9)]
+    for i, y in enumerate(ys):
+        for side, yaw in ((-1, N), (1, S)):
+            for j, x in enumerate(rack_xs):
+                areas.append((x, y + side * 0.9, yaw, (i + j) % 2 == 0))
+    # Aisle obstacles fit between two pallet columns (1.5 m apart) so they close the aisle only.
+    obstacles = [(6.45, 3.7, 7.05, 4.7), (28.95, 12.1, 29.55, 13.1), (19.5, 10.0, 20.5, 11.0), (37.5, 10.0, 38.5, 11.0)]
+    # Rack rows 1.2 m deep between the aisles, broken by the middle cross aisle.
+    racks = [(x0, y - 0.6, x1, y + 0.6) for y in (2.1, 6.3, 10.5, 14.7, 18.9) for x0, x1 in ((3.5, 18.5), (21.5, 36.5))]
+    anchors = [(0.0, 0.0, 4.0), (20.0, 0.0, 4.0), (40.0, 0.0, 4.0), (40.0, 20.0, 4.0), (20.0, 20.0, 4.0),
+               (0.0, 20.0, 4.0)]
+    # Homes beside the west cross aisle, parked along it, 0.6 m from its centre line.
+    homes = [(1.4, 5.0 + 0.9 * k, N) for k in range(12)]
+    comment = """Warehouse: 40 m x 20 m, rack rows 1.2 m deep with 3 m aisles (seed 004); 1 m roads on the
+aisle centres and three cross aisles; for scale and planner benchmarks."""
+    return net, site_yaml("warehouse", comment, (0, 0, 40, 20), 1.0, 0.5, areas, obstacles, anchors, homes, racks)
+
+
+def main():
+    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    for make in (table_a, table_b, warehouse):
+        net, yaml_text = make()
+        with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
+            f.write(net.xodr())
+        with open(os.path.join(out_dir, net.name + ".yaml"), "w") as f:
+            f.write(yaml_text)
+        print(f"{net.name}: {len(net.roads)} roads, {len(net.junctions)} junctions")
+
+
+if __name__ == "__main__":
+    main()

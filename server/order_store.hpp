@@ -1,0 +1,51 @@
+#pragma once
+
+#include <sqlite3.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "orders/order.hpp"
+
+namespace fleet::server {
+
+class StoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Orders and their events in SQLite (WAL mode). The server writes an order, and each of its
+/// events, before it acknowledges or publishes them, so a `kill -9` at any moment loses nothing
+/// that anyone was told about. Synchronous=NORMAL in WAL mode survives a process crash; it
+/// trades only durability against power loss.
+class OrderStore {
+ public:
+  /// Opens or creates the database at `path` (parent folders are created).
+  explicit OrderStore(const std::string& path);
+  ~OrderStore();
+  OrderStore(const OrderStore&) = delete;
+  OrderStore& operator=(const OrderStore&) = delete;
+
+  /// Inserts or updates the order and appends the events not stored yet, in one transaction.
+  void save(const orders::Order& order);
+
+  /// Every stored order with its history, by id.
+  std::vector<orders::Order> load_all() const;
+
+  /// One past the largest id ever stored (ids are never reused).
+  std::int64_t next_id() const;
+
+  const std::string& path() const { return path_; }
+
+ private:
+  void exec(const char* sql) const;
+  std::string path_;
+  sqlite3* db_ = nullptr;
+  sqlite3_stmt* upsert_ = nullptr;
+  sqlite3_stmt* count_events_ = nullptr;
+  sqlite3_stmt* insert_event_ = nullptr;
+};
+
+}  // namespace fleet::server

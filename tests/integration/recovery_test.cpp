@@ -1,0 +1,134 @@
+// Faults that real fleets meet, with real processes: a server killed with SIGKILL and restarted,
+// an agent killed mid-order, an agent that starts after obstacles were switched on.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <map>
+#include <regex>
+#include <set>
+#include <thread>
+
+#include "cli/client.hpp"
+#include "dds/environment.hpp"
+#include "fleet_harness.hpp"
+#include "orders/order.hpp"
+
+using namespace fleet;
+using namespace fleet::testing;
+using namespace std::chrono_literals;
+
+namespace {
+
+/// Order ids each agent logged as done, with how often.
+std::map<std::int64_t, int> done_counts(const FleetHarness& fleet, const std::vector<std::string>& robots) {
+  std::map<std::int64_t, int> counts;
+  const std::regex done(R"(order (\d+) done: pallet placed)");
+  for (const auto& robot : robots) {
+    const std::string log = fleet.log_of("fleet-agent-" + robot);
+    for (std::sregex_iterator it(log.begin(), log.end(), done), end; it != end; ++it) ++counts[std::stoll((*it)[1])];
+  }
+  return counts;
+}
+
+template <typename Predicate>
+bool eventually(Predicate p, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (p()) return true;
+    std::this_thread::sleep_for(20ms);
+  }
+  return p();
+}
+
+/// The test process is a DDS participant too: it must use the loopback configuration.
+class LoopbackDds : public ::testing::Environment {
+ public:
+  void SetUp() override { dds::use_fleet_dds_config(); }
+};
+const auto* const kLoopbackDds = ::testing::AddGlobalTestEnvironment(new LoopbackDds);
+
+}  // namespace
+
+TEST(Recovery, ServerKilledMidRunAndRestartedLosesNoOrderAndRunsNoneTwice) {
+  FleetHarness fleet(70, 10.0);
+  fleet.start_server({"--auto-orders"});
+  const std::vector<std::string> robots{"fl1", "fl2"};
+  for (const auto& r : robots) fleet.start_agent(r);
+  std::this_thread::sleep_for(6s);
+  fleet.processes().signal(0, SIGKILL);  // the server, mid-run
+  std::this_thread::sleep_for(1500ms);
+  fleet.processes().reap();
+  fleet.processes().restart(0);
+  std::this_thread::sleep_for(8s);
+
+  cli::FleetClient client(70);
+  ASSERT_TRUE(client.find_server(5s));
+  const auto orders = client.orders(1500ms);
+  ASSERT_FALSE(orders.empty());
+  // Ids are contiguous from 1: none vanished.
+  EXPECT_EQ(orders.begin()->first, 1);
+  EXPECT_EQ(static_cast<std::size_t>(orders.rbegin()->first), orders.size());
+  long done = 0;
+  for (const auto& [id, info] : orders) {
+    ASSERT_TRUE(orders::parse_status(info.state).has_value()) << id << " " << info.state;
+    done += info.state == "DONE";
+    int done_events = 0;
+    for (const auto& e : info.history) done_events += e.state == "DONE";
+    EXPECT_LE(done_events, 1) << "order " << id;
+  }
+  EXPECT_GE(done, 2);
+  // No order was carried out twice, by one robot or by two.
+  for (const auto& [id, count] : done_counts(fleet, robots)) EXPECT_EQ(count, 1) << "order " << id << " done twice";
+  EXPECT_NE(fleet.log_of("fleet-server").find("restored"), std::string::npos);
+}
+
+TEST(Recovery, AgentKilledWithoutPalletHasItsOrderRequeuedAndDoneByAnother) {
+  FleetHarness fleet(71, 2.0);
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  std::this_thread::sleep_for(1s);  // fl1 registers first and so takes the order (ascending id)
+  fleet.start_agent("fl2");
+  cli::FleetClient client(71);
+  ASSERT_TRUE(client.find_server(5s));
+  model::OrderRequest request;
+  request.pick_area = "A1";
+  request.drop_area = "A2";
+  const auto reply = client.request_order(request, 5s);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  const std::int64_t id = reply->order_id;
+
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto o = client.orders(50ms);
+        auto it = o.find(id);
+        return it != o.end() && it->second.robot_id == "fl1" && it->second.phase == "TO_PICK";
+      },
+      10s));
+  fleet.processes().signal(1, SIGKILL);  // fl1, on its way to the pallet
+
+  const auto final_info = client.follow_order(id, [](const model::OrderInfo&) {});
+  ASSERT_TRUE(final_info.has_value());
+  EXPECT_EQ(final_info->state, "DONE");
+  EXPECT_EQ(final_info->robot_id, "fl2");
+  bool requeued = false;
+  for (const auto& e : final_info->history) requeued = requeued || (e.state == "QUEUED" && e.reason.find("fl1 lost") != std::string::npos);
+  EXPECT_TRUE(requeued) << fleet.log_of("fleet-server");
+}
+
+TEST(Recovery, AgentStartingAfterObstaclesWereEnabledSeesThem) {
+  FleetHarness fleet(72, 10.0);
+  fleet.start_server();
+  cli::FleetClient client(72);
+  ASSERT_TRUE(client.find_server(5s));
+  model::Command command;
+  command.verb = "obstacle";
+  command.target = "O1";
+  command.value = "on";
+  const auto reply = client.send_command(command, 5s);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  fleet.start_agent("fl3");
+  EXPECT_TRUE(eventually([&] { return fleet.log_of("fleet-agent-fl3").find("static obstacle O1 enabled") != std::string::npos; }, 10s))
+      << fleet.log_of("fleet-agent-fl3");
+}

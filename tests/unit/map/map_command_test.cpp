@@ -1,0 +1,97 @@
+// fleetctl map check|sample|render, driven through the same entry point fleetctl calls.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "commands.hpp"
+
+using namespace fleet::cli;
+
+namespace {
+
+struct CommandRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CommandRun run(std::vector<std::string> args, bool json = false) {
+  CommandArgs a;
+  a.args = std::move(args);
+  a.json = json;
+  a.source_dir = FLEET_SOURCE_DIR;
+  std::ostringstream out, err;
+  CommandRun r;
+  r.code = map_command(a, out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+}  // namespace
+
+TEST(MapCommand, CheckShippedMapsExitsZero) {
+  for (const char* name : {"table_a", "table_b", "warehouse"}) {
+    const CommandRun r = run({"check", std::string(FLEET_SOURCE_DIR "/maps/") + name + ".yaml"});
+    EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
+    EXPECT_NE(r.out.find("usable: yes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("graph edges: "), std::string::npos);
+    EXPECT_TRUE(r.err.empty()) << r.err;
+  }
+  // By name, all at once, with --json.
+  const CommandRun all = run({"check", "table_a", "table_b", "warehouse"}, true);
+  EXPECT_EQ(all.code, kExitOk) << all.err;
+  EXPECT_NE(all.out.find("\"usable\":true"), std::string::npos);
+  EXPECT_EQ(all.out.find("\"usable\":false"), std::string::npos);
+}
+
+TEST(MapCommand, CheckOfABrokenSiteExitsTwoWithTheReason) {
+  const auto dir = std::filesystem::temp_directory_path() / "fleet_map_command_test";
+  std::filesystem::create_directories(dir);
+  const auto path = (dir / "broken.yaml").string();
+  std::ofstream(path) << "opendrive: " FLEET_SOURCE_DIR "/maps/table_a.xodr\n"
+                         "bounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n"
+                         "loading_areas:\n  - {id: A1, x: 0.15, y: 0.975, yaw: 3.1415927}\n";
+  const CommandRun r = run({"check", path});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.out.find("A1: NOT reachable"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find(path + ":4: key 'loading_areas[0]' (A1)"), std::string::npos) << r.err;
+  EXPECT_EQ(run({"check", (dir / "absent.yaml").string()}).code, kExitBadInput);
+}
+
+TEST(MapCommand, SamplePrintsCsv) {
+  const CommandRun r = run({"sample", FLEET_SHARED_DIR "/data/opendrive/curves.xodr", "--step", "0.5"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(r.out.rfind("road_id,s,x,y,hdg\n1,0.000000,0.000000,0.000000,0.000000\n", 0), 0u) << r.out.substr(0, 200);
+  std::istringstream lines(r.out);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(lines, line)) ++n;
+  EXPECT_GT(n, 2000u);  // 1154 m at 0.5 m
+  EXPECT_NE(r.out.find("\n1,1154.399475,"), std::string::npos);  // the road's end, inclusive
+}
+
+TEST(MapCommand, SampleOfAMalformedFileExitsTwoWithFileAndLine) {
+  const auto path = (std::filesystem::temp_directory_path() / "fleet_bad.xodr").string();
+  std::ofstream(path) << "<OpenDRIVE>\n<road id=\"1\" length=\"x\">\n</OpenDRIVE>\n";
+  const CommandRun r = run({"sample", path});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(path + ":3: malformed XML"), std::string::npos) << r.err;
+  EXPECT_EQ(run({"sample", path, "--step", "fast"}).code, kExitBadInput);
+  EXPECT_EQ(run({"sample"}).code, kExitBadInput);
+}
+
+TEST(MapCommand, RenderWritesAnSvg) {
+  const auto out = (std::filesystem::temp_directory_path() / "fleet_table_a.svg").string();
+  std::filesystem::remove(out);
+  const CommandRun r = run({"render", "table_a", "-o", out});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream in(out);
+  std::stringstream svg;
+  svg << in.rdbuf();
+  EXPECT_NE(svg.str().find("<svg"), std::string::npos);
+  EXPECT_EQ(run({"render", "table_a"}).code, kExitBadInput);  // no -o
+  EXPECT_EQ(run({"frobnicate"}).code, kExitBadInput);
+}
