@@ -24,6 +24,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
       obstacle_reader_(participant_, dds::qos::latched_state()),
+      control_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_) {
   const auto robot = options_.config.find_robot(options_.robot_id);
   fleet_ = robot->first;
@@ -31,7 +32,8 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
   home_ = home->pose;
   pose_ = home_;
   map_id_ = options_.site.name;
-  for (dds_entity_t reader : {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle()}) {
+  for (dds_entity_t reader :
+       {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle(), control_reader_.handle()}) {
     waitset_.attach(reader);
   }
   log_->info("forklift of fleet '{}' at home {} ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id,
@@ -116,6 +118,11 @@ void FleetAgent::handle_site_inputs() {
     if (assignment.map_id != map_id_) log_->info("map assigned: {}", assignment.map_id);
     map_id_ = assignment.map_id;
   });
+  control_reader_.take_data([&](model::RobotControl&& control) {
+    if (control.robot_id != options_.robot_id || control.paused == paused_) return;
+    paused_ = control.paused;
+    log_->info("{} by the operator", paused_ ? "paused" : "resumed");
+  });
   obstacle_reader_.take_data([&](model::StaticObstacleState&& obstacle) {
     auto it = obstacles_.find(obstacle.obstacle_id);
     if (it == obstacles_.end() || it->second != obstacle.enabled) {
@@ -152,6 +159,10 @@ bool FleetAgent::drive_towards(const geometry::Pose2& target, double dt) {
 }
 
 void FleetAgent::step(double dt) {
+  if (paused_) {
+    speed_ = yaw_rate_ = 0.0;
+    return;
+  }
   phase_timer_ += dt;
   if (task_state_ == "GO_HOME") {
     if (drive_towards(home_, dt)) {
@@ -195,7 +206,7 @@ void FleetAgent::publish_state(double now_sim) {
   state.pose = pose_;
   state.speed = speed_;
   state.yaw_rate = yaw_rate_;
-  state.task_state = task_state_;
+  state.task_state = paused_ ? "PAUSED" : task_state_;
   state.order_id = order_ ? order_->assignment.order_id : 0;
   state.carrying_pallet = carrying_pallet_;
   state.sim_time = now_sim;

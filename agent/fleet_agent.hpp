@@ -67,6 +67,7 @@ class FleetAgent {
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
   std::deque<std::int64_t> finished_orders_;
+  bool paused_ = false;
 
   dds::Participant participant_;
   dds::Writer<model::RobotState> state_writer_;
@@ -76,6 +77,7 @@ class FleetAgent {
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::MapAssignment> map_reader_;
   dds::Reader<model::StaticObstacleState> obstacle_reader_;
+  dds::Reader<model::RobotControl> control_reader_;
   dds::WaitSet waitset_;
 };
 

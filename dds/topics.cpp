@@ -195,6 +195,9 @@ fleet_msg_MapAssignment to_wire(const model::MapAssignment& v, Scratch&) {
 }
 model::MapAssignment from_wire(const fleet_msg_MapAssignment& w) { return {text(w.robot_id), text(w.map_id)}; }
 
+fleet_msg_RobotControl to_wire(const model::RobotControl& v, Scratch&) { return {borrow(v.robot_id), v.paused}; }
+model::RobotControl from_wire(const fleet_msg_RobotControl& w) { return {text(w.robot_id), w.paused}; }
+
 fleet_msg_StaticObstacle to_wire(const model::StaticObstacleState& v, Scratch& s) {
   return {borrow(v.obstacle_id), borrow(v.map_id), v.enabled, s.point_seq(v.polygon)};
 }
@@ -263,6 +266,7 @@ FLEET_DDS_TOPIC_IMPL(OrderInfo, fleet_msg_OrderInfo, "fleet/OrderInfo")
 FLEET_DDS_TOPIC_IMPL(RobotState, fleet_msg_RobotState, "fleet/RobotState")
 FLEET_DDS_TOPIC_IMPL(RobotPath, fleet_msg_RobotPath, "fleet/RobotPath")
 FLEET_DDS_TOPIC_IMPL(MapAssignment, fleet_msg_MapAssignment, "fleet/MapAssignment")
+FLEET_DDS_TOPIC_IMPL(RobotControl, fleet_msg_RobotControl, "fleet/RobotControl")
 FLEET_DDS_TOPIC_IMPL(StaticObstacleState, fleet_msg_StaticObstacle, "fleet/StaticObstacles")
 FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")

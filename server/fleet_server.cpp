@@ -53,12 +53,14 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       order_writer_(participant_, dds::qos::latched_state()),
       order_info_writer_(participant_, dds::qos::latched_state()),
       map_writer_(participant_, dds::qos::latched_state()),
+      control_writer_(participant_, dds::qos::latched_state()),
       obstacle_writer_(participant_, dds::qos::latched_state()),
       fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
       command_reader_(participant_, dds::qos::requests()),
       robot_state_reader_(participant_, dds::qos::live_state()),
       robot_path_reader_(participant_, dds::qos::live_state()),
+      truth_reader_(participant_, dds::qos::live_state()),
       order_report_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_) {
   for (const auto& area : options_.site.loading_areas) pallet_at_[area.id] = area.pallet_at_start;
@@ -121,6 +123,7 @@ void FleetServer::publish_site_state() {
   // change and when robots start (latched topics give late joiners the current set).
   for (const auto& [fleet, robot] : options_.config.all_robots()) {
     map_writer_.write({robot->id, options_.site.name});
+    control_writer_.write({robot->id, false});
   }
   for (const auto& obstacle : options_.site.static_obstacles) {
     obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
@@ -135,18 +138,20 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     handle_robot_states();
     handle_robot_paths();
     handle_order_reports();
+    handle_web_requests();
     check_robot_health();
     check_acknowledgements();
     if (auto_orders_) create_auto_orders();
     dispatch();
     publish_fleet_view();
+    publish_web_snapshot();
   }
   log_->info("stopping; {} orders known", book_.all().size());
 }
 
-void FleetServer::reply(const std::string& request_id, bool accepted, std::int64_t order_id, const std::string& error) {
-  reply_writer_.write({request_id, accepted, order_id, error});
-  replies_written_[request_id] = SimClock::wall_now();
+void FleetServer::reply(const model::RequestReply& answer) {
+  reply_writer_.write(answer);
+  replies_written_[answer.request_id] = SimClock::wall_now();
 }
 
 int FleetServer::expected_pallets(const std::string& area) const {
@@ -173,90 +178,111 @@ std::string FleetServer::validate_areas(const std::string& pick, const std::stri
 
 void FleetServer::handle_order_requests() {
   request_reader_.take_data([&](model::OrderRequest&& request) {
-    if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
-      log_->warn("order request {} refused: {}", request.request_id, error);
-      reply(request.request_id, false, 0, error);
-      return;
-    }
-    if (!request.robot_id.empty() && !options_.config.find_robot(request.robot_id)) {
-      std::vector<std::string> ids;
-      for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
-      const std::string error = model::unknown_name_message("robot", request.robot_id, ids);
-      reply(request.request_id, false, 0, error);
-      return;
-    }
-    if (options_.config.settings.get_bool("server.reject_when_busy")) {
-      const bool any_free = std::any_of(robots_.begin(), robots_.end(),
-                                        [&](const auto& entry) { return robot_is_free(entry.second); });
-      if (!any_free) {
-        reply(request.request_id, false, 0, "no robot is free (server.reject_when_busy is on)");
-        return;
-      }
-    }
-    Order draft;
-    draft.request_id = request.request_id;
-    draft.pick_area = request.pick_area;
-    draft.drop_area = request.drop_area;
-    draft.fleet_id = request.fleet_id;
-    draft.robot_id = request.robot_id;
-    draft.robot_requested = !request.robot_id.empty();
-    draft.priority = request.priority;
-    const Order& order = book_.create(std::move(draft), clock_.now());
-    log_->info("order {} created: {} -> {} (request {})", order.id, order.pick_area, order.drop_area,
-               order.request_id);
-    publish_order(order);
-    reply(request.request_id, true, order.id, "");
+    const model::RequestReply answer = execute(request);
+    reply(answer);
   });
 }
 
-void FleetServer::handle_commands() {
-  command_reader_.take_data([&](model::Command&& command) {
-    std::string error;
-    if (command.verb == "cancel-order") {
-      std::int64_t id = 0;
-      try {
-        id = std::stoll(command.target);
-      } catch (const std::exception&) {
-        error = "order id '" + command.target + "' is not a number";
-      }
-      const Order* order = error.empty() ? book_.find(id) : nullptr;
-      if (error.empty() && !order) error = "unknown order " + command.target;
-      if (order) {
-        const bool was_assigned = !order->robot_id.empty() && order->status != OrderStatus::Queued;
-        if (book_.transition(id, OrderStatus::Cancelled, clock_.now(), "cancelled by operator") !=
-            TransitionResult::Applied) {
-          error = "order " + command.target + " is already " + std::string(orders::to_string(order->status));
-        } else {
-          log_->info("order {} cancelled by operator", id);
-          publish_order(*order);
-          if (was_assigned) send_assignment(*order, true);
-        }
-      }
-    } else if (command.verb == "obstacle") {
-      if (!options_.site.find_obstacle(command.target)) {
-        std::vector<std::string> ids;
-        for (const auto& o : options_.site.static_obstacles) ids.push_back(o.id);
-        error = model::unknown_name_message("obstacle", command.target, ids);
-      } else if (command.value != "on" && command.value != "off") {
-        error = "obstacle state '" + command.value + "' is not on or off";
-      } else {
-        obstacle_enabled_[command.target] = command.value == "on";
-        const auto* obstacle = options_.site.find_obstacle(command.target);
-        obstacle_writer_.write({obstacle->id, options_.site.name, command.value == "on", obstacle->polygon});
-        log_->info("static obstacle {} {}", command.target, command.value);
-      }
-    } else if (command.verb == "auto-orders") {
-      if (command.value != "on" && command.value != "off") {
-        error = "auto-orders value '" + command.value + "' is not on or off";
-      } else {
-        auto_orders_ = command.value == "on";
-        log_->info("automatic orders {}", command.value);
-      }
-    } else {
-      error = "unknown command '" + command.verb + "' (cancel-order, obstacle, auto-orders)";
+model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
+  auto refuse = [&](const std::string& error) {
+    log_->warn("order request {} refused: {}", request.request_id, error);
+    return model::RequestReply{request.request_id, false, 0, error};
+  };
+  if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
+    return refuse(error);
+  }
+  if (!request.robot_id.empty() && !options_.config.find_robot(request.robot_id)) {
+    std::vector<std::string> ids;
+    for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
+    return refuse(model::unknown_name_message("robot", request.robot_id, ids));
+  }
+  if (!request.fleet_id.empty()) {
+    std::vector<std::string> ids;
+    for (const auto& f : options_.config.fleets) ids.push_back(f.id);
+    if (std::find(ids.begin(), ids.end(), request.fleet_id) == ids.end()) {
+      return refuse(model::unknown_name_message("fleet", request.fleet_id, ids));
     }
-    reply(command.request_id, error.empty(), 0, error);
-  });
+  }
+  if (options_.config.settings.get_bool("server.reject_when_busy")) {
+    const bool any_free = std::any_of(robots_.begin(), robots_.end(),
+                                      [&](const auto& entry) { return robot_is_free(entry.second); });
+    if (!any_free) return refuse("no robot is free (server.reject_when_busy is on)");
+  }
+  Order draft;
+  draft.request_id = request.request_id;
+  draft.pick_area = request.pick_area;
+  draft.drop_area = request.drop_area;
+  draft.fleet_id = request.fleet_id;
+  draft.robot_id = request.robot_id;
+  draft.robot_requested = !request.robot_id.empty();
+  draft.priority = request.priority;
+  const Order& order = book_.create(std::move(draft), clock_.now());
+  log_->info("order {} created: {} -> {} (request {})", order.id, order.pick_area, order.drop_area, order.request_id);
+  publish_order(order);  // stored before the requester hears of it
+  return {request.request_id, true, order.id, ""};
+}
+
+void FleetServer::handle_commands() {
+  command_reader_.take_data([&](model::Command&& command) { reply(execute(command)); });
+}
+
+model::RequestReply FleetServer::execute(const model::Command& command) {
+  std::string error;
+  if (command.verb == "cancel-order") {
+    std::int64_t id = 0;
+    try {
+      id = std::stoll(command.target);
+    } catch (const std::exception&) {
+      error = "order id '" + command.target + "' is not a number";
+    }
+    const Order* order = error.empty() ? book_.find(id) : nullptr;
+    if (error.empty() && !order) error = "unknown order " + command.target;
+    if (order) {
+      const bool was_assigned = !order->robot_id.empty() && order->status != OrderStatus::Queued;
+      if (book_.transition(id, OrderStatus::Cancelled, clock_.now(), "cancelled by operator") !=
+          TransitionResult::Applied) {
+        error = "order " + command.target + " is already " + std::string(orders::to_string(order->status));
+      } else {
+        log_->info("order {} cancelled by operator", id);
+        publish_order(*order);
+        if (was_assigned) send_assignment(*order, true);
+      }
+    }
+  } else if (command.verb == "obstacle") {
+    if (!options_.site.find_obstacle(command.target)) {
+      std::vector<std::string> ids;
+      for (const auto& o : options_.site.static_obstacles) ids.push_back(o.id);
+      error = model::unknown_name_message("obstacle", command.target, ids);
+    } else if (command.value != "on" && command.value != "off") {
+      error = "obstacle state '" + command.value + "' is not on or off";
+    } else {
+      obstacle_enabled_[command.target] = command.value == "on";
+      const auto* obstacle = options_.site.find_obstacle(command.target);
+      obstacle_writer_.write({obstacle->id, options_.site.name, command.value == "on", obstacle->polygon});
+      log_->info("static obstacle {} {}", command.target, command.value);
+    }
+  } else if (command.verb == "auto-orders") {
+    if (command.value != "on" && command.value != "off") {
+      error = "auto-orders value '" + command.value + "' is not on or off";
+    } else {
+      auto_orders_ = command.value == "on";
+      log_->info("automatic orders {}", command.value);
+    }
+  } else if (command.verb == "pause" || command.verb == "resume") {
+    if (!options_.config.find_robot(command.target)) {
+      std::vector<std::string> ids;
+      for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
+      error = model::unknown_name_message("robot", command.target, ids);
+    } else {
+      paused_[command.target] = command.verb == "pause";
+      control_writer_.write({command.target, command.verb == "pause"});
+      log_->info("robot {} {}d by operator", command.target, command.verb);
+    }
+  } else {
+    error = "unknown command '" + command.verb + "' (cancel-order, obstacle, auto-orders, pause, resume)";
+  }
+  if (!error.empty()) log_->warn("command {} {} {} refused: {}", command.verb, command.target, command.value, error);
+  return {command.request_id, error.empty(), 0, error};
 }
 
 void FleetServer::handle_robot_states() {
@@ -301,6 +327,66 @@ void FleetServer::handle_robot_states() {
 
 void FleetServer::handle_robot_paths() {
   robot_path_reader_.take_data([&](model::RobotPath&& path) { paths_[path.robot_id] = std::move(path); });
+  truth_reader_.take_data([&](model::SimTruth&& truth) { truths_[truth.robot_id] = std::move(truth); });
+}
+
+void FleetServer::handle_web_requests() {
+  if (!bridge_) return;
+  for (auto& pending : bridge_->drain()) {
+    pending.reply.set_value(std::visit([&](const auto& request) { return execute(request); }, pending.request));
+  }
+}
+
+void FleetServer::publish_web_snapshot() {
+  constexpr double kWebHzWall = 20.0;
+  constexpr std::size_t kRecentEndedOrders = 50;
+  if (!bridge_) return;
+  const double now_wall = SimClock::wall_now();
+  if (now_wall - last_web_snapshot_wall_ < 1.0 / kWebHzWall) return;
+  last_web_snapshot_wall_ = now_wall;
+  LiveSnapshot snap;
+  snap.sim_time = clock_.now();
+  snap.time_scale = options_.time_scale;
+  const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");
+  for (const auto& [id, robot] : robots_) {
+    if (!robot.registered) continue;
+    RobotView view;
+    view.state = robot.last;
+    if (auto t = truths_.find(id); t != truths_.end()) view.truth = t->second;
+    if (auto p = paths_.find(id); p != paths_.end()) view.path = p->second.points;
+    if (const auto spec = options_.config.find_robot(id)) view.footprint = spec->first->footprint;
+    const double silent_wall = now_wall - robot.last_seen_wall;
+    view.health = robot.lost ? "lost" : (silent_wall > lost_after / 2 ? "stale" : "alive");
+    view.age_s = std::max(0.0, snap.sim_time - robot.last.sim_time);
+    snap.robots.push_back(std::move(view));
+  }
+  std::vector<const Order*> ended;
+  std::vector<double> durations;
+  for (const auto& [id, order] : book_.all()) {
+    if (!orders::is_final(order.status)) {
+      snap.orders.push_back(info_of(order));
+    } else {
+      ended.push_back(&order);
+    }
+    if (order.status == OrderStatus::Done) {
+      ++snap.orders_done;
+      durations.push_back(order.finished_sim - order.created_sim);
+    }
+    if (order.status == OrderStatus::Failed) ++snap.orders_failed;
+  }
+  for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size(); ++i) {
+    snap.orders.push_back(info_of(*ended[i]));
+  }
+  if (!durations.empty()) {
+    std::sort(durations.begin(), durations.end());
+    snap.order_time_p95_s = durations[std::min(durations.size() - 1, static_cast<std::size_t>(0.95 * durations.size()))];
+  }
+  const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
+  snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
+  snap.obstacle_enabled = obstacle_enabled_;
+  snap.pallet_at = pallet_at_;
+  snap.auto_orders = auto_orders_;
+  bridge_->publish(std::move(snap));
 }
 
 void FleetServer::handle_order_reports() {

@@ -15,6 +15,7 @@
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
 #include "server/order_store.hpp"
+#include "server/web_bridge.hpp"
 
 namespace fleet::server {
 
@@ -47,6 +48,10 @@ class FleetServer {
   /// Runs until `stop` becomes true.
   void run(const std::atomic<bool>& stop);
 
+  /// Connects the web view: the loop then publishes snapshots to it and carries out its
+  /// requests. Call before run(); the bridge must outlive the server.
+  void attach_web(WebBridge* bridge) { bridge_ = bridge; }
+
  private:
   void publish_site_state();
   void publish_server_info();
@@ -60,10 +65,15 @@ class FleetServer {
   void create_auto_orders();
   void dispatch();
   void publish_fleet_view();
+  void handle_web_requests();
+  void publish_web_snapshot();
 
   void publish_order(const orders::Order& order);
   void send_assignment(const orders::Order& order, bool cancelled = false);
-  void reply(const std::string& request_id, bool accepted, std::int64_t order_id, const std::string& error);
+  void reply(const model::RequestReply& answer);
+  /// Carries out an order request or a command from DDS or the web view; the reply says how.
+  model::RequestReply execute(const model::OrderRequest& request);
+  model::RequestReply execute(const model::Command& command);
   /// Why a pick/drop pair cannot be ordered now, or empty.
   std::string validate_areas(const std::string& pick, const std::string& drop) const;
   /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
@@ -90,6 +100,10 @@ class FleetServer {
   bool auto_orders_ = false;
   double last_fleet_view_wall_ = 0.0;
   double started_wall_ = 0.0;
+  double last_web_snapshot_wall_ = 0.0;
+  WebBridge* bridge_ = nullptr;
+  std::map<std::string, model::SimTruth> truths_;
+  std::map<std::string, bool> paused_;
 
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;
@@ -97,12 +111,14 @@ class FleetServer {
   dds::Writer<model::OrderAssignment> order_writer_;
   dds::Writer<model::OrderInfo> order_info_writer_;
   dds::Writer<model::MapAssignment> map_writer_;
+  dds::Writer<model::RobotControl> control_writer_;
   dds::Writer<model::StaticObstacleState> obstacle_writer_;
   dds::Writer<model::FleetView> fleet_view_writer_;
   dds::Reader<model::OrderRequest> request_reader_;
   dds::Reader<model::Command> command_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;
   dds::Reader<model::RobotPath> robot_path_reader_;
+  dds::Reader<model::SimTruth> truth_reader_;
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::WaitSet waitset_;
 };

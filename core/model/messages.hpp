@@ -121,6 +121,11 @@ struct RobotPath {
   double sim_time = 0.0;
 };
 
+struct RobotControl {
+  std::string robot_id;
+  bool paused = false;
+};
+
 struct MapAssignment {
   std::string robot_id;
   std::string map_id;

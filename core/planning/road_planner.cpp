@@ -1,0 +1,210 @@
+#include "planning/road_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace fleet::planning {
+
+using geometry::Vec2;
+
+namespace {
+
+constexpr double kNoHeading = std::numeric_limits<double>::quiet_NaN();
+
+bool heap_less(const auto& a, const auto& b) {
+  // Min-heap on f; among equal f the deeper state first, which ends ties towards the goal sooner.
+  return a.f > b.f || (a.f == b.f && a.g < b.g);
+}
+
+}  // namespace
+
+RoadPlanner::RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfiguration& configuration)
+    : configuration_(configuration) {
+  if (configuration.w_d < 0.0 || configuration.w_h < 0.0 || configuration.obstacle_cost < 0.0) {
+    // Negative costs would let A* revisit closed states (seed 000, section 5.2).
+    throw std::invalid_argument("road planner: w_d, w_h and obstacle_cost must be >= 0");
+  }
+  if (graph.successors.size() != graph.points.size()) {
+    throw std::invalid_argument("road planner: graph has " + std::to_string(graph.points.size()) + " points but " +
+                                std::to_string(graph.successors.size()) + " successor lists");
+  }
+  const std::size_t n = graph.points.size();
+  xs_.resize(n);
+  ys_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    xs_[i] = graph.points[i].x;
+    ys_[i] = graph.points[i].y;
+  }
+  offsets_.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int j : graph.successors[i]) {
+      if (j < 0 || static_cast<std::size_t>(j) >= n) {
+        throw std::invalid_argument("road planner: point " + std::to_string(i) + " links to missing point " +
+                                    std::to_string(j));
+      }
+      const double dx = xs_[j] - xs_[i];
+      const double dy = ys_[j] - ys_[i];
+      targets_.push_back(j);
+      edge_length_.push_back(std::hypot(dx, dy));
+      edge_angle_.push_back(std::atan2(dy, dx));
+    }
+    offsets_[i + 1] = static_cast<std::uint32_t>(targets_.size());
+  }
+  blocked_.assign(n, 0);
+  stamp_.assign(n, 0);
+  closed_.assign(n, 0);
+  g_.assign(n, 0.0);
+  heading_.assign(n, kNoHeading);
+  parent_.assign(n, -1);
+  heap_.reserve(n);
+}
+
+void RoadPlanner::set_obstacles(const OccupancyGrid& static_grid) {
+  for (std::size_t i = 0; i < xs_.size(); ++i) blocked_[i] = static_grid.occupied_at({xs_[i], ys_[i]}) ? 1 : 0;
+}
+
+void RoadPlanner::clear_obstacles() {
+  std::fill(blocked_.begin(), blocked_.end(), 0);
+}
+
+int RoadPlanner::nearest_point(Vec2 p) const {
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < xs_.size(); ++i) {
+    const double dx = xs_[i] - p.x;
+    const double dy = ys_[i] - p.y;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+RoadPlan RoadPlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
+  // seed 000, Fig. 5.6: the states nearest the poses; C(x_S) is the distance to the start state.
+  const int s = nearest_point(start.position());
+  const int g = nearest_point(goal.position());
+  if (s < 0 || g < 0) {
+    RoadPlan empty;
+    empty.status = PlanStatus::kInvalidStart;
+    return empty;
+  }
+  return plan_between(s, g, geometry::distance(start.position(), {xs_[s], ys_[s]}), options);
+}
+
+RoadPlan RoadPlanner::plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options) {
+  RoadPlan result;
+  const int n = static_cast<int>(xs_.size());
+  if (start_point < 0 || goal_point < 0 || start_point >= n || goal_point >= n) {
+    result.status = PlanStatus::kInvalidStart;
+    return result;
+  }
+  const Deadline deadline(options);
+  if (++query_ == 0) {  // wrapped: every stamp is stale again
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    query_ = 1;
+  }
+  const double gx = xs_[goal_point];
+  const double gy = ys_[goal_point];
+  const double w_d = configuration_.w_d;
+  const double w_h = configuration_.w_h;
+  const double obs = configuration_.obstacle_cost;
+  // Euclidean heuristic (Fig. 5.7, 5.8), scaled by w_d so it never overestimates eq. 5.5.
+  auto h = [&](int i) { return w_d * std::hypot(xs_[i] - gx, ys_[i] - gy); };
+  auto touch = [&](int i) {
+    if (stamp_[i] != query_) {
+      stamp_[i] = query_;
+      closed_[i] = 0;
+      parent_[i] = -1;
+      heading_[i] = kNoHeading;
+      g_[i] = std::numeric_limits<double>::infinity();
+    }
+  };
+
+  heap_.clear();
+  touch(start_point);
+  g_[start_point] = start_cost;  // C(x_S); the start state has no heading
+  heap_.push_back({start_cost + h(start_point), start_cost, start_point});
+  bool found = false;
+  std::size_t iterations = 0;
+  while (!heap_.empty()) {
+    if ((iterations++ & 63) == 0) {
+      const PlanStatus st = deadline.check();
+      if (st != PlanStatus::kFound) {
+        result.status = st;
+        return result;
+      }
+    }
+    std::pop_heap(heap_.begin(), heap_.end(), [](const HeapItem& a, const HeapItem& b) { return heap_less(a, b); });
+    const HeapItem item = heap_.back();
+    heap_.pop_back();
+    const int x = item.node;
+    if (closed_[x] || item.g > g_[x]) continue;  // a stale copy: the state was improved since
+    closed_[x] = 1;
+    ++result.expanded;
+    if (x == goal_point) {
+      found = true;
+      break;
+    }
+    if (result.expanded > options.node_cap) {
+      result.status = PlanStatus::kTimeout;
+      return result;
+    }
+    const double h1 = heading_[x];
+    for (std::uint32_t e = offsets_[x]; e < offsets_[x + 1]; ++e) {
+      const int y = targets_[e];
+      touch(y);
+      if (closed_[y]) continue;
+      // seed 000, eq. 5.5: C(x1, x2) = w_d * Euc + w_h * |norm(h1 - atan2(dy, dx))|; no heading
+      // cost out of a state without an assigned heading.
+      double c = w_d * edge_length_[e];
+      if (!std::isnan(h1)) c += w_h * std::abs(geometry::normalize_angle(h1 - edge_angle_[e]));
+      if (blocked_[y]) c += obs;  // Obs(x'), section 5.3
+      const double g_new = g_[x] + c;
+      if (g_new < g_[y]) {
+        g_[y] = g_new;
+        parent_[y] = x;
+        heading_[y] = edge_angle_[e];  // the heading assigned from the parent
+        heap_.push_back({g_new + h(y), g_new, y});
+        std::push_heap(heap_.begin(), heap_.end(),
+                       [](const HeapItem& a, const HeapItem& b) { return heap_less(a, b); });
+      }
+    }
+  }
+  if (!found) {
+    result.status = PlanStatus::kNoPath;
+    return result;
+  }
+  for (int v = goal_point; v != -1; v = parent_[v]) result.point_ids.push_back(v);
+  std::reverse(result.point_ids.begin(), result.point_ids.end());
+  result.cost = g_[goal_point];
+  result.status = PlanStatus::kFound;
+
+  // seed 000, Fig. 5.11: a route through an obstacle is kept only up to the obstacle, so the robot
+  // waits at the last free point and goes on once the obstacle is removed. A start already inside
+  // an obstacle is left behind first: the robot may drive out of it.
+  std::size_t first = 0;
+  while (first < result.point_ids.size() && blocked_[result.point_ids[first]]) ++first;
+  for (std::size_t k = std::max<std::size_t>(first, 1); k < result.point_ids.size(); ++k) {
+    if (blocked_[result.point_ids[k]]) {
+      result.blocked_point = result.point_ids[k];
+      result.point_ids.resize(k);
+      result.status = PlanStatus::kBlockedPartial;
+      break;
+    }
+  }
+  result.points.reserve(result.point_ids.size());
+  for (std::size_t k = 0; k < result.point_ids.size(); ++k) {
+    const int v = result.point_ids[k];
+    result.points.push_back({xs_[v], ys_[v]});
+    if (k > 0) result.length += geometry::distance(result.points[k - 1], result.points[k]);
+  }
+  return result;
+}
+
+}  // namespace fleet::planning

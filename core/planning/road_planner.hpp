@@ -1,0 +1,82 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/pose.hpp"
+#include "map/road_graph.hpp"
+#include "planning/occupancy_grid.hpp"
+#include "planning/plan_status.hpp"
+
+namespace fleet::planning {
+
+/// Weights of seed 000, eq. 5.5 and the obstacle cost of section 5.3. Fixed per planner.
+struct RoadPlannerConfiguration {
+  double w_d = 1.0;              ///< per metre
+  double w_h = 0.2;              ///< per radian of heading change
+  double obstacle_cost = 100.0;  ///< Obs(x') of a point inside an obstacle (the seed's value)
+};
+
+struct RoadPlan {
+  PlanStatus status = PlanStatus::kNoPath;
+  std::vector<int> point_ids;          ///< graph points from the start state on
+  std::vector<geometry::Vec2> points;  ///< their positions
+  double cost = 0.0;                   ///< C(x_G) of the search, obstacle costs included
+  double length = 0.0;                 ///< metres along `points`
+  int blocked_point = -1;              ///< kBlockedPartial: first blocked point the route met
+  std::size_t expanded = 0;            ///< states moved to the closed list
+};
+
+/// A* on the road graph, as in seed 000, section 5.2 (Fig. 5.7).
+///
+/// The graph is turned into flat arrays once at construction and the search buffers are reused
+/// between queries, so a query allocates nothing but its result. One query at a time per instance.
+class RoadPlanner {
+ public:
+  RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfiguration& configuration = {});
+
+  /// Reads Obs(x') for every graph point from the static grid (seed 000, section 5.3). Call again
+  /// when the grid's revision changes.
+  void set_obstacles(const OccupancyGrid& static_grid);
+  void clear_obstacles();
+  bool blocked(int point) const { return blocked_[static_cast<std::size_t>(point)] != 0; }
+
+  /// Graph point nearest `p` by Euclidean distance (Fig. 5.6); -1 for an empty graph.
+  int nearest_point(geometry::Vec2 p) const;
+
+  /// Start and goal states are the graph points nearest the poses; the start's cost-to-come is
+  /// its distance from the start pose. When the cheapest route crosses a blocked point, the plan
+  /// ends at the last free point before it and the status is kBlockedPartial (Fig. 5.11).
+  RoadPlan plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options = {});
+  /// The same between graph points, with C(x_S) = `start_cost`.
+  RoadPlan plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options = {});
+
+  std::size_t point_count() const { return xs_.size(); }
+  const RoadPlannerConfiguration& configuration() const { return configuration_; }
+
+ private:
+  struct HeapItem {
+    double f;
+    double g;
+    int node;
+  };
+
+  RoadPlannerConfiguration configuration_;
+  std::vector<double> xs_, ys_;
+  std::vector<std::uint32_t> offsets_;  ///< CSR adjacency: edges of i are [offsets_[i], offsets_[i+1])
+  std::vector<int> targets_;
+  std::vector<double> edge_length_;
+  std::vector<double> edge_angle_;  ///< atan2(dy, dx) of each edge, the heading it assigns
+  std::vector<std::uint8_t> blocked_;
+
+  // Search state, reused; `stamp_` tells which entries belong to the current query.
+  std::vector<std::uint32_t> stamp_;
+  std::vector<std::uint8_t> closed_;
+  std::vector<double> g_;
+  std::vector<double> heading_;
+  std::vector<int> parent_;
+  std::vector<HeapItem> heap_;
+  std::uint32_t query_ = 0;
+};
+
+}  // namespace fleet::planning

@@ -1,0 +1,71 @@
+#include "planning/route_planner.hpp"
+
+#include <chrono>
+
+namespace fleet::planning {
+
+using geometry::Vec2;
+
+namespace {
+
+void append(std::vector<Vec2>& out, const std::vector<Vec2>& more) {
+  for (const Vec2& p : more) {
+    if (out.empty() || geometry::distance(out.back(), p) > 1e-9) out.push_back(p);
+  }
+}
+
+/// What is left of the caller's budget, for the next leg.
+PlanOptions remaining(const PlanOptions& options, const Deadline& deadline) {
+  PlanOptions o = options;
+  const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline.end() - Deadline::Clock::now());
+  o.time_budget = left.count() > 0 ? left : std::chrono::microseconds(0);
+  return o;
+}
+
+}  // namespace
+
+RoutePlanner::RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlannerConfiguration& configuration)
+    : road_(road), grid_(grid), configuration_(configuration) {}
+
+Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
+  Route route;
+  const Deadline deadline(options);
+  const int s = road_.nearest_point(start.position());
+  const int g = road_.nearest_point(goal.position());
+  if (s < 0 || g < 0) {
+    route.status = PlanStatus::kInvalidStart;
+    return route;
+  }
+  route.road = road_.plan(start, goal, remaining(options, deadline));
+  if (route.road.status != PlanStatus::kFound && route.road.status != PlanStatus::kBlockedPartial) {
+    route.status = route.road.status;
+    return route;
+  }
+  const Vec2 first = route.road.points.front();
+  route.points.push_back(start.position());
+  if (geometry::distance(start.position(), first) > configuration_.on_graph_tolerance) {
+    route.to_road = grid_.plan(start.position(), first, remaining(options, deadline));
+    if (route.to_road.status != PlanStatus::kFound) {
+      route.status = route.to_road.status;
+      route.points.clear();
+      return route;
+    }
+    append(route.points, route.to_road.points);
+  }
+  append(route.points, route.road.points);
+  route.status = route.road.status;
+  if (route.road.status == PlanStatus::kFound &&
+      geometry::distance(goal.position(), route.road.points.back()) > configuration_.on_graph_tolerance) {
+    route.from_road = grid_.plan(route.road.points.back(), goal.position(), remaining(options, deadline));
+    if (route.from_road.status != PlanStatus::kFound) {
+      // The road part stands; the robot can drive it while the last leg is retried.
+      route.status = route.from_road.status;
+    } else {
+      append(route.points, route.from_road.points);
+    }
+  }
+  route.length = path_length(route.points);
+  return route;
+}
+
+}  // namespace fleet::planning

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <vector>
+
+#include "geometry/pose.hpp"
+#include "planning/grid_planner.hpp"
+#include "planning/road_planner.hpp"
+
+namespace fleet::planning {
+
+/// Fixed per RoutePlanner.
+struct RoutePlannerConfiguration {
+  /// A pose this close to its nearest graph point is on the road: no grid leg is planned.
+  double on_graph_tolerance = 0.05;
+};
+
+struct Route {
+  PlanStatus status = PlanStatus::kNoPath;
+  std::vector<geometry::Vec2> points;  ///< start pose, grid leg, road points, grid leg, goal pose
+  double length = 0.0;
+  RoadPlan road;
+  GridPath to_road;    ///< start pose to the first road point; empty when the start is on the road
+  GridPath from_road;  ///< last road point to the goal pose; empty when the goal is on the road
+};
+
+/// Road A* between the graph points nearest the poses, with grid legs where a pose lies off the
+/// graph: from the road's end to a loading area and back (issue 5, after seed 000, Fig. 5.1).
+/// The grid planner must hold the static grid (inflated). When the road plan is blocked
+/// (Fig. 5.11) the route ends at the last free road point and no goal leg is planned.
+class RoutePlanner {
+ public:
+  RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlannerConfiguration& configuration = {});
+  Route plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options = {});
+
+ private:
+  RoadPlanner& road_;
+  GridPlanner& grid_;
+  RoutePlannerConfiguration configuration_;
+};
+
+}  // namespace fleet::planning

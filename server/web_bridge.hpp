@@ -1,0 +1,86 @@
+#pragma once
+
+#include <future>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "geometry/polygon.hpp"
+#include "model/messages.hpp"
+
+namespace fleet::server {
+
+/// A robot as the web view shows it.
+struct RobotView {
+  model::RobotState state;                ///< what the robot reports: estimated pose, covariance, task
+  std::optional<model::SimTruth> truth;   ///< simulation only: its true pose
+  std::vector<geometry::Vec2> path;       ///< its planned path
+  geometry::Footprint footprint;
+  std::string health;                     ///< "alive", "stale" (late), "lost"
+  double age_s = 0.0;                     ///< sim seconds since its last RobotState
+};
+
+/// What the server loop publishes for the web view, at up to 20 Hz.
+struct LiveSnapshot {
+  double sim_time = 0.0;
+  double time_scale = 1.0;
+  std::vector<RobotView> robots;
+  std::vector<model::OrderInfo> orders;  ///< open orders and the most recent ended ones
+  std::map<std::string, bool> obstacle_enabled;
+  std::map<std::string, bool> pallet_at;  ///< loading area -> holds a pallet
+  bool auto_orders = false;
+  long orders_done = 0;
+  long orders_failed = 0;
+  double orders_per_hour = 0.0;  ///< done orders per sim hour since the server started
+  double order_time_p95_s = 0.0; ///< sim seconds from creation to DONE, p95
+};
+
+/// A request from the web side for the server loop to carry out.
+using WebRequest = std::variant<model::OrderRequest, model::Command>;
+
+/// The only meeting point of the web server's threads and the single-threaded server loop: the
+/// loop publishes snapshots and drains requests; web threads read snapshots and submit requests,
+/// waiting on a future for the reply. Nothing else is shared.
+class WebBridge {
+ public:
+  void publish(LiveSnapshot snapshot) {
+    std::lock_guard lock(mutex_);
+    snapshot_ = std::move(snapshot);
+    ++version_;
+  }
+
+  /// The latest snapshot and its version (increases with every publish).
+  std::pair<LiveSnapshot, std::uint64_t> latest() const {
+    std::lock_guard lock(mutex_);
+    return {snapshot_, version_};
+  }
+
+  std::future<model::RequestReply> submit(WebRequest request) {
+    std::lock_guard lock(mutex_);
+    pending_.push_back({std::move(request), {}});
+    return pending_.back().reply.get_future();
+  }
+
+  struct Pending {
+    WebRequest request;
+    std::promise<model::RequestReply> reply;
+  };
+
+  std::vector<Pending> drain() {
+    std::lock_guard lock(mutex_);
+    std::vector<Pending> out;
+    out.swap(pending_);
+    return out;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  LiveSnapshot snapshot_;
+  std::uint64_t version_ = 0;
+  std::vector<Pending> pending_;
+};
+
+}  // namespace fleet::server
