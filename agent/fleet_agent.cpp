@@ -48,7 +48,8 @@ geometry::Pose2 FleetAgent::service_pose(const geometry::Pose2& area) const {
 
 void FleetAgent::report(std::int64_t order_id, std::uint32_t update_id, const std::string& status,
                         const std::string& reason) {
-  report_writer_.write({order_id, options_.robot_id, status, reason, update_id, clock_.now(), carrying_pallet_});
+  report_writer_.write(
+      {order_id, options_.robot_id, status, reason, update_id, clock_.now(), carrying_pallet_, -1, {}});
 }
 
 void FleetAgent::retire_report(std::int64_t order_id) {

@@ -119,10 +119,18 @@ model::OrderAssignment from_wire(const fleet_msg_Order& w) {
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {
   return {v.order_id, borrow(v.robot_id), borrow(v.status), borrow(v.reason), v.update_id, v.sim_time,
-          v.carrying_pallet};
+          v.carrying_pallet, v.pallet_id, wire_pose(v.pallet_pose)};
 }
 model::OrderReport from_wire(const fleet_msg_OrderState& w) {
-  return {w.order_id, text(w.robot_id), text(w.status), text(w.reason), w.update_id, w.sim_time, w.carrying_pallet};
+  return {w.order_id, text(w.robot_id), text(w.status), text(w.reason), w.update_id, w.sim_time, w.carrying_pallet,
+          w.pallet_id, model_pose(w.pallet_pose)};
+}
+
+fleet_msg_PalletTruth to_wire(const model::PalletTruth& v, Scratch&) {
+  return {v.pallet_id, wire_pose(v.pose), borrow(v.area_id), borrow(v.carried_by)};
+}
+model::PalletTruth from_wire(const fleet_msg_PalletTruth& w) {
+  return {w.pallet_id, model_pose(w.pose), text(w.area_id), text(w.carried_by)};
 }
 
 fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
@@ -267,6 +275,7 @@ FLEET_DDS_TOPIC_IMPL(RobotState, fleet_msg_RobotState, "fleet/RobotState")
 FLEET_DDS_TOPIC_IMPL(RobotPath, fleet_msg_RobotPath, "fleet/RobotPath")
 FLEET_DDS_TOPIC_IMPL(MapAssignment, fleet_msg_MapAssignment, "fleet/MapAssignment")
 FLEET_DDS_TOPIC_IMPL(RobotControl, fleet_msg_RobotControl, "fleet/RobotControl")
+FLEET_DDS_TOPIC_IMPL(PalletTruth, fleet_msg_PalletTruth, "fleet/PalletTruth")
 FLEET_DDS_TOPIC_IMPL(StaticObstacleState, fleet_msg_StaticObstacle, "fleet/StaticObstacles")
 FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")

@@ -54,6 +54,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       order_info_writer_(participant_, dds::qos::latched_state()),
       map_writer_(participant_, dds::qos::latched_state()),
       control_writer_(participant_, dds::qos::latched_state()),
+      pallet_writer_(participant_, dds::qos::latched_state()),
       obstacle_writer_(participant_, dds::qos::latched_state()),
       fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
@@ -63,13 +64,13 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       truth_reader_(participant_, dds::qos::live_state()),
       order_report_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_) {
-  for (const auto& area : options_.site.loading_areas) pallet_at_[area.id] = area.pallet_at_start;
   for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
   }
   started_wall_ = SimClock::wall_now();
+  restore_pallets();
   restore_orders();
   publish_site_state();
   publish_server_info();
@@ -79,6 +80,38 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
 }
 
 FleetServer::~FleetServer() = default;
+
+void FleetServer::restore_pallets() {
+  for (const auto& area : options_.site.loading_areas) pallet_at_[area.id] = false;
+  auto stored = store_.load_pallets();
+  if (stored.empty()) {
+    // A fresh database: the pallets of the site file, standing exactly on their areas.
+    int next_id = 1;
+    for (const auto& area : options_.site.loading_areas) {
+      if (area.pallet_at_start) stored.push_back({next_id++, area.pose, area.id, ""});
+    }
+  } else {
+    log_->info("restored {} pallets from {}", stored.size(), store_.path());
+  }
+  for (auto& pallet : stored) update_pallet(std::move(pallet));
+}
+
+void FleetServer::update_pallet(model::PalletTruth pallet) {
+  if (auto old = pallets_.find(pallet.pallet_id); old != pallets_.end() && !old->second.area_id.empty()) {
+    pallet_at_[old->second.area_id] = false;
+  }
+  if (!pallet.area_id.empty() && pallet.carried_by.empty()) pallet_at_[pallet.area_id] = true;
+  store_.save_pallet(pallet);
+  pallet_writer_.write(pallet);
+  pallets_[pallet.pallet_id] = std::move(pallet);
+}
+
+const model::PalletTruth* FleetServer::pallet_on(const std::string& area_id) const {
+  for (const auto& [id, pallet] : pallets_) {
+    if (pallet.area_id == area_id && pallet.carried_by.empty()) return &pallet;
+  }
+  return nullptr;
+}
 
 void FleetServer::restore_orders() {
   const auto stored = store_.load_all();
@@ -415,8 +448,24 @@ void FleetServer::handle_order_reports() {
     } else if (report.status == "DONE") {
       result = book_.transition(id, OrderStatus::Done, now);
       if (result == TransitionResult::Applied) {
-        pallet_at_[order->drop_area] = true;
-        log_->info("order {} done by {}: pallet now at {}", id, report.robot_id, order->drop_area);
+        // The pallet stands where the robot really put it (simulation truth), so a sloppy drop
+        // makes the next pick from that area harder.
+        const auto* drop = options_.site.find_area(order->drop_area);
+        auto carried = pallets_.find(report.pallet_id);
+        if (carried == pallets_.end()) {
+          log_->warn("order {} done by {} without naming the pallet it put down; pallet truth unchanged", id,
+                     report.robot_id);
+          pallet_at_[order->drop_area] = true;
+        } else {
+          model::PalletTruth pallet = carried->second;
+          pallet.pose = report.pallet_pose;
+          pallet.carried_by.clear();
+          pallet.area_id = order->drop_area;
+          const double error = drop ? geometry::distance(pallet.pose.position(), drop->pose.position()) : 0.0;
+          update_pallet(std::move(pallet));
+          log_->info("order {} done by {}: pallet {} placed at {} ({:.3f} m from the area's centre)", id,
+                     report.robot_id, report.pallet_id, order->drop_area, error);
+        }
       }
     } else if (report.status == "FAILED") {
       result = book_.transition(id, OrderStatus::Failed, now, report.reason);
@@ -430,9 +479,18 @@ void FleetServer::handle_order_reports() {
       if (result == TransitionResult::Applied) {
         log_->info("order {} on {}: {}", id, report.robot_id, report.status);
         // Seed 000, section 8: the server keeps the pallet map up to date as robots pick.
-        if (report.carrying_pallet && pallet_at_[order->pick_area] &&
-            (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping)) {
-          pallet_at_[order->pick_area] = false;
+        if (report.carrying_pallet && (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping)) {
+          auto lifted = pallets_.find(report.pallet_id);
+          if (lifted == pallets_.end()) {
+            if (const auto* standing = pallet_on(order->pick_area)) lifted = pallets_.find(standing->pallet_id);
+          }
+          if (lifted != pallets_.end() && lifted->second.carried_by != report.robot_id) {
+            model::PalletTruth pallet = lifted->second;
+            pallet.carried_by = report.robot_id;
+            pallet.area_id.clear();
+            update_pallet(std::move(pallet));
+            log_->info("pallet {} lifted by {} from {}", lifted->first, report.robot_id, order->pick_area);
+          }
         }
       }
     } else {

@@ -82,6 +82,11 @@ class FleetServer {
   void robot_lost(RobotEntry& robot, const std::string& why);
 
   void restore_orders();
+  void restore_pallets();
+  /// Records a pallet's new truth: stored, published, and reflected in the area inventory.
+  void update_pallet(model::PalletTruth pallet);
+  /// The pallet standing on `area_id`, if any.
+  const model::PalletTruth* pallet_on(const std::string& area_id) const;
 
   ServerOptions options_;
   Logger log_;
@@ -92,7 +97,8 @@ class FleetServer {
   orders::OrderBook book_;
   std::map<std::string, RobotEntry> robots_;
   std::map<std::string, model::RobotPath> paths_;
-  std::map<std::string, bool> pallet_at_;          ///< loading area -> holds a pallet
+  std::map<std::string, bool> pallet_at_;          ///< loading area -> holds a pallet (from pallets_)
+  std::map<int, model::PalletTruth> pallets_;      ///< simulation truth of every pallet
   std::map<std::string, bool> obstacle_enabled_;   ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
   std::map<std::int64_t, int> resends_;
@@ -112,6 +118,7 @@ class FleetServer {
   dds::Writer<model::OrderInfo> order_info_writer_;
   dds::Writer<model::MapAssignment> map_writer_;
   dds::Writer<model::RobotControl> control_writer_;
+  dds::Writer<model::PalletTruth> pallet_writer_;
   dds::Writer<model::StaticObstacleState> obstacle_writer_;
   dds::Writer<model::FleetView> fleet_view_writer_;
   dds::Reader<model::OrderRequest> request_reader_;

@@ -37,6 +37,14 @@ CREATE TABLE IF NOT EXISTS order_events (
   robot_y REAL NOT NULL,
   PRIMARY KEY (order_id, seq)
 );
+CREATE TABLE IF NOT EXISTS pallets (
+  id INTEGER PRIMARY KEY,
+  x REAL NOT NULL,
+  y REAL NOT NULL,
+  yaw REAL NOT NULL,
+  area_id TEXT NOT NULL,
+  carried_by TEXT NOT NULL
+);
 )";
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -71,12 +79,14 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
       &upsert_);
   prepare("SELECT COUNT(*) FROM order_events WHERE order_id=?1", &count_events_);
   prepare("INSERT INTO order_events VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9)", &insert_event_);
+  prepare("INSERT OR REPLACE INTO pallets VALUES (?1,?2,?3,?4,?5,?6)", &upsert_pallet_);
 }
 
 OrderStore::~OrderStore() {
   sqlite3_finalize(upsert_);
   sqlite3_finalize(count_events_);
   sqlite3_finalize(insert_event_);
+  sqlite3_finalize(upsert_pallet_);
   sqlite3_close(db_);
 }
 
@@ -188,6 +198,34 @@ std::vector<orders::Order> OrderStore::load_all() const {
     e.robot_x = sqlite3_column_double(stmt, 6);
     e.robot_y = sqlite3_column_double(stmt, 7);
     out[cursor].history.push_back(std::move(e));
+  }
+  sqlite3_finalize(stmt);
+  return out;
+}
+
+void OrderStore::save_pallet(const model::PalletTruth& p) {
+  sqlite3_bind_int(upsert_pallet_, 1, p.pallet_id);
+  sqlite3_bind_double(upsert_pallet_, 2, p.pose.x);
+  sqlite3_bind_double(upsert_pallet_, 3, p.pose.y);
+  sqlite3_bind_double(upsert_pallet_, 4, p.pose.yaw);
+  sqlite3_bind_text(upsert_pallet_, 5, p.area_id.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(upsert_pallet_, 6, p.carried_by.c_str(), -1, SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(upsert_pallet_);
+  sqlite3_reset(upsert_pallet_);
+  if (rc != SQLITE_DONE) throw StoreError(path_ + ": " + sqlite3_errmsg(db_));
+}
+
+std::vector<model::PalletTruth> OrderStore::load_pallets() const {
+  std::vector<model::PalletTruth> out;
+  sqlite3_stmt* stmt = nullptr;
+  sqlite3_prepare_v2(db_, "SELECT id, x, y, yaw, area_id, carried_by FROM pallets ORDER BY id", -1, &stmt, nullptr);
+  while (sqlite3_step(stmt) == SQLITE_ROW) {
+    model::PalletTruth p;
+    p.pallet_id = sqlite3_column_int(stmt, 0);
+    p.pose = {sqlite3_column_double(stmt, 1), sqlite3_column_double(stmt, 2), sqlite3_column_double(stmt, 3)};
+    p.area_id = text_column(stmt, 4);
+    p.carried_by = text_column(stmt, 5);
+    out.push_back(std::move(p));
   }
   sqlite3_finalize(stmt);
   return out;

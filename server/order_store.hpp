@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "model/messages.hpp"
 #include "orders/order.hpp"
 
 namespace fleet::server {
@@ -37,6 +38,10 @@ class OrderStore {
   /// One past the largest id ever stored (ids are never reused).
   std::int64_t next_id() const;
 
+  /// Where each pallet stands or who carries it, so a restarted server keeps the truth.
+  void save_pallet(const model::PalletTruth& pallet);
+  std::vector<model::PalletTruth> load_pallets() const;
+
   const std::string& path() const { return path_; }
 
  private:
@@ -46,6 +51,7 @@ class OrderStore {
   sqlite3_stmt* upsert_ = nullptr;
   sqlite3_stmt* count_events_ = nullptr;
   sqlite3_stmt* insert_event_ = nullptr;
+  sqlite3_stmt* upsert_pallet_ = nullptr;
 };
 
 }  // namespace fleet::server

@@ -68,6 +68,16 @@ struct OrderReport {
   std::uint32_t update_id = 0;
   double sim_time = 0.0;
   bool carrying_pallet = false;
+  int pallet_id = -1;          ///< the pallet on the forks, or put down on DONE
+  geometry::Pose2 pallet_pose; ///< on DONE: where the pallet really stands
+};
+
+/// Simulation truth of a pallet, owned by the server.
+struct PalletTruth {
+  int pallet_id = 0;
+  geometry::Pose2 pose;
+  std::string area_id;     ///< loading area it stands on; empty when carried or astray
+  std::string carried_by;  ///< robot id; empty when standing
 };
 
 struct OrderEvent {
