@@ -33,7 +33,7 @@ offline tools (core libraries only, no DDS):
   map check SITE.yaml | map sample FILE.xodr [--step M] | map render SITE.yaml -o FILE.svg
   loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N] [--nlos F] [--plot FILE.svg]
   plan-eval --site NAME [--queries N] [--seed S]
-  ctrl-eval [--seed S] [--runs N]
+  ctrl-eval [--seed S] [--runs N] [--site NAME] [--speed V] [--follower seed|regulated] [--gyro-cal] [--plot F.svg]
   config keys          every configuration key with default, unit, range and meaning
 
 global flags:
@@ -74,18 +74,10 @@ int main(int argc, char** argv) {
     command.args.assign(args.remaining().begin() + 1, args.remaining().end());
 
     // Offline tools need no configuration or DDS.
-#ifdef FLEET_HAVE_MAP
     if (name == "map") return map_command(command, out, err);
-#endif
-#ifdef FLEET_HAVE_LOC_EVAL
     if (name == "loc-eval") return loc_eval_command(command, out, err);
-#endif
-#ifdef FLEET_HAVE_PLAN_EVAL
     if (name == "plan-eval") return plan_eval_command(command, out, err);
-#endif
-#ifdef FLEET_HAVE_CTRL_EVAL
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
-#endif
     if (name == "config") {
       if (command.args.size() == 1 && command.args[0] == "keys") {
         out << config::schema_markdown();

@@ -1,0 +1,333 @@
+#include "task/task_executor.hpp"
+
+#include <cmath>
+
+namespace fleet::task {
+
+using geometry::Pose2;
+
+const char* to_string(PlanPurpose p) {
+  switch (p) {
+    case PlanPurpose::kToPick:
+      return "to_pick";
+    case PlanPurpose::kToDrop:
+      return "to_drop";
+    case PlanPurpose::kHome:
+      return "home";
+  }
+  return "unknown";
+}
+
+const char* to_string(TaskReport::Kind k) {
+  switch (k) {
+    case TaskReport::Kind::kAccepted:
+      return "accepted";
+    case TaskReport::Kind::kPicked:
+      return "picked";
+    case TaskReport::Kind::kAreaEmpty:
+      return "area_empty";
+    case TaskReport::Kind::kDropped:
+      return "dropped";
+    case TaskReport::Kind::kCancelled:
+      return "cancelled";
+    case TaskReport::Kind::kFailed:
+      return "failed";
+    case TaskReport::Kind::kHomeReached:
+      return "home_reached";
+  }
+  return "unknown";
+}
+
+TaskExecutor::TaskExecutor(ExecutorParams params, Pose2 home)
+    : params_(params),
+      home_(home),
+      follower_(params.follower),
+      search_(params.search, params.geometry),
+      pick_(params.pick, params.geometry),
+      place_(params.place, params.geometry) {}
+
+bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
+  if (!machine_.accepts_orders()) {
+    if (why) *why = std::string("order not accepted in ") + to_string(machine_.state());
+    return false;
+  }
+  order_ = order;
+  const Transition tr = fire(Event::kOrder);
+  if (!tr.accepted && why) *why = tr.reason;
+  return tr.accepted;
+}
+
+Pose2 TaskExecutor::goal_for(PlanPurpose purpose) const {
+  // Paths end on the road in front of the area; search and place take it from there.
+  switch (purpose) {
+    case PlanPurpose::kToPick:
+      return control::PalletSearch::search_pose(order_->pick_area, params_.search.standoff);
+    case PlanPurpose::kToDrop:
+      return control::PalletSearch::search_pose(order_->drop_area, params_.search.standoff);
+    case PlanPurpose::kHome:
+      return home_;
+  }
+  return home_;
+}
+
+void TaskExecutor::request_plan(PlanPurpose purpose) {
+  PlanRequest req;
+  req.id = next_request_id_++;
+  req.purpose = purpose;
+  req.goal = goal_for(purpose);
+  pending_request_ = req;
+  active_request_id_ = req.id;
+  active_purpose_ = purpose;
+  have_path_ = false;
+  last_request_time_ = now_;
+  follower_.clear();
+}
+
+void TaskExecutor::report(TaskReport::Kind kind, const std::string& area, const std::string& detail) {
+  TaskReport r;
+  r.kind = kind;
+  r.order_id = order_ ? order_->order_id : std::string{};
+  r.area_id = area;
+  r.detail = detail;
+  reports_.push_back(std::move(r));
+}
+
+Transition TaskExecutor::fire(Event e, const std::string& reason) {
+  Transition tr = machine_.handle(e, reason);
+  if (tr.accepted) {
+    transitions_.push_back(tr);
+    apply(tr);
+  }
+  return tr;
+}
+
+void TaskExecutor::apply(const Transition& tr) {
+  switch (tr.effect) {
+    case Effect::kPlanToPick:
+      search_.stop();
+      pick_.stop();
+      place_.stop();
+      pick_attempts_ = 0;
+      waiting_for_plan_ = false;
+      report(TaskReport::Kind::kAccepted, order_->pick_area_id);
+      request_plan(PlanPurpose::kToPick);
+      break;
+    case Effect::kStartSearch:
+      follower_.clear();
+      pick_.stop();
+      search_.start(order_->pick_area);
+      break;
+    case Effect::kStartPick:
+      pick_.start(search_.marker_id(), now_);
+      break;
+    case Effect::kPlanToDrop:
+      report(TaskReport::Kind::kPicked, order_->pick_area_id);
+      request_plan(PlanPurpose::kToDrop);
+      break;
+    case Effect::kStartDrop:
+      follower_.clear();
+      place_.start(order_->drop_area, now_);
+      break;
+    case Effect::kReportEmpty:
+      search_.stop();
+      report(TaskReport::Kind::kAreaEmpty, order_->pick_area_id);
+      order_.reset();
+      request_plan(PlanPurpose::kHome);
+      break;
+    case Effect::kFinishOrder:
+      place_.stop();
+      report(TaskReport::Kind::kDropped, order_->drop_area_id);
+      order_.reset();
+      request_plan(PlanPurpose::kHome);
+      break;
+    case Effect::kCancelOrder:
+      search_.stop();
+      report(TaskReport::Kind::kCancelled, order_ ? order_->pick_area_id : std::string{});
+      order_.reset();
+      request_plan(PlanPurpose::kHome);
+      break;
+    case Effect::kStop:
+      follower_.clear();
+      report(TaskReport::Kind::kHomeReached, {});
+      break;
+    case Effect::kFail:
+      follower_.clear();
+      search_.stop();
+      pick_.stop();
+      place_.stop();
+      report(TaskReport::Kind::kFailed, {}, machine_.error_reason());
+      order_.reset();
+      pending_request_.reset();
+      active_request_id_ = 0;
+      break;
+    case Effect::kRestore:
+      // Back from PAUSED in the middle of a manoeuvre: its clocks ran on during the pause, so a
+      // camera-driven alignment or a placement restarts from where the robot stands rather than
+      // fail on a stale timer. Driving in, lifting, lowering and backing out go on as they were.
+      if (machine_.state() == State::kPickPallet && pick_.status() == control::PickStatus::kAligning) {
+        pick_.start(search_.marker_id(), now_);
+      } else if (machine_.state() == State::kDropPallet && place_.status() <= control::PlaceStatus::kSettling &&
+                 order_) {
+        place_.start(order_->drop_area, now_);
+      }
+      // Back from WAITING or PAUSED: if the blockage is still there, wait again.
+      if ((blocked_ || waiting_for_plan_) &&
+          (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome)) {
+        fire(Event::kBlocked);
+      }
+      break;
+    case Effect::kNone:
+    case Effect::kSuspend:
+    case Effect::kClear:
+      break;
+  }
+}
+
+void TaskExecutor::path_received(std::uint64_t request_id, std::vector<Pose2> path) {
+  if (request_id != active_request_id_ || request_id == 0) return;
+  if (path.empty()) {
+    plan_failed(request_id);
+    return;
+  }
+  if (path.size() >= 2) {
+    // Finish the road path with the heading of its last leg: the search or the place manoeuvre
+    // turns towards the area itself, and the way home ends in the home heading.
+    const auto& a = path[path.size() - 2];
+    auto& b = path.back();
+    if (active_purpose_ == PlanPurpose::kHome) {
+      b.yaw = home_.yaw;
+    } else if (geometry::distance(a.position(), b.position()) > 1e-6) {
+      b.yaw = std::atan2(b.y - a.y, b.x - a.x);
+    }
+  }
+  follower_.set_path(std::move(path));
+  have_path_ = true;
+  waiting_for_plan_ = false;
+  if (machine_.state() == State::kWaiting && !blocked_) fire(Event::kUnblocked);
+}
+
+void TaskExecutor::plan_failed(std::uint64_t request_id) {
+  if (request_id != active_request_id_ || request_id == 0) return;
+  waiting_for_plan_ = true;
+  have_path_ = false;
+  follower_.clear();
+  if (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome) fire(Event::kBlocked);
+}
+
+void TaskExecutor::set_blocked(bool blocked) {
+  blocked_ = blocked;
+  if (blocked && (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome)) {
+    fire(Event::kBlocked);
+  } else if (!blocked && machine_.state() == State::kWaiting && !waiting_for_plan_) {
+    fire(Event::kUnblocked);
+  }
+}
+
+bool TaskExecutor::pause() {
+  return fire(Event::kPause).accepted;
+}
+bool TaskExecutor::resume() {
+  return fire(Event::kResume).accepted;
+}
+
+bool TaskExecutor::cancel(std::string* why) {
+  const Transition tr = fire(Event::kCancel);
+  if (!tr.accepted && why) *why = tr.reason;
+  return tr.accepted;
+}
+
+void TaskExecutor::fault(const std::string& reason) {
+  fire(Event::kFault, reason);
+}
+bool TaskExecutor::reset() {
+  return fire(Event::kReset).accepted;
+}
+
+std::optional<PlanRequest> TaskExecutor::take_plan_request() {
+  std::optional<PlanRequest> r = pending_request_;
+  pending_request_.reset();
+  return r;
+}
+
+std::vector<Transition> TaskExecutor::take_transitions() {
+  std::vector<Transition> t;
+  t.swap(transitions_);
+  return t;
+}
+
+std::vector<TaskReport> TaskExecutor::take_reports() {
+  std::vector<TaskReport> r;
+  r.swap(reports_);
+  return r;
+}
+
+TaskOutput TaskExecutor::step(const TaskInput& in) {
+  const double dt = std::isnan(last_time_) ? 0.0 : std::max(in.time - last_time_, 0.0);
+  last_time_ = in.time;
+  now_ = in.time;
+  TaskOutput out;
+  out.fork_up = fork_up_;
+
+  switch (machine_.state()) {
+    case State::kIdle:
+    case State::kPaused:
+    case State::kError:
+      break;
+    case State::kWaiting:
+      if (waiting_for_plan_ && !pending_request_ && in.time - last_request_time_ >= params_.replan_interval) {
+        request_plan(active_purpose_);
+      }
+      break;
+    case State::kTrackPath:
+    case State::kGoHome: {
+      if (!have_path_) break;
+      out.twist = follower_.step({in.pose, dt, in.obstacle_distance});
+      if (follower_.arrived()) {
+        have_path_ = false;
+        fire(machine_.state() == State::kGoHome ? Event::kHomeReached : Event::kPathEnded);
+      }
+      break;
+    }
+    case State::kSearchPallet: {
+      out.twist = search_.step(in.pose, in.detections, dt);
+      if (search_.status() == control::SearchStatus::kFound) {
+        fire(Event::kPalletFound);
+      } else if (search_.status() == control::SearchStatus::kEmpty) {
+        fire(Event::kAreaEmpty);
+      }
+      break;
+    }
+    case State::kPickPallet: {
+      const control::ForkCommand fc = pick_.step(in.time, in.detections, dt);
+      out.twist = fc.twist;
+      fork_up_ = fc.fork_up;
+      if (pick_.status() == control::PickStatus::kDone) {
+        fire(Event::kPickDone);
+      } else if (pick_.status() == control::PickStatus::kFailed) {
+        ++pick_attempts_;
+        if (pick_attempts_ >= params_.max_pick_attempts) {
+          fire(Event::kFault,
+               std::string("pick failed ") + std::to_string(pick_attempts_) + " times: " + pick_.failure());
+        } else {
+          fire(Event::kPickFailed);
+        }
+      }
+      break;
+    }
+    case State::kDropPallet: {
+      const control::ForkCommand fc = place_.step(in.time, in.pose, dt);
+      out.twist = fc.twist;
+      fork_up_ = fc.fork_up;
+      if (place_.status() == control::PlaceStatus::kDone) {
+        fire(Event::kDropDone);
+      } else if (place_.status() == control::PlaceStatus::kFailed) {
+        fire(Event::kDropFailed, "placement did not converge");
+      }
+      break;
+    }
+  }
+  out.fork_up = fork_up_;
+  return out;
+}
+
+}  // namespace fleet::task

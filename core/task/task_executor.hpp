@@ -1,0 +1,150 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "control/pallet_pick.hpp"
+#include "control/pallet_place.hpp"
+#include "control/pallet_search.hpp"
+#include "control/path_follower.hpp"
+#include "perception/marker_camera.hpp"
+#include "task/task_state_machine.hpp"
+
+namespace fleet::task {
+
+/// A transport order as the forklift sees it: where to pick, where to drop (loading-area poses,
+/// yaw pointing from the pallet towards the approach road).
+struct TaskOrder {
+  std::string order_id;
+  std::string pick_area_id;
+  geometry::Pose2 pick_area;
+  std::string drop_area_id;
+  geometry::Pose2 drop_area;
+};
+
+enum class PlanPurpose { kToPick, kToDrop, kHome };
+const char* to_string(PlanPurpose p);
+
+/// A request for the planner. Answer with TaskExecutor::path_received or plan_failed quoting `id`;
+/// answers to superseded requests are ignored.
+struct PlanRequest {
+  std::uint64_t id = 0;
+  PlanPurpose purpose = PlanPurpose::kHome;
+  geometry::Pose2 goal;
+};
+
+/// Something the agent publishes (OrderState, pallet inventory).
+struct TaskReport {
+  enum class Kind { kAccepted, kPicked, kAreaEmpty, kDropped, kCancelled, kFailed, kHomeReached };
+  Kind kind = Kind::kAccepted;
+  std::string order_id;
+  std::string area_id;  ///< the area concerned (picked from, empty, dropped on)
+  std::string detail;   ///< failure reason
+};
+const char* to_string(TaskReport::Kind k);
+
+struct ExecutorParams {
+  control::FollowerParams follower;
+  control::SearchParams search;
+  control::PickParams pick;
+  control::PlaceParams place;
+  control::ForkliftGeometry geometry;
+  int max_pick_attempts = 3;     ///< failed picks (search + pick again) before ERROR
+  double replan_interval = 1.0;  ///< while WAITING for want of a plan, ask again this often, s
+};
+
+/// Per-step inputs, at the pose rate (seed 000: 70 Hz).
+struct TaskInput {
+  double time = 0.0;                                        ///< sim time, s
+  geometry::Pose2 pose;                                     ///< localization estimate
+  std::span<const perception::MarkerDetection> detections;  ///< frames since the last step
+  double obstacle_distance = std::numeric_limits<double>::infinity();
+};
+
+struct TaskOutput {
+  control::BodyTwist twist;
+  bool fork_up = false;
+};
+
+/// Runs an order on the forklift: the TaskStateMachine's table decides the state, this class
+/// carries out each transition's Effect with the controllers of core/control.
+///
+/// How the agent drives it, every pose update (about 70 Hz):
+///  1. Forward inputs as they arrive: submit() for an Order (the return value and `why` answer
+///     it), path_received() / plan_failed() for planner answers, set_blocked() for traffic,
+///     pause() / resume() / cancel() / fault() / reset() for operator commands.
+///  2. Call step() with the pose estimate, the marker detections since the last call and the
+///     clearance ahead; apply the returned twist and fork command to the body.
+///  3. Drain take_plan_request() (at most one pending; a newer one supersedes) and hand it to
+///     the planner; drain take_reports() into OrderState / pallet inventory and
+///     take_transitions() into RobotState / OrderState; publish state(), phase() and
+///     error_reason() in RobotState.
+/// Nothing here blocks, sleeps or reads a clock: time comes in TaskInput::time.
+class TaskExecutor {
+ public:
+  TaskExecutor(ExecutorParams params, geometry::Pose2 home);
+
+  /// Accepts the order in IDLE or GO_HOME; otherwise returns false and says why.
+  bool submit(const TaskOrder& order, std::string* why = nullptr);
+  void path_received(std::uint64_t request_id, std::vector<geometry::Pose2> path);
+  void plan_failed(std::uint64_t request_id);
+  void set_blocked(bool blocked);
+  bool pause();
+  bool resume();
+  bool cancel(std::string* why = nullptr);
+  void fault(const std::string& reason);
+  bool reset();
+  void set_home(const geometry::Pose2& home) { home_ = home; }
+
+  TaskOutput step(const TaskInput& input);
+
+  std::optional<PlanRequest> take_plan_request();
+  std::vector<TaskReport> take_reports();
+
+  State state() const { return machine_.state(); }
+  OrderPhase phase() const { return machine_.phase(); }
+  const std::string& error_reason() const { return machine_.error_reason(); }
+  const std::optional<TaskOrder>& order() const { return order_; }
+  bool carrying() const { return fork_up_; }
+  const TaskStateMachine& machine() const { return machine_; }
+  const control::PathFollower& follower() const { return follower_; }
+  /// Transitions taken since the last call, oldest first: each one is published (RobotState,
+  /// OrderState). Drained so that a long-running agent holds no growing log.
+  std::vector<Transition> take_transitions();
+
+ private:
+  Transition fire(Event e, const std::string& reason = {});
+  void apply(const Transition& tr);
+  void request_plan(PlanPurpose purpose);
+  geometry::Pose2 goal_for(PlanPurpose purpose) const;
+  void report(TaskReport::Kind kind, const std::string& area, const std::string& detail = {});
+
+  ExecutorParams params_;
+  geometry::Pose2 home_;
+  TaskStateMachine machine_;
+  control::PathFollower follower_;
+  control::PalletSearch search_;
+  control::PalletPick pick_;
+  control::PalletPlace place_;
+  std::optional<TaskOrder> order_;
+  std::optional<PlanRequest> pending_request_;
+  std::uint64_t next_request_id_ = 1;
+  std::uint64_t active_request_id_ = 0;
+  PlanPurpose active_purpose_ = PlanPurpose::kHome;
+  bool have_path_ = false;
+  bool blocked_ = false;
+  bool waiting_for_plan_ = false;
+  double last_request_time_ = 0.0;
+  double now_ = 0.0;
+  double last_time_ = std::numeric_limits<double>::quiet_NaN();
+  bool fork_up_ = false;
+  int pick_attempts_ = 0;
+  std::vector<TaskReport> reports_;
+  std::vector<Transition> transitions_;
+};
+
+}  // namespace fleet::task

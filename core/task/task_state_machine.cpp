@@ -1,0 +1,232 @@
+#include "task/task_state_machine.hpp"
+
+#include <array>
+
+namespace fleet::task {
+
+namespace {
+
+using S = State;
+using P = OrderPhase;
+using E = Event;
+using F = Effect;
+
+constexpr bool kAny = true;
+constexpr bool kOnly = false;
+
+// seed 000, section 6.4 and Fig. 6.9, extended with WAITING, PAUSED and ERROR.
+constexpr std::array kTable = {
+    // Orders: only when idle or on the way home (the seed's IDLE_GO_HOME accepts new orders).
+    TransitionRow{S::kIdle, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    TransitionRow{S::kGoHome, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    // The order's stages.
+    TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kPathEnded, S::kSearchPallet, P::kSearching, F::kStartSearch},
+    TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kPalletFound, S::kPickPallet, P::kPicking, F::kStartPick},
+    TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kAreaEmpty, S::kGoHome, P::kNone, F::kReportEmpty},
+    TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickDone, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
+    TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickFailed, S::kSearchPallet, P::kSearching, F::kStartSearch},
+    TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kPathEnded, S::kDropPallet, P::kDropping, F::kStartDrop},
+    TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropDone, S::kGoHome, P::kNone, F::kFinishOrder},
+    TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropFailed, S::kError, P::kNone, F::kFail},
+    TransitionRow{S::kGoHome, kAny, P::kNone, E::kHomeReached, S::kIdle, P::kNone, F::kStop},
+    // Traffic / no plan: only while driving on roads.
+    TransitionRow{S::kTrackPath, kAny, P::kNone, E::kBlocked, S::kWaiting, P::kNone, F::kSuspend},
+    TransitionRow{S::kGoHome, kAny, P::kNone, E::kBlocked, S::kWaiting, P::kNone, F::kSuspend},
+    TransitionRow{S::kWaiting, kAny, P::kNone, E::kUnblocked, S::kWaiting, P::kNone, F::kRestore, true},
+    // Operator pause: from anything but an error or an existing pause.
+    TransitionRow{S::kIdle, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kTrackPath, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kDropPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kGoHome, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kWaiting, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kPaused, kAny, P::kNone, E::kResume, S::kPaused, P::kNone, F::kRestore, true},
+    // Cancel: only before the pallet is lifted; afterwards it has to be put down somewhere.
+    TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
+    TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
+    TransitionRow{S::kWaiting, kOnly, P::kToPick, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
+    // Errors.
+    TransitionRow{S::kError, kAny, P::kNone, E::kReset, S::kIdle, P::kNone, F::kClear},
+};
+
+}  // namespace
+
+std::span<const TransitionRow> transition_table() {
+  return kTable;
+}
+
+const char* to_string(State s) {
+  switch (s) {
+    case S::kIdle:
+      return "IDLE";
+    case S::kTrackPath:
+      return "TRACK_PATH";
+    case S::kSearchPallet:
+      return "SEARCH_PALLET";
+    case S::kPickPallet:
+      return "PICK_PALLET";
+    case S::kDropPallet:
+      return "DROP_PALLET";
+    case S::kGoHome:
+      return "GO_HOME";
+    case S::kWaiting:
+      return "WAITING";
+    case S::kPaused:
+      return "PAUSED";
+    case S::kError:
+      return "ERROR";
+  }
+  return "UNKNOWN";
+}
+
+const char* to_string(OrderPhase p) {
+  switch (p) {
+    case P::kNone:
+      return "NONE";
+    case P::kToPick:
+      return "TO_PICK";
+    case P::kSearching:
+      return "SEARCHING";
+    case P::kPicking:
+      return "PICKING";
+    case P::kToDrop:
+      return "TO_DROP";
+    case P::kDropping:
+      return "DROPPING";
+  }
+  return "UNKNOWN";
+}
+
+const char* to_string(Event e) {
+  switch (e) {
+    case E::kOrder:
+      return "order";
+    case E::kPathEnded:
+      return "path_ended";
+    case E::kPalletFound:
+      return "pallet_found";
+    case E::kAreaEmpty:
+      return "area_empty";
+    case E::kPickDone:
+      return "pick_done";
+    case E::kPickFailed:
+      return "pick_failed";
+    case E::kDropDone:
+      return "drop_done";
+    case E::kDropFailed:
+      return "drop_failed";
+    case E::kHomeReached:
+      return "home_reached";
+    case E::kBlocked:
+      return "blocked";
+    case E::kUnblocked:
+      return "unblocked";
+    case E::kPause:
+      return "pause";
+    case E::kResume:
+      return "resume";
+    case E::kCancel:
+      return "cancel";
+    case E::kFault:
+      return "fault";
+    case E::kReset:
+      return "reset";
+  }
+  return "unknown";
+}
+
+const char* to_string(Effect e) {
+  switch (e) {
+    case F::kNone:
+      return "none";
+    case F::kPlanToPick:
+      return "plan_to_pick";
+    case F::kStartSearch:
+      return "start_search";
+    case F::kStartPick:
+      return "start_pick";
+    case F::kPlanToDrop:
+      return "plan_to_drop";
+    case F::kStartDrop:
+      return "start_drop";
+    case F::kReportEmpty:
+      return "report_empty";
+    case F::kFinishOrder:
+      return "finish_order";
+    case F::kCancelOrder:
+      return "cancel_order";
+    case F::kStop:
+      return "stop";
+    case F::kSuspend:
+      return "suspend";
+    case F::kRestore:
+      return "restore";
+    case F::kFail:
+      return "fail";
+    case F::kClear:
+      return "clear";
+  }
+  return "unknown";
+}
+
+std::optional<State> TaskStateMachine::suspended_state() const {
+  if (suspended_.empty()) return std::nullopt;
+  return suspended_.back().state;
+}
+
+Transition TaskStateMachine::handle(Event event, const std::string& reason) {
+  Transition tr;
+  tr.from = state_;
+  tr.from_phase = phase_;
+  tr.to = state_;
+  tr.to_phase = phase_;
+
+  if (event == E::kFault) {
+    if (state_ == S::kError) {
+      tr.reason = "already in ERROR";
+      return tr;
+    }
+    state_ = S::kError;
+    phase_ = P::kNone;
+    suspended_.clear();
+    error_ = reason.empty() ? "unspecified fault" : reason;
+    tr.accepted = true;
+    tr.to = state_;
+    tr.to_phase = phase_;
+    tr.effect = F::kFail;
+    tr.reason = error_;
+    return tr;
+  }
+
+  for (const TransitionRow& row : kTable) {
+    if (row.from != state_ || row.event != event) continue;
+    if (!row.any_phase && row.phase != phase_) continue;
+    tr.accepted = true;
+    tr.effect = row.effect;
+    if (row.effect == F::kSuspend) {
+      // The order phase survives the interruption: OrderState still says where the order stands.
+      suspended_.push_back({state_, phase_});
+      state_ = row.to;
+    } else if (row.restore) {
+      const Frame back = suspended_.back();
+      suspended_.pop_back();
+      state_ = back.state;
+      phase_ = back.phase;
+    } else {
+      state_ = row.to;
+      phase_ = row.to_phase;
+      if (row.to != S::kWaiting && row.to != S::kPaused) suspended_.clear();
+    }
+    if (row.effect == F::kClear) error_.clear();
+    if (row.effect == F::kFail) error_ = reason.empty() ? to_string(event) : reason;
+    tr.to = state_;
+    tr.to_phase = phase_;
+    return tr;
+  }
+  tr.reason = std::string(to_string(event)) + " not accepted in " + to_string(state_);
+  if (phase_ != P::kNone) tr.reason += std::string(" (") + to_string(phase_) + ")";
+  return tr;
+}
+
+}  // namespace fleet::task

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fleet::task {
+
+/// The agent's task states, seed 000 section 6.4 (Fig. 6.9), plus WAITING (blocked by traffic or
+/// no plan), PAUSED (on command) and ERROR (with a reason). The seed's IDLE_GO_HOME is kGoHome:
+/// it drives home like TRACK_PATH but, unlike it, accepts new orders.
+enum class State { kIdle, kTrackPath, kSearchPallet, kPickPallet, kDropPallet, kGoHome, kWaiting, kPaused, kError };
+
+/// Where the current order stands; published in OrderState. kNone when there is no order
+/// (idle, going home after it, error).
+enum class OrderPhase { kNone, kToPick, kSearching, kPicking, kToDrop, kDropping };
+
+/// Inputs that can move the machine. The agent (or the TaskExecutor on its behalf) raises them.
+enum class Event {
+  kOrder,        ///< a transport order arrived
+  kPathEnded,    ///< the follower reached the end of the planner's path
+  kPalletFound,  ///< the search confirmed the marker
+  kAreaEmpty,    ///< the search swept without seeing the marker
+  kPickDone,     ///< pallet on the forks and lifted
+  kPickFailed,   ///< marker lost or pick timed out; the search runs again
+  kDropDone,     ///< pallet lowered on the target area and the forklift backed out
+  kDropFailed,   ///< placement did not converge
+  kHomeReached,  ///< the follower reached the home pose
+  kBlocked,      ///< traffic or no plan: stand still
+  kUnblocked,    ///< go on with what was interrupted
+  kPause,        ///< operator pause
+  kResume,       ///< operator resume
+  kCancel,       ///< operator cancels the order (only before the pallet is lifted)
+  kFault,        ///< something failed beyond recovery; carries a reason
+  kReset,        ///< operator clears an error
+};
+
+/// What the owner must do when a transition fires. One per row, so a test can check it.
+enum class Effect {
+  kNone,
+  kPlanToPick,   ///< accept the order, request a plan to the pick area, follow it
+  kStartSearch,  ///< start the pallet search at the pick area
+  kStartPick,    ///< start visual-servoing pick on the found marker
+  kPlanToDrop,   ///< report the pallet picked, request a plan to the drop area
+  kStartDrop,    ///< start placing on the drop area
+  kReportEmpty,  ///< report the pick area empty, end the order, request a plan home
+  kFinishOrder,  ///< report the pallet dropped, end the order, request a plan home
+  kCancelOrder,  ///< report the order cancelled, request a plan home
+  kStop,         ///< home reached: stop and wait
+  kSuspend,      ///< stand still, remember what was interrupted
+  kRestore,      ///< continue what was interrupted
+  kFail,         ///< stop, report the order failed with the reason
+  kClear,        ///< forget the error
+};
+
+const char* to_string(State s);
+const char* to_string(OrderPhase p);
+const char* to_string(Event e);
+const char* to_string(Effect e);
+
+/// One row of the transition table. `phase` restricts the row to one order phase (TRACK_PATH is
+/// used both to the pick and to the drop area); `any_phase` accepts every phase. A row with
+/// `restore` goes back to the state that kSuspend interrupted instead of to `to`.
+struct TransitionRow {
+  State from;
+  bool any_phase;
+  OrderPhase phase;
+  Event event;
+  State to;
+  OrderPhase to_phase;
+  Effect effect;
+  bool restore = false;
+};
+
+/// The whole table, in the order the rows are matched. kFault is matched for every state
+/// except kError by a rule outside the table (a fault can happen anywhere).
+std::span<const TransitionRow> transition_table();
+
+/// Outcome of one event.
+struct Transition {
+  bool accepted = false;
+  State from = State::kIdle;
+  State to = State::kIdle;
+  OrderPhase from_phase = OrderPhase::kNone;
+  OrderPhase to_phase = OrderPhase::kNone;
+  Effect effect = Effect::kNone;
+  std::string reason;  ///< why rejected, or the fault's reason
+};
+
+/// The state machine itself: pure bookkeeping over the table, no timing, no I/O. Rejected
+/// events change nothing and say why, so the agent can answer an order with a reason.
+class TaskStateMachine {
+ public:
+  State state() const { return state_; }
+  OrderPhase phase() const { return phase_; }
+  /// Reason of the last fault while in kError, else empty.
+  const std::string& error_reason() const { return error_; }
+  /// Orders are accepted only in IDLE and GO_HOME (seed 000, section 6.4).
+  bool accepts_orders() const { return state_ == State::kIdle || state_ == State::kGoHome; }
+  /// The state a PAUSED or WAITING machine returns to, if any.
+  std::optional<State> suspended_state() const;
+
+  /// Applies an event. `reason` is kept for kFault.
+  Transition handle(Event event, const std::string& reason = {});
+
+ private:
+  struct Frame {
+    State state;
+    OrderPhase phase;
+  };
+  State state_ = State::kIdle;
+  OrderPhase phase_ = OrderPhase::kNone;
+  std::vector<Frame> suspended_;  ///< kPause on top of kWaiting stacks two frames
+  std::string error_;
+};
+
+}  // namespace fleet::task

@@ -1,0 +1,257 @@
+#include "control/path_follower.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace fleet::control {
+namespace {
+
+using geometry::Pose2;
+
+constexpr double kDt = 1.0 / 70.0;  // seed 000: pose and control at 70 Hz
+
+std::vector<Pose2> line_path(double length, double spacing) {
+  std::vector<Pose2> path;
+  const int n = static_cast<int>(std::round(length / spacing));
+  for (int i = 0; i <= n; ++i) path.push_back({i * spacing, 0.0, 0.0});
+  return path;
+}
+
+std::vector<Pose2> arc_path(double radius, double sweep, double spacing) {
+  // Counter-clockwise arc centred on (0, radius), starting at the origin heading +x.
+  std::vector<Pose2> path;
+  const int n = static_cast<int>(std::ceil(radius * sweep / spacing));
+  for (int i = 0; i <= n; ++i) {
+    const double a = sweep * i / n;
+    path.push_back({radius * std::sin(a), radius - radius * std::cos(a), a});
+  }
+  return path;
+}
+
+struct RunResult {
+  Pose2 final_pose;
+  double max_late_cross = 0.0;  ///< |cross-track| over the second half of the run
+  double max_domega = 0.0;      ///< largest omega change between steps while tracking
+  bool arrived = false;
+  int steps = 0;
+};
+
+RunResult run(PathFollower& f, Pose2 pose, double max_time, double late_from_s) {
+  RunResult r;
+  BodyTwist prev;
+  double travelled = 0.0;
+  for (int i = 0; i < static_cast<int>(max_time / kDt); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    EXPECT_DOUBLE_EQ(cmd.vy, 0.0) << "the follower drives in differential mode";
+    if (f.status() == FollowerStatus::kTracking && i > 0) {
+      r.max_domega = std::max(r.max_domega, std::abs(cmd.omega - prev.omega));
+    }
+    if (travelled > late_from_s && f.status() == FollowerStatus::kTracking) {
+      r.max_late_cross = std::max(r.max_late_cross, std::abs(f.debug().cross_track));
+    }
+    prev = cmd;
+    travelled += std::abs(cmd.vx) * kDt;
+    pose = integrate_twist(pose, cmd, kDt);
+    r.steps = i;
+    if (f.arrived()) break;
+  }
+  r.final_pose = pose;
+  r.arrived = f.arrived();
+  return r;
+}
+
+TEST(SpeedLaw, Eq62EndPoints) {
+  // seed 000, eq. 6.2: v_max at omega = 0, zero at omega_max, linear in between.
+  EXPECT_DOUBLE_EQ(speed_law(0.0, 0.2, 2.0), 0.2);
+  EXPECT_DOUBLE_EQ(speed_law(2.0, 0.2, 2.0), 0.0);
+  EXPECT_DOUBLE_EQ(speed_law(-2.0, 0.2, 2.0), 0.0);
+  EXPECT_DOUBLE_EQ(speed_law(1.0, 0.2, 2.0), 0.1);
+  EXPECT_DOUBLE_EQ(speed_law(-0.5, 0.2, 2.0), 0.15);
+  // Beyond the limit the robot turns in place, it never backs up.
+  EXPECT_DOUBLE_EQ(speed_law(5.0, 0.2, 2.0), 0.0);
+}
+
+TEST(PathFollower, CommandsRespectOmegaMaxAndSpeedLaw) {
+  FollowerParams p;
+  PathFollower f(p);
+  f.set_path(line_path(1.0, 0.1));
+  // Facing backwards: beta is about pi, omega saturates and the robot turns in place.
+  const BodyTwist cmd = f.step({{0.0, 0.0, 3.0}, 0.0});
+  EXPECT_NEAR(std::abs(cmd.omega), p.omega_max, 1e-12);
+  EXPECT_NEAR(cmd.vx, 0.0, 1e-12);
+  const BodyTwist cmd2 = f.step({{0.0, 0.0, 3.0}, kDt});
+  EXPECT_NEAR(cmd2.vx, speed_law(cmd2.omega, p.v_max, p.omega_max), 1e-12);
+}
+
+TEST(PathFollower, ConvergesOntoStraightLineFromOffset) {
+  for (bool smooth : {false, true}) {
+    FollowerParams p = smooth ? FollowerParams::regulated() : FollowerParams{};
+    PathFollower f(p);
+    f.set_path(line_path(2.0, 0.1));
+    const RunResult r = run(f, {0.0, 0.06, 0.3}, 30.0, 0.8);
+    EXPECT_TRUE(r.arrived) << "smooth=" << smooth;
+    EXPECT_LT(r.max_late_cross, 0.005) << "smooth=" << smooth;
+    EXPECT_NEAR(r.final_pose.x, 2.0, 0.02) << "smooth=" << smooth;
+    EXPECT_NEAR(r.final_pose.y, 0.0, 0.005) << "smooth=" << smooth;
+    EXPECT_NEAR(geometry::angle_diff(r.final_pose.yaw, 0.0), 0.0, p.heading_tolerance + 1e-9);
+  }
+}
+
+TEST(PathFollower, ConvergesOntoArcFromOffset) {
+  for (bool smooth : {false, true}) {
+    FollowerParams p = smooth ? FollowerParams::regulated() : FollowerParams{};
+    PathFollower f(p);
+    const double radius = 0.6;
+    f.set_path(arc_path(radius, std::numbers::pi, 0.1));
+    const RunResult r = run(f, {0.0, -0.05, -0.2}, 40.0, 0.8);
+    EXPECT_TRUE(r.arrived) << "smooth=" << smooth;
+    // Polyline chords of a 0.6 m arc sampled every 10 cm sag by about 2 mm; a lookahead
+    // controller cuts inside a little more.
+    EXPECT_LT(r.max_late_cross, 0.012) << "smooth=" << smooth;
+    EXPECT_NEAR(std::hypot(r.final_pose.x, r.final_pose.y - 2 * radius), 0.0, 0.03);
+  }
+}
+
+TEST(PathFollower, SmoothLookaheadRemovesCommandJumps) {
+  // The seed notes jerky commands when the target switches between path points (Fig. 6.4b).
+  // A coarse path makes the switches large; the interpolated target makes them vanish.
+  const auto path = arc_path(0.5, std::numbers::pi / 2, 0.15);
+  FollowerParams seed;
+  FollowerParams smooth;
+  smooth.smooth_lookahead = true;
+  PathFollower a(seed);
+  PathFollower b(smooth);
+  a.set_path(path);
+  b.set_path(path);
+  const RunResult ra = run(a, {0.0, 0.0, 0.0}, 20.0, 0.0);
+  const RunResult rb = run(b, {0.0, 0.0, 0.0}, 20.0, 0.0);
+  EXPECT_TRUE(ra.arrived);
+  EXPECT_TRUE(rb.arrived);
+  EXPECT_LT(rb.max_domega, 0.5 * ra.max_domega);
+}
+
+TEST(PathFollower, PoseTargetReachesPointThenHeading) {
+  PathFollower f;
+  const Pose2 target{0.3, 0.2, std::numbers::pi / 2};
+  f.set_pose_target(target);
+  const RunResult r = run(f, {0.0, 0.0, 0.0}, 20.0, 0.0);
+  ASSERT_TRUE(r.arrived);
+  EXPECT_LT(geometry::distance(r.final_pose.position(), target.position()), 0.012);
+  EXPECT_LT(std::abs(geometry::angle_diff(r.final_pose.yaw, target.yaw)), 0.021);
+}
+
+TEST(PathFollower, StopsAtTheEndOnlyOnceHeadingIsAligned) {
+  PathFollower f;
+  // A path whose last pose asks for a heading 90 degrees off the last leg: the follower drives
+  // to the end, then turns in place.
+  auto path = line_path(0.5, 0.1);
+  path.back().yaw = std::numbers::pi / 2;
+  f.set_path(path);
+  Pose2 pose{0.0, 0.0, 0.0};
+  bool saw_aligning = false;
+  for (int i = 0; i < 2000 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    if (f.status() == FollowerStatus::kAligning) {
+      saw_aligning = true;
+      EXPECT_DOUBLE_EQ(cmd.vx, 0.0);
+    }
+    pose = integrate_twist(pose, cmd, kDt);
+  }
+  EXPECT_TRUE(saw_aligning);
+  ASSERT_TRUE(f.arrived());
+  EXPECT_NEAR(pose.x, 0.5, 0.02);
+  EXPECT_NEAR(geometry::angle_diff(pose.yaw, std::numbers::pi / 2), 0.0, 0.021);
+  EXPECT_EQ(f.step({pose, kDt}), BodyTwist{});
+}
+
+TEST(PathFollower, TurnsAroundAtACusp) {
+  // A route that runs up a single-lane road and comes back down it, as road-graph routes do
+  // between two areas on the same road.
+  std::vector<Pose2> path;
+  for (int i = 0; i <= 8; ++i) path.push_back({0.1 * i, 0.0, 0.0});
+  for (int i = 7; i >= 2; --i) path.push_back({0.1 * i, 0.0, std::numbers::pi});
+  path.back().yaw = std::numbers::pi;
+  for (bool smooth : {false, true}) {
+    FollowerParams p = smooth ? FollowerParams::regulated() : FollowerParams{};
+    PathFollower f(p);
+    f.set_path(path);
+    Pose2 pose{0.0, 0.0, 0.0};
+    double max_x = 0.0;
+    double max_cross = 0.0;
+    for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+      const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+      pose = integrate_twist(pose, cmd, kDt);
+      max_x = std::max(max_x, pose.x);
+      max_cross = std::max(max_cross, std::abs(pose.y));
+    }
+    ASSERT_TRUE(f.arrived()) << "smooth=" << smooth;
+    EXPECT_GT(max_x, 0.78) << "reached the cusp before turning, smooth=" << smooth;
+    EXPECT_LT(max_cross, 0.03) << "smooth=" << smooth;
+    EXPECT_NEAR(pose.x, 0.2, 0.02) << "smooth=" << smooth;
+    EXPECT_NEAR(std::abs(pose.yaw), std::numbers::pi, 0.03) << "smooth=" << smooth;
+  }
+}
+
+TEST(PathFollower, ObstacleRegulationSlowsAndStops) {
+  FollowerParams p = FollowerParams::regulated();
+  p.limit_acceleration = false;
+  PathFollower f(p);
+  f.set_path(line_path(2.0, 0.1));
+  const Pose2 pose{0.0, 0.0, 0.0};
+  const BodyTwist free = f.step({pose, kDt, 10.0});
+  const BodyTwist near = f.step({pose, kDt, 0.5 * (p.obstacle_slow_distance + p.obstacle_stop_distance)});
+  const BodyTwist stop = f.step({pose, kDt, p.obstacle_stop_distance * 0.9});
+  EXPECT_NEAR(free.vx, p.v_max, 1e-6);
+  EXPECT_LT(near.vx, 0.6 * p.v_max);
+  EXPECT_GE(near.vx, p.regulated_min_speed);
+  EXPECT_DOUBLE_EQ(stop.vx, 0.0);
+}
+
+TEST(PathFollower, AccelerationLimitBoundsCommandSteps) {
+  FollowerParams p = FollowerParams::regulated();
+  PathFollower f(p);
+  f.set_path(line_path(1.0, 0.1));
+  Pose2 pose{0.0, 0.03, 0.5};
+  BodyTwist prev;
+  for (int i = 0; i < 1500 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, kDt});
+    if (f.arrived()) break;  // the final stop is one step, as the seed's "stopped" is
+    EXPECT_LE(std::abs(cmd.vx - prev.vx), p.max_linear_accel * kDt + 1e-9);
+    EXPECT_LE(std::abs(cmd.omega - prev.omega), p.max_angular_accel * kDt + 1e-9);
+    prev = cmd;
+    pose = integrate_twist(pose, cmd, kDt);
+  }
+  EXPECT_TRUE(f.arrived());
+}
+
+TEST(PathFollower, CurvatureRegulationSlowsInTightTurns) {
+  FollowerParams p;
+  p.regulate_curvature = true;
+  p.smooth_lookahead = true;
+  PathFollower f(p);
+  f.set_path(arc_path(0.15, std::numbers::pi / 2, 0.02));
+  const BodyTwist cmd = f.step({{0.0, 0.0, 0.0}, kDt});
+  FollowerParams q = p;
+  q.regulate_curvature = false;
+  PathFollower g(q);
+  g.set_path(arc_path(0.15, std::numbers::pi / 2, 0.02));
+  const BodyTwist plain = g.step({{0.0, 0.0, 0.0}, kDt});
+  EXPECT_LT(cmd.vx, plain.vx);
+}
+
+TEST(PathFollower, IdleAndClearGiveZero) {
+  PathFollower f;
+  EXPECT_EQ(f.step({{0, 0, 0}, kDt}), BodyTwist{});
+  f.set_path(line_path(1.0, 0.1));
+  EXPECT_NE(f.step({{0, 0, 0}, kDt}), BodyTwist{});
+  f.clear();
+  EXPECT_EQ(f.status(), FollowerStatus::kIdle);
+  EXPECT_EQ(f.step({{0, 0, 0}, kDt}), BodyTwist{});
+  EXPECT_THROW(f.set_path({}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fleet::control

@@ -1,0 +1,238 @@
+#include "task/task_executor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "perception/marker_camera.hpp"
+#include "perception/pallet_world.hpp"
+
+namespace fleet::task {
+namespace {
+
+using geometry::Pose2;
+using Kind = TaskReport::Kind;
+
+constexpr double kDt = 1.0 / 70.0;
+// table_a: areas A1 and A2 below the lower road (y = 0.4), home H1 on it.
+const Pose2 kA1{0.90, 0.12, std::numbers::pi / 2};
+const Pose2 kA2{2.10, 0.12, std::numbers::pi / 2};
+const Pose2 kHome{0.60, 0.40, 0.0};
+
+/// A straight-line "planner": samples every 10 cm from the start to the goal's position.
+std::vector<Pose2> straight(const Pose2& from, const Pose2& to) {
+  const double len = geometry::distance(from.position(), to.position());
+  const int n = std::max(1, static_cast<int>(std::ceil(len / 0.1)));
+  std::vector<Pose2> path;
+  for (int i = 0; i <= n; ++i) {
+    const double t = static_cast<double>(i) / n;
+    path.push_back({from.x + t * (to.x - from.x), from.y + t * (to.y - from.y), to.yaw});
+  }
+  return path;
+}
+
+struct World {
+  ExecutorParams params;
+  TaskExecutor exec{params, kHome};
+  perception::PalletWorld pallets;
+  perception::MarkerCamera camera;
+  Pose2 truth = kHome;
+  double t = 0.0;
+  std::vector<TaskReport> reports;
+  std::vector<Transition> transitions;
+  int plan_requests = 0;
+  bool answer_plans = true;
+
+  World()
+      : pallets([] {
+          perception::PalletWorldParams p;
+          p.carry_x = ExecutorParams{}.geometry.carry_x;
+          p.marker_offset = ExecutorParams{}.geometry.marker_offset;
+          return p;
+        }()),
+        camera(
+            [] {
+              perception::MarkerCameraParams p;
+              p.camera_x = ExecutorParams{}.geometry.camera_x;
+              return p;
+            }(),
+            9) {}
+
+  void step() {
+    std::vector<perception::MarkerDetection> dets;
+    if (camera.frame_due(t)) {
+      const auto markers = pallets.markers();
+      dets = camera.capture(t, truth, markers);
+    }
+    const TaskOutput out = exec.step({t, truth, dets});
+    pallets.update(0, truth, out.fork_up);
+    truth = control::integrate_twist(truth, out.twist, kDt);
+    if (auto req = exec.take_plan_request()) {
+      ++plan_requests;
+      if (answer_plans) {
+        exec.path_received(req->id, straight(truth, req->goal));
+      } else {
+        exec.plan_failed(req->id);
+      }
+    }
+    for (auto& r : exec.take_reports()) reports.push_back(r);
+    for (auto& tr : exec.take_transitions()) transitions.push_back(tr);
+    t += kDt;
+  }
+
+  template <typename Pred>
+  bool run_until(Pred pred, double max_time) {
+    const double end = t + max_time;
+    while (t < end) {
+      if (pred()) return true;
+      step();
+    }
+    return pred();
+  }
+
+  std::vector<Kind> kinds() const {
+    std::vector<Kind> k;
+    for (const auto& r : reports) k.push_back(r.kind);
+    return k;
+  }
+};
+
+TEST(TaskExecutor, CarriesAPalletFromPickToDropAndGoesHome) {
+  World w;
+  const int pallet = w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  EXPECT_EQ(w.exec.state(), State::kTrackPath);
+  EXPECT_EQ(w.exec.phase(), OrderPhase::kToPick);
+
+  std::vector<State> visited{w.exec.state()};
+  const bool done = w.run_until(
+      [&] {
+        if (visited.back() != w.exec.state()) visited.push_back(w.exec.state());
+        return w.exec.state() == State::kIdle;
+      },
+      300.0);
+  ASSERT_TRUE(done) << "stuck in " << to_string(w.exec.state()) << " " << w.exec.error_reason();
+  const std::vector<State> fig69 = {State::kTrackPath,  State::kSearchPallet, State::kPickPallet, State::kTrackPath,
+                                    State::kDropPallet, State::kGoHome,       State::kIdle};
+  EXPECT_EQ(visited, fig69);
+  EXPECT_GT(w.t, 20.0) << "about 3 m of road at 0.2 m/s plus the manoeuvres";
+  // Every transition is handed out for publication, with its effect, in order (the first,
+  // the order's acceptance, was drained by the first step).
+  ASSERT_EQ(w.transitions.size(), 7u);
+  EXPECT_EQ(w.transitions.front().effect, Effect::kPlanToPick);
+  EXPECT_EQ(w.transitions.back().effect, Effect::kStop);
+  for (std::size_t i = 0; i < w.transitions.size(); ++i) EXPECT_EQ(w.transitions[i].to, fig69[i]);
+  EXPECT_EQ(w.kinds(), (std::vector<Kind>{Kind::kAccepted, Kind::kPicked, Kind::kDropped, Kind::kHomeReached}));
+  EXPECT_EQ(w.reports[1].area_id, "A1");
+  EXPECT_EQ(w.reports[2].area_id, "A2");
+  EXPECT_EQ(w.reports[2].order_id, "o1");
+
+  // The real pallet moved: it stands on A2 now, where the forks put it.
+  const auto* p = w.pallets.find(pallet);
+  ASSERT_NE(p, nullptr);
+  EXPECT_FALSE(p->carried);
+  EXPECT_LT(geometry::distance(p->pose.position(), kA2.position()), 0.02);
+  EXPECT_LT(std::abs(geometry::angle_diff(p->pose.yaw, kA2.yaw)), 0.06);
+  EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.03);
+  EXPECT_FALSE(w.exec.carrying());
+}
+
+TEST(TaskExecutor, EmptyAreaIsReportedAndANewOrderIsTakenOnTheWayHome) {
+  World w;
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kGoHome; }, 120.0));
+  EXPECT_EQ(w.kinds(), (std::vector<Kind>{Kind::kAccepted, Kind::kAreaEmpty}));
+  EXPECT_EQ(w.reports[1].area_id, "A1");
+  EXPECT_EQ(w.exec.phase(), OrderPhase::kNone);
+  EXPECT_FALSE(w.exec.order().has_value());
+  // IDLE_GO_HOME accepts new orders.
+  std::string why;
+  EXPECT_TRUE(w.exec.submit({"o2", "A2", kA2, "A1", kA1}, &why)) << why;
+  EXPECT_EQ(w.exec.state(), State::kTrackPath);
+}
+
+TEST(TaskExecutor, RejectsAnOrderWhileBusy) {
+  World w;
+  w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  std::string why;
+  EXPECT_FALSE(w.exec.submit({"o2", "A2", kA2, "A1", kA1}, &why));
+  EXPECT_EQ(why, "order not accepted in TRACK_PATH");
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickPallet; }, 120.0));
+  EXPECT_FALSE(w.exec.submit({"o2", "A2", kA2, "A1", kA1}, &why));
+  EXPECT_EQ(w.exec.order()->order_id, "o1");
+}
+
+TEST(TaskExecutor, NoPlanWaitsAndAsksAgain) {
+  World w;
+  w.pallets.add(kA1);
+  w.answer_plans = false;
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  w.step();
+  EXPECT_EQ(w.exec.state(), State::kWaiting);
+  EXPECT_EQ(w.exec.phase(), OrderPhase::kToPick);
+  const Pose2 before = w.truth;
+  w.run_until([] { return false; }, 3.5);
+  EXPECT_GE(w.plan_requests, 3) << "asks again every replan_interval";
+  EXPECT_EQ(w.truth, before) << "stands still while waiting";
+  w.answer_plans = true;
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kTrackPath; }, 2.0));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kSearchPallet; }, 60.0));
+}
+
+TEST(TaskExecutor, PauseFreezesAndResumeContinues) {
+  World w;
+  w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  w.run_until([] { return false; }, 0.5);
+  ASSERT_TRUE(w.exec.pause());
+  const Pose2 paused_at = w.truth;
+  w.run_until([] { return false; }, 1.0);
+  EXPECT_EQ(w.truth, paused_at);
+  EXPECT_EQ(w.exec.state(), State::kPaused);
+  EXPECT_EQ(w.exec.phase(), OrderPhase::kToPick);
+  ASSERT_TRUE(w.exec.resume());
+  EXPECT_EQ(w.exec.state(), State::kTrackPath);
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kSearchPallet; }, 60.0));
+}
+
+TEST(TaskExecutor, ALongPauseDuringThePickDoesNotFailIt) {
+  World w;
+  w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickPallet; }, 120.0));
+  w.run_until([] { return false; }, 0.3);
+  ASSERT_TRUE(w.exec.pause());
+  w.run_until([] { return false; }, 5.0);  // longer than the pick's marker-lost timeout
+  ASSERT_TRUE(w.exec.resume());
+  // The first step after the pause falls between two camera frames.
+  w.exec.step({w.t, w.truth, {}});
+  w.t += kDt;
+  ASSERT_TRUE(w.run_until([&] { return w.exec.phase() == OrderPhase::kToDrop; }, 60.0));
+  for (const auto& r : w.reports) EXPECT_NE(r.kind, Kind::kFailed);
+  for (const auto& tr : w.transitions) {
+    EXPECT_FALSE(tr.from == State::kPickPallet && tr.to == State::kSearchPallet) << "the pick was not given up";
+  }
+  EXPECT_TRUE(w.exec.carrying());
+}
+
+TEST(TaskExecutor, FaultStopsAndReportsTheReason) {
+  World w;
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  w.run_until([] { return false; }, 0.5);
+  w.exec.fault("localization lost");
+  EXPECT_EQ(w.exec.state(), State::kError);
+  EXPECT_EQ(w.exec.error_reason(), "localization lost");
+  w.step();
+  EXPECT_EQ(w.reports.back().kind, Kind::kFailed);
+  EXPECT_EQ(w.reports.back().detail, "localization lost");
+  EXPECT_EQ(w.reports.back().order_id, "o1");
+  EXPECT_FALSE(w.exec.submit({"o2", "A1", kA1, "A2", kA2}));
+  EXPECT_TRUE(w.exec.reset());
+  EXPECT_EQ(w.exec.state(), State::kIdle);
+}
+
+}  // namespace
+}  // namespace fleet::task
