@@ -2,20 +2,37 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace fleet::agent {
 
 namespace {
-constexpr double kServiceDistance = 0.30;  // forklift centre to pallet centre when picking, metres
-constexpr double kHandlingTime = 1.0;      // sim seconds to lift or lower a pallet
-constexpr double kMaxPublishHzWall = 100.0;
+constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
+constexpr std::size_t kKeptReports = 8;      // latched order reports kept for a restarted server
+
+std::uint64_t robot_stream(const std::string& robot_id) {
+  // Each robot draws its noise from its own streams of the run's seed.
+  std::uint64_t h = 1469598103934665603ull;
+  for (char c : robot_id) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return h % 1000003 * 16;
+}
+
+robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet) {
+  robot::ForkliftConfig c = robot::ForkliftConfig::defaults();
+  c.sim.forklift.footprint = fleet.footprint;
+  c.task.follower.v_max = config.settings.get_double("agent.max_speed");
+  c.task.follower.omega_max = config.settings.get_double("agent.max_yaw_rate");
+  return c;
+}
 }  // namespace
 
 FleetAgent::FleetAgent(AgentOptions options, Logger log)
     : options_(std::move(options)),
       log_(std::move(log)),
       clock_(options_.time_scale),
+      fleet_(options_.config.find_robot(options_.robot_id)->first),
+      forklift_(forklift_config(options_.config, *fleet_), options_.site,
+                options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
+                options_.seed, robot_stream(options_.robot_id)),
       participant_(options_.domain),
       state_writer_(participant_, dds::qos::live_state()),
       truth_writer_(participant_, dds::qos::live_state()),
@@ -25,53 +42,39 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       map_reader_(participant_, dds::qos::latched_state()),
       obstacle_reader_(participant_, dds::qos::latched_state()),
       control_reader_(participant_, dds::qos::latched_state()),
+      pallet_reader_(participant_, dds::qos::latched_state()),
+      fleet_view_reader_(participant_, dds::qos::live_state()),
       waitset_(participant_) {
-  const auto robot = options_.config.find_robot(options_.robot_id);
-  fleet_ = robot->first;
-  const map::Home* home = options_.site.find_home(robot->second->home);
-  home_ = home->pose;
-  pose_ = home_;
-  map_id_ = options_.site.name;
-  for (dds_entity_t reader :
-       {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle(), control_reader_.handle()}) {
+  map_id_ = options_.site->site.name;
+  for (dds_entity_t reader : {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle(),
+                              control_reader_.handle(), pallet_reader_.handle()}) {
     waitset_.attach(reader);
   }
-  log_->info("forklift of fleet '{}' at home {} ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id,
-             home->id, pose_.x, pose_.y, pose_.yaw, options_.site.name, options_.domain);
+  const auto& home = forklift_.truth();
+  log_->info("forklift of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id,
+             home.x, home.y, home.yaw, options_.site->site.name, options_.domain);
 }
 
-geometry::Pose2 FleetAgent::service_pose(const geometry::Pose2& area) const {
-  // The area's yaw points from the pallet to the road: stand out along it, facing back.
-  return {area.x + kServiceDistance * std::cos(area.yaw), area.y + kServiceDistance * std::sin(area.yaw),
-          geometry::normalize_angle(area.yaw + std::numbers::pi)};
+void FleetAgent::report(const std::string& status, const std::string& reason, int pallet_id,
+                        const geometry::Pose2& pallet_pose) {
+  if (!order_) return;
+  const auto& a = order_->assignment;
+  const int pallet = pallet_id >= 0 ? pallet_id : forklift_.carried_pallet();
+  report_writer_.write({a.order_id, options_.robot_id, status, reason, a.update_id, clock_.now(),
+                        forklift_.carried_pallet() >= 0, pallet, pallet_pose});
 }
 
-void FleetAgent::report(std::int64_t order_id, std::uint32_t update_id, const std::string& status,
-                        const std::string& reason) {
-  report_writer_.write(
-      {order_id, options_.robot_id, status, reason, update_id, clock_.now(), carrying_pallet_, -1, {}});
-}
-
-void FleetAgent::retire_report(std::int64_t order_id) {
+void FleetAgent::finish_order() {
   // Order reports are latched so a restarted server learns how its orders ended; only the most
   // recent ones need to stay, which keeps the writer's history bounded.
-  constexpr std::size_t kKeptReports = 8;
-  finished_orders_.push_back(order_id);
+  finished_orders_.push_back(order_->assignment.order_id);
   while (finished_orders_.size() > kKeptReports) {
     model::OrderReport key;
     key.order_id = finished_orders_.front();
     report_writer_.unregister(key);
     finished_orders_.pop_front();
   }
-}
-
-void FleetAgent::set_phase(const std::string& phase, const std::string& task_state) {
-  task_state_ = task_state;
-  phase_timer_ = 0.0;
-  if (!order_) return;
-  order_->phase = phase;
-  log_->info("order {}: {} ({})", order_->assignment.order_id, phase, task_state);
-  report(order_->assignment.order_id, order_->assignment.update_id, phase);
+  order_.reset();
 }
 
 void FleetAgent::handle_orders() {
@@ -85,9 +88,9 @@ void FleetAgent::handle_orders() {
     if (assignment.cancelled) {
       // A withdrawal older than the assignment we run is a late duplicate.
       if (is_current && assignment.update_id >= order_->assignment.update_id) {
-        log_->warn("order {} withdrawn by the server; going home", assignment.order_id);
+        log_->warn("order {} withdrawn by the server", assignment.order_id);
+        forklift_.withdraw();
         order_.reset();
-        task_state_ = "GO_HOME";
       }
       return;
     }
@@ -95,33 +98,40 @@ void FleetAgent::handle_orders() {
       // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
       // and repeat where we are.
       order_->assignment.update_id = assignment.update_id;
-      report(assignment.order_id, assignment.update_id, "ACCEPTED");
-      report(assignment.order_id, assignment.update_id, order_->phase);
+      report("ACCEPTED");
+      if (!order_->phase.empty()) report(order_->phase);
       return;
     }
-    if (order_ || (task_state_ != "IDLE" && task_state_ != "GO_HOME")) {
-      const std::string why = order_ ? "busy with order " + std::to_string(order_->assignment.order_id)
-                                     : "not accepting orders in state " + task_state_;
-      log_->warn("rejecting order {}: {}", assignment.order_id, why);
-      report(assignment.order_id, assignment.update_id, "REJECTED", why);
+    std::string why;
+    const task::TaskOrder task_order{std::to_string(assignment.order_id), assignment.pick_area, assignment.pick_pose,
+                                     assignment.drop_area, assignment.drop_pose};
+    if (order_) {
+      why = "busy with order " + std::to_string(order_->assignment.order_id);
+    } else if (paused_) {
+      why = "paused by the operator";
+    } else if (forklift_.submit(task_order, &why)) {
+      order_ = CurrentOrder{assignment, ""};
+      log_->info("order {} accepted: {} -> {}", assignment.order_id, assignment.pick_area, assignment.drop_area);
+      report("ACCEPTED");
       return;
     }
-    log_->info("order {} accepted: {} -> {}", assignment.order_id, assignment.pick_area, assignment.drop_area);
-    order_ = ActiveOrder{assignment, ""};
-    report(assignment.order_id, assignment.update_id, "ACCEPTED");
-    set_phase("TO_PICK", "TRACK_PATH");
+    log_->warn("rejecting order {}: {}", assignment.order_id, why);
+    report_writer_.write({assignment.order_id, options_.robot_id, "REJECTED", why, assignment.update_id, clock_.now(),
+                          forklift_.carried_pallet() >= 0, -1, {}});
   });
 }
 
 void FleetAgent::handle_site_inputs() {
   map_reader_.take_data([&](model::MapAssignment&& assignment) {
     if (assignment.robot_id != options_.robot_id) return;
-    if (assignment.map_id != map_id_) log_->info("map assigned: {}", assignment.map_id);
-    map_id_ = assignment.map_id;
+    if (assignment.map_id != map_id_) {
+      log_->warn("map '{}' assigned, but this agent runs site '{}'; keeping it", assignment.map_id, map_id_);
+    }
   });
   control_reader_.take_data([&](model::RobotControl&& control) {
     if (control.robot_id != options_.robot_id || control.paused == paused_) return;
     paused_ = control.paused;
+    forklift_.set_paused(paused_);
     log_->info("{} by the operator", paused_ ? "paused" : "resumed");
   });
   obstacle_reader_.take_data([&](model::StaticObstacleState&& obstacle) {
@@ -130,71 +140,74 @@ void FleetAgent::handle_site_inputs() {
       log_->info("static obstacle {} {}", obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
     }
     obstacles_[obstacle.obstacle_id] = obstacle.enabled;
+    forklift_.set_obstacle(obstacle.obstacle_id, obstacle.enabled);
   });
+  bool pallets_changed = false;
+  pallet_reader_.take_data([&](model::PalletTruth&& pallet) {
+    pallets_changed = true;
+    pallets_[pallet.pallet_id] = std::move(pallet);
+  });
+  if (pallets_changed) {
+    std::map<int, geometry::Pose2> standing;
+    for (const auto& [id, p] : pallets_) {
+      if (p.carried_by.empty()) standing[id] = p.pose;
+    }
+    forklift_.set_standing_pallets(standing);
+    log_->debug("{} pallets standing, {} known", standing.size(), pallets_.size());
+  }
 }
 
-bool FleetAgent::drive_towards(const geometry::Pose2& target, double dt) {
-  const double v_max = options_.config.settings.get_double("agent.max_speed");
-  const double w_max = options_.config.settings.get_double("agent.max_yaw_rate");
-  const double tolerance = options_.config.settings.get_double("agent.goal_tolerance");
-  const geometry::Vec2 to_target = target.position() - pose_.position();
-  const double dist = geometry::norm(to_target);
-  speed_ = 0.0;
-  yaw_rate_ = 0.0;
-  auto turn_to = [&](double heading) {
-    const double err = geometry::angle_diff(heading, pose_.yaw);
-    const double w = std::clamp(err / dt, -w_max, w_max);
-    pose_.yaw = geometry::normalize_angle(pose_.yaw + w * dt);
-    yaw_rate_ = w;
-    return std::abs(err) < 1e-3;
-  };
-  if (dist > tolerance) {
-    if (!turn_to(std::atan2(to_target.y, to_target.x))) return false;
-    const double step = std::min(dist, v_max * dt);
-    pose_.x += step * std::cos(pose_.yaw);
-    pose_.y += step * std::sin(pose_.yaw);
-    speed_ = step / dt;
-    return false;
+void FleetAgent::handle_fleet_view(double now_sim) {
+  std::optional<model::FleetView> latest;
+  fleet_view_reader_.take_data([&](model::FleetView&& view) {
+    if (view.map_id == map_id_) latest = std::move(view);
+  });
+  if (!latest) return;
+  std::vector<robot::Neighbour> neighbours;
+  for (const auto& r : latest->robots) {
+    if (r.robot_id == options_.robot_id) continue;
+    if (!geometry::is_finite(r.pose)) continue;
+    // A robot the server has marked lost is a stopped body at its last pose (its drives stop
+    // with its software): a fixed obstacle, not one growing with the age of its data.
+    const bool lost = r.task_state == "LOST";
+    neighbours.push_back({r.robot_id, r.pose, r.footprint, lost ? 0.0 : std::abs(r.speed),
+                          lost ? 0.0 : std::max(0.0, now_sim - r.sim_time)});
   }
-  return turn_to(target.yaw);
+  forklift_.set_neighbours(std::move(neighbours));
 }
 
-void FleetAgent::step(double dt) {
-  if (paused_) {
-    speed_ = yaw_rate_ = 0.0;
-    return;
-  }
-  phase_timer_ += dt;
-  if (task_state_ == "GO_HOME") {
-    if (drive_towards(home_, dt)) {
-      task_state_ = "IDLE";
-      log_->info("home");
-    }
-    return;
-  }
-  if (!order_) {
-    speed_ = yaw_rate_ = 0.0;
-    return;
-  }
-  const auto& a = order_->assignment;
-  const std::string& phase = order_->phase;
-  if (phase == "TO_PICK") {
-    if (drive_towards(service_pose(a.pick_pose), dt)) set_phase("PICKING", "PICK_PALLET");
-  } else if (phase == "PICKING") {
-    if (phase_timer_ >= kHandlingTime) {
-      carrying_pallet_ = true;
-      set_phase("TO_DROP", "TRACK_PATH");
-    }
-  } else if (phase == "TO_DROP") {
-    if (drive_towards(service_pose(a.drop_pose), dt)) set_phase("DROPPING", "DROP_PALLET");
-  } else if (phase == "DROPPING") {
-    if (phase_timer_ >= kHandlingTime) {
-      carrying_pallet_ = false;
-      log_->info("order {} done: pallet placed at {}", a.order_id, a.drop_area);
-      report(a.order_id, a.update_id, "DONE");
-      retire_report(a.order_id);
-      order_.reset();
-      task_state_ = "GO_HOME";
+void FleetAgent::handle_events() {
+  for (const auto& e : forklift_.take_events()) {
+    using K = robot::ForkliftEvent::Kind;
+    switch (e.kind) {
+      case K::kPhase:
+        if (!order_) break;
+        order_->phase = e.text;
+        log_->info("order {}: {}", order_->assignment.order_id, e.text);
+        report(e.text);
+        break;
+      case K::kLifted:
+        log_->info("pallet {} on the forks", e.pallet_id);
+        break;
+      case K::kDone:
+        if (!order_) break;
+        log_->info("order {} done: pallet {} placed at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
+                   e.pallet_id, order_->assignment.drop_area, e.pallet_pose.x, e.pallet_pose.y, e.pallet_pose.yaw);
+        report("DONE", "", e.pallet_id, e.pallet_pose);
+        finish_order();
+        break;
+      case K::kAreaEmpty:
+      case K::kFailed:
+        if (!order_) break;
+        log_->warn("order {} failed: {}", order_->assignment.order_id, e.text);
+        report("FAILED", e.text);
+        finish_order();
+        break;
+      case K::kHome:
+        log_->info("home");
+        break;
+      case K::kState:
+        break;
     }
   }
 }
@@ -204,39 +217,57 @@ void FleetAgent::publish_state(double now_sim) {
   state.robot_id = options_.robot_id;
   state.fleet_id = fleet_->id;
   state.map_id = map_id_;
-  state.pose = pose_;
-  state.speed = speed_;
-  state.yaw_rate = yaw_rate_;
-  state.task_state = paused_ ? "PAUSED" : task_state_;
+  state.pose = forklift_.estimate();
+  state.covariance = forklift_.covariance();
+  state.localization_score = forklift_.localization_score();
+  state.speed = forklift_.command().vx;
+  state.yaw_rate = forklift_.command().omega;
+  state.task_state = forklift_.task_state();
+  state.detail = forklift_.detail();
   state.order_id = order_ ? order_->assignment.order_id : 0;
-  state.carrying_pallet = carrying_pallet_;
+  state.carrying_pallet = forklift_.carried_pallet() >= 0;
   state.sim_time = now_sim;
   state_writer_.write(state);
-  truth_writer_.write({options_.robot_id, pose_, fleet_->footprint, carrying_pallet_, now_sim});
+  truth_writer_.write({options_.robot_id, forklift_.truth(), forklift_.footprint(), state.carrying_pallet, now_sim});
+  if (state.task_state != last_state_) {
+    log_->info("state {}{}", state.task_state, state.detail.empty() ? "" : " (" + state.detail + ")");
+    last_state_ = state.task_state;
+  }
+  if (forklift_.path().size() != last_path_size_) {
+    path_writer_.write({options_.robot_id, forklift_.path(), now_sim});
+    last_path_size_ = forklift_.path().size();
+  }
 }
 
 void FleetAgent::run(const std::atomic<bool>& stop) {
-  const double sim_step = options_.config.settings.get_double("agent.sim_step_s");
-  const double publish_period_wall = std::max(1.0 / kMaxPublishHzWall,
-                                              clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
-  double sim_now = clock_.now();
+  const double step = forklift_.step_period();
+  const double publish_period_wall = std::max(
+      1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
+  // The forklift keeps its own sim time from zero; `offset` maps it onto the shared clock.
+  double offset = clock_.now() - forklift_.time();
   double last_publish_wall = 0.0;
-  publish_state(sim_now);
+  double target = clock_.now();
+  publish_state(target);
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(2));
     handle_site_inputs();
     handle_orders();
-    // Advance the simulated body to the clock in fixed steps. After a long gap (the process was
-    // stopped) the body does not replay the missed time: it was frozen with its software.
-    const double target = clock_.now();
-    if (target - sim_now > 1.0) sim_now = target - sim_step;
-    while (sim_now + sim_step <= target) {
-      step(sim_step);
-      sim_now += sim_step;
+    target = clock_.now();
+    handle_fleet_view(target);
+    // Advance in fixed control steps to the clock. After a long gap (the process was stopped)
+    // the body does not replay the missed time: it was frozen with its software.
+    double behind = target - (forklift_.time() + offset);
+    if (behind > 1.0) {
+      offset += behind - step;
+      behind = step;
+    }
+    for (; behind >= step; behind -= step) {
+      forklift_.step();
+      handle_events();
     }
     const double now_wall = SimClock::wall_now();
     if (now_wall - last_publish_wall >= publish_period_wall) {
-      publish_state(sim_now);
+      publish_state(target);
       last_publish_wall = now_wall;
     }
   }

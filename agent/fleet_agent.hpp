@@ -3,6 +3,7 @@
 #include <atomic>
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -10,21 +11,23 @@
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
-#include "map/site.hpp"
+#include "map/site_map.hpp"
+#include "robot/forklift.hpp"
 
 namespace fleet::agent {
 
 struct AgentOptions {
   config::FleetConfig config;
-  map::Site site;
+  std::shared_ptr<const map::SiteMap> site;
   std::string robot_id;
   std::uint32_t domain = 0;
   double time_scale = 1.0;
   std::uint64_t seed = 1;
 };
 
-/// One robot: simulates its body and runs its software against it, talking to the server over
-/// DDS only.
+/// One robot process: a robot::Forklift (simulated body and sensors, and the robot's own
+/// software) wired to the server over DDS. Everything the forklift learns arrives here as a
+/// message; everything it does leaves as one.
 class FleetAgent {
  public:
   FleetAgent(AgentOptions options, Logger log);
@@ -33,41 +36,34 @@ class FleetAgent {
   void run(const std::atomic<bool>& stop);
 
  private:
-  struct ActiveOrder {
+  struct CurrentOrder {
     model::OrderAssignment assignment;
     std::string phase;
   };
 
   void handle_orders();
   void handle_site_inputs();
-  void step(double dt);
-  void set_phase(const std::string& phase, const std::string& task_state);
-  void report(std::int64_t order_id, std::uint32_t update_id, const std::string& status,
-              const std::string& reason = "");
+  void handle_fleet_view(double now_sim);
+  void handle_events();
+  void report(const std::string& status, const std::string& reason = "", int pallet_id = -1,
+              const geometry::Pose2& pallet_pose = {});
+  void finish_order();
   void publish_state(double now_sim);
-  void retire_report(std::int64_t order_id);
-  /// Where the forklift stands to pick from or drop onto `area` (facing the pallet).
-  geometry::Pose2 service_pose(const geometry::Pose2& area) const;
-  /// Kinematic motion towards `target`: turn, drive, turn. Returns true on arrival.
-  bool drive_towards(const geometry::Pose2& target, double dt);
 
   AgentOptions options_;
   Logger log_;
   SimClock clock_;
   const config::FleetSpec* fleet_ = nullptr;
-  geometry::Pose2 home_;
-  geometry::Pose2 pose_;
-  double speed_ = 0.0;
-  double yaw_rate_ = 0.0;
-  std::string task_state_ = "IDLE";
+  robot::Forklift forklift_;
   std::string map_id_;
-  std::optional<ActiveOrder> order_;
-  bool carrying_pallet_ = false;
-  double phase_timer_ = 0.0;
+  std::optional<CurrentOrder> order_;
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
+  std::map<int, model::PalletTruth> pallets_;
   std::deque<std::int64_t> finished_orders_;
   bool paused_ = false;
+  std::string last_state_;
+  std::size_t last_path_size_ = 0;
 
   dds::Participant participant_;
   dds::Writer<model::RobotState> state_writer_;
@@ -78,6 +74,8 @@ class FleetAgent {
   dds::Reader<model::MapAssignment> map_reader_;
   dds::Reader<model::StaticObstacleState> obstacle_reader_;
   dds::Reader<model::RobotControl> control_reader_;
+  dds::Reader<model::PalletTruth> pallet_reader_;
+  dds::Reader<model::FleetView> fleet_view_reader_;
   dds::WaitSet waitset_;
 };
 

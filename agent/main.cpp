@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <iostream>
+#include <memory>
 
 #include "agent/fleet_agent.hpp"
 #include "common/args.hpp"
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
       throw ArgError("--id: " + model::unknown_name_message("robot", *id, ids) + " (declared in " + config.source + ")");
     }
     const std::string site_file = map::site_path(maps_dir(), config.settings.get_string("site"));
-    map::Site site = map::load_site(site_file);
+    auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
+    const map::Site& site = site_map->site;
     if (!site.find_home(robot->second->home)) {
       throw config::ConfigError(config.source + ": robot '" + *id + "': home '" + robot->second->home +
                                 "' is not a home of " + site_file);
@@ -78,7 +80,7 @@ int main(int argc, char** argv) {
     options.time_scale = config.settings.get_double("time_scale");
     options.seed = static_cast<std::uint64_t>(config.settings.get_int("seed"));
     options.config = std::move(config);
-    options.site = std::move(site);
+    options.site = std::move(site_map);
     auto log = make_logger("fleet-agent", *id, verbose ? spdlog::level::debug : spdlog::level::info);
     agent::FleetAgent fleet_agent(std::move(options), log);
     fleet_agent.run(g_stop);

@@ -79,9 +79,11 @@ std::optional<model::RequestReply> FleetClient::send_command(model::Command comm
 }
 
 std::optional<model::OrderInfo> FleetClient::follow_order(
-    std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change) {
+    std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change,
+    std::chrono::milliseconds timeout) {
   std::string last_state, last_phase;
-  for (;;) {
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - start < timeout) {
     std::optional<model::OrderInfo> latest;
     order_info_reader_.take_data([&](model::OrderInfo&& info) {
       if (info.order_id == order_id) latest = info;
@@ -98,6 +100,7 @@ std::optional<model::OrderInfo> FleetClient::follow_order(
     if (!server_alive_) return std::nullopt;
     std::this_thread::sleep_for(10ms);
   }
+  return std::nullopt;
 }
 
 std::map<std::string, model::RobotState> FleetClient::robot_states(std::chrono::milliseconds window) {

@@ -27,9 +27,10 @@ class FleetClient {
   std::optional<model::RequestReply> send_command(model::Command command, std::chrono::milliseconds timeout);
 
   /// Follows one order until it ends, calling `on_change` on every new state or phase; returns
-  /// its final OrderInfo, or nothing when the server went away.
-  std::optional<model::OrderInfo> follow_order(std::int64_t order_id,
-                                               const std::function<void(const model::OrderInfo&)>& on_change);
+  /// its final OrderInfo, or nothing when the server went away or `timeout` passed.
+  std::optional<model::OrderInfo> follow_order(
+      std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change,
+      std::chrono::milliseconds timeout = std::chrono::milliseconds::max());
 
   /// Reads RobotState for `window` and returns the newest of each robot.
   std::map<std::string, model::RobotState> robot_states(std::chrono::milliseconds window);

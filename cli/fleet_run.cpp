@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <random>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -28,6 +29,14 @@ std::string tail_of(const std::string& file, std::size_t lines) {
   for (std::string line; std::getline(in, line);) all.push_back(line);
   std::string out;
   for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += "  " + all[i] + "\n";
+  return out;
+}
+
+/// 128 random bits as hex: the web view's token for this demo.
+std::string random_token() {
+  std::random_device device;
+  char out[33];
+  for (int i = 0; i < 4; ++i) std::snprintf(out + 8 * i, 9, "%08x", device());
   return out;
 }
 
@@ -68,7 +77,9 @@ void FleetRun::start() {
   std::vector<std::string> server_argv{binary("fleet-server")};
   server_argv.insert(server_argv.end(), common.begin(), common.end());
   if (options_.auto_orders) server_argv.push_back("--auto-orders");
-  server_argv.insert(server_argv.end(), {"--db", run_dir_ + "/fleet.db"});
+  server_argv.insert(server_argv.end(), {"--db", run_dir_ + "/fleet.db", "--http-port",
+                                         std::to_string(options_.http_port)});
+  if (!options_.api_token.empty()) server_argv.insert(server_argv.end(), {"--api-token", options_.api_token});
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
   for (const auto& id : robot_ids_) {
@@ -149,6 +160,8 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.duration_s = args.number("duration", 0.0, 1e7).value_or(0.0);
   options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(config.settings.get_double("time_scale"));
   options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
+  options.http_port = static_cast<int>(args.integer("http-port", 0, 65535).value_or(config.settings.get_int("server.http_port")));
+  options.api_token = random_token();
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
     std::vector<std::string> sites;
@@ -174,6 +187,9 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       << ") on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
       << ", automatic orders on.\n"
       << "  logs:    " << run.run_dir() << "/\n"
+      << (options.http_port > 0 ? "  web:     http://127.0.0.1:" + std::to_string(options.http_port) +
+                                      "/?token=" + options.api_token + "\n"
+                                : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"
       << "  order:   fleetctl --domain " << domain << " order add --from A1 --to A2 --wait\n"
       << (options.duration_s > 0 ? "  stops after " + std::to_string(static_cast<int>(options.duration_s)) + " s"

@@ -25,6 +25,8 @@ struct RunOptions {
   std::uint32_t domain = 0;
   std::string config_file;
   bool auto_orders = true;
+  int http_port = 8080;   ///< the server's web view; 0 turns it off
+  std::string api_token;  ///< for the web view's controls
   std::vector<std::string> extra_server_args;
   std::vector<std::string> extra_agent_args;
 };

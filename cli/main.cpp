@@ -25,9 +25,10 @@ commands (need a running fleet-server):
   robots               table of robots: fleet, state, pose, order, localization score, health
 
 commands that start a fleet:
-  demo [--agents N=4] [--site NAME] [--duration SECONDS] [--time-scale K] [--seed S]
+  demo [--agents N=4] [--site NAME] [--duration SECONDS] [--time-scale K] [--seed S] [--http-port P=8080]
                        one fleet-server and N fleet-agents with automatic orders; Ctrl-C or
-                       --duration (wall seconds) stops them all and prints a summary
+                       --duration (wall seconds) stops them all and prints a summary; the
+                       web view's address (with its token) is printed at start
 
 offline tools (core libraries only, no DDS):
   map check SITE.yaml | map sample FILE.xodr [--step M] | map render SITE.yaml -o FILE.svg

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "model/names.hpp"
 
@@ -445,6 +446,8 @@ void FleetServer::handle_order_reports() {
     } else if (report.status == "REJECTED") {
       log_->warn("order {} rejected by {}: {}", id, report.robot_id, report.reason);
       result = book_.requeue(id, now, "rejected by " + report.robot_id + ": " + report.reason);
+      // Its published state may lag its real one: do not offer it another order at once.
+      rejected_at_wall_[report.robot_id] = SimClock::wall_now();
     } else if (report.status == "DONE") {
       result = book_.transition(id, OrderStatus::Done, now);
       if (result == TransitionResult::Applied) {
@@ -605,7 +608,12 @@ void FleetServer::check_acknowledgements() {
 }
 
 bool FleetServer::robot_is_free(const RobotEntry& robot) const {
+  constexpr double kRejectionBackoffWall = 2.0;
   if (!robot.registered || robot.lost) return false;
+  if (auto r = rejected_at_wall_.find(robot.id);
+      r != rejected_at_wall_.end() && SimClock::wall_now() - r->second < kRejectionBackoffWall) {
+    return false;
+  }
   if (robot.last.task_state != "IDLE" && robot.last.task_state != "GO_HOME") return false;
   if (robot.last.carrying_pallet) return false;
   return book_.open_order_of(robot.id) == nullptr;
@@ -617,9 +625,18 @@ void FleetServer::create_auto_orders() {
   const long free_robots = std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
   const long queued = static_cast<long>(book_.with_status(OrderStatus::Queued).size());
   if (free_robots <= queued) return;
+  // From a pallet standing there now to an area free now, neither promised to an open order:
+  // an automatic order never waits on another.
+  std::set<std::string> promised;
+  for (const auto& [id, o] : book_.all()) {
+    if (orders::is_final(o.status)) continue;
+    promised.insert(o.pick_area);
+    promised.insert(o.drop_area);
+  }
   std::vector<std::string> picks, drops;
   for (const auto& area : options_.site.loading_areas) {
-    (expected_pallets(area.id) > 0 ? picks : drops).push_back(area.id);
+    if (promised.contains(area.id)) continue;
+    (pallet_at_.at(area.id) ? picks : drops).push_back(area.id);
   }
   if (picks.empty() || drops.empty()) return;
   for (int attempt = 0; attempt < 16; ++attempt) {
@@ -638,7 +655,12 @@ void FleetServer::create_auto_orders() {
 }
 
 void FleetServer::dispatch() {
-  const auto queue = book_.queue();
+  // An order goes out only when its pallet stands at the pick area and the drop area is free:
+  // one chained behind another (A->B, then B->C) waits in the queue for the first to finish.
+  std::vector<const Order*> queue;
+  for (const Order* o : book_.queue()) {
+    if (pallet_at_.at(o->pick_area) && !pallet_at_.at(o->drop_area)) queue.push_back(o);
+  }
   if (queue.empty()) return;
   std::vector<orders::FreeRobot> free;
   for (const auto& [id, robot] : robots_) {

@@ -110,6 +110,7 @@ class FleetServer {
   WebBridge* bridge_ = nullptr;
   std::map<std::string, model::SimTruth> truths_;
   std::map<std::string, bool> paused_;
+  std::map<std::string, double> rejected_at_wall_;  ///< robot -> wall time of its last rejection
 
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;

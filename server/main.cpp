@@ -1,13 +1,18 @@
 // fleet-server: orders, dispatch, fleet registry, site state and pose routing over DDS.
 
+#include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "common/args.hpp"
 #include "common/paths.hpp"
 #include "dds/environment.hpp"
+#include "map/site_map.hpp"
 #include "server/fleet_server.hpp"
+#include "server/web_server.hpp"
 
 namespace {
 
@@ -29,10 +34,15 @@ options:
   --dispatch POLICY    ascending-id | nearest | optimal (default: server.dispatch_policy)
   --db FILE            SQLite database of orders (default: server.db_path, var/fleet.db)
   --auto-orders        create random orders whenever a robot is free
+  --http-port N        port of the web view and JSON API (default: server.http_port, 8080; 0: off)
+  --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
+  --api-token TOKEN    token of the API's mutating calls (default: env FLEET_API_TOKEN, else
+                       server.api_token, else one generated at start and logged)
   --verbose            log debug events too
   --help               this text
 
-Logs go to stderr, one line per event. SIGINT or SIGTERM stops it cleanly.
+Logs go to stderr, one line per event; the web view's address with its token is one of them.
+SIGINT or SIGTERM stops it cleanly.
 )";
 
 }  // namespace
@@ -55,6 +65,9 @@ int main(int argc, char** argv) {
     if (auto v = args.value("dispatch")) config.settings.set("server.dispatch_policy", *v, "--dispatch");
     if (auto v = args.value("db")) config.settings.set("server.db_path", *v, "--db");
     if (args.flag("auto-orders")) config.settings.set("server.auto_orders", "true", "--auto-orders");
+    if (auto v = args.value("http-port")) config.settings.set("server.http_port", *v, "--http-port");
+    if (auto v = args.value("http-host")) config.settings.set("server.http_host", *v, "--http-host");
+    const std::optional<std::string> token_flag = args.value("api-token");
     const bool verbose = args.flag("verbose");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
 
@@ -80,8 +93,60 @@ int main(int argc, char** argv) {
     options.config = std::move(config);
     options.site = std::move(site);
     auto log = make_logger("fleet-server", "", verbose ? spdlog::level::debug : spdlog::level::info);
+
+    // The web view draws the site from its road network and graph; it and the server loop meet
+    // only in the bridge.
+    server::WebBridge bridge;
+    std::unique_ptr<map::SiteMap> site_map;
+    // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
+    const config::FleetConfig web_config = options.config;
+    std::unique_ptr<server::WebServer> web;
+    const auto http_port = options.config.settings.get_int("server.http_port");
+    if (http_port != 0) {
+      site_map = std::make_unique<map::SiteMap>(map::load_site_map_unchecked(site_file));
+      server::WebOptions web_options;
+      web_options.host = options.config.settings.get_string("server.http_host");
+      web_options.port = static_cast<int>(http_port);
+      web_options.stream_hz = options.config.settings.get_double("server.web_stream_hz");
+      // Precedence: --api-token, then the environment, then the configuration file, then a fresh one.
+      const char* env_token = std::getenv("FLEET_API_TOKEN");
+      std::string token_source;
+      if (token_flag && !token_flag->empty()) {
+        web_options.token = *token_flag;
+        token_source = "--api-token";
+      } else if (env_token && *env_token) {
+        web_options.token = env_token;
+        token_source = "FLEET_API_TOKEN";
+      } else if (const auto configured = options.config.settings.get_string("server.api_token"); !configured.empty()) {
+        web_options.token = configured;
+        token_source = "server.api_token";
+      } else {
+        web_options.token = server::generate_api_token();
+        token_source = "generated";
+      }
+      server::WebSiteInfo info;
+      info.site_map = site_map.get();
+      info.config = &web_config;
+      for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
+        if (entry.path().extension() == ".yaml") info.maps.push_back(entry.path().stem().string());
+      }
+      std::sort(info.maps.begin(), info.maps.end());
+      const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
+      const std::string token = web_options.token;
+      web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);
+      try {
+        web->start();
+        log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
+      } catch (const std::runtime_error& e) {
+        // Orders and robots do not depend on the web view: a taken port costs the page, not the fleet.
+        log->error("web view off: {}; choose another port with --http-port", e.what());
+        web.reset();
+      }
+    }
     server::FleetServer fleet_server(std::move(options), log);
+    if (web) fleet_server.attach_web(&bridge);
     fleet_server.run(g_stop);
+    if (web) web->stop();
     return 0;
   } catch (const ArgError& e) {
     std::cerr << "fleet-server: " << e.what() << " (see --help)\n";

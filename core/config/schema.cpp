@@ -47,6 +47,12 @@ std::vector<KeySpec> make_schema() {
       text("server.db_path", "var/fleet.db",
            "SQLite database of orders and their events, relative to the project root unless absolute"),
       integer("server.order_resend_limit", 2, "", 0, 100, "re-sends of an unacknowledged order before it is re-queued"),
+      // Web view and HTTP API (server/web_server.hpp)
+      integer("server.http_port", 8080, "", 0, 65535, "port of the web view and JSON API; 0 turns them off"),
+      text("server.http_host", "127.0.0.1", "address the web view binds; keep loopback unless it must be reachable"),
+      text("server.api_token", "",
+           "token the API's mutating calls need; env FLEET_API_TOKEN overrides it; empty: generated and logged"),
+      number("server.web_stream_hz", 20.0, "Hz", 1.0, 50.0, "highest rate of the web view's live stream, wall time"),
 
       // Agent
       number("agent.state_hz", 20.0, "Hz", 1.0, 200.0, "RobotState publication rate, in sim time"),

@@ -15,6 +15,8 @@
 #include "map/site_map.hpp"
 #include "perception/pallet_world.hpp"
 #include "planning/road_planner.hpp"
+#include "planning/route_planner.hpp"
+#include "robot/simulated_forklift.hpp"
 
 namespace fleet::control {
 
@@ -24,93 +26,21 @@ using geometry::Vec2;
 namespace {
 
 /// Independent, reproducible engine per noise source (same construction as loc-eval).
-std::mt19937_64 engine(std::uint64_t seed, std::uint64_t stream) {
-  std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
-                    static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32), 0x5eedu};
-  return std::mt19937_64(seq);
+
+/// The simulated forklift of an agent (core/robot), set up from the evaluation's parameters.
+robot::SimulatedForklift make_robot(const CtrlEvalParams& p, const map::Site& site, const Pose2& start, bool perfect,
+                                    std::uint64_t stream) {
+  robot::SimulatedForkliftParams sp;
+  sp.forklift = p.forklift;
+  sp.uwb = p.uwb;
+  sp.gyro = p.gyro;
+  sp.ekf = p.ekf;
+  sp.known_start_heading = true;  // the evaluation measures control, not heading initialisation
+  sp.gyro_standstill_calibration = p.gyro_standstill_calibration;
+  sp.perfect_localization = perfect;
+  return robot::SimulatedForklift(sp, site, start, p.seed, stream);
 }
 
-/// One simulated forklift: true body, UWB tag and gyro into the EKF, as in an agent.
-class SimRobot {
- public:
-  SimRobot(const CtrlEvalParams& p, const map::Site& site, const Pose2& start, bool perfect, std::uint64_t stream)
-      : perfect_(perfect),
-        body_(p.forklift, start, engine(p.seed, stream + 1)),
-        tag_(site, p.uwb, engine(p.seed, stream + 2)),
-        gyro_(p.gyro, engine(p.seed, stream + 3)),
-        ekf_(ekf_params(p.ekf, start)),
-        uwb_period_(1.0 / p.uwb.rate_hz),
-        calibrate_(p.gyro_standstill_calibration) {}
-
-  /// Stands still so the filter settles before the run is scored.
-  void warm_up(double seconds, double dt) {
-    for (double t = 0.0; t < seconds; t += dt) step({}, dt);
-  }
-
-  void step(const BodyTwist& cmd, double dt) {
-    body_.step(sim::BodyTwist{cmd.vx, cmd.vy, cmd.omega}, dt);
-    t_ += dt;
-    // Gyro at the control rate: predict, then the commanded velocity (what the agent knows).
-    double rate = gyro_.measure(body_.twist().omega, dt);
-    if (calibrate_) {
-      // At rest (no command for a while, so the wheels have stopped) the gyro reads its bias;
-      // average it and take it off every reading. The EKF has no bias state of its own.
-      const bool still = cmd.vx == 0.0 && cmd.vy == 0.0 && cmd.omega == 0.0;
-      still_for_ = still ? still_for_ + dt : 0.0;
-      if (still_for_ > kStillDelay) {
-        const double k = dt / (kBiasTimeConstant + dt);
-        bias_ += k * (rate - bias_);
-      }
-      rate -= bias_;
-    }
-    ekf_.predict(rate, dt);
-    ekf_.update_commanded({cmd.vx, cmd.vy, cmd.omega});
-    if (t_ >= next_uwb_) {
-      next_uwb_ += uwb_period_;
-      if (const auto fix = tag_.measure(body_.pose(), t_)) ekf_.update_uwb(fix->position, fix->covariance);
-    }
-  }
-
-  const Pose2& truth() const { return body_.pose(); }
-  Pose2 estimate() const { return perfect_ || !ekf_.initialized() ? body_.pose() : ekf_.pose(); }
-  double time() const { return t_; }
-
- private:
-  static localization::EkfParams ekf_params(localization::EkfParams p, const Pose2& start) {
-    // The seed's forklifts start with a known heading (section 7.2); the evaluation measures
-    // control, not heading initialisation, so the filter is told the start heading.
-    p.heading_init = false;
-    p.initial_heading = start.yaw;
-    return p;
-  }
-
-  bool perfect_;
-  sim::ForkliftBody body_;
-  sim::UwbTag tag_;
-  sim::Gyro gyro_;
-  localization::Ekf ekf_;
-  static constexpr double kStillDelay = 0.3;        // s after the last motion command
-  static constexpr double kBiasTimeConstant = 3.0;  // s of standstill averaging
-
-  double uwb_period_;
-  bool calibrate_;
-  double still_for_ = 0.0;
-  double bias_ = 0.0;
-  double next_uwb_ = 0.0;
-  double t_ = 0.0;
-};
-
-std::vector<Pose2> to_poses(const std::vector<Vec2>& points) {
-  std::vector<Pose2> poses;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec2 a = points[i == 0 ? 0 : i - 1];
-    const Vec2 b = points[i == 0 ? std::min<std::size_t>(1, points.size() - 1) : i];
-    const double yaw = geometry::distance(a, b) > 1e-9 ? std::atan2(b.y - a.y, b.x - a.x) : 0.0;
-    poses.push_back({points[i].x, points[i].y, yaw});
-  }
-  if (poses.size() >= 2) poses.front().yaw = poses[1].yaw;
-  return poses;
-}
 
 Percentiles percentiles(std::vector<double> v) {
   Percentiles p;
@@ -159,7 +89,7 @@ TrackingRun track(const CtrlEvalParams& p, const map::Site& site, const NamedPat
   fp.v_max = p.speed;
   PathFollower follower(fp);
   const double dt = 1.0 / p.control_rate_hz;
-  SimRobot robot(p, site, path.poses.front(), perfect, stream);
+  robot::SimulatedForklift robot = make_robot(p, site, path.poses.front(), perfect, stream);
   robot.warm_up(2.0, dt);
   follower.set_path(path.poses);
   for (std::size_t i = 1; i < path.poses.size(); ++i) {
@@ -209,7 +139,7 @@ OrderStats run_orders(const CtrlEvalParams& params, const map::SiteMap& sm, bool
   if (site.homes.empty()) throw std::invalid_argument("ctrl-eval: site has no home");
   if (site.loading_areas.size() < 2) throw std::invalid_argument("ctrl-eval: site needs two loading areas");
   const double dt = 1.0 / params.control_rate_hz;
-  std::mt19937_64 rng = engine(params.seed, 7);
+  std::mt19937_64 rng = robot::seeded_engine(params.seed, 7);
   std::normal_distribution<double> gauss(0.0, 1.0);
 
   task::ExecutorParams tp = params.task;
@@ -235,7 +165,7 @@ OrderStats run_orders(const CtrlEvalParams& params, const map::SiteMap& sm, bool
   if (pallet_area.empty()) pallet_area[world.add(jittered(site.loading_areas[0].pose))] = 0;
 
   const Pose2 home = site.homes.front().pose;
-  SimRobot robot(params, site, home, perfect, perfect ? 101 : 1);
+  robot::SimulatedForklift robot = make_robot(params, site, home, perfect, perfect ? 101 : 1);
   robot.warm_up(2.0, dt);
   task::TaskExecutor exec(tp, home);
   planning::RoadPlanner planner(sm.graph.graph);
@@ -295,7 +225,7 @@ OrderStats run_orders(const CtrlEvalParams& params, const map::SiteMap& sm, bool
       if (auto req = exec.take_plan_request()) {
         const planning::RoadPlan plan = planner.plan(robot.estimate(), req->goal);
         if (plan.status == planning::PlanStatus::kFound && !plan.points.empty()) {
-          exec.path_received(req->id, to_poses(plan.points));
+          exec.path_received(req->id, planning::poses_along(plan.points));
         } else {
           exec.plan_failed(req->id);
         }
@@ -394,7 +324,7 @@ std::vector<NamedPath> standard_paths(const std::string& site_file) {
         if (points.empty() || geometry::distance(points.back(), q) > 1e-6) points.push_back(q);
       }
     }
-    out.push_back({name, to_poses(points)});
+    out.push_back({name, planning::poses_along(points)});
   }
   return out;
 }

@@ -95,6 +95,28 @@ bool convex_polygons_overlap(const Polygon& a, const Polygon& b) {
   return !has_separating_axis(a, b) && !has_separating_axis(b, a);
 }
 
+double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return distance(p, a + t * ab);
+}
+
+double convex_polygons_distance(const Polygon& a, const Polygon& b) {
+  if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
+  if (convex_polygons_overlap(a, b)) return 0.0;
+  // Disjoint convex polygons: the closest pair involves a vertex of one and an edge of the other.
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& [p, q] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
+    for (const Vec2& v : *p) {
+      for (std::size_t i = 0; i < q->size(); ++i) {
+        best = std::min(best, point_segment_distance(v, (*q)[i], (*q)[(i + 1) % q->size()]));
+      }
+    }
+  }
+  return best;
+}
+
 Bounds bounding_box(const Polygon& polygon) {
   Bounds box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
              std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};

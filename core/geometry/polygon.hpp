@@ -32,6 +32,12 @@ bool segment_intersects_polygon(Vec2 a, Vec2 b, const Polygon& polygon);
 /// Overlap test for two convex polygons by the separating axis theorem.
 bool convex_polygons_overlap(const Polygon& a, const Polygon& b);
 
+/// Distance from `p` to the closed segment ab.
+double point_segment_distance(Vec2 p, Vec2 a, Vec2 b);
+
+/// Gap between two convex polygons: 0 when they touch or overlap.
+double convex_polygons_distance(const Polygon& a, const Polygon& b);
+
 struct Bounds {
   double min_x = 0.0;
   double min_y = 0.0;

@@ -21,6 +21,18 @@ void symmetrize(StateCovariance& p) {
   p = 0.5 * (p + p.transpose()).eval();
 }
 
+/// Linear Kalman update z = H x + v, v ~ N(0, diag(var)), on the whole state (eqs. 4.3-4.5).
+template <int M>
+void linear_update(StateVector& x, StateCovariance& p, const Eigen::Matrix<double, M, kStateSize>& h,
+                   const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& var) {
+  const Eigen::Matrix<double, kStateSize, M> pht = p * h.transpose();
+  Eigen::Matrix<double, M, M> s = h * pht;
+  s.diagonal() += var;
+  const Eigen::Matrix<double, kStateSize, M> k = pht * s.inverse();
+  x += k * (z - h * x);
+  p -= k * pht.transpose();
+}
+
 geometry::Vec2 rotate(double yaw, geometry::Vec2 v) {
   const double c = std::cos(yaw);
   const double s = std::sin(yaw);
@@ -45,6 +57,8 @@ EkfParams EkfParams::tuned() {
   p.gating = true;
   p.velocity_source = VelocitySource::commanded;
   p.heading_init = true;
+  p.gyro_bias = true;
+  p.standstill_update = true;
   return p;
 }
 
@@ -65,15 +79,28 @@ Ekf::Ekf(const EkfParams& params) : params_(params) {
   for (double s : params_.commanded_velocity_std) require(s > 0.0, "commanded_velocity_std", s);
   for (double s : params_.encoder_velocity_std) require(s > 0.0, "encoder_velocity_std", s);
   require(params_.heading_init_distance > 0.0, "heading_init_distance", params_.heading_init_distance);
+  require(params_.gyro_bias_random_walk >= 0.0 && std::isfinite(params_.gyro_bias_random_walk), "gyro_bias_random_walk",
+          params_.gyro_bias_random_walk);
+  require(params_.init_gyro_bias_std > 0.0 && std::isfinite(params_.init_gyro_bias_std), "init_gyro_bias_std",
+          params_.init_gyro_bias_std);
+  require(params_.standstill_delay >= 0.0 && std::isfinite(params_.standstill_delay), "standstill_delay",
+          params_.standstill_delay);
+  for (double s : params_.standstill_velocity_std) {
+    require(s > 0.0 && std::isfinite(s), "standstill_velocity_std", s);
+  }
+  require(params_.gyro_noise_std > 0.0 && std::isfinite(params_.gyro_noise_std), "gyro_noise_std",
+          params_.gyro_noise_std);
 }
 
 StateVector Ekf::motion_model(const StateVector& x, double gyro_omega, double dt) {
-  // seed 000, eq. 4.8: body velocities rotated into the map frame; heading from the gyro.
+  // seed 000, eq. 4.8: body velocities rotated into the map frame; heading from the gyro. Beyond
+  // the seed the gyro reading is corrected by the bias state (b = 0 gives eq. 4.8 exactly); b
+  // itself is a random walk, so its prediction is b.
   StateVector out = x;
   const double th = x(kTheta);
   out(kX) = x(kX) + x(kVx) * dt * std::cos(th) + x(kVy) * dt * std::cos(th + kPi / 2.0);
   out(kY) = x(kY) + x(kVx) * dt * std::sin(th) + x(kVy) * dt * std::sin(th + kPi / 2.0);
-  out(kTheta) = th + gyro_omega * dt;
+  out(kTheta) = th + (gyro_omega - x(kBias)) * dt;
   return out;
 }
 
@@ -90,6 +117,7 @@ StateCovariance Ekf::motion_jacobian(const StateVector& x, double dt) {
   g(kY, kTheta) = dt * (std::cos(th) * x(kVx) + std::cos(th + kPi / 2.0) * x(kVy));
   g(kY, kVx) = std::sin(th) * dt;
   g(kY, kVy) = std::sin(th + kPi / 2.0) * dt;
+  g(kTheta, kBias) = -dt;  // beyond the seed: theta integrates (gyro - b)
   return g;
 }
 
@@ -100,10 +128,10 @@ Eigen::Vector2d Ekf::measurement_model(const StateVector& x, const geometry::Vec
           offset.x * std::sin(th) + offset.y * std::cos(th) + x(kY)};
 }
 
-Eigen::Matrix<double, 2, 6> Ekf::measurement_jacobian(const StateVector& x, const geometry::Vec2& offset) {
-  // seed 000, eq. 4.17 (the printed matrix drops the omega column; it is zero).
+Eigen::Matrix<double, 2, kStateSize> Ekf::measurement_jacobian(const StateVector& x, const geometry::Vec2& offset) {
+  // seed 000, eq. 4.17 (the printed matrix drops the omega column; it is zero, as is the bias's).
   const double th = x(kTheta);
-  Eigen::Matrix<double, 2, 6> h = Eigen::Matrix<double, 2, 6>::Zero();
+  Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
   h(0, kX) = 1.0;
   h(1, kY) = 1.0;
   h(0, kTheta) = -offset.x * std::sin(th) - offset.y * std::cos(th);
@@ -133,7 +161,10 @@ void Ekf::initialize(const geometry::Vec2& antenna, const Eigen::Matrix2d& covar
   const double pos2 = params_.init_position_std * params_.init_position_std;
   const double vel2 = params_.init_velocity_std * params_.init_velocity_std;
   P_ = StateCovariance::Zero();
-  P_.diagonal() << pos2, pos2, params_.init_heading_std * params_.init_heading_std, vel2, vel2, vel2;
+  // The bias variance stays exactly 0 when the bias is not estimated: b = 0 is then a constant and
+  // the filter is the seed's six-state one.
+  const double bias2 = params_.gyro_bias ? params_.init_gyro_bias_std * params_.init_gyro_bias_std : 0.0;
+  P_.diagonal() << pos2, pos2, params_.init_heading_std * params_.init_heading_std, vel2, vel2, vel2, bias2;
   if (params_.use_fix_covariance) P_.block<2, 2>(kX, kX) += measurement_noise(covariance);
   initialized_ = true;
   heading_resolved_ = !params_.heading_init;
@@ -150,6 +181,9 @@ void Ekf::initialize(const geometry::Vec2& antenna, const Eigen::Matrix2d& covar
 
 bool Ekf::predict(double gyro_omega, double dt) {
   if (!std::isfinite(gyro_omega) || !std::isfinite(dt) || dt <= 0.0) return false;
+  last_gyro_ = gyro_omega;
+  have_gyro_ = true;
+  if (command_zero_) zero_command_for_ += dt;
   if (!initialized_) return false;
   if (!heading_resolved_) track_heading(gyro_omega, dt);
 
@@ -159,26 +193,33 @@ bool Ekf::predict(double gyro_omega, double dt) {
   StateCovariance r = StateCovariance::Zero();
   const double scale = dt / params_.nominal_dt;
   for (int i = 0; i < 6; ++i) r(i, i) = params_.process_noise[i] * scale;  // eq. 4.16
-  P_ = g * P_ * g.transpose() + r;                                         // eq. 4.2
-  symmetrize(P_);
-  if (!heading_resolved_) {
-    // The placeholder heading must not leak into the other states through correlations.
-    const double var = P_(kTheta, kTheta);
-    P_.row(kTheta).setZero();
-    P_.col(kTheta).setZero();
-    P_(kTheta, kTheta) = var;
+  if (params_.gyro_bias) {
+    // Random walk of the bias: variance grows by (rate)^2 per second, as the gyro's does.
+    r(kBias, kBias) = params_.gyro_bias_random_walk * params_.gyro_bias_random_walk * dt;
   }
+  P_ = g * P_ * g.transpose() + r;  // eq. 4.2
+  symmetrize(P_);
+  // The placeholder heading must not leak into the other states through correlations.
+  if (!heading_resolved_) decouple(kTheta);
   return true;
+}
+
+void Ekf::decouple(int i) {
+  const double var = P_(i, i);
+  P_.row(i).setZero();
+  P_.col(i).setZero();
+  P_(i, i) = var;
 }
 
 void Ekf::track_heading(double gyro_omega, double dt) {
   // Dead reckoning in the frame of the body at the first fix: gyro for rotation, the latest
   // velocity measurement for translation (midpoint heading over the step).
-  const double mid = dr_yaw_ + 0.5 * gyro_omega * dt;
+  const double rate = gyro_omega - x_(kBias);  // the raw reading when the bias is not estimated
+  const double mid = dr_yaw_ + 0.5 * rate * dt;
   if (have_velocity_) {
     dr_position_ = dr_position_ + dt * rotate(mid, {last_velocity_.vx, last_velocity_.vy});
   }
-  dr_yaw_ += gyro_omega * dt;
+  dr_yaw_ += rate * dt;
 }
 
 void Ekf::try_resolve_heading() {
@@ -267,6 +308,7 @@ void Ekf::try_resolve_heading() {
   P_.row(kTheta).setZero();
   P_.col(kTheta).setZero();
   P_(kTheta, kTheta) = theta_var;
+  // The bias keeps its variance; its correlation with the new heading starts at zero.
   heading_resolved_ = true;
   track_.clear();
 }
@@ -285,8 +327,8 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
     return UpdateStatus::initialized;
   }
 
-  const Eigen::Vector2d z(z_pos.x, z_pos.y);                                         // eq. 4.10
-  Eigen::Matrix<double, 2, 6> h = measurement_jacobian(x_, params_.antenna_offset);  // eq. 4.17
+  const Eigen::Vector2d z(z_pos.x, z_pos.y);                                                  // eq. 4.10
+  Eigen::Matrix<double, 2, kStateSize> h = measurement_jacobian(x_, params_.antenna_offset);  // eq. 4.17
   if (!heading_resolved_) h.col(kTheta).setZero();
   const Eigen::Vector2d innovation = z - measurement_model(x_, params_.antenna_offset);  // eq. 4.13
   const Eigen::Matrix2d q = measurement_noise(covariance);
@@ -309,8 +351,8 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
     track_.push_back({rotate(dr_yaw_, params_.antenna_offset) + dr_position_, z_pos, 0.5 * q.trace()});
   }
 
-  const Eigen::Matrix<double, 6, 2> k = P_ * h.transpose() * s.inverse();  // eq. 4.3
-  x_ += k * innovation;                                                    // eq. 4.4
+  const Eigen::Matrix<double, kStateSize, 2> k = P_ * h.transpose() * s.inverse();  // eq. 4.3
+  x_ += k * innovation;                                                             // eq. 4.4
   x_(kTheta) = geometry::normalize_angle(x_(kTheta));
   P_ = (StateCovariance::Identity() - k * h) * P_;  // eq. 4.5
   symmetrize(P_);
@@ -321,8 +363,53 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
 }
 
 UpdateStatus Ekf::update_commanded(const BodyVelocity& cmd) {
+  if (params_.standstill_update) {
+    if (!finite(cmd)) return UpdateStatus::rejected_non_finite;
+    // Exactly zero: the drive was told to stop. predict() counts how long ago that was, so the
+    // first standstill_delay seconds (wheels still spinning down) get the ordinary update.
+    const bool zero = cmd.vx == 0.0 && cmd.vy == 0.0 && cmd.omega == 0.0;
+    if (!zero) zero_command_for_ = 0.0;
+    command_zero_ = zero;
+    if (zero && zero_command_for_ >= params_.standstill_delay) return update_standstill();
+  }
   if (params_.velocity_source != VelocitySource::commanded) return UpdateStatus::ignored;
   return update_velocity(cmd, params_.commanded_velocity_std);
+}
+
+UpdateStatus Ekf::update_standstill() {
+  if (!params_.standstill_update) return UpdateStatus::ignored;
+  last_velocity_ = {};
+  have_velocity_ = true;
+  if (!initialized_) return UpdateStatus::not_initialized;
+  if (!heading_resolved_) return UpdateStatus::deferred;
+  // Zero-velocity update: z = (vx, vy, omega) = 0. With the bias state, the gyro reading taken at
+  // rest adds z = gyro = omega + b (+ white noise), which is what makes b observable without any
+  // heading information from the fixes. That reading also drove the last prediction; the
+  // correlation this ignores is one step's worth of gyro noise on theta (about 1e-4 rad).
+  if (params_.gyro_bias && have_gyro_) {
+    Eigen::Matrix<double, 4, kStateSize> h = Eigen::Matrix<double, 4, kStateSize>::Zero();
+    h(0, kVx) = 1.0;
+    h(1, kVy) = 1.0;
+    h(2, kOmega) = 1.0;
+    h(3, kOmega) = 1.0;
+    h(3, kBias) = 1.0;
+    const auto& sd = params_.standstill_velocity_std;
+    const Eigen::Vector4d z(0.0, 0.0, 0.0, last_gyro_);
+    const Eigen::Vector4d var(sd[0] * sd[0], sd[1] * sd[1], sd[2] * sd[2],
+                              params_.gyro_noise_std * params_.gyro_noise_std);
+    linear_update<4>(x_, P_, h, z, var);
+  } else {
+    Eigen::Matrix<double, 3, kStateSize> h = Eigen::Matrix<double, 3, kStateSize>::Zero();
+    h(0, kVx) = 1.0;
+    h(1, kVy) = 1.0;
+    h(2, kOmega) = 1.0;
+    const auto& sd = params_.standstill_velocity_std;
+    const Eigen::Vector3d var(sd[0] * sd[0], sd[1] * sd[1], sd[2] * sd[2]);
+    linear_update<3>(x_, P_, h, Eigen::Vector3d::Zero(), var);
+  }
+  x_(kTheta) = geometry::normalize_angle(x_(kTheta));
+  symmetrize(P_);
+  return UpdateStatus::accepted;
 }
 
 UpdateStatus Ekf::update_encoders(const BodyVelocity& measured) {
@@ -338,10 +425,10 @@ UpdateStatus Ekf::update_velocity(const BodyVelocity& z, const std::array<double
   if (!heading_resolved_) return UpdateStatus::deferred;
   // z = (vx, vy, omega), H = [0 | I3]: a linear update on the velocity block.
   const Eigen::Vector3d innovation(z.vx - x_(kVx), z.vy - x_(kVy), z.omega - x_(kOmega));
-  const Eigen::Matrix<double, 6, 3> pht = P_.block<6, 3>(0, kVx);
+  const Eigen::Matrix<double, kStateSize, 3> pht = P_.block<kStateSize, 3>(0, kVx);
   Eigen::Matrix3d s = P_.block<3, 3>(kVx, kVx);
   for (int i = 0; i < 3; ++i) s(i, i) += std[i] * std[i];
-  const Eigen::Matrix<double, 6, 3> k = pht * s.inverse();
+  const Eigen::Matrix<double, kStateSize, 3> k = pht * s.inverse();
   x_ += k * innovation;
   x_(kTheta) = geometry::normalize_angle(x_(kTheta));
   P_ -= k * pht.transpose();

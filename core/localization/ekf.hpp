@@ -8,11 +8,15 @@
 
 namespace fleet::localization {
 
-/// State of seed 000 eq. 4.6: x, y, theta (map frame), vx, vy (body frame), omega.
-using StateVector = Eigen::Matrix<double, 6, 1>;
-using StateCovariance = Eigen::Matrix<double, 6, 6>;
+/// State of seed 000 eq. 4.6: x, y, theta (map frame), vx, vy (body frame), omega; plus, beyond
+/// the seed, the gyro bias b (rad/s). With EkfParams::gyro_bias off, b is held at exactly 0 with
+/// zero variance and no correlation to the rest, which is the seed's six-state filter: the extra
+/// row and column only ever multiply zeros.
+inline constexpr int kStateSize = 7;
+using StateVector = Eigen::Matrix<double, kStateSize, 1>;
+using StateCovariance = Eigen::Matrix<double, kStateSize, kStateSize>;
 
-enum StateIndex : int { kX = 0, kY = 1, kTheta = 2, kVx = 3, kVy = 4, kOmega = 5 };
+enum StateIndex : int { kX = 0, kY = 1, kTheta = 2, kVx = 3, kVy = 4, kOmega = 5, kBias = 6 };
 
 /// A body-frame velocity: from the commands sent to the drive, or from wheel encoders.
 struct BodyVelocity {
@@ -73,8 +77,27 @@ struct EkfParams {
   bool heading_init = false;
   double heading_init_distance = 0.25;  ///< metres of dead-reckoned travel
 
+  /// 4. Gyro bias state. Eq. 4.8 integrates the raw gyro, so any bias becomes a heading drift
+  /// that only the UWB fixes (a 5 cm antenna lever arm, and the direction of travel) can pull
+  /// back. With this on, theta is predicted with (gyro - b) and b is a random walk with
+  /// gyro_bias_random_walk, matching a MEMS gyro's drift; b becomes observable through the heading
+  /// corrections of the UWB updates and, at standstill, through update 5.
+  bool gyro_bias = false;
+  double gyro_bias_random_walk = 2.0e-4;  ///< rad/s per sqrt(s)
+  double init_gyro_bias_std = 0.003;      ///< rad/s, residual bias after start-up
+
+  /// 5. Zero-velocity updates. When update_commanded has seen an all-zero command for
+  /// standstill_delay seconds (the wheels have stopped), it applies update_standstill() instead
+  /// of the commanded-velocity update: (vx, vy, omega) = 0 with standstill_velocity_std, and the
+  /// latest gyro reading as a measurement of omega + b with gyro_noise_std. At rest the gyro reads
+  /// its bias, so every stop calibrates it. Works whatever velocity_source is.
+  bool standstill_update = false;
+  double standstill_delay = 0.25;  ///< s of zero command before the wheels count as stopped
+  std::array<double, 3> standstill_velocity_std{0.002, 0.002, 0.002};  ///< m/s, m/s, rad/s
+  double gyro_noise_std = 0.005;                                       ///< rad/s per reading (white noise of the gyro)
+
   /// The seed's filter exactly: R_t of eq. 4.16, fixed Q_t, no gating, no velocity updates,
-  /// heading 0 at start.
+  /// heading 0 at start, no gyro bias state, no zero-velocity updates.
   static EkfParams seed();
   /// Every beyond-seed feature on, noise tuned to the simulated sensors (see the README).
   static EkfParams tuned();
@@ -110,8 +133,14 @@ class Ekf {
   UpdateStatus update_uwb(const geometry::Vec2& antenna_position,
                           const Eigen::Matrix2d& covariance = Eigen::Matrix2d::Identity() * 0.0025);
 
-  /// Velocity update from the drive command. No-op unless velocity_source == commanded.
+  /// Velocity update from the drive command. No-op unless velocity_source == commanded, except
+  /// that with standstill_update a command that has been all zero for standstill_delay seconds
+  /// (counted by predict) triggers update_standstill() whatever the velocity source.
   UpdateStatus update_commanded(const BodyVelocity& cmd);
+  /// Zero-velocity update for a robot known to stand still (the caller's own standstill
+  /// detection, or update_commanded's): (vx, vy, omega) = 0 and, with gyro_bias, the latest gyro
+  /// reading as a measurement of omega + b. Ignored unless standstill_update.
+  UpdateStatus update_standstill();
   /// Velocity update from wheel encoders (already through forward kinematics). No-op unless
   /// velocity_source == encoders.
   UpdateStatus update_encoders(const BodyVelocity& measured);
@@ -135,22 +164,27 @@ class Ekf {
   double mean_nis() const { return nis_mean_; }
   int consecutive_rejections() const { return consecutive_rejections_; }
 
+  /// Estimated gyro bias, rad/s (0 unless gyro_bias).
+  double gyro_bias() const { return x_(kBias); }
+
   const EkfParams& params() const { return params_; }
 
   // The models, public so that tests can check the Jacobians against numerical derivatives.
-  /// g(u_t, mu_{t-1}), seed 000 eq. 4.8.
+  /// g(u_t, mu_{t-1}), seed 000 eq. 4.8, with the heading integrating (gyro - b); b = 0 is eq. 4.8.
   static StateVector motion_model(const StateVector& x, double gyro_omega, double dt);
-  /// G_t = dg/dx, seed 000 eq. 4.15 (see ekf.cpp for the theta/omega entry).
+  /// G_t = dg/dx, seed 000 eq. 4.15 (see ekf.cpp for the theta/omega entry), plus d theta / d b.
   static StateCovariance motion_jacobian(const StateVector& x, double dt);
   /// h(mu), seed 000 eq. 4.13.
   static Eigen::Vector2d measurement_model(const StateVector& x, const geometry::Vec2& offset);
   /// H_t = dh/dx, seed 000 eq. 4.17.
-  static Eigen::Matrix<double, 2, 6> measurement_jacobian(const StateVector& x, const geometry::Vec2& offset);
+  static Eigen::Matrix<double, 2, kStateSize> measurement_jacobian(const StateVector& x, const geometry::Vec2& offset);
 
  private:
   void initialize(const geometry::Vec2& antenna_position, const Eigen::Matrix2d& covariance);
   Eigen::Matrix2d measurement_noise(const Eigen::Matrix2d& fix_covariance) const;
   UpdateStatus update_velocity(const BodyVelocity& z, const std::array<double, 3>& std);
+  /// Removes every correlation of the state `i` (whose value is a placeholder or a constant).
+  void decouple(int i);
   void track_heading(double gyro_omega, double dt);
   void try_resolve_heading();
 
@@ -161,6 +195,10 @@ class Ekf {
   StateCovariance P_ = StateCovariance::Identity();
   double nis_mean_ = 2.0;
   int consecutive_rejections_ = 0;
+  double last_gyro_ = 0.0;  ///< latest gyro reading, for the standstill bias measurement
+  bool have_gyro_ = false;
+  double zero_command_for_ = 0.0;  ///< s since the command was last non-zero (predict's dt)
+  bool command_zero_ = false;
 
   // Heading initialisation from motion: dead reckoning in the frame of the body at the first fix.
   struct TrackPoint {

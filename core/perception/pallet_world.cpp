@@ -1,5 +1,6 @@
 #include "perception/pallet_world.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -11,10 +12,40 @@ using geometry::Vec2;
 
 int PalletWorld::add(const Pose2& pose) {
   SimPallet p;
-  p.id = static_cast<int>(pallets_.size()) + 1;
+  int next = 1;
+  for (const SimPallet& q : pallets_) next = std::max(next, q.id + 1);
+  p.id = next;
   p.pose = pose;
   pallets_.push_back(p);
   return p.id;
+}
+
+bool PalletWorld::place(int id, const Pose2& pose) {
+  for (SimPallet& p : pallets_) {
+    if (p.id != id) continue;
+    if (p.carried) return false;
+    p.pose = pose;
+    return true;
+  }
+  SimPallet p;
+  p.id = id;
+  p.pose = pose;
+  pallets_.push_back(p);
+  return true;
+}
+
+bool PalletWorld::remove(int id) {
+  for (std::size_t i = 0; i < pallets_.size(); ++i) {
+    if (pallets_[i].id != id) continue;
+    if (pallets_[i].carried) return false;
+    pallets_.erase(pallets_.begin() + static_cast<long>(i));
+    // Forks hold indices into pallets_: those past the erased one move down by one.
+    for (Forks& f : forks_) {
+      if (f.carrying > static_cast<int>(i)) --f.carrying;
+    }
+    return true;
+  }
+  return false;
 }
 
 std::vector<Marker> PalletWorld::markers() const {

@@ -42,6 +42,12 @@ class PalletWorld {
   explicit PalletWorld(PalletWorldParams params = {}) : params_(params) {}
 
   int add(const geometry::Pose2& pose);
+  /// Puts the pallet with this id standing at `pose` (adds it, or moves it). Used when the truth
+  /// lives elsewhere: an agent mirrors the pallets its server owns. A pallet on these forks is
+  /// left alone: false.
+  bool place(int id, const geometry::Pose2& pose);
+  /// Removes a standing pallet (another robot carries it away). False when unknown or carried here.
+  bool remove(int id);
   /// Markers of the pallets standing on the floor (a carried pallet's marker faces the camera
   /// from too close to decode).
   std::vector<Marker> markers() const;

@@ -1,5 +1,8 @@
 #include "planning/route_planner.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <chrono>
 
 namespace fleet::planning {
@@ -23,6 +26,18 @@ PlanOptions remaining(const PlanOptions& options, const Deadline& deadline) {
 }
 
 }  // namespace
+
+std::vector<geometry::Pose2> poses_along(const std::vector<geometry::Vec2>& points) {
+  std::vector<geometry::Pose2> poses;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const geometry::Vec2 a = points[i == 0 ? 0 : i - 1];
+    const geometry::Vec2 b = points[i == 0 ? std::min<std::size_t>(1, points.size() - 1) : i];
+    const double yaw = geometry::distance(a, b) > 1e-9 ? std::atan2(b.y - a.y, b.x - a.x) : 0.0;
+    poses.push_back({points[i].x, points[i].y, yaw});
+  }
+  if (poses.size() >= 2) poses.front().yaw = poses[1].yaw;
+  return poses;
+}
 
 RoutePlanner::RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlannerConfiguration& configuration)
     : road_(road), grid_(grid), configuration_(configuration) {}

@@ -23,6 +23,10 @@ struct Route {
   GridPath from_road;  ///< last road point to the goal pose; empty when the goal is on the road
 };
 
+/// Poses along a polyline, each heading along the leg that arrives at it (the first along the
+/// first leg): what a path follower takes from a planner's points.
+std::vector<geometry::Pose2> poses_along(const std::vector<geometry::Vec2>& points);
+
 /// Road A* between the graph points nearest the poses, with grid legs where a pose lies off the
 /// graph: from the road's end to a loading area and back (issue 5, after seed 000, Fig. 5.1).
 /// The grid planner must hold the static grid (inflated). When the road plan is blocked

@@ -42,10 +42,21 @@ double twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise
 /// clocks, combined as ((t_roundA - t_replyA) + (t_roundB - t_replyB)) / 4.
 double sds_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng);
 
+/// Asymmetric double-sided two-way ranging, beyond the seed (Neirynck, Luk, McLaughlin, "An
+/// alternative double-sided two-way ranging method", WPNC 2016; the formula of the DW1000 user
+/// manual): t_p = (t_roundA t_roundB - t_replyA t_replyB) / (t_roundA + t_roundB + t_replyA +
+/// t_replyB). The same four intervals as eq. 2.6, but the clock-drift error is
+/// t_p (e_A + e_B) / 2 whatever the reply times, instead of eq. 2.8's (t_replyB - t_replyA)
+/// (e_A - e_B) / 4, which only vanishes when both devices reply after exactly the same delay.
+/// Its timestamp-noise weights are those of eq. 2.6 to first order, so the range noise is the same.
+double ads_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng);
+
 /// Clock-drift error predicted by seed 000 eq. 2.4 (TWR) and eq. 2.7 / 2.8 (SDS-TWR).
 double twr_drift_error(const RangingExchange& ex);           // eq. 2.4
 double sds_twr_drift_error_full(const RangingExchange& ex);  // eq. 2.7
 double sds_twr_drift_error(const RangingExchange& ex);       // eq. 2.8
+/// Exact clock-drift error of ads_twr_time_of_flight: t_p (2 (1+e_A)(1+e_B) / (2 + e_A + e_B) - 1).
+double ads_twr_drift_error(const RangingExchange& ex);
 
 // ---------------------------------------------------------------------------------------------
 // Multilateration
@@ -89,12 +100,23 @@ std::optional<UwbFix> solve_multilateration(const std::vector<map::UwbAnchor>& a
 
 enum class NlosMode { bias, drop };
 
+/// How the tag turns an exchange's four intervals into a time of flight.
+enum class RangingFormula {
+  sds_twr,  ///< seed 000 eq. 2.6: biased by eq. 2.8 when the reply delays differ
+  ads_twr,  ///< asymmetric double-sided (see ads_twr_time_of_flight): no reply-delay bias
+};
+
 struct UwbParams {
   double rate_hz = 20.0;                     ///< seed 000, Table 3.1
   geometry::Vec2 antenna_offset{0.05, 0.0};  ///< (a, b) in the body frame, seed 000 eq. 4.12
   double clock_ppm_std = 5.0;                ///< crystal offset of each device after trimming, ppm
   double reply_a = 300e-6;                   ///< tag's reply delay, s
   double reply_b = 320e-6;                   ///< anchors' reply delay, s (asymmetry drives eq. 2.8)
+  /// The seed's eq. 2.6 leaves every anchor's range off by a constant c (t_replyB - t_replyA)
+  /// (e_A - e_B) / 4: with 20 us of asymmetry and 5 ppm crystals about 1 cm each, so a fix carries
+  /// a steady bias of the same size that no filter can average away. The asymmetric formula
+  /// removes it from the same messages, so it is the default; sds_twr reproduces the seed.
+  RangingFormula ranging = RangingFormula::ads_twr;
   /// Receive-timestamp jitter. SDS-TWR combines three receptions with weights 2, 1, 1 over 4, so
   /// the range noise is c * rx_std * sqrt(6) / 4: 0.272 ns gives 5.0 cm.
   double rx_timestamp_std = 0.272e-9;  ///< seconds

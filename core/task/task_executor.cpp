@@ -223,6 +223,13 @@ void TaskExecutor::set_blocked(bool blocked) {
   }
 }
 
+void TaskExecutor::replan() {
+  const State s = machine_.state();
+  if (s == State::kTrackPath || s == State::kGoHome || (s == State::kWaiting && waiting_for_plan_)) {
+    request_plan(active_purpose_);
+  }
+}
+
 bool TaskExecutor::pause() {
   return fire(Event::kPause).accepted;
 }

@@ -93,6 +93,9 @@ class TaskExecutor {
   void path_received(std::uint64_t request_id, std::vector<geometry::Pose2> path);
   void plan_failed(std::uint64_t request_id);
   void set_blocked(bool blocked);
+  /// The map changed (an obstacle appeared or went): ask for a new plan to the current goal when
+  /// driving or waiting for one. The robot stands until the answer comes.
+  void replan();
   bool pause();
   bool resume();
   bool cancel(std::string* why = nullptr);

@@ -6,7 +6,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <set>
+
+#include "cli/client.hpp"
+#include "dds/environment.hpp"
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -68,6 +73,7 @@ CommandResult run_command(const std::vector<std::string>& argv, double timeout_s
 
 FleetHarness::FleetHarness(int domain, double time_scale, std::string site)
     : domain_(domain), time_scale_(time_scale), site_(std::move(site)) {
+  dds::use_fleet_dds_config();  // the test process may be a DDS participant too
   log_dir_ = std::filesystem::temp_directory_path() / ("fleet-test-" + std::to_string(getpid()) + "-" +
                                                        std::to_string(domain));
   std::filesystem::remove_all(log_dir_);
@@ -85,6 +91,10 @@ void FleetHarness::start_server(const std::vector<std::string>& extra) {
   std::vector<std::string> argv{bin("fleet-server"), "--db", log_dir_ + "/fleet.db"};
   for (const auto& a : common_args()) argv.push_back(a);
   argv.insert(argv.end(), extra.begin(), extra.end());
+  // No web view unless the test asks for one, so test servers never take a running demo's port.
+  if (std::find(extra.begin(), extra.end(), "--http-port") == extra.end()) {
+    argv.insert(argv.end(), {"--http-port", "0"});
+  }
   processes_.start("fleet-server", argv, log_dir_ + "/fleet-server.log");
 }
 
@@ -100,6 +110,19 @@ CommandResult FleetHarness::fleetctl(std::vector<std::string> args, double timeo
                                 std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml"};
   argv.insert(argv.end(), args.begin(), args.end());
   return run_command(argv, timeout_s);
+}
+
+bool FleetHarness::wait_for_robots(const std::vector<std::string>& robot_ids, double timeout_s) const {
+  cli::FleetClient client(static_cast<std::uint32_t>(domain_));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  std::set<std::string> seen;
+  while (std::chrono::steady_clock::now() < deadline) {
+    for (const auto& [id, state] : client.robot_states(std::chrono::milliseconds(200))) seen.insert(id);
+    if (std::all_of(robot_ids.begin(), robot_ids.end(), [&](const std::string& id) { return seen.contains(id); })) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::string FleetHarness::log_of(const std::string& name) const { return slurp(log_dir_ + "/" + name + ".log"); }

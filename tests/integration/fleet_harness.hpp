@@ -27,6 +27,9 @@ class FleetHarness {
   void start_server(const std::vector<std::string>& extra = {});
   void start_agent(const std::string& robot_id, const std::vector<std::string>& extra = {});
 
+  /// Waits until every robot in `robot_ids` publishes RobotState (so it is registered and free).
+  bool wait_for_robots(const std::vector<std::string>& robot_ids, double timeout_s = 30.0) const;
+
   /// fleetctl with --domain set.
   CommandResult fleetctl(std::vector<std::string> args, double timeout_s = 120.0) const;
 

@@ -108,8 +108,8 @@ TEST(Recovery, AgentKilledWithoutPalletHasItsOrderRequeuedAndDoneByAnother) {
       10s));
   fleet.processes().signal(1, SIGKILL);  // fl1, on its way to the pallet
 
-  const auto final_info = client.follow_order(id, [](const model::OrderInfo&) {});
-  ASSERT_TRUE(final_info.has_value());
+  const auto final_info = client.follow_order(id, [](const model::OrderInfo&) {}, 150s);
+  ASSERT_TRUE(final_info.has_value()) << fleet.log_of("fleet-server") << fleet.log_of("fleet-agent-fl2");
   EXPECT_EQ(final_info->state, "DONE");
   EXPECT_EQ(final_info->robot_id, "fl2");
   bool requeued = false;

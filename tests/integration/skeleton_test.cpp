@@ -36,6 +36,7 @@ TEST(Skeleton, OrderGoesThroughItsLifecycleAndTheRobotEndsAtTheDropPose) {
   fleet.start_server();
   fleet.start_agent("fl1");
   fleet.start_agent("fl2");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1", "fl2"}));
   const auto r = fleet.fleetctl({"order", "add", "--from", "A1", "--to", "A2", "--wait", "--json"}, 120);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err << fleet.log_of("fleet-server");
   const json order = last_json_line(r.out);
@@ -98,7 +99,7 @@ TEST(Skeleton, UnknownConfigKeyNamesKeyAndFile) {
 }
 
 TEST(Skeleton, DemoEndsByItselfWithOrdersDoneNoneLostAndNoProcessLeft) {
-  const auto r = run_command({bin("fleetctl"), "--domain", "64", "demo", "--agents", "2", "--duration", "25",
+  const auto r = run_command({bin("fleetctl"), "--domain", "64", "demo", "--http-port", "0", "--agents", "2", "--duration", "25",
                               "--time-scale", "10", "--json"},
                              120);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
@@ -115,7 +116,7 @@ TEST(Skeleton, DemoEndsByItselfWithOrdersDoneNoneLostAndNoProcessLeft) {
 TEST(Skeleton, DemoKilledWithSigtermLeavesNoChildBehind) {
   FleetHarness launcher(65, 10.0);
   launcher.processes().start("fleetctl demo",
-                             {bin("fleetctl"), "--domain", "65", "demo", "--agents", "2", "--time-scale", "10"},
+                             {bin("fleetctl"), "--domain", "65", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
                              ::testing::TempDir() + "/demo65.log");
   // Wait for the fleet to be up.
   for (int i = 0; i < 100 && fleet_processes_on_domain(65) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -128,7 +129,7 @@ TEST(Skeleton, DemoKilledWithSigtermLeavesNoChildBehind) {
 TEST(Skeleton, DemoKilledWithSigkillLeavesNoChildBehind) {
   FleetHarness launcher(66, 10.0);
   launcher.processes().start("fleetctl demo",
-                             {bin("fleetctl"), "--domain", "66", "demo", "--agents", "2", "--time-scale", "10"},
+                             {bin("fleetctl"), "--domain", "66", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
                              ::testing::TempDir() + "/demo66.log");
   for (int i = 0; i < 100 && fleet_processes_on_domain(66) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ASSERT_EQ(fleet_processes_on_domain(66), 3);

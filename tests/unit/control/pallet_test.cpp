@@ -226,3 +226,33 @@ TEST(PalletPlace, PlacePoseSeatsThePalletOnTheArea) {
 
 }  // namespace
 }  // namespace fleet::control
+
+namespace {
+using fleet::geometry::Pose2;
+using fleet::perception::PalletWorld;
+}  // namespace
+
+TEST(PalletWorldMirror, PlaceAddsOrMovesAndRemoveKeepsCarriedPalletsOnTheForks) {
+  PalletWorld world;
+  EXPECT_TRUE(world.place(7, {1.0, 1.0, 0.0}));
+  EXPECT_TRUE(world.place(3, {2.0, 1.0, 0.0}));
+  EXPECT_TRUE(world.place(7, {1.5, 1.0, 0.0}));  // moved, not duplicated
+  ASSERT_EQ(world.pallets().size(), 2u);
+  EXPECT_DOUBLE_EQ(world.find(7)->pose.x, 1.5);
+  EXPECT_EQ(world.add({0.5, 0.5, 0.0}), 8);  // fresh ids never collide with mirrored ones
+
+  // Robot 0 stands so that pallet 3 sits on its forks (pallet yaw = robot yaw + pi).
+  const double carry_x = world.params().carry_x;
+  const Pose2 robot{2.0 + carry_x, 1.0, 3.14159265358979};
+  world.update(0, robot, false);
+  const auto lifted = world.update(0, robot, true);
+  ASSERT_EQ(lifted.kind, fleet::perception::ForkEvent::Kind::kLifted);
+  EXPECT_EQ(lifted.pallet_id, 3);
+  EXPECT_FALSE(world.place(3, {0.0, 0.0, 0.0}));  // on the forks: the mirror leaves it alone
+  EXPECT_FALSE(world.remove(3));
+  EXPECT_TRUE(world.remove(7));  // erasing a pallet before it keeps the forks' hold valid
+  const Pose2 moved{robot.x + 0.5, robot.y, robot.yaw};
+  world.update(0, moved, true);
+  EXPECT_NEAR(world.find(3)->pose.x, moved.x - carry_x, 1e-9);
+  EXPECT_EQ(world.update(0, moved, false).kind, fleet::perception::ForkEvent::Kind::kPutDown);
+}

@@ -43,3 +43,12 @@ TEST(Polygon, ConvexOverlapBySeparatingAxes) {
   EXPECT_FALSE(convex_polygons_overlap(footprint_polygon({0, 0, 0.785}, {0.4, 0.02}),
                                        footprint_polygon({0.15, -0.15, 0.785}, {0.4, 0.02})));
 }
+
+TEST(Polygon, ConvexDistanceIsTheGapOrZero) {
+  const Polygon a = footprint_polygon({0, 0, 0}, {0.25, 0.16});
+  EXPECT_NEAR(convex_polygons_distance(a, footprint_polygon({0.35, 0.0, 0.0}, {0.25, 0.16})), 0.10, 1e-12);
+  EXPECT_NEAR(convex_polygons_distance(a, footprint_polygon({0.0, 0.26, 0.0}, {0.25, 0.16})), 0.10, 1e-12);
+  EXPECT_DOUBLE_EQ(convex_polygons_distance(a, footprint_polygon({0.2, 0.0, 0.0}, {0.25, 0.16})), 0.0);
+  EXPECT_NEAR(point_segment_distance({0.5, 1.0}, {0, 0}, {1, 0}), 1.0, 1e-12);
+  EXPECT_NEAR(point_segment_distance({2.0, 0.0}, {0, 0}, {1, 0}), 1.0, 1e-12);
+}

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <random>
 
+#include "sim/imu.hpp"
+
 using namespace fleet::localization;
 using fleet::geometry::Pose2;
 using fleet::geometry::Vec2;
@@ -20,7 +22,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 StateVector some_state(double theta) {
   StateVector x;
-  x << 1.2, 0.7, theta, 0.18, -0.04, 0.3;
+  x << 1.2, 0.7, theta, 0.18, -0.04, 0.3, 0.004;  // the last one: gyro bias, rad/s
   return x;
 }
 
@@ -32,6 +34,61 @@ struct CircleRun {
   Ekf ekf;
   explicit CircleRun(const EkfParams& p) : ekf(p) {}
 };
+
+// A forklift on a circle (radius 1 m at 0.2 m/s) that stops for `stop_s` seconds after every
+// `drive_s` seconds of driving (stop_s = 0: never), with a real gyro (white noise and a
+// random-walk bias, sim::Gyro), 20 Hz fixes with 4 cm noise and the drive command fed to the
+// filter as an agent does. Records the bias estimation error at the end of every stop, and the
+// heading error over the whole run.
+struct StopAndGo {
+  std::vector<double> bias_error_at_stop_end;  ///< rad/s
+  double final_bias_error = 0.0;               ///< rad/s
+  double true_bias_final = 0.0;                ///< rad/s
+  double heading_rmse = 0.0;                   ///< rad
+};
+
+StopAndGo run_stop_and_go(const EkfParams& params, const fleet::sim::GyroParams& gyro_params, double drive_s,
+                          double stop_s, double seconds, std::uint64_t seed, double extra_bias = 0.0) {
+  StopAndGo out;
+  Ekf ekf(params);
+  fleet::sim::Gyro gyro(gyro_params, std::mt19937_64(seed));
+  std::mt19937_64 rng(seed + 100);
+  std::normal_distribution<double> fix_noise(0.0, 0.04);
+  const double dt = 1.0 / 70.0;
+  Pose2 truth{1.5, 1.0, 0.0};
+  double sq = 0.0;
+  long n = 0;
+  bool was_stopped = false;
+  for (int k = 0; k <= static_cast<int>(seconds * 70.0); ++k) {
+    const double t = k * dt;
+    const bool stopped = stop_s > 0.0 && std::fmod(t, drive_s + stop_s) >= drive_s;
+    const double v = stopped ? 0.0 : 0.2;
+    const double omega = stopped ? 0.0 : 0.2;
+    if (k > 0) {
+      truth.x += v * dt * std::cos(truth.yaw + 0.5 * omega * dt);
+      truth.y += v * dt * std::sin(truth.yaw + 0.5 * omega * dt);
+      truth.yaw += omega * dt;
+      ekf.predict(gyro.measure(omega, dt) + extra_bias, dt);
+      ekf.update_commanded({v, 0.0, omega});
+    }
+    if ((k * 20) % 70 < 20) {
+      const Vec2 antenna = fleet::geometry::body_to_map(truth, params.antenna_offset);
+      ekf.update_uwb({antenna.x + fix_noise(rng), antenna.y + fix_noise(rng)},
+                     0.04 * 0.04 * Eigen::Matrix2d::Identity());
+    }
+    if (was_stopped && !stopped) out.bias_error_at_stop_end.push_back(ekf.gyro_bias() - gyro.bias() - extra_bias);
+    was_stopped = stopped;
+    if (ekf.initialized() && t > 5.0) {
+      const double e = fleet::geometry::angle_diff(ekf.pose().yaw, truth.yaw);
+      sq += e * e;
+      ++n;
+    }
+  }
+  out.final_bias_error = ekf.gyro_bias() - gyro.bias() - extra_bias;
+  out.true_bias_final = gyro.bias() + extra_bias;
+  out.heading_rmse = n > 0 ? std::sqrt(sq / static_cast<double>(n)) : 0.0;
+  return out;
+}
 
 CircleRun run_circle(const EkfParams& params, double start_heading, double seconds, std::uint64_t seed) {
   CircleRun run(params);
@@ -69,14 +126,14 @@ TEST(EkfModels, MotionJacobianMatchesNumericalDerivative) {
     const double dt = 1.0 / 70.0;
     const double gyro = -0.2;
     const StateCovariance g = Ekf::motion_jacobian(x, dt);
-    for (int j = 0; j < 6; ++j) {
+    for (int j = 0; j < kStateSize; ++j) {
       const double h = 1e-6;
       StateVector xp = x;
       StateVector xm = x;
       xp(j) += h;
       xm(j) -= h;
       const StateVector col = (Ekf::motion_model(xp, gyro, dt) - Ekf::motion_model(xm, gyro, dt)) / (2.0 * h);
-      for (int i = 0; i < 6; ++i) EXPECT_NEAR(g(i, j), col(i), 1e-8) << "G(" << i << "," << j << ")";
+      for (int i = 0; i < kStateSize; ++i) EXPECT_NEAR(g(i, j), col(i), 1e-8) << "G(" << i << "," << j << ")";
     }
   }
 }
@@ -86,7 +143,7 @@ TEST(EkfModels, MeasurementJacobianMatchesNumericalDerivative) {
     for (double theta : {0.0, 1.1, -2.9}) {
       const StateVector x = some_state(theta);
       const auto hm = Ekf::measurement_jacobian(x, offset);
-      for (int j = 0; j < 6; ++j) {
+      for (int j = 0; j < kStateSize; ++j) {
         const double h = 1e-6;
         StateVector xp = x;
         StateVector xm = x;
@@ -102,13 +159,20 @@ TEST(EkfModels, MeasurementJacobianMatchesNumericalDerivative) {
 }
 
 TEST(EkfModels, MotionModelIsSeedEquation48) {
-  const StateVector x = some_state(0.5);
+  StateVector x = some_state(0.5);
+  x(kBias) = 0.0;  // no bias estimate: exactly eq. 4.8
   const double dt = 0.1;
   const StateVector y = Ekf::motion_model(x, 0.4, dt);
   EXPECT_NEAR(y(kX), x(kX) + x(kVx) * dt * std::cos(0.5) - x(kVy) * dt * std::sin(0.5), 1e-12);
   EXPECT_NEAR(y(kY), x(kY) + x(kVx) * dt * std::sin(0.5) + x(kVy) * dt * std::cos(0.5), 1e-12);
   EXPECT_NEAR(y(kTheta), 0.5 + 0.4 * dt, 1e-12);  // heading from the gyro, not the state's omega
   EXPECT_EQ(y(kOmega), x(kOmega));
+  // With a bias estimate the heading integrates the corrected rate; the bias is a random walk.
+  x(kBias) = 0.01;
+  const StateVector yb = Ekf::motion_model(x, 0.4, dt);
+  EXPECT_NEAR(yb(kTheta), 0.5 + (0.4 - 0.01) * dt, 1e-12);
+  EXPECT_EQ(yb(kBias), 0.01);
+  EXPECT_EQ(yb(kX), y(kX));
 }
 
 TEST(Ekf, InitialisesFromTheFirstFixLikeEquation414) {
@@ -143,8 +207,39 @@ TEST(Ekf, NonFiniteInputsAreRejectedAndLeaveTheStateUntouched) {
   EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, bad), UpdateStatus::rejected_non_finite);
   EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::rejected_non_finite);
   EXPECT_EQ(ekf.update_commanded({0.0, 0.0, -kInf}), UpdateStatus::rejected_non_finite);
+  // A NaN gyro reading must not become the standstill bias measurement either.
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(ekf.predict(kNaN, 0.1));
   EXPECT_EQ(ekf.state(), x);
   EXPECT_EQ(ekf.covariance(), p);
+  ASSERT_TRUE(ekf.params().standstill_update);
+  ekf.predict(0.0, 0.01);
+  for (int i = 0; i < 40; ++i) {
+    ekf.update_commanded({});
+    ekf.predict(0.0, 0.01);
+  }
+  EXPECT_NE(ekf.update_commanded({}), UpdateStatus::rejected_non_finite);
+  EXPECT_TRUE(ekf.state().allFinite());
+  EXPECT_TRUE(ekf.covariance().allFinite());
+  const StateVector x2 = ekf.state();
+  const StateCovariance p2 = ekf.covariance();
+  EXPECT_FALSE(ekf.predict(kInf, 0.01));
+  EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::rejected_non_finite);
+  EXPECT_EQ(ekf.state(), x2);
+  EXPECT_EQ(ekf.covariance(), p2);
+}
+
+TEST(Ekf, WithoutTheBiasStateTheBiasStaysExactlyZeroAndUncorrelated) {
+  // The seed's six-state filter: b = 0 is a constant, never a random variable.
+  EXPECT_FALSE(EkfParams::seed().gyro_bias);
+  EXPECT_FALSE(EkfParams::seed().standstill_update);
+  for (EkfParams p : {EkfParams::seed(), EkfParams::tuned()}) {
+    p.gyro_bias = false;
+    const CircleRun run = run_circle(p, 0.0, 10.0, 5);
+    EXPECT_EQ(run.ekf.state()(kBias), 0.0);
+    EXPECT_EQ(run.ekf.gyro_bias(), 0.0);
+    EXPECT_TRUE(run.ekf.covariance().row(kBias).isZero(0.0));
+    EXPECT_TRUE(run.ekf.covariance().col(kBias).isZero(0.0));
+  }
 }
 
 TEST(Ekf, ConvergesFromInitialisation) {
@@ -280,4 +375,103 @@ TEST(Ekf, WaitsForAValidFirstFix) {
   // The seed's filter takes any finite fix.
   Ekf seed(EkfParams::seed());
   EXPECT_EQ(seed.update_uwb({1.0, 1.0}, 0.3 * 0.3 * Eigen::Matrix2d::Identity()), UpdateStatus::initialized);
+}
+
+TEST(Ekf, StandstillUpdatesNeedAStoppedCommandForTheDelay) {
+  EkfParams p = EkfParams::tuned();
+  p.heading_init = false;
+  p.velocity_source = VelocitySource::none;  // zero-velocity updates work without a velocity source
+  Ekf ekf(p);
+  EXPECT_EQ(ekf.update_standstill(), UpdateStatus::not_initialized);
+  ekf.update_uwb({1.05, 1.0});
+  EXPECT_EQ(ekf.update_commanded({0.1, 0.0, 0.0}), UpdateStatus::ignored);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::ignored);  // just stopped: wheels still turning
+  const int steps = static_cast<int>(std::ceil(p.standstill_delay * 70.0)) + 1;
+  for (int i = 0; i < steps; ++i) ekf.predict(0.0, 1.0 / 70.0);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::accepted);
+  // Any motion command restarts the wait.
+  EXPECT_EQ(ekf.update_commanded({0.0, 0.0, 0.1}), UpdateStatus::ignored);
+  ekf.predict(0.0, 1.0 / 70.0);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::ignored);
+
+  // Off in the parameters: never applied.
+  EkfParams off = p;
+  off.standstill_update = false;
+  Ekf plain(off);
+  plain.update_uwb({1.05, 1.0});
+  for (int i = 0; i < 2 * steps; ++i) {
+    plain.predict(0.0, 1.0 / 70.0);
+    EXPECT_EQ(plain.update_commanded({}), UpdateStatus::ignored);
+  }
+  EXPECT_EQ(plain.update_standstill(), UpdateStatus::ignored);
+}
+
+TEST(Ekf, StandstillReadsTheGyroBias) {
+  // A gyro reading 0.004 rad/s at rest: after a few seconds of zero-velocity updates the bias
+  // estimate is that rate and the heading no longer drifts.
+  EkfParams p = EkfParams::tuned();
+  p.heading_init = false;
+  Ekf ekf(p);
+  ekf.update_uwb({1.05, 1.0});
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  const double bias = 0.004;
+  for (int k = 0; k < 5 * 70; ++k) {
+    ekf.predict(bias + noise(rng), 1.0 / 70.0);
+    ekf.update_commanded({});
+    if (k % 4 == 0) ekf.update_uwb({1.05, 1.0});
+  }
+  EXPECT_NEAR(ekf.gyro_bias(), bias, 0.0008);
+  const double yaw = ekf.pose().yaw;
+  for (int k = 0; k < 10 * 70; ++k) {
+    ekf.predict(bias + noise(rng), 1.0 / 70.0);
+    ekf.update_commanded({});
+  }
+  // Uncorrected, 10 s at 4 mrad/s would turn the estimate by 2.3 degrees.
+  EXPECT_LT(std::abs(fleet::geometry::angle_diff(ekf.pose().yaw, yaw)), 0.3 * kDeg);
+}
+
+TEST(Ekf, GyroBiasConvergesToTheSimulatedWanderingBias) {
+  // Stop and go for 10 minutes, 20 s on the circle and 5 s at rest, with the simulated gyro's
+  // random-walk bias (default rate; a larger start so that it is well away from 0). Each stop
+  // re-reads it.
+  fleet::sim::GyroParams g;
+  g.bias_initial_std = 0.004;
+  EkfParams p = EkfParams::tuned();
+  p.heading_init = false;
+  p.gyro_bias_random_walk = g.bias_random_walk;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const StopAndGo r = run_stop_and_go(p, g, 20.0, 5.0, 600.0, seed);
+    ASSERT_GE(r.bias_error_at_stop_end.size(), 20u);
+    double sq = 0.0;
+    for (std::size_t i = 2; i < r.bias_error_at_stop_end.size(); ++i) {
+      sq += r.bias_error_at_stop_end[i] * r.bias_error_at_stop_end[i];
+      // 5 s at rest, 350 readings of 5 mrad/s noise: about 0.3 mrad/s, plus the walk since.
+      EXPECT_LT(std::abs(r.bias_error_at_stop_end[i]), 0.0012) << "seed " << seed << " stop " << i;
+    }
+    EXPECT_LT(std::sqrt(sq / static_cast<double>(r.bias_error_at_stop_end.size() - 2)), 0.0005) << "seed " << seed;
+
+    // Without the bias state the same run keeps a larger heading error.
+    EkfParams without = p;
+    without.gyro_bias = false;
+    without.standstill_update = false;
+    const StopAndGo w = run_stop_and_go(without, g, 20.0, 5.0, 600.0, seed);
+    EXPECT_LT(r.heading_rmse, 0.7 * w.heading_rmse) << "seed " << seed;
+  }
+}
+
+TEST(Ekf, GyroBiasIsObservableFromUwbHeadingAlone) {
+  // Never stopping, so only the heading corrections of the fixes inform the bias: a 5 mrad/s
+  // offset (above the filter's initial 3 mrad/s) on top of the simulated gyro's own bias.
+  fleet::sim::GyroParams g;
+  g.bias_initial_std = 0.0005;
+  g.bias_random_walk = 5.0e-5;
+  EkfParams p = EkfParams::tuned();
+  p.heading_init = false;
+  p.standstill_update = false;
+  for (std::uint64_t seed : {4u, 5u, 6u}) {
+    const StopAndGo r = run_stop_and_go(p, g, 1.0, 0.0, 300.0, seed, 0.005);
+    ASSERT_GT(std::abs(r.true_bias_final), 0.003);
+    EXPECT_LT(std::abs(r.final_bias_error), 0.0015) << "seed " << seed << " true bias " << r.true_bias_final;
+  }
 }

@@ -46,6 +46,40 @@ TEST(Ranging, SdsTwrDriftErrorMatchesEquation28AndBeatsTwr) {
   }
 }
 
+TEST(Ranging, AsymmetricDoubleSidedTwrRemovesTheReplyDelayBias) {
+  std::mt19937_64 rng(1);
+  const TimestampNoise none{};
+  for (const auto& [ea, eb] : {std::pair{10e-6, -10e-6}, std::pair{-20e-6, 5e-6}, std::pair{3e-6, 18e-6}}) {
+    // The default delays (300 / 320 us) and a strongly asymmetric pair.
+    for (const auto& [ra, rb] : {std::pair{300e-6, 320e-6}, std::pair{300e-6, 500e-6}}) {
+      const RangingExchange ex{2.0 / kSpeedOfLight, ra, rb, ea, eb};
+      const double ads_err = ads_twr_time_of_flight(ex, none, rng) - ex.time_of_flight;
+      const double sds_err = sds_twr_time_of_flight(ex, none, rng) - ex.time_of_flight;
+      EXPECT_NEAR(ads_err, ads_twr_drift_error(ex), 1e-19);  // rounding of the ~1e-7 s^2 products
+      // What is left is t_p (e_A + e_B) / 2: tens of micrometres, against eq. 2.8's millimetres
+      // to centimetres.
+      EXPECT_LT(kSpeedOfLight * std::abs(ads_err), 1e-4);
+      EXPECT_GT(kSpeedOfLight * std::abs(sds_err), 1e-3);
+    }
+  }
+}
+
+TEST(Ranging, AsymmetricFormulaHasTheSameTimestampNoise) {
+  std::mt19937_64 rng(2);
+  const TimestampNoise noise{UwbParams{}.rx_timestamp_std};
+  const RangingExchange ex{2.0 / kSpeedOfLight, 300e-6, 320e-6, 4e-6, -3e-6};
+  double sum = 0.0;
+  double sq = 0.0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double e = kSpeedOfLight * (ads_twr_time_of_flight(ex, noise, rng) - ex.time_of_flight);
+    sum += e;
+    sq += e * e;
+  }
+  EXPECT_NEAR(std::sqrt(sq / n), 0.05, 0.0025);
+  EXPECT_NEAR(sum / n, 0.0, 4.0 * 0.05 / std::sqrt(n));  // unbiased with drifting clocks
+}
+
 TEST(Ranging, TimestampJitterGivesTheDocumentedRangeNoise) {
   std::mt19937_64 rng(2);
   const TimestampNoise noise{UwbParams{}.rx_timestamp_std};
@@ -165,4 +199,32 @@ TEST(UwbTag, FixesAreAboutAsGoodAsTheRangeNoise) {
   const double rmse = std::sqrt(sq / n);
   EXPECT_GT(rmse, 0.02);
   EXPECT_LT(rmse, 0.10);
+}
+
+// Regression: with the seed's eq. 2.6 and the anchors replying 20 us later than the tag, every
+// anchor's range carries a constant eq. 2.8 bias, and the fixes a steady offset of about a
+// centimetre (ctrl-eval's drops were off by it). The asymmetric formula leaves only the noise.
+TEST(UwbTag, FixesHaveNoSteadyBiasFromTheReplyDelays) {
+  auto steady_offset = [](RangingFormula formula) {
+    double sq = 0.0;
+    const int tags = 30;
+    for (int s = 0; s < tags; ++s) {
+      UwbParams p;
+      p.ranging = formula;
+      UwbTag tag(corners(), p, std::mt19937_64(100 + s));
+      const Pose2 pose{1.2, 1.7, 0.4};
+      const Vec2 antenna = tag.antenna_position(pose);
+      Vec2 mean;
+      const int n = 400;
+      for (int i = 0; i < n; ++i) mean = mean + (1.0 / n) * (tag.measure(pose, i * 0.05)->position - antenna);
+      sq += fleet::geometry::dot(mean, mean);
+    }
+    return std::sqrt(sq / tags);  // rms over tags (clock draws) of the mean fix error
+  };
+  // Averaging 400 fixes of ~5 cm leaves ~0.3 cm of noise in each mean.
+  const double ads = steady_offset(RangingFormula::ads_twr);
+  const double sds = steady_offset(RangingFormula::sds_twr);
+  EXPECT_LT(ads, 0.004);
+  EXPECT_GT(sds, 0.006);
+  EXPECT_EQ(UwbParams{}.ranging, RangingFormula::ads_twr);
 }

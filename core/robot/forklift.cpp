@@ -1,0 +1,350 @@
+#include "robot/forklift.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+
+namespace fleet::robot {
+
+using geometry::Pose2;
+using geometry::Vec2;
+
+namespace {
+
+constexpr double kDynamicUpdatePeriod = 0.1;  // sim seconds between dynamic-grid rebuilds (10 Hz)
+constexpr double kLookahead = 1.0;            // metres of path checked (seed 000, section 5.3)
+constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
+constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
+constexpr double kTemporarySize = 0.3;        // side of a temporary obstacle box, metres
+
+planning::StaticGrid make_static_grid(const ForkliftConfig& c, const map::SiteMap& site) {
+  return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
+}
+
+geometry::Polygon box_around(Vec2 c, double side) {
+  const double h = side / 2.0;
+  return {{c.x - h, c.y - h}, {c.x + h, c.y - h}, {c.x + h, c.y + h}, {c.x - h, c.y + h}};
+}
+
+}  // namespace
+
+ForkliftConfig ForkliftConfig::defaults() {
+  ForkliftConfig c;
+  c.task.follower = control::FollowerParams::regulated();
+  return c;
+}
+
+Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
+                   std::uint64_t seed, std::uint64_t stream)
+    : config_(config),
+      site_(std::move(site)),
+      sim_(config.sim, site_->site, home, seed, stream),
+      camera_(
+          [&] {
+            perception::MarkerCameraParams cp = config.camera;
+            cp.camera_x = config.task.geometry.camera_x;
+            return cp;
+          }(),
+          seed * 7919 + stream),
+      pallets_([&] {
+        perception::PalletWorldParams wp;
+        wp.carry_x = config.task.geometry.carry_x;
+        wp.marker_offset = config.task.geometry.marker_offset;
+        return wp;
+      }()),
+      executor_(config.task, home),
+      static_grid_(make_static_grid(config, *site_)),
+      dynamic_([&] {
+        // Grow the others by our half width, not our circumscribed radius: on a lane what must
+        // stay free is the strip we sweep, and a robot parked at a home beside the road
+        // (0.25 m from its centre line on the tables) must not close the road.
+        planning::DynamicGridConfiguration d;
+        d.own_radius = config.sim.forklift.footprint.width / 2.0 + 0.02;
+        d.safety_margin = config.neighbour_margin;
+        d.stale_after = config.stale_after;
+        d.max_speed = config.neighbour_max_speed;
+        return d;
+      }()),
+      road_(site_->graph.graph),
+      routes_(road_, grid_astar_) {
+  for (const auto& o : site_->site.static_obstacles) {
+    obstacles_[o.id] = o.enabled_at_start;
+    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
+  }
+  sim_.warm_up(1.0, step_period());
+}
+
+bool Forklift::submit(const task::TaskOrder& order, std::string* why) { return executor_.submit(order, why); }
+
+void Forklift::withdraw() {
+  std::string why;
+  if (!executor_.cancel(&why)) {
+    // Past the pick the order cannot be cancelled in the state machine; the server has already
+    // written it off, so stop and wait for an operator or a new order at home.
+    executor_.fault("order withdrawn by the server: " + why);
+    executor_.reset();
+  }
+}
+
+void Forklift::set_paused(bool paused) {
+  if (paused) {
+    executor_.pause();
+  } else {
+    executor_.resume();
+  }
+}
+
+void Forklift::set_obstacle(const std::string& id, bool enabled) {
+  auto it = obstacles_.find(id);
+  if (it == obstacles_.end() || it->second == enabled) return;
+  it->second = enabled;
+  static_grid_.set_obstacle_enabled(id, enabled);
+  executor_.replan();
+}
+
+void Forklift::set_standing_pallets(const std::map<int, Pose2>& standing) {
+  std::vector<int> gone;
+  for (const auto& p : pallets_.pallets()) {
+    if (!p.carried && !standing.contains(p.id)) gone.push_back(p.id);
+  }
+  for (int id : gone) pallets_.remove(id);
+  for (const auto& [id, pose] : standing) pallets_.place(id, pose);
+}
+
+void Forklift::set_neighbours(std::vector<Neighbour> neighbours) { neighbours_ = std::move(neighbours); }
+
+std::string Forklift::task_state() const { return task::to_string(executor_.state()); }
+
+std::optional<std::string> Forklift::order_id() const {
+  if (executor_.order()) return executor_.order()->order_id;
+  return std::nullopt;
+}
+
+std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
+  std::vector<geometry::Polygon> out;
+  for (const auto& o : site_->site.static_obstacles) {
+    if (obstacles_.at(o.id)) out.push_back(o.polygon);
+  }
+  // A neighbour shadows an anchor only near the tag: the ray from an anchor at height z_a to the
+  // tag at z_t rises above a robot of height h within (h - z_t) / (z_a - z_t) of the horizontal
+  // distance. Anchors stand about 1 m high around the table, 2-4 m away, so only a robot within
+  // a few centimetres to a dozen of our antenna blocks a range; treating its 2D outline as a wall
+  // to every anchor would shadow most of the table.
+  const Vec2 tag = sim_.estimate().position();
+  const double reach = 0.15;  // metres: (0.15 - 0.10) / (1.0 - 0.10) x 3 m, rounded up
+  for (const auto& n : neighbours_) {
+    const auto polygon = geometry::footprint_polygon(n.pose, n.footprint);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec2& corner : polygon) nearest = std::min(nearest, geometry::distance(corner, tag));
+    if (nearest <= reach || geometry::contains(polygon, tag)) out.push_back(polygon);
+  }
+  return out;
+}
+
+double Forklift::clearance_ahead() const {
+  // Distance along the followed path to the first cell the other robots occupy (grown by our
+  // radius, their speed x data age, or the stale rule), seed 000 section 5.3.
+  if (path_.size() < 2 || neighbours_.empty()) return std::numeric_limits<double>::infinity();
+  const auto& layer = dynamic_.dynamic_layer();
+  const Vec2 here = sim_.estimate().position();
+  // Start from the path point nearest the robot.
+  std::size_t start = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < path_.size(); ++i) {
+    const double d = geometry::distance(here, path_[i]);
+    if (d < best) {
+      best = d;
+      start = i;
+    }
+  }
+  double travelled = 0.0;
+  Vec2 prev = here;
+  const double step = layer.resolution() / 2.0;
+  for (std::size_t i = start; i < path_.size() && travelled < kLookahead; ++i) {
+    const Vec2 next = path_[i];
+    const double len = geometry::distance(prev, next);
+    for (double s = 0.0; s < len && travelled + s < kLookahead; s += step) {
+      const Vec2 p = prev + (s / len) * (next - prev);
+      if (layer.size() > 0 && layer.occupied_at(p)) {
+        // The layer is grown by our half width; along the path our front reaches half a length.
+        const double front = footprint().length / 2.0 - dynamic_.configuration().own_radius;
+        return std::max(0.0, travelled + s - front);
+      }
+    }
+    travelled += len;
+    prev = next;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+void Forklift::step() {
+  const double dt = step_period();
+  const double t = sim_.time();
+
+  if (t >= next_dynamic_update_) {
+    next_dynamic_update_ = t + kDynamicUpdatePeriod;
+    std::vector<planning::Neighbour> others;
+    for (const auto& n : neighbours_) others.push_back({n.robot_id, n.pose, n.speed, n.age, n.footprint});
+    dynamic_.update(static_grid_.permanent_grid(), others, nullptr);
+    // Seed 000, Fig. 5.13: a temporary obstacle goes once its area is seen free again.
+    std::vector<std::string> cleared;
+    for (const auto& [id, polygon] : static_grid_.temporaries()) {
+      Vec2 centre{};
+      bool free = true;
+      for (const Vec2& corner : polygon) {
+        free = free && !dynamic_.dynamic_layer().occupied_at(corner);
+        centre = centre + (1.0 / static_cast<double>(polygon.size())) * corner;
+      }
+      free = free && !dynamic_.dynamic_layer().occupied_at(centre);
+      seen_free_[id] = free ? seen_free_[id] + 1 : 0;
+      if (seen_free_[id] >= kClearChecks) cleared.push_back(id);
+    }
+    for (const auto& id : cleared) {
+      static_grid_.remove_temporary(id);
+      seen_free_.erase(id);
+      executor_.replan();
+    }
+  }
+
+  // Another robot in the way: wait (WAITING, with the reason), and after a while plan around it
+  // with a temporary obstacle (seed 000, section 5.3).
+  const double clearance = clearance_ahead();
+  const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
+                       (executor_.state() == task::State::kWaiting && blocked_by_neighbour_);
+  const bool blocked = driving && clearance <= config_.stop_distance;
+  if (blocked != blocked_by_neighbour_) {
+    blocked_by_neighbour_ = blocked;
+    executor_.set_blocked(blocked);
+    detail_ = blocked ? "another robot ahead" : "";
+    blocked_since_ = blocked ? t : -1.0;
+  }
+  if (blocked && t - blocked_since_ > kDetourAfter) {
+    const Pose2 here = sim_.estimate();
+    const Vec2 ahead{here.x + (clearance + kTemporarySize / 2) * std::cos(here.yaw),
+                     here.y + (clearance + kTemporarySize / 2) * std::sin(here.yaw)};
+    static_grid_.add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, kTemporarySize));
+    blocked_since_ = t;
+    blocked_by_neighbour_ = false;
+    executor_.set_blocked(false);
+    executor_.replan();
+    detail_ = "planning around a robot in the way";
+  }
+
+  std::vector<perception::MarkerDetection> detections;
+  if (camera_.frame_due(t)) detections = camera_.capture(t, sim_.truth(), pallets_.markers());
+  const task::TaskOutput out = executor_.step({t, sim_.estimate(), detections, clearance});
+
+  const perception::ForkEvent fork = pallets_.update(0, sim_.truth(), out.fork_up);
+  switch (fork.kind) {
+    case perception::ForkEvent::Kind::kLifted:
+      carried_pallet_ = fork.pallet_id;
+      events_.push_back({ForkliftEvent::Kind::kLifted, order_id().value_or(""), "", fork.pallet_id, {}});
+      break;
+    case perception::ForkEvent::Kind::kPutDown:
+      last_put_down_ = std::pair{fork.pallet_id, pallets_.find(fork.pallet_id)->pose};
+      carried_pallet_ = -1;
+      break;
+    case perception::ForkEvent::Kind::kLiftMissed:
+    case perception::ForkEvent::Kind::kNone:
+      break;
+  }
+
+  command_ = safe(out.twist);
+  const auto blockers = uwb_blockers();
+  sim_.step(command_, dt, blockers);
+  answer_plan_requests();
+  collect_reports();
+}
+
+control::BodyTwist Forklift::safe(const control::BodyTwist& cmd) const {
+  // The last line of defence under traffic and local planning, in every state: a command that
+  // would bring this footprint within `safety_gap` of another robot (grown by what it may have
+  // moved since its pose was measured) within the horizon, and closer than it is now, becomes a
+  // stop. Moving apart stays allowed, so two robots that met can always separate.
+  constexpr double kHorizon = 0.4;  // sim seconds of the current command looked ahead
+  if (neighbours_.empty() || cmd == control::BodyTwist{}) return cmd;
+  const Pose2 now = sim_.estimate();
+  const auto mine_now = geometry::footprint_polygon(now, footprint());
+  const auto mine_ahead = geometry::footprint_polygon(control::integrate_twist(now, cmd, kHorizon), footprint());
+  for (const auto& n : neighbours_) {
+    const double moved = n.age > config_.stale_after ? config_.neighbour_max_speed * n.age : n.speed * n.age;
+    const auto theirs = geometry::footprint_polygon(n.pose, n.footprint, std::min(moved, 1.0));
+    const double gap_ahead = geometry::convex_polygons_distance(mine_ahead, theirs);
+    if (gap_ahead < config_.safety_gap && gap_ahead < geometry::convex_polygons_distance(mine_now, theirs)) {
+      return {};
+    }
+  }
+  return cmd;
+}
+
+void Forklift::answer_plan_requests() {
+  const auto request = executor_.take_plan_request();
+  if (!request) return;
+  if (static_grid_.revision() != grid_revision_) {
+    // Planners cache on the grid: hand them the new one only when an obstacle changed.
+    auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
+    road_.set_obstacles(*grid);
+    grid_astar_.set_grid(grid);
+    grid_revision_ = static_grid_.revision();
+  }
+  const planning::Route route = routes_.plan(sim_.estimate(), request->goal);
+  if (route.status == planning::PlanStatus::kFound && route.points.size() >= 2) {
+    path_ = route.points;
+    executor_.path_received(request->id, planning::poses_along(route.points));
+  } else {
+    // Blocked by a static obstacle (seed 000, Fig. 5.11) or no way at all: wait and ask again.
+    path_.clear();
+    detail_ = route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle" : "no route";
+    executor_.plan_failed(request->id);
+  }
+}
+
+void Forklift::collect_reports() {
+  for (const task::Transition& tr : executor_.take_transitions()) {
+    if (tr.to != tr.from) {
+      events_.push_back({ForkliftEvent::Kind::kState, order_id().value_or(""), task::to_string(tr.to), -1, {}});
+      if (tr.to != task::State::kWaiting && !blocked_by_neighbour_) detail_.clear();
+    }
+    if (tr.to_phase != tr.from_phase && tr.to_phase != task::OrderPhase::kNone) {
+      events_.push_back({ForkliftEvent::Kind::kPhase, order_id().value_or(""), task::to_string(tr.to_phase), -1, {}});
+    }
+  }
+  for (const task::TaskReport& r : executor_.take_reports()) {
+    using K = task::TaskReport::Kind;
+    switch (r.kind) {
+      case K::kDropped: {
+        ForkliftEvent e{ForkliftEvent::Kind::kDone, r.order_id, r.area_id, -1, {}};
+        if (last_put_down_) {
+          e.pallet_id = last_put_down_->first;
+          e.pallet_pose = last_put_down_->second;
+          last_put_down_.reset();
+        }
+        events_.push_back(e);
+        break;
+      }
+      case K::kAreaEmpty:
+        events_.push_back({ForkliftEvent::Kind::kAreaEmpty, r.order_id, "loading area " + r.area_id + " is empty", -1, {}});
+        break;
+      case K::kFailed:
+        events_.push_back({ForkliftEvent::Kind::kFailed, r.order_id, r.detail, -1, {}});
+        break;
+      case K::kHomeReached:
+        path_.clear();
+        events_.push_back({ForkliftEvent::Kind::kHome, "", "", -1, {}});
+        break;
+      case K::kAccepted:
+      case K::kPicked:
+      case K::kCancelled:
+        break;
+    }
+  }
+}
+
+std::vector<ForkliftEvent> Forklift::take_events() {
+  std::vector<ForkliftEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+}  // namespace fleet::robot

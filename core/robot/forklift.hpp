@@ -1,0 +1,151 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "map/site_map.hpp"
+#include "perception/marker_camera.hpp"
+#include "perception/pallet_world.hpp"
+#include "planning/dynamic_grid.hpp"
+#include "planning/grid_astar.hpp"
+#include "planning/road_planner.hpp"
+#include "planning/route_planner.hpp"
+#include "planning/static_grid.hpp"
+#include "robot/simulated_forklift.hpp"
+#include "task/task_executor.hpp"
+
+namespace fleet::robot {
+
+struct ForkliftConfig {
+  SimulatedForkliftParams sim;
+  task::ExecutorParams task;  ///< its follower defaults to the regulated one
+  perception::MarkerCameraParams camera;
+  double control_rate_hz = 70.0;  ///< pose and control rate (seed 000, Table 3.1)
+  double grid_resolution = 0.02;  ///< static grid of the route planner, metres
+  /// Another robot closer than this ahead (footprint to footprint) stops this one.
+  /// The safety stop keeps at least this gap to every other robot, whatever the task state.
+  double safety_gap = 0.03;  ///< metres
+  double stop_distance = 0.08;  ///< metres: pose latency and the sweep of a turn need a margin
+  double neighbour_margin = 0.03;  ///< metres added around other robots' footprints
+  /// A neighbour's pose older than this counts as everywhere it could have reached since
+  /// (issue 5: the stale-neighbour rule).
+  double stale_after = 0.5;  ///< sim seconds
+  double neighbour_max_speed = 0.3;  ///< m/s, bounds how far a stale neighbour may have moved
+  /// Other robots are this tall; the UWB tag sits at the sim's tag height. A robot shadows an
+  /// anchor only where the anchor-tag ray is still below its top (see uwb_blockers()).
+  double robot_height = 0.15;  ///< metres
+
+  static ForkliftConfig defaults();
+};
+
+/// Another robot as this one knows it (from FleetView).
+struct Neighbour {
+  std::string robot_id;
+  geometry::Pose2 pose;
+  geometry::Footprint footprint;
+  double speed = 0.0;
+  double age = 0.0;  ///< sim seconds since the pose was measured
+};
+
+/// What happened during a step, for the agent to report.
+struct ForkliftEvent {
+  enum class Kind {
+    kPhase,       ///< the order's phase changed: `text` is TO_PICK, SEARCHING, PICKING, TO_DROP, DROPPING
+    kLifted,      ///< a pallet is on the forks: `pallet_id`
+    kDone,        ///< pallet put down on the drop area: `pallet_id`, `pallet_pose` (truth)
+    kAreaEmpty,   ///< no pallet at the pick area: the order fails, the robot goes home
+    kFailed,      ///< the order failed: `text` says why
+    kHome,        ///< home reached, idle
+    kState,       ///< the task state changed: `text` is its name
+  };
+  Kind kind = Kind::kState;
+  std::string order_id;
+  std::string text;
+  int pallet_id = -1;
+  geometry::Pose2 pallet_pose;
+};
+
+/// One forklift: its simulated body and sensors (SimulatedForklift), the marker camera on the
+/// pallets it knows of, and its software: EKF pose into the task executor (seed 000, Fig. 6.9),
+/// route planning on the road graph with the static grid (seed 000, chapter 5), pallet search,
+/// pick and place (seed 000, sections 6.2-6.3). No I/O: the agent feeds it what arrives over DDS
+/// and publishes what it reports.
+class Forklift {
+ public:
+  Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
+           std::uint64_t seed, std::uint64_t stream);
+
+  // --- inputs ---------------------------------------------------------------------------------
+  /// An order; false with the reason when the robot cannot take it now.
+  bool submit(const task::TaskOrder& order, std::string* why);
+  /// The server withdrew the order: drop it and go home (a pallet on the forks stays there).
+  void withdraw();
+  void set_paused(bool paused);
+  /// A designated static obstacle switched on or off; the robot replans when it matters.
+  void set_obstacle(const std::string& id, bool enabled);
+  /// Where the pallets really stand (simulation truth, owned by the server). Pallets carried by
+  /// other robots are left out; the one on these forks is left alone.
+  void set_standing_pallets(const std::map<int, geometry::Pose2>& standing);
+  void set_neighbours(std::vector<Neighbour> neighbours);
+
+  /// One control step of 1 / control_rate_hz sim seconds.
+  void step();
+  double step_period() const { return 1.0 / config_.control_rate_hz; }
+
+  // --- outputs --------------------------------------------------------------------------------
+  std::vector<ForkliftEvent> take_events();
+  double time() const { return sim_.time(); }
+  const geometry::Pose2& truth() const { return sim_.truth(); }
+  geometry::Pose2 estimate() const { return sim_.estimate(); }
+  std::array<double, 9> covariance() const { return sim_.covariance(); }
+  double localization_score() const { return sim_.localization_score(); }
+  const control::BodyTwist& command() const { return command_; }
+  std::string task_state() const;
+  /// Why the robot waits or failed, empty otherwise.
+  const std::string& detail() const { return detail_; }
+  std::optional<std::string> order_id() const;
+  int carried_pallet() const { return carried_pallet_; }
+  /// The path being followed (for RobotPath and the web view).
+  const std::vector<geometry::Vec2>& path() const { return path_; }
+  const geometry::Footprint& footprint() const { return config_.sim.forklift.footprint; }
+
+ private:
+  void answer_plan_requests();
+  void collect_reports();
+  double clearance_ahead() const;
+  control::BodyTwist safe(const control::BodyTwist& cmd) const;
+  std::vector<geometry::Polygon> uwb_blockers() const;
+
+  ForkliftConfig config_;
+  std::shared_ptr<const map::SiteMap> site_;
+  SimulatedForklift sim_;
+  perception::MarkerCamera camera_;
+  perception::PalletWorld pallets_;
+  task::TaskExecutor executor_;
+  planning::StaticGrid static_grid_;
+  // Local planning (seed 000, section 5.3): the other robots on a dynamic grid, temporary
+  // obstacles for the ones in the way, removed once their area is seen free.
+  planning::DynamicGrid dynamic_;
+  planning::RoadPlanner road_;
+  planning::GridAStar grid_astar_;
+  planning::RoutePlanner routes_;
+  std::uint64_t grid_revision_ = 0;
+  std::vector<Neighbour> neighbours_;
+  std::map<std::string, bool> obstacles_;
+  std::vector<ForkliftEvent> events_;
+  std::vector<geometry::Vec2> path_;
+  control::BodyTwist command_;
+  int carried_pallet_ = -1;
+  std::optional<std::pair<int, geometry::Pose2>> last_put_down_;
+  std::string detail_;
+  bool blocked_by_neighbour_ = false;
+  double next_dynamic_update_ = 0.0;
+  double blocked_since_ = -1.0;
+  std::map<std::string, int> seen_free_;
+  int next_temporary_ = 1;
+};
+
+}  // namespace fleet::robot

@@ -1,0 +1,632 @@
+#include "traffic/traffic_manager.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+namespace fleet::traffic {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Direction of travel through `places[index]` inside its corridor: towards the next different
+// place on the route, 0 when the route leaves the corridor there or ends. Only robots still to
+// drive along a corridor claim its direction; one standing at its goal does not.
+int direction_in(const ConflictZones& zones, const std::vector<int>& places, int index) {
+  const int p = places[static_cast<std::size_t>(index)];
+  if (zones.corridor(p) < 0) return 0;
+  const int n = static_cast<int>(places.size());
+  int j = index + 1;
+  while (j < n && places[static_cast<std::size_t>(j)] == p) ++j;
+  if (j < n) return zones.corridor_direction(p, places[static_cast<std::size_t>(j)]);
+  return 0;
+}
+
+void check_positive(double value, const char* key) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string("traffic configuration: ") + key + " must be a positive number, got " +
+                                std::to_string(value));
+  }
+}
+
+}  // namespace
+
+TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfiguration& configuration)
+    : configuration_(configuration), graph_(graph) {
+  check_positive(configuration.lookahead, "lookahead");
+  check_positive(configuration.priority_wait, "priority_wait");
+  check_positive(configuration.reroute_wait, "reroute_wait");
+  check_positive(configuration.yield_timeout, "yield_timeout");
+  check_positive(configuration.siding_window, "siding_window");
+  if (!(configuration.release_margin >= 0.0)) throw std::invalid_argument("traffic configuration: release_margin must be >= 0");
+  if (!(configuration.stop_tolerance >= 0.0)) throw std::invalid_argument("traffic configuration: stop_tolerance must be >= 0");
+  zones_ = std::make_unique<ConflictZones>(graph_, configuration.resources);
+  search_ = std::make_unique<RouteSearch>(graph_, *zones_);
+  if (configuration.one_way) one_way_ = one_way_plan(graph_, *zones_);
+  route_search_ = std::make_unique<RouteSearch>(route_graph(), *zones_);
+}
+
+// ---- robots and routes ----------------------------------------------------------------------------
+
+void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::uint32_t version) {
+  robot.version = version;
+  robot.route = std::move(points);
+  const std::size_t n = robot.route.size();
+  robot.places.resize(n);
+  robot.cum.assign(n, 0.0);
+  robot.release_at.assign(n, kInfinity);
+  for (std::size_t i = 0; i < n; ++i) robot.places[i] = zones_->place_of(robot.route[i]);
+  for (std::size_t i = 1; i < n; ++i) robot.cum[i] = robot.cum[i - 1] + search_->edge_length(robot.route[i - 1], robot.route[i]);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    robot.release_at[i] = robot.cum[i] + 0.5 * (robot.cum[i + 1] - robot.cum[i]) + configuration_.release_margin;
+  }
+  robot.progress = 0.0;
+  robot.first_held = 0;
+  robot.grant_end = 0;
+  robot.wait_since = -1.0;
+  robot.blocked = false;
+  robot.stopped = true;
+  robot.blocked_by.clear();
+  // Previous holdings stay until the robot is past the first edge of the new route.
+  std::size_t k = 0;
+  while (k + 1 < n && robot.places[k + 1] == robot.places[0]) ++k;
+  robot.trail_release = robot.release_at[k];
+}
+
+SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double now) {
+  (void)now;
+  const auto& points = request.points;
+  if (points.empty()) return SubmitStatus::kInvalid;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (points[i] < 0 || static_cast<std::size_t>(points[i]) >= graph_.points.size()) return SubmitStatus::kInvalid;
+    if (i == 0) continue;
+    const auto& next = graph_.successors[static_cast<std::size_t>(points[i - 1])];
+    const bool joined = std::find(next.begin(), next.end(), points[i]) != next.end() ||
+                        zones_->place_of(points[i - 1]) == zones_->place_of(points[i]);
+    if (!joined) return SubmitStatus::kInvalid;
+  }
+  auto it = robots_.find(request.robot_id);
+  if (it == robots_.end()) {
+    Robot robot;
+    robot.id = request.robot_id;
+    install_route(robot, points, request.version);
+    robots_.emplace(request.robot_id, std::move(robot));
+    return SubmitStatus::kAccepted;
+  }
+  Robot& robot = it->second;
+  if (request.version <= robot.version) return SubmitStatus::kStale;
+  std::vector<int> held = held_places(robot.id);
+  const int start = zones_->place_of(points.front());
+  if (!std::binary_search(held.begin(), held.end(), start)) return SubmitStatus::kInvalid;
+  held.erase(std::remove(held.begin(), held.end(), start), held.end());
+  install_route(robot, points, request.version);
+  robot.trail = std::move(held);
+  robot.pending = Instruction::kNone;
+  robot.in_siding = false;
+  robot.yield_to.clear();
+  return SubmitStatus::kAccepted;
+}
+
+void TrafficManager::report_progress(const ProgressReport& report, double now) {
+  (void)now;
+  auto it = robots_.find(report.robot_id);
+  if (it == robots_.end() || !std::isfinite(report.distance)) return;
+  Robot& robot = it->second;
+  if (report.version != robot.version) return;
+  robot.pending = Instruction::kNone;  // the robot drives this version: the instruction arrived
+  const double limit = robot.cum[static_cast<std::size_t>(robot.grant_end)];
+  robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
+}
+
+bool TrafficManager::remove_robot(int robot_id, double now) {
+  if (robots_.erase(robot_id) == 0) return false;
+  for (auto& [id, robot] : robots_) {
+    robot.yield_to.erase(std::remove(robot.yield_to.begin(), robot.yield_to.end(), robot_id), robot.yield_to.end());
+  }
+  removed_.push_back({TrafficEvent::Kind::kRobotRemoved, now, robot_id, {}});
+  return true;
+}
+
+void TrafficManager::release_passed(Robot& robot) {
+  while (robot.first_held < robot.grant_end && robot.progress > robot.release_at[static_cast<std::size_t>(robot.first_held)]) {
+    ++robot.first_held;
+  }
+  if (!robot.trail.empty() && robot.progress > robot.trail_release) robot.trail.clear();
+}
+
+std::vector<int> TrafficManager::robot_ids() const {
+  std::vector<int> ids;
+  for (const auto& [id, robot] : robots_) ids.push_back(id);
+  return ids;
+}
+
+std::vector<int> TrafficManager::held_places(int robot_id) const {
+  auto it = robots_.find(robot_id);
+  if (it == robots_.end()) return {};
+  const Robot& robot = it->second;
+  std::vector<int> held(robot.trail);
+  for (int k = robot.first_held; k <= robot.grant_end; ++k) held.push_back(robot.places[static_cast<std::size_t>(k)]);
+  std::sort(held.begin(), held.end());
+  held.erase(std::unique(held.begin(), held.end()), held.end());
+  return held;
+}
+
+const std::vector<int>& TrafficManager::route(int robot_id) const {
+  static const std::vector<int> empty;
+  auto it = robots_.find(robot_id);
+  return it == robots_.end() ? empty : it->second.route;
+}
+
+std::uint32_t TrafficManager::version(int robot_id) const {
+  auto it = robots_.find(robot_id);
+  return it == robots_.end() ? 0 : it->second.version;
+}
+
+std::string TrafficManager::check_invariant() const {
+  // Conflicts are symmetric: checking each robot's places against the regions of the robots
+  // before it finds every conflicting pair in robots x places x conflict-set size.
+  std::vector<int> covered_by(zones_->place_count(), -1);
+  for (const auto& [id, robot] : robots_) {
+    const std::vector<int> held = held_places(id);
+    for (int p : held) {
+      const int other = covered_by[static_cast<std::size_t>(p)];
+      if (other >= 0) {
+        std::ostringstream out;
+        out << "robot " << id << " holds place " << p << ", which conflicts with a place robot " << other << " holds";
+        return out.str();
+      }
+    }
+    for (int p : held) {
+      for (int q : zones_->conflicts(p)) covered_by[static_cast<std::size_t>(q)] = id;
+    }
+  }
+  return {};
+}
+
+// ---- occupancy --------------------------------------------------------------------------------------
+
+int TrafficManager::direction_at(const Robot& robot, int index) const { return direction_in(*zones_, robot.places, index); }
+
+int TrafficManager::next_stretch_end(const Robot& robot) const {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  int j = robot.grant_end;
+  if (j >= last) return last;
+  ++j;
+  while (j < last && !zones_->stoppable(robot.places[static_cast<std::size_t>(j)])) ++j;
+  return j;
+}
+
+void TrafficManager::mark(const Robot& robot, int slot, int index) {
+  const std::uint64_t bit = std::uint64_t{1} << (slot % 64);
+  const std::size_t word = static_cast<std::size_t>(slot / 64);
+  const int p = robot.places[static_cast<std::size_t>(index)];
+  for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + word] |= bit;
+  const int d = direction_at(robot, index);
+  const int c = zones_->corridor(p);
+  if (d != 0) {
+    add_span(c, slot, d, zones_->corridor_index(p), false);
+  } else if (c >= 0 && index + 1 == static_cast<int>(robot.route.size()) && !robot.in_siding) {
+    // Standing at the end of its route, it may leave either way: nobody drives up to it head-on.
+    // (A robot in a siding stands off the others' routes and leaves only once they have passed.)
+    add_span(c, slot, 0, zones_->corridor_index(p), false);
+  }
+}
+
+void TrafficManager::add_span(int corridor, int slot, int direction, int index, bool reserved) {
+  auto& spans = spans_[static_cast<std::size_t>(corridor)];
+  for (auto& span : spans) {
+    if (span.slot == slot && span.direction == direction && span.reserved == reserved) {
+      span.lo = std::min(span.lo, index);
+      span.hi = std::max(span.hi, index);
+      return;
+    }
+  }
+  spans.push_back({slot, direction, index, index, reserved});
+}
+
+void TrafficManager::rebuild_occupancy() {
+  words_ = std::max<std::size_t>(1, (slots_.size() + 63) / 64);
+  occupancy_.assign(zones_->place_count() * words_, 0);
+  spans_.resize(zones_->corridor_count());
+  for (auto& spans : spans_) spans.clear();
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const Robot& robot = *slots_[s];
+    const std::uint64_t bit = std::uint64_t{1} << (s % 64);
+    for (int k = robot.first_held; k <= robot.grant_end; ++k) mark(robot, static_cast<int>(s), k);
+    for (int p : robot.trail) {
+      for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + s / 64] |= bit;
+    }
+  }
+  // Reservations of robots waiting longer than priority_wait: the places of the stretch they wait
+  // for, and its corridor direction, against robots that would newly enter them.
+  claim_place_.assign(zones_->place_count(), -1);
+  std::vector<int> claimants;
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const Robot& robot = *slots_[s];
+    if (robot.wait_since >= 0.0 && robot.blocked && now_ - robot.wait_since >= configuration_.priority_wait) {
+      claimants.push_back(static_cast<int>(s));
+    }
+  }
+  std::sort(claimants.begin(), claimants.end(), [&](int a, int b) { return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]); });
+  for (int s : claimants) {
+    const Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    const int end = next_stretch_end(robot);
+    for (int j = robot.grant_end + 1; j <= end; ++j) {
+      const int p = robot.places[static_cast<std::size_t>(j)];
+      for (int q : zones_->conflicts(p)) {
+        if (claim_place_[static_cast<std::size_t>(q)] < 0) claim_place_[static_cast<std::size_t>(q)] = s;
+      }
+      const int d = direction_at(robot, j);
+      if (d != 0) add_span(zones_->corridor(p), s, d, zones_->corridor_index(p), true);
+    }
+  }
+}
+
+bool TrafficManager::higher_priority(const Robot& a, const Robot& b) const {
+  const double wa = a.wait_since >= 0.0 ? a.wait_since : kInfinity;
+  const double wb = b.wait_since >= 0.0 ? b.wait_since : kInfinity;
+  if (wa != wb) return wa < wb;
+  return a.id < b.id;
+}
+
+// Robots that keep robot `slot` out of `places[index]`: holders of conflicting places, robots in
+// the same corridor driving the other way, and reservations of older waiting robots.
+bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const {
+  const std::size_t before = blockers.size();
+  const int p = places[static_cast<std::size_t>(index)];
+  const auto own_word = static_cast<std::size_t>(slot / 64);
+  const std::uint64_t own_bit = std::uint64_t{1} << (slot % 64);
+  auto collect = [&](const std::uint64_t* words) {
+    for (std::size_t w = 0; w < words_; ++w) {
+      std::uint64_t bits = words[w];
+      if (w == own_word) bits &= ~own_bit;
+      while (bits != 0) {
+        const int b = __builtin_ctzll(bits);
+        bits &= bits - 1;
+        blockers.push_back(static_cast<int>(w * 64) + b);
+      }
+    }
+  };
+  collect(&occupancy_[static_cast<std::size_t>(p) * words_]);
+  auto claimed_by = [&](int w) {
+    if (w < 0 || w == slot) return;
+    const Robot& claimant = *slots_[static_cast<std::size_t>(w)];
+    const Robot& self = *slots_[static_cast<std::size_t>(slot)];
+    // The robots a claimant waits for must stay free to move out of its way.
+    if (std::find(claimant.blocked_by.begin(), claimant.blocked_by.end(), self.id) != claimant.blocked_by.end()) return;
+    if (higher_priority(self, claimant)) return;
+    blockers.push_back(w);
+  };
+  // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
+  const int claimant = claim_place_[static_cast<std::size_t>(p)];
+  if (claimant >= 0 && (index == 0 || claim_place_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] != claimant)) {
+    claimed_by(claimant);
+  }
+  // Head-on: someone in this corridor driving the other way, ahead of this place (robots driving
+  // apart do not meet). Around a loop corridor everyone is ahead.
+  const int d = direction_in(*zones_, places, index);
+  if (d != 0) {
+    const int c = zones_->corridor(p);
+    const int at = zones_->corridor_index(p);
+    const bool loop = zones_->corridor_is_loop(c);
+    int before_index = index - 1;
+    while (before_index >= 0 && places[static_cast<std::size_t>(before_index)] == p) --before_index;
+    // Only a robot entering the corridor respects reservations: one inside must be free to leave.
+    const bool entering = before_index < 0 || zones_->corridor(places[static_cast<std::size_t>(before_index)]) != c;
+    for (const CorridorSpan& span : spans_[static_cast<std::size_t>(c)]) {
+      if (span.slot == slot || (span.direction != -d && span.direction != 0)) continue;
+      const bool ahead = loop || (d > 0 ? span.hi >= at : span.lo <= at);
+      if (!ahead) continue;
+      if (span.reserved) {
+        if (entering) claimed_by(span.slot);
+      } else {
+        blockers.push_back(span.slot);
+      }
+    }
+  }
+  return blockers.size() == before;
+}
+
+void TrafficManager::extend(Robot& robot, int slot) {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  robot.blocked = false;
+  robot.blocked_by.clear();
+  const double target = robot.progress + configuration_.lookahead;
+  std::vector<int> blockers;
+  while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {
+    int j = robot.grant_end + 1;
+    bool free = true;
+    for (;; ++j) {
+      if (!place_free_for(slot, robot.places, j, blockers)) {
+        free = false;
+        break;
+      }
+      if (j == last || zones_->stoppable(robot.places[static_cast<std::size_t>(j)])) break;
+    }
+    if (!free) {
+      robot.blocked = true;
+      std::sort(blockers.begin(), blockers.end());
+      blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
+      for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
+      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
+      break;
+    }
+    for (int k = robot.grant_end + 1; k <= j; ++k) mark(robot, slot, k);
+    robot.grant_end = j;
+  }
+}
+
+bool TrafficManager::stopped_at_grant_end(const Robot& robot) const {
+  return robot.progress >= robot.cum[static_cast<std::size_t>(robot.grant_end)] - configuration_.stop_tolerance;
+}
+
+// ---- re-routes and sidings -------------------------------------------------------------------------
+
+std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int>& others, bool with_next_stretch,
+                                                           double window) const {
+  std::vector<std::uint8_t> mask(zones_->place_count(), 0);
+  auto add = [&](int p) {
+    for (int q : zones_->conflicts(p)) mask[static_cast<std::size_t>(q)] = 1;
+  };
+  for (int id : others) {
+    auto it = robots_.find(id);
+    if (it == robots_.end()) continue;
+    const Robot& o = it->second;
+    for (int p : o.trail) add(p);
+    int end = o.grant_end;
+    if (with_next_stretch) end = std::max(end, next_stretch_end(o));
+    for (int k = o.first_held; k <= end; ++k) add(o.places[static_cast<std::size_t>(k)]);
+    for (int k = o.first_held; k < static_cast<int>(o.route.size()) && o.cum[static_cast<std::size_t>(k)] <= o.progress + window; ++k) {
+      add(o.places[static_cast<std::size_t>(k)]);
+    }
+  }
+  return mask;
+}
+
+bool TrafficManager::first_stretch_free(const std::vector<int>& points, int slot) const {
+  std::vector<int> places(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) places[i] = zones_->place_of(points[i]);
+  const int last = static_cast<int>(places.size()) - 1;
+  std::vector<int> blockers;
+  for (int j = 1; j <= last; ++j) {
+    if (!place_free_for(slot, places, j, blockers)) return false;
+    if (zones_->stoppable(places[static_cast<std::size_t>(j)])) break;
+  }
+  return true;
+}
+
+int TrafficManager::slot_of(int robot_id) const {
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    if (slots_[s]->id == robot_id) return static_cast<int>(s);
+  }
+  return -1;
+}
+
+void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now) {
+  std::vector<int> held = held_places(robot.id);
+  const int start = zones_->place_of(points.front());
+  held.erase(std::remove(held.begin(), held.end(), start), held.end());
+  install_route(robot, std::move(points), robot.version + 1);
+  robot.trail = std::move(held);
+  robot.pending = instruction;
+  robot.last_reroute = now;
+}
+
+bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
+                             TrafficEvent::Kind kind) {
+  const int slot = slot_of(robot.id);
+  const int anchor = robot.route[static_cast<std::size_t>(robot.grant_end)];
+  const int goal = robot.route.back();
+  const auto blocked = places_of_others(others, true, 0.0);
+  std::vector<int> path = route_search_->shortest(anchor, goal, &blocked);
+  if (path.size() < 2) return false;
+  // Only a different way helps, and only one the robot can start on now.
+  std::vector<int> remaining(robot.route.begin() + robot.grant_end, robot.route.end());
+  if (path == remaining) return false;
+  if (!first_stretch_free(path, slot)) return false;
+  replace_route(robot, std::move(path), Instruction::kReroute, now);
+  out.events.push_back({kind, now, robot.id, others});
+  return true;
+}
+
+bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out) {
+  const int slot = slot_of(robot.id);
+  const int anchor = robot.route[static_cast<std::size_t>(robot.grant_end)];
+  // The robot may drive through nothing another robot holds ...
+  std::vector<int> everyone;
+  for (const auto& [id, o] : robots_) {
+    if (id != robot.id) everyone.push_back(id);
+  }
+  const auto through = places_of_others(everyone, false, 0.0);
+  // ... and must end off the others' remaining routes, or it would stand in their way again; when
+  // no such place is reachable, off their next `siding_window` metres (they pass it before it
+  // matters).
+  std::vector<int> path;
+  for (double window : {kInfinity, configuration_.siding_window}) {
+    auto avoid = places_of_others(others, true, window);
+    for (std::size_t p = 0; p < avoid.size(); ++p) avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p]);
+    path = search_->nearest(
+        anchor, [&](int place) { return zones_->stoppable(place) && avoid[static_cast<std::size_t>(place)] == 0; }, &through);
+    if (path.size() >= 2) break;
+  }
+  if (path.size() < 2) return false;
+  if (!first_stretch_free(path, slot)) return false;
+  const int goal = robot.in_siding ? robot.resume_goal : robot.route.back();
+  replace_route(robot, std::move(path), Instruction::kSiding, now);
+  robot.in_siding = true;
+  robot.resume_goal = goal;
+  robot.yield_to = others;
+  robot.siding_arrival = -1.0;
+  out.events.push_back({TrafficEvent::Kind::kSidingSent, now, robot.id, others});
+  return true;
+}
+
+void TrafficManager::try_resume(Robot& robot, double now, UpdateResult& out) {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  if (!robot.in_siding || robot.grant_end != last || !robot.stopped) return;
+  if (robot.siding_arrival < 0.0) robot.siding_arrival = now;
+  std::vector<int> path = route_search_->shortest(robot.route.back(), robot.resume_goal, nullptr);
+  if (path.empty()) path = search_->shortest(robot.route.back(), robot.resume_goal, nullptr);
+  if (path.size() < 2) {
+    // At the goal already, or the goal is unreachable: nothing to resume.
+    if (path.size() == 1) robot.in_siding = false;
+    return;
+  }
+  std::vector<int> alive;
+  for (int id : robot.yield_to) {
+    if (robots_.count(id) != 0) alive.push_back(id);
+  }
+  const auto theirs = places_of_others(alive, true, configuration_.siding_window);
+  bool clear = true;
+  double travelled = 0.0;
+  for (std::size_t i = 1; i < path.size() && travelled <= configuration_.siding_window; ++i) {
+    travelled += search_->edge_length(path[i - 1], path[i]);
+    if (theirs[static_cast<std::size_t>(zones_->place_of(path[i]))]) {
+      clear = false;
+      break;
+    }
+  }
+  if (!clear && now - robot.siding_arrival < configuration_.yield_timeout) return;
+  replace_route(robot, std::move(path), Instruction::kReroute, now);
+  robot.in_siding = false;
+  out.events.push_back({TrafficEvent::Kind::kResumed, now, robot.id, robot.yield_to});
+  robot.yield_to.clear();
+}
+
+// Tarjan's strongly connected components over the wait-for graph of stopped, waiting robots.
+void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
+  const std::size_t n = slots_.size();
+  std::vector<std::vector<int>> edges(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const Robot& r = *slots_[s];
+    if (r.wait_since < 0.0) continue;
+    for (int id : r.blocked_by) {
+      const int t = slot_of(id);
+      if (t >= 0 && slots_[static_cast<std::size_t>(t)]->wait_since >= 0.0) edges[s].push_back(t);
+    }
+  }
+  std::vector<int> index(n, -1), low(n, 0), stack;
+  std::vector<std::uint8_t> on_stack(n, 0);
+  std::vector<std::vector<int>> components;
+  int counter = 0;
+  std::function<void(int)> connect = [&](int v) {
+    const auto sv = static_cast<std::size_t>(v);
+    index[sv] = low[sv] = counter++;
+    stack.push_back(v);
+    on_stack[sv] = 1;
+    for (int w : edges[sv]) {
+      const auto sw = static_cast<std::size_t>(w);
+      if (index[sw] < 0) {
+        connect(w);
+        low[sv] = std::min(low[sv], low[sw]);
+      } else if (on_stack[sw]) {
+        low[sv] = std::min(low[sv], index[sw]);
+      }
+    }
+    if (low[sv] == index[sv]) {
+      std::vector<int> component;
+      int w = -1;
+      do {
+        w = stack.back();
+        stack.pop_back();
+        on_stack[static_cast<std::size_t>(w)] = 0;
+        component.push_back(w);
+      } while (w != v);
+      if (component.size() >= 2) components.push_back(std::move(component));
+    }
+  };
+  for (std::size_t s = 0; s < n; ++s) {
+    if (index[s] < 0 && slots_[s]->wait_since >= 0.0) connect(static_cast<int>(s));
+  }
+  for (auto& component : components) {
+    // Lowest priority first: it yields.
+    std::sort(component.begin(), component.end(), [&](int a, int b) {
+      return higher_priority(*slots_[static_cast<std::size_t>(b)], *slots_[static_cast<std::size_t>(a)]);
+    });
+    std::vector<int> ids;
+    for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
+    bool resolved = false;
+    for (int s : component) {
+      Robot& victim = *slots_[static_cast<std::size_t>(s)];
+      // It goes round the robots it waits for, or out of the way of the robots waiting for it.
+      std::vector<int> blockers, waiters;
+      for (int id : ids) {
+        if (id == victim.id) continue;
+        const Robot& other = robots_.at(id);
+        if (std::find(victim.blocked_by.begin(), victim.blocked_by.end(), id) != victim.blocked_by.end()) blockers.push_back(id);
+        if (std::find(other.blocked_by.begin(), other.blocked_by.end(), victim.id) != other.blocked_by.end()) waiters.push_back(id);
+      }
+      if (reroute(victim, blockers, now, out, TrafficEvent::Kind::kDeadlockResolved) || send_to_siding(victim, waiters, now, out)) {
+        resolved = true;
+        break;
+      }
+    }
+    if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
+  }
+}
+
+// ---- the cycle -------------------------------------------------------------------------------------
+
+UpdateResult TrafficManager::update(double now) {
+  UpdateResult out;
+  out.events.swap(removed_);
+  now_ = now;
+  slots_.clear();
+  for (auto& [id, robot] : robots_) slots_.push_back(&robot);
+  for (Robot* robot : slots_) release_passed(*robot);
+  rebuild_occupancy();
+
+  std::vector<int> order(slots_.size());
+  for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]); });
+  for (int s : order) {
+    Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    extend(robot, s);
+    robot.stopped = stopped_at_grant_end(robot);
+    const bool waiting = robot.blocked && robot.stopped;
+    if (!waiting) {
+      robot.wait_since = -1.0;
+    } else if (robot.wait_since < 0.0) {
+      robot.wait_since = now;
+    }
+  }
+
+  for (Robot* robot : slots_) try_resume(*robot, now, out);
+  resolve_cycles(now, out);
+  for (int s : order) {
+    Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.wait_since < configuration_.reroute_wait ||
+        now - robot.last_reroute < configuration_.reroute_wait) {
+      continue;
+    }
+    if (!reroute(robot, robot.blocked_by, now, out, TrafficEvent::Kind::kRerouted)) robot.last_reroute = now;
+  }
+
+  out.grants.reserve(slots_.size());
+  for (Robot* robot : slots_) {
+    Grant g;
+    g.robot_id = robot->id;
+    g.version = robot->version;
+    g.granted_index = robot->grant_end;
+    g.granted_distance = robot->cum[static_cast<std::size_t>(robot->grant_end)];
+    const bool at_end = robot->grant_end + 1 == static_cast<int>(robot->route.size());
+    if (robot->wait_since >= 0.0) {
+      g.status = GrantStatus::kWaiting;
+      g.waited_s = now - robot->wait_since;
+    } else if (at_end && stopped_at_grant_end(*robot)) {
+      g.status = GrantStatus::kArrived;
+    } else {
+      g.status = GrantStatus::kMoving;
+    }
+    g.blocked_by = robot->blocked_by;
+    g.instruction = robot->pending;
+    if (robot->pending != Instruction::kNone) g.route = robot->route;
+    out.grants.push_back(std::move(g));
+  }
+  return out;
+}
+
+}  // namespace fleet::traffic

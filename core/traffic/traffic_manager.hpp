@@ -1,0 +1,263 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "map/road_graph.hpp"
+#include "traffic/conflict_zones.hpp"
+#include "traffic/one_way.hpp"
+#include "traffic/route_search.hpp"
+
+namespace fleet::traffic {
+
+/// Fixed per TrafficManager: the zones are precomputed from it.
+struct TrafficConfiguration {
+  ResourceParams resources;
+  double lookahead = 0.6;        ///< metres of route granted ahead of a robot when the road is free
+  double release_margin = 0.02;  ///< metres past an edge's midpoint before the place behind is freed
+  double stop_tolerance = 0.02;  ///< a robot this close to the end of its grant counts as stopped there
+  /// Seconds a stopped robot waits before its next stretch is reserved for it: younger robots may
+  /// then not enter it (unless they are what it waits for). This is what makes waiting fair.
+  double priority_wait = 8.0;
+  /// Seconds: the bound on waiting. A robot waiting this long is re-routed around its blockers
+  /// (when a route exists), at most once per bound.
+  double reroute_wait = 30.0;
+  double yield_timeout = 20.0;  ///< seconds a robot sent to a siding stays there at most
+  /// Metres of the other robots' routes (ahead of them) a siding must keep clear of, and of the
+  /// yielding robot's way back that must be clear of them before it resumes.
+  double siding_window = 3.0;
+  /// Give corridors between junctions one driving direction (see OneWayPlan) and plan re-routes
+  /// on that graph; robots should then plan on `route_graph()` too. Off: every road both ways.
+  bool one_way = true;
+};
+
+/// A robot's route: graph point ids from where it stands to its goal, consecutive points joined
+/// by graph edges. `version` must grow with every new route of the robot.
+struct RouteRequest {
+  int robot_id = 0;
+  std::uint32_t version = 0;
+  std::vector<int> points;
+};
+
+/// How far a robot has driven along its route version, metres from the route's first point.
+struct ProgressReport {
+  int robot_id = 0;
+  std::uint32_t version = 0;
+  double distance = 0.0;
+};
+
+enum class SubmitStatus {
+  kAccepted,
+  kStale,    ///< version not newer than the manager's (e.g. the manager re-routed the robot)
+  kInvalid,  ///< empty, unknown points, points not joined by edges, or not starting where the robot is
+};
+
+enum class GrantStatus {
+  kMoving,   ///< granted beyond where the robot is
+  kWaiting,  ///< stopped at the end of its grant, the road ahead held by others
+  kArrived,  ///< at the end of its route
+};
+
+enum class Instruction {
+  kNone,
+  kReroute,  ///< drive `route` instead (a way round, or back from a siding to the goal)
+  kSiding,   ///< drive `route` to a siding and wait there; the manager sends the way back later
+};
+
+/// What the server sends a robot each cycle: "drive route version `version` up to point index
+/// `granted_index` (metres `granted_distance`) and stop there".
+struct Grant {
+  int robot_id = 0;
+  std::uint32_t version = 0;
+  int granted_index = 0;
+  double granted_distance = 0.0;
+  GrantStatus status = GrantStatus::kMoving;
+  double waited_s = 0.0;        ///< how long the robot has been waiting, 0 when not waiting
+  std::vector<int> blocked_by;  ///< robot ids holding the road beyond the grant (it will wait for them)
+  /// kReroute / kSiding: `route` (version `version`) replaces the robot's route. Repeated in every
+  /// grant until the robot reports progress on that version.
+  Instruction instruction = Instruction::kNone;
+  std::vector<int> route;
+};
+
+struct TrafficEvent {
+  enum class Kind { kDeadlockResolved, kRerouted, kSidingSent, kResumed, kRobotRemoved, kUnresolvedDeadlock };
+  Kind kind = Kind::kRerouted;
+  double time = 0.0;
+  int robot_id = 0;
+  std::vector<int> others;  ///< the robots it yields to, or the cycle's members
+};
+
+struct UpdateResult {
+  std::vector<Grant> grants;  ///< one per robot, by robot id
+  std::vector<TrafficEvent> events;
+};
+
+/// Reservation-based traffic control on a road graph, for a single-threaded server loop.
+///
+/// Each cycle the server feeds the manager new routes (`submit_route`), progress reports
+/// (`report_progress`) and lost robots (`remove_robot`), then calls `update(now)` and sends every
+/// robot its Grant. Robots drive only up to the end of their grant and report progress.
+///
+/// **Resources and safety.** Resources are the places of ConflictZones. A robot holds the places
+/// of its route from the one it is leaving to the end of its grant; a place is freed once the
+/// robot has driven past the midpoint of the edge beyond it (plus `release_margin`), so release
+/// follows distance travelled, not node arrivals. Invariant: no place one robot holds conflicts
+/// with a place another holds. Grants only add places that conflict with nothing another robot
+/// holds, and places are only freed behind a robot (or all at once when it is removed), so the
+/// invariant holds by construction; `check_invariant` verifies it in tests.
+///
+/// **Grants.** In priority order (longest waiting first, then robot id) each robot's grant grows
+/// towards `lookahead` metres ahead, in stretches that end only at *stoppable* places (outside
+/// every junction zone) or at the route's end, so a waiting robot never stands in a junction.
+///
+/// **Avoiding deadlock.** Cycles of waiting robots are made rare by construction:
+/// 1. One-way corridors (`one_way`, default on): every corridor that lies on a cycle of the road
+///    network gets one direction, keeping every place reachable (OneWayPlan). Robots planning on
+///    `route_graph()` never meet head-on there; the remaining two-way corridors are dead ends,
+///    bridges and junction interiors.
+/// 2. Corridor direction: a robot may not drive into a corridor towards another robot that drives
+///    the other way in it, or that stands at the end of its route in it (it may leave either way).
+///    Head-on meetings inside a two-way corridor therefore do not start: the second robot waits
+///    outside the junction at the corridor's end.
+/// 3. Fair waiting: a robot stopped longer than `priority_wait` reserves its next stretch (its
+///    places and its corridor direction) against robots of lower priority that would newly enter
+///    it; robots already inside, and the robots it waits for, stay free to move away. Priority is
+///    the time waiting began, so every waiting robot eventually becomes the oldest: no
+///    starvation (openTCS documents that its scheduler does not guarantee this).
+/// 4. Bounded waiting: a robot waiting `reroute_wait` seconds is re-routed around the places held
+///    by the robots it waits for, when such a route exists and can start at once.
+///
+/// **Detecting and breaking cycles.** The wait-for graph has an edge r -> s when stopped robot
+/// r's next stretch is blocked by s's places, driving direction or reservation. Its strongly
+/// connected components are found every cycle (Tarjan). A cycle of stopped robots cannot clear by
+/// itself (places only free when robots move), so it is broken at once: the member of lowest
+/// priority (latest to start waiting, then highest id) that has a way out gets it — a route to
+/// its goal that avoids what the robots it waits for hold, or else a *siding*: the nearest
+/// stoppable place it can reach without crossing anyone's places, off the remaining routes of the
+/// robots waiting for it (or, failing that, off their next `siding_window` metres). The others then
+/// proceed; the yielding robot is sent back to its goal once its way back is clear of them (or
+/// after `yield_timeout`). A head-on meeting on a single-lane corridor resolves this way: one robot
+/// backs off into a branch and lets the other pass. When no member has a way out the cycle is
+/// reported (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
+///
+/// Robots that finish a route keep holding the place they stand on (they are still there); the
+/// server calls `remove_robot` when a robot leaves the graph (parks off the road) or is lost,
+/// which frees everything it holds.
+///
+/// Deterministic: no clocks, no randomness; time is passed in. Not thread-safe.
+class TrafficManager {
+ public:
+  TrafficManager(const map::RoadGraph& graph, const TrafficConfiguration& configuration = {});
+
+  /// A new route for a robot (a new robot enters at the route's first point). The first point must
+  /// be a place the robot holds; the places it held behind that point stay held until it has
+  /// driven past the first edge's midpoint.
+  SubmitStatus submit_route(const RouteRequest& request, double now);
+  /// Progress on the current route version; other versions are ignored. Clamped to the grant.
+  void report_progress(const ProgressReport& report, double now);
+  /// Frees everything the robot holds (lost, or parked off the graph); the next update reports it.
+  /// False for unknown ids.
+  bool remove_robot(int robot_id, double now);
+
+  /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
+  /// places x conflict-set size; no allocation proportional to the graph.
+  UpdateResult update(double now);
+
+  // ---- introspection (tests, web view) ---------------------------------------------------------
+  const ConflictZones& zones() const { return *zones_; }
+  /// Route search on the graph robots should plan on (`route_graph()`).
+  RouteSearch& search() { return *route_search_; }
+  /// The graph robots should plan on: the one-way graph when configured, else the input graph.
+  const map::RoadGraph& route_graph() const { return configuration_.one_way ? one_way_.graph : graph_; }
+  /// Direction of each corridor under the one-way plan (+1 / -1 along corridor_index, 0 both ways).
+  const std::vector<int>& corridor_directions() const { return one_way_.corridor_direction; }
+  const TrafficConfiguration& configuration() const { return configuration_; }
+  std::vector<int> robot_ids() const;
+  bool has_robot(int robot_id) const { return robots_.count(robot_id) != 0; }
+  /// Places the robot holds now, sorted.
+  std::vector<int> held_places(int robot_id) const;
+  /// The robot's current route and version (empty for unknown ids).
+  const std::vector<int>& route(int robot_id) const;
+  std::uint32_t version(int robot_id) const;
+  /// Checks the safety invariant over all robots; returns a description of the first violation.
+  std::string check_invariant() const;
+
+ private:
+  struct Robot {
+    int id = 0;
+    std::uint32_t version = 0;
+    std::vector<int> route;
+    std::vector<int> places;
+    std::vector<double> cum;         ///< metres from the route start to each point
+    std::vector<double> release_at;  ///< progress past which each point's place is freed
+    double progress = 0.0;
+    int first_held = 0;
+    int grant_end = 0;
+    std::vector<int> trail;      ///< places of a previous route still held
+    double trail_release = 0.0;  ///< progress past which `trail` is freed
+    double wait_since = -1.0;
+    double last_reroute = -std::numeric_limits<double>::infinity();
+    bool blocked = false;
+    bool stopped = false;
+    std::vector<int> blocked_by;
+    Instruction pending = Instruction::kNone;
+    bool in_siding = false;
+    int resume_goal = -1;
+    std::vector<int> yield_to;
+    double siding_arrival = -1.0;
+  };
+
+  void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);
+  void replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now);
+  void release_passed(Robot& robot);
+  int direction_at(const Robot& robot, int index) const;
+  int next_stretch_end(const Robot& robot) const;
+  void rebuild_occupancy();
+  void mark(const Robot& robot, int slot, int index);
+  bool place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const;
+  void extend(Robot& robot, int slot);
+  bool stopped_at_grant_end(const Robot& robot) const;
+  bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind);
+  bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out);
+  void try_resume(Robot& robot, double now, UpdateResult& out);
+  void resolve_cycles(double now, UpdateResult& out);
+  std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch, double window) const;
+  bool first_stretch_free(const std::vector<int>& points, int slot) const;
+  int slot_of(int robot_id) const;
+  bool higher_priority(const Robot& a, const Robot& b) const;
+
+  TrafficConfiguration configuration_;
+  map::RoadGraph graph_;
+  std::unique_ptr<ConflictZones> zones_;
+  std::unique_ptr<RouteSearch> search_;        ///< on the full graph: sidings may back up
+  OneWayPlan one_way_;
+  std::unique_ptr<RouteSearch> route_search_;  ///< on route_graph(): re-routes and returns
+  std::map<int, Robot> robots_;  ///< ordered by id: deterministic iteration
+  std::vector<Robot*> slots_;    ///< robots by slot (position in id order), rebuilt each update
+  double now_ = 0.0;             ///< time of the update in progress
+  std::vector<TrafficEvent> removed_;  ///< removals since the last update, reported by it
+
+  /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
+  struct CorridorSpan {
+    int slot = 0;
+    int direction = 0;
+    int lo = 0;  ///< lowest corridor index
+    int hi = 0;  ///< highest corridor index
+    bool reserved = false;
+  };
+  void add_span(int corridor, int slot, int direction, int index, bool reserved);
+
+  // Occupancy, rebuilt each update: bit `slot` of place p is set when robot `slot` holds a place
+  // conflicting with p.
+  std::size_t words_ = 1;
+  std::vector<std::uint64_t> occupancy_;
+  std::vector<std::vector<CorridorSpan>> spans_;  ///< by corridor
+  std::vector<int> claim_place_;  ///< slot of the waiting robot that reserved the place, -1 when none
+};
+
+}  // namespace fleet::traffic

@@ -1,0 +1,678 @@
+// Fleet's live web view: the site to scale on a canvas, robots and orders from the server's
+// event stream (a full frame, then diffs), and the controls of the JSON API.
+'use strict';
+
+(() => {
+  const params = new URLSearchParams(location.search);
+  // The token comes with the address the server logs (?token=...); kept for this tab only.
+  let token = params.get('token') || sessionStorage.getItem('fleet-token') || '';
+  if (params.get('token')) sessionStorage.setItem('fleet-token', token);
+  // ?fps: redraw every animation frame, even without news, to measure drawing speed.
+  const alwaysDraw = params.has('fps');
+
+  // Task states of the seed's state machine (plus WAITING, PAUSED, ERROR).
+  const STATE_COLOURS = {
+    IDLE: '#5b7083', TRACK_PATH: '#2e8b57', SEARCH_PALLET: '#e07a1f', PICK_PALLET: '#d0611a',
+    DROP_PALLET: '#b5541c', GO_HOME: '#1f8a9d', WAITING: '#e0b000', PAUSED: '#8e6cc0', ERROR: '#d62828',
+  };
+  const LOST_COLOUR = '#a8b0b8';
+  const GLOBAL_PLAN = '#1f5fd6';  // seed 000, Fig. 5.12: the global plan in blue
+  const PALLET = '#9a6a3a';
+
+  const el = (id) => document.getElementById(id);
+  const canvas = el('map');
+  const ctx = canvas.getContext('2d');
+  const staticLayer = document.createElement('canvas');
+
+  let site = null;
+  let frame = { globals: {}, robots: {}, orders: {}, obstacles: {}, pallets: {} };
+  let dirty = true;
+  let tablesDirty = true;
+  let lastTables = 0;
+  let lastEventAt = 0;
+  let pickArea = null;
+  const pendingObstacles = new Map();  // id -> wanted state, until the stream confirms it
+  const view = { scale: 1, ox: 0, oy: 0, dpr: 1, width: 0, height: 0 };
+  const toggles = { graph: false, truth: false, cov: true, paths: true, labels: true };
+  const stats = { rafs: 0, draws: 0, events: 0, fullFrames: 0, diffFrames: 0 };
+  const drawn = {};  // robot id -> [x, y] in CSS pixels as last drawn; read by tests
+
+  // ---- coordinates: map frame (x right, y up, metres) <-> canvas CSS pixels ----
+  const X = (x) => view.ox + (x - site.bounds.min_x) * view.scale;
+  const Y = (y) => view.oy + (site.bounds.max_y - y) * view.scale;
+  const toMap = (px, py) => ({
+    x: (px - view.ox) / view.scale + site.bounds.min_x,
+    y: site.bounds.max_y - (py - view.oy) / view.scale,
+  });
+
+  function fit() {
+    const rect = canvas.getBoundingClientRect();
+    view.dpr = window.devicePixelRatio || 1;
+    view.width = rect.width;
+    view.height = rect.height;
+    canvas.width = Math.max(1, Math.round(rect.width * view.dpr));
+    canvas.height = Math.max(1, Math.round(rect.height * view.dpr));
+    if (!site) return;
+    const b = site.bounds;
+    const margin = 24;
+    view.scale = Math.min((rect.width - 2 * margin) / (b.max_x - b.min_x), (rect.height - 2 * margin) / (b.max_y - b.min_y));
+    view.ox = (rect.width - (b.max_x - b.min_x) * view.scale) / 2;
+    view.oy = (rect.height - (b.max_y - b.min_y) * view.scale) / 2;
+    drawStatic();
+    dirty = true;
+  }
+
+  function polyPath(c, points) {
+    c.beginPath();
+    points.forEach(([x, y], i) => (i ? c.lineTo(X(x), Y(y)) : c.moveTo(X(x), Y(y))));
+    c.closePath();
+  }
+
+  function linePath(c, points) {
+    c.beginPath();
+    points.forEach(([x, y], i) => (i ? c.lineTo(X(x), Y(y)) : c.moveTo(X(x), Y(y))));
+  }
+
+  // Roads, graph, racks, anchors and homes never change: drawn once per size into a layer.
+  function drawStatic() {
+    staticLayer.width = canvas.width;
+    staticLayer.height = canvas.height;
+    const c = staticLayer.getContext('2d');
+    c.setTransform(view.dpr, 0, 0, view.dpr, 0, 0);
+    c.fillStyle = '#dde1e5';
+    c.fillRect(0, 0, view.width, view.height);
+    const b = site.bounds;
+    c.fillStyle = '#f4f1e8';
+    c.strokeStyle = '#555';
+    c.lineWidth = 1.5;
+    c.fillRect(X(b.min_x), Y(b.max_y), (b.max_x - b.min_x) * view.scale, (b.max_y - b.min_y) * view.scale);
+    c.strokeRect(X(b.min_x), Y(b.max_y), (b.max_x - b.min_x) * view.scale, (b.max_y - b.min_y) * view.scale);
+
+    for (const lane of site.lanes) {
+      const colour = lane.drivable ? '#8d8d8d' : '#cfcfcf';
+      c.fillStyle = colour;
+      c.strokeStyle = colour;  // a hairline of the same colour closes seams between pieces
+      c.lineWidth = 0.8;
+      polyPath(c, lane.outline);
+      c.fill();
+      c.stroke();
+    }
+    c.strokeStyle = 'rgba(255,255,255,0.8)';
+    c.lineWidth = 1;
+    c.setLineDash([4, 4]);
+    for (const ref of site.references) {
+      linePath(c, ref.points);
+      c.stroke();
+    }
+    c.setLineDash([]);
+
+    if (toggles.graph) {
+      const pts = site.graph.points;
+      c.strokeStyle = 'rgba(32,96,192,0.55)';
+      c.lineWidth = 1;
+      c.beginPath();
+      for (const [i, j] of site.graph.edges) {
+        c.moveTo(X(pts[i][0]), Y(pts[i][1]));
+        c.lineTo(X(pts[j][0]), Y(pts[j][1]));
+      }
+      c.stroke();
+      c.fillStyle = '#2060c0';
+      for (const [x, y] of pts) c.fillRect(X(x) - 1.5, Y(y) - 1.5, 3, 3);
+    }
+
+    c.font = '11px sans-serif';
+    for (const rack of site.racks) {
+      c.fillStyle = '#b9a98a';
+      c.strokeStyle = '#6b5b3e';
+      polyPath(c, rack.polygon);
+      c.fill();
+      c.stroke();
+    }
+    for (const h of site.homes) {
+      const s = Math.max(4, 0.05 * view.scale);
+      c.strokeStyle = '#4a6fa5';
+      c.lineWidth = 1.2;
+      c.strokeRect(X(h.x) - s, Y(h.y) - s, 2 * s, 2 * s);
+      c.fillStyle = '#4a6fa5';
+      c.fillText(h.id, X(h.x) + s + 2, Y(h.y) + s);
+    }
+    for (const a of site.anchors) {
+      const px = X(a.x), py = Y(a.y);
+      c.fillStyle = '#7b2cbf';
+      c.beginPath();
+      c.moveTo(px, py - 7);
+      c.lineTo(px + 6, py + 5);
+      c.lineTo(px - 6, py + 5);
+      c.closePath();
+      c.fill();
+      c.fillText(a.id, px + 8, py + 4);
+    }
+  }
+
+  // ---- the dynamic layer ----
+  function areaHasPallet(area) {
+    const p = frame.pallets[area.id];
+    return p === undefined ? area.pallet_at_start : p;
+  }
+
+  function drawAreas() {
+    const size = site.pallet_size * view.scale;
+    ctx.font = '11px sans-serif';
+    for (const a of site.areas) {
+      const px = X(a.x), py = Y(a.y);
+      ctx.save();
+      ctx.translate(px, py);
+      ctx.rotate(-a.yaw);
+      const has = areaHasPallet(a);
+      ctx.lineWidth = 1.5;
+      ctx.strokeStyle = '#6b4a26';
+      ctx.setLineDash(has ? [] : [3, 3]);
+      if (has) {
+        ctx.fillStyle = PALLET;
+        ctx.fillRect(-size / 2, -size / 2, size, size);
+      }
+      ctx.strokeRect(-size / 2, -size / 2, size, size);
+      ctx.setLineDash([]);
+      // The side a forklift approaches from.
+      ctx.beginPath();
+      ctx.moveTo(size / 2 + 2, 0);
+      ctx.lineTo(size / 2 + 8, 0);
+      ctx.stroke();
+      ctx.restore();
+      if (pickArea === a.id) {
+        ctx.strokeStyle = '#1f5fd6';
+        ctx.lineWidth = 3;
+        ctx.beginPath();
+        ctx.arc(px, py, size * 0.9 + 4, 0, 2 * Math.PI);
+        ctx.stroke();
+      }
+      ctx.fillStyle = '#3d2b16';
+      ctx.fillText(a.id, px + size / 2 + 3, py - size / 2 - 2);
+    }
+  }
+
+  function drawObstacles() {
+    for (const o of site.obstacles) {
+      const enabled = frame.obstacles[o.id] ?? o.enabled_at_start;
+      const pending = pendingObstacles.has(o.id);
+      polyPath(ctx, o.polygon);
+      ctx.lineWidth = 2;
+      if (enabled) {
+        ctx.fillStyle = 'rgba(214,40,40,0.75)';
+        ctx.fill();
+        ctx.strokeStyle = '#8b1a1a';
+      } else {
+        ctx.fillStyle = 'rgba(214,40,40,0.08)';
+        ctx.fill();
+        ctx.strokeStyle = '#d62828';
+        ctx.setLineDash([5, 4]);
+      }
+      if (pending) ctx.strokeStyle = '#1f5fd6';
+      ctx.stroke();
+      ctx.setLineDash([]);
+      if (toggles.labels) {
+        const c = centroid(o.polygon);
+        ctx.fillStyle = enabled ? '#fff' : '#8b1a1a';
+        ctx.font = '10px sans-serif';
+        ctx.textAlign = 'center';
+        ctx.fillText(o.id, X(c.x), Y(c.y) + 3);
+        ctx.textAlign = 'left';
+      }
+    }
+  }
+
+  function footprintCorners(x, y, yaw, length, width) {
+    const c = Math.cos(yaw), s = Math.sin(yaw);
+    return [[length / 2, width / 2], [-length / 2, width / 2], [-length / 2, -width / 2], [length / 2, -width / 2]]
+      .map(([bx, by]) => [x + c * bx - s * by, y + s * bx + c * by]);
+  }
+
+  function colourOf(r) {
+    if (r.health === 'lost') return LOST_COLOUR;
+    return STATE_COLOURS[r.state] || '#5b7083';
+  }
+
+  function drawPath(r) {
+    if (!r.path || r.path.length < 2) return;
+    ctx.strokeStyle = r.health === 'lost' ? 'rgba(160,168,176,0.6)' : GLOBAL_PLAN;
+    ctx.lineWidth = 2;
+    ctx.globalAlpha = 0.85;
+    linePath(ctx, r.path);
+    ctx.stroke();
+    ctx.globalAlpha = 1;
+    const [gx, gy] = r.path[r.path.length - 1];
+    ctx.fillStyle = GLOBAL_PLAN;
+    ctx.beginPath();
+    ctx.arc(X(gx), Y(gy), 3, 0, 2 * Math.PI);
+    ctx.fill();
+  }
+
+  // The 95 % ellipse of the position covariance [xx, xy, yy].
+  function drawCovariance(r) {
+    const [a, b, c] = r.cov;
+    const mean = (a + c) / 2;
+    const d = Math.sqrt(((a - c) / 2) ** 2 + b * b);
+    const l1 = Math.max(mean + d, 0), l2 = Math.max(mean - d, 0);
+    const k = 2.4477;  // sqrt(chi2(2 dof, 0.95))
+    const rx = k * Math.sqrt(l1) * view.scale, ry = k * Math.sqrt(l2) * view.scale;
+    if (rx < 0.5) return;
+    const angle = 0.5 * Math.atan2(2 * b, a - c);
+    ctx.strokeStyle = 'rgba(123,44,191,0.95)';
+    ctx.fillStyle = 'rgba(123,44,191,0.18)';
+    ctx.lineWidth = 1;
+    ctx.beginPath();
+    ctx.ellipse(X(r.x), Y(r.y), rx, Math.max(ry, 0.5), -angle, 0, 2 * Math.PI);
+    ctx.fill();
+    ctx.stroke();
+  }
+
+  function drawRobot(id, r) {
+    const [length, width] = r.fp;
+    const lost = r.health === 'lost';
+    const colour = colourOf(r);
+    if (toggles.truth && r.truth) {
+      const [tx, ty, tyaw] = r.truth;
+      polyPath(ctx, footprintCorners(tx, ty, tyaw, length, width));
+      ctx.setLineDash([3, 2]);
+      ctx.strokeStyle = '#222';
+      ctx.lineWidth = 1.2;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+    ctx.globalAlpha = lost ? 0.55 : 1;
+    polyPath(ctx, footprintCorners(r.x, r.y, r.yaw, length, width));
+    ctx.fillStyle = colour;
+    ctx.fill();
+    ctx.lineWidth = r.health === 'stale' ? 2 : 1;
+    ctx.strokeStyle = r.health === 'stale' ? '#c77c02' : '#1d232a';
+    if (r.health === 'stale') ctx.setLineDash([3, 2]);
+    ctx.stroke();
+    ctx.setLineDash([]);
+    const c = Math.cos(r.yaw), s = Math.sin(r.yaw);
+    const at = (bx, by) => [X(r.x + c * bx - s * by), Y(r.y + s * bx + c * by)];
+    if (r.carrying) {
+      // The pallet on the forks, at the front half of the body.
+      const p = site.pallet_size;
+      polyPath(ctx, footprintCorners(r.x + c * length * 0.25, r.y + s * length * 0.25, r.yaw, Math.min(p, length / 2), Math.min(p, width)));
+      ctx.fillStyle = PALLET;
+      ctx.fill();
+      ctx.strokeStyle = '#3d2b16';
+      ctx.stroke();
+    }
+    // Heading: a triangle at the front.
+    const [ax, ay] = at(length / 2 + 0.03, 0);
+    const [bx1, by1] = at(length / 2 - 0.01, width * 0.3);
+    const [bx2, by2] = at(length / 2 - 0.01, -width * 0.3);
+    ctx.fillStyle = lost ? LOST_COLOUR : '#1d232a';
+    ctx.beginPath();
+    ctx.moveTo(ax, ay);
+    ctx.lineTo(bx1, by1);
+    ctx.lineTo(bx2, by2);
+    ctx.closePath();
+    ctx.fill();
+    ctx.globalAlpha = 1;
+    // Over the body: an ellipse smaller than the robot still shows.
+    if (toggles.cov && r.cov && !lost) drawCovariance(r);
+    const px = X(r.x), py = Y(r.y);
+    drawn[id] = [px, py];
+    if (toggles.labels) {
+      const half = Math.max(length, width) * view.scale * 0.6 + 4;
+      ctx.font = 'bold 12px sans-serif';
+      ctx.fillStyle = lost ? '#6b7785' : '#10161c';
+      ctx.fillText(id, px + half, py - half + 6);
+      ctx.font = '11px sans-serif';
+      let note = '';
+      if (lost) note = `lost ${fmtAge(r.age)} ago`;
+      else if (r.health === 'stale') note = `stale ${fmtAge(r.age)}`;
+      else if (r.state === 'WAITING' || r.state === 'PAUSED' || r.state === 'ERROR') note = r.detail || r.state.toLowerCase();
+      if (note) {
+        const w = ctx.measureText(note).width;
+        ctx.fillStyle = 'rgba(255,255,255,0.85)';
+        ctx.fillRect(px + half - 2, py - half + 9, w + 4, 14);
+        ctx.fillStyle = lost ? '#6b7785' : r.state === 'ERROR' ? '#b00' : '#7a5b00';
+        ctx.fillText(note, px + half, py - half + 20);
+      }
+    }
+  }
+
+  function draw() {
+    if (!site) return;
+    stats.draws++;
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(staticLayer, 0, 0);
+    ctx.setTransform(view.dpr, 0, 0, view.dpr, 0, 0);
+    drawObstacles();
+    drawAreas();
+    const robots = Object.entries(frame.robots);
+    // Lost robots under the live ones, paths under every body.
+    robots.sort(([, a], [, b]) => (a.health === 'lost') - (b.health === 'lost'));
+    if (toggles.paths) for (const [, r] of robots) drawPath(r);
+    for (let i = robots.length - 1; i >= 0; i--) drawRobot(robots[i][0], robots[i][1]);
+  }
+
+  // ---- tables and figures ----
+  function fmtAge(s) {
+    if (s === undefined || s === null || !isFinite(s)) return '–';
+    s = Math.max(0, s);
+    if (s < 60) return `${s.toFixed(s < 10 ? 1 : 0)} s`;
+    const m = Math.floor(s / 60);
+    if (m < 60) return `${m} m ${String(Math.floor(s % 60)).padStart(2, '0')} s`;
+    return `${Math.floor(m / 60)} h ${String(m % 60).padStart(2, '0')} m`;
+  }
+
+  const esc = (v) => String(v ?? '').replace(/[&<>"']/g, (ch) => `&#${ch.charCodeAt(0)};`);
+  const OPEN = new Set(['QUEUED', 'ASSIGNED', 'ACTIVE']);
+
+  function updateTables() {
+    const g = frame.globals;
+    el('time-scale').textContent = g.time_scale !== undefined ? `×${g.time_scale}` : '–';
+    el('orders-per-hour').textContent = g.orders_per_hour !== undefined ? g.orders_per_hour.toFixed(1) : '–';
+    el('order-p95').textContent = g.orders_done ? fmtAge(g.order_time_p95_s) : '–';
+    el('orders-done').textContent = g.orders_done ?? '–';
+    el('orders-failed').textContent = g.orders_failed ?? '–';
+    const auto = el('auto-orders');
+    if (document.activeElement !== auto) auto.checked = !!g.auto_orders;
+
+    const rows = [];
+    const known = new Set();
+    for (const spec of site.robots) {
+      known.add(spec.id);
+      rows.push([spec.id, frame.robots[spec.id]]);
+    }
+    const extra = Object.keys(frame.robots).filter((id) => !known.has(id));
+    extra.sort((a, b) => a.localeCompare(b, undefined, { numeric: true }));
+    for (const id of extra) rows.push([id, frame.robots[id]]);
+    el('robots').tBodies[0].innerHTML = rows.map(([id, r]) => {
+      if (!r) return `<tr class="lost"><td>${esc(id)}</td><td colspan="4">not seen yet</td></tr>`;
+      const paused = r.state === 'PAUSED';
+      const health = r.health === 'alive' ? 'alive' : `${r.health} ${fmtAge(r.age)}`;
+      const detail = r.detail ? `<span class="detail">${esc(r.detail)}</span>` : '';
+      const mapNote = r.map && r.map !== site.site ? `<span class="detail">map ${esc(r.map)}</span>` : '';
+      return `<tr class="${r.health === 'lost' ? 'lost' : ''}" data-robot="${esc(id)}">` +
+        `<td><span class="dot" data-colour="${esc(colourOf(r))}"></span>${esc(id)}</td>` +
+        `<td>${esc(r.state)}${detail}${mapNote}</td>` +
+        `<td class="health-${esc(r.health)}">${esc(health)}</td>` +
+        `<td>${r.order ? esc(r.order) : ''}</td>` +
+        `<td><button class="small" data-action="${paused ? 'resume' : 'pause'}" data-robot="${esc(id)}">${paused ? 'resume' : 'pause'}</button></td></tr>`;
+    }).join('');
+    // Colours through the CSSOM: the page's content security policy forbids inline styles.
+    for (const dot of el('robots').querySelectorAll('.dot')) dot.style.background = dot.dataset.colour;
+
+    const orders = Object.values(frame.orders);
+    orders.sort((a, b) => (OPEN.has(b.state) - OPEN.has(a.state)) || (b.id - a.id));
+    el('orders').tBodies[0].innerHTML = orders.map((o) => {
+      const open = OPEN.has(o.state);
+      const age = open ? g.sim_time - o.created : o.updated - o.created;
+      const reason = o.reason && !open ? `<span class="detail">${esc(o.reason)}</span>` : '';
+      return `<tr class="${open ? '' : 'ended'}" data-order="${o.id}">` +
+        `<td>${o.id}</td><td>${esc(o.from)}</td><td>${esc(o.to)}</td><td>${esc(o.robot)}</td>` +
+        `<td class="state-${esc(o.state)}">${esc(o.state)}${reason}</td><td>${esc(o.phase)}</td><td>${fmtAge(age)}</td>` +
+        `<td>${open ? `<button class="small" data-action="cancel" data-order="${o.id}">cancel</button>` : ''}</td></tr>`;
+    }).join('');
+  }
+
+  function buildLegend() {
+    const parts = Object.entries(STATE_COLOURS).map(([s, c]) => `<span><span class="dot" data-colour="${c}"></span>${s}</span>`);
+    parts.push(`<span><span class="dot" data-colour="${LOST_COLOUR}"></span>lost</span>`);
+    parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
+    el('legend').innerHTML = parts.join('');
+    for (const dot of el('legend').querySelectorAll('.dot')) dot.style.background = dot.dataset.colour;
+  }
+
+  // ---- API ----
+  function toast(text, error) {
+    const t = document.createElement('div');
+    t.className = 'toast' + (error ? ' error' : '');
+    t.textContent = text;
+    el('toasts').appendChild(t);
+    setTimeout(() => t.remove(), error ? 6000 : 2500);
+    while (el('toasts').children.length > 4) el('toasts').firstChild.remove();
+  }
+
+  async function api(method, path, body) {
+    if (!token) {
+      el('token-box').hidden = false;
+      toast('set the API token first (the server logs it)', true);
+      throw new Error('no token');
+    }
+    const res = await fetch(path, {
+      method,
+      headers: { 'Content-Type': 'application/json', Authorization: `Bearer ${token}` },
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+    let data = {};
+    try { data = await res.json(); } catch (e) { /* an empty body */ }
+    if (!res.ok) {
+      if (res.status === 401 || res.status === 403) el('token-box').hidden = false;
+      toast(data.error || `${res.status} ${res.statusText}`, true);
+      throw new Error(data.error || res.statusText);
+    }
+    return data;
+  }
+
+  function centroid(polygon) {
+    let x = 0, y = 0;
+    for (const [px, py] of polygon) { x += px; y += py; }
+    return { x: x / polygon.length, y: y / polygon.length };
+  }
+
+  function inside(polygon, p) {
+    let hit = false;
+    for (let i = 0, j = polygon.length - 1; i < polygon.length; j = i++) {
+      const [xi, yi] = polygon[i], [xj, yj] = polygon[j];
+      if ((yi > p.y) !== (yj > p.y) && p.x < ((xj - xi) * (p.y - yi)) / (yj - yi) + xi) hit = !hit;
+    }
+    return hit;
+  }
+
+  function setHint(text) {
+    el('hint').textContent = text;
+    el('hint').classList.toggle('on', !!text);
+  }
+
+  function areaAt(p) {
+    // Generous in screen terms: pallets are small at table scale.
+    const reach = Math.max(site.pallet_size * 0.8, 10 / view.scale);
+    let best = null, bestD = reach;
+    for (const a of site.areas) {
+      const d = Math.hypot(a.x - p.x, a.y - p.y);
+      if (d < bestD) { best = a; bestD = d; }
+    }
+    return best;
+  }
+
+  async function onCanvasClick(ev) {
+    if (!site) return;
+    const rect = canvas.getBoundingClientRect();
+    const p = toMap(ev.clientX - rect.left, ev.clientY - rect.top);
+    const area = areaAt(p);
+    if (area) return onAreaClick(area);
+    const obstacle = site.obstacles.find((o) => inside(o.polygon, p));
+    if (obstacle) {
+      const enabled = !(frame.obstacles[obstacle.id] ?? obstacle.enabled_at_start);
+      pendingObstacles.set(obstacle.id, enabled);
+      dirty = true;
+      try {
+        await api('POST', `/api/obstacles/${encodeURIComponent(obstacle.id)}`, { enabled });
+        toast(`obstacle ${obstacle.id} ${enabled ? 'on' : 'off'}`);
+      } catch (e) {
+        pendingObstacles.delete(obstacle.id);
+      }
+      dirty = true;
+      return;
+    }
+    if (pickArea) { pickArea = null; setHint(''); dirty = true; }
+  }
+
+  async function onAreaClick(area) {
+    if (!pickArea) {
+      if (!areaHasPallet(area)) toast(`${area.id} holds no pallet now; the order may still be queued behind one`);
+      pickArea = area.id;
+      setHint(`pick at ${area.id}: now click the drop area (Esc cancels)`);
+      dirty = true;
+      return;
+    }
+    if (pickArea === area.id) { pickArea = null; setHint(''); dirty = true; return; }
+    const from = pickArea;
+    pickArea = null;
+    setHint('');
+    dirty = true;
+    try {
+      const r = await api('POST', '/api/orders', { from, to: area.id });
+      toast(`order ${r.order_id}: ${from} → ${area.id}`);
+    } catch (e) { /* shown by api() */ }
+  }
+
+  // ---- the stream ----
+  function applyDiff(d) {
+    for (const name of ['robots', 'orders']) {
+      const section = frame[name];
+      for (const [id, fields] of Object.entries(d[name] || {})) {
+        const entity = section[id] || (section[id] = {});
+        for (const [k, v] of Object.entries(fields)) {
+          if (v === null) delete entity[k]; else entity[k] = v;
+        }
+      }
+      for (const id of d[`${name}_removed`] || []) delete section[id];
+    }
+    for (const name of ['obstacles', 'pallets', 'globals']) {
+      Object.assign(frame[name], d[name] || {});
+      for (const k of d[`${name}_removed`] || []) delete frame[name][k];
+    }
+  }
+
+  function onFrame() {
+    for (const [id, wanted] of pendingObstacles) if (frame.obstacles[id] === wanted) pendingObstacles.delete(id);
+    lastEventAt = performance.now();
+    stats.events++;
+    dirty = true;
+    tablesDirty = true;
+  }
+
+  function connect() {
+    const source = new EventSource('/api/stream');
+    const status = el('connection');
+    source.addEventListener('full', (e) => {
+      frame = JSON.parse(e.data);
+      stats.fullFrames++;
+      onFrame();
+    });
+    source.addEventListener('diff', (e) => {
+      applyDiff(JSON.parse(e.data));
+      stats.diffFrames++;
+      onFrame();
+    });
+    source.onopen = () => { status.textContent = 'live'; status.className = 'badge live'; };
+    // EventSource reconnects by itself; the server then starts again with a full frame.
+    source.onerror = () => { status.textContent = 'reconnecting'; status.className = 'badge down'; };
+  }
+
+  // ---- the loop ----
+  let fpsCount = 0, fpsSince = performance.now();
+  function tick(now) {
+    stats.rafs++;
+    fpsCount++;
+    if (now - fpsSince >= 1000) {
+      el('fps').textContent = `${Math.round((fpsCount * 1000) / (now - fpsSince))} fps`;
+      fpsCount = 0;
+      fpsSince = now;
+    }
+    if (lastEventAt && now - lastEventAt > 2000) {
+      const status = el('connection');
+      if (status.textContent === 'live') { status.textContent = 'no news'; status.className = 'badge down'; }
+    } else if (lastEventAt && el('connection').textContent === 'no news') {
+      el('connection').textContent = 'live';
+      el('connection').className = 'badge live';
+    }
+    if (dirty || alwaysDraw) {
+      dirty = false;
+      draw();
+    }
+    // The tables are DOM work: at most four times a second.
+    if (tablesDirty && now - lastTables > 250 && site) {
+      tablesDirty = false;
+      lastTables = now;
+      updateTables();
+    }
+    requestAnimationFrame(tick);
+  }
+
+  function bindControls() {
+    canvas.addEventListener('click', onCanvasClick);
+    document.addEventListener('keydown', (e) => {
+      if (e.key === 'Escape' && pickArea) { pickArea = null; setHint(''); dirty = true; }
+    });
+    for (const [id, key] of [['show-graph', 'graph'], ['show-truth', 'truth'], ['show-cov', 'cov'], ['show-paths', 'paths'], ['show-labels', 'labels']]) {
+      const box = el(id);
+      toggles[key] = box.checked;
+      box.addEventListener('change', () => {
+        toggles[key] = box.checked;
+        if (key === 'graph') drawStatic();
+        dirty = true;
+      });
+    }
+    el('auto-orders').addEventListener('change', async (e) => {
+      const enabled = e.target.checked;
+      try {
+        await api('POST', '/api/auto-orders', { enabled });
+        toast(`automatic orders ${enabled ? 'on' : 'off'}`);
+      } catch (err) { e.target.checked = !enabled; }
+    });
+    el('map-switch').addEventListener('click', async () => {
+      const map = el('map-select').value;
+      const robot = el('map-robot').value;
+      try {
+        await api('POST', '/api/map', robot ? { map, robot } : { map });
+        toast(`map ${map} for ${robot || 'every robot'}`);
+      } catch (e) { /* shown by api() */ }
+    });
+    el('robots').addEventListener('click', async (e) => {
+      const b = e.target.closest('button[data-action]');
+      if (!b) return;
+      try {
+        await api('POST', `/api/robots/${encodeURIComponent(b.dataset.robot)}/${b.dataset.action}`);
+        toast(`${b.dataset.robot} ${b.dataset.action}d`);
+      } catch (err) { /* shown by api() */ }
+    });
+    el('orders').addEventListener('click', async (e) => {
+      const b = e.target.closest('button[data-action="cancel"]');
+      if (!b) return;
+      try {
+        await api('DELETE', `/api/orders/${b.dataset.order}`);
+        toast(`order ${b.dataset.order} cancelled`);
+      } catch (err) { /* shown by api() */ }
+    });
+    el('token-set').addEventListener('click', () => {
+      token = el('token-input').value.trim();
+      sessionStorage.setItem('fleet-token', token);
+      el('token-box').hidden = !!token;
+    });
+    if (!token) el('token-box').hidden = false;
+    new ResizeObserver(fit).observe(canvas);
+  }
+
+  async function start() {
+    const res = await fetch('/api/site');
+    site = await res.json();
+    el('site-name').textContent = `site ${site.site}`;
+    document.title = `Fleet – ${site.site}`;
+    el('map-select').innerHTML = site.maps.map((m) => `<option${m === site.site ? ' selected' : ''}>${esc(m)}</option>`).join('');
+    el('map-robot').innerHTML = '<option value="">all robots</option>' + site.robots.map((r) => `<option>${esc(r.id)}</option>`).join('');
+    buildLegend();
+    bindControls();
+    fit();
+    connect();
+    requestAnimationFrame(tick);
+  }
+
+  // For tests and benchmarks: where things are drawn, and how often the page drew.
+  window.fleetView = {
+    stats,
+    drawn,
+    get site() { return site; },
+    get frame() { return frame; },
+    toScreen(x, y) { return [X(x), Y(y)]; },
+  };
+
+  start().catch((e) => toast(`cannot load the site: ${e.message}`, true));
+})();

@@ -1,0 +1,801 @@
+#include "server/web_server.hpp"
+
+#include <httplib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "model/names.hpp"
+
+namespace fleet::server {
+
+// The page's files, compiled into the binary by server/web/embed_assets.cmake so that the server
+// serves the page it was built with, wherever it runs from. The same declaration is in the
+// generated source.
+namespace web_assets {
+struct Entry {
+  const char* path;
+  const unsigned char* data;
+  std::size_t size;
+};
+extern const Entry kEntries[];
+extern const std::size_t kEntryCount;
+}  // namespace web_assets
+
+using nlohmann::json;
+
+namespace {
+
+// Rounding keeps frames small and stable: a robot standing still produces no diff from
+// floating-point noise in its pose. 0.1 mm and 0.1 mrad are below anything the page can show.
+// Dividing the rounded integer by an exact power of ten yields the double nearest the decimal
+// value, which prints short ("0.7", not "0.7000000000000001").
+double round_places(double v, int places) {
+  const double k = std::pow(10.0, places);
+  return std::round(v * k) / k;
+}
+double r4(double v) { return round_places(v, 4); }
+double r3(double v) { return round_places(v, 3); }
+/// Three significant digits, for covariances that span many orders of magnitude.
+double sig3(double v) {
+  if (v == 0.0 || !std::isfinite(v)) return 0.0;
+  const int places = 2 - static_cast<int>(std::floor(std::log10(std::fabs(v))));
+  return places >= 0 ? round_places(v, places) : std::round(v / std::pow(10.0, -places)) * std::pow(10.0, -places);
+}
+
+json point(double x, double y) { return json::array({r3(x), r3(y)}); }
+
+json robot_json(const RobotView& view) {
+  const auto& s = view.state;
+  json j{{"fleet", s.fleet_id},
+         {"map", s.map_id},
+         {"x", r4(s.pose.x)},
+         {"y", r4(s.pose.y)},
+         {"yaw", r4(s.pose.yaw)},
+         // x-x, x-y, y-y and yaw-yaw of the row-major 3x3 covariance: what the ellipse and the
+         // heading uncertainty need.
+         {"cov", json::array({sig3(s.covariance[0]), sig3(s.covariance[1]), sig3(s.covariance[4]),
+                              sig3(s.covariance[8])})},
+         {"score", r3(s.localization_score)},
+         {"speed", r3(s.speed)},
+         {"state", s.task_state},
+         {"detail", s.detail},
+         {"order", s.order_id},
+         {"carrying", s.carrying_pallet},
+         {"health", view.health},
+         {"age", round_places(view.age_s, 1)},
+         {"fp", json::array({view.footprint.length, view.footprint.width})}};
+  json path = json::array();
+  for (const auto& p : view.path) path.push_back(point(p.x, p.y));
+  j["path"] = std::move(path);
+  // Absent rather than null: a frame never holds null, so null in a diff means "removed".
+  if (view.truth) {
+    j["truth"] = json::array({r4(view.truth->pose.x), r4(view.truth->pose.y), r4(view.truth->pose.yaw)});
+    j["truth_carrying"] = view.truth->carrying_pallet;
+  }
+  return j;
+}
+
+json order_json(const model::OrderInfo& o) {
+  return json{{"id", o.order_id},        {"from", o.pick_area},    {"to", o.drop_area},
+              {"fleet", o.fleet_id},     {"robot", o.robot_id},    {"state", o.state},
+              {"phase", o.phase},        {"reason", o.reason},     {"priority", o.priority},
+              {"created", r3(o.created_sim)}, {"updated", r3(o.updated_sim)}};
+}
+
+json globals_json(const LiveSnapshot& s) {
+  return json{{"sim_time", r3(s.sim_time)},
+              {"time_scale", s.time_scale},
+              {"auto_orders", s.auto_orders},
+              {"orders_done", s.orders_done},
+              {"orders_failed", s.orders_failed},
+              {"orders_per_hour", round_places(s.orders_per_hour, 1)},
+              {"order_time_p95_s", round_places(s.order_time_p95_s, 1)}};
+}
+
+json pose_json(const std::string& id, const geometry::Pose2& p) {
+  return json{{"id", id}, {"x", r4(p.x)}, {"y", r4(p.y)}, {"yaw", r4(p.yaw)}};
+}
+
+json polygon_json(const geometry::Polygon& polygon) {
+  json out = json::array();
+  for (const auto& p : polygon) out.push_back(point(p.x, p.y));
+  return out;
+}
+
+const json kEmptyObject = json::object();
+
+const json& section_of(const json& frame, const char* name) {
+  const auto it = frame.find(name);
+  return it == frame.end() ? kEmptyObject : *it;
+}
+
+/// Changed and removed values of a flat object (id -> value).
+void diff_flat(const json& prev, const json& next, const char* name, json& out) {
+  json changed = json::object();
+  json removed = json::array();
+  for (const auto& [key, value] : next.items()) {
+    const auto it = prev.find(key);
+    if (it == prev.end() || *it != value) changed[key] = value;
+  }
+  for (const auto& [key, value] : prev.items()) {
+    if (!next.contains(key)) removed.push_back(key);
+  }
+  if (!changed.empty()) out[name] = std::move(changed);
+  if (!removed.empty()) out[std::string(name) + "_removed"] = std::move(removed);
+}
+
+/// Per entity (id -> object) the changed fields; a new entity whole; a vanished field as null.
+void diff_keyed(const json& prev, const json& next, const char* name, json& out) {
+  json changed = json::object();
+  json removed = json::array();
+  for (const auto& [id, entity] : next.items()) {
+    const auto it = prev.find(id);
+    if (it == prev.end()) {
+      changed[id] = entity;
+      continue;
+    }
+    json fields = json::object();
+    for (const auto& [key, value] : entity.items()) {
+      const auto f = it->find(key);
+      if (f == it->end() || *f != value) fields[key] = value;
+    }
+    for (const auto& [key, value] : it->items()) {
+      if (!entity.contains(key)) fields[key] = nullptr;
+    }
+    if (!fields.empty()) changed[id] = std::move(fields);
+  }
+  for (const auto& [id, entity] : prev.items()) {
+    if (!next.contains(id)) removed.push_back(id);
+  }
+  if (!changed.empty()) out[name] = std::move(changed);
+  if (!removed.empty()) out[std::string(name) + "_removed"] = std::move(removed);
+}
+
+constexpr const char* kKeyedSections[] = {"robots", "orders"};
+constexpr const char* kFlatSections[] = {"obstacles", "pallets", "globals"};
+
+std::string mime_of(const std::string& path) {
+  auto ends = [&](const char* ext) {
+    const std::string e(ext);
+    return path.size() >= e.size() && path.compare(path.size() - e.size(), e.size(), e) == 0;
+  };
+  if (ends(".html")) return "text/html; charset=utf-8";
+  if (ends(".js")) return "text/javascript; charset=utf-8";
+  if (ends(".css")) return "text/css; charset=utf-8";
+  if (ends(".svg")) return "image/svg+xml";
+  if (ends(".png")) return "image/png";
+  return "application/octet-stream";
+}
+
+/// Compares without an early exit, so the time taken does not tell how much of a guess matched.
+bool same_token(const std::string& given, const std::string& expected) {
+  unsigned char diff = given.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    diff |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<std::size_t>(expected.size(), 1)]);
+  }
+  return diff == 0;
+}
+
+void send_json(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& field, const std::string& message) {
+  json body{{"error", field.empty() ? message : field + ": " + message}};
+  if (!field.empty()) body["field"] = field;
+  send_json(res, status, body);
+}
+
+/// The request body as a JSON object, or an error response naming the body.
+std::optional<json> body_object(const httplib::Request& req, httplib::Response& res) {
+  if (req.body.empty()) return json::object();
+  json body = json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    send_error(res, 400, "body", "not a JSON object");
+    return std::nullopt;
+  }
+  return body;
+}
+
+/// An optional string field; nullopt and an error response when it is there but not a string.
+std::optional<std::string> string_field(const json& body, const char* name, bool required, httplib::Response& res) {
+  const auto it = body.find(name);
+  if (it == body.end() || it->is_null()) {
+    if (required) {
+      send_error(res, 400, name, "missing");
+      return std::nullopt;
+    }
+    return std::string();
+  }
+  if (!it->is_string()) {
+    send_error(res, 400, name, "must be a string, got " + it->dump());
+    return std::nullopt;
+  }
+  if (required && it->get<std::string>().empty()) {
+    send_error(res, 400, name, "must not be empty");
+    return std::nullopt;
+  }
+  return it->get<std::string>();
+}
+
+std::optional<bool> bool_field(const json& body, const char* name, httplib::Response& res) {
+  const auto it = body.find(name);
+  if (it == body.end()) {
+    send_error(res, 400, name, "missing (true or false)");
+    return std::nullopt;
+  }
+  if (!it->is_boolean()) {
+    send_error(res, 400, name, "must be true or false, got " + it->dump());
+    return std::nullopt;
+  }
+  return it->get<bool>();
+}
+
+std::string sse_event(const char* name, std::uint64_t version, const json& data) {
+  return std::string("event: ") + name + "\nid: " + std::to_string(version) + "\ndata: " + data.dump() + "\n\n";
+}
+
+}  // namespace
+
+// ---- JSON --------------------------------------------------------------------------------------
+
+json site_json(const WebSiteInfo& info) {
+  const map::SiteMap& sm = *info.site_map;
+  const map::Site& site = sm.site;
+  json j;
+  j["site"] = site.name;
+  j["bounds"] = {{"min_x", site.bounds.min_x}, {"min_y", site.bounds.min_y},
+                 {"max_x", site.bounds.max_x}, {"max_y", site.bounds.max_y}};
+  j["road_width"] = site.road_width;
+  j["pallet_size"] = 0.4 * site.road_width;  // as drawn by map::render_svg
+
+  // Lanes as outlines between their borders, exact for any width profile, and the reference
+  // lines; sampled as map::render_svg does, at half the graph spacing.
+  const double step = std::max(site.graph_spacing * 0.5, 1e-3);
+  json lanes = json::array();
+  json references = json::array();
+  for (const map::Road& road : sm.network.roads) {
+    for (std::size_t si = 0; si < road.sections.size(); ++si) {
+      const double s0 = road.sections[si].s;
+      const double s1 = road.section_end(si);
+      const int n = std::clamp(static_cast<int>(std::ceil((s1 - s0) / step)), 1, 4000);
+      for (const auto* side : {&road.sections[si].left, &road.sections[si].right}) {
+        for (const map::Lane& lane : *side) {
+          json inner = json::array();
+          json outer = json::array();
+          double width_sum = 0.0;
+          for (int i = 0; i <= n; ++i) {
+            const double s = s0 + (s1 - s0) * i / n;
+            const map::RefPoint ref = map::evaluate_reference(road, s);
+            const double t = map::lane_center_t(road, si, lane.id, s);
+            const double width = map::lane_width_at(road, si, lane.id, s);
+            width_sum += width;
+            const double nx = -std::sin(ref.hdg), ny = std::cos(ref.hdg);
+            inner.push_back(point(ref.x + (t - width / 2) * nx, ref.y + (t - width / 2) * ny));
+            outer.push_back(point(ref.x + (t + width / 2) * nx, ref.y + (t + width / 2) * ny));
+          }
+          json outline = std::move(inner);
+          for (auto it = outer.rbegin(); it != outer.rend(); ++it) outline.push_back(*it);
+          lanes.push_back({{"road", road.id},
+                           {"lane", lane.id},
+                           {"drivable", lane.drivable()},
+                           {"width", r3(width_sum / (n + 1))},
+                           {"outline", std::move(outline)}});
+        }
+      }
+    }
+    const int n = std::clamp(static_cast<int>(std::ceil(road.length / step)), 1, 8000);
+    json line = json::array();
+    for (int i = 0; i <= n; ++i) {
+      const map::RefPoint p = map::evaluate_reference(road, road.length * i / n);
+      line.push_back(point(p.x, p.y));
+    }
+    references.push_back({{"road", road.id}, {"points", std::move(line)}});
+  }
+  j["lanes"] = std::move(lanes);
+  j["references"] = std::move(references);
+
+  const map::RoadGraph& graph = sm.graph.graph;
+  json points = json::array();
+  json edges = json::array();
+  for (std::size_t i = 0; i < graph.points.size(); ++i) {
+    points.push_back(point(graph.points[i].x, graph.points[i].y));
+    for (const int k : graph.successors[i]) edges.push_back(json::array({static_cast<int>(i), k}));
+  }
+  j["graph"] = {{"points", std::move(points)}, {"edges", std::move(edges)}};
+
+  json areas = json::array();
+  for (const auto& a : site.loading_areas) {
+    json area = pose_json(a.id, a.pose);
+    area["pallet_at_start"] = a.pallet_at_start;
+    areas.push_back(std::move(area));
+  }
+  j["areas"] = std::move(areas);
+  json obstacles = json::array();
+  for (const auto& o : site.static_obstacles) {
+    obstacles.push_back({{"id", o.id}, {"polygon", polygon_json(o.polygon)}, {"enabled_at_start", o.enabled_at_start}});
+  }
+  j["obstacles"] = std::move(obstacles);
+  json racks = json::array();
+  for (const auto& r : site.racks) racks.push_back({{"id", r.id}, {"polygon", polygon_json(r.polygon)}});
+  j["racks"] = std::move(racks);
+  json anchors = json::array();
+  for (const auto& a : site.uwb_anchors) anchors.push_back({{"id", a.id}, {"x", a.x}, {"y", a.y}, {"z", a.z}});
+  j["anchors"] = std::move(anchors);
+  json homes = json::array();
+  for (const auto& h : site.homes) homes.push_back(pose_json(h.id, h.pose));
+  j["homes"] = std::move(homes);
+
+  json robots = json::array();
+  if (info.config) {
+    for (const auto& [fleet, robot] : info.config->all_robots()) {
+      robots.push_back({{"id", robot->id},
+                        {"fleet", fleet->id},
+                        {"type", fleet->robot_type},
+                        {"home", robot->home},
+                        {"fp", json::array({fleet->footprint.length, fleet->footprint.width})}});
+    }
+  }
+  j["robots"] = std::move(robots);
+  j["maps"] = info.maps;
+  return j;
+}
+
+json state_json(const LiveSnapshot& snapshot) {
+  json j = globals_json(snapshot);
+  json robots = json::array();
+  for (const auto& view : snapshot.robots) {
+    json r = robot_json(view);
+    r["id"] = view.state.robot_id;
+    robots.push_back(std::move(r));
+  }
+  j["robots"] = std::move(robots);
+  json orders = json::array();
+  for (const auto& o : snapshot.orders) {
+    json order = order_json(o);
+    json history = json::array();
+    for (const auto& e : o.history) {
+      history.push_back({{"sim_time", r3(e.sim_time)},
+                         {"state", e.state},
+                         {"phase", e.phase},
+                         {"robot", e.robot_id},
+                         {"reason", e.reason},
+                         {"robot_x", r4(e.robot_x)},
+                         {"robot_y", r4(e.robot_y)}});
+    }
+    order["history"] = std::move(history);
+    orders.push_back(std::move(order));
+  }
+  j["orders"] = std::move(orders);
+  j["obstacles"] = snapshot.obstacle_enabled;
+  j["pallets"] = snapshot.pallet_at;
+  return j;
+}
+
+json frame_json(const LiveSnapshot& snapshot) {
+  json robots = json::object();
+  for (const auto& view : snapshot.robots) robots[view.state.robot_id] = robot_json(view);
+  json orders = json::object();
+  for (const auto& o : snapshot.orders) orders[std::to_string(o.order_id)] = order_json(o);
+  return json{{"globals", globals_json(snapshot)},
+              {"robots", std::move(robots)},
+              {"orders", std::move(orders)},
+              {"obstacles", snapshot.obstacle_enabled},
+              {"pallets", snapshot.pallet_at}};
+}
+
+json frame_diff(const json& prev, const json& next) {
+  json out = json::object();
+  for (const char* name : kKeyedSections) diff_keyed(section_of(prev, name), section_of(next, name), name, out);
+  for (const char* name : kFlatSections) diff_flat(section_of(prev, name), section_of(next, name), name, out);
+  return out;
+}
+
+void frame_apply(json& frame, const json& diff) {
+  for (const char* name : kKeyedSections) {
+    json& section = frame[name];
+    if (!section.is_object()) section = json::object();
+    if (const auto it = diff.find(name); it != diff.end()) {
+      for (const auto& [id, fields] : it->items()) {
+        json& entity = section[id];
+        if (!entity.is_object()) entity = json::object();
+        for (const auto& [key, value] : fields.items()) {
+          if (value.is_null()) {
+            entity.erase(key);
+          } else {
+            entity[key] = value;
+          }
+        }
+      }
+    }
+    if (const auto it = diff.find(std::string(name) + "_removed"); it != diff.end()) {
+      for (const auto& id : *it) section.erase(id.get<std::string>());
+    }
+  }
+  for (const char* name : kFlatSections) {
+    json& section = frame[name];
+    if (!section.is_object()) section = json::object();
+    if (const auto it = diff.find(name); it != diff.end()) {
+      for (const auto& [key, value] : it->items()) section[key] = value;
+    }
+    if (const auto it = diff.find(std::string(name) + "_removed"); it != diff.end()) {
+      for (const auto& key : *it) section.erase(key.get<std::string>());
+    }
+  }
+}
+
+std::string generate_api_token() {
+  std::random_device entropy;
+  std::string token;
+  static constexpr char kHex[] = "0123456789abcdef";
+  for (int i = 0; i < 32; ++i) token += kHex[entropy() % 16];
+  return token;
+}
+
+// ---- the server --------------------------------------------------------------------------------
+
+/// One stream frame, shared by every client: the full frame for clients that join or fell
+/// behind, and the diff from the frame before it for clients that received that one.
+struct WebServer::Frame {
+  std::uint64_t version = 0;
+  std::uint64_t prev_version = 0;
+  json frame;
+  std::string full_event;
+  std::string diff_event;
+};
+
+WebServer::WebServer(WebOptions options, WebBridge& bridge, WebSiteInfo site, Logger log)
+    : options_(std::move(options)), bridge_(bridge), site_(std::move(site)), log_(std::move(log)) {
+  if (options_.token.empty()) throw std::invalid_argument("web server: empty API token");
+  if (!site_.site_map) throw std::invalid_argument("web server: no site map");
+  site_body_ = site_json(site_).dump();
+}
+
+WebServer::~WebServer() { stop(); }
+
+void WebServer::start() {
+  http_ = std::make_unique<httplib::Server>();
+  // Every stream client holds a thread while it listens; the rest serve the API and the page.
+  const auto threads = static_cast<std::size_t>(options_.max_stream_clients + 8);
+  http_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  http_->set_payload_max_length(64 * 1024);
+  http_->set_keep_alive_timeout(2);
+  routes();
+  port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;
+  if (port_ <= 0 || (options_.port != 0 && !http_->bind_to_port(options_.host, options_.port))) {
+    http_.reset();
+    throw std::runtime_error("cannot listen on http://" + options_.host + ":" + std::to_string(options_.port) +
+                             " (address in use or not local?)");
+  }
+  stopping_ = false;
+  pump_ = std::thread([this] { pump(); });
+  listener_ = std::thread([this] { http_->listen_after_bind(); });
+}
+
+void WebServer::stop() {
+  if (!http_) return;
+  {
+    std::lock_guard lock(frame_mutex_);
+    stopping_ = true;
+  }
+  frame_cv_.notify_all();
+  http_->stop();
+  if (listener_.joinable()) listener_.join();
+  if (pump_.joinable()) pump_.join();
+  http_.reset();
+}
+
+void WebServer::pump() {
+  const auto period = std::chrono::duration<double>(1.0 / options_.stream_hz);
+  std::uint64_t seen = 0;
+  std::shared_ptr<const Frame> previous;
+  while (true) {
+    {
+      std::unique_lock lock(frame_mutex_);
+      frame_cv_.wait_for(lock, period, [this] { return stopping_.load(); });
+      if (stopping_) return;
+    }
+    auto [snapshot, version] = bridge_.latest();
+    // Version 0 is the empty snapshot before the server loop's first publish.
+    if (version == seen || version == 0) continue;
+    seen = version;
+    auto frame = std::make_shared<Frame>();
+    frame->version = version;
+    frame->frame = frame_json(snapshot);
+    frame->full_event = sse_event("full", version, frame->frame);
+    if (previous) {
+      frame->prev_version = previous->version;
+      frame->diff_event = sse_event("diff", version, frame_diff(previous->frame, frame->frame));
+    }
+    previous = frame;
+    ++frames_built_;
+    {
+      std::lock_guard lock(frame_mutex_);
+      frame_ = std::move(frame);
+    }
+    frame_cv_.notify_all();
+  }
+}
+
+std::shared_ptr<const WebServer::Frame> WebServer::wait_frame(std::uint64_t after, double timeout_s) {
+  std::unique_lock lock(frame_mutex_);
+  frame_cv_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                     [&] { return stopping_.load() || (frame_ && frame_->version > after); });
+  if (stopping_ || !frame_ || frame_->version <= after) return nullptr;
+  return frame_;
+}
+
+void WebServer::routes() {
+  using httplib::Request;
+  using httplib::Response;
+  httplib::Server& http = *http_;
+
+  // Every answer: no caching of live data, no sniffing, nothing loaded from elsewhere. No CORS
+  // headers, so other origins cannot read the API from a browser.
+  http.set_default_headers({{"Cache-Control", "no-store"},
+                            {"X-Content-Type-Options", "nosniff"},
+                            {"Content-Security-Policy",
+                             "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
+                             "connect-src 'self'; frame-ancestors 'none'"}});
+  http.set_error_handler(httplib::Server::HandlerWithResponse([](const Request&, Response& res) {
+    // Errors the handlers answered keep their JSON; the library's own (404 for an unknown path)
+    // get one too.
+    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    send_error(res, res.status, "", res.status == 404 ? "no such resource" : "request failed");
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  http.set_exception_handler([this](const Request& req, Response& res, std::exception_ptr ep) {
+    std::string what = "unknown error";
+    try {
+      std::rethrow_exception(ep);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    log_->error("web: {} {} failed: {}", req.method, req.path, what);
+    send_error(res, 500, "", what);
+  });
+
+  // ---- the page ----
+  auto serve_asset = [](const std::string& name, Response& res) {
+    for (std::size_t i = 0; i < web_assets::kEntryCount; ++i) {
+      const auto& entry = web_assets::kEntries[i];
+      if (name == entry.path) {
+        res.set_content(reinterpret_cast<const char*>(entry.data), entry.size, mime_of(name));
+        return true;
+      }
+    }
+    return false;
+  };
+  http.Get("/", [serve_asset](const Request&, Response& res) { serve_asset("index.html", res); });
+  http.Get(R"(/([a-z_]+\.(?:js|css|html|svg|png)))", [serve_asset](const Request& req, Response& res) {
+    if (!serve_asset(req.matches[1], res)) send_error(res, 404, "", "no such file");
+  });
+
+  // ---- reading ----
+  http.Get("/api/site", [this](const Request&, Response& res) { res.set_content(site_body_, "application/json"); });
+  http.Get("/api/state", [this](const Request&, Response& res) {
+    json state = state_json(bridge_.latest().first);
+    state["site"] = site_.site_map->site.name;
+    send_json(res, 200, state);
+  });
+  http.Get("/api/stream", [this](const Request&, Response& res) {
+    if (stream_clients_.fetch_add(1) >= options_.max_stream_clients) {
+      --stream_clients_;
+      send_error(res, 503, "", "too many stream clients (" + std::to_string(options_.max_stream_clients) + ")");
+      return;
+    }
+    auto last_sent = std::make_shared<std::uint64_t>(0);
+    res.set_header("Cache-Control", "no-cache");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, last_sent](std::size_t, httplib::DataSink& sink) {
+          if (stopping_) return false;
+          const auto frame = wait_frame(*last_sent, 5.0);
+          if (stopping_) return false;
+          if (!frame) {
+            // A comment line: keeps proxies from timing out and finds clients that left while
+            // the server loop publishes nothing.
+            static const std::string keepalive = ": keepalive\n\n";
+            return sink.write(keepalive.data(), keepalive.size());
+          }
+          const bool diff_fits = *last_sent != 0 && frame->prev_version == *last_sent && !frame->diff_event.empty();
+          const std::string& event = diff_fits ? frame->diff_event : frame->full_event;
+          *last_sent = frame->version;
+          return sink.write(event.data(), event.size());
+        },
+        [this](bool) { --stream_clients_; });
+  });
+
+  // ---- changing: every call needs the token ----
+  auto authorized = [this](const Request& req, Response& res) {
+    std::string given;
+    const std::string header = req.get_header_value("Authorization");
+    if (header.rfind("Bearer ", 0) == 0) {
+      given = header.substr(7);
+    } else if (req.has_param("token")) {
+      given = req.get_param_value("token");
+    }
+    if (given.empty()) {
+      res.set_header("WWW-Authenticate", "Bearer");
+      send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
+      return false;
+    }
+    if (!same_token(given, options_.token)) {
+      send_error(res, 403, "token", "wrong token");
+      return false;
+    }
+    return true;
+  };
+  // Hands a request to the server loop and waits for its answer (the same execute() as fleetctl's
+  // requests over DDS). A request that times out stays queued and may still be carried out; the
+  // 503 says only that no answer came in time.
+  auto ask = [this](WebRequest request, Response& res) -> std::optional<model::RequestReply> {
+    auto reply = bridge_.submit(std::move(request));
+    if (reply.wait_for(std::chrono::duration<double>(options_.reply_timeout_s)) != std::future_status::ready) {
+      send_error(res, 503, "", "the server loop did not answer within " +
+                                   std::to_string(static_cast<int>(options_.reply_timeout_s)) + " s");
+      return std::nullopt;
+    }
+    return reply.get();
+  };
+  auto next_request_id = [this] {
+    return "web-" + std::to_string(::getpid()) + "-" + std::to_string(++request_counter_);
+  };
+  auto robot_ids = [this] {
+    std::vector<std::string> ids;
+    for (const auto& [fleet, robot] : site_.config->all_robots()) ids.push_back(robot->id);
+    return ids;
+  };
+  auto command = [this, ask, next_request_id](Response& res, std::string verb, std::string target,
+                                               std::string value) -> std::optional<model::RequestReply> {
+    model::Command c;
+    c.request_id = next_request_id();
+    c.verb = std::move(verb);
+    c.target = std::move(target);
+    c.value = std::move(value);
+    log_->info("web: {} {} {} ({})", c.verb, c.target, c.value, c.request_id);
+    return ask(c, res);
+  };
+  auto ok = [](Response& res, const model::RequestReply& reply, json extra = json::object()) {
+    extra["accepted"] = true;
+    extra["request_id"] = reply.request_id;
+    send_json(res, 200, extra);
+  };
+
+  http.Post("/api/orders", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body) return;
+    const auto from = string_field(*body, "from", true, res);
+    if (!from) return;
+    const auto to = string_field(*body, "to", true, res);
+    if (!to) return;
+    const auto robot = string_field(*body, "robot", false, res);
+    if (!robot) return;
+    const auto fleet = string_field(*body, "fleet", false, res);
+    if (!fleet) return;
+    int priority = 0;
+    if (const auto it = body->find("priority"); it != body->end()) {
+      if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
+      priority = it->get<int>();
+    }
+    const map::Site& site = site_.site_map->site;
+    if (!site.find_area(*from)) {
+      return send_error(res, 400, "from", model::unknown_name_message("loading area", *from, site.area_ids()));
+    }
+    if (!site.find_area(*to)) {
+      return send_error(res, 400, "to", model::unknown_name_message("loading area", *to, site.area_ids()));
+    }
+    if (!robot->empty() && !site_.config->find_robot(*robot)) {
+      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
+    }
+    if (!fleet->empty()) {
+      std::vector<std::string> fleets;
+      for (const auto& f : site_.config->fleets) fleets.push_back(f.id);
+      if (std::find(fleets.begin(), fleets.end(), *fleet) == fleets.end()) {
+        return send_error(res, 400, "fleet", model::unknown_name_message("fleet", *fleet, fleets));
+      }
+    }
+    model::OrderRequest request;
+    request.request_id = next_request_id();
+    request.pick_area = *from;
+    request.drop_area = *to;
+    request.robot_id = *robot;
+    request.fleet_id = *fleet;
+    request.priority = priority;
+    const auto reply = ask(request, res);
+    if (!reply) return;
+    if (!reply->accepted) {
+      log_->info("web: order {} -> {} refused: {}", *from, *to, reply->error);
+      return send_error(res, 409, "", reply->error);
+    }
+    log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
+    send_json(res, 201, {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}});
+  });
+
+  http.Delete(R"(/api/orders/([^/]+))", [=](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    if (id.empty() || id.size() > 18 || !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      return send_error(res, 400, "id", "order id '" + id + "' is not a number");
+    }
+    const auto reply = command(res, "cancel-order", id, "");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, reply->error.rfind("unknown order", 0) == 0 ? 404 : 409, "", reply->error);
+    ok(res, *reply, {{"order_id", std::stoll(id)}, {"state", "CANCELLED"}});
+  });
+
+  http.Post(R"(/api/obstacles/([^/]+))", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    const map::Site& site = site_.site_map->site;
+    if (!site.find_obstacle(id)) {
+      std::vector<std::string> ids;
+      for (const auto& o : site.static_obstacles) ids.push_back(o.id);
+      return send_error(res, 404, "id", model::unknown_name_message("obstacle", id, ids));
+    }
+    const auto body = body_object(req, res);
+    if (!body) return;
+    const auto enabled = bool_field(*body, "enabled", res);
+    if (!enabled) return;
+    const auto reply = command(res, "obstacle", id, *enabled ? "on" : "off");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"obstacle", id}, {"enabled", *enabled}});
+  });
+
+  http.Post("/api/map", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body) return;
+    const auto map_id = string_field(*body, "map", true, res);
+    if (!map_id) return;
+    const auto robot = string_field(*body, "robot", false, res);
+    if (!robot) return;
+    if (std::find(site_.maps.begin(), site_.maps.end(), *map_id) == site_.maps.end()) {
+      return send_error(res, 400, "map", model::unknown_name_message("map", *map_id, site_.maps));
+    }
+    if (!robot->empty() && !site_.config->find_robot(*robot)) {
+      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
+    }
+    // Empty target: every robot.
+    const auto reply = command(res, "map", *robot, *map_id);
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"map", *map_id}, {"robot", *robot}});
+  });
+
+  http.Post(R"(/api/robots/([^/]+)/(pause|resume))", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    const std::string verb = req.matches[2];
+    if (!site_.config->find_robot(id)) {
+      return send_error(res, 404, "id", model::unknown_name_message("robot", id, robot_ids()));
+    }
+    const auto reply = command(res, verb, id, "");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"robot", id}, {"paused", verb == "pause"}});
+  });
+
+  http.Post("/api/auto-orders", [=](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body) return;
+    const auto enabled = bool_field(*body, "enabled", res);
+    if (!enabled) return;
+    const auto reply = command(res, "auto-orders", "", *enabled ? "on" : "off");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"auto_orders", *enabled}});
+  });
+}
+
+}  // namespace fleet::server

@@ -1,0 +1,115 @@
+#pragma once
+
+// The web view of seed 000's visualization server (chapter 3, Fig. 3.3): a page and a JSON API
+// served over HTTP, with a server-sent-event stream of what changed. It runs on its own threads
+// and touches the server loop only through a WebBridge.
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/logging.hpp"
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "server/web_bridge.hpp"
+
+namespace httplib {
+class Server;
+}
+
+namespace fleet::server {
+
+struct WebOptions {
+  std::string host = "127.0.0.1";  ///< loopback unless configured otherwise
+  int port = 8080;                 ///< 0: any free port (see WebServer::port())
+  std::string token;               ///< mutating calls need it; must not be empty
+  double stream_hz = 20.0;         ///< highest rate of stream frames, wall time
+  double reply_timeout_s = 5.0;    ///< how long a request waits for the server loop's answer
+  int max_stream_clients = 32;     ///< each holds one thread for as long as it listens
+};
+
+/// Everything the page draws that never changes while the server runs, from the site file, its
+/// road network and graph, and the fleet configuration.
+struct WebSiteInfo {
+  const map::SiteMap* site_map = nullptr;
+  const config::FleetConfig* config = nullptr;
+  std::vector<std::string> maps;  ///< map (site) ids the page may switch to
+};
+
+// ---- JSON of the API and stream; free functions so that tests and the benchmark use them too ----
+
+/// GET /api/site: roads as lane outlines and reference polylines (metres, map frame), road
+/// width, graph points and edges, loading areas, static obstacles, racks, UWB anchors, homes,
+/// bounds, the robots of the configuration with their footprints, the map ids.
+nlohmann::json site_json(const WebSiteInfo& info);
+
+/// GET /api/state: the whole snapshot; robots and orders as arrays, orders with their history.
+nlohmann::json state_json(const LiveSnapshot& snapshot);
+
+/// A stream frame: the snapshot keyed by id ({"robots": {id: {...}}, "orders": {id: {...}},
+/// "obstacles", "pallets", "globals"}), rounded to what the page can show (0.1 mm), orders without
+/// their history. Diffs are taken between two of these.
+nlohmann::json frame_json(const LiveSnapshot& snapshot);
+
+/// What changed from `prev` to `next` (both frame_json): per robot and order only the fields that
+/// changed (a new id carries all its fields), per obstacle, pallet and global value only the
+/// changed ones, and the ids that left under "<section>_removed". Empty sections are omitted.
+nlohmann::json frame_diff(const nlohmann::json& prev, const nlohmann::json& next);
+
+/// Applies a frame_diff to a frame, as the page does; frame_apply(a, frame_diff(a, b)) == b.
+void frame_apply(nlohmann::json& frame, const nlohmann::json& diff);
+
+/// Serves the page, the API and the stream on its own threads. The bridge must outlive it.
+class WebServer {
+ public:
+  WebServer(WebOptions options, WebBridge& bridge, WebSiteInfo site, Logger log);
+  ~WebServer();
+  WebServer(const WebServer&) = delete;
+  WebServer& operator=(const WebServer&) = delete;
+
+  /// Binds and starts serving. Throws std::runtime_error naming the address when it cannot bind.
+  void start();
+  /// Stops serving and joins its threads; ends every open stream. Called by the destructor.
+  void stop();
+  /// The bound port (useful with port 0).
+  int port() const { return port_; }
+
+  /// Stream frames built so far (one per new snapshot, shared by every client).
+  std::uint64_t frames_built() const { return frames_built_.load(); }
+
+ private:
+  struct Frame;
+  void routes();
+  void pump();
+  std::shared_ptr<const Frame> wait_frame(std::uint64_t after, double timeout_s);
+
+  WebOptions options_;
+  WebBridge& bridge_;
+  WebSiteInfo site_;
+  Logger log_;
+  std::string site_body_;  ///< GET /api/site, serialized once
+  std::unique_ptr<httplib::Server> http_;
+  int port_ = 0;
+  std::thread listener_;
+  std::thread pump_;
+  std::atomic<bool> stopping_{false};
+  std::atomic<int> stream_clients_{0};
+  std::atomic<std::uint64_t> frames_built_{0};
+  std::atomic<std::uint64_t> request_counter_{0};
+
+  std::mutex frame_mutex_;
+  std::condition_variable frame_cv_;
+  std::shared_ptr<const Frame> frame_;  ///< the newest frame, guarded by frame_mutex_
+};
+
+/// A random token of 32 hex digits from the system's entropy source.
+std::string generate_api_token();
+
+}  // namespace fleet::server

@@ -1,0 +1,146 @@
+#include "robot/forklift.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace fleet;
+using robot::ForkliftEvent;
+
+namespace {
+
+std::shared_ptr<const map::SiteMap> table_a() {
+  static const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
+  return site;
+}
+
+std::map<int, geometry::Pose2> pallets_of(const map::Site& site) {
+  std::map<int, geometry::Pose2> pallets;
+  int id = 1;
+  for (const auto& area : site.loading_areas) {
+    if (area.pallet_at_start) pallets[id++] = area.pose;
+  }
+  return pallets;
+}
+
+task::TaskOrder order_between(const map::Site& site, const std::string& from, const std::string& to) {
+  return {"1", from, site.find_area(from)->pose, to, site.find_area(to)->pose};
+}
+
+/// Steps until an event of `kind` or the sim-time limit; collects every event.
+std::vector<ForkliftEvent> run_until(robot::Forklift& f, ForkliftEvent::Kind kind, double limit_s) {
+  std::vector<ForkliftEvent> all;
+  const double end = f.time() + limit_s;
+  while (f.time() < end) {
+    f.step();
+    for (auto& e : f.take_events()) {
+      all.push_back(e);
+      if (e.kind == kind) return all;
+    }
+  }
+  return all;
+}
+
+bool has(const std::vector<ForkliftEvent>& events, ForkliftEvent::Kind kind, const std::string& text = "") {
+  for (const auto& e : events) {
+    if (e.kind == kind && (text.empty() || e.text == text)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(Forklift, CarriesARealPalletFromPickToDropAndGoesHome) {
+  const auto site = table_a();
+  const auto home = site->site.find_home("H1")->pose;
+  robot::Forklift f(robot::ForkliftConfig::defaults(), site, home, 1, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  std::string why;
+  ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), &why)) << why;
+
+  const auto events = run_until(f, ForkliftEvent::Kind::kDone, 300.0);
+  ASSERT_TRUE(has(events, ForkliftEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
+  for (const char* phase : {"TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"}) {
+    EXPECT_TRUE(has(events, ForkliftEvent::Kind::kPhase, phase)) << phase;
+  }
+  EXPECT_TRUE(has(events, ForkliftEvent::Kind::kLifted));
+  const ForkliftEvent done = events.back();
+  EXPECT_EQ(done.pallet_id, 1);  // the pallet that stood on A1
+  const auto& a2 = site->site.find_area("A2")->pose;
+  EXPECT_LT(geometry::distance(done.pallet_pose.position(), a2.position()), 0.03);
+  EXPECT_EQ(f.carried_pallet(), -1);
+
+  const auto back = run_until(f, ForkliftEvent::Kind::kHome, 200.0);
+  ASSERT_TRUE(has(back, ForkliftEvent::Kind::kHome));
+  EXPECT_LT(geometry::distance(f.truth().position(), home.position()), 0.05);
+}
+
+TEST(Forklift, AnEmptyAreaFailsTheOrderAndTheRobotGoesHome) {
+  const auto site = table_a();
+  robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 2, 1);
+  f.set_standing_pallets({});  // no pallet anywhere
+  ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
+  const auto events = run_until(f, ForkliftEvent::Kind::kAreaEmpty, 200.0);
+  EXPECT_TRUE(has(events, ForkliftEvent::Kind::kAreaEmpty)) << f.task_state();
+  EXPECT_EQ(f.task_state(), "GO_HOME");
+}
+
+TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
+  const auto site = table_a();
+  const auto home = site->site.find_home("H1")->pose;
+  robot::Forklift f(robot::ForkliftConfig::defaults(), site, home, 3, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
+  // Drive until a path exists, then put a robot on it 0.6 m ahead.
+  for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
+  ASSERT_GE(f.path().size(), 4u);
+  geometry::Vec2 ahead = f.path().back();
+  double along = 0.0;
+  for (std::size_t i = 1; i < f.path().size(); ++i) {
+    along += geometry::distance(f.path()[i - 1], f.path()[i]);
+    if (along > 0.6) {
+      ahead = f.path()[i];
+      break;
+    }
+  }
+  f.set_neighbours({{"other", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+  bool waited = false;
+  for (int i = 0; i < 70 * 30 && !waited; ++i) {
+    f.step();
+    waited = f.detail() == "another robot ahead";
+  }
+  EXPECT_TRUE(waited);
+  // It never drives into the other robot.
+  for (int i = 0; i < 70 * 60; ++i) {
+    f.step();
+    const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
+    ASSERT_FALSE(geometry::convex_polygons_overlap(mine, geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16})));
+  }
+}
+
+TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
+  // fl2's situation on table_a: it comes from H2 to A1 while fl1 stands at H1, beside A1's road.
+  const auto site = table_a();
+  int failures = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H2")->pose, seed, 1);
+    f.set_standing_pallets(pallets_of(site->site));
+    f.set_neighbours({{"fl1", site->site.find_home("H1")->pose, {0.25, 0.16}, 0.0, 0.0}});
+    ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
+    double worst = 0.0;
+    const double end = f.time() + 300.0;
+    bool done = false, empty = false;
+    while (f.time() < end && !done && !empty) {
+      f.step();
+      worst = std::max(worst, geometry::distance(f.truth().position(), f.estimate().position()));
+      for (const auto& e : f.take_events()) {
+        done = done || e.kind == ForkliftEvent::Kind::kDone;
+        empty = empty || e.kind == ForkliftEvent::Kind::kAreaEmpty;
+      }
+    }
+    if (!done) ++failures;
+    EXPECT_TRUE(done) << "seed " << seed << ": " << (empty ? "area reported empty" : f.task_state())
+                      << ", worst localization error " << worst << " m";
+  }
+  EXPECT_EQ(failures, 0);
+}

@@ -1,0 +1,254 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "test_graphs.hpp"
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_sim.hpp"
+
+namespace fleet::traffic {
+namespace {
+
+using testing::GraphBuilder;
+using testing::point_at;
+
+SimParams scripted() {
+  SimParams p;
+  p.random_trips = false;
+  p.dwell = 0.5;
+  return p;
+}
+
+const Grant* grant_of(const UpdateResult& r, int id) {
+  for (const auto& g : r.grants) {
+    if (g.robot_id == id) return &g;
+  }
+  return nullptr;
+}
+
+// Steps until every robot is idle or `limit` seconds passed; checks safety on the way.
+void run_until_idle(TrafficSim& sim, const std::vector<int>& ids, double limit) {
+  while (sim.time() < limit) {
+    sim.step();
+    ASSERT_EQ(sim.report().invariant_violations, 0u) << sim.report().first_violation;
+    ASSERT_EQ(sim.report().collisions, 0u) << sim.report().first_collision;
+    if (std::all_of(ids.begin(), ids.end(), [&](int id) { return sim.idle(id); })) return;
+  }
+}
+
+TEST(TrafficManager, HeadOnInACorridorBothFinish) {
+  const auto g = testing::corridor_with_siding();
+  const int west = point_at(g, 0.0, 0.0);
+  const int east = point_at(g, 2.0, 0.0);
+  TrafficSim sim(g, {}, scripted(), {}, {west, east});
+  sim.add_goal(1, east);
+  sim.add_goal(2, west);
+  run_until_idle(sim, {1, 2}, 300.0);
+  EXPECT_EQ(sim.goals_reached(1), 1u);
+  EXPECT_EQ(sim.goals_reached(2), 1u);
+  // They cannot pass in the corridor: one of them used the siding.
+  EXPECT_GE(sim.report().sidings, 1u);
+  EXPECT_EQ(sim.report().deadlocks, 0u);
+}
+
+TEST(TrafficManager, ThreeRobotCycleAtACrossingIsBroken) {
+  const auto g = testing::plus_junction();
+  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0);
+  TrafficSim sim(g, {}, scripted(), {}, {e, n, w});
+  sim.add_goal(1, n);  // each wants the arm end where the next one stands; the south arm is free
+  sim.add_goal(2, w);
+  sim.add_goal(3, e);
+  run_until_idle(sim, {1, 2, 3}, 600.0);
+  for (int id : {1, 2, 3}) EXPECT_EQ(sim.goals_reached(id), 1u) << "robot " << id;
+  EXPECT_EQ(sim.report().deadlocks, 0u);
+  EXPECT_GE(sim.report().sidings + sim.report().reroutes, 1u);
+}
+
+TEST(TrafficManager, CrossingTrafficTakesTurnsAtAJunction) {
+  const auto g = testing::plus_junction();
+  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0), s = point_at(g, 0.0, -1.0);
+  TrafficSim sim(g, {}, scripted(), {}, {w, s});
+  sim.add_goal(1, e);
+  sim.add_goal(2, n);
+  const int centre = sim.manager().zones().place_of(point_at(g, 0.0, 0.0));
+  bool one_waited = false;
+  while (sim.time() < 120.0 && !(sim.idle(1) && sim.idle(2))) {
+    sim.step();
+    ASSERT_EQ(sim.report().invariant_violations, 0u) << sim.report().first_violation;
+    const auto h1 = sim.manager().held_places(1);
+    const auto h2 = sim.manager().held_places(2);
+    ASSERT_FALSE(std::binary_search(h1.begin(), h1.end(), centre) && std::binary_search(h2.begin(), h2.end(), centre));
+    for (const auto& grant : sim.last_update().grants) one_waited = one_waited || grant.status == GrantStatus::kWaiting;
+  }
+  EXPECT_EQ(sim.goals_reached(1), 1u);
+  EXPECT_EQ(sim.goals_reached(2), 1u);
+  EXPECT_TRUE(one_waited);
+  EXPECT_EQ(sim.report().collisions, 0u);
+}
+
+TEST(TrafficManager, LostRobotFreesWhatItHolds) {
+  const auto g = testing::plus_junction();
+  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0), s = point_at(g, 0.0, -1.0);
+  TrafficSim sim(g, {}, scripted(), {}, {w, s});
+  sim.add_goal(1, e);
+  sim.add_goal(2, n);
+  const int centre = sim.manager().zones().place_of(point_at(g, 0.0, 0.0));
+  // Robot 1 (first by id) takes the crossing; robot 2 waits for it.
+  bool two_waits_for_one = false;
+  while (sim.time() < 60.0 && !two_waits_for_one) {
+    sim.step();
+    const Grant* g2 = grant_of(sim.last_update(), 2);
+    two_waits_for_one = g2 && g2->status == GrantStatus::kWaiting &&
+                        std::find(g2->blocked_by.begin(), g2->blocked_by.end(), 1) != g2->blocked_by.end();
+  }
+  ASSERT_TRUE(two_waits_for_one);
+  const auto held = sim.manager().held_places(1);
+  ASSERT_TRUE(std::binary_search(held.begin(), held.end(), centre));
+  sim.remove_robot(1);
+  EXPECT_FALSE(sim.manager().has_robot(1));
+  EXPECT_TRUE(sim.manager().held_places(1).empty());
+  sim.step();
+  const auto& events = sim.last_update().events;
+  EXPECT_TRUE(std::any_of(events.begin(), events.end(), [](const TrafficEvent& event) {
+    return event.kind == TrafficEvent::Kind::kRobotRemoved && event.robot_id == 1;
+  }));
+  run_until_idle(sim, {2}, 120.0);
+  EXPECT_EQ(sim.goals_reached(2), 1u);
+}
+
+TEST(TrafficManager, ReleasesByDistanceTravelledBeforeTheNextNode) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 2.0, 0.0);
+  TrafficManager m(b.graph());
+  ASSERT_EQ(m.submit_route({7, 1, road}, 0.0), SubmitStatus::kAccepted);
+  auto r = m.update(0.0);
+  ASSERT_GT(r.grants.at(0).granted_index, 2);
+  const int first = m.zones().place_of(road[0]);
+  // 0.06 m along the first 0.1 m edge: past its midpoint by less than the release margin.
+  m.report_progress({7, 1, 0.06}, 0.3);
+  m.update(0.3);
+  auto held = m.held_places(7);
+  EXPECT_TRUE(std::binary_search(held.begin(), held.end(), first));
+  m.report_progress({7, 1, 0.08}, 0.4);
+  m.update(0.4);
+  held = m.held_places(7);
+  EXPECT_FALSE(std::binary_search(held.begin(), held.end(), first));
+  // Progress on another version is ignored.
+  m.report_progress({7, 5, 1.5}, 0.5);
+  m.update(0.5);
+  held = m.held_places(7);
+  EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(road[1])));
+}
+
+TEST(TrafficManager, ValidatesRoutes) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 1.0, 0.0);
+  TrafficManager m(b.graph());
+  EXPECT_EQ(m.submit_route({1, 1, {}}, 0.0), SubmitStatus::kInvalid);
+  EXPECT_EQ(m.submit_route({1, 1, {road[0], road[2]}}, 0.0), SubmitStatus::kInvalid);  // not an edge
+  EXPECT_EQ(m.submit_route({1, 1, {road[0], 999}}, 0.0), SubmitStatus::kInvalid);
+  ASSERT_EQ(m.submit_route({1, 2, {road[0], road[1], road[2]}}, 0.0), SubmitStatus::kAccepted);
+  EXPECT_EQ(m.submit_route({1, 2, {road[0], road[1]}}, 0.0), SubmitStatus::kStale);
+  EXPECT_EQ(m.submit_route({1, 3, {road[8], road[9]}}, 0.0), SubmitStatus::kInvalid);  // not where it is
+  EXPECT_EQ(m.submit_route({1, 3, {road[0], road[1]}}, 0.0), SubmitStatus::kAccepted);
+  TrafficConfiguration bad;
+  bad.lookahead = 0.0;
+  EXPECT_THROW(TrafficManager(b.graph(), bad), std::invalid_argument);
+}
+
+TEST(TrafficManager, OppositeDirectionWaitsOutsideTheCorridor) {
+  const auto g = testing::corridor_with_siding();
+  auto line = [&](double x0, double x1) {
+    std::vector<int> ids;
+    const int steps = static_cast<int>(std::lround(std::abs(x1 - x0) / 0.1));
+    for (int k = 0; k <= steps; ++k) ids.push_back(point_at(g, x0 + (x1 > x0 ? 0.1 : -0.1) * k, 0.0));
+    return ids;
+  };
+  // Down the siding, through the junction, east into the corridor to x = 0.8.
+  std::vector<int> from_siding;
+  for (int k = 6; k >= 0; --k) from_siding.push_back(point_at(g, 0.5, 0.1 * k));
+  for (double x : {0.6, 0.7, 0.8}) from_siding.push_back(point_at(g, x, 0.0));
+
+  {  // Same direction as the robot in the corridor: granted.
+    TrafficManager m(g);
+    ASSERT_EQ(m.submit_route({1, 1, line(1.0, 2.0)}, 0.0), SubmitStatus::kAccepted);
+    m.update(0.0);
+    std::vector<int> to_06(from_siding.begin(), from_siding.end() - 2);
+    ASSERT_EQ(m.submit_route({2, 1, to_06}, 0.0), SubmitStatus::kAccepted);
+    const auto r = m.update(0.1);
+    EXPECT_EQ(grant_of(r, 2)->granted_index, static_cast<int>(to_06.size()) - 1);
+    EXPECT_EQ(grant_of(r, 2)->status, GrantStatus::kMoving);
+  }
+  {  // Towards a robot that will stand at the corridor's dead end (it may come back): not granted.
+    TrafficManager m(g);
+    ASSERT_EQ(m.submit_route({1, 1, line(1.3, 2.0)}, 0.0), SubmitStatus::kAccepted);
+    m.update(0.0);
+    ASSERT_EQ(m.submit_route({2, 1, from_siding}, 0.0), SubmitStatus::kAccepted);
+    const auto r = m.update(0.1);
+    EXPECT_LT(grant_of(r, 2)->granted_index, 5);
+    EXPECT_EQ(grant_of(r, 2)->blocked_by, std::vector<int>{1});
+  }
+  {  // Against the robot in the corridor: stops on the siding, outside the junction zone.
+    TrafficManager m(g);
+    ASSERT_EQ(m.submit_route({4, 1, line(1.5, 1.0)}, 0.0), SubmitStatus::kAccepted);
+    m.update(0.0);
+    ASSERT_EQ(m.submit_route({5, 1, from_siding}, 0.0), SubmitStatus::kAccepted);
+    const auto r = m.update(0.1);
+    const Grant* g5 = grant_of(r, 5);
+    ASSERT_NE(g5, nullptr);
+    EXPECT_LT(g5->granted_index, 5);
+    EXPECT_TRUE(m.zones().stoppable(m.zones().place_of(from_siding[static_cast<std::size_t>(g5->granted_index)])));
+    EXPECT_NE(std::find(g5->blocked_by.begin(), g5->blocked_by.end(), 4), g5->blocked_by.end());
+    EXPECT_TRUE(m.check_invariant().empty());
+  }
+}
+
+TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
+  // Two ways between junctions L (0, 0) and R (1.5, 0): straight, or round by y = 0.9; a tail
+  // beyond each junction.
+  GraphBuilder b;
+  b.road(-0.6, 0.0, 0.0, 0.0);
+  b.road(0.0, 0.0, 1.5, 0.0);
+  b.road(1.5, 0.0, 2.1, 0.0);
+  b.road(0.0, 0.0, 0.0, 0.9);
+  b.road(0.0, 0.9, 1.5, 0.9);
+  b.road(1.5, 0.9, 1.5, 0.0);
+  const auto& g = b.graph();
+  TrafficConfiguration config;
+  config.reroute_wait = 10.0;
+  config.one_way = false;  // both ways on every road, so the straight way is the shortest
+  TrafficManager m(g, config);
+  // Robot 1 parks in the middle of the straight way and stays.
+  ASSERT_EQ(m.submit_route({1, 1, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);
+  auto path = m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0));
+  ASSERT_EQ(m.submit_route({2, 1, path}, 0.0), SubmitStatus::kAccepted);
+  double now = 0.0;
+  const Grant* g2 = nullptr;
+  UpdateResult r;
+  double distance = 0.0;
+  bool rerouted = false;
+  double max_wait = 0.0;
+  for (int i = 0; i < 800 && !rerouted; ++i) {
+    now += 0.05;
+    r = m.update(now);
+    g2 = grant_of(r, 2);
+    max_wait = std::max(max_wait, g2->waited_s);
+    if (g2->instruction == Instruction::kReroute) {
+      rerouted = true;
+      break;
+    }
+    distance = std::min(distance + 0.01, g2->granted_distance);
+    m.report_progress({2, g2->version, distance}, now);
+  }
+  ASSERT_TRUE(rerouted);
+  EXPECT_LE(max_wait, config.reroute_wait + 0.1);
+  EXPECT_EQ(g2->version, 2u);
+  // The new route goes round the other way: it never comes near robot 1.
+  for (int p : g2->route) {
+    for (int q : m.held_places(1)) EXPECT_FALSE(m.zones().conflict(m.zones().place_of(p), q));
+  }
+  EXPECT_EQ(m.zones().place_of(g2->route.back()), m.zones().place_of(point_at(g, 2.1, 0.0)));
+}
+
+}  // namespace
+}  // namespace fleet::traffic
