@@ -44,6 +44,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       control_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()),
       fleet_view_reader_(participant_, dds::qos::live_state()),
+      truth_reader_(participant_, dds::qos::live_state()),
       waitset_(participant_) {
   map_id_ = options_.site->site.name;
   for (dds_entity_t reader : {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle(),
@@ -158,6 +159,17 @@ void FleetAgent::handle_site_inputs() {
 }
 
 void FleetAgent::handle_fleet_view(double now_sim) {
+  bool truths_changed = false;
+  truth_reader_.take_data([&](model::SimTruth&& truth) {
+    if (truth.robot_id == options_.robot_id || !geometry::is_finite(truth.pose)) return;
+    truths_[truth.robot_id] = std::move(truth);
+    truths_changed = true;
+  });
+  if (truths_changed) {
+    std::vector<geometry::Polygon> footprints;
+    for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
+    forklift_.set_true_neighbours(std::move(footprints));
+  }
   std::optional<model::FleetView> latest;
   fleet_view_reader_.take_data([&](model::FleetView&& view) {
     if (view.map_id == map_id_) latest = std::move(view);

@@ -60,6 +60,7 @@ class FleetAgent {
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
   std::map<int, model::PalletTruth> pallets_;
+  std::map<std::string, model::SimTruth> truths_;
   std::deque<std::int64_t> finished_orders_;
   bool paused_ = false;
   std::string last_state_;
@@ -76,6 +77,7 @@ class FleetAgent {
   dds::Reader<model::RobotControl> control_reader_;
   dds::Reader<model::PalletTruth> pallet_reader_;
   dds::Reader<model::FleetView> fleet_view_reader_;
+  dds::Reader<model::SimTruth> truth_reader_;  ///< simulation only: what the lidar sees
   dds::WaitSet waitset_;
 };
 

@@ -28,20 +28,25 @@ FleetClient::FleetClient(std::uint32_t domain)
 
 void FleetClient::poll_server_info() {
   server_info_reader_.take([&](model::ServerInfo&& info, const dds::SampleInfo& sample) {
-    if (sample.valid_data) {
-      server_info_ = std::move(info);
+    if (sample.valid_data || sample.alive) {
+      if (sample.valid_data) server_info_ = std::move(info);
       server_alive_ = true;
-    } else if (!sample.alive) {
-      server_alive_ = false;
+      server_gone_since_.reset();
+    } else if (!server_gone_since_) {
+      server_gone_since_ = std::chrono::steady_clock::now();
     }
   });
+}
+
+bool FleetClient::server_alive() const {
+  return server_alive_ && (!server_gone_since_ || std::chrono::steady_clock::now() - *server_gone_since_ < kServerGoneGrace);
 }
 
 std::optional<model::ServerInfo> FleetClient::find_server(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
     poll_server_info();
-    if (server_info_ && server_alive_) return server_info_;
+    if (server_info_ && server_alive()) return server_info_;
     std::this_thread::sleep_for(10ms);
   }
   return std::nullopt;
@@ -97,7 +102,7 @@ std::optional<model::OrderInfo> FleetClient::follow_order(
       if (status && orders::is_final(*status)) return latest;
     }
     poll_server_info();
-    if (!server_alive_) return std::nullopt;
+    if (!server_alive()) return std::nullopt;
     std::this_thread::sleep_for(10ms);
   }
   return std::nullopt;

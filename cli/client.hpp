@@ -38,8 +38,11 @@ class FleetClient {
   /// Latest OrderInfo of every order, read during `window`.
   std::map<std::int64_t, model::OrderInfo> orders(std::chrono::milliseconds window);
 
-  /// Whether the server (its ServerInfo writer) is still alive; updated by the calls above.
-  bool server_alive() const { return server_alive_; }
+  /// Whether the server is still there: false once its ServerInfo writer has been gone for
+  /// longer than kServerGoneGrace. A lease missed for a moment on a loaded machine (Cyclone's
+  /// participant lease is 1 s) must not make a client give up on a live server.
+  bool server_alive() const;
+  static constexpr std::chrono::seconds kServerGoneGrace{5};
 
  private:
   std::optional<model::RequestReply> await_reply(const std::string& request_id, std::chrono::milliseconds timeout);
@@ -54,6 +57,7 @@ class FleetClient {
   dds::Writer<model::Command> command_writer_;
   std::optional<model::ServerInfo> server_info_;
   bool server_alive_ = false;
+  std::optional<std::chrono::steady_clock::time_point> server_gone_since_;
   std::map<std::int64_t, model::OrderInfo> orders_;
 };
 

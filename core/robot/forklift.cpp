@@ -56,15 +56,22 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
       executor_(config.task, home),
       static_grid_(make_static_grid(config, *site_)),
       dynamic_([&] {
-        // Grow the others by our half width, not our circumscribed radius: on a lane what must
-        // stay free is the strip we sweep, and a robot parked at a home beside the road
-        // (0.25 m from its centre line on the tables) must not close the road.
+        // No growth by our own size: clearance_ahead() sweeps our real footprint along the path,
+        // so a robot parked at a home beside the road (0.25 m from its centre line on the
+        // tables) leaves the road open while one touching the lane does not.
         planning::DynamicGridConfiguration d;
-        d.own_radius = config.sim.forklift.footprint.width / 2.0 + 0.02;
+        d.own_radius = 0.0;
         d.safety_margin = config.neighbour_margin;
         d.stale_after = config.stale_after;
         d.max_speed = config.neighbour_max_speed;
         return d;
+      }()),
+      octomap_([&] {
+        planning::OctoMapConfiguration o;
+        o.resolution = config.grid_resolution;
+        o.area = site_->site.bounds;
+        o.projection_resolution = config.grid_resolution;  // must match the static grid's cells
+        return o;
       }()),
       road_(site_->graph.graph),
       routes_(road_, grid_astar_) {
@@ -114,6 +121,10 @@ void Forklift::set_standing_pallets(const std::map<int, Pose2>& standing) {
 
 void Forklift::set_neighbours(std::vector<Neighbour> neighbours) { neighbours_ = std::move(neighbours); }
 
+void Forklift::set_true_neighbours(std::vector<geometry::Polygon> footprints) {
+  true_neighbours_ = std::move(footprints);
+}
+
 std::string Forklift::task_state() const { return task::to_string(executor_.state()); }
 
 std::optional<std::string> Forklift::order_id() const {
@@ -142,35 +153,65 @@ std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
   return out;
 }
 
-double Forklift::clearance_ahead() const {
-  // Distance along the followed path to the first cell the other robots occupy (grown by our
-  // radius, their speed x data age, or the stale rule), seed 000 section 5.3.
-  if (path_.size() < 2 || neighbours_.empty()) return std::numeric_limits<double>::infinity();
-  const auto& layer = dynamic_.dynamic_layer();
-  const Vec2 here = sim_.estimate().position();
-  // Start from the path point nearest the robot.
-  std::size_t start = 0;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < path_.size(); ++i) {
-    const double d = geometry::distance(here, path_[i]);
-    if (d < best) {
-      best = d;
-      start = i;
+namespace {
+/// Whether any occupied cell of `layer` lies inside the footprint at `pose`, grown by `margin`.
+bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
+                    double margin) {
+  const double hl = fp.length / 2.0 + margin;
+  const double hw = fp.width / 2.0 + margin;
+  const double reach = std::hypot(hl, hw);
+  const double res = layer.resolution();
+  const Vec2 o = layer.origin();
+  const int x0 = static_cast<int>(std::floor((pose.x - reach - o.x) / res));
+  const int x1 = static_cast<int>(std::floor((pose.x + reach - o.x) / res));
+  const int y0 = static_cast<int>(std::floor((pose.y - reach - o.y) / res));
+  const int y1 = static_cast<int>(std::floor((pose.y + reach - o.y) / res));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      if (!layer.in_bounds(x, y) || !layer.occupied(x, y)) continue;
+      const Vec2 b = geometry::map_to_body(pose, layer.cell_center(x, y));
+      if (std::abs(b.x) <= hl && std::abs(b.y) <= hw) return true;
     }
   }
+  return false;
+}
+}  // namespace
+
+double Forklift::clearance_ahead() const {
+  // How far the robot can move along its path before its footprint meets a cell of the dynamic
+  // layer: the other robots from FleetView (grown by their speed x data age, or the stale rule)
+  // and what the lidar sees (seed 000 section 5.3). The footprint itself is swept, not a point
+  // against grown obstacles, because an obstacle beside the path meets the front corner first.
+  constexpr double kSample = 0.03;  // metres between swept poses
+  constexpr double kMargin = 0.01;  // metres around our footprint
+  if (path_.size() < 2) return std::numeric_limits<double>::infinity();
+  const auto& layer = dynamic_.dynamic_layer();
+  if (layer.size() == 0) return std::numeric_limits<double>::infinity();
+  // Where we are on the path: the projection onto the nearest segment.
+  const Vec2 here = sim_.estimate().position();
+  std::size_t segment = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
+    const double d = geometry::point_segment_distance(here, path_[i], path_[i + 1]);
+    if (d < best) {
+      best = d;
+      segment = i;
+    }
+  }
+  const Vec2 a = path_[segment];
+  const Vec2 ab = path_[segment + 1] - a;
+  const double len2 = geometry::dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
+  Vec2 prev = a + t * ab;
   double travelled = 0.0;
-  Vec2 prev = here;
-  const double step = layer.resolution() / 2.0;
-  for (std::size_t i = start; i < path_.size() && travelled < kLookahead; ++i) {
+  for (std::size_t i = segment + 1; i < path_.size() && travelled < kLookahead; ++i) {
     const Vec2 next = path_[i];
     const double len = geometry::distance(prev, next);
-    for (double s = 0.0; s < len && travelled + s < kLookahead; s += step) {
+    if (len < 1e-9) continue;
+    const double heading = std::atan2(next.y - prev.y, next.x - prev.x);
+    for (double s = kSample; s <= len && travelled + s <= kLookahead; s += kSample) {
       const Vec2 p = prev + (s / len) * (next - prev);
-      if (layer.size() > 0 && layer.occupied_at(p)) {
-        // The layer is grown by our half width; along the path our front reaches half a length.
-        const double front = footprint().length / 2.0 - dynamic_.configuration().own_radius;
-        return std::max(0.0, travelled + s - front);
-      }
+      if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin)) return std::max(0.0, travelled + s - kSample);
     }
     travelled += len;
     prev = next;
@@ -186,7 +227,16 @@ void Forklift::step() {
     next_dynamic_update_ = t + kDynamicUpdatePeriod;
     std::vector<planning::Neighbour> others;
     for (const auto& n : neighbours_) others.push_back({n.robot_id, n.pose, n.speed, n.age, n.footprint});
-    dynamic_.update(static_grid_.permanent_grid(), others, nullptr);
+    // The lidar measures from where the robot really is; the robot files the scan under where it
+    // believes it is, so localization error shows in its map as it would on real hardware.
+    std::vector<geometry::Polygon> seen = true_neighbours_;
+    for (const auto& o : site_->site.static_obstacles) {
+      if (obstacles_.at(o.id)) seen.push_back(o.polygon);
+    }
+    planning::LidarScan scan = lidar_.scan(sim_.truth(), seen);
+    scan.pose = sim_.estimate();
+    octomap_.insert_scan(scan);
+    dynamic_.update(static_grid_.permanent_grid(), others, &octomap_.sensed());
     // Seed 000, Fig. 5.13: a temporary obstacle goes once its area is seen free again.
     std::vector<std::string> cleared;
     for (const auto& [id, polygon] : static_grid_.temporaries()) {

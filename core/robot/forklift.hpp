@@ -11,6 +11,8 @@
 #include "perception/pallet_world.hpp"
 #include "planning/dynamic_grid.hpp"
 #include "planning/grid_astar.hpp"
+#include "planning/lidar_sim.hpp"
+#include "planning/octomap_layer.hpp"
 #include "planning/road_planner.hpp"
 #include "planning/route_planner.hpp"
 #include "planning/static_grid.hpp"
@@ -90,6 +92,8 @@ class Forklift {
   /// other robots are left out; the one on these forks is left alone.
   void set_standing_pallets(const std::map<int, geometry::Pose2>& standing);
   void set_neighbours(std::vector<Neighbour> neighbours);
+  /// Simulation truth of the other robots' footprints: what the onboard lidar sees.
+  void set_true_neighbours(std::vector<geometry::Polygon> footprints);
 
   /// One control step of 1 / control_rate_hz sim seconds.
   void step();
@@ -129,6 +133,11 @@ class Forklift {
   // Local planning (seed 000, section 5.3): the other robots on a dynamic grid, temporary
   // obstacles for the ones in the way, removed once their area is seen free.
   planning::DynamicGrid dynamic_;
+  // The onboard lidar (beyond seed 000, whose conclusion asks for range sensing) into OctoMap,
+  // projected onto the dynamic grid as its sensed layer.
+  planning::LidarSim lidar_;
+  planning::OctoMapLayer octomap_;
+  std::vector<geometry::Polygon> true_neighbours_;
   planning::RoadPlanner road_;
   planning::GridAStar grid_astar_;
   planning::RoutePlanner routes_;

@@ -144,3 +144,32 @@ TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
   }
   EXPECT_EQ(failures, 0);
 }
+
+TEST(Forklift, TheLidarAloneStopsItForARobotMissingFromFleetView) {
+  // A robot whose poses never arrive (lost messages) is still seen by the onboard lidar through
+  // OctoMap and the dynamic grid: the forklift stops short of it.
+  const auto site = table_a();
+  robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 4, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
+  for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
+  ASSERT_GE(f.path().size(), 4u);
+  geometry::Vec2 ahead = f.path().back();
+  double along = 0.0;
+  for (std::size_t i = 1; i < f.path().size(); ++i) {
+    along += geometry::distance(f.path()[i - 1], f.path()[i]);
+    if (along > 0.6) {
+      ahead = f.path()[i];
+      break;
+    }
+  }
+  const auto other = geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16});
+  f.set_true_neighbours({other});  // and no FleetView neighbour at all
+  bool waited = false;
+  for (int i = 0; i < 70 * 60; ++i) {
+    f.step();
+    waited = waited || f.detail() == "another robot ahead";
+    ASSERT_FALSE(geometry::convex_polygons_overlap(geometry::footprint_polygon(f.truth(), f.footprint()), other));
+  }
+  EXPECT_TRUE(waited);
+}
