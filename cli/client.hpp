@@ -16,6 +16,7 @@ class FleetClient {
   explicit FleetClient(std::uint32_t domain);
 
   std::uint32_t domain() const { return participant_.domain(); }
+  dds::Participant& participant() { return participant_; }
 
   /// The server's ServerInfo, or nothing when no server answers within `timeout`.
   std::optional<model::ServerInfo> find_server(std::chrono::milliseconds timeout);
@@ -30,7 +31,7 @@ class FleetClient {
   /// its final OrderInfo, or nothing when the server went away or `timeout` passed.
   std::optional<model::OrderInfo> follow_order(
       std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change,
-      std::chrono::milliseconds timeout = std::chrono::milliseconds::max());
+      std::chrono::milliseconds timeout = kNoTimeout);
 
   /// Reads RobotState for `window` and returns the newest of each robot.
   std::map<std::string, model::RobotState> robot_states(std::chrono::milliseconds window);
@@ -43,6 +44,9 @@ class FleetClient {
   /// participant lease is 1 s) must not make a client give up on a live server.
   bool server_alive() const;
   static constexpr std::chrono::seconds kServerGoneGrace{5};
+  /// "No limit" that still compares safely with steady_clock's nanosecond durations (a year;
+  /// milliseconds::max() would overflow in the comparison).
+  static constexpr std::chrono::milliseconds kNoTimeout = std::chrono::hours(24 * 365);
 
  private:
   std::optional<model::RequestReply> await_reply(const std::string& request_id, std::chrono::milliseconds timeout);

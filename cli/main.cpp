@@ -23,6 +23,9 @@ commands (need a running fleet-server):
   order add --from AREA --to AREA [--priority P] [--robot R] [--fleet F] [--wait]
                        create a transport order, print its id; --wait follows it to its end
   robots               table of robots: fleet, state, pose, order, localization score, health
+  stats                orders by state, done per hour, mean and p95 order time, robot utilisation
+  routing-age [--seconds S=10]
+                       a pose's age on arrival, straight from the robot vs routed by the server
 
 commands that start a fleet:
   demo [--agents N=4] [--site NAME] [--duration SECONDS] [--time-scale K] [--seed S] [--http-port P=8080]
@@ -95,6 +98,8 @@ int main(int argc, char** argv) {
 
     if (name == "order") return order_command(command, connection, out, err);
     if (name == "robots") return robots_command(command, connection, out, err);
+    if (name == "stats") return stats_command(command, connection, out, err);
+    if (name == "routing-age") return routing_age_command(command, connection, out, err);
     if (name == "demo") return demo_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
   } catch (const ArgError& e) {

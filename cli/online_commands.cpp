@@ -6,11 +6,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "cli/client.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "model/names.hpp"
+#include "monitor/order_accounting.hpp"
 
 namespace fleet::cli {
 
@@ -107,6 +109,89 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
     Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
     if (sub == "add") return order_add(rest, command, connection, out);
     throw ArgError(sub.empty() ? "order needs a subcommand: add" : "unknown order subcommand '" + sub + "' (add)");
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+int stats_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+    FleetClient client(connection.domain);
+    const model::ServerInfo info = require_server(client, connection);
+    const auto orders = client.orders(std::chrono::milliseconds(600));
+    const monitor::OrderStats s = monitor::order_stats(orders, SimClock(info.time_scale).now());
+    nlohmann::json utilisation = nlohmann::json::object();
+    for (const auto& [robot, share] : s.utilisation) utilisation[robot] = share;
+    const nlohmann::json doc{{"orders_by_state", s.by_state},        {"span_s", s.span_s},
+                             {"done_per_hour", s.done_per_hour},     {"order_time_mean_s", s.order_time_mean_s},
+                             {"order_time_p95_s", s.order_time_p95_s}, {"utilisation", utilisation}};
+    if (command.json) {
+      out << doc.dump() << "\n";
+      return kExitOk;
+    }
+    out << std::fixed << std::setprecision(1) << "orders:";
+    for (const auto& [state, n] : s.by_state) out << " " << state << " " << n;
+    out << "\ndone per hour: " << s.done_per_hour << " (over " << s.span_s << " s sim)\n"
+        << "order time: mean " << s.order_time_mean_s << " s, p95 " << s.order_time_p95_s << " s (sim)\n"
+        << "utilisation:";
+    for (const auto& [robot, share] : s.utilisation) out << " " << robot << " " << 100.0 * share << " %";
+    out << "\n";
+    return kExitOk;
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+int routing_age_command(const CommandArgs& command, const Connection& connection, std::ostream& out,
+                        std::ostream& err) {
+  // Seed 000, section 3: poses reach the other robots through the server. Each pose's age on
+  // arrival here (now minus the sim time it was measured at) is sampled twice: straight from the
+  // robot (RobotState) and as routed by the server (FleetView). The difference is what routing
+  // costs; both share this process's scheduling, so it cancels out of the comparison.
+  try {
+    Args args(command.args);
+    const double seconds = args.number("seconds", 1.0, 3600.0).value_or(10.0);
+    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+    FleetClient client(connection.domain);
+    const model::ServerInfo info = require_server(client, connection);
+    const SimClock clock(info.time_scale);
+    dds::Participant& participant = client.participant();
+    dds::Reader<model::RobotState> direct(participant, dds::qos::live_state());
+    dds::Reader<model::FleetView> routed(participant, dds::qos::live_state());
+    std::vector<double> direct_ms, routed_ms;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      direct.take_data([&](model::RobotState&& s) { direct_ms.push_back(1000.0 * clock.to_wall(clock.now() - s.sim_time)); });
+      routed.take_data([&](model::FleetView&& v) {
+        const double now = clock.now();
+        for (const auto& r : v.robots) routed_ms.push_back(1000.0 * clock.to_wall(now - r.sim_time));
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (direct_ms.empty() || routed_ms.empty()) {
+      throw CommandExit{kExitFailed, "no robot poses on DDS domain " + std::to_string(connection.domain) +
+                                         " within " + std::to_string(seconds) + " s"};
+    }
+    const double d50 = monitor::percentile(direct_ms, 0.5), d95 = monitor::percentile(direct_ms, 0.95);
+    const double r50 = monitor::percentile(routed_ms, 0.5), r95 = monitor::percentile(routed_ms, 0.95);
+    const nlohmann::json doc{{"direct_samples", direct_ms.size()}, {"routed_samples", routed_ms.size()},
+                             {"direct_age_median_ms", d50},       {"direct_age_p95_ms", d95},
+                             {"routed_age_median_ms", r50},       {"routed_age_p95_ms", r95},
+                             {"routing_adds_median_ms", r50 - d50}, {"routing_adds_p95_ms", r95 - d95},
+                             {"time_scale", info.time_scale}};
+    if (command.json) {
+      out << doc.dump() << "\n";
+    } else {
+      out << std::fixed << std::setprecision(1) << "pose age on arrival, wall ms (median / p95):\n"
+          << "  direct RobotState:  " << d50 << " / " << d95 << "  (" << direct_ms.size() << " samples)\n"
+          << "  routed FleetView:   " << r50 << " / " << r95 << "  (" << routed_ms.size() << " samples)\n"
+          << "  routing adds:       " << r50 - d50 << " / " << r95 - d95 << "\n";
+    }
+    return kExitOk;
   } catch (const CommandExit& e) {
     err << "fleetctl: " << e.message << "\n";
     return e.code;

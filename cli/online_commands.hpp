@@ -15,6 +15,8 @@ struct Connection {
 };
 
 int order_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+int stats_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+int routing_age_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int robots_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 
 }  // namespace fleet::cli

@@ -44,6 +44,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
     : options_(std::move(options)),
       log_(std::move(log)),
       store_(options_.db_path),
+      travel_(options_.site_map->graph.graph),
       clock_(options_.time_scale),
       rng_(options_.seed),
       policy_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
@@ -667,11 +668,7 @@ void FleetServer::dispatch() {
     if (robot_is_free(robot)) free.push_back({robot.id, robot.fleet_id});
   }
   if (free.empty()) return;
-  const auto cost = [&](const std::string& robot_id, const std::string& area_id) {
-    const auto* area = options_.site.find_area(area_id);
-    const auto& pose = robots_.at(robot_id).last.pose;
-    return area ? geometry::distance(pose.position(), area->pose.position()) : std::numeric_limits<double>::infinity();
-  };
+  const auto cost = [&](const std::string& robot_id, const std::string& area_id) { return travel_cost(robot_id, area_id); };
   for (const auto& assignment : policy_->assign(queue, free, cost)) {
     if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::Applied) continue;
     const Order& order = *book_.find(assignment.order_id);
@@ -680,6 +677,18 @@ void FleetServer::dispatch() {
     publish_order(order);
     send_assignment(order);
   }
+}
+
+double FleetServer::travel_cost(const std::string& robot_id, const std::string& area_id) {
+  constexpr double kApproach = 0.30;  // the forklift picks standing this far out from the pallet
+  const auto* area = options_.site.find_area(area_id);
+  const auto robot = robots_.find(robot_id);
+  if (!area || robot == robots_.end()) return std::numeric_limits<double>::infinity();
+  const geometry::Pose2 approach{area->pose.x + kApproach * std::cos(area->pose.yaw),
+                                 area->pose.y + kApproach * std::sin(area->pose.yaw), area->pose.yaw};
+  const planning::RoadPlan plan = travel_.plan(robot->second.last.pose, approach);
+  if (plan.status != planning::PlanStatus::kFound) return std::numeric_limits<double>::infinity();
+  return geometry::distance(robot->second.last.pose.position(), plan.points.front()) + plan.length;
 }
 
 void FleetServer::send_assignment(const Order& order, bool cancelled) {

@@ -11,7 +11,8 @@
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
-#include "map/site.hpp"
+#include "map/site_map.hpp"
+#include "planning/road_planner.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
 #include "server/order_store.hpp"
@@ -26,6 +27,7 @@ struct ServerOptions {
   double time_scale = 1.0;
   std::uint64_t seed = 1;
   std::string db_path;  ///< SQLite file of orders and events
+  std::shared_ptr<const map::SiteMap> site_map;  ///< the site with its road graph
 };
 
 /// A robot as the server knows it: registered with its first RobotState.
@@ -78,6 +80,9 @@ class FleetServer {
   std::string validate_areas(const std::string& pick, const std::string& drop) const;
   /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
   int expected_pallets(const std::string& area) const;
+  /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
+  /// when there is no way.
+  double travel_cost(const std::string& robot_id, const std::string& area_id);
   bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
 
@@ -91,6 +96,7 @@ class FleetServer {
   ServerOptions options_;
   Logger log_;
   OrderStore store_;
+  planning::RoadPlanner travel_;  ///< road-graph travel cost for dispatch
   SimClock clock_;
   std::mt19937_64 rng_;
   std::unique_ptr<orders::DispatchPolicy> policy_;

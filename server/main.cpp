@@ -72,7 +72,9 @@ int main(int argc, char** argv) {
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
 
     const std::string site_file = map::site_path(maps_dir(), config.settings.get_string("site"));
-    map::Site site = map::load_site(site_file);
+    // Loaded once, road network and graph included: dispatch costs and the web view use them.
+    const auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
+    const map::Site& site = site_map->site;
     for (const auto& [fleet, robot] : config.all_robots()) {
       if (!site.find_home(robot->home)) {
         throw config::ConfigError(config.source + ": robot '" + robot->id + "': home '" + robot->home +
@@ -91,19 +93,18 @@ int main(int argc, char** argv) {
     const std::filesystem::path db(config.settings.get_string("server.db_path"));
     options.db_path = (db.is_absolute() ? db : std::filesystem::path(project_root()) / db).string();
     options.config = std::move(config);
-    options.site = std::move(site);
+    options.site = site;
+    options.site_map = site_map;
     auto log = make_logger("fleet-server", "", verbose ? spdlog::level::debug : spdlog::level::info);
 
     // The web view draws the site from its road network and graph; it and the server loop meet
     // only in the bridge.
     server::WebBridge bridge;
-    std::unique_ptr<map::SiteMap> site_map;
     // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
     const config::FleetConfig web_config = options.config;
     std::unique_ptr<server::WebServer> web;
     const auto http_port = options.config.settings.get_int("server.http_port");
     if (http_port != 0) {
-      site_map = std::make_unique<map::SiteMap>(map::load_site_map_unchecked(site_file));
       server::WebOptions web_options;
       web_options.host = options.config.settings.get_string("server.http_host");
       web_options.port = static_cast<int>(http_port);

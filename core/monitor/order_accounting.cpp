@@ -1,8 +1,61 @@
 #include "monitor/order_accounting.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "orders/order.hpp"
 
 namespace fleet::monitor {
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size()));
+  return values[static_cast<std::size_t>(std::max(1.0, rank)) - 1];
+}
+
+OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, double now) {
+  OrderStats stats;
+  for (const char* state : {"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"}) stats.by_state[state] = 0;
+  if (orders.empty()) return stats;
+  double first = now;
+  std::vector<double> durations;
+  std::map<std::string, double> busy;
+  for (const auto& [id, o] : orders) {
+    ++stats.by_state[o.state];
+    first = std::min(first, o.created_sim);
+    if (o.state == "DONE") durations.push_back(o.updated_sim - o.created_sim);
+    // Busy from each assignment until the next event that ends the robot's hold on the order.
+    std::string robot;
+    double since = 0.0;
+    for (const auto& e : o.history) {
+      const bool holds = e.state == "ASSIGNED" || e.state == "ACTIVE";
+      if (holds && robot.empty()) {
+        robot = e.robot_id;
+        since = e.sim_time;
+      } else if (!holds && !robot.empty()) {
+        busy[robot] += e.sim_time - since;
+        robot.clear();
+      }
+    }
+    if (!robot.empty()) busy[robot] += now - since;
+  }
+  stats.span_s = std::max(0.0, now - first);
+  if (stats.span_s > 0.0) {
+    stats.done_per_hour = static_cast<double>(stats.by_state["DONE"]) * 3600.0 / stats.span_s;
+    for (const auto& [robot, seconds] : busy) {
+      if (!robot.empty()) stats.utilisation[robot] = std::min(1.0, seconds / stats.span_s);
+    }
+  }
+  if (!durations.empty()) {
+    double sum = 0.0;
+    for (double d : durations) sum += d;
+    stats.order_time_mean_s = sum / static_cast<double>(durations.size());
+    stats.order_time_p95_s = percentile(durations, 0.95);
+  }
+  return stats;
+}
 
 OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, std::int64_t first_id) {
   OrderTally t;

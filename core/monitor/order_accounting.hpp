@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include "model/messages.hpp"
 
@@ -18,6 +19,23 @@ struct OrderTally {
   std::int64_t first_id = 0;
   std::int64_t last_id = 0;
 };
+
+/// The q-quantile (0..1) of `values` by the nearest-rank method; 0 for none.
+double percentile(std::vector<double> values, double q);
+
+/// What `fleetctl stats` reports.
+struct OrderStats {
+  std::map<std::string, long> by_state;  ///< QUEUED, ASSIGNED, ACTIVE, DONE, FAILED, CANCELLED
+  double span_s = 0.0;                   ///< sim seconds from the first order's creation to now
+  double done_per_hour = 0.0;            ///< per sim hour
+  double order_time_mean_s = 0.0;        ///< creation to DONE, sim seconds
+  double order_time_p95_s = 0.0;
+  /// Per robot: the share of the span it spent on orders (assigned to ended, or to now).
+  std::map<std::string, double> utilisation;
+};
+
+/// Statistics over every order known, as of sim time `now`.
+OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, double now);
 
 /// Tallies orders with ids >= `first_id` (orders of earlier runs are left out). Ids are handed out
 /// increasing and never reused, so an id missing between the first and the last is an order that

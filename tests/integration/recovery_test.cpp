@@ -88,7 +88,7 @@ TEST(Recovery, AgentKilledWithoutPalletHasItsOrderRequeuedAndDoneByAnother) {
   FleetHarness fleet(71, 2.0);
   fleet.start_server();
   fleet.start_agent("fl1");
-  std::this_thread::sleep_for(1s);  // fl1 registers first and so takes the order (ascending id)
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));  // fl1 alone is free: it takes the order
   fleet.start_agent("fl2");
   cli::FleetClient client(71);
   ASSERT_TRUE(client.find_server(5s));
