@@ -322,7 +322,15 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
 
 void FleetServer::handle_robot_states() {
   robot_state_reader_.take([&](model::RobotState&& state, const dds::SampleInfo& info) {
-    if (!info.valid_data) return;  // liveliness changes are judged by age in check_robot_health
+    if (!info.valid_data) {
+      // DDS liveliness: the robot's writer is gone (its participant's 1 s lease expired or it
+      // left). Only the key is valid in such a sample.
+      auto it = robots_.find(state.robot_id);
+      if (!info.alive && it != robots_.end() && it->second.registered && !it->second.lost) {
+        robot_lost(it->second, "DDS liveliness lost");
+      }
+      return;
+    }
     if (!std::isfinite(state.pose.x) || !std::isfinite(state.pose.y) || !std::isfinite(state.pose.yaw)) {
       log_->warn("robot {}: ignoring RobotState with a non-finite pose ({}, {}, {})", state.robot_id, state.pose.x,
                  state.pose.y, state.pose.yaw);
