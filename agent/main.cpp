@@ -49,10 +49,7 @@ int main(int argc, char** argv) {
     config::FleetConfig config = config::load_fleet_config(config_path);
     const auto id = args.value("id");
     if (!id) throw ArgError("--id ROBOT is required");
-    if (auto v = args.value("domain")) config.settings.set("dds.domain", *v, "--domain");
-    if (auto v = args.value("site")) config.settings.set("site", *v, "--site");
-    if (auto v = args.value("time-scale")) config.settings.set("time_scale", *v, "--time-scale");
-    if (auto v = args.value("seed")) config.settings.set("seed", *v, "--seed");
+    config::apply_common_flags(args, config);
     const bool verbose = args.flag("verbose");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
 

@@ -58,10 +58,7 @@ int main(int argc, char** argv) {
     }
     if (auto c = args.value("config")) config_path = *c;
     config::FleetConfig config = config::load_fleet_config(config_path);
-    if (auto v = args.value("domain")) config.settings.set("dds.domain", *v, "--domain");
-    if (auto v = args.value("site")) config.settings.set("site", *v, "--site");
-    if (auto v = args.value("time-scale")) config.settings.set("time_scale", *v, "--time-scale");
-    if (auto v = args.value("seed")) config.settings.set("seed", *v, "--seed");
+    config::apply_common_flags(args, config);
     if (auto v = args.value("dispatch")) config.settings.set("server.dispatch_policy", *v, "--dispatch");
     if (auto v = args.value("db")) config.settings.set("server.db_path", *v, "--db");
     if (args.flag("auto-orders")) config.settings.set("server.auto_orders", "true", "--auto-orders");

@@ -121,6 +121,13 @@ std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_r
   return std::nullopt;
 }
 
+void apply_common_flags(Args& args, FleetConfig& config) {
+  for (const auto& [flag, key] : {std::pair{"domain", "dds.domain"}, std::pair{"site", "site"},
+                                  std::pair{"time-scale", "time_scale"}, std::pair{"seed", "seed"}}) {
+    if (auto v = args.value(flag)) config.settings.set(key, *v, std::string("--") + flag);
+  }
+}
+
 FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& source) {
   FleetConfig config;
   config.source = source;

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/args.hpp"
 #include "config/settings.hpp"
 #include "geometry/polygon.hpp"
 
@@ -32,6 +33,10 @@ struct FleetConfig {
   /// The fleet a robot belongs to, or nothing.
   std::optional<std::pair<const FleetSpec*, const RobotSpec*>> find_robot(const std::string& robot_id) const;
 };
+
+/// Applies the flags every Fleet process shares to `config`: --domain, --site, --time-scale and
+/// --seed override dds.domain, site, time_scale and seed, each checked like the file's value.
+void apply_common_flags(Args& args, FleetConfig& config);
 
 /// Reads fleet.yaml. Throws ConfigError naming the file, line and key for unknown keys, values out
 /// of range, duplicate robot ids and malformed YAML.

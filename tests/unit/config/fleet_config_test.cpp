@@ -75,3 +75,20 @@ TEST(Schema, EveryKeyHasADescriptionAndAValidDefault) {
   }
   EXPECT_NE(schema_markdown().find("server.dispatch_policy"), std::string::npos);
 }
+
+TEST(FleetConfig, CommonFlagsOverrideTheFileAndAreChecked) {
+  FleetConfig config = load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  fleet::Args args({"--domain", "42", "--time-scale=5", "--site", "table_b", "--id", "fl1"});
+  apply_common_flags(args, config);
+  EXPECT_EQ(config.settings.get_int("dds.domain"), 42);
+  EXPECT_DOUBLE_EQ(config.settings.get_double("time_scale"), 5.0);
+  EXPECT_EQ(config.settings.get_string("site"), "table_b");
+  EXPECT_EQ(args.remaining(), (std::vector<std::string>{"--id", "fl1"}));  // other flags are left alone
+  fleet::Args bad({"--seed", "-3"});
+  try {
+    apply_common_flags(bad, config);
+    FAIL() << "a negative seed was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--seed"), std::string::npos) << e.what();
+  }
+}

@@ -41,6 +41,16 @@ std::vector<ForkliftEvent> run_until(robot::Forklift& f, ForkliftEvent::Kind kin
   return all;
 }
 
+/// The first path point at least `distance` along the path (the last one if the path is shorter).
+geometry::Vec2 point_along(const std::vector<geometry::Vec2>& path, double distance) {
+  double along = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    along += geometry::distance(path[i - 1], path[i]);
+    if (along > distance) return path[i];
+  }
+  return path.back();
+}
+
 bool has(const std::vector<ForkliftEvent>& events, ForkliftEvent::Kind kind, const std::string& text = "") {
   for (const auto& e : events) {
     if (e.kind == kind && (text.empty() || e.text == text)) return true;
@@ -94,15 +104,7 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   // Drive until a path exists, then put a robot on it 0.6 m ahead.
   for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
   ASSERT_GE(f.path().size(), 4u);
-  geometry::Vec2 ahead = f.path().back();
-  double along = 0.0;
-  for (std::size_t i = 1; i < f.path().size(); ++i) {
-    along += geometry::distance(f.path()[i - 1], f.path()[i]);
-    if (along > 0.6) {
-      ahead = f.path()[i];
-      break;
-    }
-  }
+  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
   f.set_neighbours({{"other", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
   bool waited = false;
   for (int i = 0; i < 70 * 30 && !waited; ++i) {
@@ -154,15 +156,7 @@ TEST(Forklift, TheLidarAloneStopsItForARobotMissingFromFleetView) {
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
   for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
   ASSERT_GE(f.path().size(), 4u);
-  geometry::Vec2 ahead = f.path().back();
-  double along = 0.0;
-  for (std::size_t i = 1; i < f.path().size(); ++i) {
-    along += geometry::distance(f.path()[i - 1], f.path()[i]);
-    if (along > 0.6) {
-      ahead = f.path()[i];
-      break;
-    }
-  }
+  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
   const auto other = geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16});
   f.set_true_neighbours({other});  // and no FleetView neighbour at all
   bool waited = false;
