@@ -23,6 +23,7 @@ FleetClient::FleetClient(std::uint32_t domain)
       reply_reader_(participant_, dds::qos::latched_state()),
       order_info_reader_(participant_, dds::qos::latched_state()),
       robot_state_reader_(participant_, dds::qos::live_state()),
+      obstacle_reader_(participant_, dds::qos::latched_state()),
       request_writer_(participant_, dds::qos::requests()),
       command_writer_(participant_, dds::qos::requests()) {}
 
@@ -116,6 +117,16 @@ std::map<std::string, model::RobotState> FleetClient::robot_states(std::chrono::
     std::this_thread::sleep_for(10ms);
   }
   return states;
+}
+
+std::map<std::string, model::StaticObstacleState> FleetClient::obstacles(std::chrono::milliseconds window) {
+  std::map<std::string, model::StaticObstacleState> out;
+  const auto deadline = std::chrono::steady_clock::now() + window;
+  while (std::chrono::steady_clock::now() < deadline) {
+    obstacle_reader_.take_data([&](model::StaticObstacleState&& o) { out[o.obstacle_id] = std::move(o); });
+    std::this_thread::sleep_for(10ms);
+  }
+  return out;
 }
 
 std::map<std::int64_t, model::OrderInfo> FleetClient::orders(std::chrono::milliseconds window) {

@@ -36,6 +36,9 @@ class FleetClient {
   /// Reads RobotState for `window` and returns the newest of each robot.
   std::map<std::string, model::RobotState> robot_states(std::chrono::milliseconds window);
 
+  /// Every designated static obstacle and whether it is on (latched), read during `window`.
+  std::map<std::string, model::StaticObstacleState> obstacles(std::chrono::milliseconds window);
+
   /// Latest OrderInfo of every order, read during `window`.
   std::map<std::int64_t, model::OrderInfo> orders(std::chrono::milliseconds window);
 
@@ -57,6 +60,7 @@ class FleetClient {
   dds::Reader<model::RequestReply> reply_reader_;
   dds::Reader<model::OrderInfo> order_info_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;
+  dds::Reader<model::StaticObstacleState> obstacle_reader_;
   dds::Writer<model::OrderRequest> request_writer_;
   dds::Writer<model::Command> command_writer_;
   std::optional<model::ServerInfo> server_info_;

@@ -22,6 +22,13 @@ Drive a Fleet from the terminal or from scripts. fleetctl is a DDS participant o
 commands (need a running fleet-server):
   order add --from AREA --to AREA [--priority P] [--robot R] [--fleet F] [--wait]
                        create a transport order, print its id; --wait follows it to its end
+  order list [--state S] | order show ID | order cancel ID
+                       the orders the server knows, one with its history, cancel one
+  obstacle list | obstacle on ID | obstacle off ID
+                       the designated static obstacles and switching them
+  pause ROBOT | resume ROBOT
+                       stop a robot where it is, and let it go on
+  map list             the maps the server knows, and the one it serves
   robots               table of robots: fleet, state, pose, order, localization score, health
   stats                orders by state, done per hour, mean and p95 order time, robot utilisation
   routing-age [--seconds S=10]
@@ -77,8 +84,9 @@ int main(int argc, char** argv) {
     const std::string name = args.remaining().front();
     command.args.assign(args.remaining().begin() + 1, args.remaining().end());
 
-    // Offline tools need no configuration or DDS.
-    if (name == "map") return map_command(command, out, err);
+    // Offline tools need no configuration or DDS (`map list` asks the server).
+    const bool map_list = name == "map" && !command.args.empty() && command.args[0] == "list";
+    if (name == "map" && !map_list) return map_command(command, out, err);
     if (name == "loc-eval") return loc_eval_command(command, out, err);
     if (name == "plan-eval") return plan_eval_command(command, out, err);
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
@@ -99,6 +107,9 @@ int main(int argc, char** argv) {
     if (name == "order") return order_command(command, connection, out, err);
     if (name == "robots") return robots_command(command, connection, out, err);
     if (name == "stats") return stats_command(command, connection, out, err);
+    if (name == "obstacle") return obstacle_command(command, connection, out, err);
+    if (name == "pause" || name == "resume") return robot_control_command(name, command, connection, out, err);
+    if (map_list) return map_list_command(command, connection, out, err);
     if (name == "routing-age") return routing_age_command(command, connection, out, err);
     if (name == "demo") return demo_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");

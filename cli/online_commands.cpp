@@ -13,6 +13,7 @@
 #include "common/clock.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
+#include "orders/order.hpp"
 
 namespace fleet::cli {
 
@@ -100,7 +101,175 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   return final_info->state == "DONE" ? kExitOk : kExitFailed;
 }
 
+std::int64_t order_id_of(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const long long id = std::stoll(text, &used);
+    if (used == text.size() && id > 0) return id;
+  } catch (const std::exception&) {
+  }
+  throw ArgError("order id '" + text + "' is not a positive number");
+}
+
+std::string one_positional(const Args& args, const std::string& what) {
+  const auto rest = args.positionals();
+  if (rest.size() != 1) throw ArgError("expected exactly one " + what);
+  return rest[0];
+}
+
+/// Sends a command and turns the server's answer into an exit code: refused for bad input (an
+/// unknown name) is 2, refused because of the current state (an order already ended) is 1.
+int run_command_on_server(FleetClient& client, const Connection& connection, model::Command command,
+                          std::ostream& out, const std::string& done_message) {
+  const auto reply = client.send_command(std::move(command), connection.timeout);
+  if (!reply) {
+    throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
+                                         " did not answer the command"};
+  }
+  if (!reply->accepted) {
+    const bool bad_input = reply->error.rfind("unknown", 0) == 0 || reply->error.find("is not") != std::string::npos;
+    throw CommandExit{bad_input ? kExitBadInput : kExitFailed, reply->error};
+  }
+  out << done_message << "\n";
+  return kExitOk;
+}
+
+int order_list(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+  const auto state = args.value("state");
+  if (state && !orders::parse_status(*state)) {
+    throw ArgError("--state: '" + *state + "' is not one of QUEUED, ASSIGNED, ACTIVE, DONE, FAILED, CANCELLED");
+  }
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+  FleetClient client(connection.domain);
+  require_server(client, connection);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [id, o] : client.orders(std::chrono::milliseconds(600))) {
+    if (!state || o.state == *state) rows.push_back(to_json(o));
+  }
+  if (command.json) {
+    out << rows.dump() << "\n";
+    return kExitOk;
+  }
+  out << std::left << std::setw(7) << "ORDER" << std::setw(6) << "FROM" << std::setw(6) << "TO" << std::setw(7) << "ROBOT"
+      << std::setw(11) << "STATE" << std::setw(11) << "PHASE" << "REASON\n";
+  for (const auto& r : rows) {
+    out << std::left << std::setw(7) << r["order_id"].get<long>() << std::setw(6) << r["pick_area"].get<std::string>()
+        << std::setw(6) << r["drop_area"].get<std::string>() << std::setw(7) << r["robot_id"].get<std::string>()
+        << std::setw(11) << r["state"].get<std::string>() << std::setw(11) << r["phase"].get<std::string>()
+        << r["reason"].get<std::string>() << "\n";
+  }
+  return kExitOk;
+}
+
+int order_show(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+  const std::int64_t id = order_id_of(one_positional(args, "order id"));
+  FleetClient client(connection.domain);
+  require_server(client, connection);
+  const auto orders = client.orders(std::chrono::milliseconds(600));
+  const auto it = orders.find(id);
+  if (it == orders.end()) throw CommandExit{kExitBadInput, "unknown order " + std::to_string(id)};
+  const nlohmann::json o = to_json(it->second);
+  if (command.json) {
+    out << o.dump() << "\n";
+    return kExitOk;
+  }
+  out << "order " << id << ": " << o["pick_area"].get<std::string>() << " -> " << o["drop_area"].get<std::string>()
+      << ", " << o["state"].get<std::string>() << (o["robot_id"].get<std::string>().empty() ? "" : " on " + o["robot_id"].get<std::string>())
+      << "\n";
+  const double created = it->second.created_sim;
+  for (const auto& e : it->second.history) {
+    out << std::fixed << std::setprecision(1) << "  +" << e.sim_time - created << " s  " << e.state
+        << (e.phase.empty() ? "" : " " + e.phase) << (e.robot_id.empty() ? "" : " " + e.robot_id)
+        << (e.reason.empty() ? "" : "  (" + e.reason + ")") << "\n";
+  }
+  return kExitOk;
+}
+
+int order_cancel(Args& args, const CommandArgs&, const Connection& connection, std::ostream& out) {
+  const std::int64_t id = order_id_of(one_positional(args, "order id"));
+  FleetClient client(connection.domain);
+  require_server(client, connection);
+  model::Command c;
+  c.verb = "cancel-order";
+  c.target = std::to_string(id);
+  return run_command_on_server(client, connection, c, out, "order " + std::to_string(id) + " cancelled");
+}
+
 }  // namespace
+
+int obstacle_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    const auto words = args.positionals();
+    const std::string sub = words.empty() ? "" : words[0];
+    FleetClient client(connection.domain);
+    if (sub == "list" && words.size() == 1) {
+      const model::ServerInfo info = require_server(client, connection);
+      const auto states = client.obstacles(std::chrono::milliseconds(600));
+      nlohmann::json rows = nlohmann::json::array();
+      for (const auto& id : info.obstacles) {
+        const auto it = states.find(id);
+        rows.push_back({{"obstacle_id", id}, {"enabled", it != states.end() && it->second.enabled}});
+      }
+      if (command.json) {
+        out << rows.dump() << "\n";
+      } else {
+        for (const auto& r : rows) out << r["obstacle_id"].get<std::string>() << "  " << (r["enabled"].get<bool>() ? "on" : "off") << "\n";
+      }
+      return kExitOk;
+    }
+    if ((sub == "on" || sub == "off") && words.size() == 2) {
+      const model::ServerInfo info = require_server(client, connection);
+      require_known("obstacle", words[1], info.obstacles);
+      model::Command c;
+      c.verb = "obstacle";
+      c.target = words[1];
+      c.value = sub;
+      return run_command_on_server(client, connection, c, out, "obstacle " + words[1] + " " + sub);
+    }
+    throw ArgError("usage: obstacle list | obstacle on ID | obstacle off ID");
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+int robot_control_command(const std::string& verb, const CommandArgs& command, const Connection& connection,
+                          std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    const std::string robot = one_positional(args, "robot id");
+    FleetClient client(connection.domain);
+    const model::ServerInfo info = require_server(client, connection);
+    require_known("robot", robot, info.robots);
+    model::Command c;
+    c.verb = verb;
+    c.target = robot;
+    return run_command_on_server(client, connection, c, out, "robot " + robot + " " + verb + "d");
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
+
+int map_list_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
+  try {
+    Args args(command.args);
+    const auto words = args.positionals();
+    if (words.size() != 1 || words[0] != "list") throw ArgError("usage: map list (map check|sample|render work on files)");
+    FleetClient client(connection.domain);
+    const model::ServerInfo info = require_server(client, connection);
+    if (command.json) {
+      out << nlohmann::json{{"site", info.site}, {"maps", info.maps}}.dump() << "\n";
+    } else {
+      for (const auto& m : info.maps) out << m << (m == info.site ? "  (served)" : "") << "\n";
+    }
+    return kExitOk;
+  } catch (const CommandExit& e) {
+    err << "fleetctl: " << e.message << "\n";
+    return e.code;
+  }
+}
 
 int order_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
@@ -108,7 +277,11 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
     const auto sub = args.remaining().empty() ? std::string() : args.remaining().front();
     Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
     if (sub == "add") return order_add(rest, command, connection, out);
-    throw ArgError(sub.empty() ? "order needs a subcommand: add" : "unknown order subcommand '" + sub + "' (add)");
+    if (sub == "list") return order_list(rest, command, connection, out);
+    if (sub == "show") return order_show(rest, command, connection, out);
+    if (sub == "cancel") return order_cancel(rest, command, connection, out);
+    throw ArgError(sub.empty() ? "order needs a subcommand: add, list, show, cancel"
+                               : "unknown order subcommand '" + sub + "' (add, list, show, cancel)");
   } catch (const CommandExit& e) {
     err << "fleetctl: " << e.message << "\n";
     return e.code;

@@ -15,6 +15,10 @@ struct Connection {
 };
 
 int order_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+int obstacle_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+int robot_control_command(const std::string& verb, const CommandArgs& args, const Connection& connection,
+                          std::ostream& out, std::ostream& err);
+int map_list_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int stats_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int routing_age_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int robots_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
