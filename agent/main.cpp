@@ -85,10 +85,7 @@ int main(int argc, char** argv) {
   } catch (const ArgError& e) {
     std::cerr << "fleet-agent: " << e.what() << " (see --help)\n";
     return 2;
-  } catch (const config::ConfigError& e) {
-    std::cerr << "fleet-agent: " << e.what() << "\n";
-    return 2;
-  } catch (const map::MapError& e) {
+  } catch (const InputError& e) {
     std::cerr << "fleet-agent: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

@@ -113,13 +113,7 @@ int main(int argc, char** argv) {
     if (name == "routing-age") return routing_age_command(command, connection, out, err);
     if (name == "demo") return demo_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
-  } catch (const ArgError& e) {
-    err << "fleetctl: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const config::ConfigError& e) {
-    err << "fleetctl: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const map::MapError& e) {
+  } catch (const InputError& e) {
     err << "fleetctl: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -7,14 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "model/messages.hpp"
 #include "orders/order.hpp"
 
 namespace fleet::server {
 
-class StoreError : public std::runtime_error {
+/// The database cannot be opened or written; the message names the file.
+class StoreError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Orders and their events in SQLite (WAL mode). The server writes an order, and each of its

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <optional>
+
+#include "common/errors.hpp"
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -8,9 +10,9 @@
 namespace fleet {
 
 /// A command-line error; the message names the flag and value. Programs exit 2 on it.
-class ArgError : public std::runtime_error {
+class ArgError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Takes flags out of an argument list one by one; what remains is positional. Accepts

@@ -1,15 +1,17 @@
 #pragma once
 
 #include <map>
+
+#include "common/errors.hpp"
 #include <stdexcept>
 #include <string>
 
 namespace fleet::config {
 
 /// A configuration or input error; the message names the file, key and value.
-class ConfigError : public std::runtime_error {
+class ConfigError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Values of the declared keys (see schema.hpp), defaults filled in. Every value is checked

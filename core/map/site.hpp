@@ -4,14 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "geometry/polygon.hpp"
 
 namespace fleet::map {
 
 /// A map or site input error; the message names the file, line and key.
-class MapError : public std::runtime_error {
+class MapError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Where a pallet stands and which way it faces (seed 000, section 3: "location and direction of
