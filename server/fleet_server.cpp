@@ -6,6 +6,7 @@
 #include <set>
 
 #include "model/names.hpp"
+#include "monitor/order_accounting.hpp"
 
 namespace fleet::server {
 
@@ -420,10 +421,8 @@ void FleetServer::publish_web_snapshot() {
   for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size(); ++i) {
     snap.orders.push_back(info_of(*ended[i]));
   }
-  if (!durations.empty()) {
-    std::sort(durations.begin(), durations.end());
-    snap.order_time_p95_s = durations[std::min(durations.size() - 1, static_cast<std::size_t>(0.95 * durations.size()))];
-  }
+  // The same p95 as `fleetctl stats`, so the page and the CLI agree.
+  snap.order_time_p95_s = monitor::percentile(std::move(durations), 0.95);
   const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
   snap.obstacle_enabled = obstacle_enabled_;
