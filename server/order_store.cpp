@@ -56,7 +56,9 @@ std::string text_column(sqlite3_stmt* stmt, int column) {
 
 OrderStore::OrderStore(const std::string& path) : path_(path) {
   const auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+  std::error_code error;
+  if (!parent.empty()) std::filesystem::create_directories(parent, error);
+  if (error) throw StoreError(path + ": cannot create the folder of the order database: " + error.message());
   if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
