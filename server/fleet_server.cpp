@@ -281,7 +281,7 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       } else {
         log_->info("order {} cancelled by operator", id);
         publish_order(*order);
-        if (was_assigned) send_assignment(*order, true);
+        if (was_assigned) withdraw(*order, order->robot_id);
       }
     }
   } else if (command.verb == "obstacle") {
@@ -351,12 +351,7 @@ void FleetServer::handle_robot_states() {
       if (state.order_id != 0) {
         const Order* order = book_.find(state.order_id);
         if (order && (order->robot_id != state.robot_id || orders::is_final(order->status))) {
-          model::OrderAssignment cancel;
-          cancel.order_id = state.order_id;
-          cancel.robot_id = state.robot_id;
-          cancel.update_id = order->update_id + 1;
-          cancel.cancelled = true;
-          order_writer_.write(cancel);
+          withdraw(*order, state.robot_id);
         }
       }
     }
@@ -531,14 +526,7 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
     }
     awaiting_ack_since_.erase(id);
     publish_order(*book_.find(id));
-    if (book_.find(id)->status == OrderStatus::Queued) {
-      model::OrderAssignment cancel;
-      cancel.order_id = id;
-      cancel.robot_id = robot.id;
-      cancel.update_id = book_.find(id)->update_id;
-      cancel.cancelled = true;
-      order_writer_.write(cancel);
-    }
+    if (book_.find(id)->status == OrderStatus::Queued) withdraw(*book_.find(id), robot.id);
   }
 }
 
@@ -603,12 +591,7 @@ void FleetServer::check_acknowledgements() {
       book_.requeue(id, clock_.now(), "not acknowledged by " + robot);
       log_->warn("order {} re-queued: never acknowledged by {}", id, robot);
       publish_order(*book_.find(id));
-      model::OrderAssignment withdraw;
-      withdraw.order_id = id;
-      withdraw.robot_id = robot;
-      withdraw.update_id = book_.find(id)->update_id;
-      withdraw.cancelled = true;
-      order_writer_.write(withdraw);
+      withdraw(*book_.find(id), robot);
       resends_.erase(id);
       it = awaiting_ack_since_.erase(it);
     }
@@ -698,7 +681,19 @@ double FleetServer::travel_cost(const std::string& robot_id, const std::string& 
   return geometry::distance(robot->second.last.pose.position(), plan.points.front()) + plan.length;
 }
 
-void FleetServer::send_assignment(const Order& order, bool cancelled) {
+void FleetServer::withdraw(const Order& order, const std::string& robot_id) {
+  model::OrderAssignment msg;
+  msg.order_id = order.id;
+  msg.robot_id = robot_id;
+  msg.update_id = order.update_id;
+  msg.cancelled = true;
+  order_writer_.write(msg);
+  // An ended order must not stay on the latched topic (see publish_order): the robot has the
+  // withdrawal once it is written, a robot that comes back later is told again on its return.
+  if (orders::is_final(order.status)) order_writer_.unregister(msg);
+}
+
+void FleetServer::send_assignment(const Order& order) {
   model::OrderAssignment msg;
   msg.order_id = order.id;
   msg.robot_id = order.robot_id;
@@ -707,9 +702,8 @@ void FleetServer::send_assignment(const Order& order, bool cancelled) {
   if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
   if (const auto* drop = options_.site.find_area(order.drop_area)) msg.drop_pose = drop->pose;
   msg.update_id = order.update_id;
-  msg.cancelled = cancelled;
   order_writer_.write(msg);
-  if (!cancelled) awaiting_ack_since_[order.id] = SimClock::wall_now();
+  awaiting_ack_since_[order.id] = SimClock::wall_now();
 }
 
 void FleetServer::publish_order(const Order& order) {

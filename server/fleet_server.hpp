@@ -71,7 +71,10 @@ class FleetServer {
   void publish_web_snapshot();
 
   void publish_order(const orders::Order& order);
-  void send_assignment(const orders::Order& order, bool cancelled = false);
+  void send_assignment(const orders::Order& order);
+  /// Tells `robot_id` to drop `order` (VDA 5050 style: with the order's update id, so a late
+  /// duplicate of an older assignment cannot undo it).
+  void withdraw(const orders::Order& order, const std::string& robot_id);
   void reply(const model::RequestReply& answer);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
