@@ -1,5 +1,7 @@
 #include "agent/fleet_agent.hpp"
 
+#include "traffic/traffic_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -16,11 +18,17 @@ std::uint64_t robot_stream(const std::string& robot_id) {
   return h % 1000003 * 16;
 }
 
-robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet) {
+robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                      const map::SiteMap& site) {
   robot::ForkliftConfig c = robot::ForkliftConfig::defaults();
   c.sim.forklift.footprint = fleet.footprint;
   c.task.follower.v_max = config.settings.get_double("agent.max_speed");
   c.task.follower.omega_max = config.settings.get_double("agent.max_yaw_rate");
+  c.traffic = config.settings.get_bool("traffic.enabled");
+  if (c.traffic) {
+    c.route_graph = std::make_shared<const map::RoadGraph>(
+        traffic::planning_graph(site.graph.graph, traffic::configuration_from(config)));
+  }
   return c;
 }
 }  // namespace
@@ -30,7 +38,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       log_(std::move(log)),
       clock_(options_.time_scale),
       fleet_(options_.config.find_robot(options_.robot_id)->first),
-      forklift_(forklift_config(options_.config, *fleet_), options_.site,
+      forklift_(forklift_config(options_.config, *fleet_, *options_.site), options_.site,
                 options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
                 options_.seed, robot_stream(options_.robot_id)),
       participant_(options_.domain),
@@ -38,6 +46,8 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       truth_writer_(participant_, dds::qos::live_state()),
       report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
+      traffic_writer_(participant_, dds::qos::live_state()),
+      grant_reader_(participant_, dds::qos::live_state()),
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
       obstacle_reader_(participant_, dds::qos::latched_state()),
@@ -47,8 +57,16 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       truth_reader_(participant_, dds::qos::live_state()),
       waitset_(participant_) {
   map_id_ = options_.site->site.name;
+  traffic_ = options_.config.settings.get_bool("traffic.enabled");
+  pose_delay_s_ = options_.config.settings.get_double("faults.pose_delay_ms") / 1000.0;
+  pose_jitter_s_ = options_.config.settings.get_double("faults.pose_delay_jitter_ms") / 1000.0;
+  delay_rng_.seed(options_.seed * 31 + robot_stream(options_.robot_id));
+  if (pose_delay_s_ > 0.0) {
+    log_->warn("fault injection: RobotState published {:.0f} +- {:.0f} ms late", pose_delay_s_ * 1000.0,
+               pose_jitter_s_ * 1000.0);
+  }
   for (dds_entity_t reader : {order_reader_.handle(), map_reader_.handle(), obstacle_reader_.handle(),
-                              control_reader_.handle(), pallet_reader_.handle()}) {
+                              control_reader_.handle(), pallet_reader_.handle(), grant_reader_.handle()}) {
     waitset_.attach(reader);
   }
   const auto& home = forklift_.truth();
@@ -239,7 +257,14 @@ void FleetAgent::publish_state(double now_sim) {
   state.order_id = order_ ? order_->assignment.order_id : 0;
   state.carrying_pallet = forklift_.carried_pallet() >= 0;
   state.sim_time = now_sim;
-  state_writer_.write(state);
+  if (pose_delay_s_ > 0.0) {
+    // A slow network: the state is stamped now and arrives late.
+    std::uniform_real_distribution<double> jitter(-pose_jitter_s_, pose_jitter_s_);
+    const double delay = std::max(0.0, pose_delay_s_ + jitter(delay_rng_));
+    delayed_states_.emplace_back(SimClock::wall_now() + delay, state);
+  } else {
+    state_writer_.write(state);
+  }
   truth_writer_.write({options_.robot_id, forklift_.truth(), forklift_.footprint(), state.carrying_pallet, now_sim});
   if (state.task_state != last_state_) {
     log_->info("state {}{}", state.task_state, state.detail.empty() ? "" : " (" + state.detail + ")");
@@ -249,6 +274,46 @@ void FleetAgent::publish_state(double now_sim) {
     path_writer_.write({options_.robot_id, forklift_.path(), now_sim});
     last_path_size_ = forklift_.path().size();
   }
+}
+
+void FleetAgent::flush_delayed_states() {
+  // Keyed keep-last delivery: several late states may fall due at once; each is still written,
+  // in order, as a late network would deliver them.
+  const double now = SimClock::wall_now();
+  while (!delayed_states_.empty() && delayed_states_.front().first <= now) {
+    state_writer_.write(delayed_states_.front().second);
+    delayed_states_.pop_front();
+  }
+}
+
+void FleetAgent::publish_traffic(double now_sim) {
+  if (!traffic_) return;
+  robot::TrafficRoute route = forklift_.traffic_route();
+  // A new route goes out at once; progress at the state rate (the caller's), and a route left
+  // (parked off the road) once.
+  const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size();
+  if (!changed && now_sim == last_traffic_sim_) return;
+  if (!changed && route.points.empty() && last_traffic_.points.empty() && last_traffic_sim_ >= 0.0) return;
+  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, now_sim});
+  last_traffic_ = std::move(route);
+  last_traffic_sim_ = now_sim;
+}
+
+void FleetAgent::handle_traffic() {
+  if (!traffic_) return;
+  grant_reader_.take_data([&](model::TrafficGrant&& grant) {
+    if (grant.robot_id != options_.robot_id) return;
+    robot::TrafficPermit permit;
+    permit.version = grant.version;
+    permit.granted_index = grant.granted_index;
+    permit.granted_distance = grant.granted_distance;
+    permit.blocked_by = std::move(grant.blocked_by);
+    if (!grant.instruction.empty()) {
+      permit.route = std::move(grant.route);
+      permit.siding = grant.instruction == "SIDING";
+    }
+    forklift_.set_traffic_grant(permit);
+  });
 }
 
 void FleetAgent::run(const std::atomic<bool>& stop) {
@@ -273,6 +338,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       offset += behind - step;
       behind = step;
     }
+    handle_traffic();
     for (; behind >= step; behind -= step) {
       forklift_.step();
       handle_events();
@@ -280,8 +346,12 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     const double now_wall = SimClock::wall_now();
     if (now_wall - last_publish_wall >= publish_period_wall) {
       publish_state(target);
+      publish_traffic(target);
       last_publish_wall = now_wall;
+    } else if (traffic_ && forklift_.traffic_route().version != last_traffic_.version) {
+      publish_traffic(target);
     }
+    flush_delayed_states();
   }
   log_->info("stopping");
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
 
 #include "common/clock.hpp"
@@ -49,6 +50,9 @@ class FleetAgent {
               const geometry::Pose2& pallet_pose = {});
   void finish_order();
   void publish_state(double now_sim);
+  void publish_traffic(double now_sim);
+  void handle_traffic();
+  void flush_delayed_states();
 
   AgentOptions options_;
   Logger log_;
@@ -65,12 +69,22 @@ class FleetAgent {
   bool paused_ = false;
   std::string last_state_;
   std::size_t last_path_size_ = 0;
+  bool traffic_ = false;
+  robot::TrafficRoute last_traffic_;
+  double last_traffic_sim_ = -1.0;
+  // Fault injection (faults.pose_delay_ms): RobotState held back until its wall time is due.
+  double pose_delay_s_ = 0.0;
+  double pose_jitter_s_ = 0.0;
+  std::mt19937_64 delay_rng_;
+  std::deque<std::pair<double, model::RobotState>> delayed_states_;
 
   dds::Participant participant_;
   dds::Writer<model::RobotState> state_writer_;
   dds::Writer<model::SimTruth> truth_writer_;
   dds::Writer<model::OrderReport> report_writer_;
   dds::Writer<model::RobotPath> path_writer_;
+  dds::Writer<model::TrafficRequest> traffic_writer_;
+  dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::MapAssignment> map_reader_;
   dds::Reader<model::StaticObstacleState> obstacle_reader_;

@@ -28,6 +28,7 @@ options:
   --site NAME          site: maps/NAME.yaml (default: site)
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of every noise source (default: seed; the robot id is mixed in)
+  --set KEY=VALUE      any configuration key (repeatable), e.g. --set traffic.enabled=false
   --verbose            log debug events too
   --help               this text
 

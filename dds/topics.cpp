@@ -18,6 +18,7 @@ struct Scratch {
   std::deque<std::vector<fleet_msg_Point2D>> points;
   std::deque<std::vector<fleet_msg_RobotSnapshot>> snapshots;
   std::deque<std::vector<fleet_msg_OrderEvent>> events;
+  std::deque<std::vector<int32_t>> ints;
 
   dds_sequence_string string_seq(const std::vector<std::string>& items) {
     auto& buffer = strings.emplace_back();
@@ -32,6 +33,11 @@ struct Scratch {
   }
 };
 
+dds_sequence_long int_seq(Scratch& s, const std::vector<int>& items) {
+  auto& buffer = s.ints.emplace_back(items.begin(), items.end());
+  return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
+}
+
 fleet_msg_Pose2D wire_pose(const geometry::Pose2& p) { return {p.x, p.y, p.yaw}; }
 
 // --- from the wire ---------------------------------------------------------------------------
@@ -44,6 +50,10 @@ std::vector<std::string> strings_of(const dds_sequence_string& seq) {
   out.reserve(seq._length);
   for (uint32_t i = 0; i < seq._length; ++i) out.push_back(text(seq._buffer[i]));
   return out;
+}
+
+std::vector<int> ints_of(const dds_sequence_long& seq) {
+  return std::vector<int>(seq._buffer, seq._buffer + seq._length);
 }
 
 std::vector<geometry::Vec2> points_of(const dds_sequence_fleet_msg_Point2D& seq) {
@@ -239,6 +249,24 @@ model::SimTruth from_wire(const fleet_msg_SimTruth& w) {
   return {text(w.robot_id), model_pose(w.pose), {w.length, w.width}, w.carrying_pallet, w.sim_time};
 }
 
+fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
+  return {borrow(v.robot_id), v.version, int_seq(s, v.points), v.progress, v.sim_time};
+}
+model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
+  return {text(w.robot_id), w.version, ints_of(w.points), w.progress, w.sim_time};
+}
+
+fleet_msg_TrafficGrant to_wire(const model::TrafficGrant& v, Scratch& s) {
+  return {borrow(v.robot_id),      v.version,    v.granted_index,        v.granted_distance,
+          borrow(v.status),        v.waited_s,   s.string_seq(v.blocked_by), borrow(v.instruction),
+          int_seq(s, v.route),     v.sim_time};
+}
+model::TrafficGrant from_wire(const fleet_msg_TrafficGrant& w) {
+  return {text(w.robot_id),        w.version,  w.granted_index,        w.granted_distance,
+          text(w.status),          w.waited_s, strings_of(w.blocked_by), text(w.instruction),
+          ints_of(w.route),        w.sim_time};
+}
+
 }  // namespace
 
 #define FLEET_DDS_TOPIC_IMPL(Type, Wire, TopicName)                                                       \
@@ -279,5 +307,7 @@ FLEET_DDS_TOPIC_IMPL(PalletTruth, fleet_msg_PalletTruth, "fleet/PalletTruth")
 FLEET_DDS_TOPIC_IMPL(StaticObstacleState, fleet_msg_StaticObstacle, "fleet/StaticObstacles")
 FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")
+FLEET_DDS_TOPIC_IMPL(TrafficRequest, fleet_msg_TrafficRequest, "fleet/TrafficRequest")
+FLEET_DDS_TOPIC_IMPL(TrafficGrant, fleet_msg_TrafficGrant, "fleet/TrafficGrant")
 
 }  // namespace fleet::dds

@@ -33,6 +33,8 @@ FLEET_DDS_TOPIC(PalletTruth)
 FLEET_DDS_TOPIC(StaticObstacleState)
 FLEET_DDS_TOPIC(FleetView)
 FLEET_DDS_TOPIC(SimTruth)
+FLEET_DDS_TOPIC(TrafficRequest)
+FLEET_DDS_TOPIC(TrafficGrant)
 
 }  // namespace fleet::dds
 

@@ -1,5 +1,7 @@
 #include "server/fleet_server.hpp"
 
+#include "traffic/traffic_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,6 +73,12 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
+  }
+  if (options_.config.settings.get_bool("traffic.enabled")) {
+    traffic_ = std::make_unique<TrafficControl>(options_.site_map->graph.graph,
+                                                traffic::configuration_from(options_.config), participant_, log_);
+  } else {
+    log_->info("traffic control off: robots avoid each other only locally (the seed's behaviour)");
   }
   started_wall_ = SimClock::wall_now();
   restore_pallets();
@@ -176,6 +184,17 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     handle_order_reports();
     handle_web_requests();
     check_robot_health();
+    if (traffic_) {
+      // Traffic cycles at 20 Hz of sim time, at most 100 Hz of wall time at high time scales.
+      const double now_sim = clock_.now();
+      const double now_wall = SimClock::wall_now();
+      traffic_->handle_requests(now_sim);
+      if (now_sim >= next_traffic_sim_ && now_wall - last_traffic_wall_ >= 0.01) {
+        traffic_->update(now_sim, now_wall);
+        next_traffic_sim_ = now_sim + 0.05;
+        last_traffic_wall_ = now_wall;
+      }
+    }
     check_acknowledgements();
     if (auto_orders_) create_auto_orders();
     dispatch();
@@ -515,6 +534,7 @@ void FleetServer::handle_order_reports() {
 void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   robot.lost = true;
   log_->warn("robot {} lost: {}", robot.id, why);
+  if (traffic_) traffic_->robot_lost(robot.id, clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
     if (robot.last.carrying_pallet) {

@@ -16,6 +16,7 @@
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
 #include "server/order_store.hpp"
+#include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
 
 namespace fleet::server {
@@ -138,6 +139,9 @@ class FleetServer {
   dds::Reader<model::SimTruth> truth_reader_;
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::WaitSet waitset_;
+  std::unique_ptr<TrafficControl> traffic_;  ///< null when traffic.enabled is false
+  double next_traffic_sim_ = 0.0;
+  double last_traffic_wall_ = 0.0;
 };
 
 }  // namespace fleet::server

@@ -38,6 +38,7 @@ options:
   --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
   --api-token TOKEN    token of the API's mutating calls (default: env FLEET_API_TOKEN, else
                        server.api_token, else one generated at start and logged)
+  --set KEY=VALUE      any configuration key (repeatable), e.g. --set traffic.enabled=false
   --verbose            log debug events too
   --help               this text
 

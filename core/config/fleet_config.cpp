@@ -126,6 +126,12 @@ void apply_common_flags(Args& args, FleetConfig& config) {
                                   std::pair{"time-scale", "time_scale"}, std::pair{"seed", "seed"}}) {
     if (auto v = args.value(flag)) config.settings.set(key, *v, std::string("--") + flag);
   }
+  // --set KEY=VALUE, repeatable: any configuration key, checked against the schema like the file.
+  while (auto v = args.value("set")) {
+    const auto eq = v->find('=');
+    if (eq == std::string::npos || eq == 0) throw ArgError("--set '" + *v + "': expected KEY=VALUE, e.g. traffic.enabled=false");
+    config.settings.set(v->substr(0, eq), v->substr(eq + 1), "--set");
+  }
 }
 
 FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& source) {

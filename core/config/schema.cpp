@@ -60,6 +60,25 @@ std::vector<KeySpec> make_schema() {
       number("agent.max_speed", 0.2, "m/s", 0.01, 2.0, "forward speed limit"),
       number("agent.max_yaw_rate", 1.5, "rad/s", 0.1, 10.0, "turn rate limit"),
       number("agent.goal_tolerance", 0.01, "m", 0.001, 0.5, "distance at which a target pose counts as reached"),
+
+      // Traffic (core/traffic): reservations on the road graph, granted by the server
+      flag("traffic.enabled", true,
+           "robots drive only into road stretches the server granted them; false: the seed's local avoidance only"),
+      number("traffic.lookahead", 0.6, "m", 0.1, 5.0, "route granted ahead of a robot when the road is free"),
+      number("traffic.priority_wait_s", 8.0, "s", 0.0, 600.0,
+             "sim seconds a stopped robot waits before its next stretch is reserved for it"),
+      number("traffic.reroute_wait_s", 30.0, "s", 1.0, 3600.0,
+             "bound on waiting: a robot waiting this long (sim seconds) is re-routed around its blockers"),
+      number("traffic.margin", 0.12, "m", 0.0, 1.0,
+             "gap kept between robots holding reservations; at least the agents' stopping distance to another "
+             "robot (0.08 m) plus their margins, or the safety layer stops robots the manager thinks are moving"),
+      flag("traffic.one_way", true, "give corridors on cycles of the road network one driving direction"),
+
+      // Fault injection (soak tests only; everything off by default)
+      number("faults.pose_delay_ms", 0.0, "ms", 0.0, 10000.0,
+             "agents publish RobotState this much late (wall time), as a slow network would deliver it"),
+      number("faults.pose_delay_jitter_ms", 0.0, "ms", 0.0, 10000.0,
+             "uniform +- jitter on faults.pose_delay_ms"),
   };
 }
 

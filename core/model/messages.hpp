@@ -173,4 +173,28 @@ struct SimTruth {
   double sim_time = 0.0;
 };
 
+/// An agent's road-graph route and its progress along it (traffic, issue 8). Empty `points`: the
+/// robot is off the roads and holds nothing.
+struct TrafficRequest {
+  std::string robot_id;
+  std::uint32_t version = 0;
+  std::vector<int> points;
+  double progress = 0.0;  ///< metres from the route's first point
+  double sim_time = 0.0;
+};
+
+/// The server's traffic grant for one robot (see traffic::Grant).
+struct TrafficGrant {
+  std::string robot_id;
+  std::uint32_t version = 0;
+  int granted_index = 0;
+  double granted_distance = 0.0;
+  std::string status;  ///< MOVING, WAITING, ARRIVED
+  double waited_s = 0.0;
+  std::vector<std::string> blocked_by;
+  std::string instruction;  ///< empty, REROUTE or SIDING
+  std::vector<int> route;
+  double sim_time = 0.0;
+};
+
 }  // namespace fleet::model

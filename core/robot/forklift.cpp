@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <limits>
 
 
@@ -73,13 +74,20 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         o.projection_resolution = config.grid_resolution;  // must match the static grid's cells
         return o;
       }()),
-      road_(site_->graph.graph),
+      road_(config.route_graph ? *config.route_graph : site_->graph.graph),
       routes_(road_, grid_astar_) {
   for (const auto& o : site_->site.static_obstacles) {
     obstacles_[o.id] = o.enabled_at_start;
     static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
   }
   sim_.warm_up(1.0, step_period());
+  // Route versions must grow across restarts of the agent too, or the traffic manager, which
+  // still knows the robot, would take a restarted agent's routes for stale ones. Sixteen per
+  // second of wall time since 2023 leaves room for 16 routes a second and lasts until 2031.
+  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  route_version_ = static_cast<std::uint32_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000) * 16);
 }
 
 bool Forklift::submit(const task::TaskOrder& order, std::string* why) { return executor_.submit(order, why); }
@@ -258,16 +266,45 @@ void Forklift::step() {
   }
 
   // Another robot in the way: wait (WAITING, with the reason), and after a while plan around it
-  // with a temporary obstacle (seed 000, section 5.3).
+  // with a temporary obstacle (seed 000, section 5.3). Under traffic control the robot also
+  // stops at the end of its grant; the neighbour check stays underneath as the safety layer.
   const double clearance = clearance_ahead();
-  const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
-                       (executor_.state() == task::State::kWaiting && blocked_by_neighbour_);
+  const double room = traffic_room();
+  const bool driving =
+      executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
+      (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
   const bool blocked = driving && clearance <= config_.stop_distance;
-  if (blocked != blocked_by_neighbour_) {
+  const bool held = driving && room <= 0.0;
+  if (blocked != blocked_by_neighbour_ || held != held_by_traffic_) {
+    const bool was_stopped = blocked_by_neighbour_ || held_by_traffic_;
+    if (blocked != blocked_by_neighbour_) blocked_since_ = blocked ? t : -1.0;
     blocked_by_neighbour_ = blocked;
-    executor_.set_blocked(blocked);
-    detail_ = blocked ? "another robot ahead" : "";
-    blocked_since_ = blocked ? t : -1.0;
+    held_by_traffic_ = held;
+    if (was_stopped != (blocked || held)) executor_.set_blocked(blocked || held);
+  }
+  if (blocked) {
+    // Name the nearest robot: what an operator needs to see why this one waits.
+    const Pose2 here = sim_.estimate();
+    std::string nearest = "another robot";
+    double nearest_gap = std::numeric_limits<double>::infinity();
+    for (const auto& n : neighbours_) {
+      const double gap = geometry::convex_polygons_distance(geometry::footprint_polygon(here, footprint()),
+                                                            geometry::footprint_polygon(n.pose, n.footprint));
+      if (gap < nearest_gap) {
+        nearest_gap = gap;
+        nearest = n.robot_id;
+      }
+    }
+    detail_ = std::isfinite(nearest_gap) && nearest_gap < 0.5 ? "robot " + nearest + " ahead" : "an obstacle ahead";
+  } else if (held) {
+    detail_ = permit_.blocked_by.empty() ? "waiting for a traffic grant"
+                                         : "waiting for traffic: road held by " + [&] {
+                                             std::string ids;
+                                             for (const auto& id : permit_.blocked_by) ids += (ids.empty() ? "" : ", ") + id;
+                                             return ids;
+                                           }();
+  } else if (driving && (detail_.ends_with(" ahead") || detail_.starts_with("waiting for"))) {
+    detail_.clear();
   }
   if (blocked && t - blocked_since_ > kDetourAfter) {
     const Pose2 here = sim_.estimate();
@@ -276,14 +313,17 @@ void Forklift::step() {
     static_grid_.add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, kTemporarySize));
     blocked_since_ = t;
     blocked_by_neighbour_ = false;
-    executor_.set_blocked(false);
+    if (!held_by_traffic_) executor_.set_blocked(false);
     executor_.replan();
     detail_ = "planning around a robot in the way";
   }
 
   std::vector<perception::MarkerDetection> detections;
   if (camera_.frame_due(t)) detections = camera_.capture(t, sim_.truth(), pallets_.markers());
-  const task::TaskOutput out = executor_.step({t, sim_.estimate(), detections, clearance});
+  // The end of the grant acts like an obstacle stop_distance beyond it: the follower slows
+  // towards it and the robot is held as it gets there.
+  const task::TaskOutput out =
+      executor_.step({t, sim_.estimate(), detections, std::min(clearance, room + config_.stop_distance)});
 
   const perception::ForkEvent fork = pallets_.update(0, sim_.truth(), out.fork_up);
   switch (fork.kind) {
@@ -338,9 +378,17 @@ void Forklift::answer_plan_requests() {
     grid_astar_.set_grid(grid);
     grid_revision_ = static_grid_.revision();
   }
+  if (pending_route_) {
+    // The traffic manager re-routed this robot (a way round, a siding, or back from one).
+    const TrafficPermit permit = std::move(*pending_route_);
+    pending_route_.reset();
+    adopt_traffic_route(permit);
+    executor_.path_received(request->id, planning::poses_along(path_));
+    return;
+  }
   const planning::Route route = routes_.plan(sim_.estimate(), request->goal);
   if (route.status == planning::PlanStatus::kFound && route.points.size() >= 2) {
-    path_ = route.points;
+    adopt_path(route);
     executor_.path_received(request->id, planning::poses_along(route.points));
   } else {
     // Blocked by a static obstacle (seed 000, Fig. 5.11) or no way at all: wait and ask again.
@@ -381,6 +429,9 @@ void Forklift::collect_reports() {
         break;
       case K::kHomeReached:
         path_.clear();
+        path_cum_.clear();
+        road_points_.clear();  // parked beside the road: it holds no road any more
+        road_cum_.clear();
         events_.push_back({ForkliftEvent::Kind::kHome, "", "", -1, {}});
         break;
       case K::kAccepted:
@@ -389,6 +440,111 @@ void Forklift::collect_reports() {
         break;
     }
   }
+}
+
+namespace {
+std::vector<double> cumulative_lengths(const std::vector<Vec2>& points) {
+  std::vector<double> cum(points.size(), 0.0);
+  for (std::size_t i = 1; i < points.size(); ++i) cum[i] = cum[i - 1] + geometry::distance(points[i - 1], points[i]);
+  return cum;
+}
+}  // namespace
+
+void Forklift::adopt_path(const planning::Route& route) {
+  path_ = route.points;
+  path_cum_ = cumulative_lengths(path_);
+  path_s_ = 0.0;
+  in_siding_ = false;
+  road_points_ = route.road.point_ids;
+  road_cum_ = cumulative_lengths(route.road.points);
+  road_start_ = 0.0;
+  goal_leg_.clear();
+  if (road_points_.empty()) return;
+  // The road part starts where the path first reaches the first road point; the rest of the path
+  // after the last road point is the leg off the road to the goal, kept for re-routes.
+  const Vec2 first = route.road.points.front();
+  std::size_t first_index = 0;
+  while (first_index + 1 < path_.size() && geometry::distance(path_[first_index], first) > 1e-9) ++first_index;
+  road_start_ = path_cum_[first_index];
+  const std::size_t last_index = std::min(path_.size() - 1, first_index + route.road.points.size() - 1);
+  goal_leg_.assign(path_.begin() + static_cast<std::ptrdiff_t>(last_index) + 1, path_.end());
+  ++route_version_;
+}
+
+void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
+  const auto& graph = site_->graph.graph;
+  const bool to_goal = !permit.siding && !road_points_.empty() && permit.route.back() == road_points_.back();
+  std::vector<Vec2> road;
+  for (int id : permit.route) road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
+  const Vec2 here = sim_.estimate().position();
+  path_.assign(1, here);
+  path_.insert(path_.end(), road.begin(), road.end());
+  road_start_ = geometry::distance(here, road.front());
+  if (to_goal) path_.insert(path_.end(), goal_leg_.begin(), goal_leg_.end());
+  path_cum_ = cumulative_lengths(path_);
+  path_s_ = 0.0;
+  road_points_ = permit.route;
+  road_cum_ = cumulative_lengths(road);
+  route_version_ = permit.version;
+  in_siding_ = permit.siding;
+  if (!to_goal) goal_leg_.clear();
+  detail_ = permit.siding ? "yielding on a siding" : "re-routed by traffic";
+}
+
+double Forklift::path_position() const {
+  // The projection onto the path near where the robot was last found: a path may pass close to
+  // itself, and progress must not jump.
+  if (path_.size() < 2) return 0.0;
+  const Vec2 here = sim_.estimate().position();
+  double best_d = std::numeric_limits<double>::infinity();
+  double best_s = path_s_;
+  for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
+    if (path_cum_[i + 1] < path_s_ - 0.05) continue;
+    if (path_cum_[i] > path_s_ + 0.30) break;
+    const Vec2 a = path_[i];
+    const Vec2 ab = path_[i + 1] - a;
+    const double len2 = geometry::dot(ab, ab);
+    const double u = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
+    const double d = geometry::distance(here, a + u * ab);
+    if (d < best_d) {
+      best_d = d;
+      best_s = path_cum_[i] + u * std::sqrt(len2);
+    }
+  }
+  return best_s;
+}
+
+double Forklift::traffic_room() {
+  if (!config_.traffic || road_points_.empty() || path_.size() < 2) return std::numeric_limits<double>::infinity();
+  path_s_ = path_position();
+  if (permit_.version != route_version_ || permit_.granted_index < 0) {
+    // No grant for this route yet: stand still, not even turning on the spot; beside a lane a
+    // turn sweeps the footprint into it. The manager admits the robot once its entry is free.
+    return -path_s_ - 1e-9;
+  }
+  const bool whole_route = permit_.granted_index + 1 >= static_cast<int>(road_points_.size());
+  if (whole_route && !in_siding_) return std::numeric_limits<double>::infinity();
+  double allowed = road_start_ + permit_.granted_distance;
+  // On a siding, stop just short of its end: the follower would take the end for the goal.
+  if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - 0.03);
+  return allowed - path_s_;
+}
+
+void Forklift::set_traffic_grant(const TrafficPermit& permit) {
+  if (!config_.traffic) return;
+  if (!permit.route.empty() && permit.version > route_version_ && !pending_route_) {
+    pending_route_ = permit;
+    executor_.replan();
+  }
+  if (!pending_route_) permit_ = permit;
+}
+
+TrafficRoute Forklift::traffic_route() const {
+  TrafficRoute r;
+  r.version = route_version_;
+  r.points = road_points_;
+  if (!road_points_.empty()) r.progress = std::clamp(path_s_ - road_start_, 0.0, road_cum_.back());
+  return r;
 }
 
 std::vector<ForkliftEvent> Forklift::take_events() {

@@ -39,6 +39,12 @@ struct ForkliftConfig {
   /// Other robots are this tall; the UWB tag sits at the sim's tag height. A robot shadows an
   /// anchor only where the anchor-tag ray is still below its top (see uwb_blockers()).
   double robot_height = 0.15;  ///< metres
+  /// Traffic control (issue 8): report the road part of every route and drive only as far as
+  /// the server grants (set_traffic_grant). Off: the seed's local avoidance alone.
+  bool traffic = false;
+  /// The graph routes are planned on; the traffic manager's one-way graph when traffic is on.
+  /// Null: the site's road graph.
+  std::shared_ptr<const map::RoadGraph> route_graph;
 
   static ForkliftConfig defaults();
 };
@@ -50,6 +56,25 @@ struct Neighbour {
   geometry::Footprint footprint;
   double speed = 0.0;
   double age = 0.0;  ///< sim seconds since the pose was measured
+};
+
+/// The road part of the route being driven, for the traffic manager (see model::TrafficRequest).
+struct TrafficRoute {
+  std::uint32_t version = 0;
+  std::vector<int> points;  ///< graph point ids; empty while off the roads
+  double progress = 0.0;    ///< metres driven from the first point
+};
+
+/// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).
+struct TrafficPermit {
+  std::uint32_t version = 0;
+  int granted_index = 0;
+  double granted_distance = 0.0;
+  std::vector<std::string> blocked_by;
+  /// Non-empty: drive this route (of `version`) instead; `siding` when it leads to a siding to
+  /// wait on rather than towards the goal.
+  std::vector<int> route;
+  bool siding = false;
 };
 
 /// What happened during a step, for the agent to report.
@@ -94,6 +119,8 @@ class Forklift {
   void set_neighbours(std::vector<Neighbour> neighbours);
   /// Simulation truth of the other robots' footprints: what the onboard lidar sees.
   void set_true_neighbours(std::vector<geometry::Polygon> footprints);
+  /// The traffic manager's latest grant for this robot (traffic on only).
+  void set_traffic_grant(const TrafficPermit& permit);
 
   /// One control step of 1 / control_rate_hz sim seconds.
   void step();
@@ -115,9 +142,17 @@ class Forklift {
   /// The path being followed (for RobotPath and the web view).
   const std::vector<geometry::Vec2>& path() const { return path_; }
   const geometry::Footprint& footprint() const { return config_.sim.forklift.footprint; }
+  /// The route to report to the traffic manager, with the progress along it.
+  TrafficRoute traffic_route() const;
+  /// Whether the robot stands at the end of what traffic granted it.
+  bool held_by_traffic() const { return held_by_traffic_; }
 
  private:
   void answer_plan_requests();
+  void adopt_path(const planning::Route& route);
+  void adopt_traffic_route(const TrafficPermit& permit);
+  double path_position() const;
+  double traffic_room();
   void collect_reports();
   double clearance_ahead() const;
   control::BodyTwist safe(const control::BodyTwist& cmd) const;
@@ -155,6 +190,20 @@ class Forklift {
   double blocked_since_ = -1.0;
   std::map<std::string, int> seen_free_;
   int next_temporary_ = 1;
+
+  // Traffic (issue 8). The path's arc length is the common measure: the road part of the path
+  // starts at `road_start_` and its graph points sit at `road_start_ + road_cum_[i]`.
+  std::vector<double> path_cum_;         ///< metres from the path's start to each point
+  mutable double path_s_ = 0.0;          ///< where the robot was last found along the path
+  std::uint32_t route_version_ = 0;
+  std::vector<int> road_points_;
+  std::vector<double> road_cum_;
+  double road_start_ = 0.0;
+  bool in_siding_ = false;
+  TrafficPermit permit_;
+  std::optional<TrafficPermit> pending_route_;  ///< an instruction to adopt at the next plan
+  std::vector<geometry::Vec2> goal_leg_;        ///< the path after the road, kept for re-routes
+  bool held_by_traffic_ = false;
 };
 
 }  // namespace fleet::robot

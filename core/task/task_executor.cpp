@@ -225,7 +225,8 @@ void TaskExecutor::set_blocked(bool blocked) {
 
 void TaskExecutor::replan() {
   const State s = machine_.state();
-  if (s == State::kTrackPath || s == State::kGoHome || (s == State::kWaiting && waiting_for_plan_)) {
+  // Waiting counts too, whether for a plan or on a blocked road: the new plan may lead around.
+  if (s == State::kTrackPath || s == State::kGoHome || s == State::kWaiting) {
     request_plan(active_purpose_);
   }
 }

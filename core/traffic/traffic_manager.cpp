@@ -154,6 +154,22 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   return held;
 }
 
+std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
+  std::vector<int> out;
+  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;
+  const int place = zones_->place_of(point);
+  for (const auto& [id, robot] : robots_) {
+    if (id == robot_id) continue;
+    for (int held : held_places(id)) {
+      if (zones_->conflict(place, held)) {
+        out.push_back(id);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 const std::vector<int>& TrafficManager::route(int robot_id) const {
   static const std::vector<int> empty;
   auto it = robots_.find(robot_id);

@@ -154,7 +154,8 @@ class TrafficManager {
  public:
   TrafficManager(const map::RoadGraph& graph, const TrafficConfiguration& configuration = {});
 
-  /// A new route for a robot (a new robot enters at the route's first point). The first point must
+  /// A new route for a robot (a new robot enters at the route's first point: check
+  /// holders_in_conflict() first, entering is not checked here). The first point must
   /// be a place the robot holds; the places it held behind that point stay held until it has
   /// driven past the first edge's midpoint.
   SubmitStatus submit_route(const RouteRequest& request, double now);
@@ -181,6 +182,9 @@ class TrafficManager {
   bool has_robot(int robot_id) const { return robots_.count(robot_id) != 0; }
   /// Places the robot holds now, sorted.
   std::vector<int> held_places(int robot_id) const;
+  /// Robots (other than `robot_id`) holding a place that conflicts with the place of graph point
+  /// `point`, sorted: a robot may enter the graph there only when this is empty.
+  std::vector<int> holders_in_conflict(int point, int robot_id) const;
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
   std::uint32_t version(int robot_id) const;

@@ -191,7 +191,7 @@ TEST_F(WebApi, OrderBadInputNamesTheField) {
   expect_error(post("/api/orders", R"({"from": 3, "to": "A2"})"), 400, "string", "from");
   expect_error(post("/api/orders", R"({"from": "NOPE", "to": "A2"})"), 400, "'NOPE'", "from");
   expect_error(post("/api/orders", R"({"from": "A1", "to": "ZZ"})"), 400, "'ZZ'", "to");
-  expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "robot": "fl9"})"), 400, "'fl9'", "robot");
+  expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "robot": "fl99"})"), 400, "'fl99'", "robot");
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "fleet": "boats"})"), 400, "'boats'", "fleet");
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "priority": "high"})"), 400, "integer", "priority");
   // Valid names the server refuses (the same check as fleetctl's): A3 holds a pallet already.
@@ -253,7 +253,7 @@ TEST_F(WebApi, ObstacleIsSwitchedAndBadInputIsNamed) {
 TEST_F(WebApi, MapRequestIsValidatedAndForwarded) {
   expect_error(post("/api/map", "{}"), 400, "missing", "map");
   expect_error(post("/api/map", R"({"map": "atlantis"})"), 400, "'atlantis'", "map");
-  expect_error(post("/api/map", R"({"map": "table_a", "robot": "fl9"})"), 400, "'fl9'", "robot");
+  expect_error(post("/api/map", R"({"map": "table_a", "robot": "fl99"})"), 400, "'fl99'", "robot");
   // A valid request reaches the server loop, which answers it: accepted, or refused with a reason.
   auto r = post("/api/map", R"({"map": "table_a", "robot": "fl1"})");
   ASSERT_TRUE(r);
@@ -267,7 +267,7 @@ TEST_F(WebApi, MapRequestIsValidatedAndForwarded) {
 }
 
 TEST_F(WebApi, RobotIsPausedAndResumed) {
-  expect_error(post("/api/robots/fl9/pause", ""), 404, "'fl9'", "id");
+  expect_error(post("/api/robots/fl99/pause", ""), 404, "'fl99'", "id");
   auto r = post("/api/robots/fl1/pause", "");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body;

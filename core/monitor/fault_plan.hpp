@@ -1,0 +1,30 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fleet::monitor {
+
+/// The faults a soak run can inject (issue 11).
+enum class FaultKind { kKillAgent, kStallAgent, kKillServer, kObstacles, kMapSwitch };
+
+const char* to_string(FaultKind kind);
+/// The kinds named by a `--faults` list: "none", "all", or comma-separated names
+/// (kill-agent, stall-agent, kill-server, obstacles, map-switch). InputError naming the
+/// unknown one otherwise.
+std::vector<FaultKind> parse_fault_list(const std::string& list);
+
+struct ScheduledFault {
+  double at_sim = 0.0;  ///< sim seconds after the run's start
+  FaultKind kind = FaultKind::kKillAgent;
+  int target = 0;       ///< agent index (0-based) for agent faults, obstacle index for obstacles
+};
+
+/// A reproducible fault schedule: one fault every `period_s` sim seconds from `period_s / 2`,
+/// the kinds in a seeded random order that uses each kind once per round, targets drawn from
+/// the seed. Nothing in the last `quiet_tail_s` sim seconds, so the run ends recovered.
+std::vector<ScheduledFault> plan_faults(const std::vector<FaultKind>& kinds, double duration_sim_s, double period_s,
+                                        double quiet_tail_s, int agents, int obstacles, std::uint64_t seed);
+
+}  // namespace fleet::monitor

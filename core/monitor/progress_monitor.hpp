@@ -1,0 +1,54 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geometry/pose.hpp"
+
+namespace fleet::monitor {
+
+/// A robot that worked on an order without progress for the monitor's timeout.
+struct Deadlock {
+  std::string robot_id;
+  std::string task;      ///< what it was working on: order id and phase
+  double since = 0.0;    ///< sim time of its last progress
+  double detected = 0.0; ///< sim time the timeout passed
+  geometry::Pose2 pose;  ///< where it stood (truth)
+};
+
+/// Ground-truth progress watch for demo and soak runs (issue 8): a robot with an order that has
+/// neither moved `move_threshold` metres nor changed its order or phase for `timeout_s` sim
+/// seconds counts as deadlocked, once per episode. Also keeps the longest continuous WAITING.
+class ProgressMonitor {
+ public:
+  explicit ProgressMonitor(double timeout_s = 60.0, double move_threshold = 0.02);
+
+  /// The robot's true pose at sim time `t`; `task` is its open order and phase, empty when it has
+  /// none. Returns true when this update detected a new deadlock (see deadlocks()).
+  bool update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task, double t);
+  /// The robot's reported task state, for the longest wait.
+  void note_state(const std::string& robot_id, const std::string& task_state, double t);
+  /// The robot left the run (killed, lost): its watch restarts when it comes back.
+  void forget(const std::string& robot_id);
+
+  const std::vector<Deadlock>& deadlocks() const { return deadlocks_; }
+  /// Longest continuous WAITING of any robot so far, sim seconds (ongoing waits included at `now`).
+  double max_wait_s(double now) const;
+
+ private:
+  struct Watch {
+    geometry::Pose2 anchor;  ///< where it was at its last progress
+    std::string task;
+    double since = 0.0;
+    bool reported = false;
+  };
+  double timeout_s_;
+  double move_threshold_;
+  std::map<std::string, Watch> watches_;
+  std::map<std::string, double> waiting_since_;
+  double max_wait_s_ = 0.0;
+  std::vector<Deadlock> deadlocks_;
+};
+
+}  // namespace fleet::monitor

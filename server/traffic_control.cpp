@@ -1,0 +1,175 @@
+#include "server/traffic_control.hpp"
+
+#include <cmath>
+
+namespace fleet::server {
+
+namespace {
+constexpr double kGrantRepeatWall = 1.0;  // seconds: unchanged grants are repeated for late joiners
+
+const char* status_name(traffic::GrantStatus s) {
+  switch (s) {
+    case traffic::GrantStatus::kMoving: return "MOVING";
+    case traffic::GrantStatus::kWaiting: return "WAITING";
+    case traffic::GrantStatus::kArrived: return "ARRIVED";
+  }
+  return "MOVING";
+}
+
+const char* instruction_name(traffic::Instruction i) {
+  switch (i) {
+    case traffic::Instruction::kNone: return "";
+    case traffic::Instruction::kReroute: return "REROUTE";
+    case traffic::Instruction::kSiding: return "SIDING";
+  }
+  return "";
+}
+
+bool same_grant(const model::TrafficGrant& a, const model::TrafficGrant& b) {
+  return a.version == b.version && a.granted_index == b.granted_index && a.status == b.status &&
+         a.blocked_by == b.blocked_by && a.instruction == b.instruction && a.route == b.route;
+}
+}  // namespace
+
+TrafficControl::TrafficControl(const map::RoadGraph& graph, const traffic::TrafficConfiguration& configuration,
+                               dds::Participant& participant, Logger log)
+    : manager_(graph, configuration),
+      log_(std::move(log)),
+      grant_writer_(participant, dds::qos::live_state()),
+      request_reader_(participant, dds::qos::live_state()) {
+  log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}",
+             manager_.zones().place_count(), configuration.lookahead, configuration.one_way ? "on" : "off");
+}
+
+int TrafficControl::number_of(const std::string& robot_id) {
+  auto it = numbers_.find(robot_id);
+  if (it != numbers_.end()) return it->second;
+  const int number = static_cast<int>(numbers_.size()) + 1;
+  numbers_[robot_id] = number;
+  names_[number] = robot_id;
+  return number;
+}
+
+void TrafficControl::handle_requests(double now_sim) {
+  request_reader_.take_data([&](model::TrafficRequest&& request) {
+    if (request.robot_id.empty() || !std::isfinite(request.progress)) {
+      log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
+      return;
+    }
+    const int id = number_of(request.robot_id);
+    if (request.points.empty()) {
+      // Parked beside the road (home, or done): it holds nothing any more.
+      if (manager_.remove_robot(id, now_sim)) log_->debug("{} left the roads", request.robot_id);
+      status_.erase(request.robot_id);
+      return;
+    }
+    if (!manager_.has_robot(id) || request.version > manager_.version(id)) {
+      traffic::RouteRequest route{id, request.version, request.points};
+      auto result = traffic::SubmitStatus::kInvalid;
+      if (manager_.has_robot(id)) {
+        result = manager_.submit_route(route, now_sim);
+        if (result == traffic::SubmitStatus::kInvalid) {
+          // The route starts somewhere the robot does not hold (it drove off the graph and came
+          // back elsewhere, e.g. from a loading area): it enters afresh there.
+          manager_.remove_robot(id, now_sim);
+        }
+      }
+      if (!manager_.has_robot(id)) {
+        // Entering the roads: only where no one holds a place in conflict with the entry; until
+        // then the robot waits beside the road (granted_index -1).
+        const auto holders = manager_.holders_in_conflict(request.points.front(), id);
+        if (!holders.empty()) {
+          model::TrafficGrant wait;
+          wait.robot_id = request.robot_id;
+          wait.version = request.version;
+          wait.granted_index = -1;
+          wait.status = "WAITING";
+          for (int h : holders) wait.blocked_by.push_back(names_[h]);
+          wait.sim_time = now_sim;
+          auto& status = status_[request.robot_id];
+          status.status = "WAITING";
+          status.blocked_by = wait.blocked_by;
+          status.held.clear();
+          auto sent = sent_.find(request.robot_id);
+          if (sent == sent_.end() || !same_grant(sent->second, wait)) {
+            grant_writer_.write(wait);
+            sent_[request.robot_id] = std::move(wait);
+          }
+          return;
+        }
+        result = manager_.submit_route(route, now_sim);
+      }
+      if (result != traffic::SubmitStatus::kAccepted) {
+        log_->warn("route {} of {} refused ({} points from {})", request.version, request.robot_id,
+                   request.points.size(), request.points.front());
+        return;
+      }
+    }
+    manager_.report_progress({id, request.version, request.progress}, now_sim);
+  });
+}
+
+void TrafficControl::robot_lost(const std::string& robot_id, double now_sim) {
+  auto it = numbers_.find(robot_id);
+  if (it != numbers_.end() && manager_.remove_robot(it->second, now_sim)) {
+    log_->warn("traffic: {} lost, its road freed", robot_id);
+  }
+  status_.erase(robot_id);
+}
+
+void TrafficControl::update(double now_sim, double now_wall) {
+  const traffic::UpdateResult result = manager_.update(now_sim);
+  for (const auto& e : result.events) {
+    std::string others;
+    for (int o : e.others) others += (others.empty() ? "" : ", ") + names_[o];
+    const std::string& robot = names_[e.robot_id];
+    switch (e.kind) {
+      case traffic::TrafficEvent::Kind::kDeadlockResolved:
+        ++deadlocks_resolved_;
+        log_->info("traffic: wait cycle [{}] broken by re-routing {}", others, robot);
+        break;
+      case traffic::TrafficEvent::Kind::kRerouted:
+        log_->info("traffic: {} re-routed around {}", robot, others);
+        break;
+      case traffic::TrafficEvent::Kind::kSidingSent:
+        log_->info("traffic: {} yields on a siding to {}", robot, others);
+        break;
+      case traffic::TrafficEvent::Kind::kResumed:
+        log_->info("traffic: {} leaves its siding", robot);
+        break;
+      case traffic::TrafficEvent::Kind::kRobotRemoved:
+        break;
+      case traffic::TrafficEvent::Kind::kUnresolvedDeadlock:
+        ++unresolved_cycles_;
+        log_->debug("traffic: wait cycle [{}] has no way out yet", others);
+        break;
+    }
+  }
+  for (const traffic::Grant& g : result.grants) {
+    const std::string& robot = names_[g.robot_id];
+    model::TrafficGrant grant;
+    grant.robot_id = robot;
+    grant.version = g.version;
+    grant.granted_index = g.granted_index;
+    grant.granted_distance = g.granted_distance;
+    grant.status = status_name(g.status);
+    grant.waited_s = g.waited_s;
+    for (int b : g.blocked_by) grant.blocked_by.push_back(names_[b]);
+    grant.instruction = instruction_name(g.instruction);
+    if (g.instruction != traffic::Instruction::kNone) grant.route = g.route;
+    grant.sim_time = now_sim;
+    auto& status = status_[robot];
+    status.status = grant.status;
+    status.waited_s = grant.waited_s;
+    status.blocked_by = grant.blocked_by;
+    status.held.clear();
+    for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
+    auto sent = sent_.find(robot);
+    if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[robot] < kGrantRepeatWall) continue;
+    grant_writer_.write(grant);
+    sent_[robot] = std::move(grant);
+    sent_wall_[robot] = now_wall;
+  }
+}
+
+}  // namespace fleet::server

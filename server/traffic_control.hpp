@@ -1,0 +1,57 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/logging.hpp"
+#include "dds/topics.hpp"
+#include "map/road_graph.hpp"
+#include "traffic/traffic_manager.hpp"
+
+namespace fleet::server {
+
+/// What the web view shows of a robot's traffic state.
+struct TrafficStatus {
+  std::string status;  ///< MOVING, WAITING, ARRIVED
+  double waited_s = 0.0;
+  std::vector<std::string> blocked_by;
+  std::vector<geometry::Vec2> held;  ///< where the places the robot holds are
+};
+
+/// The server side of traffic control (issue 8): agents' TrafficRequests into a
+/// traffic::TrafficManager, its grants out as TrafficGrant, one update per cycle.
+class TrafficControl {
+ public:
+  TrafficControl(const map::RoadGraph& graph, const traffic::TrafficConfiguration& configuration,
+                 dds::Participant& participant, Logger log);
+
+  /// Reads the agents' routes and progress (call every loop).
+  void handle_requests(double now_sim);
+  /// One manager cycle and the grants that changed (call at the control rate).
+  void update(double now_sim, double now_wall);
+  /// The robot is lost: whatever it holds is freed at once.
+  void robot_lost(const std::string& robot_id, double now_sim);
+
+  const std::map<std::string, TrafficStatus>& status() const { return status_; }
+  std::size_t deadlocks_resolved() const { return deadlocks_resolved_; }
+  std::size_t unresolved_cycles() const { return unresolved_cycles_; }
+
+ private:
+  int number_of(const std::string& robot_id);
+
+  traffic::TrafficManager manager_;
+  Logger log_;
+  std::map<std::string, int> numbers_;  ///< robot id -> the manager's integer id
+  std::map<int, std::string> names_;
+  std::map<std::string, model::TrafficGrant> sent_;
+  std::map<std::string, double> sent_wall_;
+  std::map<std::string, TrafficStatus> status_;
+  std::size_t deadlocks_resolved_ = 0;
+  std::size_t unresolved_cycles_ = 0;
+  dds::Writer<model::TrafficGrant> grant_writer_;
+  dds::Reader<model::TrafficRequest> request_reader_;
+};
+
+}  // namespace fleet::server

@@ -1,0 +1,107 @@
+#include "monitor/progress_monitor.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fleet::monitor {
+namespace {
+
+TEST(ProgressMonitor, RobotStandingStillWithAnOrderForTheTimeoutIsOneDeadlock) {
+  ProgressMonitor m(60.0, 0.02);
+  const geometry::Pose2 here{1.0, 1.0, 0.0};
+  EXPECT_FALSE(m.update("fl1", here, "7/TO_PICK", 0.0));
+  EXPECT_FALSE(m.update("fl1", {1.01, 1.0, 0.5}, "7/TO_PICK", 59.9));  // a turn on the spot is not progress
+  EXPECT_TRUE(m.update("fl1", here, "7/TO_PICK", 60.0));
+  EXPECT_FALSE(m.update("fl1", here, "7/TO_PICK", 200.0));  // the same episode counts once
+  ASSERT_EQ(m.deadlocks().size(), 1u);
+  EXPECT_EQ(m.deadlocks()[0].robot_id, "fl1");
+  EXPECT_EQ(m.deadlocks()[0].task, "7/TO_PICK");
+  EXPECT_DOUBLE_EQ(m.deadlocks()[0].since, 0.0);
+  // Moving on starts a new episode, which can be counted again.
+  EXPECT_FALSE(m.update("fl1", {1.5, 1.0, 0.0}, "7/TO_PICK", 201.0));
+  EXPECT_TRUE(m.update("fl1", {1.5, 1.0, 0.0}, "7/TO_PICK", 261.0));
+  EXPECT_EQ(m.deadlocks().size(), 2u);
+}
+
+TEST(ProgressMonitor, MovingOrChangingPhaseOrHavingNoOrderIsNotADeadlock) {
+  ProgressMonitor m(60.0, 0.02);
+  m.update("fl1", {0, 0, 0}, "7/PICKING", 0.0);
+  EXPECT_FALSE(m.update("fl1", {0, 0, 0}, "7/TO_DROP", 50.0));  // a phase change is progress
+  EXPECT_FALSE(m.update("fl1", {0, 0, 0}, "7/TO_DROP", 100.0));
+  m.update("fl2", {0, 0, 0}, "", 0.0);
+  EXPECT_FALSE(m.update("fl2", {0, 0, 0}, "", 500.0));  // idle at home
+  for (int i = 1; i <= 20; ++i) EXPECT_FALSE(m.update("fl3", {0.05 * i, 0, 0}, "9/TO_PICK", 10.0 * i));
+  EXPECT_TRUE(m.deadlocks().empty());
+}
+
+TEST(ProgressMonitor, ForgottenRobotRestartsItsWatch) {
+  ProgressMonitor m(60.0, 0.02);
+  m.update("fl1", {0, 0, 0}, "7/TO_PICK", 0.0);
+  m.forget("fl1");
+  EXPECT_FALSE(m.update("fl1", {0, 0, 0}, "7/TO_PICK", 70.0));
+  EXPECT_TRUE(m.update("fl1", {0, 0, 0}, "7/TO_PICK", 130.0));
+}
+
+TEST(ProgressMonitor, LongestWaitIncludesOngoingWaits) {
+  ProgressMonitor m;
+  m.note_state("fl1", "WAITING", 10.0);
+  m.note_state("fl1", "TRACK_PATH", 14.0);
+  m.note_state("fl2", "WAITING", 20.0);
+  EXPECT_DOUBLE_EQ(m.max_wait_s(22.0), 4.0);
+  EXPECT_DOUBLE_EQ(m.max_wait_s(30.0), 10.0);
+  m.note_state("fl2", "WAITING", 25.0);  // still the same wait
+  EXPECT_DOUBLE_EQ(m.max_wait_s(30.0), 10.0);
+}
+
+}  // namespace
+}  // namespace fleet::monitor
+
+#include "common/errors.hpp"
+#include "monitor/fault_plan.hpp"
+
+namespace fleet::monitor {
+namespace {
+
+TEST(FaultPlan, ParsesListsAndNamesAnUnknownFault) {
+  EXPECT_TRUE(parse_fault_list("none").empty());
+  EXPECT_EQ(parse_fault_list("all").size(), 5u);
+  const auto two = parse_fault_list("kill-agent,obstacles,kill-agent");
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0], FaultKind::kKillAgent);
+  EXPECT_EQ(two[1], FaultKind::kObstacles);
+  try {
+    parse_fault_list("kill-agent,explode");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'explode'"), std::string::npos);
+  }
+}
+
+TEST(FaultPlan, IsReproducibleUsesEveryKindEachRoundAndKeepsTheTailQuiet) {
+  const auto kinds = parse_fault_list("kill-agent,stall-agent,kill-server,obstacles");
+  const auto a = plan_faults(kinds, 1800.0, 120.0, 200.0, 4, 4, 7);
+  const auto b = plan_faults(kinds, 1800.0, 120.0, 200.0, 4, 4, 7);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GE(a.size(), 12u);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at_sim, b[i].at_sim);
+    EXPECT_EQ(a[i].kind, b[i].kind);
+    EXPECT_EQ(a[i].target, b[i].target);
+    EXPECT_LE(a[i].at_sim, 1600.0);
+    EXPECT_GE(a[i].target, 0);
+    EXPECT_LT(a[i].target, 4);
+  }
+  for (std::size_t round = 0; round + 4 <= a.size(); round += 4) {
+    std::vector<int> seen(5, 0);
+    for (std::size_t i = round; i < round + 4; ++i) ++seen[static_cast<int>(a[i].kind)];
+    for (FaultKind k : kinds) EXPECT_EQ(seen[static_cast<int>(k)], 1) << to_string(k);
+  }
+  const auto other = plan_faults(kinds, 1800.0, 120.0, 200.0, 4, 4, 8);
+  bool differs = false;
+  for (std::size_t i = 0; i < std::min(a.size(), other.size()); ++i) {
+    differs = differs || a[i].kind != other[i].kind || a[i].target != other[i].target;
+  }
+  EXPECT_TRUE(differs);
+}
+
+}  // namespace
+}  // namespace fleet::monitor
