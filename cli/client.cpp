@@ -24,6 +24,7 @@ FleetClient::FleetClient(std::uint32_t domain)
       order_info_reader_(participant_, dds::qos::latched_state()),
       robot_state_reader_(participant_, dds::qos::live_state()),
       obstacle_reader_(participant_, dds::qos::latched_state()),
+      pallet_reader_(participant_, dds::qos::latched_state()),
       request_writer_(participant_, dds::qos::requests()),
       command_writer_(participant_, dds::qos::requests()) {}
 
@@ -136,6 +137,29 @@ std::map<std::int64_t, model::OrderInfo> FleetClient::orders(std::chrono::millis
     std::this_thread::sleep_for(10ms);
   }
   return orders_;
+}
+
+std::vector<model::OrderInfo> FleetClient::take_order_updates() {
+  std::vector<model::OrderInfo> updates;
+  order_info_reader_.take_data([&](model::OrderInfo&& info) {
+    orders_[info.order_id] = info;
+    updates.push_back(std::move(info));
+  });
+  return updates;
+}
+
+std::map<int, model::PalletTruth> FleetClient::pallets(std::chrono::milliseconds window) {
+  const auto deadline = std::chrono::steady_clock::now() + window;
+  while (true) {
+    pallet_reader_.take_data([&](model::PalletTruth&& p) { pallets_[p.pallet_id] = std::move(p); });
+    if (std::chrono::steady_clock::now() >= deadline) return pallets_;
+    std::this_thread::sleep_for(10ms);
+  }
+}
+
+bool FleetClient::check_server() {
+  poll_server_info();
+  return server_alive();
 }
 
 }  // namespace fleet::cli

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "dds/topics.hpp"
 
@@ -42,6 +43,19 @@ class FleetClient {
   /// Latest OrderInfo of every order, read during `window`.
   std::map<std::int64_t, model::OrderInfo> orders(std::chrono::milliseconds window);
 
+  /// The OrderInfo samples that arrived since the last call (without waiting), also kept in
+  /// known_orders().
+  std::vector<model::OrderInfo> take_order_updates();
+  /// Latest OrderInfo of every order seen so far.
+  const std::map<std::int64_t, model::OrderInfo>& known_orders() const { return orders_; }
+
+  /// Where every pallet stands or who carries it (latched PalletTruth), read during `window`
+  /// (at least once, so a zero window returns what has arrived already).
+  std::map<int, model::PalletTruth> pallets(std::chrono::milliseconds window);
+
+  /// Reads the server's liveliness now; see server_alive().
+  bool check_server();
+
   /// Whether the server is still there: false once its ServerInfo writer has been gone for
   /// longer than kServerGoneGrace. A lease missed for a moment on a loaded machine (Cyclone's
   /// participant lease is 1 s) must not make a client give up on a live server.
@@ -61,12 +75,14 @@ class FleetClient {
   dds::Reader<model::OrderInfo> order_info_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;
   dds::Reader<model::StaticObstacleState> obstacle_reader_;
+  dds::Reader<model::PalletTruth> pallet_reader_;
   dds::Writer<model::OrderRequest> request_writer_;
   dds::Writer<model::Command> command_writer_;
   std::optional<model::ServerInfo> server_info_;
   bool server_alive_ = false;
   std::optional<std::chrono::steady_clock::time_point> server_gone_since_;
   std::map<std::int64_t, model::OrderInfo> orders_;
+  std::map<int, model::PalletTruth> pallets_;
 };
 
 /// A request id unique across processes and time.

@@ -22,6 +22,12 @@ struct CommandArgs {
   std::string source_dir;   ///< project root (maps/, config/ live there)
 };
 
+/// The site files' names under `source_dir`/maps (without .yaml), sorted.
+std::vector<std::string> site_names(const std::string& source_dir);
+/// maps/NAME.yaml under `source_dir`; InputError naming NAME and listing the sites there when it
+/// does not exist.
+std::string known_site_path(const std::string& source_dir, const std::string& name);
+
 // Offline subcommands working on core/ alone. Each returns an ExitCode and prints results to
 // `out`, errors to `err`.
 int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);       // map check|sample|render

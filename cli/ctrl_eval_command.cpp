@@ -66,8 +66,12 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
     err << "ctrl-eval: " << e.what() << '\n' << kUsage;
     return kExitBadInput;
   }
-  const std::string root = args.source_dir.empty() ? "." : args.source_dir;
-  params.site_file = map::site_path((std::filesystem::path(root) / "maps").string(), site);
+  try {
+    params.site_file = known_site_path(args.source_dir, site);
+  } catch (const InputError& e) {
+    err << "ctrl-eval: " << e.what() << '\n';
+    return kExitBadInput;
+  }
 
   control::CtrlEvalResult r;
   try {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -70,6 +71,7 @@ void FleetRun::start() {
   participant_ = std::make_unique<dds::Participant>(options_.domain);
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
   truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
+  state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state());
 
   const std::vector<std::string> common{"--config", options_.config_file, "--domain", std::to_string(options_.domain),
                                         "--site", options_.site, "--time-scale", std::to_string(options_.time_scale),
@@ -83,7 +85,17 @@ void FleetRun::start() {
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
   for (const auto& id : robot_ids_) {
-    std::vector<std::string> argv{binary("fleet-agent"), "--id", id};
+    std::vector<std::string> argv;
+    if (!options_.agent_wrap.empty()) {
+      // The server is child 0, so the agents number 1..N in start order.
+      const std::string number = std::to_string(processes_.children().size());
+      std::istringstream words(options_.agent_wrap);
+      for (std::string w; words >> w;) {
+        for (auto at = w.find("{n}"); at != std::string::npos; at = w.find("{n}")) w.replace(at, 3, number);
+        argv.push_back(w);
+      }
+    }
+    argv.insert(argv.end(), {binary("fleet-agent"), "--id", id});
     argv.insert(argv.end(), common.begin(), common.end());
     argv.insert(argv.end(), options_.extra_agent_args.begin(), options_.extra_agent_args.end());
     processes_.start("fleet-agent " + id, argv, run_dir_ + "/fleet-agent-" + id + ".log");
@@ -107,8 +119,24 @@ void FleetRun::start() {
 }
 
 bool FleetRun::poll() {
-  order_reader_->take_data([&](model::OrderInfo&& info) { orders_[info.order_id] = std::move(info); });
+  order_reader_->take_data([&](model::OrderInfo&& info) {
+    // What each robot works on, for the deadlock watch: its open order and phase.
+    const bool open = info.state == "ASSIGNED" || info.state == "ACTIVE";
+    for (auto& [robot, task] : task_of_) {
+      if (task.starts_with(std::to_string(info.order_id) + "/") && (!open || robot != info.robot_id)) task.clear();
+    }
+    if (open && !info.robot_id.empty()) task_of_[info.robot_id] = std::to_string(info.order_id) + "/" + info.phase;
+    orders_[info.order_id] = std::move(info);
+  });
+  state_reader_->take_data([&](model::RobotState&& state) {
+    progress_.note_state(state.robot_id, state.task_state, state.sim_time);
+  });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
+    if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
+      const auto& d = progress_.deadlocks().back();
+      log_->warn("deadlock: {} made no progress on order {} for {:.0f} s sim at ({:.3f}, {:.3f})", d.robot_id, d.task,
+                 d.detected - d.since, d.pose.x, d.pose.y);
+    }
     for (const auto& c : collisions_.update(truth.robot_id, truth.pose, truth.footprint, truth.sim_time)) {
       log_->warn("collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f})",
                  c.sim_time - start_sim_,
@@ -117,6 +145,7 @@ bool FleetRun::poll() {
   });
   for (std::size_t i : processes_.reap()) {
     const auto& child = processes_.children()[i];
+    if (expected_exits_.erase(i) != 0) continue;  // ended by an injected fault
     const std::string what = child.name + " " + ProcessGroup::describe(child.exit_status);
     crashes_.push_back(what);
     log_->error("{} on its own; its log {} ends with:\n{}", what, child.log_file, tail_of(child.log_file, 5));

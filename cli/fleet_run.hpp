@@ -3,6 +3,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "dds/topics.hpp"
 #include "monitor/collision_monitor.hpp"
 #include "monitor/order_accounting.hpp"
+#include "monitor/progress_monitor.hpp"
 
 namespace fleet::cli {
 
@@ -29,6 +31,9 @@ struct RunOptions {
   std::string api_token;  ///< for the web view's controls
   std::vector<std::string> extra_server_args;
   std::vector<std::string> extra_agent_args;
+  /// Words put before each agent's command line, "{n}" replaced by the agent's number (1..N):
+  /// e.g. "ip netns exec fleet-agent{n}" runs each agent in its own network namespace.
+  std::string agent_wrap;
 };
 
 /// A whole Fleet on this host: one fleet-server and N fleet-agents as child processes on one DDS
@@ -49,6 +54,15 @@ class FleetRun {
   double wall_seconds() const;
   monitor::OrderTally tally() const;
   const std::vector<monitor::Collision>& collisions() const { return collisions_.collisions(); }
+  /// Robots with an order that made no progress for 60 sim seconds (see ProgressMonitor).
+  const monitor::ProgressMonitor& progress() const { return progress_; }
+  const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
+  /// An injected fault will end this child: its end is not a crash.
+  void expect_exit(std::size_t child_index) { expected_exits_.insert(child_index); }
+  /// Index of the server (0) and of each agent (1..N) in processes().
+  static constexpr std::size_t kServerIndex = 0;
+  /// Sim time (shared clock) when the run started.
+  double start_sim() const { return start_sim_; }
   /// Children that ended on their own (not stopped by us), with how they ended.
   const std::vector<std::string>& crashes() const { return crashes_; }
   const std::string& run_dir() const { return run_dir_; }
@@ -71,10 +85,17 @@ class FleetRun {
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<dds::Reader<model::OrderInfo>> order_reader_;
   std::unique_ptr<dds::Reader<model::SimTruth>> truth_reader_;
+  std::unique_ptr<dds::Reader<model::RobotState>> state_reader_;
+  monitor::ProgressMonitor progress_;
+  std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
   std::map<std::int64_t, model::OrderInfo> orders_;
   monitor::CollisionMonitor collisions_;
   std::vector<std::string> crashes_;
+  std::set<std::size_t> expected_exits_;
 };
+
+/// `fleetctl soak` (soak_command.cpp).
+int soak_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);
 
 /// `fleetctl demo`.
 int demo_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);

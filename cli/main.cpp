@@ -1,8 +1,11 @@
 // fleetctl: the Fleet command line. Orders, robots, the demo, and offline evaluation tools.
 
+#include <algorithm>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 
+#include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/fleet_run.hpp"
 #include "cli/online_commands.hpp"
@@ -12,54 +15,29 @@
 #include "config/schema.hpp"
 #include "dds/environment.hpp"
 #include "map/site.hpp"
+#include "model/names.hpp"
 
 namespace {
 
-constexpr const char* kHelp = R"(usage: fleetctl [global flags] COMMAND [flags]
-
-Drive a Fleet from the terminal or from scripts. fleetctl is a DDS participant of its own.
-
-commands (need a running fleet-server):
-  order add --from AREA --to AREA [--priority P] [--robot R] [--fleet F] [--wait]
-                       create a transport order, print its id; --wait follows it to its end
-  order list [--state S] | order show ID | order cancel ID
-                       the orders the server knows, one with its history, cancel one
-  obstacle list | obstacle on ID | obstacle off ID
-                       the designated static obstacles and switching them
-  pause ROBOT | resume ROBOT
-                       stop a robot where it is, and let it go on
-  map list             the maps the server knows, and the one it serves
-  robots               table of robots: fleet, state, pose, order, localization score, health
-  stats                orders by state, done per hour, mean and p95 order time, robot utilisation
-  routing-age [--seconds S=10]
-                       a pose's age on arrival, straight from the robot vs routed by the server
-
-commands that start a fleet:
-  demo [--agents N=4] [--site NAME] [--duration SECONDS] [--time-scale K] [--seed S] [--http-port P=8080]
-                       one fleet-server and N fleet-agents with automatic orders; Ctrl-C or
-                       --duration (wall seconds) stops them all and prints a summary; the
-                       web view's address (with its token) is printed at start
-
-offline tools (core libraries only, no DDS):
-  map check SITE.yaml | map sample FILE.xodr [--step M] | map render SITE.yaml -o FILE.svg
-  loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N] [--nlos F] [--plot FILE.svg]
-  plan-eval --site NAME [--queries N] [--seed S]
-  ctrl-eval [--seed S] [--runs N] [--site NAME] [--speed V] [--follower seed|regulated] [--gyro-cal] [--plot F.svg]
-  config keys          every configuration key with default, unit, range and meaning
-
-global flags:
-  --domain N           DDS domain id (default: dds.domain of the configuration)
-  --json               machine-readable output: one JSON document (the last line printed)
-  --timeout S          seconds to look for the server (default 3)
-  --config FILE        configuration (default: config/fleet.yaml)
-  --help               this text
-
-exit codes:
-  0  ok
-  1  the operation ran and failed (order FAILED or CANCELLED, a run lost orders)
-  2  bad input (unknown area, robot or key; malformed file; bad flag)
-  3  no fleet-server reachable on the DDS domain
-)";
+/// `config keys --json`: the schema as data.
+nlohmann::json schema_json() {
+  nlohmann::json keys = nlohmann::json::array();
+  for (const auto& key : fleet::config::schema()) {
+    static const char* const kTypes[] = {"double", "int", "bool", "string", "choice"};
+    nlohmann::json entry{{"key", key.key},
+                         {"type", kTypes[static_cast<int>(key.type)]},
+                         {"default", key.default_value},
+                         {"unit", key.unit},
+                         {"description", key.description}};
+    if (key.type == fleet::config::ValueType::Double || key.type == fleet::config::ValueType::Int) {
+      entry["min"] = key.min;
+      entry["max"] = key.max;
+    }
+    if (key.type == fleet::config::ValueType::Choice) entry["choices"] = key.choices;
+    keys.push_back(entry);
+  }
+  return keys;
+}
 
 }  // namespace
 
@@ -75,10 +53,11 @@ int main(int argc, char** argv) {
     command.config_file = args.value("config").value_or(default_config_path());
     command.source_dir = project_root();
     const auto domain_flag = args.integer("domain", 0, 232);
-    const double timeout_s = args.number("timeout", 0.1, 3600.0).value_or(3.0);
+    const auto timeout_flag = args.number("timeout", 0.1, 1e6);
+    const double timeout_s = timeout_flag.value_or(3.0);
     const bool help = args.flag("help");
     if (help || args.remaining().empty()) {
-      out << kHelp;
+      out << help_text();
       return help ? kExitOk : kExitBadInput;
     }
     const std::string name = args.remaining().front();
@@ -92,16 +71,35 @@ int main(int argc, char** argv) {
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
     if (name == "config") {
       if (command.args.size() == 1 && command.args[0] == "keys") {
-        out << config::schema_markdown();
+        out << (command.json ? schema_json().dump() + "\n" : config::schema_markdown());
         return kExitOk;
       }
       throw ArgError("config needs a subcommand: keys");
+    }
+    if (name == "completion") {
+      if (command.args.size() == 1 && command.args[0] == "bash") {
+        const std::string script = bash_completion_script();
+        if (command.json) {
+          nlohmann::json doc = command_table_json();
+          doc["shell"] = "bash";
+          doc["script"] = script;
+          out << doc.dump() << "\n";
+        } else {
+          out << script;
+        }
+        return kExitOk;
+      }
+      throw ArgError("completion needs a shell: bash (load it with: source <(fleetctl completion bash))");
+    }
+    if (const auto names = command_names(); std::find(names.begin(), names.end(), name) == names.end()) {
+      throw ArgError(model::unknown_name_message("command", name, names) + "; see fleetctl --help");
     }
 
     const config::FleetConfig config = config::load_fleet_config(command.config_file);
     Connection connection;
     connection.domain = static_cast<std::uint32_t>(domain_flag.value_or(config.settings.get_int("dds.domain")));
     connection.timeout = std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
+    connection.timeout_given = timeout_flag.has_value();
     dds::use_fleet_dds_config();
 
     if (name == "order") return order_command(command, connection, out, err);
@@ -110,8 +108,10 @@ int main(int argc, char** argv) {
     if (name == "obstacle") return obstacle_command(command, connection, out, err);
     if (name == "pause" || name == "resume") return robot_control_command(name, command, connection, out, err);
     if (map_list) return map_list_command(command, connection, out, err);
+    if (name == "inject") return inject_command(command, connection, out, err);
     if (name == "routing-age") return routing_age_command(command, connection, out, err);
     if (name == "demo") return demo_command(command, out, err, connection.domain);
+    if (name == "soak") return soak_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
   } catch (const InputError& e) {
     err << "fleetctl: " << e.what() << "\n";

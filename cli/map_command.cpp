@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,11 +21,11 @@ constexpr const char* kUsage =
     "       fleetctl map sample FILE.xodr [--step METRES]\n"
     "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points]\n";
 
-/// A site given by path, or by name as maps/NAME.yaml under the project root.
+/// A site given by path, or by name as maps/NAME.yaml under the project root (InputError naming
+/// it and listing the sites when there is no such name).
 std::string resolve_site(const CommandArgs& args, const std::string& site) {
   if (std::filesystem::exists(site) || site.find('/') != std::string::npos || site.ends_with(".yaml")) return site;
-  const std::string root = args.source_dir.empty() ? "." : args.source_dir;
-  return map::site_path((std::filesystem::path(root) / "maps").string(), site);
+  return known_site_path(args.source_dir, site);
 }
 
 std::string json_escape(const std::string& s) {
@@ -61,7 +62,7 @@ int check(const CommandArgs& args, const std::vector<std::string>& sites, std::o
               ",\"roads\":" + std::to_string(report.roads) + ",\"points\":" + std::to_string(report.points) +
               ",\"edges\":" + std::to_string(report.edges) +
               ",\"components\":" + std::to_string(report.weak_components) + "}";
-    } catch (const map::MapError& e) {
+    } catch (const std::exception& e) {  // map::MapError, or InputError for an unknown site name
       err << e.what() << "\n";
       if (json.size() > 1) json += ",";
       json += "{\"site\":\"" + json_escape(path) + "\",\"usable\":false,\"error\":\"" + json_escape(e.what()) + "\"}";
@@ -72,7 +73,7 @@ int check(const CommandArgs& args, const std::vector<std::string>& sites, std::o
   return code;
 }
 
-int sample(const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
+int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
   std::string file;
   double step = 1.0;
   for (std::size_t i = 0; i < rest.size(); ++i) {
@@ -97,7 +98,17 @@ int sample(const std::vector<std::string>& rest, std::ostream& out, std::ostream
     return kExitBadInput;
   }
   try {
-    map::write_samples_csv(map::sample_reference_lines(map::load_opendrive(file), step), out);
+    const auto samples = map::sample_reference_lines(map::load_opendrive(file), step);
+    if (!args.json) {
+      map::write_samples_csv(samples, out);
+      return kExitOk;
+    }
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& sample : samples) {
+      rows.push_back(
+          {{"road_id", sample.road_id}, {"s", sample.s}, {"x", sample.x}, {"y", sample.y}, {"hdg", sample.hdg}});
+    }
+    out << rows.dump() << "\n";
   } catch (const map::MapError& e) {
     err << e.what() << "\n";
     return kExitBadInput;
@@ -136,7 +147,7 @@ int render(const CommandArgs& args, const std::vector<std::string>& rest, std::o
     err << e.what() << "\n";
     return kExitBadInput;
   }
-  out << "wrote " << output << "\n";
+  out << (args.json ? nlohmann::json{{"wrote", output}}.dump() : "wrote " + output) << "\n";
   return kExitOk;
 }
 
@@ -150,7 +161,7 @@ int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
   const std::string& sub = args.args.front();
   const std::vector<std::string> rest(args.args.begin() + 1, args.args.end());
   if (sub == "check") return check(args, rest, out, err);
-  if (sub == "sample") return sample(rest, out, err);
+  if (sub == "sample") return sample(args, rest, out, err);
   if (sub == "render") return render(args, rest, out, err);
   err << "map: unknown subcommand '" << sub << "'\n" << kUsage;
   return kExitBadInput;

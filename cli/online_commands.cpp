@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "model/names.hpp"
@@ -19,38 +20,8 @@ namespace fleet::cli {
 
 namespace {
 
-/// Thrown to leave a command with an exit code after printing `message` to stderr.
-struct CommandExit {
-  int code;
-  std::string message;
-};
-
-model::ServerInfo require_server(FleetClient& client, const Connection& connection) {
-  auto info = client.find_server(connection.timeout);
-  if (!info) throw CommandExit{kExitNoServer, "no fleet-server on DDS domain " + std::to_string(connection.domain)};
-  return *info;
-}
-
-void require_known(const std::string& what, const std::string& name, const std::vector<std::string>& valid) {
-  if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
-    throw CommandExit{kExitBadInput, model::unknown_name_message(what, name, valid)};
-  }
-}
-
-nlohmann::json to_json(const model::OrderInfo& o) {
-  nlohmann::json history = nlohmann::json::array();
-  for (const auto& e : o.history) {
-    history.push_back({{"sim_time", e.sim_time}, {"state", e.state},     {"phase", e.phase},
-                       {"robot_id", e.robot_id}, {"reason", e.reason},   {"robot_x", e.robot_x},
-                       {"robot_y", e.robot_y}});
-  }
-  return {{"order_id", o.order_id}, {"pick_area", o.pick_area}, {"drop_area", o.drop_area},
-          {"robot_id", o.robot_id}, {"state", o.state},         {"phase", o.phase},
-          {"reason", o.reason},     {"priority", o.priority},   {"created_sim", o.created_sim},
-          {"updated_sim", o.updated_sim}, {"history", history}};
-}
-
-int order_add(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+int order_add(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out,
+              std::ostream& err) {
   model::OrderRequest request;
   const auto from = args.value("from");
   const auto to = args.value("to");
@@ -83,32 +54,29 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   if (!wait) return kExitOk;
 
   const double started = SimClock::wall_now();
-  const auto final_info = client.follow_order(reply->order_id, [&](const model::OrderInfo& o) {
-    if (command.json) return;
-    std::ostringstream line;
-    line << std::fixed << std::setprecision(1) << "[" << SimClock::wall_now() - started << " s] order " << o.order_id
-         << " " << o.state;
-    if (!o.phase.empty()) line << " " << o.phase;
-    if (!o.robot_id.empty()) line << " on " << o.robot_id;
-    if (!o.reason.empty()) line << ": " << o.reason;
-    std::cerr << line.str() << "\n";
-  });
+  const auto limit = connection.timeout_given ? connection.timeout : FleetClient::kNoTimeout;
+  const auto final_info = client.follow_order(
+      reply->order_id,
+      [&](const model::OrderInfo& o) {
+        if (command.json) return;
+        std::ostringstream line;
+        line << std::fixed << std::setprecision(1) << "[" << SimClock::wall_now() - started << " s] order "
+             << o.order_id << " " << o.state;
+        if (o.state == "ACTIVE" && !o.phase.empty()) line << " " << o.phase;
+        if (!o.robot_id.empty()) line << " on " << o.robot_id;
+        if (!o.reason.empty()) line << ": " << o.reason;
+        err << line.str() << "\n";
+      },
+      limit);
+  if (!final_info && client.server_alive()) {
+    throw CommandExit{kExitFailed, "order " + std::to_string(reply->order_id) + " had not ended within --timeout"};
+  }
   if (!final_info) {
     throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
                                          " went away while order " + std::to_string(reply->order_id) + " was open"};
   }
-  if (command.json) out << to_json(*final_info).dump() << "\n";
+  if (command.json) out << order_json(*final_info).dump() << "\n";
   return final_info->state == "DONE" ? kExitOk : kExitFailed;
-}
-
-std::int64_t order_id_of(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const long long id = std::stoll(text, &used);
-    if (used == text.size() && id > 0) return id;
-  } catch (const std::exception&) {
-  }
-  throw ArgError("order id '" + text + "' is not a positive number");
 }
 
 std::string one_positional(const Args& args, const std::string& what) {
@@ -120,7 +88,8 @@ std::string one_positional(const Args& args, const std::string& what) {
 /// Sends a command and turns the server's answer into an exit code: refused for bad input (an
 /// unknown name) is 2, refused because of the current state (an order already ended) is 1.
 int run_command_on_server(FleetClient& client, const Connection& connection, model::Command command,
-                          std::ostream& out, const std::string& done_message) {
+                          const CommandArgs& args, std::ostream& out, const std::string& done_message,
+                          const nlohmann::json& done_json) {
   const auto reply = client.send_command(std::move(command), connection.timeout);
   if (!reply) {
     throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
@@ -130,7 +99,7 @@ int run_command_on_server(FleetClient& client, const Connection& connection, mod
     const bool bad_input = reply->error.rfind("unknown", 0) == 0 || reply->error.find("is not") != std::string::npos;
     throw CommandExit{bad_input ? kExitBadInput : kExitFailed, reply->error};
   }
-  out << done_message << "\n";
+  out << (args.json ? done_json.dump() : done_message) << "\n";
   return kExitOk;
 }
 
@@ -144,7 +113,7 @@ int order_list(Args& args, const CommandArgs& command, const Connection& connect
   require_server(client, connection);
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& [id, o] : client.orders(std::chrono::milliseconds(600))) {
-    if (!state || o.state == *state) rows.push_back(to_json(o));
+    if (!state || o.state == *state) rows.push_back(order_json(o));
   }
   if (command.json) {
     out << rows.dump() << "\n";
@@ -168,7 +137,7 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
   const auto orders = client.orders(std::chrono::milliseconds(600));
   const auto it = orders.find(id);
   if (it == orders.end()) throw CommandExit{kExitBadInput, "unknown order " + std::to_string(id)};
-  const nlohmann::json o = to_json(it->second);
+  const nlohmann::json o = order_json(it->second);
   if (command.json) {
     out << o.dump() << "\n";
     return kExitOk;
@@ -185,14 +154,15 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
   return kExitOk;
 }
 
-int order_cancel(Args& args, const CommandArgs&, const Connection& connection, std::ostream& out) {
+int order_cancel(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
   const std::int64_t id = order_id_of(one_positional(args, "order id"));
   FleetClient client(connection.domain);
   require_server(client, connection);
   model::Command c;
   c.verb = "cancel-order";
   c.target = std::to_string(id);
-  return run_command_on_server(client, connection, c, out, "order " + std::to_string(id) + " cancelled");
+  return run_command_on_server(client, connection, c, command, out, "order " + std::to_string(id) + " cancelled",
+                               {{"order_id", id}, {"state", "CANCELLED"}});
 }
 
 }  // namespace
@@ -225,7 +195,8 @@ int obstacle_command(const CommandArgs& command, const Connection& connection, s
       c.verb = "obstacle";
       c.target = words[1];
       c.value = sub;
-      return run_command_on_server(client, connection, c, out, "obstacle " + words[1] + " " + sub);
+      return run_command_on_server(client, connection, c, command, out, "obstacle " + words[1] + " " + sub,
+                                   {{"obstacle_id", words[1]}, {"enabled", sub == "on"}});
     }
     throw ArgError("usage: obstacle list | obstacle on ID | obstacle off ID");
   } catch (const CommandExit& e) {
@@ -245,7 +216,8 @@ int robot_control_command(const std::string& verb, const CommandArgs& command, c
     model::Command c;
     c.verb = verb;
     c.target = robot;
-    return run_command_on_server(client, connection, c, out, "robot " + robot + " " + verb + "d");
+    return run_command_on_server(client, connection, c, command, out, "robot " + robot + " " + verb + "d",
+                                 {{"robot_id", robot}, {"paused", verb == "pause"}});
   } catch (const CommandExit& e) {
     err << "fleetctl: " << e.message << "\n";
     return e.code;
@@ -276,12 +248,13 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
     Args args(command.args);
     const auto sub = args.remaining().empty() ? std::string() : args.remaining().front();
     Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
-    if (sub == "add") return order_add(rest, command, connection, out);
+    if (sub == "add") return order_add(rest, command, connection, out, err);
     if (sub == "list") return order_list(rest, command, connection, out);
     if (sub == "show") return order_show(rest, command, connection, out);
     if (sub == "cancel") return order_cancel(rest, command, connection, out);
-    throw ArgError(sub.empty() ? "order needs a subcommand: add, list, show, cancel"
-                               : "unknown order subcommand '" + sub + "' (add, list, show, cancel)");
+    if (sub == "watch") return order_watch(rest.remaining(), command, connection, out, err);
+    throw ArgError(sub.empty() ? "order needs a subcommand: add, list, show, cancel, watch"
+                               : "unknown order subcommand '" + sub + "' (add, list, show, cancel, watch)");
   } catch (const CommandExit& e) {
     err << "fleetctl: " << e.message << "\n";
     return e.code;

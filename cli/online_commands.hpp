@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdint>
 #include <iosfwd>
+#include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 
@@ -12,6 +14,8 @@ namespace fleet::cli {
 struct Connection {
   std::uint32_t domain = 0;
   std::chrono::milliseconds timeout{3000};  ///< how long to look for the server
+  /// --timeout was given: commands that follow orders (order watch, --wait) stop after it too.
+  bool timeout_given = false;
 };
 
 int order_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
@@ -21,6 +25,11 @@ int robot_control_command(const std::string& verb, const CommandArgs& args, cons
 int map_list_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int stats_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int routing_age_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+/// `order watch [ID]`: live progress of one order or all of them.
+int order_watch(const std::vector<std::string>& args, const CommandArgs& command, const Connection& connection,
+                std::ostream& out, std::ostream& err);
+/// `inject`: random valid orders at a rate, or the rows of a CSV file.
+int inject_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int robots_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 
 }  // namespace fleet::cli

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "common/errors.hpp"
 #include "map/site.hpp"
 #include "map/site_map.hpp"
 #include "planning/plan_eval.hpp"
@@ -108,10 +109,13 @@ int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
 
   planning::PlanEvalReport report;
   try {
-    const std::string path = map::site_path(args.source_dir + "/maps", site_name);
+    const std::string path = known_site_path(args.source_dir, site_name);
     const map::SiteMap site = map::load_site_map_unchecked(path);
     report = planning::run_plan_eval(site.site, site.graph.graph, config);
   } catch (const map::MapError& e) {
+    err << "plan-eval: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const InputError& e) {
     err << "plan-eval: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {

@@ -59,7 +59,7 @@ void ProcessGroup::restart(std::size_t index) {
     std::vector<char*> args;
     for (const auto& a : child.argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
-    execv(args[0], args.data());
+    execvp(args[0], args.data());  // a wrapper such as "ip" is found on PATH
     std::fprintf(stderr, "cannot execute %s: %s\n", args[0], std::strerror(errno));
     _exit(127);
   }

@@ -1,0 +1,49 @@
+#include "cli/online_support.hpp"
+
+#include <algorithm>
+
+#include "common/args.hpp"
+#include "model/names.hpp"
+
+namespace fleet::cli {
+
+model::ServerInfo require_server(FleetClient& client, const Connection& connection) {
+  auto info = client.find_server(connection.timeout);
+  if (!info) throw CommandExit{kExitNoServer, "no fleet-server on DDS domain " + std::to_string(connection.domain)};
+  return *info;
+}
+
+void require_known(const std::string& what, const std::string& name, const std::vector<std::string>& valid) {
+  if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
+    throw CommandExit{kExitBadInput, model::unknown_name_message(what, name, valid)};
+  }
+}
+
+std::int64_t order_id_of(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const long long id = std::stoll(text, &used);
+    if (used == text.size() && id > 0) return id;
+  } catch (const std::exception&) {
+  }
+  throw ArgError("order id '" + text + "' is not a positive number");
+}
+
+nlohmann::json order_json(const model::OrderInfo& o) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& e : o.history) {
+    history.push_back({{"sim_time", e.sim_time},
+                       {"state", e.state},
+                       {"phase", e.phase},
+                       {"robot_id", e.robot_id},
+                       {"reason", e.reason},
+                       {"robot_x", e.robot_x},
+                       {"robot_y", e.robot_y}});
+  }
+  return {{"order_id", o.order_id},       {"pick_area", o.pick_area}, {"drop_area", o.drop_area},
+          {"robot_id", o.robot_id},       {"state", o.state},         {"phase", o.phase},
+          {"reason", o.reason},           {"priority", o.priority},   {"created_sim", o.created_sim},
+          {"updated_sim", o.updated_sim}, {"history", history}};
+}
+
+}  // namespace fleet::cli

@@ -1,0 +1,31 @@
+#include <algorithm>
+#include <filesystem>
+
+#include "commands.hpp"  // as map_command.cpp: the map tests compile both from cli/
+#include "common/errors.hpp"
+#include "map/site.hpp"
+#include "model/names.hpp"
+
+namespace fleet::cli {
+
+std::vector<std::string> site_names(const std::string& source_dir) {
+  std::vector<std::string> names;
+  const std::filesystem::path maps = std::filesystem::path(source_dir.empty() ? "." : source_dir) / "maps";
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(maps, error)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string known_site_path(const std::string& source_dir, const std::string& name) {
+  const std::string maps = (std::filesystem::path(source_dir.empty() ? "." : source_dir) / "maps").string();
+  const std::string path = map::site_path(maps, name);
+  if (!std::filesystem::exists(path)) {
+    throw InputError(model::unknown_name_message("site", name, site_names(source_dir)) + " (maps/NAME.yaml)");
+  }
+  return path;
+}
+
+}  // namespace fleet::cli

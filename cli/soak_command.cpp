@@ -1,0 +1,436 @@
+// `fleetctl soak`: the demo's fleet (real server and agents as processes, automatic orders) under
+// ground-truth watch — collisions, deadlocks, lost and duplicated orders — with faults injected
+// on a seeded schedule (issues 8 and 11).
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "cli/client.hpp"
+#include "cli/commands.hpp"
+#include "cli/fleet_run.hpp"
+#include "common/args.hpp"
+#include "common/clock.hpp"
+#include "common/paths.hpp"
+#include "map/site.hpp"
+#include "monitor/fault_plan.hpp"
+#include "monitor/order_accounting.hpp"
+#include "model/names.hpp"
+
+namespace fleet::cli {
+
+namespace {
+
+constexpr double kFaultPeriodSim = 120.0;     // a fault every two simulated minutes
+constexpr double kKillPauseWall = 2.0;        // a killed agent stays down this long
+constexpr double kStallWall = 3.0;            // a stopped agent stays frozen this long
+constexpr double kServerPauseWall = 1.0;      // a killed server stays down this long
+constexpr double kObstacleOnSim = 60.0;       // an obstacle switched on stays on this long
+
+/// Resident memory (kB) and CPU time (s) of a process, from /proc; nothing once it is gone.
+struct Usage {
+  double rss_kb = 0.0;
+  double cpu_s = 0.0;
+};
+std::optional<Usage> usage_of(pid_t pid) {
+  Usage u;
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  if (!status) return std::nullopt;
+  for (std::string line; std::getline(status, line);) {
+    if (line.starts_with("VmRSS:")) u.rss_kb = std::stod(line.substr(6));
+  }
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  // Fields after the command name (which may hold spaces) start after the last ')'.
+  std::istringstream rest(text.substr(text.rfind(')') + 2));
+  std::vector<std::string> fields;
+  for (std::string f; rest >> f;) fields.push_back(f);
+  if (fields.size() < 13) return std::nullopt;
+  u.cpu_s = (std::stod(fields[11]) + std::stod(fields[12])) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  return u;
+}
+
+/// `v` to a multiple of `step` (0.1, 0.01, ...), printed without binary noise (170.6, not 170.60000000000002).
+double round_to(double v, double step) { return std::round(v / step) / std::round(1.0 / step); }
+
+/// One injected fault and what it led to, in wall seconds from the injection.
+struct FaultRecord {
+  monitor::FaultKind kind;
+  std::string target;
+  double at_wall = 0.0;
+  double at_sim = 0.0;
+  std::int64_t order = 0;            ///< the robot's open order when it happened (agent faults)
+  std::optional<double> detected;    ///< the server marked the robot lost
+  std::optional<double> recovered;   ///< its order re-queued, failed with a reason, or ended
+  std::string detail;
+};
+
+}  // namespace
+
+int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
+  Args args(command.args);
+  config::FleetConfig config = config::load_fleet_config(command.config_file);
+  RunOptions options;
+  options.kind = "soak";
+  options.config_file = command.config_file;
+  options.domain = domain;
+  options.agents = static_cast<int>(args.integer("agents", 1, 64).value_or(4));
+  options.site = args.value("site").value_or(config.settings.get_string("site"));
+  options.duration_s = args.number("duration", 1.0, 1e7).value_or(180.0);
+  options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(10.0);
+  options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
+  options.http_port = static_cast<int>(args.integer("http-port", 0, 65535).value_or(0));
+  options.agent_wrap = args.value("agent-wrap").value_or("");
+  const std::string traffic = args.value("traffic").value_or(config.settings.get_bool("traffic.enabled") ? "on" : "off");
+  if (traffic != "on" && traffic != "off") throw ArgError("--traffic '" + traffic + "': expected on or off");
+  const auto kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
+  std::vector<std::string> settings{"traffic.enabled=" + std::string(traffic == "on" ? "true" : "false")};
+  while (auto v = args.value("set")) settings.push_back(*v);
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+  known_site_path(command.source_dir, options.site);
+  for (const auto& s : settings) {
+    // Checked here, named as given, before any process starts.
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) throw ArgError("--set '" + s + "': expected KEY=VALUE");
+    config.settings.set(s.substr(0, eq), s.substr(eq + 1), "--set");
+  }
+  for (const auto& s : settings) {
+    options.extra_server_args.insert(options.extra_server_args.end(), {"--set", s});
+    options.extra_agent_args.insert(options.extra_agent_args.end(), {"--set", s});
+  }
+  {
+    FleetClient probe(domain);
+    if (probe.find_server(std::chrono::milliseconds(1200))) {
+      throw ArgError("a fleet-server already runs on DDS domain " + std::to_string(domain) +
+                     "; stop it or choose another --domain");
+    }
+  }
+  const map::Site site = map::load_site(map::site_path(maps_dir(), options.site));
+  std::vector<std::string> obstacle_ids;
+  for (const auto& o : site.static_obstacles) obstacle_ids.push_back(o.id);
+
+  // map-switch needs a server that serves more than one map; this one serves its site only.
+  std::map<std::string, std::string> skipped;
+  std::vector<monitor::FaultKind> active;
+  for (auto k : kinds) {
+    if (k == monitor::FaultKind::kMapSwitch) {
+      skipped[to_string(k)] = "fleet-server serves one map (" + options.site + "); nothing to switch to";
+    } else if (k == monitor::FaultKind::kObstacles && obstacle_ids.empty()) {
+      skipped[to_string(k)] = "site " + options.site + " has no designated obstacles";
+    } else {
+      active.push_back(k);
+    }
+  }
+  const double duration_sim = options.duration_s * options.time_scale;
+  auto plan = monitor::plan_faults(active, duration_sim, kFaultPeriodSim, 60.0, options.agents,
+                                   static_cast<int>(obstacle_ids.size()), static_cast<std::uint64_t>(options.seed));
+
+  install_stop_handlers();
+  auto log = make_logger("fleetctl soak");
+  FleetRun run(options, config, log);
+  run.start();
+  err << "Fleet soak: fleet-server and " << options.agents << " fleet-agents (" << model::join(run.robot_ids())
+      << ") on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
+      << ", traffic " << traffic << ", " << plan.size() << " faults planned"
+      << (kinds.empty() ? "" : " (" + std::to_string(kinds.size()) + " kinds)") << ", " << options.duration_s
+      << " s wall.\n  logs: " << run.run_dir() << "/\n";
+  for (const auto& [kind, why] : skipped) err << "  fault " << kind << " skipped: " << why << "\n";
+
+  // The soak's own DDS reader of the server's view, for when it marks robots lost.
+  FleetClient client(domain);
+  dds::Reader<model::FleetView> view_reader(client.participant(), dds::qos::live_state());
+  dds::Reader<model::OrderReport> report_reader(client.participant(), dds::qos::latched_state());
+  std::map<std::string, bool> lost;
+  std::map<std::int64_t, std::set<std::string>> done_by;  // order -> robots that reported DONE
+
+  std::vector<FaultRecord> faults;
+  std::size_t next_fault = 0;
+  struct Pending {
+    double at_wall;
+    std::function<void()> action;
+  };
+  std::vector<Pending> pending;  // restarts, SIGCONTs, obstacles off
+  auto index_of_agent = [&](int agent) { return static_cast<std::size_t>(agent) + 1; };
+
+  // Memory and CPU per process: samples at the start of the second half and at the end.
+  std::map<pid_t, Usage> first_usage, mid_usage, last_usage;
+  std::map<pid_t, std::string> type_of;
+  auto sample = [&](std::map<pid_t, Usage>& into) {
+    for (const auto& child : run.processes().children()) {
+      if (!child.running) continue;
+      type_of[child.pid] = child.name.starts_with("fleet-server") ? "server" : "agent";
+      if (auto u = usage_of(child.pid)) into[child.pid] = *u;
+    }
+  };
+  sample(first_usage);
+  last_usage = first_usage;
+  double next_usage_sample = 1.0;
+  bool mid_sampled = false;
+  const double start_wall = SimClock::wall_now();
+
+  double next_progress = 10.0;
+  while (run.poll()) {
+    const double now_wall = SimClock::wall_now();
+    const double elapsed = now_wall - start_wall;
+    const double elapsed_sim = elapsed * options.time_scale;
+    view_reader.take_data([&](model::FleetView&& view) {
+      for (const auto& r : view.robots) {
+        const bool is_lost = r.task_state == "LOST";
+        if (is_lost && !lost[r.robot_id]) {
+          for (auto& f : faults) {
+            if (f.target == r.robot_id && !f.detected &&
+                (f.kind == monitor::FaultKind::kKillAgent || f.kind == monitor::FaultKind::kStallAgent)) {
+              f.detected = now_wall - f.at_wall;
+            }
+          }
+        }
+        lost[r.robot_id] = is_lost;
+      }
+    });
+    report_reader.take_data([&](model::OrderReport&& report) {
+      if (report.status == "DONE") done_by[report.order_id].insert(report.robot_id);
+    });
+    for (auto& f : faults) {
+      if (f.recovered || f.order == 0) continue;
+      auto it = run.orders().find(f.order);
+      if (it == run.orders().end()) continue;
+      const auto& info = it->second;
+      // Recovered: the order is back in the queue, or ended (failed with its reason, or done),
+      // or running again on a robot that is not lost.
+      const bool requeued = info.state == "QUEUED" || info.state == "DONE" || info.state == "FAILED" ||
+                            info.state == "CANCELLED" || (info.robot_id != f.target && !info.robot_id.empty());
+      if (requeued) f.recovered = now_wall - f.at_wall;
+    }
+
+    for (auto it = pending.begin(); it != pending.end();) {
+      if (now_wall >= it->at_wall) {
+        it->action();
+        it = pending.erase(it);
+      } else {
+        ++it;
+      }
+    }
+
+    while (next_fault < plan.size() && plan[next_fault].at_sim <= elapsed_sim) {
+      const auto& fault = plan[next_fault++];
+      FaultRecord record{fault.kind, "", now_wall, elapsed_sim, 0, std::nullopt, std::nullopt, ""};
+      auto open_order_of = [&](const std::string& robot) -> std::int64_t {
+        for (const auto& [id, info] : run.orders()) {
+          if ((info.state == "ASSIGNED" || info.state == "ACTIVE") && info.robot_id == robot) return id;
+        }
+        return 0;
+      };
+      switch (fault.kind) {
+        case monitor::FaultKind::kKillAgent: {
+          const std::size_t child = index_of_agent(fault.target);
+          record.target = run.robot_ids()[static_cast<std::size_t>(fault.target)];
+          if (!run.processes().children()[child].running) continue;
+          record.order = open_order_of(record.target);
+          run.expect_exit(child);
+          run.processes().signal(child, SIGKILL);
+          pending.push_back({now_wall + kKillPauseWall, [&run, child] { run.processes().restart(child); }});
+          break;
+        }
+        case monitor::FaultKind::kStallAgent: {
+          const std::size_t child = index_of_agent(fault.target);
+          record.target = run.robot_ids()[static_cast<std::size_t>(fault.target)];
+          if (!run.processes().children()[child].running) continue;
+          record.order = open_order_of(record.target);
+          run.processes().signal(child, SIGSTOP);
+          pending.push_back({now_wall + kStallWall, [&run, child] { run.processes().signal(child, SIGCONT); }});
+          break;
+        }
+        case monitor::FaultKind::kKillServer: {
+          record.target = "fleet-server";
+          run.expect_exit(FleetRun::kServerIndex);
+          run.processes().signal(FleetRun::kServerIndex, SIGKILL);
+          pending.push_back({now_wall + kServerPauseWall, [&run] { run.processes().restart(FleetRun::kServerIndex); }});
+          break;
+        }
+        case monitor::FaultKind::kObstacles: {
+          record.target = obstacle_ids[static_cast<std::size_t>(fault.target)];
+          auto toggle = [&client, &log, id = record.target](bool on) {
+            model::Command c;
+            c.request_id = "soak-" + std::to_string(getpid()) + "-" + id + (on ? "-on-" : "-off-") +
+                           std::to_string(static_cast<long>(SimClock::wall_now() * 1000));
+            c.verb = "obstacle";
+            c.target = id;
+            c.value = on ? "on" : "off";
+            const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
+            if (!reply || !reply->accepted) {
+              log->warn("obstacle {} {}: {}", id, on ? "on" : "off", reply ? reply->error : "no reply from the server");
+            }
+          };
+          toggle(true);
+          pending.push_back({now_wall + kObstacleOnSim / options.time_scale, [toggle] { toggle(false); }});
+          break;
+        }
+        case monitor::FaultKind::kMapSwitch:
+          continue;
+      }
+      log->warn("fault {}: {} at t={:.0f} s sim{}", faults.size() + 1, to_string(fault.kind), elapsed_sim,
+                record.target.empty() ? "" : " (" + record.target + ")");
+      faults.push_back(record);
+    }
+
+    if (elapsed >= next_usage_sample) {
+      sample(last_usage);
+      next_usage_sample += 1.0;
+    }
+    if (!mid_sampled && elapsed >= options.duration_s / 2.0) {
+      sample(mid_usage);
+      mid_sampled = true;
+    }
+    if (run.wall_seconds() >= next_progress) {
+      const auto t = run.tally();
+      err << "  t=" << static_cast<int>(run.sim_seconds()) << " s sim: " << t.done << " orders done, " << t.open
+          << " open, " << t.failed << " failed, " << run.collisions().size() << " collisions, "
+          << run.progress().deadlocks().size() << " deadlocks, " << faults.size() << " faults\n";
+      next_progress += 10.0;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  // Faults still pending (a stopped agent, a server down) are undone before the end.
+  for (auto& p : pending) p.action();
+  std::map<pid_t, Usage> end_usage;
+  sample(end_usage);
+  sample(last_usage);
+  const double wall = run.wall_seconds();
+  run.stop();
+
+  // ---- summary ---------------------------------------------------------------------------
+  const auto tally = run.tally();
+  const auto stats = monitor::order_stats(run.orders(), run.start_sim() + run.sim_seconds());
+  long duplicated = 0;
+  for (const auto& [id, info] : run.orders()) {
+    long dones = 0;
+    for (const auto& e : info.history) dones += e.state == "DONE" ? 1 : 0;
+    const auto by = done_by.find(id);
+    if (dones > 1 || (by != done_by.end() && by->second.size() > 1)) ++duplicated;
+  }
+  std::vector<double> detect, recover;
+  long undetected = 0;
+  nlohmann::json fault_list = nlohmann::json::array();
+  for (const auto& f : faults) {
+    const bool agent_fault = f.kind == monitor::FaultKind::kKillAgent || f.kind == monitor::FaultKind::kStallAgent;
+    if (agent_fault) {
+      if (f.detected) {
+        detect.push_back(*f.detected);
+      } else {
+        ++undetected;
+      }
+    }
+    if (f.recovered) recover.push_back(*f.recovered);
+    nlohmann::json j{{"kind", to_string(f.kind)}, {"target", f.target}, {"at_sim_s", round_to(f.at_sim, 0.1)}};
+    if (f.order) j["order"] = f.order;
+    if (f.detected) j["detected_s"] = round_to(*f.detected, 0.001);
+    if (f.recovered) j["recovered_s"] = round_to(*f.recovered, 0.001);
+    fault_list.push_back(j);
+  }
+  // Memory growth over the second half and CPU over the run, per process type. A process
+  // restarted by a fault is measured over its own lifetime.
+  std::map<std::string, double> growth, cpu_s, alive_s;
+  for (const auto& [pid, end] : end_usage) {
+    const std::string& type = type_of[pid];
+    if (auto mid = mid_usage.find(pid); mid != mid_usage.end() && mid->second.rss_kb > 0) {
+      growth[type] = std::max(growth.contains(type) ? growth[type] : -100.0,
+                              100.0 * (end.rss_kb - mid->second.rss_kb) / mid->second.rss_kb);
+    }
+  }
+  // CPU: what every process of a type used (a killed one up to its last sample), shared over
+  // the type's slots (1 server, N agents) for the whole run: percent of one core per process.
+  for (const auto& [pid, type] : type_of) {
+    const auto begin = first_usage.find(pid);
+    cpu_s[type] += last_usage[pid].cpu_s - (begin != first_usage.end() ? begin->second.cpu_s : 0.0);
+  }
+  alive_s["server"] = wall;
+  alive_s["agent"] = wall * options.agents;
+  nlohmann::json growth_json = nlohmann::json::object(), cpu_json = nlohmann::json::object();
+  for (const auto& [type, g] : growth) growth_json[type] = round_to(g, 0.1);
+  for (const auto& [type, c] : cpu_s) cpu_json[type] = round_to(100.0 * c / std::max(1e-9, alive_s[type]), 0.1);
+  double worst_growth = 0.0;
+  for (const auto& [type, g] : growth) worst_growth = std::max(worst_growth, g);
+
+  nlohmann::json collisions = nlohmann::json::array();
+  for (const auto& c : run.collisions()) {
+    if (collisions.size() >= 10) break;
+    collisions.push_back({{"sim_s", round_to(c.sim_time - run.start_sim(), 0.01)},
+                          {"robots", {c.robot_a, c.robot_b}},
+                          {"a", {round_to(c.pose_a.x, 0.001), round_to(c.pose_a.y, 0.001)}},
+                          {"b", {round_to(c.pose_b.x, 0.001), round_to(c.pose_b.y, 0.001)}}});
+  }
+  nlohmann::json deadlocks = nlohmann::json::array();
+  for (const auto& d : run.progress().deadlocks()) {
+    deadlocks.push_back({{"robot", d.robot_id}, {"task", d.task}, {"since_sim_s", round_to(d.since - run.start_sim(), 0.1)},
+                         {"at", {round_to(d.pose.x, 0.001), round_to(d.pose.y, 0.001)}}});
+  }
+  const double now_sim = run.start_sim() + run.sim_seconds();
+  nlohmann::json summary{
+      {"orders_created", tally.created},
+      {"orders_done", tally.done},
+      {"orders_failed", tally.failed},
+      {"orders_open", tally.open},
+      {"orders_lost", tally.lost},
+      {"orders_duplicated", duplicated},
+      {"collisions", run.collisions().size()},
+      {"deadlocks", run.progress().deadlocks().size()},
+      {"max_wait_s", round_to(run.progress().max_wait_s(now_sim), 0.1)},
+      {"order_time_mean_s", round_to(stats.order_time_mean_s, 0.1)},
+      {"order_time_p95_s", round_to(stats.order_time_p95_s, 0.1)},
+      {"sim_seconds", round_to(run.sim_seconds(), 0.1)},
+      {"wall_seconds", round_to(wall, 0.1)},
+      {"agents", options.agents},
+      {"site", options.site},
+      {"traffic", traffic},
+      {"seed", options.seed},
+      {"time_scale", options.time_scale},
+      {"faults_injected", faults.size()},
+      {"faults_undetected", undetected},
+      {"detect_latency_p95_s", round_to(monitor::percentile(detect, 0.95), 0.001)},
+      {"recovery_p95_s", round_to(monitor::percentile(recover, 0.95), 0.001)},
+      {"rss_growth_pct", growth_json},
+      {"cpu_pct", cpu_json},
+      {"crashed", run.crashes()},
+      {"faults", fault_list},
+      {"faults_skipped", skipped},
+      {"collision_list", collisions},
+      {"deadlock_list", deadlocks},
+      {"run_dir", run.run_dir()}};
+  std::vector<std::string> failures;
+  if (tally.lost != 0) failures.push_back(std::to_string(tally.lost) + " orders lost");
+  if (duplicated != 0) failures.push_back(std::to_string(duplicated) + " orders done twice");
+  if (!run.collisions().empty()) failures.push_back(std::to_string(run.collisions().size()) + " collisions");
+  if (!run.progress().deadlocks().empty()) failures.push_back(std::to_string(run.progress().deadlocks().size()) + " deadlocks");
+  if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
+  if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
+  if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
+  summary["failures"] = failures;
+  if (command.json) {
+    out << summary.dump() << "\n";
+  } else {
+    out << "Fleet soak summary (" << summary["sim_seconds"] << " s sim, " << summary["wall_seconds"] << " s wall, traffic "
+        << traffic << ")\n"
+        << "  orders: " << tally.created << " created, " << tally.done << " done, " << tally.failed << " failed, "
+        << tally.open << " open, " << tally.lost << " lost, " << duplicated << " done twice\n"
+        << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
+        << " s sim; longest wait " << summary["max_wait_s"] << " s\n"
+        << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"
+        << "  faults: " << faults.size() << " injected, detection p95 " << summary["detect_latency_p95_s"]
+        << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"
+        << "  memory growth (second half): " << growth_json.dump() << " %, CPU: " << cpu_json.dump() << " % of a core\n"
+        << "  " << (failures.empty() ? "PASS" : "FAIL: " + model::join(failures, "; ")) << "\n"
+        << "  logs: " << run.run_dir() << "/\n";
+  }
+  return failures.empty() ? kExitOk : kExitFailed;
+}
+
+}  // namespace fleet::cli

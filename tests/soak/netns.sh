@@ -1,0 +1,88 @@
+#!/bin/bash
+# Fleet across several hosts on one machine: one network namespace for fleet-server (and the
+# soak's fleetctl), one per agent, joined by veth pairs on a bridge that lives in a namespace of
+# its own. The links are degraded — random packet loss with iptables' statistic match (this
+# kernel has no netem), a bandwidth cap with tbf — and the agents publish their poses late
+# (faults.pose_delay_ms). Then a soak with faults runs across them and must pass.
+#
+# Everything stays inside the namespaces this script creates (10.77.0.0/24, names fleet-*);
+# nothing touches the host's own interfaces or routes. The namespaces go when the script ends.
+#
+# usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--json FILE]
+set -euo pipefail
+
+duration=120
+loss=0.02
+agents=4
+json_out=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --duration) duration="$2"; shift 2 ;;
+    --loss) loss="$2"; shift 2 ;;
+    --agents) agents="$2"; shift 2 ;;
+    --json) json_out="$2"; shift 2 ;;
+    *) echo "netns.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+bin="${FLEET_BIN:-$root/build/bin}"
+[ "$(id -u)" = 0 ] || { echo "netns.sh: needs root (ip netns, iptables)" >&2; exit 2; }
+for tool in ip iptables tc; do
+  command -v "$tool" > /dev/null || { echo "netns.sh: '$tool' missing; run scripts/install-deps" >&2; exit 2; }
+done
+[ -x "$bin/fleetctl" ] || { echo "netns.sh: $bin/fleetctl missing; build first (scripts/test builds)" >&2; exit 2; }
+
+tag="fleet$$"   # unique per run, so two runs never share namespaces
+hub="${tag}-hub"
+hosts=("${tag}-srv")
+for i in $(seq 1 "$agents"); do hosts+=("${tag}-a$i"); done
+
+cleanup() {
+  for ns in "${hosts[@]}" "$hub"; do ip netns del "$ns" 2> /dev/null || true; done
+}
+trap cleanup EXIT
+
+ip netns add "$hub"
+ip -n "$hub" link add br0 type bridge
+ip -n "$hub" link set br0 up
+ip -n "$hub" link set lo up
+n=1
+for ns in "${hosts[@]}"; do
+  ip netns add "$ns"
+  ip -n "$ns" link set lo up
+  # The pair is created inside the host's namespace and one end moved to the hub, so no
+  # interface ever appears in the machine's own namespace.
+  ip -n "$ns" link add eth0 type veth peer name "p$n"
+  ip -n "$ns" link set "p$n" netns "$hub"
+  ip -n "$hub" link set "p$n" master br0
+  ip -n "$hub" link set "p$n" up
+  ip -n "$ns" addr add "10.77.0.$((n + 1))/24" dev eth0
+  ip -n "$ns" link set eth0 up
+  # Multicast (Cyclone's discovery) goes out eth0.
+  ip -n "$ns" route add 224.0.0.0/4 dev eth0
+  if [ "$ns" != "${hosts[0]}" ]; then
+    # Random loss both ways on every agent's link, and a 2 Mbit/s cap on what it sends.
+    ip netns exec "$ns" iptables -A INPUT -i eth0 -m statistic --mode random --probability "$loss" -j DROP
+    ip netns exec "$ns" iptables -A OUTPUT -o eth0 -m statistic --mode random --probability "$loss" -j DROP
+    ip netns exec "$ns" tc qdisc add dev eth0 root tbf rate 2mbit burst 32kbit latency 50ms
+  fi
+  n=$((n + 1))
+done
+
+# The hosts see each other: a quick check before DDS is asked to.
+ip netns exec "${hosts[0]}" ping -c 1 -W 2 10.77.0.3 > /dev/null || { echo "netns.sh: the hosts cannot reach each other" >&2; exit 1; }
+
+export CYCLONEDDS_URI="file://$root/config/cyclonedds-compose.xml"
+echo "netns.sh: server in ${hosts[0]}, $agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
+  "poses 20 +- 10 ms late; soak for $duration s" >&2
+set +e
+ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 soak --agents "$agents" --site table_a --duration "$duration" \
+  --time-scale 10 --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
+  --set faults.pose_delay_ms=20 --set faults.pose_delay_jitter_ms=10 \
+  --agent-wrap "ip netns exec ${tag}-a{n}" --json > "${json_out:-/dev/stdout}"
+status=$?
+set -e
+[ -n "$json_out" ] && cat "$json_out"
+echo "netns.sh: soak exit status $status" >&2
+exit $status
