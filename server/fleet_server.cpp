@@ -416,6 +416,13 @@ void FleetServer::publish_web_snapshot() {
     const double silent_wall = now_wall - robot.last_seen_wall;
     view.health = robot.lost ? "lost" : (silent_wall > lost_after / 2 ? "stale" : "alive");
     view.age_s = std::max(0.0, snap.sim_time - robot.last.sim_time);
+    if (traffic_) {
+      if (auto t = traffic_->status().find(id); t != traffic_->status().end()) {
+        view.traffic = t->second.status;
+        view.waiting_for = t->second.blocked_by;
+        view.reserved = t->second.held;
+      }
+    }
     snap.robots.push_back(std::move(view));
   }
   std::vector<const Order*> ended;

@@ -105,6 +105,8 @@ void TrafficControl::handle_requests(double now_sim) {
         return;
       }
     }
+    log_->debug("traffic request {} v{} {} points progress {:.3f} (manager v{})", request.robot_id, request.version,
+                request.points.size(), request.progress, manager_.version(id));
     manager_.report_progress({id, request.version, request.progress}, now_sim);
   });
 }
@@ -164,6 +166,10 @@ void TrafficControl::update(double now_sim, double now_wall) {
     status.blocked_by = grant.blocked_by;
     status.held.clear();
     for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
+    if (log_->should_log(spdlog::level::debug) && static_cast<long>(now_wall * 2) != static_cast<long>((now_wall - 0.02) * 2)) {
+      log_->debug("traffic {} v{} route {} grant {} held {} {}", robot, g.version, manager_.route(g.robot_id).size(),
+                  g.granted_index, status.held.size(), grant.status);
+    }
     auto sent = sent_.find(robot);
     if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[robot] < kGrantRepeatWall) continue;
     grant_writer_.write(grant);

@@ -21,6 +21,11 @@ struct RobotView {
   geometry::Footprint footprint;
   std::string health;                     ///< "alive", "stale" (late), "lost"
   double age_s = 0.0;                     ///< sim seconds since its last RobotState
+  /// Traffic (when on): MOVING, WAITING or ARRIVED, whom it waits for, and where the places it
+  /// holds on the road graph are. Empty status: not on the roads.
+  std::string traffic;
+  std::vector<std::string> waiting_for;
+  std::vector<geometry::Vec2> reserved;
 };
 
 /// What the server loop publishes for the web view, at up to 20 Hz.

@@ -72,6 +72,11 @@ json robot_json(const RobotView& view) {
   json path = json::array();
   for (const auto& p : view.path) path.push_back(point(p.x, p.y));
   j["path"] = std::move(path);
+  if (!view.traffic.empty()) {
+    json reserved = json::array();
+    for (const auto& p : view.reserved) reserved.push_back(point(p.x, p.y));
+    j["traffic"] = {{"status", view.traffic}, {"waiting_for", view.waiting_for}, {"reserved", std::move(reserved)}};
+  }
   // Absent rather than null: a frame never holds null, so null in a diff means "removed".
   if (view.truth) {
     j["truth"] = json::array({r4(view.truth->pose.x), r4(view.truth->pose.y), r4(view.truth->pose.yaw)});

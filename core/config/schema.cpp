@@ -69,9 +69,9 @@ std::vector<KeySpec> make_schema() {
              "sim seconds a stopped robot waits before its next stretch is reserved for it"),
       number("traffic.reroute_wait_s", 30.0, "s", 1.0, 3600.0,
              "bound on waiting: a robot waiting this long (sim seconds) is re-routed around its blockers"),
-      number("traffic.margin", 0.12, "m", 0.0, 1.0,
-             "gap kept between robots holding reservations; at least the agents' stopping distance to another "
-             "robot (0.08 m) plus their margins, or the safety layer stops robots the manager thinks are moving"),
+      number("traffic.margin", 0.03, "m", 0.0, 1.0,
+             "gap kept between the regions of reservations; larger values make junction zones swallow whole "
+             "corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its own distance"),
       flag("traffic.one_way", true, "give corridors on cycles of the road network one driving direction"),
 
       // Fault injection (soak tests only; everything off by default)

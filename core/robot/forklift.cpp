@@ -306,7 +306,9 @@ void Forklift::step() {
   } else if (driving && (detail_.ends_with(" ahead") || detail_.starts_with("waiting for"))) {
     detail_.clear();
   }
-  if (blocked && t - blocked_since_ > kDetourAfter) {
+  // Under traffic control the manager routes around robots (re-routes, sidings) on the one-way
+  // graph; a temporary obstacle there could cut the only way in a corridor's direction.
+  if (blocked && !config_.traffic && t - blocked_since_ > kDetourAfter) {
     const Pose2 here = sim_.estimate();
     const Vec2 ahead{here.x + (clearance + kTemporarySize / 2) * std::cos(here.yaw),
                      here.y + (clearance + kTemporarySize / 2) * std::sin(here.yaw)};
@@ -468,7 +470,9 @@ void Forklift::adopt_path(const planning::Route& route) {
   road_start_ = path_cum_[first_index];
   const std::size_t last_index = std::min(path_.size() - 1, first_index + route.road.points.size() - 1);
   goal_leg_.assign(path_.begin() + static_cast<std::ptrdiff_t>(last_index) + 1, path_.end());
-  ++route_version_;
+  // Own routes take even versions, the manager's re-routes (its version + 1) odd ones, so a
+  // route planned here never shares a version with one the manager sent meanwhile.
+  route_version_ = (route_version_ + 2) & ~1u;
 }
 
 void Forklift::adopt_traffic_route(const TrafficPermit& permit) {

@@ -17,6 +17,7 @@
   };
   const LOST_COLOUR = '#a8b0b8';
   const GLOBAL_PLAN = '#1f5fd6';  // seed 000, Fig. 5.12: the global plan in blue
+  const RESERVATION = 'rgba(230,120,20,0.85)';  // traffic: road places a robot holds
   const PALLET = '#9a6a3a';
 
   const el = (id) => document.getElementById(id);
@@ -247,6 +248,21 @@
     ctx.fill();
   }
 
+  // Traffic reservations: the road places a robot holds, as dots along its way, hollow while it
+  // waits for them to grow (issue 8).
+  function drawReservations(r) {
+    if (!r.traffic || !r.traffic.reserved || r.health === 'lost') return;
+    const waiting = r.traffic.status === 'WAITING';
+    ctx.strokeStyle = RESERVATION;
+    ctx.fillStyle = RESERVATION;
+    ctx.lineWidth = 1.5;
+    for (const [x, y] of r.traffic.reserved) {
+      ctx.beginPath();
+      ctx.arc(X(x), Y(y), Math.max(2, 0.03 * view.scale), 0, 2 * Math.PI);
+      if (waiting) ctx.stroke(); else ctx.fill();
+    }
+  }
+
   // The 95 % ellipse of the position covariance [xx, xy, yy].
   function drawCovariance(r) {
     const [a, b, c] = r.cov;
@@ -347,6 +363,7 @@
     // Lost robots under the live ones, paths under every body.
     robots.sort(([, a], [, b]) => (a.health === 'lost') - (b.health === 'lost'));
     if (toggles.paths) for (const [, r] of robots) drawPath(r);
+    if (toggles.paths) for (const [, r] of robots) drawReservations(r);
     for (let i = robots.length - 1; i >= 0; i--) drawRobot(robots[i][0], robots[i][1]);
   }
 
@@ -415,6 +432,7 @@
     const parts = Object.entries(STATE_COLOURS).map(([s, c]) => `<span><span class="dot" data-colour="${c}"></span>${s}</span>`);
     parts.push(`<span><span class="dot" data-colour="${LOST_COLOUR}"></span>lost</span>`);
     parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
+    parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting)</span>`);
     el('legend').innerHTML = parts.join('');
     for (const dot of el('legend').querySelectorAll('.dot')) dot.style.background = dot.dataset.colour;
   }

@@ -1,0 +1,73 @@
+// Traffic control with real processes: four agents sent across one another on table_a's
+// single-lane roads all finish, with no footprint overlap in the simulation truth.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "cli/client.hpp"
+#include "dds/environment.hpp"
+#include "fleet_harness.hpp"
+#include "monitor/collision_monitor.hpp"
+
+using namespace fleet;
+using namespace fleet::testing;
+using namespace std::chrono_literals;
+
+namespace {
+class LoopbackDds : public ::testing::Environment {
+ public:
+  void SetUp() override { dds::use_fleet_dds_config(); }
+};
+const auto* const kLoopbackDds = ::testing::AddGlobalTestEnvironment(new LoopbackDds);
+}  // namespace
+
+TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
+  FleetHarness fleet(74, 10.0);
+  fleet.start_server();
+  const std::vector<std::string> robots{"fl1", "fl2", "fl3", "fl4"};
+  for (const auto& r : robots) fleet.start_agent(r);
+  ASSERT_TRUE(fleet.wait_for_robots(robots));
+  EXPECT_NE(fleet.log_of("fleet-server").find("traffic control on"), std::string::npos);
+
+  // Every order crosses the table: right to left, left to right, bottom to top, top to bottom,
+  // all at once, so the four routes meet in the middle and on the ring.
+  cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
+  ASSERT_TRUE(client.find_server(5000ms));
+  dds::Reader<model::SimTruth> truths(client.participant(), dds::qos::live_state());
+  const std::vector<std::pair<std::string, std::string>> trips{{"A3", "A8"}, {"A7", "A4"}, {"A1", "A6"}, {"A5", "A2"}};
+  std::vector<std::int64_t> ids;
+  for (std::size_t i = 0; i < trips.size(); ++i) {
+    model::OrderRequest request;
+    request.request_id = "traffic-test-" + std::to_string(i);
+    request.pick_area = trips[i].first;
+    request.drop_area = trips[i].second;
+    request.robot_id = robots[i];
+    const auto reply = client.request_order(request, 5000ms);
+    ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+    ids.push_back(reply->order_id);
+  }
+
+  monitor::CollisionMonitor collisions;
+  std::map<std::int64_t, std::string> final_state;
+  const auto deadline = std::chrono::steady_clock::now() + 150s;
+  while (final_state.size() < ids.size() && std::chrono::steady_clock::now() < deadline) {
+    truths.take_data([&](model::SimTruth&& t) { collisions.update(t.robot_id, t.pose, t.footprint, t.sim_time); });
+    for (const auto& info : client.take_order_updates()) {
+      if (info.state == "DONE" || info.state == "FAILED" || info.state == "CANCELLED") {
+        final_state[info.order_id] = info.state + (info.reason.empty() ? "" : ": " + info.reason);
+      }
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  for (std::int64_t id : ids) {
+    ASSERT_TRUE(final_state.contains(id)) << "order " << id << " did not end within 150 s (1500 s sim); server log:\n"
+                                          << fleet.log_of("fleet-server");
+    EXPECT_EQ(final_state[id], "DONE") << "order " << id;
+  }
+  EXPECT_TRUE(collisions.collisions().empty()) << collisions.collisions().size() << " collisions, the first between "
+                                               << collisions.collisions().front().robot_a << " and "
+                                               << collisions.collisions().front().robot_b;
+}

@@ -1,0 +1,37 @@
+// The short soak of scripts/test (issue 11): four agents on table_a for three minutes of wall
+// time at time scale 10, every fault on the seeded schedule, judged by the soak's own exit
+// status and the figures of its JSON summary.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "fleet_harness.hpp"
+
+using namespace fleet::testing;
+
+TEST(Soak, FourAgentsUnderEveryFaultLoseNothingDuplicateNothingAndNeverCollide) {
+  FleetHarness fleet(75, 10.0);
+  const auto run = fleet.fleetctl({"--json", "soak", "--agents", "4", "--site", "table_a", "--duration", "180",
+                                   "--time-scale", "10", "--faults", "all", "--seed", "7"},
+                                  420.0);
+  // --json: the last line printed is the summary.
+  std::string line;
+  for (std::size_t end = run.out.size(); end > 0 && line.empty();) {
+    const std::size_t start = run.out.rfind('\n', end - 1);
+    const std::size_t from = start == std::string::npos ? 0 : start + 1;
+    line = run.out.substr(from, end - from);
+    end = start == std::string::npos ? 0 : start;
+  }
+  ASSERT_FALSE(line.empty()) << run.err;
+  const auto summary = nlohmann::json::parse(line);
+  EXPECT_EQ(run.exit_code, 0) << summary["failures"].dump() << "\n" << run.err;
+  EXPECT_GE(summary["faults_injected"].get<int>(), 3);
+  EXPECT_EQ(summary["orders_lost"], 0);
+  EXPECT_EQ(summary["orders_duplicated"], 0);
+  EXPECT_EQ(summary["collisions"], 0) << summary["collision_list"].dump();
+  EXPECT_EQ(summary["deadlocks"], 0) << summary["deadlock_list"].dump();
+  EXPECT_LE(summary["detect_latency_p95_s"].get<double>(), 1.5);
+  EXPECT_GT(summary["orders_done"].get<int>(), 0);
+  std::cout << "soak summary: " << summary.dump() << "\n";
+}
