@@ -1,5 +1,6 @@
 #include "agent/fleet_agent.hpp"
 
+#include "common/paths.hpp"
 #include "traffic/traffic_settings.hpp"
 
 #include <algorithm>
@@ -142,10 +143,8 @@ void FleetAgent::handle_orders() {
 
 void FleetAgent::handle_site_inputs() {
   map_reader_.take_data([&](model::MapAssignment&& assignment) {
-    if (assignment.robot_id != options_.robot_id) return;
-    if (assignment.map_id != map_id_) {
-      log_->warn("map '{}' assigned, but this agent runs site '{}'; keeping it", assignment.map_id, map_id_);
-    }
+    if (assignment.robot_id != options_.robot_id || assignment.map_id == map_id_) return;
+    switch_map(assignment.map_id);
   });
   control_reader_.take_data([&](model::RobotControl&& control) {
     if (control.robot_id != options_.robot_id || control.paused == paused_) return;
@@ -154,6 +153,10 @@ void FleetAgent::handle_site_inputs() {
     log_->info("{} by the operator", paused_ ? "paused" : "resumed");
   });
   obstacle_reader_.take_data([&](model::StaticObstacleState&& obstacle) {
+    // Obstacles of every map the server serves arrive; the ones of other maps wait in the cache
+    // until this robot is switched to their map.
+    obstacle_cache_[{obstacle.map_id, obstacle.obstacle_id}] = obstacle.enabled;
+    if (!obstacle.map_id.empty() && obstacle.map_id != map_id_) return;
     auto it = obstacles_.find(obstacle.obstacle_id);
     if (it == obstacles_.end() || it->second != obstacle.enabled) {
       log_->info("static obstacle {} {}", obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
@@ -173,6 +176,36 @@ void FleetAgent::handle_site_inputs() {
     }
     forklift_.set_standing_pallets(standing);
     log_->debug("{} pallets standing, {} known", standing.size(), pallets_.size());
+  }
+}
+
+void FleetAgent::switch_map(const std::string& map_id) {
+  // Seed 000, section 3: the map is assigned by the server at the start and whenever the user
+  // changes it. Only a revision of the same site can be driven without moving the robot.
+  std::shared_ptr<const map::SiteMap> next;
+  try {
+    next = std::make_shared<const map::SiteMap>(map::load_site_map(map::site_path(maps_dir(), map_id)));
+  } catch (const std::exception& e) {
+    log_->error("map '{}' assigned but cannot be loaded, staying on '{}': {}", map_id, map_id_, e.what());
+    return;
+  }
+  if (const std::string why = map::revision_mismatch(forklift_.site().site, next->site); !why.empty()) {
+    log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
+    return;
+  }
+  std::shared_ptr<const map::RoadGraph> route_graph;
+  if (traffic_) {
+    route_graph = std::make_shared<const map::RoadGraph>(
+        traffic::planning_graph(next->graph.graph, traffic::configuration_from(options_.config)));
+  }
+  forklift_.set_site(next, route_graph);
+  log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id, next->graph.graph.points.size());
+  map_id_ = map_id;
+  obstacles_.clear();
+  for (const auto& [key, enabled] : obstacle_cache_) {
+    if (key.first != map_id_) continue;
+    obstacles_[key.second] = enabled;
+    forklift_.set_obstacle(key.second, enabled);
   }
 }
 

@@ -45,6 +45,7 @@ class FleetAgent {
   void handle_orders();
   void handle_site_inputs();
   void handle_fleet_view(double now_sim);
+  void switch_map(const std::string& map_id);
   void handle_events();
   void report(const std::string& status, const std::string& reason = "", int pallet_id = -1,
               const geometry::Pose2& pallet_pose = {});
@@ -63,6 +64,7 @@ class FleetAgent {
   std::optional<CurrentOrder> order_;
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
+  std::map<std::pair<std::string, std::string>, bool> obstacle_cache_;  ///< (map, obstacle) -> enabled
   std::map<int, model::PalletTruth> pallets_;
   std::map<std::string, model::SimTruth> truths_;
   std::deque<std::int64_t> finished_orders_;

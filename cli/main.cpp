@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
     command.args.assign(args.remaining().begin() + 1, args.remaining().end());
 
     // Offline tools need no configuration or DDS (`map list` asks the server).
-    const bool map_list = name == "map" && !command.args.empty() && command.args[0] == "list";
+    // map list and map set talk to the server; map check, sample and render read files.
+    const bool map_list = name == "map" && !command.args.empty() && (command.args[0] == "list" || command.args[0] == "set");
     if (name == "map" && !map_list) return map_command(command, out, err);
     if (name == "loc-eval") return loc_eval_command(command, out, err);
     if (name == "plan-eval") return plan_eval_command(command, out, err);

@@ -227,8 +227,26 @@ int robot_control_command(const std::string& verb, const CommandArgs& command, c
 int map_list_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
     Args args(command.args);
+    const auto robot = args.value("robot");
     const auto words = args.positionals();
-    if (words.size() != 1 || words[0] != "list") throw ArgError("usage: map list (map check|sample|render work on files)");
+    if (!words.empty() && words[0] == "set") {
+      // map set MAP [--robot R]: every robot (or one, with traffic off) onto another map of the site.
+      if (words.size() != 2) throw ArgError("usage: map set MAP [--robot R]");
+      FleetClient client(connection.domain);
+      const model::ServerInfo info = require_server(client, connection);
+      require_known("map", words[1], info.maps);
+      if (robot) require_known("robot", *robot, info.robots);
+      model::Command c;
+      c.verb = "map";
+      c.target = robot.value_or("");
+      c.value = words[1];
+      return run_command_on_server(client, connection, c, command, out,
+                                   (robot ? "robot " + *robot : std::string("every robot")) + " on map " + words[1],
+                                   {{"map", words[1]}, {"robot_id", robot.value_or("")}});
+    }
+    if (words.size() != 1 || words[0] != "list" || robot) {
+      throw ArgError("usage: map list | map set MAP [--robot R] (map check|sample|render work on files)");
+    }
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     if (command.json) {

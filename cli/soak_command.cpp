@@ -118,12 +118,13 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::vector<std::string> obstacle_ids;
   for (const auto& o : site.static_obstacles) obstacle_ids.push_back(o.id);
 
-  // map-switch needs a server that serves more than one map; this one serves its site only.
+  // map-switch needs another map of the site to switch to (a revision: see map::site_revisions).
+  const std::vector<std::string> site_maps = map::site_revisions(site);
   std::map<std::string, std::string> skipped;
   std::vector<monitor::FaultKind> active;
   for (auto k : kinds) {
-    if (k == monitor::FaultKind::kMapSwitch) {
-      skipped[to_string(k)] = "fleet-server serves one map (" + options.site + "); nothing to switch to";
+    if (k == monitor::FaultKind::kMapSwitch && site_maps.size() < 2) {
+      skipped[to_string(k)] = "site " + options.site + " has no other map in maps/ to switch to";
     } else if (k == monitor::FaultKind::kObstacles && obstacle_ids.empty()) {
       skipped[to_string(k)] = "site " + options.site + " has no designated obstacles";
     } else {
@@ -154,6 +155,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
 
   std::vector<FaultRecord> faults;
   std::size_t next_fault = 0;
+  std::size_t current_map = 0;  // site_maps[0] is the site itself
   struct Pending {
     double at_wall;
     std::function<void()> action;
@@ -274,8 +276,21 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           pending.push_back({now_wall + kObstacleOnSim / options.time_scale, [toggle] { toggle(false); }});
           break;
         }
-        case monitor::FaultKind::kMapSwitch:
-          continue;
+        case monitor::FaultKind::kMapSwitch: {
+          // Every robot onto the next map of the site, round the list.
+          current_map = (current_map + 1) % site_maps.size();
+          record.target = site_maps[current_map];
+          model::Command c;
+          c.request_id = "soak-" + std::to_string(getpid()) + "-map-" + std::to_string(faults.size());
+          c.verb = "map";
+          c.value = record.target;
+          const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
+          if (!reply || !reply->accepted) {
+            log->warn("map switch to {}: {}", record.target, reply ? reply->error : "no reply from the server");
+            record.detail = reply ? reply->error : "no reply";
+          }
+          break;
+        }
       }
       log->warn("fault {}: {} at t={:.0f} s sim{}", faults.size() + 1, to_string(fault.kind), elapsed_sim,
                 record.target.empty() ? "" : " (" + record.target + ")");

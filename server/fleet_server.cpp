@@ -1,5 +1,7 @@
 #include "server/fleet_server.hpp"
 
+#include <filesystem>
+
 #include "traffic/traffic_settings.hpp"
 
 #include <algorithm>
@@ -80,6 +82,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   } else {
     log_->info("traffic control off: robots avoid each other only locally (the seed's behaviour)");
   }
+  discover_maps();
   started_wall_ = SimClock::wall_now();
   restore_pallets();
   restore_orders();
@@ -156,7 +159,7 @@ void FleetServer::publish_server_info() {
   info.loading_areas = options_.site.area_ids();
   for (const auto& [fleet, robot] : options_.config.all_robots()) info.robots.push_back(robot->id);
   for (const auto& o : options_.site.static_obstacles) info.obstacles.push_back(o.id);
-  info.maps = {options_.site.name};
+  info.maps = maps_;
   info.time_scale = options_.time_scale;
   info.started_unix_ms = static_cast<std::int64_t>(SimClock::wall_now() * 1000.0);
   server_info_writer_.write(info);
@@ -172,6 +175,44 @@ void FleetServer::publish_site_state() {
   for (const auto& obstacle : options_.site.static_obstacles) {
     obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
   }
+}
+
+void FleetServer::discover_maps() {
+  // The maps this server can switch its robots to: the site and every revision of it in maps/
+  // (the same table, areas, homes and anchors; other roads or obstacles).
+  maps_ = map::site_revisions(options_.site);
+  log_->info("maps of site '{}': {}", options_.site.name, model::join(maps_));
+}
+
+std::string FleetServer::switch_map(const std::string& map_id) {
+  std::shared_ptr<const map::SiteMap> next;
+  try {
+    next = std::make_shared<const map::SiteMap>(
+        map::load_site_map((std::filesystem::path(options_.site.file).parent_path() / (map_id + ".yaml")).string()));
+  } catch (const std::exception& e) {
+    return std::string("map '") + map_id + "' cannot be loaded: " + e.what();
+  }
+  if (std::string why = map::revision_mismatch(options_.site, next->site); !why.empty()) return why;
+  const std::string previous = options_.site.name;
+  options_.site_map = next;
+  options_.site = next->site;
+  travel_ = planning::RoadPlanner(next->graph.graph);
+  if (traffic_) {
+    // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
+    traffic_.reset();
+    traffic_ = std::make_unique<TrafficControl>(next->graph.graph, traffic::configuration_from(options_.config),
+                                                participant_, log_);
+  }
+  obstacle_enabled_.clear();
+  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
+  robot_map_.clear();
+  for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
+  for (const auto& obstacle : options_.site.static_obstacles) {
+    obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
+  }
+  publish_server_info();
+  log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
+  return "";
 }
 
 void FleetServer::run(const std::atomic<bool>& stop) {
@@ -316,6 +357,25 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       obstacle_writer_.write({obstacle->id, options_.site.name, command.value == "on", obstacle->polygon});
       log_->info("static obstacle {} {}", command.target, command.value);
     }
+  } else if (command.verb == "map") {
+    // Seed 000, section 3: maps are assigned at the start and whenever the user changes them.
+    std::vector<std::string> robot_ids;
+    for (const auto& [fleet, robot] : options_.config.all_robots()) robot_ids.push_back(robot->id);
+    const bool one_robot = !command.target.empty() && command.target != "all";
+    if (std::find(maps_.begin(), maps_.end(), command.value) == maps_.end()) {
+      error = model::unknown_name_message("map", command.value, maps_);
+    } else if (one_robot && std::find(robot_ids.begin(), robot_ids.end(), command.target) == robot_ids.end()) {
+      error = model::unknown_name_message("robot", command.target, robot_ids);
+    } else if (one_robot && traffic_) {
+      error = "traffic control needs every robot on the same map: switch them all (no robot given), or run "
+              "with traffic.enabled false";
+    } else if (one_robot) {
+      robot_map_[command.target] = command.value;
+      map_writer_.write({command.target, command.value});
+      log_->info("robot {} switched to map '{}'", command.target, command.value);
+    } else if (command.value != options_.site.name) {
+      error = switch_map(command.value);
+    }
   } else if (command.verb == "auto-orders") {
     if (command.value != "on" && command.value != "off") {
       error = "auto-orders value '" + command.value + "' is not on or off";
@@ -334,7 +394,7 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       log_->info("robot {} {}d by operator", command.target, command.verb);
     }
   } else {
-    error = "unknown command '" + command.verb + "' (cancel-order, obstacle, auto-orders, pause, resume)";
+    error = "unknown command '" + command.verb + "' (cancel-order, obstacle, map, auto-orders, pause, resume)";
   }
   if (!error.empty()) log_->warn("command {} {} {} refused: {}", command.verb, command.target, command.value, error);
   return {command.request_id, error.empty(), 0, error};
@@ -403,6 +463,8 @@ void FleetServer::publish_web_snapshot() {
   if (now_wall - last_web_snapshot_wall_ < 1.0 / kWebHzWall) return;
   last_web_snapshot_wall_ = now_wall;
   LiveSnapshot snap;
+  snap.map = options_.site.name;
+  snap.site_map = options_.site_map;
   snap.sim_time = clock_.now();
   snap.time_scale = options_.time_scale;
   const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");

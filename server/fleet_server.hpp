@@ -57,6 +57,9 @@ class FleetServer {
 
  private:
   void publish_site_state();
+  void discover_maps();
+  /// Every robot onto `map_id` (a revision of the site): returns why not, empty when done.
+  std::string switch_map(const std::string& map_id);
   void publish_server_info();
   void handle_order_requests();
   void handle_commands();
@@ -114,6 +117,8 @@ class FleetServer {
   std::map<std::int64_t, int> resends_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;
+  std::vector<std::string> maps_;                 ///< the site and its revisions in maps/
+  std::map<std::string, std::string> robot_map_;  ///< robots switched alone (traffic off)
   double last_fleet_view_wall_ = 0.0;
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;

@@ -126,10 +126,7 @@ int main(int argc, char** argv) {
       server::WebSiteInfo info;
       info.site_map = site_map.get();
       info.config = &web_config;
-      for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
-        if (entry.path().extension() == ".yaml") info.maps.push_back(entry.path().stem().string());
-      }
-      std::sort(info.maps.begin(), info.maps.end());
+      info.maps = map::site_revisions(site_map->site);
       const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
       const std::string token = web_options.token;
       web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "map/site_map.hpp"
 #include <future>
 #include <map>
 #include <mutex>
@@ -30,6 +31,9 @@ struct RobotView {
 
 /// What the server loop publishes for the web view, at up to 20 Hz.
 struct LiveSnapshot {
+  /// The map the robots drive on now, and its roads (switched at runtime by the map command).
+  std::string map;
+  std::shared_ptr<const map::SiteMap> site_map;
   double sim_time = 0.0;
   double time_scale = 1.0;
   std::vector<RobotView> robots;

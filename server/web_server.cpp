@@ -93,7 +93,8 @@ json order_json(const model::OrderInfo& o) {
 }
 
 json globals_json(const LiveSnapshot& s) {
-  return json{{"sim_time", r3(s.sim_time)},
+  return json{{"map", s.map},
+              {"sim_time", r3(s.sim_time)},
               {"time_scale", s.time_scale},
               {"auto_orders", s.auto_orders},
               {"orders_done", s.orders_done},
@@ -509,6 +510,14 @@ void WebServer::pump() {
     auto [snapshot, version] = bridge_.latest();
     // Version 0 is the empty snapshot before the server loop's first publish.
     if (version == seen || version == 0) continue;
+    if (snapshot.site_map && snapshot.site_map.get() != site_.site_map) {
+      // The robots were switched to another map of the site: serve its roads from now on. Maps
+      // seen stay alive: request handlers may still read the previous one.
+      std::lock_guard lock(site_mutex_);
+      maps_seen_.push_back(snapshot.site_map);
+      site_.site_map = snapshot.site_map.get();
+      site_body_ = site_json(site_).dump();
+    }
     seen = version;
     auto frame = std::make_shared<Frame>();
     frame->version = version;
@@ -584,7 +593,14 @@ void WebServer::routes() {
   });
 
   // ---- reading ----
-  http.Get("/api/site", [this](const Request&, Response& res) { res.set_content(site_body_, "application/json"); });
+  http.Get("/api/site", [this](const Request&, Response& res) {
+    std::string body;
+    {
+      std::lock_guard lock(site_mutex_);
+      body = site_body_;
+    }
+    res.set_content(body, "application/json");
+  });
   http.Get("/api/state", [this](const Request&, Response& res) {
     json state = state_json(bridge_.latest().first);
     state["site"] = site_.site_map->site.name;

@@ -94,7 +94,9 @@ class WebServer {
   WebBridge& bridge_;
   WebSiteInfo site_;
   Logger log_;
-  std::string site_body_;  ///< GET /api/site, serialized once
+  std::string site_body_;  ///< GET /api/site, serialized once per map
+  std::mutex site_mutex_;  ///< site_body_ and site_.site_map, replaced when the map is switched
+  std::vector<std::shared_ptr<const map::SiteMap>> maps_seen_;
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::thread listener_;

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -246,6 +247,61 @@ Site load_site(const std::string& path) {
 
 std::string site_path(const std::string& maps_dir, const std::string& name) {
   return (std::filesystem::path(maps_dir) / (name + ".yaml")).string();
+}
+
+std::string revision_mismatch(const Site& site, const Site& candidate) {
+  constexpr double kTolerance = 1e-6;  // metres / radians: the same numbers, as written
+  auto same_pose = [](const geometry::Pose2& a, const geometry::Pose2& b) {
+    return std::abs(a.x - b.x) <= kTolerance && std::abs(a.y - b.y) <= kTolerance && std::abs(a.yaw - b.yaw) <= kTolerance;
+  };
+  const std::string who = candidate.name + " is not a revision of " + site.name + ": ";
+  if (std::abs(site.bounds.min_x - candidate.bounds.min_x) > kTolerance ||
+      std::abs(site.bounds.min_y - candidate.bounds.min_y) > kTolerance ||
+      std::abs(site.bounds.max_x - candidate.bounds.max_x) > kTolerance ||
+      std::abs(site.bounds.max_y - candidate.bounds.max_y) > kTolerance) {
+    return who + "its bounds differ";
+  }
+  if (site.loading_areas.size() != candidate.loading_areas.size()) return who + "it has other loading areas";
+  for (const auto& area : site.loading_areas) {
+    const LoadingArea* other = candidate.find_area(area.id);
+    if (!other) return who + "loading area " + area.id + " is missing";
+    if (!same_pose(area.pose, other->pose)) return who + "loading area " + area.id + " stands elsewhere";
+  }
+  if (site.homes.size() != candidate.homes.size()) return who + "it has other homes";
+  for (const auto& home : site.homes) {
+    const Home* other = candidate.find_home(home.id);
+    if (!other) return who + "home " + home.id + " is missing";
+    if (!same_pose(home.pose, other->pose)) return who + "home " + home.id + " is elsewhere";
+  }
+  if (site.uwb_anchors.size() != candidate.uwb_anchors.size()) return who + "it has other UWB anchors";
+  for (std::size_t i = 0; i < site.uwb_anchors.size(); ++i) {
+    const auto& a = site.uwb_anchors[i];
+    const auto& b = candidate.uwb_anchors[i];
+    if (a.id != b.id || std::abs(a.x - b.x) > kTolerance || std::abs(a.y - b.y) > kTolerance ||
+        std::abs(a.z - b.z) > kTolerance) {
+      return who + "UWB anchor " + a.id + " differs";
+    }
+  }
+  return "";
+}
+
+std::vector<std::string> site_revisions(const Site& site) {
+  std::vector<std::string> names{site.name};
+  std::vector<std::filesystem::path> files;
+  const std::filesystem::path dir = std::filesystem::path(site.file).parent_path();
+  for (const auto& entry : std::filesystem::directory_iterator(dir.empty() ? "." : dir)) {
+    if (entry.path().extension() == ".yaml" && entry.path().stem() != site.name) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) {
+    try {
+      const Site candidate = load_site(file.string());
+      if (revision_mismatch(site, candidate).empty()) names.push_back(candidate.name);
+    } catch (const std::exception&) {
+      // Not a site file, or a broken one: `fleetctl map check` names what is wrong with it.
+    }
+  }
+  return names;
 }
 
 }  // namespace fleet::map

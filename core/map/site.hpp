@@ -77,6 +77,15 @@ Site load_site(const std::string& path);
 /// The same from YAML text; `path` names it in messages and resolves the .xodr.
 Site parse_site(const std::string& yaml_text, const std::string& path);
 
+/// Why `candidate` is not a revision of `site` — another map of the same physical site that robots
+/// can be switched to at runtime: the same bounds, loading areas (ids and poses), homes and UWB
+/// anchors; roads and obstacles may differ. Empty when it is one.
+std::string revision_mismatch(const Site& site, const Site& candidate);
+
+/// `site` itself and every revision of it among the site files in its folder, by name: the maps a
+/// server of `site` can switch its robots to. Files that do not load are left out.
+std::vector<std::string> site_revisions(const Site& site);
+
 /// maps/<name>.yaml under `maps_dir`.
 std::string site_path(const std::string& maps_dir, const std::string& name);
 

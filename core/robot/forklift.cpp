@@ -90,6 +90,27 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
   route_version_ = static_cast<std::uint32_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000) * 16);
 }
 
+void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
+  site_ = std::move(site);
+  config_.route_graph = std::move(route_graph);
+  static_grid_ = make_static_grid(config_, *site_);
+  obstacles_.clear();
+  for (const auto& o : site_->site.static_obstacles) {
+    obstacles_[o.id] = o.enabled_at_start;
+    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
+  }
+  // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
+  road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
+  grid_revision_ = std::numeric_limits<std::uint64_t>::max();  // hand the new grid to the planners
+  seen_free_.clear();
+  // The old map's route means nothing to the traffic manager of the new one.
+  road_points_.clear();
+  road_cum_.clear();
+  pending_route_.reset();
+  permit_ = {};
+  executor_.replan();
+}
+
 bool Forklift::submit(const task::TaskOrder& order, std::string* why) { return executor_.submit(order, why); }
 
 void Forklift::withdraw() {

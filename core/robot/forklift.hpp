@@ -119,6 +119,11 @@ class Forklift {
   void set_neighbours(std::vector<Neighbour> neighbours);
   /// Simulation truth of the other robots' footprints: what the onboard lidar sees.
   void set_true_neighbours(std::vector<geometry::Polygon> footprints);
+  /// The server switched this robot to another map of the same site (a revision: same areas,
+  /// homes and anchors; see map::revision_mismatch): roads, obstacles and planners come from
+  /// it now, and the task replans on it. `route_graph` replaces config.route_graph.
+  void set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph);
+  const map::SiteMap& site() const { return *site_; }
   /// The traffic manager's latest grant for this robot (traffic on only).
   void set_traffic_grant(const TrafficPermit& permit);
 

@@ -191,11 +191,12 @@ def site_yaml(name, comment, bounds, road_width, spacing, areas, obstacles, anch
     return "\n".join(lines) + "\n"
 
 
-def table_a():
+def table_a(site_name="table_a", closed=()):
     # Ring road with a cross: 4 T-junctions on the ring, a crossing in the middle, 4 rounded
     # corners. Road centres at 0.45, 1.5 and 2.55 m leave 0.75 m square courtyards and a 0.30 m
-    # band outside the ring for pallets.
-    net = Network("table_a", 0.30)
+    # band outside the ring for pallets. `closed` names roads left out: a revision of the same
+    # table (same loading areas, homes and anchors) that the server can switch robots to.
+    net = Network(site_name, 0.30)
     lo, mid, hi = 0.45, 1.5, 2.55
     for name, x, y in [("sw", lo, lo), ("s", mid, lo), ("se", hi, lo), ("w", lo, mid), ("c", mid, mid),
                        ("e", hi, mid), ("nw", lo, hi), ("n", mid, hi), ("ne", hi, hi)]:
@@ -204,7 +205,8 @@ def table_a():
                        ("e", "ne", "ring east north"), ("nw", "n", "ring north west"), ("n", "ne", "ring north east"),
                        ("sw", "w", "ring west south"), ("w", "nw", "ring west north"), ("s", "c", "cross south"),
                        ("c", "n", "cross north"), ("w", "c", "cross west"), ("c", "e", "cross east")]:
-        net.edge(u, v, name)
+        if name not in closed:
+            net.edge(u, v, name)
     net.build()
     q1, q2 = 0.975, 2.025  # middles of the ring's half sides
     areas = [(q1, 0.15, N, True), (q2, 0.15, N, False), (2.85, q1, W, True), (2.85, q2, W, False),
@@ -219,7 +221,10 @@ def table_a():
              (0.975, 1.25, 0.0), (2.025, 1.25, 0.0), (2.025, 1.75, 0.0), (0.975, 1.75, 0.0)]
     comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1a):
 a ring road with a cross through the middle, 4 T-junctions and a crossing."""
-    return net, site_yaml("table_a", comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
+    if closed:
+        comment = f"""Demo table A with {', '.join(closed)} closed: the same table, loading areas, homes and
+anchors, fewer roads. A revision of table_a: the server can switch its robots to it at runtime."""
+    return net, site_yaml(site_name, comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
 
 
 def table_b():
@@ -293,7 +298,7 @@ aisle centres and three cross aisles; for scale and planner benchmarks."""
 
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    for make in (table_a, table_b, warehouse):
+    for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse):
         net, yaml_text = make()
         with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
             f.write(net.xodr())

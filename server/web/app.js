@@ -559,7 +559,25 @@
     }
   }
 
+  // The server switched its robots to another map of the site: draw that map's roads.
+  let reloadingSite = false;
+  async function reloadSite() {
+    if (reloadingSite) return;
+    reloadingSite = true;
+    try {
+      const res = await fetch('/api/site');
+      site = await res.json();
+      el('site-name').textContent = `site ${site.site}`;
+      el('map-select').innerHTML = site.maps.map((m) => `<option${m === site.site ? ' selected' : ''}>${esc(m)}</option>`).join('');
+      fit();
+      toast(`map ${site.site}`);
+    } finally {
+      reloadingSite = false;
+    }
+  }
+
   function onFrame() {
+    if (frame.globals.map && site && frame.globals.map !== site.site) reloadSite();
     for (const [id, wanted] of pendingObstacles) if (frame.obstacles[id] === wanted) pendingObstacles.delete(id);
     lastEventAt = performance.now();
     stats.events++;

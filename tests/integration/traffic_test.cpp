@@ -71,3 +71,52 @@ TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
                                                << collisions.collisions().front().robot_a << " and "
                                                << collisions.collisions().front().robot_b;
 }
+
+TEST(MapSwitch, EveryAgentGetsTheNewMapReplansOnItAndFinishesItsOrder) {
+  FleetHarness fleet(76, 10.0);
+  fleet.start_server();
+  const std::vector<std::string> robots{"fl1", "fl2"};
+  for (const auto& r : robots) fleet.start_agent(r);
+  ASSERT_TRUE(fleet.wait_for_robots(robots));
+
+  const auto maps = fleet.fleetctl({"--json", "map", "list"}, 30);
+  ASSERT_EQ(maps.exit_code, 0) << maps.err;
+  EXPECT_NE(maps.out.find("table_a_north_closed"), std::string::npos) << maps.out;
+
+  cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
+  ASSERT_TRUE(client.find_server(5000ms));
+  model::OrderRequest request;
+  request.request_id = "map-switch-test";
+  request.pick_area = "A5";  // top right to bottom left: across the middle, where a road closes
+  request.drop_area = "A8";
+  request.robot_id = "fl2";
+  const auto reply = client.request_order(request, 5000ms);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+
+  // Bad requests: an unknown map is bad input; one robot alone is refused under traffic control.
+  const auto unknown = fleet.fleetctl({"map", "set", "table_b"}, 30);
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("'table_b'"), std::string::npos) << unknown.err;
+  const auto alone = fleet.fleetctl({"map", "set", "table_a_north_closed", "--robot", "fl1"}, 30);
+  EXPECT_EQ(alone.exit_code, 1);
+  EXPECT_NE(alone.err.find("traffic control"), std::string::npos) << alone.err;
+
+  const auto set = fleet.fleetctl({"map", "set", "table_a_north_closed"}, 30);
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  // Every robot reports the new map, and the order still ends DONE, planned on the new roads.
+  bool switched = false;
+  for (int i = 0; i < 100 && !switched; ++i) {
+    const auto states = client.robot_states(100ms);
+    switched = states.size() == robots.size();
+    for (const auto& [id, s] : states) switched = switched && s.map_id == "table_a_north_closed";
+  }
+  EXPECT_TRUE(switched);
+  for (const auto& r : robots) {
+    EXPECT_NE(fleet.log_of("fleet-agent-" + r).find("map switched from 'table_a' to 'table_a_north_closed'"),
+              std::string::npos)
+        << r;
+  }
+  const auto done = client.follow_order(reply->order_id, [](const model::OrderInfo&) {}, 150s);
+  ASSERT_TRUE(done);
+  EXPECT_EQ(done->state, "DONE") << done->reason;
+}

@@ -45,3 +45,22 @@ TEST(Site, ObstacleOutsideTheAreaIsRefused) {
       message_of(kBounds + "static_obstacles:\n  - {id: O1, polygon: [[1, 1], [4, 1], [4, 2]]}\n");
   EXPECT_NE(msg.find("obstacle 'O1' lies outside the bounds"), std::string::npos) << msg;
 }
+
+namespace fleet::map {
+namespace {
+
+TEST(SiteRevision, TableAWithARoadClosedIsARevisionTableBIsNot) {
+  const Site a = load_site(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  const Site closed = load_site(FLEET_SOURCE_DIR "/maps/table_a_north_closed.yaml");
+  const Site b = load_site(FLEET_SOURCE_DIR "/maps/table_b.yaml");
+  EXPECT_EQ(revision_mismatch(a, closed), "");
+  EXPECT_EQ(revision_mismatch(closed, a), "");
+  const std::string why = revision_mismatch(a, b);
+  EXPECT_NE(why.find("table_b is not a revision of table_a"), std::string::npos) << why;
+  Site moved = closed;
+  moved.homes[3].pose.x += 0.01;
+  EXPECT_NE(revision_mismatch(a, moved).find("home H4"), std::string::npos) << revision_mismatch(a, moved);
+}
+
+}  // namespace
+}  // namespace fleet::map
