@@ -43,7 +43,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
                 options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
                 options_.seed, robot_stream(options_.robot_id)),
       participant_(options_.domain),
-      state_writer_(participant_, dds::qos::live_state()),
+      state_writer_(participant_, dds::qos::robot_state()),
       truth_writer_(participant_, dds::qos::live_state()),
       report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
@@ -162,7 +162,10 @@ void FleetAgent::handle_site_inputs() {
       log_->info("static obstacle {} {}", obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
     }
     obstacles_[obstacle.obstacle_id] = obstacle.enabled;
-    forklift_.set_obstacle(obstacle.obstacle_id, obstacle.enabled);
+    if (forklift_.set_obstacle(obstacle.obstacle_id, obstacle.enabled)) {
+      log_->info("replanning {} after obstacle {} was {}", order_ ? "order " + std::to_string(order_->assignment.order_id) : "the way home",
+                 obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
+    }
   });
   bool pallets_changed = false;
   pallet_reader_.take_data([&](model::PalletTruth&& pallet) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,18 @@ class Reader {
 
   std::uint32_t matched() const { return matched_writers(handle_); }
   dds_entity_t handle() const { return handle_; }
+
+  /// The key of the instance whose requested deadline (a Qos with one) passed most recently,
+  /// when one passed since the last call. Poll often: between two calls only the last is named.
+  std::optional<T> deadline_missed() {
+    dds_requested_deadline_missed_status_t status;
+    if (dds_get_requested_deadline_missed_status(handle_, &status) != DDS_RETCODE_OK || status.total_count_change == 0) {
+      return std::nullopt;
+    }
+    T key;
+    if (TopicTraits<T>::key_of(handle_, status.last_instance_handle, key) < 0) return std::nullopt;
+    return key;
+  }
 
  private:
   dds_entity_t handle_;

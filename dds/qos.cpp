@@ -19,6 +19,12 @@ Qos live_state() {
   return q;
 }
 
+Qos robot_state() {
+  Qos q = live_state();
+  dds_qset_deadline(q.get(), DDS_MSECS(500));
+  return q;
+}
+
 Qos requests() {
   Qos q;
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(1));

@@ -32,6 +32,11 @@ Qos latched_state();
 /// liveliness automatically with a 1 s lease so a dead publisher is noticed.
 Qos live_state();
 
+/// RobotState: live state with a 0.5 s deadline (wall time), so the server hears from DDS itself
+/// when a robot stops publishing: half the 1 s lease, the robot is stalled before it is lost.
+/// Agents publish at agent.state_hz x time_scale (at most 100 Hz): 2 Hz or more keeps within it.
+Qos robot_state();
+
 /// Requests (OrderRequest, Command, OrderState): reliable, volatile, keep-all bounded to 1000.
 Qos requests();
 

@@ -290,6 +290,14 @@ model::TrafficGrant from_wire(const fleet_msg_TrafficGrant& w) {
   int TopicTraits<model::Type>::take(dds_entity_t reader,                                                 \
                                      const std::function<void(model::Type&&, const SampleInfo&)>& fn) {   \
     return take_samples<Wire, model::Type>(reader, fn, [](const Wire& w) { return from_wire(w); });       \
+  }                                                                                                       \
+  dds_return_t TopicTraits<model::Type>::key_of(dds_entity_t entity, dds_instance_handle_t instance,      \
+                                                model::Type& out) {                                       \
+    Wire wire{};                                                                                          \
+    const dds_return_t rc = dds_instance_get_key(entity, instance, &wire);                                \
+    if (rc >= 0) out = from_wire(wire);                                                                   \
+    dds_sample_free(&wire, &Wire##_desc, DDS_FREE_CONTENTS);                                              \
+    return rc;                                                                                            \
   }
 
 FLEET_DDS_TOPIC_IMPL(ServerInfo, fleet_msg_ServerInfo, "fleet/ServerInfo")

@@ -14,6 +14,7 @@
     static dds_return_t unregister(dds_entity_t writer, const model::Type& value);                    \
     static dds_return_t dispose(dds_entity_t writer, const model::Type& value);                       \
     static int take(dds_entity_t reader, const std::function<void(model::Type&&, const SampleInfo&)>& fn); \
+    static dds_return_t key_of(dds_entity_t entity, dds_instance_handle_t instance, model::Type& out);     \
   };
 
 namespace fleet::dds {

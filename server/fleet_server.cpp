@@ -66,7 +66,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
       command_reader_(participant_, dds::qos::requests()),
-      robot_state_reader_(participant_, dds::qos::live_state()),
+      robot_state_reader_(participant_, dds::qos::robot_state()),
       robot_path_reader_(participant_, dds::qos::live_state()),
       truth_reader_(participant_, dds::qos::live_state()),
       order_report_reader_(participant_, dds::qos::latched_state()),
@@ -438,6 +438,8 @@ void FleetServer::handle_robot_states() {
     robot.fleet_id = known->first->id;
     robot.registered = true;
     robot.lost = false;
+    if (robot.stalled) log_->info("robot {} publishes again after a missed deadline", state.robot_id);
+    robot.stalled = false;
     robot.last_seen_wall = SimClock::wall_now();
     robot.last = std::move(state);
   });
@@ -476,7 +478,7 @@ void FleetServer::publish_web_snapshot() {
     if (auto p = paths_.find(id); p != paths_.end()) view.path = p->second.points;
     if (const auto spec = options_.config.find_robot(id)) view.footprint = spec->first->footprint;
     const double silent_wall = now_wall - robot.last_seen_wall;
-    view.health = robot.lost ? "lost" : (silent_wall > lost_after / 2 ? "stale" : "alive");
+    view.health = robot.lost ? "lost" : (robot.stalled || silent_wall > lost_after / 2 ? "stale" : "alive");
     view.age_s = std::max(0.0, snap.sim_time - robot.last.sim_time);
     if (traffic_) {
       if (auto t = traffic_->status().find(id); t != traffic_->status().end()) {
@@ -622,6 +624,15 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
 void FleetServer::check_robot_health() {
   const double now = SimClock::wall_now();
   const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");
+  // DDS deadline on RobotState (0.5 s, dds::qos::robot_state): the robot is stalled — frozen,
+  // or its link is — before its lease runs out and it is lost.
+  while (const auto missed = robot_state_reader_.deadline_missed()) {
+    auto it = robots_.find(missed->robot_id);
+    if (it != robots_.end() && it->second.registered && !it->second.lost && !it->second.stalled) {
+      it->second.stalled = true;
+      log_->warn("robot {} stalled: no RobotState within its 0.5 s DDS deadline", it->first);
+    }
+  }
   for (auto& [id, robot] : robots_) {
     if (robot.registered && !robot.lost && now - robot.last_seen_wall > lost_after) {
       robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");

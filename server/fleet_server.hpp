@@ -39,6 +39,7 @@ struct RobotEntry {
   double last_seen_wall = 0.0;  ///< wall seconds of the last RobotState
   bool lost = false;
   bool registered = false;
+  bool stalled = false;  ///< missed its RobotState deadline (DDS) and not heard from since
 };
 
 /// The command centre and message router of seed 000, chapter 3: takes orders, dispatches them,

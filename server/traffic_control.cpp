@@ -59,6 +59,7 @@ void TrafficControl::handle_requests(double now_sim) {
     const int id = number_of(request.robot_id);
     if (request.points.empty()) {
       // Parked beside the road (home, or done): it holds nothing any more.
+      manager_.drop_entry(id);
       if (manager_.remove_robot(id, now_sim)) log_->debug("{} left the roads", request.robot_id);
       status_.erase(request.robot_id);
       return;
@@ -79,6 +80,7 @@ void TrafficControl::handle_requests(double now_sim) {
         // then the robot waits beside the road (granted_index -1).
         const auto holders = manager_.holders_in_conflict(request.points.front(), id);
         if (!holders.empty()) {
+          manager_.claim_entry(id, request.points.front(), now_sim);
           model::TrafficGrant wait;
           wait.robot_id = request.robot_id;
           wait.version = request.version;
@@ -113,6 +115,7 @@ void TrafficControl::handle_requests(double now_sim) {
 
 void TrafficControl::robot_lost(const std::string& robot_id, double now_sim) {
   auto it = numbers_.find(robot_id);
+  if (it != numbers_.end()) manager_.drop_entry(it->second);
   if (it != numbers_.end() && manager_.remove_robot(it->second, now_sim)) {
     log_->warn("traffic: {} lost, its road freed", robot_id);
   }

@@ -602,8 +602,16 @@ void WebServer::routes() {
     res.set_content(body, "application/json");
   });
   http.Get("/api/state", [this](const Request&, Response& res) {
-    json state = state_json(bridge_.latest().first);
-    state["site"] = site_.site_map->site.name;
+    const LiveSnapshot snapshot = bridge_.latest().first;
+    json state = state_json(snapshot);
+    // The map the robots drive on now (the server's snapshot is ahead of the served roads by at
+    // most one stream period).
+    if (!snapshot.map.empty()) {
+      state["site"] = snapshot.map;
+    } else {
+      std::lock_guard lock(site_mutex_);
+      state["site"] = site_.site_map->site.name;
+    }
     send_json(res, 200, state);
   });
   http.Get("/api/stream", [this](const Request&, Response& res) {

@@ -131,12 +131,14 @@ void Forklift::set_paused(bool paused) {
   }
 }
 
-void Forklift::set_obstacle(const std::string& id, bool enabled) {
+bool Forklift::set_obstacle(const std::string& id, bool enabled) {
   auto it = obstacles_.find(id);
-  if (it == obstacles_.end() || it->second == enabled) return;
+  if (it == obstacles_.end() || it->second == enabled) return false;
   it->second = enabled;
   static_grid_.set_obstacle_enabled(id, enabled);
+  const task::State s = executor_.state();
   executor_.replan();
+  return s == task::State::kTrackPath || s == task::State::kGoHome || s == task::State::kWaiting;
 }
 
 void Forklift::set_standing_pallets(const std::map<int, Pose2>& standing) {

@@ -111,8 +111,9 @@ class Forklift {
   /// The server withdrew the order: drop it and go home (a pallet on the forks stays there).
   void withdraw();
   void set_paused(bool paused);
-  /// A designated static obstacle switched on or off; the robot replans when it matters.
-  void set_obstacle(const std::string& id, bool enabled);
+  /// A designated static obstacle switched on or off. True when the robot is driving and asked
+  /// for a new plan on the changed grid.
+  bool set_obstacle(const std::string& id, bool enabled);
   /// Where the pallets really stand (simulation truth, owned by the server). Pallets carried by
   /// other robots are left out; the one on these forks is left alone.
   void set_standing_pallets(const std::map<int, geometry::Pose2>& standing);

@@ -90,6 +90,7 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   }
   auto it = robots_.find(request.robot_id);
   if (it == robots_.end()) {
+    entries_.erase(request.robot_id);  // it enters
     Robot robot;
     robot.id = request.robot_id;
     install_route(robot, points, request.version);
@@ -153,6 +154,19 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   held.erase(std::unique(held.begin(), held.end()), held.end());
   return held;
 }
+
+void TrafficManager::claim_entry(int robot_id, int point, double now) {
+  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return;
+  const int place = zones_->place_of(point);
+  auto it = entries_.find(robot_id);
+  if (it == entries_.end() || it->second.place != place) {
+    entries_[robot_id] = {place, now};
+  } else if (now - it->second.since > configuration_.priority_wait + configuration_.reroute_wait) {
+    it->second.since = now;  // lapsed unmet: start again, so no robot waits on it without bound
+  }
+}
+
+void TrafficManager::drop_entry(int robot_id) { entries_.erase(robot_id); }
 
 std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
   std::vector<int> out;
@@ -256,6 +270,12 @@ void TrafficManager::rebuild_occupancy() {
       for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + s / 64] |= bit;
     }
   }
+  // Entry claims of robots waiting beside the roads longer than priority_wait.
+  entry_closed_.assign(zones_->place_count(), 0);
+  for (const auto& [id, claim] : entries_) {
+    if (robots_.count(id) != 0 || now_ - claim.since < configuration_.priority_wait) continue;
+    for (int q : zones_->conflicts(claim.place)) entry_closed_[static_cast<std::size_t>(q)] = 1;
+  }
   // Reservations of robots waiting longer than priority_wait: the places of the stretch they wait
   // for, and its corridor direction, against robots that would newly enter them.
   claim_place_.assign(zones_->place_count(), -1);
@@ -316,6 +336,12 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
     if (higher_priority(self, claimant)) return;
     blockers.push_back(w);
   };
+  // A place closed by an entry claim is closed to robots coming from outside it; one inside may
+  // drive on. The claimant is off the graph: it blocks without being a robot to wait for.
+  if (entry_closed_[static_cast<std::size_t>(p)] != 0 &&
+      (index == 0 || entry_closed_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] == 0)) {
+    return false;
+  }
   // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
   const int claimant = claim_place_[static_cast<std::size_t>(p)];
   if (claimant >= 0 && (index == 0 || claim_place_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] != claimant)) {

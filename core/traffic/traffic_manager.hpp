@@ -185,6 +185,13 @@ class TrafficManager {
   /// Robots (other than `robot_id`) holding a place that conflicts with the place of graph point
   /// `point`, sorted: a robot may enter the graph there only when this is empty.
   std::vector<int> holders_in_conflict(int point, int robot_id) const;
+  /// A robot beside the roads waits to enter at `point` (see holders_in_conflict). Once it has
+  /// waited `priority_wait`, the places in conflict with its entry close to robots from outside
+  /// them (those inside drive on and out), so a busy road cannot keep it out for ever. A claim
+  /// lapses after `reroute_wait` unmet and starts again: nothing waits on it without bound.
+  /// Call every cycle while it waits; `drop_entry` once it entered or gave up.
+  void claim_entry(int robot_id, int point, double now);
+  void drop_entry(int robot_id);
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
   std::uint32_t version(int robot_id) const;
@@ -262,6 +269,12 @@ class TrafficManager {
   std::vector<std::uint64_t> occupancy_;
   std::vector<std::vector<CorridorSpan>> spans_;  ///< by corridor
   std::vector<int> claim_place_;  ///< slot of the waiting robot that reserved the place, -1 when none
+  struct EntryClaim {
+    int place = 0;
+    double since = 0.0;
+  };
+  std::map<int, EntryClaim> entries_;         ///< robots waiting beside the roads, by id
+  std::vector<std::uint8_t> entry_closed_;    ///< places closed by an active entry claim
 };
 
 }  // namespace fleet::traffic

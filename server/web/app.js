@@ -18,6 +18,8 @@
   const LOST_COLOUR = '#a8b0b8';
   const GLOBAL_PLAN = '#1f5fd6';  // seed 000, Fig. 5.12: the global plan in blue
   const RESERVATION = 'rgba(230,120,20,0.85)';  // traffic: road places a robot holds
+  const LOCAL_PLAN = '#d62828';  // seed 000, Fig. 5.12: the local plan in red
+  const LOCAL_PLAN_LENGTH = 1.0;  // metres of path the robot checks against the dynamic grid (core/robot)
   const PALLET = '#9a6a3a';
 
   const el = (id) => document.getElementById(id);
@@ -248,6 +250,33 @@
     ctx.fill();
   }
 
+  // The local plan: the stretch of the path just ahead of the robot that it checks against the
+  // other robots and what its lidar sees (the dynamic grid, seed 000 section 5.3).
+  function drawLocalPlan(r) {
+    if (!r.path || r.path.length < 2 || r.health === 'lost') return;
+    let best = 0, bestD = Infinity;
+    for (let i = 0; i + 1 < r.path.length; i++) {
+      const [ax, ay] = r.path[i], [bx, by] = r.path[i + 1];
+      const dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+      const t = len2 > 0 ? Math.max(0, Math.min(1, ((r.x - ax) * dx + (r.y - ay) * dy) / len2)) : 0;
+      const d = Math.hypot(ax + t * dx - r.x, ay + t * dy - r.y);
+      if (d < bestD) { bestD = d; best = i; }
+    }
+    const pts = [[r.x, r.y]];
+    let left = LOCAL_PLAN_LENGTH;
+    for (let i = best + 1; i < r.path.length && left > 0; i++) {
+      const [px, py] = pts[pts.length - 1];
+      const [nx, ny] = r.path[i];
+      const d = Math.hypot(nx - px, ny - py);
+      if (d >= left) { pts.push([px + (nx - px) * left / d, py + (ny - py) * left / d]); left = 0; } else { pts.push([nx, ny]); left -= d; }
+    }
+    if (pts.length < 2) return;
+    ctx.strokeStyle = LOCAL_PLAN;
+    ctx.lineWidth = 3;
+    linePath(ctx, pts);
+    ctx.stroke();
+  }
+
   // Traffic reservations: the road places a robot holds, as dots along its way, hollow while it
   // waits for them to grow (issue 8).
   function drawReservations(r) {
@@ -363,6 +392,7 @@
     // Lost robots under the live ones, paths under every body.
     robots.sort(([, a], [, b]) => (a.health === 'lost') - (b.health === 'lost'));
     if (toggles.paths) for (const [, r] of robots) drawPath(r);
+    if (toggles.paths) for (const [, r] of robots) drawLocalPlan(r);
     if (toggles.paths) for (const [, r] of robots) drawReservations(r);
     for (let i = robots.length - 1; i >= 0; i--) drawRobot(robots[i][0], robots[i][1]);
   }
@@ -432,6 +462,7 @@
     const parts = Object.entries(STATE_COLOURS).map(([s, c]) => `<span><span class="dot" data-colour="${c}"></span>${s}</span>`);
     parts.push(`<span><span class="dot" data-colour="${LOST_COLOUR}"></span>lost</span>`);
     parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
+    parts.push(`<span><span class="dot" data-colour="${LOCAL_PLAN}"></span>local plan (next ${LOCAL_PLAN_LENGTH} m)</span>`);
     parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting)</span>`);
     el('legend').innerHTML = parts.join('');
     for (const dot of el('legend').querySelectorAll('.dot')) dot.style.background = dot.dataset.colour;

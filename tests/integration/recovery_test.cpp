@@ -132,3 +132,29 @@ TEST(Recovery, AgentStartingAfterObstaclesWereEnabledSeesThem) {
   EXPECT_TRUE(eventually([&] { return fleet.log_of("fleet-agent-fl3").find("static obstacle O1 enabled") != std::string::npos; }, 10s))
       << fleet.log_of("fleet-agent-fl3");
 }
+
+TEST(Recovery, FrozenAgentMissesItsDeadlineIsStalledThenLostAndComesBack) {
+  FleetHarness fleet(77, 10.0);
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));
+  std::this_thread::sleep_for(500ms);
+  const auto frozen = std::chrono::steady_clock::now();
+  fleet.processes().signal(1, SIGSTOP);  // the agent, frozen as a stuck process would be
+  // The RobotState deadline (0.5 s) names the robot stalled before its 1 s lease expires.
+  ASSERT_TRUE(eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 stalled") != std::string::npos; }, 3s))
+      << fleet.log_of("fleet-server");
+  const double stalled_after = std::chrono::duration<double>(std::chrono::steady_clock::now() - frozen).count();
+  EXPECT_LT(stalled_after, 1.5);
+  ASSERT_TRUE(eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 lost") != std::string::npos; }, 5s));
+  const std::string log = fleet.log_of("fleet-server");
+  EXPECT_LT(log.find("robot fl1 stalled"), log.find("robot fl1 lost")) << log;
+  fleet.processes().signal(1, SIGCONT);
+  EXPECT_TRUE(eventually(
+      [&] {
+        const std::string after = fleet.log_of("fleet-server");
+        return after.find("robot fl1 (forklifts) is back") != std::string::npos;
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+}

@@ -109,24 +109,6 @@ async function main() {
     };
     const site = await page.evaluate(() => window.fleetView.site);
 
-    // ---- clicking an obstacle reaches the agents over DDS ----
-    const o2 = site.obstacles.find((o) => o.id === 'O2');
-    const cx = o2.polygon.reduce((a, p) => a + p[0], 0) / o2.polygon.length;
-    const cy = o2.polygon.reduce((a, p) => a + p[1], 0) / o2.polygon.length;
-    const before = (await state()).obstacles.O2;
-    await clickMap(cx, cy);
-    await until('O2 switched in the server state', async () => (await state()).obstacles.O2 === !before, 10000);
-    check(true, `clicking O2 switched it ${before ? 'off' : 'on'} in the server's state`);
-    await until('the page to draw O2 switched', () => page.evaluate((b) => window.fleetView.frame.obstacles.O2 === !b, before), 5000);
-    check(true, 'the page shows O2 switched');
-    const heard = `static obstacle O2 ${before ? 'disabled' : 'enabled'}`;
-    await until('agents to hear of O2', () => logOf('fleet-agent-fl1').includes(heard) && logOf('fleet-agent-fl2').includes(heard), 10000);
-    check(true, `both agents logged "${heard}"`);
-    await page.screenshot({ path: path.join(OUT, 'obstacle.png') });
-    // Back off, so that the order below drives the usual way.
-    await clickMap(cx, cy);
-    await until('O2 switched back', async () => (await state()).obstacles.O2 === before, 10000);
-
     // ---- two clicks create an order: A1 (a pallet) -> A2 (free) ----
     const s0 = await state();
     check(s0.pallets.A1 === true && s0.pallets.A2 === false, 'A1 holds a pallet and A2 is free at the start');
@@ -144,6 +126,28 @@ async function main() {
       const o = (await state()).orders.find((x) => x.id === order.id);
       return o && o.robot;
     }, 20000);
+    // ---- clicking an obstacle reaches the agents over DDS, and the driving robot replans ----
+    await until(`${robot} driving`, async () => (await state()).robots.find((r) => r.id === robot).state === 'TRACK_PATH', 20000);
+    const o2 = site.obstacles.find((o) => o.id === 'O2');
+    const cx = o2.polygon.reduce((a, p) => a + p[0], 0) / o2.polygon.length;
+    const cy = o2.polygon.reduce((a, p) => a + p[1], 0) / o2.polygon.length;
+    const before = (await state()).obstacles.O2;
+    await clickMap(cx, cy);
+    await until('O2 switched in the server state', async () => (await state()).obstacles.O2 === !before, 10000);
+    check(true, `clicking O2 switched it ${before ? 'off' : 'on'} in the server's state`);
+    await until('the page to draw O2 switched', () => page.evaluate((b) => window.fleetView.frame.obstacles.O2 === !b, before), 5000);
+    check(true, 'the page shows O2 switched');
+    const heard = `static obstacle O2 ${before ? 'disabled' : 'enabled'}`;
+    await until('agents to hear of O2', () => logOf('fleet-agent-fl1').includes(heard) && logOf('fleet-agent-fl2').includes(heard), 10000);
+    check(true, `both agents logged "${heard}"`);
+    const replanned = `replanning order ${order.id} after obstacle O2 was ${before ? 'disabled' : 'enabled'}`;
+    await until(`${robot} to replan`, () => logOf(`fleet-agent-${robot}`).includes(replanned), 10000);
+    check(true, `${robot} logged "${replanned}"`);
+    await page.screenshot({ path: path.join(OUT, 'obstacle.png') });
+    // Back off, so that the order drives the usual way.
+    await clickMap(cx, cy);
+    await until('O2 switched back', async () => (await state()).obstacles.O2 === before, 10000);
+
     const positions = new Set();
     const samplesEnd = Date.now() + 30000;
     while (Date.now() < samplesEnd && positions.size < 5) {
@@ -175,6 +179,18 @@ async function main() {
     await page.locator('#robots button[data-robot="fl2"][data-action="resume"]').click();
     await until('fl2 resumed', async () => (await robotState('fl2')).state !== 'PAUSED', 10000);
     check(true, 'the resume button resumed fl2');
+
+    // ---- switching the map from the page: every robot gets it, the page draws its roads ----
+    await page.locator('#map-select').selectOption('table_a_north_closed');
+    await page.locator('#map-robot').selectOption('');
+    await page.locator('#map-switch').click();
+    await until('the server on table_a_north_closed', async () => (await state()).site === 'table_a_north_closed', 10000);
+    await until('both robots on the new map', async () =>
+      (await state()).robots.every((r) => r.map === 'table_a_north_closed'), 15000);
+    check(true, 'the map control switched every robot to table_a_north_closed');
+    await until('the page to draw the new roads', () => page.evaluate(() => window.fleetView.site.site === 'table_a_north_closed'), 10000);
+    check(true, 'the page redrew the roads of table_a_north_closed');
+    await page.screenshot({ path: path.join(OUT, 'map_switched.png') });
 
     // ---- a lost robot stays on the map, greyed, with its last pose and age ----
     const fl2 = children.find((c) => c.name === 'fleet-agent-fl2').child;

@@ -140,6 +140,44 @@ TEST(TrafficManager, ReleasesByDistanceTravelledBeforeTheNextNode) {
   EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(road[1])));
 }
 
+TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDriveOut) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficConfiguration c;
+  c.priority_wait = 8.0;
+  c.one_way = false;
+  TrafficManager m(b.graph(), c);
+  const int entry = point_at(b.graph(), 1.5, 0.0);
+  // Robot 2 stands inside the entry's zone, robot 1 comes from behind; both go to the end.
+  std::vector<int> from_inside(road.begin() + (point_at(b.graph(), 1.4, 0.0) - road.front()), road.end());
+  std::vector<int> from_behind(road.begin(), road.end());
+  ASSERT_EQ(m.submit_route({2, 1, from_inside}, 0.0), SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({1, 1, from_behind}, 0.0), SubmitStatus::kAccepted);
+  m.claim_entry(3, entry, 0.0);
+  EXPECT_FALSE(m.holders_in_conflict(entry, 3).empty());
+  // After priority_wait the claim is active: robot 1 is kept short of the zone, robot 2 leaves it.
+  UpdateResult r;
+  double progress2 = 0.0;
+  for (double t = 8.0; t < 30.0; t += 0.1) {
+    m.claim_entry(3, entry, t);
+    r = m.update(t);
+    const Grant* g2 = grant_of(r, 2);
+    ASSERT_NE(g2, nullptr);
+    progress2 = std::min(g2->granted_distance, progress2 + 0.02);
+    m.report_progress({2, 1, progress2}, t);
+    const Grant* g1 = grant_of(r, 1);
+    ASSERT_NE(g1, nullptr);
+    EXPECT_LT(g1->granted_distance, 1.3) << "robot 1 entered the closed zone at t=" << t;
+    m.report_progress({1, 1, g1->granted_distance}, t);
+    if (m.holders_in_conflict(entry, 3).empty()) break;
+  }
+  EXPECT_TRUE(m.holders_in_conflict(entry, 3).empty()) << "robot 2 never left the entry's zone";
+  // The entrant enters; robot 1 is free again once it is a robot like the others.
+  std::vector<int> entering(road.begin() + (entry - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({3, 1, entering}, 31.0), SubmitStatus::kAccepted);
+  EXPECT_EQ(m.check_invariant(), "");
+}
+
 TEST(TrafficManager, ValidatesRoutes) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 1.0, 0.0);
