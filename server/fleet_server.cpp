@@ -605,7 +605,12 @@ void FleetServer::handle_order_reports() {
 void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   robot.lost = true;
   log_->warn("robot {} lost: {}", robot.id, why);
-  if (traffic_) traffic_->robot_lost(robot.id, clock_.now());
+  if (traffic_) {
+    // Where its body was last seen stays blocked: a dead robot is still in the way.
+    geometry::Footprint footprint;
+    if (const auto spec = options_.config.find_robot(robot.id)) footprint = spec->first->footprint;
+    traffic_->robot_lost(robot.id, geometry::footprint_polygon(robot.last.pose, footprint), clock_.now());
+  }
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
     if (robot.last.carrying_pallet) {

@@ -37,6 +37,10 @@ TrafficControl::TrafficControl(const map::RoadGraph& graph, const traffic::Traff
       log_(std::move(log)),
       grant_writer_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
+  for (const auto& p : graph.points) {
+    xs_.push_back(p.x);
+    ys_.push_back(p.y);
+  }
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}",
              manager_.zones().place_count(), configuration.lookahead, configuration.one_way ? "on" : "off");
 }
@@ -64,6 +68,13 @@ void TrafficControl::handle_requests(double now_sim) {
       status_.erase(request.robot_id);
       return;
     }
+    if (manager_.frozen(id)) {
+      // Lost, and answering again: it enters anew where it has got to on its route (the places
+      // under its body were kept for it, so its entry is free).
+      manager_.remove_robot(id, now_sim);
+      log_->info("traffic: {} answers again and re-enters at {:.2f} m along route {}", request.robot_id, request.progress,
+                 request.version);
+    }
     if (!manager_.has_robot(id) || request.version > manager_.version(id)) {
       traffic::RouteRequest route{id, request.version, request.points};
       auto result = traffic::SubmitStatus::kInvalid;
@@ -76,11 +87,29 @@ void TrafficControl::handle_requests(double now_sim) {
         }
       }
       if (!manager_.has_robot(id)) {
+        // A robot already part-way along its route (the server restarted under it, or it was
+        // lost and came back) enters where it is: the points behind it are cut off, and its
+        // progress and grants are shifted by what was cut (trims_).
+        std::size_t skip = 0;
+        double offset = 0.0;
+        for (std::size_t k = 1; k < request.points.size(); ++k) {
+          const double step = std::hypot(xs_[static_cast<std::size_t>(request.points[k])] - xs_[static_cast<std::size_t>(request.points[k - 1])],
+                                         ys_[static_cast<std::size_t>(request.points[k])] - ys_[static_cast<std::size_t>(request.points[k - 1])]);
+          if (offset + step > request.progress) break;
+          offset += step;
+          skip = k;
+        }
+        route.points.erase(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(skip));
+        if (skip > 0) {
+          trims_[request.robot_id] = {request.version, static_cast<int>(skip), offset};
+        } else {
+          trims_.erase(request.robot_id);
+        }
         // Entering the roads: only where no one holds a place in conflict with the entry; until
         // then the robot waits beside the road (granted_index -1).
-        const auto holders = manager_.holders_in_conflict(request.points.front(), id);
+        const auto holders = manager_.holders_in_conflict(route.points.front(), id);
         if (!holders.empty()) {
-          manager_.claim_entry(id, request.points.front(), now_sim);
+          manager_.claim_entry(id, route.points.front(), now_sim);
           model::TrafficGrant wait;
           wait.robot_id = request.robot_id;
           wait.version = request.version;
@@ -109,15 +138,20 @@ void TrafficControl::handle_requests(double now_sim) {
     }
     log_->debug("traffic request {} v{} {} points progress {:.3f} (manager v{})", request.robot_id, request.version,
                 request.points.size(), request.progress, manager_.version(id));
-    manager_.report_progress({id, request.version, request.progress}, now_sim);
+    double progress = request.progress;
+    if (auto t = trims_.find(request.robot_id); t != trims_.end() && t->second.version == request.version) {
+      progress -= t->second.offset;
+    }
+    manager_.report_progress({id, request.version, progress}, now_sim);
   });
 }
 
-void TrafficControl::robot_lost(const std::string& robot_id, double now_sim) {
+void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim) {
   auto it = numbers_.find(robot_id);
   if (it != numbers_.end()) manager_.drop_entry(it->second);
-  if (it != numbers_.end() && manager_.remove_robot(it->second, now_sim)) {
-    log_->warn("traffic: {} lost, its road freed", robot_id);
+  if (it != numbers_.end() && manager_.freeze_robot(it->second, body, now_sim)) {
+    log_->warn("traffic: {} lost; it keeps the places its body stands on ({}), the rest is freed", robot_id,
+               manager_.held_places(it->second).size());
   }
   status_.erase(robot_id);
 }
@@ -157,6 +191,11 @@ void TrafficControl::update(double now_sim, double now_wall) {
     grant.version = g.version;
     grant.granted_index = g.granted_index;
     grant.granted_distance = g.granted_distance;
+    if (auto t = trims_.find(robot); t != trims_.end() && t->second.version == g.version) {
+      // In the robot's terms: along the whole route it reported.
+      grant.granted_index += t->second.skipped;
+      grant.granted_distance += t->second.offset;
+    }
     grant.status = status_name(g.status);
     grant.waited_s = g.waited_s;
     for (int b : g.blocked_by) grant.blocked_by.push_back(names_[b]);

@@ -31,8 +31,9 @@ class TrafficControl {
   void handle_requests(double now_sim);
   /// One manager cycle and the grants that changed (call at the control rate).
   void update(double now_sim, double now_wall);
-  /// The robot is lost: whatever it holds is freed at once.
-  void robot_lost(const std::string& robot_id, double now_sim);
+  /// The robot is lost: it keeps the places its body (last footprint) stands on, the rest of
+  /// what it held is freed at once.
+  void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim);
 
   const std::map<std::string, TrafficStatus>& status() const { return status_; }
   std::size_t deadlocks_resolved() const { return deadlocks_resolved_; }
@@ -48,6 +49,13 @@ class TrafficControl {
   std::map<std::string, model::TrafficGrant> sent_;
   std::map<std::string, double> sent_wall_;
   std::map<std::string, TrafficStatus> status_;
+  struct Trim {
+    std::uint32_t version = 0;
+    int skipped = 0;      ///< route points cut off behind the robot when it entered
+    double offset = 0.0;  ///< metres cut off
+  };
+  std::map<std::string, Trim> trims_;
+  std::vector<double> xs_, ys_;  ///< graph point positions, for route lengths
   std::size_t deadlocks_resolved_ = 0;
   std::size_t unresolved_cycles_ = 0;
   dds::Writer<model::TrafficGrant> grant_writer_;

@@ -67,6 +67,7 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.first_held = 0;
   robot.grant_end = 0;
   robot.wait_since = -1.0;
+  robot.frozen = false;
   robot.blocked = false;
   robot.stopped = true;
   robot.blocked_by.clear();
@@ -120,6 +121,33 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   robot.pending = Instruction::kNone;  // the robot drives this version: the instruction arrived
   const double limit = robot.cum[static_cast<std::size_t>(robot.grant_end)];
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
+}
+
+bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {
+  auto it = robots_.find(robot_id);
+  if (it == robots_.end()) return false;
+  std::vector<int> under;
+  for (std::size_t p = 0; p < zones_->place_count(); ++p) {
+    for (const auto& region : zones_->region(static_cast<int>(p))) {
+      if (geometry::convex_polygons_distance(region, body) <= 0.0) {
+        under.push_back(static_cast<int>(p));
+        break;
+      }
+    }
+  }
+  if (under.empty()) return remove_robot(robot_id, now);
+  int anchor = -1;
+  for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
+    if (zones_->place_of(static_cast<int>(point)) == under.front()) anchor = static_cast<int>(point);
+  }
+  Robot& robot = it->second;
+  // A one-point route at a place under its body, the other places under it as a trail that is
+  // never released by progress: it holds where it stands until it answers with a new route.
+  install_route(robot, {anchor}, robot.version);
+  robot.trail.assign(under.begin() + 1, under.end());
+  robot.trail_release = kInfinity;
+  robot.frozen = true;
+  return true;
 }
 
 bool TrafficManager::remove_robot(int robot_id, double now) {
@@ -376,6 +404,7 @@ void TrafficManager::extend(Robot& robot, int slot) {
   const int last = static_cast<int>(robot.route.size()) - 1;
   robot.blocked = false;
   robot.blocked_by.clear();
+  if (robot.frozen) return;
   const double target = robot.progress + configuration_.lookahead;
   std::vector<int> blockers;
   while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {

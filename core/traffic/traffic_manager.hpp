@@ -146,8 +146,8 @@ struct UpdateResult {
 /// reported (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
 ///
 /// Robots that finish a route keep holding the place they stand on (they are still there); the
-/// server calls `remove_robot` when a robot leaves the graph (parks off the road) or is lost,
-/// which frees everything it holds.
+/// server calls `remove_robot` when a robot leaves the graph (parks off the road), which frees
+/// everything it holds, and `freeze_robot` when it is lost: its body still blocks where it stood.
 ///
 /// Deterministic: no clocks, no randomness; time is passed in. Not thread-safe.
 class TrafficManager {
@@ -161,9 +161,14 @@ class TrafficManager {
   SubmitStatus submit_route(const RouteRequest& request, double now);
   /// Progress on the current route version; other versions are ignored. Clamped to the grant.
   void report_progress(const ProgressReport& report, double now);
-  /// Frees everything the robot holds (lost, or parked off the graph); the next update reports it.
+  /// Frees everything the robot holds (parked off the graph); the next update reports it.
   /// False for unknown ids.
   bool remove_robot(int robot_id, double now);
+  /// The robot stopped answering (lost): its body still stands where it was last seen, so it
+  /// keeps exactly the places whose regions its footprint `body` overlaps (none when it stood
+  /// beside the roads: then it is removed) and gives up the rest. It is granted nothing more
+  /// until it reports progress or a new route again. False for unknown ids.
+  bool freeze_robot(int robot_id, const geometry::Polygon& body, double now);
 
   /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
   /// places x conflict-set size; no allocation proportional to the graph.
@@ -180,6 +185,10 @@ class TrafficManager {
   const TrafficConfiguration& configuration() const { return configuration_; }
   std::vector<int> robot_ids() const;
   bool has_robot(int robot_id) const { return robots_.count(robot_id) != 0; }
+  bool frozen(int robot_id) const {
+    auto it = robots_.find(robot_id);
+    return it != robots_.end() && it->second.frozen;
+  }
   /// Places the robot holds now, sorted.
   std::vector<int> held_places(int robot_id) const;
   /// Robots (other than `robot_id`) holding a place that conflicts with the place of graph point
@@ -221,6 +230,7 @@ class TrafficManager {
     int resume_goal = -1;
     std::vector<int> yield_to;
     double siding_arrival = -1.0;
+    bool frozen = false;  ///< lost: holds where it stands, granted nothing more (freeze_robot)
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);

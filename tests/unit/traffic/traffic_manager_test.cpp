@@ -178,6 +178,34 @@ TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDrive
   EXPECT_EQ(m.check_invariant(), "");
 }
 
+TEST(TrafficManager, FrozenRobotKeepsThePlacesUnderItsBodyAndIsGrantedNothingMore) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 2.0, 0.0);
+  TrafficManager m(b.graph());
+  ASSERT_EQ(m.submit_route({4, 1, road}, 0.0), SubmitStatus::kAccepted);
+  auto r = m.update(0.0);
+  m.report_progress({4, 1, 0.35}, 0.1);
+  r = m.update(0.1);
+  const std::size_t held_moving = m.held_places(4).size();
+  // Lost at 0.35 m, facing along the road.
+  ASSERT_TRUE(m.freeze_robot(4, geometry::footprint_polygon({0.35, 0.0, 0.0}, geometry::Footprint{}), 0.2));
+  EXPECT_TRUE(m.frozen(4));
+  r = m.update(0.2);
+  const auto held = m.held_places(4);
+  EXPECT_LT(held.size(), held_moving);
+  EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(point_at(b.graph(), 0.4, 0.0))));
+  EXPECT_FALSE(std::binary_search(held.begin(), held.end(), m.zones().place_of(point_at(b.graph(), 1.0, 0.0))));
+  r = m.update(5.0);
+  EXPECT_EQ(m.held_places(4), held);  // nothing more, nothing less, while it is silent
+  EXPECT_EQ(m.check_invariant(), "");
+  // A robot lost beside the roads holds nothing: it is removed.
+  ASSERT_EQ(m.submit_route({5, 1, {point_at(b.graph(), 1.8, 0.0), point_at(b.graph(), 1.9, 0.0)}}, 5.0),
+            SubmitStatus::kAccepted);
+  ASSERT_TRUE(m.freeze_robot(5, geometry::footprint_polygon({1.8, 1.0, 0.0}, geometry::Footprint{}), 5.1));
+  EXPECT_FALSE(m.has_robot(5));
+  EXPECT_FALSE(m.freeze_robot(99, {}, 6.0));
+}
+
 TEST(TrafficManager, ValidatesRoutes) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 1.0, 0.0);
