@@ -70,8 +70,10 @@ for ns in "${hosts[@]}"; do
   n=$((n + 1))
 done
 
-# The hosts see each other: a quick check before DDS is asked to.
-ip netns exec "${hosts[0]}" ping -c 1 -W 2 10.77.0.3 > /dev/null || { echo "netns.sh: the hosts cannot reach each other" >&2; exit 1; }
+# Every host's link is up before DDS is asked to discover across them.
+for ns in "${hosts[@]}"; do
+  ip -n "$ns" link show eth0 | grep -q "state UP" || { echo "netns.sh: eth0 of $ns is not up" >&2; exit 1; }
+done
 
 export CYCLONEDDS_URI="file://$root/config/cyclonedds-compose.xml"
 echo "netns.sh: server in ${hosts[0]}, $agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
