@@ -61,11 +61,18 @@ TEST(Recovery, ServerKilledMidRunAndRestartedLosesNoOrderAndRunsNoneTwice) {
   std::this_thread::sleep_for(1500ms);
   fleet.processes().reap();
   fleet.processes().restart(0);
-  std::this_thread::sleep_for(8s);
 
+  // The robots carry on under the restarted server: wait (at most 60 s) for two orders done.
   cli::FleetClient client(70);
   ASSERT_TRUE(client.find_server(5s));
-  const auto orders = client.orders(1500ms);
+  std::map<std::int64_t, model::OrderInfo> orders;
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  for (;;) {
+    orders = client.orders(1500ms);
+    long finished = 0;
+    for (const auto& [id, info] : orders) finished += info.state == "DONE";
+    if (finished >= 2 || std::chrono::steady_clock::now() > deadline) break;
+  }
   ASSERT_FALSE(orders.empty());
   // Ids are contiguous from 1: none vanished.
   EXPECT_EQ(orders.begin()->first, 1);
