@@ -19,6 +19,14 @@ std::uint64_t robot_stream(const std::string& robot_id) {
   return h % 1000003 * 16;
 }
 
+/// The graph the robot plans on: the traffic manager's one-way graph under traffic, else none
+/// (the site's own).
+std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const map::SiteMap& site) {
+  if (!config.settings.get_bool("traffic.enabled")) return nullptr;
+  return std::make_shared<const map::RoadGraph>(
+      traffic::planning_graph(site.graph.graph, traffic::configuration_from(config)));
+}
+
 robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
                                       const map::SiteMap& site) {
   robot::ForkliftConfig c = robot::ForkliftConfig::defaults();
@@ -26,10 +34,7 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
   c.task.follower.v_max = config.settings.get_double("agent.max_speed");
   c.task.follower.omega_max = config.settings.get_double("agent.max_yaw_rate");
   c.traffic = config.settings.get_bool("traffic.enabled");
-  if (c.traffic) {
-    c.route_graph = std::make_shared<const map::RoadGraph>(
-        traffic::planning_graph(site.graph.graph, traffic::configuration_from(config)));
-  }
+  c.route_graph = route_graph_for(config, site);
   return c;
 }
 }  // namespace
@@ -196,12 +201,7 @@ void FleetAgent::switch_map(const std::string& map_id) {
     log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
     return;
   }
-  std::shared_ptr<const map::RoadGraph> route_graph;
-  if (traffic_) {
-    route_graph = std::make_shared<const map::RoadGraph>(
-        traffic::planning_graph(next->graph.graph, traffic::configuration_from(options_.config)));
-  }
-  forklift_.set_site(next, route_graph);
+  forklift_.set_site(next, route_graph_for(options_.config, *next));
   log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id, next->graph.graph.points.size());
   map_id_ = map_id;
   obstacles_.clear();
@@ -384,7 +384,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       publish_state(target);
       publish_traffic(target);
       last_publish_wall = now_wall;
-    } else if (traffic_ && forklift_.traffic_route().version != last_traffic_.version) {
+    } else if (traffic_ && forklift_.route_version() != last_traffic_.version) {
       publish_traffic(target);
     }
     flush_delayed_states();

@@ -71,7 +71,6 @@ struct FaultRecord {
   std::int64_t order = 0;            ///< the robot's open order when it happened (agent faults)
   std::optional<double> detected;    ///< the server marked the robot lost
   std::optional<double> recovered;   ///< its order re-queued, failed with a reason, or ended
-  std::string detail;
 };
 
 }  // namespace
@@ -97,12 +96,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   while (auto v = args.value("set")) settings.push_back(*v);
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   known_site_path(command.source_dir, options.site);
-  for (const auto& s : settings) {
-    // Checked here, named as given, before any process starts.
-    const auto eq = s.find('=');
-    if (eq == std::string::npos) throw ArgError("--set '" + s + "': expected KEY=VALUE");
-    config.settings.set(s.substr(0, eq), s.substr(eq + 1), "--set");
-  }
+  // Checked here, named as given, before any process starts.
+  for (const auto& s : settings) config::apply_set_flag(config, s);
   for (const auto& s : settings) {
     options.extra_server_args.insert(options.extra_server_args.end(), {"--set", s});
     options.extra_agent_args.insert(options.extra_agent_args.end(), {"--set", s});
@@ -153,6 +148,17 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::map<std::string, bool> lost;
   std::map<std::int64_t, std::set<std::string>> done_by;  // order -> robots that reported DONE
 
+  // A fault carried out by the server (obstacles, maps): a refusal is logged, the run goes on.
+  auto command_server = [&client, &log](const std::string& verb, const std::string& target, const std::string& value) {
+    model::Command c;
+    c.verb = verb;
+    c.target = target;
+    c.value = value;
+    const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
+    if (!reply || !reply->accepted) {
+      log->warn("{} {} {}: {}", verb, target, value, reply ? reply->error : "no reply from the server");
+    }
+  };
   std::vector<FaultRecord> faults;
   std::size_t next_fault = 0;
   std::size_t current_map = 0;  // site_maps[0] is the site itself
@@ -224,7 +230,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
 
     while (next_fault < plan.size() && plan[next_fault].at_sim <= elapsed_sim) {
       const auto& fault = plan[next_fault++];
-      FaultRecord record{fault.kind, "", now_wall, elapsed_sim, 0, std::nullopt, std::nullopt, ""};
+      FaultRecord record{fault.kind, "", now_wall, elapsed_sim, 0, std::nullopt, std::nullopt};
       auto open_order_of = [&](const std::string& robot) -> std::int64_t {
         for (const auto& [id, info] : run.orders()) {
           if ((info.state == "ASSIGNED" || info.state == "ACTIVE") && info.robot_id == robot) return id;
@@ -260,18 +266,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         }
         case monitor::FaultKind::kObstacles: {
           record.target = obstacle_ids[static_cast<std::size_t>(fault.target)];
-          auto toggle = [&client, &log, id = record.target](bool on) {
-            model::Command c;
-            c.request_id = "soak-" + std::to_string(getpid()) + "-" + id + (on ? "-on-" : "-off-") +
-                           std::to_string(static_cast<long>(SimClock::wall_now() * 1000));
-            c.verb = "obstacle";
-            c.target = id;
-            c.value = on ? "on" : "off";
-            const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
-            if (!reply || !reply->accepted) {
-              log->warn("obstacle {} {}: {}", id, on ? "on" : "off", reply ? reply->error : "no reply from the server");
-            }
-          };
+          auto toggle = [&command_server, id = record.target](bool on) { command_server("obstacle", id, on ? "on" : "off"); };
           toggle(true);
           pending.push_back({now_wall + kObstacleOnSim / options.time_scale, [toggle] { toggle(false); }});
           break;
@@ -280,15 +275,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           // Every robot onto the next map of the site, round the list.
           current_map = (current_map + 1) % site_maps.size();
           record.target = site_maps[current_map];
-          model::Command c;
-          c.request_id = "soak-" + std::to_string(getpid()) + "-map-" + std::to_string(faults.size());
-          c.verb = "map";
-          c.value = record.target;
-          const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
-          if (!reply || !reply->accepted) {
-            log->warn("map switch to {}: {}", record.target, reply ? reply->error : "no reply from the server");
-            record.detail = reply ? reply->error : "no reply";
-          }
+          command_server("map", "", record.target);
           break;
         }
       }

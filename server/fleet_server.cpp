@@ -71,7 +71,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       truth_reader_(participant_, dds::qos::live_state()),
       order_report_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_) {
-  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
+  reset_obstacles();
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
@@ -82,7 +82,8 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   } else {
     log_->info("traffic control off: robots avoid each other only locally (the seed's behaviour)");
   }
-  discover_maps();
+  if (options_.maps.empty()) options_.maps = {options_.site.name};
+  log_->info("maps of site '{}': {}", options_.site.name, model::join(options_.maps));
   started_wall_ = SimClock::wall_now();
   restore_pallets();
   restore_orders();
@@ -159,7 +160,7 @@ void FleetServer::publish_server_info() {
   info.loading_areas = options_.site.area_ids();
   for (const auto& [fleet, robot] : options_.config.all_robots()) info.robots.push_back(robot->id);
   for (const auto& o : options_.site.static_obstacles) info.obstacles.push_back(o.id);
-  info.maps = maps_;
+  info.maps = options_.maps;
   info.time_scale = options_.time_scale;
   info.started_unix_ms = static_cast<std::int64_t>(SimClock::wall_now() * 1000.0);
   server_info_writer_.write(info);
@@ -168,20 +169,20 @@ void FleetServer::publish_server_info() {
 void FleetServer::publish_site_state() {
   // Seed 000, section 3: the map is assigned at the start; obstacles are forwarded when they
   // change and when robots start (latched topics give late joiners the current set).
-  for (const auto& [fleet, robot] : options_.config.all_robots()) {
-    map_writer_.write({robot->id, options_.site.name});
-    control_writer_.write({robot->id, false});
-  }
+  for (const auto& [fleet, robot] : options_.config.all_robots()) control_writer_.write({robot->id, false});
+  publish_map_and_obstacles();
+}
+
+void FleetServer::publish_map_and_obstacles() {
+  for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
   for (const auto& obstacle : options_.site.static_obstacles) {
     obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
   }
 }
 
-void FleetServer::discover_maps() {
-  // The maps this server can switch its robots to: the site and every revision of it in maps/
-  // (the same table, areas, homes and anchors; other roads or obstacles).
-  maps_ = map::site_revisions(options_.site);
-  log_->info("maps of site '{}': {}", options_.site.name, model::join(maps_));
+void FleetServer::reset_obstacles() {
+  obstacle_enabled_.clear();
+  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
 }
 
 std::string FleetServer::switch_map(const std::string& map_id) {
@@ -203,13 +204,8 @@ std::string FleetServer::switch_map(const std::string& map_id) {
     traffic_ = std::make_unique<TrafficControl>(next->graph.graph, traffic::configuration_from(options_.config),
                                                 participant_, log_);
   }
-  obstacle_enabled_.clear();
-  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
-  robot_map_.clear();
-  for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
-  for (const auto& obstacle : options_.site.static_obstacles) {
-    obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
-  }
+  reset_obstacles();
+  publish_map_and_obstacles();
   publish_server_info();
   log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
   return "";
@@ -229,7 +225,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       // Traffic cycles at 20 Hz of sim time, at most 100 Hz of wall time at high time scales.
       const double now_sim = clock_.now();
       const double now_wall = SimClock::wall_now();
-      traffic_->handle_requests(now_sim);
+      traffic_->handle_requests(now_sim, now_wall);
       if (now_sim >= next_traffic_sim_ && now_wall - last_traffic_wall_ >= 0.01) {
         traffic_->update(now_sim, now_wall);
         next_traffic_sim_ = now_sim + 0.05;
@@ -362,15 +358,14 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
     std::vector<std::string> robot_ids;
     for (const auto& [fleet, robot] : options_.config.all_robots()) robot_ids.push_back(robot->id);
     const bool one_robot = !command.target.empty() && command.target != "all";
-    if (std::find(maps_.begin(), maps_.end(), command.value) == maps_.end()) {
-      error = model::unknown_name_message("map", command.value, maps_);
+    if (std::find(options_.maps.begin(), options_.maps.end(), command.value) == options_.maps.end()) {
+      error = model::unknown_name_message("map", command.value, options_.maps);
     } else if (one_robot && std::find(robot_ids.begin(), robot_ids.end(), command.target) == robot_ids.end()) {
       error = model::unknown_name_message("robot", command.target, robot_ids);
     } else if (one_robot && traffic_) {
       error = "traffic control needs every robot on the same map: switch them all (no robot given), or run "
               "with traffic.enabled false";
     } else if (one_robot) {
-      robot_map_[command.target] = command.value;
       map_writer_.write({command.target, command.value});
       log_->info("robot {} switched to map '{}'", command.target, command.value);
     } else if (command.value != options_.site.name) {

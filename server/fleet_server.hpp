@@ -29,6 +29,8 @@ struct ServerOptions {
   std::uint64_t seed = 1;
   std::string db_path;  ///< SQLite file of orders and events
   std::shared_ptr<const map::SiteMap> site_map;  ///< the site with its road graph
+  /// The site and its revisions (map::site_revisions): the maps robots can be switched to.
+  std::vector<std::string> maps;
 };
 
 /// A robot as the server knows it: registered with its first RobotState.
@@ -58,7 +60,10 @@ class FleetServer {
 
  private:
   void publish_site_state();
-  void discover_maps();
+  /// Every robot's map assignment and the current map's obstacles (latched).
+  void publish_map_and_obstacles();
+  /// The current map's obstacles as its site file sets them at the start.
+  void reset_obstacles();
   /// Every robot onto `map_id` (a revision of the site): returns why not, empty when done.
   std::string switch_map(const std::string& map_id);
   void publish_server_info();
@@ -118,8 +123,6 @@ class FleetServer {
   std::map<std::int64_t, int> resends_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;
-  std::vector<std::string> maps_;                 ///< the site and its revisions in maps/
-  std::map<std::string, std::string> robot_map_;  ///< robots switched alone (traffic off)
   double last_fleet_view_wall_ = 0.0;
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;

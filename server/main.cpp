@@ -93,6 +93,9 @@ int main(int argc, char** argv) {
     options.config = std::move(config);
     options.site = site;
     options.site_map = site_map;
+    // The maps robots can be switched to: the site and its revisions in maps/ (read once, for the
+    // server loop and the web view).
+    options.maps = map::site_revisions(site);
     auto log = make_logger("fleet-server", "", verbose ? spdlog::level::debug : spdlog::level::info);
 
     // The web view draws the site from its road network and graph; it and the server loop meet
@@ -126,7 +129,7 @@ int main(int argc, char** argv) {
       server::WebSiteInfo info;
       info.site_map = site_map.get();
       info.config = &web_config;
-      info.maps = map::site_revisions(site_map->site);
+      info.maps = options.maps;
       const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
       const std::string token = web_options.token;
       web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);

@@ -1,5 +1,6 @@
 #include "server/traffic_control.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fleet::server {
@@ -37,10 +38,6 @@ TrafficControl::TrafficControl(const map::RoadGraph& graph, const traffic::Traff
       log_(std::move(log)),
       grant_writer_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
-  for (const auto& p : graph.points) {
-    xs_.push_back(p.x);
-    ys_.push_back(p.y);
-  }
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}",
              manager_.zones().place_count(), configuration.lookahead, configuration.one_way ? "on" : "off");
 }
@@ -54,10 +51,18 @@ int TrafficControl::number_of(const std::string& robot_id) {
   return number;
 }
 
-void TrafficControl::handle_requests(double now_sim) {
+void TrafficControl::handle_requests(double now_sim, double now_wall) {
   request_reader_.take_data([&](model::TrafficRequest&& request) {
     if (request.robot_id.empty() || !std::isfinite(request.progress)) {
       log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
+      return;
+    }
+    const auto bad_point = std::find_if(request.points.begin(), request.points.end(), [&](int point) {
+      return point < 0 || static_cast<std::size_t>(point) >= manager_.zones().point_count();
+    });
+    if (bad_point != request.points.end()) {
+      log_->warn("traffic request from '{}' ignored: graph point {} does not exist ({} points)", request.robot_id,
+                 *bad_point, manager_.zones().point_count());
       return;
     }
     const int id = number_of(request.robot_id);
@@ -93,8 +98,7 @@ void TrafficControl::handle_requests(double now_sim) {
         std::size_t skip = 0;
         double offset = 0.0;
         for (std::size_t k = 1; k < request.points.size(); ++k) {
-          const double step = std::hypot(xs_[static_cast<std::size_t>(request.points[k])] - xs_[static_cast<std::size_t>(request.points[k - 1])],
-                                         ys_[static_cast<std::size_t>(request.points[k])] - ys_[static_cast<std::size_t>(request.points[k - 1])]);
+          const double step = manager_.search().edge_length(request.points[k - 1], request.points[k]);
           if (offset + step > request.progress) break;
           offset += step;
           skip = k;
@@ -117,15 +121,8 @@ void TrafficControl::handle_requests(double now_sim) {
           wait.status = "WAITING";
           for (int h : holders) wait.blocked_by.push_back(names_[h]);
           wait.sim_time = now_sim;
-          auto& status = status_[request.robot_id];
-          status.status = "WAITING";
-          status.blocked_by = wait.blocked_by;
-          status.held.clear();
-          auto sent = sent_.find(request.robot_id);
-          if (sent == sent_.end() || !same_grant(sent->second, wait)) {
-            grant_writer_.write(wait);
-            sent_[request.robot_id] = std::move(wait);
-          }
+          status_[request.robot_id] = {"WAITING", 0.0, wait.blocked_by, {}};
+          publish(std::move(wait), now_wall);
           return;
         }
         result = manager_.submit_route(route, now_sim);
@@ -164,7 +161,6 @@ void TrafficControl::update(double now_sim, double now_wall) {
     const std::string& robot = names_[e.robot_id];
     switch (e.kind) {
       case traffic::TrafficEvent::Kind::kDeadlockResolved:
-        ++deadlocks_resolved_;
         log_->info("traffic: wait cycle [{}] broken by re-routing {}", others, robot);
         break;
       case traffic::TrafficEvent::Kind::kRerouted:
@@ -179,7 +175,6 @@ void TrafficControl::update(double now_sim, double now_wall) {
       case traffic::TrafficEvent::Kind::kRobotRemoved:
         break;
       case traffic::TrafficEvent::Kind::kUnresolvedDeadlock:
-        ++unresolved_cycles_;
         log_->debug("traffic: wait cycle [{}] has no way out yet", others);
         break;
     }
@@ -208,16 +203,19 @@ void TrafficControl::update(double now_sim, double now_wall) {
     status.blocked_by = grant.blocked_by;
     status.held.clear();
     for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
-    if (log_->should_log(spdlog::level::debug) && static_cast<long>(now_wall * 2) != static_cast<long>((now_wall - 0.02) * 2)) {
-      log_->debug("traffic {} v{} route {} grant {} held {} {}", robot, g.version, manager_.route(g.robot_id).size(),
-                  g.granted_index, status.held.size(), grant.status);
-    }
-    auto sent = sent_.find(robot);
-    if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[robot] < kGrantRepeatWall) continue;
-    grant_writer_.write(grant);
-    sent_[robot] = std::move(grant);
-    sent_wall_[robot] = now_wall;
+    publish(std::move(grant), now_wall);
   }
+}
+
+void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
+  // Written when it changed, and repeated now and then for an agent that (re)started.
+  auto sent = sent_.find(grant.robot_id);
+  if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[grant.robot_id] < kGrantRepeatWall) {
+    return;
+  }
+  grant_writer_.write(grant);
+  sent_wall_[grant.robot_id] = now_wall;
+  sent_[grant.robot_id] = std::move(grant);
 }
 
 }  // namespace fleet::server

@@ -28,7 +28,7 @@ class TrafficControl {
                  dds::Participant& participant, Logger log);
 
   /// Reads the agents' routes and progress (call every loop).
-  void handle_requests(double now_sim);
+  void handle_requests(double now_sim, double now_wall);
   /// One manager cycle and the grants that changed (call at the control rate).
   void update(double now_sim, double now_wall);
   /// The robot is lost: it keeps the places its body (last footprint) stands on, the rest of
@@ -36,11 +36,10 @@ class TrafficControl {
   void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim);
 
   const std::map<std::string, TrafficStatus>& status() const { return status_; }
-  std::size_t deadlocks_resolved() const { return deadlocks_resolved_; }
-  std::size_t unresolved_cycles() const { return unresolved_cycles_; }
 
  private:
   int number_of(const std::string& robot_id);
+  void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;
   Logger log_;
@@ -55,9 +54,6 @@ class TrafficControl {
     double offset = 0.0;  ///< metres cut off
   };
   std::map<std::string, Trim> trims_;
-  std::vector<double> xs_, ys_;  ///< graph point positions, for route lengths
-  std::size_t deadlocks_resolved_ = 0;
-  std::size_t unresolved_cycles_ = 0;
   dds::Writer<model::TrafficGrant> grant_writer_;
   dds::Reader<model::TrafficRequest> request_reader_;
 };

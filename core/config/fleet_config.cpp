@@ -127,11 +127,15 @@ void apply_common_flags(Args& args, FleetConfig& config) {
     if (auto v = args.value(flag)) config.settings.set(key, *v, std::string("--") + flag);
   }
   // --set KEY=VALUE, repeatable: any configuration key, checked against the schema like the file.
-  while (auto v = args.value("set")) {
-    const auto eq = v->find('=');
-    if (eq == std::string::npos || eq == 0) throw ArgError("--set '" + *v + "': expected KEY=VALUE, e.g. traffic.enabled=false");
-    config.settings.set(v->substr(0, eq), v->substr(eq + 1), "--set");
+  while (auto v = args.value("set")) apply_set_flag(config, *v);
+}
+
+void apply_set_flag(FleetConfig& config, const std::string& key_value) {
+  const auto eq = key_value.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw ArgError("--set '" + key_value + "': expected KEY=VALUE, e.g. traffic.enabled=false");
   }
+  config.settings.set(key_value.substr(0, eq), key_value.substr(eq + 1), "--set");
 }
 
 FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& source) {

@@ -38,6 +38,10 @@ struct FleetConfig {
 /// --seed override dds.domain, site, time_scale and seed, each checked like the file's value.
 void apply_common_flags(Args& args, FleetConfig& config);
 
+/// Applies one `--set KEY=VALUE` to `config`, checked against the schema like the file's value;
+/// ArgError naming the text when it is not KEY=VALUE.
+void apply_set_flag(FleetConfig& config, const std::string& key_value);
+
 /// Reads fleet.yaml. Throws ConfigError naming the file, line and key for unknown keys, values out
 /// of range, duplicate robot ids and malformed YAML.
 FleetConfig load_fleet_config(const std::string& path);

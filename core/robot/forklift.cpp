@@ -76,10 +76,7 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
       }()),
       road_(config.route_graph ? *config.route_graph : site_->graph.graph),
       routes_(road_, grid_astar_) {
-  for (const auto& o : site_->site.static_obstacles) {
-    obstacles_[o.id] = o.enabled_at_start;
-    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
-  }
+  reset_obstacles();
   sim_.warm_up(1.0, step_period());
   // Route versions must grow across restarts of the agent too, or the traffic manager, which
   // still knows the robot, would take a restarted agent's routes for stale ones. Sixteen per
@@ -90,15 +87,19 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
   route_version_ = static_cast<std::uint32_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000) * 16);
 }
 
-void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
-  site_ = std::move(site);
-  config_.route_graph = std::move(route_graph);
-  static_grid_ = make_static_grid(config_, *site_);
+void Forklift::reset_obstacles() {
   obstacles_.clear();
   for (const auto& o : site_->site.static_obstacles) {
     obstacles_[o.id] = o.enabled_at_start;
     static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
   }
+}
+
+void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
+  site_ = std::move(site);
+  config_.route_graph = std::move(route_graph);
+  static_grid_ = make_static_grid(config_, *site_);
+  reset_obstacles();
   // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
   road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
   grid_revision_ = std::numeric_limits<std::uint64_t>::max();  // hand the new grid to the planners

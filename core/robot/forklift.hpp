@@ -150,10 +150,14 @@ class Forklift {
   const geometry::Footprint& footprint() const { return config_.sim.forklift.footprint; }
   /// The route to report to the traffic manager, with the progress along it.
   TrafficRoute traffic_route() const;
+  /// Its version alone: changes with every new route (no copy of the route).
+  std::uint32_t route_version() const { return route_version_; }
   /// Whether the robot stands at the end of what traffic granted it.
   bool held_by_traffic() const { return held_by_traffic_; }
 
  private:
+  /// The site's designated obstacles as the site file sets them at the start.
+  void reset_obstacles();
   void answer_plan_requests();
   void adopt_path(const planning::Route& route);
   void adopt_traffic_route(const TrafficPermit& permit);
