@@ -11,7 +11,6 @@
 #include <thread>
 
 #include "cli/client.hpp"
-#include "dds/environment.hpp"
 #include "fleet_harness.hpp"
 #include "orders/order.hpp"
 
@@ -41,13 +40,6 @@ bool eventually(Predicate p, std::chrono::milliseconds timeout) {
   }
   return p();
 }
-
-/// The test process is a DDS participant too: it must use the loopback configuration.
-class LoopbackDds : public ::testing::Environment {
- public:
-  void SetUp() override { dds::use_fleet_dds_config(); }
-};
-const auto* const kLoopbackDds = ::testing::AddGlobalTestEnvironment(new LoopbackDds);
 
 }  // namespace
 

@@ -8,21 +8,12 @@
 #include <thread>
 
 #include "cli/client.hpp"
-#include "dds/environment.hpp"
 #include "fleet_harness.hpp"
 #include "monitor/collision_monitor.hpp"
 
 using namespace fleet;
 using namespace fleet::testing;
 using namespace std::chrono_literals;
-
-namespace {
-class LoopbackDds : public ::testing::Environment {
- public:
-  void SetUp() override { dds::use_fleet_dds_config(); }
-};
-const auto* const kLoopbackDds = ::testing::AddGlobalTestEnvironment(new LoopbackDds);
-}  // namespace
 
 TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
   FleetHarness fleet(74, 10.0);
