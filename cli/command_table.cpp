@@ -116,11 +116,12 @@ std::vector<CommandSpec> make_table() {
        {value("--agents", "N=4"), value("--site", "NAME"), value("--duration", "SECONDS=180"),
         value("--time-scale", "K=10"), value("--seed", "S"), choice("--traffic", {"on", "off"}),
         value("--faults", "LIST"), value("--set", "KEY=VALUE"), value("--agent-wrap", "WORDS"),
-        value("--http-port", "P=0")},
+        value("--http-port", "P=0"), on_off("--verbose")},
        "the demo's fleet under ground-truth watch: collisions, deadlocks (an order\n"
        "without progress for 60 s sim), lost and duplicated orders; --faults all|none|\n"
        "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"
-       "--seed; exit 0 only when nothing was lost, duplicated, collided or deadlocked"},
+       "--seed; exit 0 only when nothing was lost, duplicated, collided or deadlocked;\n"
+       "--verbose: debug logs of every process in the run directory"},
       {Group::Offline,
        "map",
        "check",

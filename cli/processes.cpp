@@ -63,6 +63,7 @@ void ProcessGroup::restart(std::size_t index) {
     std::fprintf(stderr, "cannot execute %s: %s\n", args[0], std::strerror(errno));
     _exit(127);
   }
+  setpgid(pid, pid);  // also here, so the group exists before the first signal to it
   child.pid = pid;
   child.running = true;
   child.exit_status = 0;
@@ -70,7 +71,8 @@ void ProcessGroup::restart(std::size_t index) {
 
 void ProcessGroup::signal(std::size_t index, int sig) {
   Child& child = children_.at(index);
-  if (child.running) kill(child.pid, sig);
+  // The whole group: a wrapper (heaptrack, a shell) may have forked the real process.
+  if (child.running) kill(-child.pid, sig);
 }
 
 std::vector<std::size_t> ProcessGroup::reap() {
@@ -91,8 +93,8 @@ std::vector<std::size_t> ProcessGroup::reap() {
 void ProcessGroup::stop_all(double grace_s) {
   for (auto& child : children_) {
     if (child.running) {
-      kill(child.pid, SIGCONT);  // a stopped child cannot act on SIGTERM
-      kill(child.pid, SIGTERM);
+      kill(-child.pid, SIGCONT);  // a stopped child cannot act on SIGTERM
+      kill(-child.pid, SIGTERM);
     }
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
@@ -106,11 +108,15 @@ void ProcessGroup::stop_all(double grace_s) {
   }
   for (auto& child : children_) {
     if (!child.running) continue;
-    kill(child.pid, SIGKILL);
+    kill(-child.pid, SIGKILL);
     int status = 0;
     waitpid(child.pid, &status, 0);
     child.running = false;
     child.exit_status = status;
+  }
+  // What a wrapper left behind in a group after the wrapper itself ended.
+  for (const auto& child : children_) {
+    if (child.pid > 0) kill(-child.pid, SIGKILL);
   }
 }
 

@@ -94,6 +94,11 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   const auto kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
   std::vector<std::string> settings{"traffic.enabled=" + std::string(traffic == "on" ? "true" : "false")};
   while (auto v = args.value("set")) settings.push_back(*v);
+  if (args.flag("verbose")) {
+    // Debug logs of every process in the run directory: traffic requests, grants and waits.
+    options.extra_server_args.push_back("--verbose");
+    options.extra_agent_args.push_back("--verbose");
+  }
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   known_site_path(command.source_dir, options.site);
   // Checked here, named as given, before any process starts.
@@ -169,8 +174,12 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::vector<Pending> pending;  // restarts, SIGCONTs, obstacles off
   auto index_of_agent = [&](int agent) { return static_cast<std::size_t>(agent) + 1; };
 
-  // Memory and CPU per process: samples at the start of the second half and at the end.
-  std::map<pid_t, Usage> first_usage, mid_usage, last_usage;
+  // CPU per process from the first and last samples. Memory growth compares the low-water mark of
+  // resident memory over the first eighth of the second half with that over the last eighth:
+  // malloc hands freed memory back to the system in steps, so a single sample swings by several
+  // percent of a 20 MB process, while a leak raises the low-water mark.
+  std::map<pid_t, Usage> first_usage, last_usage;
+  std::map<pid_t, double> mid_low_kb, end_low_kb;
   std::map<pid_t, std::string> type_of;
   auto sample = [&](std::map<pid_t, Usage>& into) {
     for (const auto& child : run.processes().children()) {
@@ -182,7 +191,6 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   sample(first_usage);
   last_usage = first_usage;
   double next_usage_sample = 1.0;
-  bool mid_sampled = false;
   const double start_wall = SimClock::wall_now();
 
   double next_progress = 10.0;
@@ -213,10 +221,12 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       if (it == run.orders().end()) continue;
       const auto& info = it->second;
       // Recovered: the order is back in the queue, or ended (failed with its reason, or done),
-      // or running again on a robot that is not lost.
+      // or running again on a robot that is not lost: another one, or its own robot that was
+      // found lost and is back (a robot lost with the pallet keeps its order).
       const bool requeued = info.state == "QUEUED" || info.state == "DONE" || info.state == "FAILED" ||
                             info.state == "CANCELLED" || (info.robot_id != f.target && !info.robot_id.empty());
-      if (requeued) f.recovered = now_wall - f.at_wall;
+      const bool resumed = f.detected && !lost[f.target] && info.robot_id == f.target;
+      if (requeued || resumed) f.recovered = now_wall - f.at_wall;
     }
 
     for (auto it = pending.begin(); it != pending.end();) {
@@ -285,12 +295,20 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     }
 
     if (elapsed >= next_usage_sample) {
-      sample(last_usage);
+      std::map<pid_t, Usage> now_usage;
+      sample(now_usage);
+      for (const auto& [pid, u] : now_usage) last_usage[pid] = u;
       next_usage_sample += 1.0;
-    }
-    if (!mid_sampled && elapsed >= options.duration_s / 2.0) {
-      sample(mid_usage);
-      mid_sampled = true;
+      const double fraction = elapsed / options.duration_s;
+      auto low_water = [&](std::map<pid_t, double>& into) {
+        for (const auto& [pid, u] : now_usage) {
+          if (u.rss_kb <= 0.0) continue;
+          auto [it, fresh] = into.emplace(pid, u.rss_kb);
+          if (!fresh) it->second = std::min(it->second, u.rss_kb);
+        }
+      };
+      if (fraction >= 0.5 && fraction < 0.625) low_water(mid_low_kb);
+      if (fraction >= 0.875) low_water(end_low_kb);
     }
     if (run.wall_seconds() >= next_progress) {
       const auto t = run.tally();
@@ -303,8 +321,6 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   }
   // Faults still pending (a stopped agent, a server down) are undone before the end.
   for (auto& p : pending) p.action();
-  std::map<pid_t, Usage> end_usage;
-  sample(end_usage);
   sample(last_usage);
   const double wall = run.wall_seconds();
   run.stop();
@@ -341,11 +357,10 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   // Memory growth over the second half and CPU over the run, per process type. A process
   // restarted by a fault is measured over its own lifetime.
   std::map<std::string, double> growth, cpu_s, alive_s;
-  for (const auto& [pid, end] : end_usage) {
+  for (const auto& [pid, end_kb] : end_low_kb) {
     const std::string& type = type_of[pid];
-    if (auto mid = mid_usage.find(pid); mid != mid_usage.end() && mid->second.rss_kb > 0) {
-      growth[type] = std::max(growth.contains(type) ? growth[type] : -100.0,
-                              100.0 * (end.rss_kb - mid->second.rss_kb) / mid->second.rss_kb);
+    if (auto mid = mid_low_kb.find(pid); mid != mid_low_kb.end()) {
+      growth[type] = std::max(growth.contains(type) ? growth[type] : -100.0, 100.0 * (end_kb - mid->second) / mid->second);
     }
   }
   // CPU: what every process of a type used (a killed one up to its last sample), shared over

@@ -203,6 +203,10 @@ std::string FleetServer::switch_map(const std::string& map_id) {
     traffic_.reset();
     traffic_ = std::make_unique<TrafficControl>(next->graph.graph, traffic::configuration_from(options_.config),
                                                 participant_, log_);
+    // Where every robot stands, before any of them enters the new graph.
+    for (const auto& [id, robot] : robots_) {
+      if (robot.registered) traffic_->set_body(id, body_of(robot));  // lost ones too: still there
+    }
   }
   reset_obstacles();
   publish_map_and_obstacles();
@@ -429,6 +433,7 @@ void FleetServer::handle_robot_states() {
         }
       }
     }
+    if (robot.lost) resume_or_fail_waiting_orders(state);
     robot.id = state.robot_id;
     robot.fleet_id = known->first->id;
     robot.registered = true;
@@ -437,6 +442,7 @@ void FleetServer::handle_robot_states() {
     robot.stalled = false;
     robot.last_seen_wall = SimClock::wall_now();
     robot.last = std::move(state);
+    if (traffic_) traffic_->set_body(robot.id, body_of(robot));
   });
 }
 
@@ -597,27 +603,57 @@ void FleetServer::handle_order_reports() {
   });
 }
 
+geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {
+  geometry::Footprint footprint;
+  if (const auto spec = options_.config.find_robot(robot.id)) footprint = spec->first->footprint;
+  return geometry::footprint_polygon(robot.last.pose, footprint);
+}
+
 void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   robot.lost = true;
   log_->warn("robot {} lost: {}", robot.id, why);
-  if (traffic_) {
-    // Where its body was last seen stays blocked: a dead robot is still in the way.
-    geometry::Footprint footprint;
-    if (const auto spec = options_.config.find_robot(robot.id)) footprint = spec->first->footprint;
-    traffic_->robot_lost(robot.id, geometry::footprint_polygon(robot.last.pose, footprint), clock_.now());
-  }
+  // Where its body was last seen stays blocked: a dead robot is still in the way.
+  if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
     if (robot.last.carrying_pallet) {
-      book_.transition(id, OrderStatus::Failed, clock_.now(), "robot " + robot.id + " lost with pallet");
-      log_->warn("order {} failed: robot {} lost with its pallet", id, robot.id);
-    } else {
-      book_.requeue(id, clock_.now(), "robot " + robot.id + " lost");
-      log_->warn("order {} re-queued: robot {} lost", id, robot.id);
+      // Only this robot can finish it: a stalled robot carries on when it answers again.
+      awaiting_lost_robot_.emplace(id, SimClock::wall_now());
+      log_->warn("order {} waits for robot {}: lost with the pallet on its forks (at most {:.0f} s)", id, robot.id,
+                 options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
+      return;
     }
+    book_.requeue(id, clock_.now(), "robot " + robot.id + " lost");
+    log_->warn("order {} re-queued: robot {} lost", id, robot.id);
     awaiting_ack_since_.erase(id);
     publish_order(*book_.find(id));
     if (book_.find(id)->status == OrderStatus::Queued) withdraw(*book_.find(id), robot.id);
+  }
+}
+
+void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {
+  if (book_.transition(order_id, OrderStatus::Failed, clock_.now(), reason) != TransitionResult::Applied) return;
+  log_->warn("order {} failed: {}", order_id, reason);
+  awaiting_ack_since_.erase(order_id);
+  publish_order(*book_.find(order_id));
+}
+
+void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
+  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
+    const Order* order = book_.find(it->first);
+    if (!order || order->robot_id != state.robot_id) {
+      ++it;
+      continue;
+    }
+    const std::int64_t id = it->first;
+    it = awaiting_lost_robot_.erase(it);
+    if (orders::is_final(order->status)) continue;
+    if (state.order_id == id && state.carrying_pallet) {
+      log_->info("order {} resumes: robot {} is back with its pallet", id, state.robot_id);
+    } else {
+      // Restarted: its software forgot the order, and the pallet is not on its forks.
+      fail_with_pallet(id, "robot " + state.robot_id + " came back without the order's pallet (restarted)");
+    }
   }
 }
 
@@ -636,6 +672,20 @@ void FleetServer::check_robot_health() {
   for (auto& [id, robot] : robots_) {
     if (robot.registered && !robot.lost && now - robot.last_seen_wall > lost_after) {
       robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");
+    }
+  }
+  const double pallet_wait = options_.config.settings.get_double("server.lost_with_pallet_wait_s");
+  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
+    const Order* order = book_.find(it->first);
+    if (!order || orders::is_final(order->status)) {
+      it = awaiting_lost_robot_.erase(it);
+    } else if (now - it->second > pallet_wait) {
+      const std::int64_t id = it->first;
+      const std::string robot_id = order->robot_id;
+      it = awaiting_lost_robot_.erase(it);
+      fail_with_pallet(id, "robot " + robot_id + " lost with the pallet for " + std::to_string(static_cast<int>(pallet_wait)) + " s");
+    } else {
+      ++it;
     }
   }
   // Orders restored from the database whose robot has not shown up since the restart: after a

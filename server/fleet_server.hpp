@@ -98,6 +98,12 @@ class FleetServer {
   double travel_cost(const std::string& robot_id, const std::string& area_id);
   bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
+  /// The robot's footprint at its last reported pose.
+  geometry::Polygon body_of(const RobotEntry& robot) const;
+  /// A lost robot answers again: the orders that waited for it resume when it still carries
+  /// their pallet, and fail when it does not (it was restarted).
+  void resume_or_fail_waiting_orders(const model::RobotState& state);
+  void fail_with_pallet(std::int64_t order_id, const std::string& reason);
 
   void restore_orders();
   void restore_pallets();
@@ -120,6 +126,9 @@ class FleetServer {
   std::map<int, model::PalletTruth> pallets_;      ///< simulation truth of every pallet
   std::map<std::string, bool> obstacle_enabled_;   ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
+  /// Orders whose robot was lost with the pallet on its forks -> wall time it was lost. The pallet
+  /// is on that robot and nowhere else, so the order waits for it to come back with it.
+  std::map<std::int64_t, double> awaiting_lost_robot_;
   std::map<std::int64_t, int> resends_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <numeric>
 
 namespace fleet::server {
 
@@ -52,11 +54,17 @@ int TrafficControl::number_of(const std::string& robot_id) {
 }
 
 void TrafficControl::handle_requests(double now_sim, double now_wall) {
+  // A new manager (start-up, map switch) first learns where every robot stands from their
+  // states, so that nobody is admitted into another's body.
+  constexpr double kSettleWall = 0.5;
+  if (settle_until_wall_ < 0.0) settle_until_wall_ = now_wall + kSettleWall;
+  if (now_wall < settle_until_wall_) return;
   request_reader_.take_data([&](model::TrafficRequest&& request) {
     if (request.robot_id.empty() || !std::isfinite(request.progress)) {
       log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
       return;
     }
+    heard_.insert(request.robot_id);
     const auto bad_point = std::find_if(request.points.begin(), request.points.end(), [&](int point) {
       return point < 0 || static_cast<std::size_t>(point) >= manager_.zones().point_count();
     });
@@ -67,50 +75,48 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
     }
     const int id = number_of(request.robot_id);
     if (request.points.empty()) {
-      // Parked beside the road (home, or done): it holds nothing any more.
+      // Parked beside the road (home, or done): it holds nothing any more. (Its body may still
+      // touch a place's conservative region; passing robots keep their distance by the agents'
+      // safety check, as homes are laid out clear of the lanes.)
       manager_.drop_entry(id);
       if (manager_.remove_robot(id, now_sim)) log_->debug("{} left the roads", request.robot_id);
+      held_bodies_.erase(request.robot_id);
       status_.erase(request.robot_id);
       return;
     }
-    if (manager_.frozen(id)) {
-      // Lost, and answering again: it enters anew where it has got to on its route (the places
-      // under its body were kept for it, so its entry is free).
-      manager_.remove_robot(id, now_sim);
-      log_->info("traffic: {} answers again and re-enters at {:.2f} m along route {}", request.robot_id, request.progress,
-                 request.version);
+    const bool standing = manager_.frozen(id);
+    bool enter = !manager_.has_robot(id) || standing;
+    if (!enter && request.version > manager_.version(id)) {
+      // A new route from where it is. It starts somewhere it does not hold when it drove off the
+      // graph and came back elsewhere (e.g. from a loading area): then it enters afresh there.
+      const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
+      if (result == traffic::SubmitStatus::kInvalid) enter = true;
+      if (result == traffic::SubmitStatus::kAccepted) trims_.erase(request.robot_id);
     }
-    if (!manager_.has_robot(id) || request.version > manager_.version(id)) {
+    if (enter) {
+      // A robot already part-way along its route (the server restarted under it, or it was
+      // lost and came back) enters where it is: the points behind it are cut off, and its
+      // progress and grants are shifted by what was cut (trims_).
       traffic::RouteRequest route{id, request.version, request.points};
-      auto result = traffic::SubmitStatus::kInvalid;
-      if (manager_.has_robot(id)) {
-        result = manager_.submit_route(route, now_sim);
-        if (result == traffic::SubmitStatus::kInvalid) {
-          // The route starts somewhere the robot does not hold (it drove off the graph and came
-          // back elsewhere, e.g. from a loading area): it enters afresh there.
-          manager_.remove_robot(id, now_sim);
-        }
+      std::size_t skip = 0;
+      double offset = 0.0;
+      for (std::size_t k = 1; k < request.points.size(); ++k) {
+        const double step = manager_.search().edge_length(request.points[k - 1], request.points[k]);
+        if (offset + step > request.progress) break;
+        offset += step;
+        skip = k;
       }
-      if (!manager_.has_robot(id)) {
-        // A robot already part-way along its route (the server restarted under it, or it was
-        // lost and came back) enters where it is: the points behind it are cut off, and its
-        // progress and grants are shifted by what was cut (trims_).
-        std::size_t skip = 0;
-        double offset = 0.0;
-        for (std::size_t k = 1; k < request.points.size(); ++k) {
-          const double step = manager_.search().edge_length(request.points[k - 1], request.points[k]);
-          if (offset + step > request.progress) break;
-          offset += step;
-          skip = k;
-        }
-        route.points.erase(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(skip));
-        if (skip > 0) {
-          trims_[request.robot_id] = {request.version, static_cast<int>(skip), offset};
-        } else {
-          trims_.erase(request.robot_id);
-        }
-        // Entering the roads: only where no one holds a place in conflict with the entry; until
-        // then the robot waits beside the road (granted_index -1).
+      route.points.erase(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(skip));
+      if (skip > 0) {
+        trims_[request.robot_id] = {request.version, static_cast<int>(skip), offset};
+      } else {
+        trims_.erase(request.robot_id);
+      }
+      // Entering the roads: at once where its body already stands (it holds that place), else
+      // only where no one holds a place in conflict with the entry; until then it waits beside
+      // the road (granted_index -1), keeping what its body stands on.
+      const bool already_there = standing && stands_at(request.robot_id, id, route.points.front());
+      if (!already_there) {
         const auto holders = manager_.holders_in_conflict(route.points.front(), id);
         if (!holders.empty()) {
           manager_.claim_entry(id, route.points.front(), now_sim);
@@ -125,12 +131,19 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
           publish(std::move(wait), now_wall);
           return;
         }
-        result = manager_.submit_route(route, now_sim);
+        manager_.remove_robot(id, now_sim);
       }
+      const auto result = manager_.submit_route(route, now_sim);
       if (result != traffic::SubmitStatus::kAccepted) {
         log_->warn("route {} of {} refused ({} points from {})", request.version, request.robot_id,
                    request.points.size(), request.points.front());
         return;
+      }
+      manager_.drop_entry(id);
+      held_bodies_.erase(request.robot_id);
+      if (standing) {
+        log_->debug("traffic: {} enters at {:.2f} m along route {} from where it stands", request.robot_id,
+                    request.progress, request.version);
       }
     }
     log_->debug("traffic request {} v{} {} points progress {:.3f} (manager v{})", request.robot_id, request.version,
@@ -146,14 +159,61 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
 void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim) {
   auto it = numbers_.find(robot_id);
   if (it != numbers_.end()) manager_.drop_entry(it->second);
+  // A robot the manager never knew (e.g. one only remembered from before a server restart) has
+  // no body here to keep.
+  if (it != numbers_.end() && bodies_.contains(robot_id)) bodies_[robot_id] = body;
   if (it != numbers_.end() && manager_.freeze_robot(it->second, body, now_sim)) {
+    held_bodies_[robot_id] = body;
     log_->warn("traffic: {} lost; it keeps the places its body stands on ({}), the rest is freed", robot_id,
                manager_.held_places(it->second).size());
   }
   status_.erase(robot_id);
 }
 
+bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) const {
+  // Its body holds the point's place, and it stands on the point, not merely beside its region.
+  constexpr double kOnPointM = 0.15;
+  const auto held = manager_.held_places(id);
+  if (!std::binary_search(held.begin(), held.end(), manager_.zones().place_of(point))) return false;
+  auto body = bodies_.find(robot_id);
+  if (body == bodies_.end() || body->second.empty()) return false;
+  geometry::Vec2 centre{0.0, 0.0};
+  for (const auto& v : body->second) {
+    centre.x += v.x / static_cast<double>(body->second.size());
+    centre.y += v.y / static_cast<double>(body->second.size());
+  }
+  const auto& at = manager_.route_graph().points[static_cast<std::size_t>(point)];
+  return geometry::distance(centre, {at.x, at.y}) <= kOnPointM;
+}
+
+void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) { bodies_[robot_id] = body; }
+
+void TrafficControl::hold_body(const std::string& robot_id, int id, double now_sim) {
+  auto body = bodies_.find(robot_id);
+  if (body == bodies_.end()) {
+    manager_.remove_robot(id, now_sim);
+    return;
+  }
+  // Finding the places under a body costs a pass over every place: only when it moved.
+  constexpr double kMovedM = 0.01;
+  auto held = held_bodies_.find(robot_id);
+  const bool moved = held == held_bodies_.end() || held->second.size() != body->second.size() ||
+                     std::inner_product(held->second.begin(), held->second.end(), body->second.begin(), false,
+                                        std::logical_or<>(), [](const geometry::Vec2& a, const geometry::Vec2& b) {
+                                          return geometry::distance(a, b) > kMovedM;
+                                        });
+  if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return;
+  manager_.hold_body(id, body->second, now_sim);
+  held_bodies_[robot_id] = body->second;
+}
+
 void TrafficControl::update(double now_sim, double now_wall) {
+  // Robots not heard from yet (the manager just started among them) hold what their bodies
+  // stand on, before anyone is granted more; so do lost ones (robot_lost).
+  for (const auto& [robot_id, body] : bodies_) {
+    const int id = number_of(robot_id);
+    if (!heard_.contains(robot_id) || manager_.frozen(id)) hold_body(robot_id, id, now_sim);
+  }
   const traffic::UpdateResult result = manager_.update(now_sim);
   for (const auto& e : result.events) {
     std::string others;
@@ -174,13 +234,31 @@ void TrafficControl::update(double now_sim, double now_wall) {
         break;
       case traffic::TrafficEvent::Kind::kRobotRemoved:
         break;
-      case traffic::TrafficEvent::Kind::kUnresolvedDeadlock:
-        log_->debug("traffic: wait cycle [{}] has no way out yet", others);
+      case traffic::TrafficEvent::Kind::kUnresolvedDeadlock: {
+        std::string members;
+        for (int o : e.others) {
+          const auto& route = manager_.route(o);
+          if (route.empty()) continue;
+          const auto from = manager_.zones().position(manager_.zones().place_of(route.front()));
+          const auto to = manager_.zones().position(manager_.zones().place_of(route.back()));
+          members += fmt::format(" {}: ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}), {} points, holds {};", names_[o], from.x,
+                                 from.y, to.x, to.y, route.size(), manager_.held_places(o).size());
+        }
+        log_->debug("traffic: wait cycle [{}] has no way out yet:{}", others, members);
         break;
+      }
     }
   }
   for (const traffic::Grant& g : result.grants) {
     const std::string& robot = names_[g.robot_id];
+    if (manager_.frozen(g.robot_id)) {
+      // Standing where it is (parked, lost, or not admitted yet): nothing to grant, its places shown.
+      auto& status = status_[robot];
+      if (status.status == "WAITING") continue;  // waiting to enter: keeps who it waits for
+      status = {"STANDING", 0.0, {}, {}};
+      for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
+      continue;
+    }
     model::TrafficGrant grant;
     grant.robot_id = robot;
     grant.version = g.version;

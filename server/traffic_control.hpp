@@ -2,6 +2,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -34,11 +35,18 @@ class TrafficControl {
   /// The robot is lost: it keeps the places its body (last footprint) stands on, the rest of
   /// what it held is freed at once.
   void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim);
+  /// Where a robot that answers stands now (its footprint at its reported pose). A robot without
+  /// a route — parked, or not admitted yet — holds the places its body overlaps.
+  void set_body(const std::string& robot_id, const geometry::Polygon& body);
 
   const std::map<std::string, TrafficStatus>& status() const { return status_; }
 
  private:
   int number_of(const std::string& robot_id);
+  /// Holds the places under the robot's last known body when it has no route (see set_body).
+  void hold_body(const std::string& robot_id, int id, double now_sim);
+  /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
+  bool stands_at(const std::string& robot_id, int id, int point) const;
   void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;
@@ -54,6 +62,10 @@ class TrafficControl {
     double offset = 0.0;  ///< metres cut off
   };
   std::map<std::string, Trim> trims_;
+  std::set<std::string> heard_;  ///< robots that sent this manager a request
+  double settle_until_wall_ = -1.0;  ///< requests wait until then: robots' bodies are learnt first
+  std::map<std::string, geometry::Polygon> bodies_;  ///< last known footprint of each robot
+  std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
   dds::Writer<model::TrafficGrant> grant_writer_;
   dds::Reader<model::TrafficRequest> request_reader_;
 };

@@ -42,6 +42,9 @@ std::vector<KeySpec> make_schema() {
       number("server.fleet_view_hz", 20.0, "Hz", 1.0, 100.0, "rate of FleetView, per map, in sim time"),
       number("server.robot_lost_after_s", 1.0, "s", 0.1, 60.0,
              "wall seconds without RobotState after which a robot is marked lost"),
+      number("server.lost_with_pallet_wait_s", 60.0, "s", 1.0, 3600.0,
+             "wall seconds an order waits for its lost robot that carries the pallet to come back with it "
+             "before it is FAILED"),
       number("server.order_ack_timeout_s", 2.0, "s", 0.1, 60.0,
              "wall seconds an agent has to acknowledge an order before it is re-sent"),
       text("server.db_path", "var/fleet.db",

@@ -64,11 +64,13 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   report.weak_components = weak_components(graph, weak);
   report.strong_components = strong_components(graph, strong);
 
-  const double reach = 0.5 * map.site.road_width + options.slack;
+  const double area_reach = 0.5 * map.site.road_width + options.slack;
   const std::vector<int> area_lines = entry_lines(map.site.file, "loading_areas");
   const std::vector<int> home_lines = entry_lines(map.site.file, "homes");
 
-  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y) {
+  const double home_reach = 0.5 * map.site.road_width + options.home_slack;
+  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y,
+                         double reach) {
     PlaceReach p;
     p.id = id;
     p.key = key;
@@ -91,7 +93,7 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
     const double ax = a.pose.x + options.approach_distance * std::cos(a.pose.yaw);
     const double ay = a.pose.y + options.approach_distance * std::sin(a.pose.yaw);
     PlaceReach p = place(a.id, "loading_areas[" + std::to_string(i) + "]", i < area_lines.size() ? area_lines[i] : 0,
-                         ax, ay);
+                         ax, ay, area_reach);
     if (p.problem.empty()) {
       const double pallet_to_road = distance_to_graph(graph, a.pose.x, a.pose.y);
       if (pallet_to_road < 0.5 * map.site.road_width) {
@@ -105,7 +107,7 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   for (std::size_t i = 0; i < map.site.homes.size(); ++i) {
     const Home& h = map.site.homes[i];
     report.homes.push_back(place(h.id, "homes[" + std::to_string(i) + "]", i < home_lines.size() ? home_lines[i] : 0,
-                                 h.pose.x, h.pose.y));
+                                 h.pose.x, h.pose.y, home_reach));
   }
 
   // The main component is the strong component most places attach to; a place elsewhere can be

@@ -23,6 +23,9 @@ struct ReachOptions {
   double approach_distance = 0.30;  ///< pallet centre to forklift centre, metres
   /// A graph point must lie within road_width / 2 + slack of the approach position (or of a home).
   double slack = 0.15;
+  /// A home may lie within road_width / 2 + home_slack of a graph point: parked forklifts stand
+  /// clear of the lanes, where one turning on the spot sweeps (see maps/tools/make_maps.py).
+  double home_slack = 0.22;
 };
 
 struct PlaceReach {

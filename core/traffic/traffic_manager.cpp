@@ -99,7 +99,8 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
     return SubmitStatus::kAccepted;
   }
   Robot& robot = it->second;
-  if (request.version <= robot.version) return SubmitStatus::kStale;
+  // A standing robot (frozen, or holding its body) has no route version to be newer than.
+  if (!robot.frozen && request.version <= robot.version) return SubmitStatus::kStale;
   std::vector<int> held = held_places(robot.id);
   const int start = zones_->place_of(points.front());
   if (!std::binary_search(held.begin(), held.end(), start)) return SubmitStatus::kInvalid;
@@ -123,9 +124,7 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
 }
 
-bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {
-  auto it = robots_.find(robot_id);
-  if (it == robots_.end()) return false;
+std::vector<int> TrafficManager::places_under(const geometry::Polygon& body) const {
   std::vector<int> under;
   for (std::size_t p = 0; p < zones_->place_count(); ++p) {
     for (const auto& region : zones_->region(static_cast<int>(p))) {
@@ -135,18 +134,49 @@ bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, d
       }
     }
   }
-  if (under.empty()) return remove_robot(robot_id, now);
+  return under;
+}
+
+void TrafficManager::stand(Robot& robot, const std::vector<int>& under) {
   int anchor = -1;
   for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
     if (zones_->place_of(static_cast<int>(point)) == under.front()) anchor = static_cast<int>(point);
   }
-  Robot& robot = it->second;
   // A one-point route at a place under its body, the other places under it as a trail that is
-  // never released by progress: it holds where it stands until it answers with a new route.
+  // never released by progress: it holds where it stands until it sends a route again.
   install_route(robot, {anchor}, robot.version);
   robot.trail.assign(under.begin() + 1, under.end());
   robot.trail_release = kInfinity;
   robot.frozen = true;
+  robot.pending = Instruction::kNone;
+  robot.in_siding = false;
+}
+
+bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {
+  auto it = robots_.find(robot_id);
+  if (it == robots_.end()) return false;
+  const std::vector<int> under = places_under(body);
+  if (under.empty()) return remove_robot(robot_id, now);
+  stand(it->second, under);
+  return true;
+}
+
+bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, double now) {
+  auto it = robots_.find(robot_id);
+  if (it != robots_.end() && !it->second.frozen) return false;
+  const std::vector<int> under = places_under(body);
+  if (under.empty()) {
+    if (it != robots_.end()) remove_robot(robot_id, now);
+    return false;
+  }
+  if (it == robots_.end()) {
+    Robot robot;
+    robot.id = robot_id;
+    it = robots_.emplace(robot_id, std::move(robot)).first;
+  } else if (held_places(robot_id) == under) {
+    return true;
+  }
+  stand(it->second, under);
   return true;
 }
 

@@ -146,8 +146,11 @@ struct UpdateResult {
 /// reported (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
 ///
 /// Robots that finish a route keep holding the place they stand on (they are still there); the
-/// server calls `remove_robot` when a robot leaves the graph (parks off the road), which frees
-/// everything it holds, and `freeze_robot` when it is lost: its body still blocks where it stood.
+/// server calls `hold_body` when a robot parks off the route (it keeps the places its body still
+/// overlaps, none when it parks clear of the roads) and `freeze_robot` when it is lost: its body
+/// still blocks where it stood. Places held for a body may conflict with another robot's (robots
+/// may stand closer than the zones' margins, e.g. when the manager starts among them); grants
+/// never add such a conflict, so it only clears.
 ///
 /// Deterministic: no clocks, no randomness; time is passed in. Not thread-safe.
 class TrafficManager {
@@ -169,6 +172,13 @@ class TrafficManager {
   /// beside the roads: then it is removed) and gives up the rest. It is granted nothing more
   /// until it reports progress or a new route again. False for unknown ids.
   bool freeze_robot(int robot_id, const geometry::Polygon& body, double now);
+  /// A robot standing without a route — parked, or not yet admitted (the manager just started
+  /// after a map switch or a server restart) — holds the places its footprint `body` overlaps,
+  /// like a frozen robot, so no robot is granted into it. Unknown robots are added; a robot on a
+  /// route is left alone (false). When `body` overlaps no place the robot is removed (false).
+  /// A standing robot that sends a route starting at a place under it enters there at once
+  /// (submit_route): it is already there.
+  bool hold_body(int robot_id, const geometry::Polygon& body, double now);
 
   /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
   /// places x conflict-set size; no allocation proportional to the graph.
@@ -234,6 +244,8 @@ class TrafficManager {
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);
+  std::vector<int> places_under(const geometry::Polygon& body) const;
+  void stand(Robot& robot, const std::vector<int>& under);
   void replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now);
   void release_passed(Robot& robot);
   int direction_at(const Robot& robot, int index) const;

@@ -214,11 +214,15 @@ def table_a(site_name="table_a", closed=()):
     # Each closes a road away from every loading area and home, so the ring still serves them all.
     obstacles = [(1.40, 0.85, 1.60, 1.05), (1.40, 1.95, 1.60, 2.15), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
-    # Homes beside the roads, inside the courtyards, facing +x (the seed starts forklifts at zero
-    # heading): 0.25 m from a road centre leaves 2 cm between a parked forklift and the road edge.
-    homes = [(0.78, 0.70, 0.0), (2.22, 0.70, 0.0), (2.22, 2.30, 0.0), (0.78, 2.30, 0.0),
-             (1.17, 0.70, 0.0), (1.83, 0.70, 0.0), (1.83, 2.30, 0.0), (1.17, 2.30, 0.0),
-             (0.975, 1.25, 0.0), (2.025, 1.25, 0.0), (2.025, 1.75, 0.0), (0.975, 1.75, 0.0)]
+    # Homes inside the courtyards, facing +x (the seed starts forklifts at zero heading), 0.35 m
+    # from a road centre: a forklift turning on the spot in the lane sweeps 0.15 m from the centre,
+    # and a parked one (0.16 m wide) then stands 0.12 m from that circle, beyond the 8 cm the agents
+    # stop at. Closer homes stop the traffic passing them.
+    # Each home is nearer the ring's south or north side than any other road, so the road it is
+    # reached from is not one an obstacle closes.
+    homes = [(0.83, 0.80, 0.0), (2.17, 0.80, 0.0), (2.17, 2.20, 0.0), (0.83, 2.20, 0.0),
+             (1.13, 0.80, 0.0), (1.87, 0.80, 0.0), (1.87, 2.20, 0.0), (1.13, 2.20, 0.0),
+             (0.975, 1.15, 0.0), (2.025, 1.15, 0.0), (2.025, 1.85, 0.0), (0.975, 1.85, 0.0)]
     comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1a):
 a ring road with a cross through the middle, 4 T-junctions and a crossing."""
     if closed:

@@ -206,6 +206,57 @@ TEST(TrafficManager, FrozenRobotKeepsThePlacesUnderItsBodyAndIsGrantedNothingMor
   EXPECT_FALSE(m.freeze_robot(99, {}, 6.0));
 }
 
+TEST(TrafficManager, AStandingBodyIsNotDrivenIntoAndEntersWhereItStands) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficManager m(b.graph());
+  // Robot 7 stands on the road at 1.5 m without a route (parked there, or not admitted yet).
+  const auto body = geometry::footprint_polygon({1.5, 0.0, 0.0}, geometry::Footprint{});
+  ASSERT_TRUE(m.hold_body(7, body, 0.0));
+  EXPECT_TRUE(m.frozen(7));
+  const auto held = m.held_places(7);
+  ASSERT_FALSE(held.empty());
+  EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(point_at(b.graph(), 1.5, 0.0))));
+  // Robot 1 drives along the road towards it: it is granted up to the body, never into it.
+  ASSERT_EQ(m.submit_route({1, 2, road}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0;
+  const Grant* g1 = nullptr;
+  UpdateResult r;
+  for (int i = 0; i < 200; ++i, t += 0.05) {
+    r = m.update(t);
+    g1 = grant_of(r, 1);
+    ASSERT_NE(g1, nullptr);
+    m.report_progress({1, 2, g1->granted_distance}, t);
+    ASSERT_EQ(m.check_invariant(), "");
+  }
+  EXPECT_EQ(g1->status, GrantStatus::kWaiting);
+  EXPECT_EQ(g1->blocked_by, std::vector<int>{7});
+  EXPECT_LT(g1->granted_distance, 1.5);
+  // A second hold of the same body changes nothing; a robot on a route is left alone.
+  EXPECT_TRUE(m.hold_body(7, body, t));
+  EXPECT_EQ(m.held_places(7), held);
+  EXPECT_FALSE(m.hold_body(1, body, t));
+  // Robot 7 enters where it stands, with any route version, and drives away; robot 1 follows.
+  const std::vector<int> away(road.begin() + (point_at(b.graph(), 1.5, 0.0) - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({7, 2, away}, t), SubmitStatus::kAccepted);
+  EXPECT_FALSE(m.frozen(7));
+  double d7 = 0.0;
+  for (int i = 0; i < 400 && !(g1 && g1->status == GrantStatus::kArrived); ++i, t += 0.05) {
+    r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    const Grant* g7 = grant_of(r, 7);
+    ASSERT_NE(g7, nullptr);
+    d7 = std::min(g7->granted_distance, d7 + 0.05);
+    m.report_progress({7, 2, d7}, t);
+    g1 = grant_of(r, 1);
+    if (g1) m.report_progress({1, 2, std::min(g1->granted_distance, d7 + 1.0)}, t);
+  }
+  EXPECT_GT(grant_of(r, 1)->granted_distance, 1.5) << "robot 1 never passed where robot 7 stood";
+  // Parked clear of the road, a robot holds nothing and is not kept.
+  EXPECT_FALSE(m.hold_body(8, geometry::footprint_polygon({1.5, 2.0, 0.0}, geometry::Footprint{}), t));
+  EXPECT_FALSE(m.has_robot(8));
+}
+
 TEST(TrafficManager, ValidatesRoutes) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 1.0, 0.0);
