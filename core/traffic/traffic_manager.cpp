@@ -517,12 +517,12 @@ void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instru
 }
 
 bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
-                             TrafficEvent::Kind kind) {
+                             TrafficEvent::Kind kind, bool against_one_way) {
   const int slot = slot_of(robot.id);
   const int anchor = robot.route[static_cast<std::size_t>(robot.grant_end)];
   const int goal = robot.route.back();
   const auto blocked = places_of_others(others, true, 0.0);
-  std::vector<int> path = route_search_->shortest(anchor, goal, &blocked);
+  std::vector<int> path = (against_one_way ? search_ : route_search_)->shortest(anchor, goal, &blocked);
   if (path.size() < 2) return false;
   // Only a different way helps, and only one the robot can start on now.
   std::vector<int> remaining(robot.route.begin() + robot.grant_end, robot.route.end());
@@ -664,6 +664,18 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
         resolved = true;
         break;
       }
+    }
+    // Last resort: a way round against a one-way corridor. Robots standing where the one-way
+    // plan does not expect them (a map switch changed the corridors' directions) can face each
+    // other with no way out along the plan; driving against it is safe, as nobody enters a
+    // corridor towards a robot driving in it (place_free_for).
+    for (std::size_t k = 0; !resolved && configuration_.one_way && k < component.size(); ++k) {
+      Robot& victim = *slots_[static_cast<std::size_t>(component[k])];
+      std::vector<int> blockers;
+      for (int id : ids) {
+        if (std::find(victim.blocked_by.begin(), victim.blocked_by.end(), id) != victim.blocked_by.end()) blockers.push_back(id);
+      }
+      resolved = reroute(victim, blockers, now, out, TrafficEvent::Kind::kDeadlockResolved, true);
     }
     if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
   }

@@ -142,8 +142,10 @@ struct UpdateResult {
 /// robots waiting for it (or, failing that, off their next `siding_window` metres). The others then
 /// proceed; the yielding robot is sent back to its goal once its way back is clear of them (or
 /// after `yield_timeout`). A head-on meeting on a single-lane corridor resolves this way: one robot
-/// backs off into a branch and lets the other pass. When no member has a way out the cycle is
-/// reported (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
+/// backs off into a branch and lets the other pass. Failing both, a member is re-routed against
+/// the one-way plan (robots placed where the plan does not expect them, e.g. by a map switch,
+/// may have no other way). When no member has a way out the cycle is reported
+/// (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
 ///
 /// Robots that finish a route keep holding the place they stand on (they are still there); the
 /// server calls `hold_body` when a robot parks off the route (it keeps the places its body still
@@ -255,7 +257,8 @@ class TrafficManager {
   bool place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const;
   void extend(Robot& robot, int slot);
   bool stopped_at_grant_end(const Robot& robot) const;
-  bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind);
+  bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind,
+               bool against_one_way = false);
   bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out);
   void try_resume(Robot& robot, double now, UpdateResult& out);
   void resolve_cycles(double now, UpdateResult& out);

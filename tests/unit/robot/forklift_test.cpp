@@ -100,7 +100,7 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   const auto home = site->site.find_home("H1")->pose;
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, home, 3, 1);
   f.set_standing_pallets(pallets_of(site->site));
-  ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   // Drive until a path exists, then put a robot on it 0.6 m ahead.
   for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
   ASSERT_GE(f.path().size(), 4u);
