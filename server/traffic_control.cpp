@@ -159,9 +159,6 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
 void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim) {
   auto it = numbers_.find(robot_id);
   if (it != numbers_.end()) manager_.drop_entry(it->second);
-  // A robot the manager never knew (e.g. one only remembered from before a server restart) has
-  // no body here to keep.
-  if (it != numbers_.end() && bodies_.contains(robot_id)) bodies_[robot_id] = body;
   if (it != numbers_.end() && manager_.freeze_robot(it->second, body, now_sim)) {
     held_bodies_[robot_id] = body;
     log_->warn("traffic: {} lost; it keeps the places its body stands on ({}), the rest is freed", robot_id,
@@ -188,23 +185,18 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) { bodies_[robot_id] = body; }
 
-void TrafficControl::hold_body(const std::string& robot_id, int id, double now_sim) {
-  auto body = bodies_.find(robot_id);
-  if (body == bodies_.end()) {
-    manager_.remove_robot(id, now_sim);
-    return;
-  }
+void TrafficControl::hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim) {
   // Finding the places under a body costs a pass over every place: only when it moved.
   constexpr double kMovedM = 0.01;
   auto held = held_bodies_.find(robot_id);
-  const bool moved = held == held_bodies_.end() || held->second.size() != body->second.size() ||
-                     std::inner_product(held->second.begin(), held->second.end(), body->second.begin(), false,
+  const bool moved = held == held_bodies_.end() || held->second.size() != body.size() ||
+                     std::inner_product(held->second.begin(), held->second.end(), body.begin(), false,
                                         std::logical_or<>(), [](const geometry::Vec2& a, const geometry::Vec2& b) {
                                           return geometry::distance(a, b) > kMovedM;
                                         });
   if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return;
-  manager_.hold_body(id, body->second, now_sim);
-  held_bodies_[robot_id] = body->second;
+  manager_.hold_body(id, body, now_sim);
+  held_bodies_[robot_id] = body;
 }
 
 void TrafficControl::update(double now_sim, double now_wall) {
@@ -212,7 +204,7 @@ void TrafficControl::update(double now_sim, double now_wall) {
   // stand on, before anyone is granted more; so do lost ones (robot_lost).
   for (const auto& [robot_id, body] : bodies_) {
     const int id = number_of(robot_id);
-    if (!heard_.contains(robot_id) || manager_.frozen(id)) hold_body(robot_id, id, now_sim);
+    if (!heard_.contains(robot_id) || manager_.frozen(id)) hold_body(robot_id, id, body, now_sim);
   }
   const traffic::UpdateResult result = manager_.update(now_sim);
   for (const auto& e : result.events) {

@@ -43,8 +43,8 @@ class TrafficControl {
 
  private:
   int number_of(const std::string& robot_id);
-  /// Holds the places under the robot's last known body when it has no route (see set_body).
-  void hold_body(const std::string& robot_id, int id, double now_sim);
+  /// Holds the places under the robot's body when it has no route (see set_body).
+  void hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim);
   /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
   bool stands_at(const std::string& robot_id, int id, int point) const;
   void publish(model::TrafficGrant grant, double now_wall);

@@ -649,18 +649,27 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     });
     std::vector<int> ids;
     for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
+    // The members a robot waits for, and the members waiting for it.
+    const auto waiting = [&](const Robot& waiter, int for_id) {
+      return std::find(waiter.blocked_by.begin(), waiter.blocked_by.end(), for_id) != waiter.blocked_by.end();
+    };
+    const auto blockers_of = [&](const Robot& victim) {
+      std::vector<int> blockers;
+      for (int id : ids) {
+        if (id != victim.id && waiting(victim, id)) blockers.push_back(id);
+      }
+      return blockers;
+    };
     bool resolved = false;
     for (int s : component) {
       Robot& victim = *slots_[static_cast<std::size_t>(s)];
       // It goes round the robots it waits for, or out of the way of the robots waiting for it.
-      std::vector<int> blockers, waiters;
+      std::vector<int> waiters;
       for (int id : ids) {
-        if (id == victim.id) continue;
-        const Robot& other = robots_.at(id);
-        if (std::find(victim.blocked_by.begin(), victim.blocked_by.end(), id) != victim.blocked_by.end()) blockers.push_back(id);
-        if (std::find(other.blocked_by.begin(), other.blocked_by.end(), victim.id) != other.blocked_by.end()) waiters.push_back(id);
+        if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
       }
-      if (reroute(victim, blockers, now, out, TrafficEvent::Kind::kDeadlockResolved) || send_to_siding(victim, waiters, now, out)) {
+      if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
+          send_to_siding(victim, waiters, now, out)) {
         resolved = true;
         break;
       }
@@ -671,11 +680,7 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     // corridor towards a robot driving in it (place_free_for).
     for (std::size_t k = 0; !resolved && configuration_.one_way && k < component.size(); ++k) {
       Robot& victim = *slots_[static_cast<std::size_t>(component[k])];
-      std::vector<int> blockers;
-      for (int id : ids) {
-        if (std::find(victim.blocked_by.begin(), victim.blocked_by.end(), id) != victim.blocked_by.end()) blockers.push_back(id);
-      }
-      resolved = reroute(victim, blockers, now, out, TrafficEvent::Kind::kDeadlockResolved, true);
+      resolved = reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved, true);
     }
     if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
   }
