@@ -154,6 +154,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::map<std::int64_t, std::set<std::string>> done_by;  // order -> robots that reported DONE
 
   // A fault carried out by the server (obstacles, maps): a refusal is logged, the run goes on.
+  // The server's error, or "" when it took the command.
   auto command_server = [&client, &log](const std::string& verb, const std::string& target, const std::string& value) {
     model::Command c;
     c.verb = verb;
@@ -161,8 +162,11 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     c.value = value;
     const auto reply = client.send_command(c, std::chrono::milliseconds(3000));
     if (!reply || !reply->accepted) {
-      log->warn("{} {} {}: {}", verb, target, value, reply ? reply->error : "no reply from the server");
+      const std::string error = reply ? reply->error : "no reply from the server";
+      log->warn("{} {} {}: {}", verb, target, value, error);
+      return error;
     }
+    return std::string();
   };
   std::vector<FaultRecord> faults;
   std::size_t next_fault = 0;
@@ -275,10 +279,14 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           break;
         }
         case monitor::FaultKind::kObstacles: {
-          record.target = obstacle_ids[static_cast<std::size_t>(fault.target)];
-          auto toggle = [&command_server, id = record.target](bool on) { command_server("obstacle", id, on ? "on" : "off"); };
-          toggle(true);
-          pending.push_back({now_wall + kObstacleOnSim / options.time_scale, [toggle] { toggle(false); }});
+          // The server refuses an obstacle over a robot: the next one of the site is tried.
+          for (std::size_t k = 0; k < obstacle_ids.size() && record.target.empty(); ++k) {
+            const std::string& id = obstacle_ids[(static_cast<std::size_t>(fault.target) + k) % obstacle_ids.size()];
+            if (command_server("obstacle", id, "on").empty()) record.target = id;
+          }
+          if (record.target.empty()) continue;
+          pending.push_back({now_wall + kObstacleOnSim / options.time_scale,
+                             [&command_server, id = record.target] { command_server("obstacle", id, "off"); }});
           break;
         }
         case monitor::FaultKind::kMapSwitch: {

@@ -9,6 +9,8 @@
 #include <limits>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 
@@ -351,6 +353,13 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       error = model::unknown_name_message("obstacle", command.target, ids);
     } else if (command.value != "on" && command.value != "off") {
       error = "obstacle state '" + command.value + "' is not on or off";
+    } else if (const std::string robot_id = command.value == "on" ? robot_under(*options_.site.find_obstacle(command.target)) : "";
+               !robot_id.empty()) {
+      // A robot cannot leave an obstacle switched on over it (every way out starts inside it),
+      // and a real one cannot be where a real obstacle is.
+      const auto& pose = robots_.at(robot_id).last.pose;
+      error = fmt::format("obstacle {} covers robot {} at ({:.2f}, {:.2f}): switch it on once the robot has left", command.target,
+                          robot_id, pose.x, pose.y);
     } else {
       obstacle_enabled_[command.target] = command.value == "on";
       const auto* obstacle = options_.site.find_obstacle(command.target);
@@ -601,6 +610,13 @@ void FleetServer::handle_order_reports() {
     }
     publish_order(*book_.find(id));
   });
+}
+
+std::string FleetServer::robot_under(const map::StaticObstacle& obstacle) const {
+  for (const auto& [id, robot] : robots_) {
+    if (robot.registered && geometry::polygons_overlap(obstacle.polygon, body_of(robot))) return id;
+  }
+  return "";
 }
 
 geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {

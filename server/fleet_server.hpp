@@ -100,6 +100,8 @@ class FleetServer {
   void robot_lost(RobotEntry& robot, const std::string& why);
   /// The robot's footprint at its last reported pose.
   geometry::Polygon body_of(const RobotEntry& robot) const;
+  /// A registered robot whose last reported footprint overlaps `obstacle`, or "".
+  std::string robot_under(const map::StaticObstacle& obstacle) const;
   /// A lost robot answers again: the orders that waited for it resume when it still carries
   /// their pallet, and fail when it does not (it was restarted).
   void resume_or_fail_waiting_orders(const model::RobotState& state);

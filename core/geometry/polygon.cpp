@@ -95,6 +95,14 @@ bool convex_polygons_overlap(const Polygon& a, const Polygon& b) {
   return !has_separating_axis(a, b) && !has_separating_axis(b, a);
 }
 
+bool polygons_overlap(const Polygon& a, const Polygon& b) {
+  if (a.empty() || b.empty()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (segment_intersects_polygon(a[i], a[(i + 1) % a.size()], b)) return true;
+  }
+  return contains(a, b.front());
+}
+
 double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;
   const double len2 = dot(ab, ab);

@@ -32,6 +32,10 @@ bool segment_intersects_polygon(Vec2 a, Vec2 b, const Polygon& polygon);
 /// Overlap test for two convex polygons by the separating axis theorem.
 bool convex_polygons_overlap(const Polygon& a, const Polygon& b);
 
+/// Overlap test for any two simple polygons: an edge of one crosses an edge of the other, or one
+/// lies inside the other.
+bool polygons_overlap(const Polygon& a, const Polygon& b);
+
 /// Distance from `p` to the closed segment ab.
 double point_segment_distance(Vec2 p, Vec2 a, Vec2 b);
 

@@ -75,7 +75,9 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         return o;
       }()),
       road_(config.route_graph ? *config.route_graph : site_->graph.graph),
-      routes_(road_, grid_astar_) {
+      routes_(road_, grid_astar_),
+      two_way_road_(site_->graph.graph),
+      two_way_routes_(two_way_road_, grid_astar_) {
   reset_obstacles();
   sim_.warm_up(1.0, step_period());
   // Route versions must grow across restarts of the agent too, or the traffic manager, which
@@ -102,6 +104,7 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
   reset_obstacles();
   // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
   road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
+  two_way_road_ = planning::RoadPlanner(site_->graph.graph);
   grid_revision_ = std::numeric_limits<std::uint64_t>::max();  // hand the new grid to the planners
   seen_free_.clear();
   // The old map's route means nothing to the traffic manager of the new one.
@@ -401,6 +404,7 @@ void Forklift::answer_plan_requests() {
     // Planners cache on the grid: hand them the new one only when an obstacle changed.
     auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
     road_.set_obstacles(*grid);
+    if (config_.route_graph) two_way_road_.set_obstacles(*grid);
     grid_astar_.set_grid(grid);
     grid_revision_ = static_grid_.revision();
   }
@@ -412,7 +416,11 @@ void Forklift::answer_plan_requests() {
     executor_.path_received(request->id, planning::poses_along(path_));
     return;
   }
-  const planning::Route route = routes_.plan(sim_.estimate(), request->goal);
+  planning::Route route = routes_.plan(sim_.estimate(), request->goal);
+  if (config_.route_graph && route.status != planning::PlanStatus::kFound) {
+    planning::Route both_ways = two_way_routes_.plan(sim_.estimate(), request->goal);
+    if (both_ways.status == planning::PlanStatus::kFound) route = std::move(both_ways);
+  }
   if (route.status == planning::PlanStatus::kFound && route.points.size() >= 2) {
     adopt_path(route);
     executor_.path_received(request->id, planning::poses_along(route.points));

@@ -186,6 +186,11 @@ class Forklift {
   planning::RoadPlanner road_;
   planning::GridAStar grid_astar_;
   planning::RoutePlanner routes_;
+  // Under traffic control routes_ plans on the one-way graph; when a static obstacle closes every
+  // way along it, the robot plans on the site's graph in both directions (the traffic manager
+  // keeps opposite directions apart in a corridor).
+  planning::RoadPlanner two_way_road_;
+  planning::RoutePlanner two_way_routes_;
   std::uint64_t grid_revision_ = 0;
   std::vector<Neighbour> neighbours_;
   std::map<std::string, bool> obstacles_;

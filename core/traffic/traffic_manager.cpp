@@ -125,15 +125,31 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
 }
 
 std::vector<int> TrafficManager::places_under(const geometry::Polygon& body) const {
+  // Every place whose region the body touches; but when one region holds the whole body (a robot
+  // standing on the road), that place alone: whatever touches the body conflicts with it anyway,
+  // and the wider set would close the road to a robot standing close behind or ahead.
   std::vector<int> under;
+  int holding = -1;
+  double holding_distance = kInfinity;
+  geometry::Vec2 centre{};
+  for (const auto& corner : body) centre = centre + (1.0 / static_cast<double>(body.size())) * corner;
   for (std::size_t p = 0; p < zones_->place_count(); ++p) {
-    for (const auto& region : zones_->region(static_cast<int>(p))) {
-      if (geometry::convex_polygons_distance(region, body) <= 0.0) {
-        under.push_back(static_cast<int>(p));
-        break;
-      }
+    const auto& region = zones_->region(static_cast<int>(p));
+    const bool touches = std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) {
+      return geometry::convex_polygons_distance(piece, body) <= 0.0;
+    });
+    if (!touches) continue;
+    under.push_back(static_cast<int>(p));
+    const bool holds = std::all_of(body.begin(), body.end(), [&](const geometry::Vec2& corner) {
+      return std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
+    });
+    const double d = geometry::distance(zones_->position(static_cast<int>(p)), centre);
+    if (holds && d < holding_distance) {
+      holding = static_cast<int>(p);
+      holding_distance = d;
     }
   }
+  if (holding >= 0) return {holding};
   return under;
 }
 

@@ -44,6 +44,16 @@ TEST(Polygon, ConvexOverlapBySeparatingAxes) {
                                        footprint_polygon({0.15, -0.15, 0.785}, {0.4, 0.02})));
 }
 
+TEST(Polygon, AnyPolygonsOverlapByCrossingEdgesOrContainment) {
+  // An L whose notch is the square [1,2] x [1,2].
+  const Polygon ell{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  EXPECT_FALSE(polygons_overlap(ell, footprint_polygon({1.5, 1.5, 0}, {0.5, 0.5})));  // in the notch
+  EXPECT_TRUE(polygons_overlap(ell, footprint_polygon({1.5, 0.9, 0}, {0.5, 0.5})));   // across an edge
+  EXPECT_TRUE(polygons_overlap(ell, footprint_polygon({0.5, 0.5, 0}, {0.2, 0.2})));   // inside it
+  EXPECT_TRUE(polygons_overlap(footprint_polygon({0.5, 0.5, 0}, {0.2, 0.2}), ell));   // it inside
+  EXPECT_FALSE(polygons_overlap(ell, {}));
+}
+
 TEST(Polygon, ConvexDistanceIsTheGapOrZero) {
   const Polygon a = footprint_polygon({0, 0, 0}, {0.25, 0.16});
   EXPECT_NEAR(convex_polygons_distance(a, footprint_polygon({0.35, 0.0, 0.0}, {0.25, 0.16})), 0.10, 1e-12);

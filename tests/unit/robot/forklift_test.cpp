@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "traffic/one_way.hpp"
+
 using namespace fleet;
 using robot::ForkliftEvent;
 
@@ -118,6 +120,33 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
     const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
     ASSERT_FALSE(geometry::convex_polygons_overlap(mine, geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16})));
   }
+}
+
+TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
+  // From the top-left block the one-way plan of table_a leads east along the top road and down
+  // the east ring, through O4; the ways round drive the cross's north arm south and the east
+  // ring north, against their direction.
+  const auto site = table_a();
+  robot::ForkliftConfig config = robot::ForkliftConfig::defaults();
+  config.traffic = true;
+  const traffic::ConflictZones zones(site->graph.graph);
+  config.route_graph = std::make_shared<const map::RoadGraph>(traffic::one_way_plan(site->graph.graph, zones).graph);
+  robot::Forklift f(config, site, site->site.find_home("H4")->pose, 5, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  f.set_obstacle("O4", true);
+  ASSERT_TRUE(f.submit(order_between(site->site, "A4", "A1"), nullptr));
+  for (int i = 0; i < 400 && f.path().size() < 2; ++i) f.step();
+  ASSERT_GE(f.path().size(), 2u) << f.detail();
+  const auto o4 = site->site.find_obstacle("O4")->polygon;
+  bool through_o4 = false, up_the_east_ring = false;
+  for (std::size_t i = 1; i < f.path().size(); ++i) {
+    through_o4 = through_o4 || geometry::segment_intersects_polygon(f.path()[i - 1], f.path()[i], o4);
+    up_the_east_ring = up_the_east_ring || (f.path()[i].x > 2.5 && f.path()[i].y > f.path()[i - 1].y + 1e-6);
+  }
+  EXPECT_FALSE(through_o4);
+  EXPECT_TRUE(up_the_east_ring);
+  const auto& a4 = site->site.find_area("A4")->pose;
+  EXPECT_LT(geometry::distance(f.path().back(), a4.position()), 0.45);
 }
 
 TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
