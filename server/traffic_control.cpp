@@ -75,13 +75,22 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
     }
     const int id = number_of(request.robot_id);
     if (request.points.empty()) {
-      // Parked beside the road (home, or done): it holds nothing any more. (Its body may still
-      // touch a place's conservative region; passing robots keep their distance by the agents'
-      // safety check, as homes are laid out clear of the lanes.)
+      // Off the roads. Working at a loading area its body still reaches onto the lane: it holds
+      // the places its body touches, so nobody is granted up to it (a robot stopped there by the
+      // agents' safety check would hold the entry it needs to leave by). Parked at a home, clear
+      // of the lanes, it holds nothing.
       manager_.drop_entry(id);
-      if (manager_.remove_robot(id, now_sim)) log_->debug("{} left the roads", request.robot_id);
-      held_bodies_.erase(request.robot_id);
       status_.erase(request.robot_id);
+      const bool was_on_roads = manager_.remove_robot(id, now_sim);
+      const auto body = bodies_.find(request.robot_id);
+      if (body != bodies_.end() && manager_.hold_body(id, body->second, now_sim)) {
+        held_bodies_[request.robot_id] = body->second;
+        log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
+                    manager_.held_places(id).size());
+      } else {
+        held_bodies_.erase(request.robot_id);
+        if (was_on_roads) log_->debug("{} left the roads", request.robot_id);
+      }
       return;
     }
     const bool standing = manager_.frozen(id);

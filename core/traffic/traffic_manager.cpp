@@ -105,11 +105,13 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   const int start = zones_->place_of(points.front());
   if (!std::binary_search(held.begin(), held.end(), start)) return SubmitStatus::kInvalid;
   held.erase(std::remove(held.begin(), held.end(), start), held.end());
+  const bool was_standing = robot.frozen;
   install_route(robot, points, request.version);
   robot.trail = std::move(held);
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
+  if (was_standing) pull_back_grants_into(robot);
   return SubmitStatus::kAccepted;
 }
 
@@ -153,6 +155,30 @@ std::vector<int> TrafficManager::places_under(const geometry::Polygon& body) con
   return under;
 }
 
+void TrafficManager::pull_back_grants_into(const Robot& standing) {
+  // A robot holds where it stands without being granted it (it was standing there when the
+  // manager learnt of it, or it came back onto the road it stood at), so another robot may
+  // have been granted places in conflict with it. Those grants end before the first such place
+  // the other robot has not reached; without this, a follower granted up to a robot standing
+  // ahead of it and that robot waited for each other for good.
+  const std::vector<int> held = held_places(standing.id);
+  for (auto& [id, other] : robots_) {
+    if (id == standing.id || other.frozen) continue;
+    // The places it stands in: up to the one it is driving into.
+    int reached = other.first_held;
+    while (reached < other.grant_end && other.cum[static_cast<std::size_t>(reached)] + 1e-6 < other.progress) ++reached;
+    for (int k = reached + 1; k <= other.grant_end; ++k) {
+      const int p = other.places[static_cast<std::size_t>(k)];
+      const bool conflicts = std::any_of(held.begin(), held.end(), [&](int q) { return zones_->conflict(p, q); });
+      if (!conflicts) continue;
+      int end = k - 1;
+      while (end > reached && !zones_->stoppable(other.places[static_cast<std::size_t>(end)])) --end;
+      other.grant_end = end;
+      break;
+    }
+  }
+}
+
 void TrafficManager::stand(Robot& robot, const std::vector<int>& under) {
   int anchor = -1;
   for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
@@ -166,6 +192,7 @@ void TrafficManager::stand(Robot& robot, const std::vector<int>& under) {
   robot.frozen = true;
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
+  pull_back_grants_into(robot);
 }
 
 bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {

@@ -248,6 +248,7 @@ class TrafficManager {
   void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);
   std::vector<int> places_under(const geometry::Polygon& body) const;
   void stand(Robot& robot, const std::vector<int>& under);
+  void pull_back_grants_into(const Robot& standing);
   void replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now);
   void release_passed(Robot& robot);
   int direction_at(const Robot& robot, int index) const;

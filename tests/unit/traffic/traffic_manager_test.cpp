@@ -208,6 +208,38 @@ TEST(TrafficManager, FrozenRobotKeepsThePlacesUnderItsBodyAndIsGrantedNothingMor
   EXPECT_FALSE(m.freeze_robot(99, {}, 6.0));
 }
 
+TEST(TrafficManager, AGrantIntoARobotThatTurnsUpStandingIsPulledBack) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficManager m(b.graph());
+  ASSERT_EQ(m.submit_route({1, 2, road}, 0.0), SubmitStatus::kAccepted);
+  UpdateResult r = m.update(0.0);
+  const double first_grant = grant_of(r, 1)->granted_distance;
+  ASSERT_GE(first_grant, 0.6);
+  m.report_progress({1, 2, 0.2}, 0.05);
+  // Robot 7 turns up standing at 0.9 m, inside what robot 1 was granted (it came back onto the
+  // road it stood at): robot 1's grant ends short of it, and no one holds a place in conflict
+  // with another's.
+  ASSERT_TRUE(m.hold_body(7, geometry::footprint_polygon({0.9, 0.0, 0.0}, geometry::Footprint{}), 0.1));
+  EXPECT_EQ(m.check_invariant(), "");
+  r = m.update(0.1);
+  EXPECT_LT(grant_of(r, 1)->granted_distance, first_grant);
+  EXPECT_GE(grant_of(r, 1)->granted_distance, 0.2);
+  // Robot 7 drives off along the road; robot 1 follows it past where it stood.
+  const std::vector<int> away(road.begin() + (point_at(b.graph(), 0.9, 0.0) - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({7, 2, away}, 0.1), SubmitStatus::kAccepted);
+  double t = 0.1, d1 = 0.2, d7 = 0.0;
+  for (int i = 0; i < 600 && d1 < 1.2; ++i, t += 0.05) {
+    r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    if (const Grant* g7 = grant_of(r, 7)) d7 = std::min(g7->granted_distance, d7 + 0.01);
+    if (const Grant* g1 = grant_of(r, 1)) d1 = std::min(g1->granted_distance, d1 + 0.01);
+    m.report_progress({7, 2, d7}, t);
+    m.report_progress({1, 2, d1}, t);
+  }
+  EXPECT_GE(d1, 1.2);
+}
+
 TEST(TrafficManager, AStandingBodyIsNotDrivenIntoAndEntersWhereItStands) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 3.0, 0.0);
