@@ -664,8 +664,11 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     const std::int64_t id = it->first;
     it = awaiting_lost_robot_.erase(it);
     if (orders::is_final(order->status)) continue;
-    if (state.order_id == id && state.carrying_pallet) {
-      log_->info("order {} resumes: robot {} is back with its pallet", id, state.robot_id);
+    if (state.order_id == id) {
+      // Its software still runs the order: the pallet is on its forks, or it was put down at the
+      // drop area as the robot froze and the DONE report follows.
+      log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
+                 state.carrying_pallet ? "pallet on its forks" : "pallet put down at the drop area");
     } else {
       // Restarted: its software forgot the order, and the pallet is not on its forks.
       fail_with_pallet(id, "robot " + state.robot_id + " came back without the order's pallet (restarted)");
