@@ -82,14 +82,13 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       manager_.drop_entry(id);
       status_.erase(request.robot_id);
       const bool was_on_roads = manager_.remove_robot(id, now_sim);
+      held_bodies_.erase(request.robot_id);  // held anew from where it stands now
       const auto body = bodies_.find(request.robot_id);
-      if (body != bodies_.end() && manager_.hold_body(id, body->second, now_sim)) {
-        held_bodies_[request.robot_id] = body->second;
+      if (body != bodies_.end() && hold_body(request.robot_id, id, body->second, now_sim)) {
         log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
                     manager_.held_places(id).size());
-      } else {
-        held_bodies_.erase(request.robot_id);
-        if (was_on_roads) log_->debug("{} left the roads", request.robot_id);
+      } else if (was_on_roads) {
+        log_->debug("{} left the roads", request.robot_id);
       }
       return;
     }
@@ -194,7 +193,7 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) { bodies_[robot_id] = body; }
 
-void TrafficControl::hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim) {
+bool TrafficControl::hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim) {
   // Finding the places under a body costs a pass over every place: only when it moved.
   constexpr double kMovedM = 0.01;
   auto held = held_bodies_.find(robot_id);
@@ -203,9 +202,9 @@ void TrafficControl::hold_body(const std::string& robot_id, int id, const geomet
                                         std::logical_or<>(), [](const geometry::Vec2& a, const geometry::Vec2& b) {
                                           return geometry::distance(a, b) > kMovedM;
                                         });
-  if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return;
-  manager_.hold_body(id, body, now_sim);
+  if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return manager_.frozen(id);
   held_bodies_[robot_id] = body;
+  return manager_.hold_body(id, body, now_sim);
 }
 
 void TrafficControl::update(double now_sim, double now_wall) {

@@ -148,11 +148,13 @@ struct UpdateResult {
 /// (kUnresolvedDeadlock) and retried every cycle as the robots around it move.
 ///
 /// Robots that finish a route keep holding the place they stand on (they are still there); the
-/// server calls `hold_body` when a robot parks off the route (it keeps the places its body still
-/// overlaps, none when it parks clear of the roads) and `freeze_robot` when it is lost: its body
-/// still blocks where it stood. Places held for a body may conflict with another robot's (robots
-/// may stand closer than the zones' margins, e.g. when the manager starts among them); grants
-/// never add such a conflict, so it only clears.
+/// server calls `hold_body` when a robot leaves the roads (working at a loading area its body
+/// still reaches the lane; parked clear of the roads it holds nothing) and `freeze_robot` when it
+/// is lost: its body still blocks where it stood. A body on a road holds the one place whose
+/// region holds it whole, else every place it touches. Places held for a body may conflict with
+/// another robot's (robots may stand closer than the zones' margins, e.g. when the manager starts
+/// among them): grants of others into them are then pulled back to before the first such place
+/// not yet reached, and grants never add such a conflict, so it only clears.
 ///
 /// Deterministic: no clocks, no randomness; time is passed in. Not thread-safe.
 class TrafficManager {
@@ -162,7 +164,8 @@ class TrafficManager {
   /// A new route for a robot (a new robot enters at the route's first point: check
   /// holders_in_conflict() first, entering is not checked here). The first point must
   /// be a place the robot holds; the places it held behind that point stay held until it has
-  /// driven past the first edge's midpoint.
+  /// driven past the first edge's midpoint. A standing robot's new route pulls back others'
+  /// grants into what it holds, as hold_body does.
   SubmitStatus submit_route(const RouteRequest& request, double now);
   /// Progress on the current route version; other versions are ignored. Clamped to the grant.
   void report_progress(const ProgressReport& report, double now);
@@ -170,13 +173,13 @@ class TrafficManager {
   /// False for unknown ids.
   bool remove_robot(int robot_id, double now);
   /// The robot stopped answering (lost): its body still stands where it was last seen, so it
-  /// keeps exactly the places whose regions its footprint `body` overlaps (none when it stood
+  /// keeps only the places under its footprint `body` (see the class comment; none when it stood
   /// beside the roads: then it is removed) and gives up the rest. It is granted nothing more
   /// until it reports progress or a new route again. False for unknown ids.
   bool freeze_robot(int robot_id, const geometry::Polygon& body, double now);
-  /// A robot standing without a route — parked, or not yet admitted (the manager just started
-  /// after a map switch or a server restart) — holds the places its footprint `body` overlaps,
-  /// like a frozen robot, so no robot is granted into it. Unknown robots are added; a robot on a
+  /// A robot standing without a route — off the roads at a loading area, or not yet admitted (the
+  /// manager just started after a map switch or a server restart) — holds the places under its
+  /// footprint `body`, like a frozen robot, so no robot is granted into it. Unknown robots are added; a robot on a
   /// route is left alone (false). When `body` overlaps no place the robot is removed (false).
   /// A standing robot that sends a route starting at a place under it enters there at once
   /// (submit_route): it is already there.
