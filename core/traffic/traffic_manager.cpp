@@ -41,8 +41,10 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
   check_positive(configuration.reroute_wait, "reroute_wait");
   check_positive(configuration.yield_timeout, "yield_timeout");
   check_positive(configuration.siding_window, "siding_window");
-  if (!(configuration.release_margin >= 0.0)) throw std::invalid_argument("traffic configuration: release_margin must be >= 0");
-  if (!(configuration.stop_tolerance >= 0.0)) throw std::invalid_argument("traffic configuration: stop_tolerance must be >= 0");
+  if (!(configuration.release_margin >= 0.0))
+    throw std::invalid_argument("traffic configuration: release_margin must be >= 0");
+  if (!(configuration.stop_tolerance >= 0.0))
+    throw std::invalid_argument("traffic configuration: stop_tolerance must be >= 0");
   zones_ = std::make_unique<ConflictZones>(graph_, configuration.resources);
   search_ = std::make_unique<RouteSearch>(graph_, *zones_);
   if (configuration.one_way) one_way_ = one_way_plan(graph_, *zones_);
@@ -59,7 +61,8 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.cum.assign(n, 0.0);
   robot.release_at.assign(n, kInfinity);
   for (std::size_t i = 0; i < n; ++i) robot.places[i] = zones_->place_of(robot.route[i]);
-  for (std::size_t i = 1; i < n; ++i) robot.cum[i] = robot.cum[i - 1] + search_->edge_length(robot.route[i - 1], robot.route[i]);
+  for (std::size_t i = 1; i < n; ++i)
+    robot.cum[i] = robot.cum[i - 1] + search_->edge_length(robot.route[i - 1], robot.route[i]);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     robot.release_at[i] = robot.cum[i] + 0.5 * (robot.cum[i + 1] - robot.cum[i]) + configuration_.release_margin;
   }
@@ -111,7 +114,11 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
-  if (was_standing) pull_back_grants_into(robot);
+  if (was_standing) {
+    pull_back_grants_into(robot);
+  } else {
+    robot.body_reach.clear();
+  }
   return SubmitStatus::kAccepted;
 }
 
@@ -126,7 +133,7 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
 }
 
-std::vector<int> TrafficManager::places_under(const geometry::Polygon& body) const {
+std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, std::vector<int>* touched) const {
   // Every place whose region the body touches; but when one region holds the whole body (a robot
   // standing on the road), that place alone: whatever touches the body conflicts with it anyway,
   // and the wider set would close the road to a robot standing close behind or ahead.
@@ -142,8 +149,10 @@ std::vector<int> TrafficManager::places_under(const geometry::Polygon& body) con
     });
     if (!touches) continue;
     under.push_back(static_cast<int>(p));
+    if (touched) touched->push_back(static_cast<int>(p));
     const bool holds = std::all_of(body.begin(), body.end(), [&](const geometry::Vec2& corner) {
-      return std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
+      return std::any_of(region.begin(), region.end(),
+                         [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
     });
     const double d = geometry::distance(zones_->position(static_cast<int>(p)), centre);
     if (holds && d < holding_distance) {
@@ -161,7 +170,6 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
   // have been granted places in conflict with it. Those grants end before the first such place
   // the other robot has not reached; without this, a follower granted up to a robot standing
   // ahead of it and that robot waited for each other for good.
-  const std::vector<int> held = held_places(standing.id);
   for (auto& [id, other] : robots_) {
     if (id == standing.id || other.frozen) continue;
     // The places it stands in: up to the one it is driving into.
@@ -169,8 +177,7 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
     while (reached < other.grant_end && other.cum[static_cast<std::size_t>(reached)] + 1e-6 < other.progress) ++reached;
     for (int k = reached + 1; k <= other.grant_end; ++k) {
       const int p = other.places[static_cast<std::size_t>(k)];
-      const bool conflicts = std::any_of(held.begin(), held.end(), [&](int q) { return zones_->conflict(p, q); });
-      if (!conflicts) continue;
+      if (!closes(standing, p)) continue;
       int end = k - 1;
       while (end > reached && !zones_->stoppable(other.places[static_cast<std::size_t>(end)])) --end;
       other.grant_end = end;
@@ -179,7 +186,7 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
   }
 }
 
-void TrafficManager::stand(Robot& robot, const std::vector<int>& under) {
+void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vector<int> touched) {
   int anchor = -1;
   for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
     if (zones_->place_of(static_cast<int>(point)) == under.front()) anchor = static_cast<int>(point);
@@ -192,22 +199,36 @@ void TrafficManager::stand(Robot& robot, const std::vector<int>& under) {
   robot.frozen = true;
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
+  robot.body_reach = std::move(touched);
   pull_back_grants_into(robot);
+}
+
+bool TrafficManager::under_body(const Robot& robot, int place) const {
+  return std::binary_search(robot.body_reach.begin(), robot.body_reach.end(), place);
+}
+
+bool TrafficManager::closes(const Robot& holder, int place) const {
+  if (under_body(holder, place)) return true;
+  const std::vector<int> held = held_places(holder.id);
+  return std::any_of(held.begin(), held.end(),
+                     [&](int q) { return !under_body(holder, q) && zones_->conflict(place, q); });
 }
 
 bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {
   auto it = robots_.find(robot_id);
   if (it == robots_.end()) return false;
-  const std::vector<int> under = places_under(body);
+  std::vector<int> touched;
+  const std::vector<int> under = places_under(body, &touched);
   if (under.empty()) return remove_robot(robot_id, now);
-  stand(it->second, under);
+  stand(it->second, under, std::move(touched));
   return true;
 }
 
 bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, double now) {
   auto it = robots_.find(robot_id);
   if (it != robots_.end() && !it->second.frozen) return false;
-  const std::vector<int> under = places_under(body);
+  std::vector<int> touched;
+  const std::vector<int> under = places_under(body, &touched);
   if (under.empty()) {
     if (it != robots_.end()) remove_robot(robot_id, now);
     return false;
@@ -216,10 +237,10 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
     Robot robot;
     robot.id = robot_id;
     it = robots_.emplace(robot_id, std::move(robot)).first;
-  } else if (held_places(robot_id) == under) {
+  } else if (held_places(robot_id) == under && it->second.body_reach == touched) {
     return true;
   }
-  stand(it->second, under);
+  stand(it->second, under, std::move(touched));
   return true;
 }
 
@@ -233,10 +254,14 @@ bool TrafficManager::remove_robot(int robot_id, double now) {
 }
 
 void TrafficManager::release_passed(Robot& robot) {
-  while (robot.first_held < robot.grant_end && robot.progress > robot.release_at[static_cast<std::size_t>(robot.first_held)]) {
+  while (robot.first_held < robot.grant_end &&
+         robot.progress > robot.release_at[static_cast<std::size_t>(robot.first_held)]) {
     ++robot.first_held;
   }
-  if (!robot.trail.empty() && robot.progress > robot.trail_release) robot.trail.clear();
+  if (robot.progress > robot.trail_release) {
+    robot.trail.clear();
+    robot.body_reach.clear();
+  }
 }
 
 std::vector<int> TrafficManager::robot_ids() const {
@@ -267,20 +292,16 @@ void TrafficManager::claim_entry(int robot_id, int point, double now) {
   }
 }
 
-void TrafficManager::drop_entry(int robot_id) { entries_.erase(robot_id); }
+void TrafficManager::drop_entry(int robot_id) {
+  entries_.erase(robot_id);
+}
 
 std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
   std::vector<int> out;
   if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;
   const int place = zones_->place_of(point);
   for (const auto& [id, robot] : robots_) {
-    if (id == robot_id) continue;
-    for (int held : held_places(id)) {
-      if (zones_->conflict(place, held)) {
-        out.push_back(id);
-        break;
-      }
-    }
+    if (id != robot_id && closes(robot, place)) out.push_back(id);
   }
   return out;
 }
@@ -298,28 +319,42 @@ std::uint32_t TrafficManager::version(int robot_id) const {
 
 std::string TrafficManager::check_invariant() const {
   // Conflicts are symmetric: checking each robot's places against the regions of the robots
-  // before it finds every conflicting pair in robots x places x conflict-set size.
-  std::vector<int> covered_by(zones_->place_count(), -1);
+  // before it finds every conflicting pair in robots x places x conflict-set size. A body the
+  // robot stands with (body_reach) closes the places it touches; two such bodies may stand
+  // close, which no grant made.
+  std::vector<int> conflicting(zones_->place_count(), -1), held_by(zones_->place_count(), -1),
+      body_of(zones_->place_count(), -1);
+  auto report = [](int id, int p, int other) {
+    std::ostringstream out;
+    out << "robot " << id << " holds place " << p << ", which conflicts with a place robot " << other << " holds";
+    return out.str();
+  };
   for (const auto& [id, robot] : robots_) {
     const std::vector<int> held = held_places(id);
     for (int p : held) {
-      const int other = covered_by[static_cast<std::size_t>(p)];
-      if (other >= 0) {
-        std::ostringstream out;
-        out << "robot " << id << " holds place " << p << ", which conflicts with a place robot " << other << " holds";
-        return out.str();
-      }
+      if (under_body(robot, p)) continue;
+      const auto sp = static_cast<std::size_t>(p);
+      if (conflicting[sp] >= 0) return report(id, p, conflicting[sp]);
+      if (body_of[sp] >= 0) return report(id, p, body_of[sp]);
+    }
+    for (int p : robot.body_reach) {
+      if (held_by[static_cast<std::size_t>(p)] >= 0) return report(id, p, held_by[static_cast<std::size_t>(p)]);
     }
     for (int p : held) {
-      for (int q : zones_->conflicts(p)) covered_by[static_cast<std::size_t>(q)] = id;
+      if (under_body(robot, p)) continue;
+      held_by[static_cast<std::size_t>(p)] = id;
+      for (int q : zones_->conflicts(p)) conflicting[static_cast<std::size_t>(q)] = id;
     }
+    for (int p : robot.body_reach) body_of[static_cast<std::size_t>(p)] = id;
   }
   return {};
 }
 
 // ---- occupancy --------------------------------------------------------------------------------------
 
-int TrafficManager::direction_at(const Robot& robot, int index) const { return direction_in(*zones_, robot.places, index); }
+int TrafficManager::direction_at(const Robot& robot, int index) const {
+  return direction_in(*zones_, robot.places, index);
+}
 
 int TrafficManager::next_stretch_end(const Robot& robot) const {
   const int last = static_cast<int>(robot.route.size()) - 1;
@@ -334,7 +369,11 @@ void TrafficManager::mark(const Robot& robot, int slot, int index) {
   const std::uint64_t bit = std::uint64_t{1} << (slot % 64);
   const std::size_t word = static_cast<std::size_t>(slot / 64);
   const int p = robot.places[static_cast<std::size_t>(index)];
-  for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + word] |= bit;
+  if (under_body(robot, p)) {
+    occupancy_[static_cast<std::size_t>(p) * words_ + word] |= bit;
+  } else {
+    for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + word] |= bit;
+  }
   const int d = direction_at(robot, index);
   const int c = zones_->corridor(p);
   if (d != 0) {
@@ -368,8 +407,10 @@ void TrafficManager::rebuild_occupancy() {
     const std::uint64_t bit = std::uint64_t{1} << (s % 64);
     for (int k = robot.first_held; k <= robot.grant_end; ++k) mark(robot, static_cast<int>(s), k);
     for (int p : robot.trail) {
+      if (under_body(robot, p)) continue;
       for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + s / 64] |= bit;
     }
+    for (int p : robot.body_reach) occupancy_[static_cast<std::size_t>(p) * words_ + s / 64] |= bit;
   }
   // Entry claims of robots waiting beside the roads longer than priority_wait.
   entry_closed_.assign(zones_->place_count(), 0);
@@ -387,7 +428,9 @@ void TrafficManager::rebuild_occupancy() {
       claimants.push_back(static_cast<int>(s));
     }
   }
-  std::sort(claimants.begin(), claimants.end(), [&](int a, int b) { return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]); });
+  std::sort(claimants.begin(), claimants.end(), [&](int a, int b) {
+    return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
+  });
   for (int s : claimants) {
     const Robot& robot = *slots_[static_cast<std::size_t>(s)];
     const int end = next_stretch_end(robot);
@@ -411,7 +454,8 @@ bool TrafficManager::higher_priority(const Robot& a, const Robot& b) const {
 
 // Robots that keep robot `slot` out of `places[index]`: holders of conflicting places, robots in
 // the same corridor driving the other way, and reservations of older waiting robots.
-bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const {
+bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, int index,
+                                    std::vector<int>& blockers) const {
   const std::size_t before = blockers.size();
   const int p = places[static_cast<std::size_t>(index)];
   const auto own_word = static_cast<std::size_t>(slot / 64);
@@ -445,7 +489,8 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
   }
   // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
   const int claimant = claim_place_[static_cast<std::size_t>(p)];
-  if (claimant >= 0 && (index == 0 || claim_place_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] != claimant)) {
+  if (claimant >= 0 &&
+      (index == 0 || claim_place_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] != claimant)) {
     claimed_by(claimant);
   }
   // Head-on: someone in this corridor driving the other way, ahead of this place (robots driving
@@ -523,7 +568,8 @@ std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int
     int end = o.grant_end;
     if (with_next_stretch) end = std::max(end, next_stretch_end(o));
     for (int k = o.first_held; k <= end; ++k) add(o.places[static_cast<std::size_t>(k)]);
-    for (int k = o.first_held; k < static_cast<int>(o.route.size()) && o.cum[static_cast<std::size_t>(k)] <= o.progress + window; ++k) {
+    for (int k = o.first_held;
+         k < static_cast<int>(o.route.size()) && o.cum[static_cast<std::size_t>(k)] <= o.progress + window; ++k) {
       add(o.places[static_cast<std::size_t>(k)]);
     }
   }
@@ -593,7 +639,8 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
     auto avoid = places_of_others(others, true, window);
     for (std::size_t p = 0; p < avoid.size(); ++p) avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p]);
     path = search_->nearest(
-        anchor, [&](int place) { return zones_->stoppable(place) && avoid[static_cast<std::size_t>(place)] == 0; }, &through);
+        anchor, [&](int place) { return zones_->stoppable(place) && avoid[static_cast<std::size_t>(place)] == 0; },
+        &through);
     if (path.size() >= 2) break;
   }
   if (path.size() < 2) return false;
@@ -742,7 +789,9 @@ UpdateResult TrafficManager::update(double now) {
 
   std::vector<int> order(slots_.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]); });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
+  });
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
     extend(robot, s);

@@ -246,11 +246,19 @@ class TrafficManager {
     std::vector<int> yield_to;
     double siding_arrival = -1.0;
     bool frozen = false;  ///< lost: holds where it stands, granted nothing more (freeze_robot)
+    /// While it holds where its body stands (standing, or not yet past the first edge of the
+    /// route it sent from there): the places whose regions touch that body, sorted. A held place
+    /// among them closes only itself, not the places in conflict with it: another robot may drive
+    /// wherever its footprint stays clear of the body (the body is not a place's whole region).
+    std::vector<int> body_reach;
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);
-  std::vector<int> places_under(const geometry::Polygon& body) const;
-  void stand(Robot& robot, const std::vector<int>& under);
+  std::vector<int> places_under(const geometry::Polygon& body, std::vector<int>* touched = nullptr) const;
+  void stand(Robot& robot, const std::vector<int>& under, std::vector<int> touched);
+  bool under_body(const Robot& robot, int place) const;
+  /// Whether `holder` keeps other robots out of `place`.
+  bool closes(const Robot& holder, int place) const;
   void pull_back_grants_into(const Robot& standing);
   void replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now);
   void release_passed(Robot& robot);
@@ -266,7 +274,8 @@ class TrafficManager {
   bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out);
   void try_resume(Robot& robot, double now, UpdateResult& out);
   void resolve_cycles(double now, UpdateResult& out);
-  std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch, double window) const;
+  std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch,
+                                             double window) const;
   bool first_stretch_free(const std::vector<int>& points, int slot) const;
   int slot_of(int robot_id) const;
   bool higher_priority(const Robot& a, const Robot& b) const;
@@ -274,13 +283,13 @@ class TrafficManager {
   TrafficConfiguration configuration_;
   map::RoadGraph graph_;
   std::unique_ptr<ConflictZones> zones_;
-  std::unique_ptr<RouteSearch> search_;        ///< on the full graph: sidings may back up
+  std::unique_ptr<RouteSearch> search_;  ///< on the full graph: sidings may back up
   OneWayPlan one_way_;
   std::unique_ptr<RouteSearch> route_search_;  ///< on route_graph(): re-routes and returns
-  std::map<int, Robot> robots_;  ///< ordered by id: deterministic iteration
-  std::vector<Robot*> slots_;    ///< robots by slot (position in id order), rebuilt each update
-  double now_ = 0.0;             ///< time of the update in progress
-  std::vector<TrafficEvent> removed_;  ///< removals since the last update, reported by it
+  std::map<int, Robot> robots_;                ///< ordered by id: deterministic iteration
+  std::vector<Robot*> slots_;                  ///< robots by slot (position in id order), rebuilt each update
+  double now_ = 0.0;                           ///< time of the update in progress
+  std::vector<TrafficEvent> removed_;          ///< removals since the last update, reported by it
 
   /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
   struct CorridorSpan {
@@ -297,13 +306,13 @@ class TrafficManager {
   std::size_t words_ = 1;
   std::vector<std::uint64_t> occupancy_;
   std::vector<std::vector<CorridorSpan>> spans_;  ///< by corridor
-  std::vector<int> claim_place_;  ///< slot of the waiting robot that reserved the place, -1 when none
+  std::vector<int> claim_place_;                  ///< slot of the waiting robot that reserved the place, -1 when none
   struct EntryClaim {
     int place = 0;
     double since = 0.0;
   };
-  std::map<int, EntryClaim> entries_;         ///< robots waiting beside the roads, by id
-  std::vector<std::uint8_t> entry_closed_;    ///< places closed by an active entry claim
+  std::map<int, EntryClaim> entries_;       ///< robots waiting beside the roads, by id
+  std::vector<std::uint8_t> entry_closed_;  ///< places closed by an active entry claim
 };
 
 }  // namespace fleet::traffic

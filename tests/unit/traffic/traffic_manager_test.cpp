@@ -1,10 +1,11 @@
+#include "traffic/traffic_manager.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "test_graphs.hpp"
 #include "map/site_map.hpp"
-#include "traffic/traffic_manager.hpp"
+#include "test_graphs.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace fleet::traffic {
@@ -67,7 +68,8 @@ TEST(TrafficManager, ThreeRobotCycleAtACrossingIsBroken) {
 
 TEST(TrafficManager, CrossingTrafficTakesTurnsAtAJunction) {
   const auto g = testing::plus_junction();
-  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0), s = point_at(g, 0.0, -1.0);
+  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0),
+            s = point_at(g, 0.0, -1.0);
   TrafficSim sim(g, {}, scripted(), {}, {w, s});
   sim.add_goal(1, e);
   sim.add_goal(2, n);
@@ -89,7 +91,8 @@ TEST(TrafficManager, CrossingTrafficTakesTurnsAtAJunction) {
 
 TEST(TrafficManager, LostRobotFreesWhatItHolds) {
   const auto g = testing::plus_junction();
-  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0), s = point_at(g, 0.0, -1.0);
+  const int e = point_at(g, 1.0, 0.0), n = point_at(g, 0.0, 1.0), w = point_at(g, -1.0, 0.0),
+            s = point_at(g, 0.0, -1.0);
   TrafficSim sim(g, {}, scripted(), {}, {w, s});
   sim.add_goal(1, e);
   sim.add_goal(2, n);
@@ -401,7 +404,6 @@ TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
   EXPECT_EQ(m.zones().place_of(g2->route.back()), m.zones().place_of(point_at(g, 2.1, 0.0)));
 }
 
-
 // After a server restart two robots stand 0.38 m apart on the east ring of table_a, both to drive
 // on southwards. The places under each body must leave the other free to move: before, each held
 // every place its body touched and each waited for the other for good.
@@ -436,6 +438,40 @@ TEST(TrafficManager, RobotsStandingCloseInACorridorBothDriveOnAfterARestart) {
     }
     EXPECT_GT(d3, 0.5) << order;
     EXPECT_GT(d1, 0.5) << order;
+  }
+}
+
+TEST(TrafficManager, RobotsStandingOneBodyApartAfterARestartDriveOnOneAfterTheOther) {
+  // Seen after a server restart in a soak: two robots on the north ring, 0.4 m apart, both
+  // driving east. Each body touches several places (no one place's region holds it), and the
+  // places ahead of the front robot conflict with places under the rear one's body. The front
+  // robot drives on, as its footprint stays clear of the rear body; then the rear one follows.
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto& g = site.graph.graph;
+  for (double front_yaw : {1.5708, 0.8, 0.0}) {
+    for (double rear_yaw : {0.0, 0.5, 1.0, 1.5708}) {
+      TrafficManager m(g);
+      const geometry::Pose2 front{1.01, 2.57, front_yaw}, rear{0.61, 2.53, rear_yaw};
+      ASSERT_TRUE(m.hold_body(5, geometry::footprint_polygon(front, geometry::Footprint{}), 0.0));
+      ASSERT_TRUE(m.hold_body(2, geometry::footprint_polygon(rear, geometry::Footprint{}), 0.0));
+      ASSERT_GT(m.held_places(5).size(), 1u);
+      ASSERT_EQ(m.check_invariant(), "");
+      const auto r5 = m.search().shortest(map::nearest_point(g, 0.97, 2.55), map::nearest_point(g, 2.55, 1.8));
+      const auto r2 = m.search().shortest(map::nearest_point(g, rear.x, rear.y), map::nearest_point(g, 2.21, 0.45));
+      ASSERT_EQ(m.submit_route({5, 2, r5}, 0.0), SubmitStatus::kAccepted);
+      ASSERT_EQ(m.submit_route({2, 2, r2}, 0.0), SubmitStatus::kAccepted);
+      double t = 0.0, d5 = 0.0, d2 = 0.0;
+      for (int i = 0; i < 400; ++i, t += 0.05) {
+        const auto r = m.update(t);
+        ASSERT_EQ(m.check_invariant(), "") << front_yaw << " " << rear_yaw;
+        if (const Grant* g5 = grant_of(r, 5)) d5 = std::min(g5->granted_distance, d5 + 0.005);
+        if (const Grant* g2 = grant_of(r, 2)) d2 = std::min(g2->granted_distance, d2 + 0.005);
+        m.report_progress({5, 2, d5}, t);
+        m.report_progress({2, 2, d2}, t);
+      }
+      EXPECT_GT(d5, 1.0) << front_yaw << " " << rear_yaw;
+      EXPECT_GT(d2, 0.5) << front_yaw << " " << rear_yaw;
+    }
   }
 }
 
