@@ -22,19 +22,19 @@
 #include "common/clock.hpp"
 #include "common/paths.hpp"
 #include "map/site.hpp"
+#include "model/names.hpp"
 #include "monitor/fault_plan.hpp"
 #include "monitor/order_accounting.hpp"
-#include "model/names.hpp"
 
 namespace fleet::cli {
 
 namespace {
 
-constexpr double kFaultPeriodSim = 120.0;     // a fault every two simulated minutes
-constexpr double kKillPauseWall = 2.0;        // a killed agent stays down this long
-constexpr double kStallWall = 3.0;            // a stopped agent stays frozen this long
-constexpr double kServerPauseWall = 1.0;      // a killed server stays down this long
-constexpr double kObstacleOnSim = 60.0;       // an obstacle switched on stays on this long
+constexpr double kFaultPeriodSim = 120.0;  // a fault every two simulated minutes
+constexpr double kKillPauseWall = 2.0;     // a killed agent stays down this long
+constexpr double kStallWall = 3.0;         // a stopped agent stays frozen this long
+constexpr double kServerPauseWall = 1.0;   // a killed server stays down this long
+constexpr double kObstacleOnSim = 60.0;    // an obstacle switched on stays on this long
 
 /// Resident memory (kB) and CPU time (s) of a process, from /proc; nothing once it is gone.
 struct Usage {
@@ -60,7 +60,9 @@ std::optional<Usage> usage_of(pid_t pid) {
 }
 
 /// `v` to a multiple of `step` (0.1, 0.01, ...), printed without binary noise (170.6, not 170.60000000000002).
-double round_to(double v, double step) { return std::round(v / step) / std::round(1.0 / step); }
+double round_to(double v, double step) {
+  return std::round(v / step) / std::round(1.0 / step);
+}
 
 /// One injected fault and what it led to, in wall seconds from the injection.
 struct FaultRecord {
@@ -68,9 +70,9 @@ struct FaultRecord {
   std::string target;
   double at_wall = 0.0;
   double at_sim = 0.0;
-  std::int64_t order = 0;            ///< the robot's open order when it happened (agent faults)
-  std::optional<double> detected;    ///< the server marked the robot lost
-  std::optional<double> recovered;   ///< its order re-queued, failed with a reason, or ended
+  std::int64_t order = 0;           ///< the robot's open order when it happened (agent faults)
+  std::optional<double> detected;   ///< the server marked the robot lost
+  std::optional<double> recovered;  ///< its order re-queued, failed with a reason, or ended
 };
 
 }  // namespace
@@ -89,7 +91,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
   options.http_port = static_cast<int>(args.integer("http-port", 0, 65535).value_or(0));
   options.agent_wrap = args.value("agent-wrap").value_or("");
-  const std::string traffic = args.value("traffic").value_or(config.settings.get_bool("traffic.enabled") ? "on" : "off");
+  const std::string traffic =
+      args.value("traffic").value_or(config.settings.get_bool("traffic.enabled") ? "on" : "off");
   if (traffic != "on" && traffic != "off") throw ArgError("--traffic '" + traffic + "': expected on or off");
   const auto kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
   std::vector<std::string> settings{"traffic.enabled=" + std::string(traffic == "on" ? "true" : "false")};
@@ -181,14 +184,20 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   // CPU per process from the first and last samples. Memory growth compares the low-water mark of
   // resident memory over the first eighth of the second half with that over the last eighth:
   // malloc hands freed memory back to the system in steps, so a single sample swings by several
-  // percent of a 20 MB process, while a leak raises the low-water mark.
+  // percent of a 20 MB process, while a leak raises the low-water mark. A process restarted by a
+  // fault is compared only once it is past its warm-up (maps, octree and DDS caches filling):
+  // one restarted within the first eighth of the second half is left out rather than measured
+  // from its own start.
   std::map<pid_t, Usage> first_usage, last_usage;
   std::map<pid_t, double> mid_low_kb, end_low_kb;
   std::map<pid_t, std::string> type_of;
+  std::map<pid_t, double> first_seen_s;  // wall seconds into the run
+  const double warm_up_s = std::max(10.0, 0.1 * options.duration_s);
   auto sample = [&](std::map<pid_t, Usage>& into) {
     for (const auto& child : run.processes().children()) {
       if (!child.running) continue;
       type_of[child.pid] = child.name.starts_with("fleet-server") ? "server" : "agent";
+      first_seen_s.emplace(child.pid, run.wall_seconds());
       if (auto u = usage_of(child.pid)) into[child.pid] = *u;
     }
   };
@@ -310,7 +319,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       const double fraction = elapsed / options.duration_s;
       auto low_water = [&](std::map<pid_t, double>& into) {
         for (const auto& [pid, u] : now_usage) {
-          if (u.rss_kb <= 0.0) continue;
+          if (u.rss_kb <= 0.0 || run.wall_seconds() - first_seen_s[pid] < warm_up_s) continue;
           auto [it, fresh] = into.emplace(pid, u.rss_kb);
           if (!fresh) it->second = std::min(it->second, u.rss_kb);
         }
@@ -362,13 +371,16 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     if (f.recovered) j["recovered_s"] = round_to(*f.recovered, 0.001);
     fault_list.push_back(j);
   }
-  // Memory growth over the second half and CPU over the run, per process type. A process
-  // restarted by a fault is measured over its own lifetime.
+  // Memory growth over the second half (the worst process of each type, and how many were
+  // measured) and CPU over the run, per process type.
   std::map<std::string, double> growth, cpu_s, alive_s;
+  std::map<std::string, int> measured;
   for (const auto& [pid, end_kb] : end_low_kb) {
     const std::string& type = type_of[pid];
     if (auto mid = mid_low_kb.find(pid); mid != mid_low_kb.end()) {
-      growth[type] = std::max(growth.contains(type) ? growth[type] : -100.0, 100.0 * (end_kb - mid->second) / mid->second);
+      growth[type] =
+          std::max(growth.contains(type) ? growth[type] : -100.0, 100.0 * (end_kb - mid->second) / mid->second);
+      ++measured[type];
     }
   }
   // CPU: what every process of a type used (a killed one up to its last sample), shared over
@@ -380,7 +392,9 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   alive_s["server"] = wall;
   alive_s["agent"] = wall * options.agents;
   nlohmann::json growth_json = nlohmann::json::object(), cpu_json = nlohmann::json::object();
+  nlohmann::json measured_json = nlohmann::json::object();
   for (const auto& [type, g] : growth) growth_json[type] = round_to(g, 0.1);
+  for (const auto& [type, n] : measured) measured_json[type] = n;
   for (const auto& [type, c] : cpu_s) cpu_json[type] = round_to(100.0 * c / std::max(1e-9, alive_s[type]), 0.1);
   double worst_growth = 0.0;
   for (const auto& [type, g] : growth) worst_growth = std::max(worst_growth, g);
@@ -395,46 +409,49 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   }
   nlohmann::json deadlocks = nlohmann::json::array();
   for (const auto& d : run.progress().deadlocks()) {
-    deadlocks.push_back({{"robot", d.robot_id}, {"task", d.task}, {"since_sim_s", round_to(d.since - run.start_sim(), 0.1)},
+    deadlocks.push_back({{"robot", d.robot_id},
+                         {"task", d.task},
+                         {"since_sim_s", round_to(d.since - run.start_sim(), 0.1)},
                          {"at", {round_to(d.pose.x, 0.001), round_to(d.pose.y, 0.001)}}});
   }
   const double now_sim = run.start_sim() + run.sim_seconds();
-  nlohmann::json summary{
-      {"orders_created", tally.created},
-      {"orders_done", tally.done},
-      {"orders_failed", tally.failed},
-      {"orders_open", tally.open},
-      {"orders_lost", tally.lost},
-      {"orders_duplicated", duplicated},
-      {"collisions", run.collisions().size()},
-      {"deadlocks", run.progress().deadlocks().size()},
-      {"max_wait_s", round_to(run.progress().max_wait_s(now_sim), 0.1)},
-      {"order_time_mean_s", round_to(stats.order_time_mean_s, 0.1)},
-      {"order_time_p95_s", round_to(stats.order_time_p95_s, 0.1)},
-      {"sim_seconds", round_to(run.sim_seconds(), 0.1)},
-      {"wall_seconds", round_to(wall, 0.1)},
-      {"agents", options.agents},
-      {"site", options.site},
-      {"traffic", traffic},
-      {"seed", options.seed},
-      {"time_scale", options.time_scale},
-      {"faults_injected", faults.size()},
-      {"faults_undetected", undetected},
-      {"detect_latency_p95_s", round_to(monitor::percentile(detect, 0.95), 0.001)},
-      {"recovery_p95_s", round_to(monitor::percentile(recover, 0.95), 0.001)},
-      {"rss_growth_pct", growth_json},
-      {"cpu_pct", cpu_json},
-      {"crashed", run.crashes()},
-      {"faults", fault_list},
-      {"faults_skipped", skipped},
-      {"collision_list", collisions},
-      {"deadlock_list", deadlocks},
-      {"run_dir", run.run_dir()}};
+  nlohmann::json summary{{"orders_created", tally.created},
+                         {"orders_done", tally.done},
+                         {"orders_failed", tally.failed},
+                         {"orders_open", tally.open},
+                         {"orders_lost", tally.lost},
+                         {"orders_duplicated", duplicated},
+                         {"collisions", run.collisions().size()},
+                         {"deadlocks", run.progress().deadlocks().size()},
+                         {"max_wait_s", round_to(run.progress().max_wait_s(now_sim), 0.1)},
+                         {"order_time_mean_s", round_to(stats.order_time_mean_s, 0.1)},
+                         {"order_time_p95_s", round_to(stats.order_time_p95_s, 0.1)},
+                         {"sim_seconds", round_to(run.sim_seconds(), 0.1)},
+                         {"wall_seconds", round_to(wall, 0.1)},
+                         {"agents", options.agents},
+                         {"site", options.site},
+                         {"traffic", traffic},
+                         {"seed", options.seed},
+                         {"time_scale", options.time_scale},
+                         {"faults_injected", faults.size()},
+                         {"faults_undetected", undetected},
+                         {"detect_latency_p95_s", round_to(monitor::percentile(detect, 0.95), 0.001)},
+                         {"recovery_p95_s", round_to(monitor::percentile(recover, 0.95), 0.001)},
+                         {"rss_growth_pct", growth_json},
+                         {"rss_measured_processes", measured_json},
+                         {"cpu_pct", cpu_json},
+                         {"crashed", run.crashes()},
+                         {"faults", fault_list},
+                         {"faults_skipped", skipped},
+                         {"collision_list", collisions},
+                         {"deadlock_list", deadlocks},
+                         {"run_dir", run.run_dir()}};
   std::vector<std::string> failures;
   if (tally.lost != 0) failures.push_back(std::to_string(tally.lost) + " orders lost");
   if (duplicated != 0) failures.push_back(std::to_string(duplicated) + " orders done twice");
   if (!run.collisions().empty()) failures.push_back(std::to_string(run.collisions().size()) + " collisions");
-  if (!run.progress().deadlocks().empty()) failures.push_back(std::to_string(run.progress().deadlocks().size()) + " deadlocks");
+  if (!run.progress().deadlocks().empty())
+    failures.push_back(std::to_string(run.progress().deadlocks().size()) + " deadlocks");
   if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
   if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
   if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
@@ -442,8 +459,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   if (command.json) {
     out << summary.dump() << "\n";
   } else {
-    out << "Fleet soak summary (" << summary["sim_seconds"] << " s sim, " << summary["wall_seconds"] << " s wall, traffic "
-        << traffic << ")\n"
+    out << "Fleet soak summary (" << summary["sim_seconds"] << " s sim, " << summary["wall_seconds"]
+        << " s wall, traffic " << traffic << ")\n"
         << "  orders: " << tally.created << " created, " << tally.done << " done, " << tally.failed << " failed, "
         << tally.open << " open, " << tally.lost << " lost, " << duplicated << " done twice\n"
         << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
@@ -451,7 +468,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"
         << "  faults: " << faults.size() << " injected, detection p95 " << summary["detect_latency_p95_s"]
         << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"
-        << "  memory growth (second half): " << growth_json.dump() << " %, CPU: " << cpu_json.dump() << " % of a core\n"
+        << "  memory growth (second half): " << growth_json.dump() << " % over " << measured_json.dump()
+        << " processes, CPU: " << cpu_json.dump() << " % of a core\n"
         << "  " << (failures.empty() ? "PASS" : "FAIL: " + model::join(failures, "; ")) << "\n"
         << "  logs: " << run.run_dir() << "/\n";
   }

@@ -1,18 +1,16 @@
 #include "server/fleet_server.hpp"
 
-#include <filesystem>
-
-#include "traffic/traffic_settings.hpp"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <set>
 
-#include <fmt/format.h>
-
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::server {
 
@@ -184,7 +182,8 @@ void FleetServer::publish_map_and_obstacles() {
 
 void FleetServer::reset_obstacles() {
   obstacle_enabled_.clear();
-  for (const auto& obstacle : options_.site.static_obstacles) obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
+  for (const auto& obstacle : options_.site.static_obstacles)
+    obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
 }
 
 std::string FleetServer::switch_map(const std::string& map_id) {
@@ -302,8 +301,8 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
     }
   }
   if (options_.config.settings.get_bool("server.reject_when_busy")) {
-    const bool any_free = std::any_of(robots_.begin(), robots_.end(),
-                                      [&](const auto& entry) { return robot_is_free(entry.second); });
+    const bool any_free =
+        std::any_of(robots_.begin(), robots_.end(), [&](const auto& entry) { return robot_is_free(entry.second); });
     if (!any_free) return refuse("no robot is free (server.reject_when_busy is on)");
   }
   Order draft;
@@ -353,13 +352,14 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       error = model::unknown_name_message("obstacle", command.target, ids);
     } else if (command.value != "on" && command.value != "off") {
       error = "obstacle state '" + command.value + "' is not on or off";
-    } else if (const std::string robot_id = command.value == "on" ? robot_under(*options_.site.find_obstacle(command.target)) : "";
+    } else if (const std::string robot_id =
+                   command.value == "on" ? robot_under(*options_.site.find_obstacle(command.target)) : "";
                !robot_id.empty()) {
       // A robot cannot leave an obstacle switched on over it (every way out starts inside it),
       // and a real one cannot be where a real obstacle is.
       const auto& pose = robots_.at(robot_id).last.pose;
-      error = fmt::format("obstacle {} covers robot {} at ({:.2f}, {:.2f}): switch it on once the robot has left", command.target,
-                          robot_id, pose.x, pose.y);
+      error = fmt::format("obstacle {} covers robot {} at ({:.2f}, {:.2f}): switch it on once the robot has left",
+                          command.target, robot_id, pose.x, pose.y);
     } else {
       obstacle_enabled_[command.target] = command.value == "on";
       const auto* obstacle = options_.site.find_obstacle(command.target);
@@ -376,8 +376,9 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
     } else if (one_robot && std::find(robot_ids.begin(), robot_ids.end(), command.target) == robot_ids.end()) {
       error = model::unknown_name_message("robot", command.target, robot_ids);
     } else if (one_robot && traffic_) {
-      error = "traffic control needs every robot on the same map: switch them all (no robot given), or run "
-              "with traffic.enabled false";
+      error =
+          "traffic control needs every robot on the same map: switch them all (no robot given), or run "
+          "with traffic.enabled false";
     } else if (one_robot) {
       map_writer_.write({command.target, command.value});
       log_->info("robot {} switched to map '{}'", command.target, command.value);
@@ -513,7 +514,8 @@ void FleetServer::publish_web_snapshot() {
     }
     if (order.status == OrderStatus::Failed) ++snap.orders_failed;
   }
-  for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size(); ++i) {
+  for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size();
+       ++i) {
     snap.orders.push_back(info_of(*ended[i]));
   }
   // The same p95 as `fleetctl stats`, so the page and the CLI agree.
@@ -537,6 +539,13 @@ void FleetServer::handle_order_reports() {
       // A late duplicate or a report from a robot the order was taken from (VDA 5050 style).
       log_->debug("ignoring stale report {} on order {} from {} (update {} vs {})", report.status, report.order_id,
                   report.robot_id, report.update_id, order->update_id);
+      return;
+    }
+    if ((report.status == "DONE" && order->status == OrderStatus::Done) ||
+        (report.status == "FAILED" && order->status == OrderStatus::Failed)) {
+      // Reports are kept for late joiners: a restarted server hears every robot's finished
+      // orders again. The same end state twice is news to no one.
+      log_->debug("order {}: {} repeated by {}", order->id, report.status, report.robot_id);
       return;
     }
     const double now = clock_.now();
@@ -702,7 +711,8 @@ void FleetServer::check_robot_health() {
       const std::int64_t id = it->first;
       const std::string robot_id = order->robot_id;
       it = awaiting_lost_robot_.erase(it);
-      fail_with_pallet(id, "robot " + robot_id + " lost with the pallet for " + std::to_string(static_cast<int>(pallet_wait)) + " s");
+      fail_with_pallet(id, "robot " + robot_id + " lost with the pallet for " +
+                               std::to_string(static_cast<int>(pallet_wait)) + " s");
     } else {
       ++it;
     }
@@ -782,7 +792,8 @@ bool FleetServer::robot_is_free(const RobotEntry& robot) const {
 void FleetServer::create_auto_orders() {
   // Seed 000, section 3: random orders whenever a forklift is free, from an area holding a
   // pallet to a free one.
-  const long free_robots = std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
+  const long free_robots =
+      std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
   const long queued = static_cast<long>(book_.with_status(OrderStatus::Queued).size());
   if (free_robots <= queued) return;
   // From a pallet standing there now to an area free now, neither promised to an open order:
@@ -827,7 +838,9 @@ void FleetServer::dispatch() {
     if (robot_is_free(robot)) free.push_back({robot.id, robot.fleet_id});
   }
   if (free.empty()) return;
-  const auto cost = [&](const std::string& robot_id, const std::string& area_id) { return travel_cost(robot_id, area_id); };
+  const auto cost = [&](const std::string& robot_id, const std::string& area_id) {
+    return travel_cost(robot_id, area_id);
+  };
   for (const auto& assignment : policy_->assign(queue, free, cost)) {
     if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::Applied) continue;
     const Order& order = *book_.find(assignment.order_id);
@@ -876,8 +889,8 @@ void FleetServer::send_assignment(const Order& order) {
 }
 
 void FleetServer::publish_order(const Order& order) {
-  if (auto robot = robots_.find(order.robot_id); robot != robots_.end() && !order.history.empty() &&
-                                                  !order.history.back().robot_id.empty()) {
+  if (auto robot = robots_.find(order.robot_id);
+      robot != robots_.end() && !order.history.empty() && !order.history.back().robot_id.empty()) {
     book_.locate_last_event(order.id, robot->second.last.pose.x, robot->second.last.pose.y);
   }
   // Written before anyone is told: a crash after this line loses nothing that was announced.
@@ -894,8 +907,8 @@ void FleetServer::publish_order(const Order& order) {
 
 void FleetServer::publish_fleet_view() {
   const double now_wall = SimClock::wall_now();
-  const double period_wall =
-      std::max(1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("server.fleet_view_hz")));
+  const double period_wall = std::max(
+      1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("server.fleet_view_hz")));
   if (now_wall - last_fleet_view_wall_ < period_wall) return;
   last_fleet_view_wall_ = now_wall;
   std::map<std::string, model::FleetView> views;

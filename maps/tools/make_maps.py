@@ -214,15 +214,24 @@ def table_a(site_name="table_a", closed=()):
     # Each closes a road away from every loading area and home, so the ring still serves them all.
     obstacles = [(1.40, 0.85, 1.60, 1.05), (1.40, 1.95, 1.60, 2.15), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
-    # Homes inside the courtyards, facing +x (the seed starts forklifts at zero heading), 0.35 m
-    # from a road centre: a forklift turning on the spot in the lane sweeps 0.15 m from the centre,
-    # and a parked one (0.16 m wide) then stands 0.12 m from that circle, beyond the 8 cm the agents
-    # stop at. Closer homes stop the traffic passing them.
-    # Each home is nearer the ring's south or north side than any other road, so the road it is
-    # reached from is not one an obstacle closes.
-    homes = [(0.83, 0.80, 0.0), (2.17, 0.80, 0.0), (2.17, 2.20, 0.0), (0.83, 2.20, 0.0),
-             (1.13, 0.80, 0.0), (1.87, 0.80, 0.0), (1.87, 2.20, 0.0), (1.13, 2.20, 0.0),
-             (0.975, 1.15, 0.0), (2.025, 1.15, 0.0), (2.025, 1.85, 0.0), (0.975, 1.85, 0.0)]
+    # Homes inside the courtyards, three to a courtyard: two side by side facing the ring road
+    # they leave by, and one nearer the cross facing +x (the seed starts forklifts at zero
+    # heading). Each is at least 0.35 m from a road centre: a forklift turning on the spot in the
+    # lane sweeps 0.15 m from the centre, and a parked one then stands beyond the 8 cm the agents
+    # stop at, so parked robots never stop the traffic passing them. The pair stands 0.33 m apart
+    # (0.17 m between bodies): one turning on the spot at home stays 10 cm from its neighbour, and
+    # a robot leaving home is not stopped by the one parked beside it.
+    # Each home of a pair is nearer the ring's south or north side than any other road, so the
+    # road it is reached from is not one an obstacle closes.
+    def courtyard_homes(x_ring, x_cross, y_ring, y_cross):
+        sx = 1.0 if x_cross > x_ring else -1.0
+        sy = 1.0 if y_cross > y_ring else -1.0
+        facing_ring = S if sy > 0 else N
+        return [(x_ring + sx * 0.36, y_ring + sy * 0.35, facing_ring), (x_cross - sx * 0.36, y_ring + sy * 0.35, facing_ring),
+                ((x_ring + x_cross) / 2, y_cross - sy * 0.35, 0.0)]
+    sw, se = courtyard_homes(lo, mid, lo, mid), courtyard_homes(hi, mid, lo, mid)
+    ne, nw = courtyard_homes(hi, mid, hi, mid), courtyard_homes(lo, mid, hi, mid)
+    homes = [sw[0], se[0], ne[0], nw[0], sw[1], se[1], ne[1], nw[1], sw[2], se[2], ne[2], nw[2]]
     comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1a):
 a ring road with a cross through the middle, 4 T-junctions and a crossing."""
     if closed:
