@@ -1,10 +1,10 @@
 #include "agent/fleet_agent.hpp"
 
-#include "common/paths.hpp"
-#include "traffic/traffic_settings.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "common/paths.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::agent {
 
@@ -76,8 +76,8 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
     waitset_.attach(reader);
   }
   const auto& home = forklift_.truth();
-  log_->info("forklift of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id,
-             home.x, home.y, home.yaw, options_.site->site.name, options_.domain);
+  log_->info("forklift of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id, home.x,
+             home.y, home.yaw, options_.site->site.name, options_.domain);
 }
 
 void FleetAgent::report(const std::string& status, const std::string& reason, int pallet_id,
@@ -141,8 +141,15 @@ void FleetAgent::handle_orders() {
       return;
     }
     log_->warn("rejecting order {}: {}", assignment.order_id, why);
-    report_writer_.write({assignment.order_id, options_.robot_id, "REJECTED", why, assignment.update_id, clock_.now(),
-                          forklift_.carried_pallet() >= 0, -1, {}});
+    report_writer_.write({assignment.order_id,
+                          options_.robot_id,
+                          "REJECTED",
+                          why,
+                          assignment.update_id,
+                          clock_.now(),
+                          forklift_.carried_pallet() >= 0,
+                          -1,
+                          {}});
   });
 }
 
@@ -168,8 +175,9 @@ void FleetAgent::handle_site_inputs() {
     }
     obstacles_[obstacle.obstacle_id] = obstacle.enabled;
     if (forklift_.set_obstacle(obstacle.obstacle_id, obstacle.enabled)) {
-      log_->info("replanning {} after obstacle {} was {}", order_ ? "order " + std::to_string(order_->assignment.order_id) : "the way home",
-                 obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
+      log_->info("replanning {} after obstacle {} was {}",
+                 order_ ? "order " + std::to_string(order_->assignment.order_id) : "the way home", obstacle.obstacle_id,
+                 obstacle.enabled ? "enabled" : "disabled");
     }
   });
   bool pallets_changed = false;
@@ -202,7 +210,8 @@ void FleetAgent::switch_map(const std::string& map_id) {
     return;
   }
   forklift_.set_site(next, route_graph_for(options_.config, *next));
-  log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id, next->graph.graph.points.size());
+  log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id,
+             next->graph.graph.points.size());
   map_id_ = map_id;
   obstacles_.clear();
   for (const auto& [key, enabled] : obstacle_cache_) {
@@ -229,17 +238,20 @@ void FleetAgent::handle_fleet_view(double now_sim) {
     if (view.map_id == map_id_) latest = std::move(view);
   });
   if (!latest) return;
-  std::vector<robot::Neighbour> neighbours;
+  std::vector<robot::Neighbour> listed;
   for (const auto& r : latest->robots) {
     if (r.robot_id == options_.robot_id) continue;
     if (!geometry::is_finite(r.pose)) continue;
     // A robot the server has marked lost is a stopped body at its last pose (its drives stop
     // with its software): a fixed obstacle, not one growing with the age of its data.
     const bool lost = r.task_state == "LOST";
-    neighbours.push_back({r.robot_id, r.pose, r.footprint, lost ? 0.0 : std::abs(r.speed),
-                          lost ? 0.0 : std::max(0.0, now_sim - r.sim_time)});
+    listed.push_back({r.robot_id, r.pose, r.footprint, lost ? 0.0 : std::abs(r.speed),
+                      lost ? 0.0 : std::max(0.0, now_sim - r.sim_time)});
   }
-  forklift_.set_neighbours(std::move(neighbours));
+  // Robots missing from this view stay where last listed (a collision after a server restart in
+  // the 2-hour soak: the first views of the new server lacked robots not heard from yet).
+  neighbours_.update(listed, now_sim);
+  forklift_.set_neighbours(neighbours_.current());
 }
 
 void FleetAgent::handle_events() {
@@ -354,8 +366,8 @@ void FleetAgent::handle_traffic() {
 
 void FleetAgent::run(const std::atomic<bool>& stop) {
   const double step = forklift_.step_period();
-  const double publish_period_wall = std::max(
-      1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
+  const double publish_period_wall =
+      std::max(1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
   // The forklift keeps its own sim time from zero; `offset` maps it onto the shared clock.
   double offset = clock_.now() - forklift_.time();
   double last_publish_wall = 0.0;

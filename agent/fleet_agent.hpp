@@ -14,6 +14,7 @@
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
 #include "robot/forklift.hpp"
+#include "robot/neighbour_memory.hpp"
 
 namespace fleet::agent {
 
@@ -67,6 +68,7 @@ class FleetAgent {
   std::map<std::pair<std::string, std::string>, bool> obstacle_cache_;  ///< (map, obstacle) -> enabled
   std::map<int, model::PalletTruth> pallets_;
   std::map<std::string, model::SimTruth> truths_;
+  robot::NeighbourMemory neighbours_;
   std::deque<std::int64_t> finished_orders_;
   bool paused_ = false;
   std::string last_state_;

@@ -548,6 +548,15 @@ void FleetServer::handle_order_reports() {
       log_->debug("order {}: {} repeated by {}", order->id, report.status, report.robot_id);
       return;
     }
+    if (orders::is_final(order->status)) {
+      // The robot runs an order that has ended: it read the latched assignment as it restarted,
+      // just before the order was failed for its return with empty forks. Left alone, it would
+      // carry a pallet for an order no one counts.
+      log_->warn("order {} is {}, but {} reports {}: told it to drop the order", order->id,
+                 orders::to_string(order->status), report.robot_id, report.status);
+      withdraw(*order, report.robot_id);
+      return;
+    }
     const double now = clock_.now();
     const std::int64_t id = order->id;
     awaiting_ack_since_.erase(id);
@@ -663,6 +672,37 @@ void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& rea
   publish_order(*book_.find(order_id));
 }
 
+void FleetServer::return_pallet_of(const std::string& robot_id, const std::string& preferred_area) {
+  // A simulated robot restarts at its home with empty forks, so the pallet it carried would be
+  // nowhere, and a fleet that loses one pallet per crash soon has no work. Where a real fleet's
+  // operator takes the pallet off the crashed robot and puts it back, the simulation puts it on
+  // the order's pick area, or the first free one.
+  auto carried =
+      std::find_if(pallets_.begin(), pallets_.end(), [&](const auto& p) { return p.second.carried_by == robot_id; });
+  if (carried == pallets_.end()) return;
+  const map::LoadingArea* area = options_.site.find_area(preferred_area);
+  if (!area || pallet_on(area->id)) {
+    area = nullptr;
+    for (const auto& a : options_.site.loading_areas) {
+      if (!pallet_on(a.id)) {
+        area = &a;
+        break;
+      }
+    }
+  }
+  if (!area) {
+    log_->warn("pallet {} of restarted robot {} has no free loading area to go back to", carried->first, robot_id);
+    return;
+  }
+  model::PalletTruth pallet = carried->second;
+  pallet.pose = area->pose;
+  pallet.area_id = area->id;
+  pallet.carried_by.clear();
+  log_->info("pallet {} of restarted robot {} put back on {} (simulation: the operator's part)", pallet.pallet_id,
+             robot_id, area->id);
+  update_pallet(std::move(pallet));
+}
+
 void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
   for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
     const Order* order = book_.find(it->first);
@@ -681,6 +721,7 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     } else {
       // Restarted: its software forgot the order, and the pallet is not on its forks.
       fail_with_pallet(id, "robot " + state.robot_id + " came back without the order's pallet (restarted)");
+      return_pallet_of(state.robot_id, order->pick_area);
     }
   }
 }

@@ -12,9 +12,9 @@
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
-#include "planning/road_planner.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
+#include "planning/road_planner.hpp"
 #include "server/order_store.hpp"
 #include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
@@ -27,7 +27,7 @@ struct ServerOptions {
   std::uint32_t domain = 0;
   double time_scale = 1.0;
   std::uint64_t seed = 1;
-  std::string db_path;  ///< SQLite file of orders and events
+  std::string db_path;                           ///< SQLite file of orders and events
   std::shared_ptr<const map::SiteMap> site_map;  ///< the site with its road graph
   /// The site and its revisions (map::site_revisions): the maps robots can be switched to.
   std::vector<std::string> maps;
@@ -113,6 +113,7 @@ class FleetServer {
   void update_pallet(model::PalletTruth pallet);
   /// The pallet standing on `area_id`, if any.
   const model::PalletTruth* pallet_on(const std::string& area_id) const;
+  void return_pallet_of(const std::string& robot_id, const std::string& preferred_area);
 
   ServerOptions options_;
   Logger log_;
@@ -124,9 +125,9 @@ class FleetServer {
   orders::OrderBook book_;
   std::map<std::string, RobotEntry> robots_;
   std::map<std::string, model::RobotPath> paths_;
-  std::map<std::string, bool> pallet_at_;          ///< loading area -> holds a pallet (from pallets_)
-  std::map<int, model::PalletTruth> pallets_;      ///< simulation truth of every pallet
-  std::map<std::string, bool> obstacle_enabled_;   ///< obstacle id -> enabled
+  std::map<std::string, bool> pallet_at_;              ///< loading area -> holds a pallet (from pallets_)
+  std::map<int, model::PalletTruth> pallets_;          ///< simulation truth of every pallet
+  std::map<std::string, bool> obstacle_enabled_;       ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
   /// Orders whose robot was lost with the pallet on its forks -> wall time it was lost. The pallet
   /// is on that robot and nowhere else, so the order waits for it to come back with it.

@@ -107,13 +107,68 @@ TEST(Recovery, AgentKilledWithoutPalletHasItsOrderRequeuedAndDoneByAnother) {
       10s));
   fleet.processes().signal(1, SIGKILL);  // fl1, on its way to the pallet
 
-  const auto final_info = client.follow_order(id, [](const model::OrderInfo&) {}, 150s);
+  const auto final_info = client.follow_order(
+      id, [](const model::OrderInfo&) {}, 150s);
   ASSERT_TRUE(final_info.has_value()) << fleet.log_of("fleet-server") << fleet.log_of("fleet-agent-fl2");
   EXPECT_EQ(final_info->state, "DONE");
   EXPECT_EQ(final_info->robot_id, "fl2");
   bool requeued = false;
-  for (const auto& e : final_info->history) requeued = requeued || (e.state == "QUEUED" && e.reason.find("fl1 lost") != std::string::npos);
+  for (const auto& e : final_info->history)
+    requeued = requeued || (e.state == "QUEUED" && e.reason.find("fl1 lost") != std::string::npos);
   EXPECT_TRUE(requeued) << fleet.log_of("fleet-server");
+}
+
+TEST(Recovery, AgentKilledWithThePalletComesBackEmptyAndThePalletGoesBackToItsArea) {
+  FleetHarness fleet(78, 2.0);
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));
+  cli::FleetClient client(78);
+  ASSERT_TRUE(client.find_server(5s));
+  model::OrderRequest request;
+  request.pick_area = "A1";
+  request.drop_area = "A2";
+  const auto reply = client.request_order(request, 5s);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  const std::int64_t id = reply->order_id;
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto o = client.orders(50ms);
+        auto it = o.find(id);
+        return it != o.end() && it->second.phase == "TO_DROP";
+      },
+      60s))
+      << fleet.log_of("fleet-agent-fl1");
+  int pallet = -1;
+  for (const auto& [pallet_id, p] : client.pallets(300ms)) {
+    if (p.carried_by == "fl1") pallet = pallet_id;
+  }
+  ASSERT_GE(pallet, 0) << "no pallet on fl1's forks";
+  // Killed with the pallet and restarted at its home with empty forks (its software forgot the
+  // order): the order fails with the reason, and the pallet is put back where it was picked.
+  fleet.processes().signal(1, SIGKILL);
+  std::this_thread::sleep_for(1500ms);
+  fleet.processes().restart(1);
+  const auto final_info = client.follow_order(
+      id, [](const model::OrderInfo&) {}, 60s);
+  ASSERT_TRUE(final_info.has_value()) << fleet.log_of("fleet-server");
+  EXPECT_EQ(final_info->state, "FAILED");
+  EXPECT_NE(final_info->reason.find("without the order's pallet"), std::string::npos) << final_info->reason;
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto pallets = client.pallets(100ms);
+        auto it = pallets.find(pallet);
+        return it != pallets.end() && it->second.carried_by.empty() && it->second.area_id == "A1";
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+  // The pallet is in circulation again: an order from A1 is done.
+  const auto again = client.request_order(request, 5s);
+  ASSERT_TRUE(again && again->accepted) << (again ? again->error : "no reply");
+  const auto done = client.follow_order(
+      again->order_id, [](const model::OrderInfo&) {}, 150s);
+  ASSERT_TRUE(done.has_value()) << fleet.log_of("fleet-server");
+  EXPECT_EQ(done->state, "DONE") << fleet.log_of("fleet-server");
 }
 
 TEST(Recovery, AgentStartingAfterObstaclesWereEnabledSeesThem) {
@@ -128,7 +183,8 @@ TEST(Recovery, AgentStartingAfterObstaclesWereEnabledSeesThem) {
   const auto reply = client.send_command(command, 5s);
   ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
   fleet.start_agent("fl3");
-  EXPECT_TRUE(eventually([&] { return fleet.log_of("fleet-agent-fl3").find("static obstacle O1 enabled") != std::string::npos; }, 10s))
+  EXPECT_TRUE(eventually(
+      [&] { return fleet.log_of("fleet-agent-fl3").find("static obstacle O1 enabled") != std::string::npos; }, 10s))
       << fleet.log_of("fleet-agent-fl3");
 }
 
@@ -141,7 +197,8 @@ TEST(Recovery, FrozenAgentMissesItsDeadlineIsStalledThenLostAndComesBack) {
   const auto frozen = std::chrono::steady_clock::now();
   fleet.processes().signal(1, SIGSTOP);  // the agent, frozen as a stuck process would be
   // The RobotState deadline (0.5 s) names the robot stalled before its 1 s lease expires.
-  ASSERT_TRUE(eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 stalled") != std::string::npos; }, 3s))
+  ASSERT_TRUE(
+      eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 stalled") != std::string::npos; }, 3s))
       << fleet.log_of("fleet-server");
   const double stalled_after = std::chrono::duration<double>(std::chrono::steady_clock::now() - frozen).count();
   EXPECT_LT(stalled_after, 1.5);

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "robot/forklift.hpp"
+
+namespace fleet::robot {
+
+/// The other robots as the FleetViews listed them. A robot missing from one view has not gone:
+/// a server that just restarted lists robots as they report in, and for that moment an agent
+/// trusting only the latest view would be blind to the others but for its lidar. A missing
+/// robot stays where it was last listed, as every robot does while no view comes at all, until
+/// views have gone without it for `forget_after_s`.
+class NeighbourMemory {
+ public:
+  explicit NeighbourMemory(double forget_after_s = 20.0) : forget_after_s_(forget_after_s) {}
+
+  /// The robots of a view that arrived at sim time `now` (this robot left out by the caller).
+  void update(const std::vector<Neighbour>& listed, double now);
+  /// Everyone remembered, by id.
+  std::vector<Neighbour> current() const;
+
+ private:
+  struct Entry {
+    Neighbour neighbour;
+    double listed_at = 0.0;
+  };
+  double forget_after_s_;
+  std::map<std::string, Entry> known_;
+};
+
+}  // namespace fleet::robot
