@@ -24,19 +24,20 @@ struct ReachOptions {
   /// A graph point must lie within road_width / 2 + slack of the approach position (or of a home).
   double slack = 0.15;
   /// A home may lie within road_width / 2 + home_slack of a graph point: parked forklifts stand
-  /// clear of the lanes, where one turning on the spot sweeps (see maps/tools/make_maps.py).
-  double home_slack = 0.22;
+  /// clear of the lanes, where one turning on the spot sweeps, with room beside the lane for a
+  /// parked one to turn too (see maps/tools/make_maps.py).
+  double home_slack = 0.25;
 };
 
 struct PlaceReach {
   std::string id;
-  std::string key;   ///< e.g. "loading_areas[3]"
-  int line = 0;      ///< line of the entry in the site file, 0 when unknown
+  std::string key;  ///< e.g. "loading_areas[3]"
+  int line = 0;     ///< line of the entry in the site file, 0 when unknown
   double approach_x = 0.0, approach_y = 0.0;
   int nearest_point = -1;
-  double distance = 0.0;      ///< approach position to the nearest graph point, metres
-  bool reachable = false;     ///< near the graph and in the site's main strongly connected component
-  std::string problem;        ///< empty when usable
+  double distance = 0.0;   ///< approach position to the nearest graph point, metres
+  bool reachable = false;  ///< near the graph and in the site's main strongly connected component
+  std::string problem;     ///< empty when usable
 };
 
 /// What `fleetctl map check` prints.

@@ -216,18 +216,18 @@ def table_a(site_name="table_a", closed=()):
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
     # Homes inside the courtyards, three to a courtyard: two side by side facing the ring road
     # they leave by, and one nearer the cross facing +x (the seed starts forklifts at zero
-    # heading). Each is at least 0.35 m from a road centre: a forklift turning on the spot in the
-    # lane sweeps 0.15 m from the centre, and a parked one then stands beyond the 8 cm the agents
-    # stop at, so parked robots never stop the traffic passing them. The pair stands 0.33 m apart
-    # (0.17 m between bodies): one turning on the spot at home stays 10 cm from its neighbour, and
-    # a robot leaving home is not stopped by the one parked beside it.
+    # heading). A forklift turning on the spot in a lane sweeps 0.15 m from the road centre; every
+    # parked body stands at least 9.5 cm beyond that, more than the 8 cm the agents stop at, so
+    # parked robots never stop the traffic passing them. The pair stands 0.29 m apart (0.13 m
+    # between bodies): one turning on the spot at home keeps 6 cm from its neighbour, beyond the
+    # agents' 3 cm safety gap, so a robot leaving home is not stopped by the one parked beside it.
     # Each home of a pair is nearer the ring's south or north side than any other road, so the
     # road it is reached from is not one an obstacle closes.
     def courtyard_homes(x_ring, x_cross, y_ring, y_cross):
         sx = 1.0 if x_cross > x_ring else -1.0
         sy = 1.0 if y_cross > y_ring else -1.0
         facing_ring = S if sy > 0 else N
-        return [(x_ring + sx * 0.36, y_ring + sy * 0.35, facing_ring), (x_cross - sx * 0.36, y_ring + sy * 0.35, facing_ring),
+        return [(x_ring + sx * 0.38, y_ring + sy * 0.37, facing_ring), (x_cross - sx * 0.38, y_ring + sy * 0.37, facing_ring),
                 ((x_ring + x_cross) / 2, y_cross - sy * 0.35, 0.0)]
     sw, se = courtyard_homes(lo, mid, lo, mid), courtyard_homes(hi, mid, lo, mid)
     ne, nw = courtyard_homes(hi, mid, hi, mid), courtyard_homes(lo, mid, hi, mid)
@@ -255,19 +255,24 @@ def table_b():
                        ("m2", "e2", "rung 2 east"), ("m1", "m2", "middle")]:
         net.edge(u, v, name)
     net.build()
+    # Loading areas in the band outside the ring, two on each side, away from the corners.
     areas = [(0.15, 0.80, E, True), (0.15, 2.20, E, False), (2.85, 0.80, W, True), (2.85, 1.50, W, False),
-             (1.00, 0.15, N, False), (2.00, 0.15, N, True),
-             (1.00, 2.85, S, True), (2.00, 2.85, S, False), (1.00, 1.45, S, True), (2.05, 1.45, S, False),
-             (1.00, 2.15, S, False), (2.00, 2.15, S, True)]
+             (1.00, 0.15, N, False), (2.00, 0.15, N, True), (1.00, 2.85, S, True), (2.00, 2.85, S, False)]
     obstacles = [(1.40, 1.40, 1.60, 1.60), (0.35, 1.40, 0.55, 1.60), (2.45, 2.10, 2.65, 2.30), (1.40, 2.45, 1.60, 2.65)]
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
-    # Two rows of six parking places between the south ring road and rung 1, each beside a road.
-    homes = []
-    xs = [0.75, 1.05, 1.35, 1.65, 1.95, 2.25]
-    for i in range(6):
-        homes.append((xs[i], 0.70, 0.0))
-        homes.append((xs[i], 0.90, 0.0))
-    homes = [homes[i] for i in (0, 10, 3, 7, 2, 4, 6, 8, 1, 5, 9, 11)]
+    # Twelve homes clear of the lanes: a row of five between the ring's south side and rung 1, one
+    # between rung 2 and the ring's north side, and one in each cell between the rungs. Parked
+    # bodies stand 0.27 m from the road centres as on table A; facing +x, the rows' homes are
+    # 0.3275 m apart (a robot turning on the spot at home keeps 5 cm from its neighbour, beyond the
+    # agents' 3 cm safety gap). Listed round the table, so a smaller fleet starts on every side.
+    south = [(1.5 + 0.3275 * k, lo + 0.34, 0.0) for k in (-2, -1, 0, 1, 2)]
+    # Each home is 1 cm nearer one road than any other, so the road it is reached from is never a
+    # tie between two (the corridor the static grid frees and the agents' nearest graph point then
+    # agree). The north row is reached from rung 2, away from the obstacle on the ring's north side.
+    north = [(1.5 + 0.3275 * k, r2 + 0.34, 0.0) for k in (-2, -1, 0, 1, 2)]
+    cells = [(0.975, r1 + 0.34, 0.0), (2.025, r1 + 0.34, 0.0)]
+    homes = [south[0], north[4], south[4], north[0], cells[0], cells[1], south[2], north[2], south[1], north[3],
+             south[3], north[1]]
     comment = """Demo table B: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1b):
 a ladder of two rungs inside a ring road, six T-junctions."""
     return net, site_yaml("table_b", comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
