@@ -650,10 +650,15 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
-    if (robot.last.carrying_pallet) {
-      // Only this robot can finish it: a stalled robot carries on when it answers again.
+    // Lost while picking, it may be lifting the pallet as it froze: like one lost with the pallet
+    // on its forks, only this robot can finish the order, and a stalled robot carries on when it
+    // answers again. (Re-queued instead, the order was withdrawn from it as it came back with the
+    // pallet, and it stood in the lane with it for good.)
+    const bool picking = order->phase == OrderPhase::Picking;
+    if (robot.last.carrying_pallet || picking) {
       awaiting_lost_robot_.emplace(id, SimClock::wall_now());
-      log_->warn("order {} waits for robot {}: lost with the pallet on its forks (at most {:.0f} s)", id, robot.id,
+      log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
+                 robot.last.carrying_pallet ? "with the pallet on its forks" : "while picking",
                  options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
       return;
     }
@@ -703,6 +708,26 @@ void FleetServer::return_pallet_of(const std::string& robot_id, const std::strin
   update_pallet(std::move(pallet));
 }
 
+void FleetServer::give_up_on_lost_robot(std::int64_t order_id, const std::string& why, const std::string& failure) {
+  const Order* order = book_.find(order_id);
+  if (!order) return;
+  const std::string robot_id = order->robot_id;
+  const bool lifted =
+      std::any_of(pallets_.begin(), pallets_.end(), [&](const auto& p) { return p.second.carried_by == robot_id; });
+  if (!lifted) {
+    // Lost while picking, before the lift: the pallet still stands on the pick area.
+    if (book_.requeue(order_id, clock_.now(), why + " before lifting the pallet") != TransitionResult::Applied) return;
+    log_->warn("order {} re-queued: {} before lifting the pallet", order_id, why);
+    awaiting_ack_since_.erase(order_id);
+    publish_order(*book_.find(order_id));
+    withdraw(*book_.find(order_id), robot_id);
+    return;
+  }
+  const std::string pick_area = order->pick_area;
+  fail_with_pallet(order_id, failure);
+  return_pallet_of(robot_id, pick_area);
+}
+
 void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
   for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
     const Order* order = book_.find(it->first);
@@ -713,15 +738,21 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     const std::int64_t id = it->first;
     it = awaiting_lost_robot_.erase(it);
     if (orders::is_final(order->status)) continue;
-    if (state.order_id == id) {
+    // A restarted agent may report the order too: it read the latched assignment before its
+    // first state, and runs the order from the start. It has no pallet where the order had one
+    // on the way to the drop.
+    const bool restarted = state.order_id != id || (order->phase == OrderPhase::ToDrop && !state.carrying_pallet);
+    if (!restarted) {
       // Its software still runs the order: the pallet is on its forks, or it was put down at the
-      // drop area as the robot froze and the DONE report follows.
+      // drop area as the robot froze and the DONE report follows, or it was still picking.
       log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
-                 state.carrying_pallet ? "pallet on its forks" : "pallet put down at the drop area");
+                 state.carrying_pallet                 ? "pallet on its forks"
+                 : order->phase == OrderPhase::Picking ? "still picking"
+                                                       : "pallet put down at the drop area");
     } else {
-      // Restarted: its software forgot the order, and the pallet is not on its forks.
-      fail_with_pallet(id, "robot " + state.robot_id + " came back without the order's pallet (restarted)");
-      return_pallet_of(state.robot_id, order->pick_area);
+      give_up_on_lost_robot(id, "robot " + state.robot_id + " came back restarted",
+                            "robot " + state.robot_id + " came back without the order's pallet (restarted)");
+      if (state.order_id == id) withdraw(*book_.find(id), state.robot_id);
     }
   }
 }
@@ -752,8 +783,9 @@ void FleetServer::check_robot_health() {
       const std::int64_t id = it->first;
       const std::string robot_id = order->robot_id;
       it = awaiting_lost_robot_.erase(it);
-      fail_with_pallet(id, "robot " + robot_id + " lost with the pallet for " +
-                               std::to_string(static_cast<int>(pallet_wait)) + " s");
+      const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
+      give_up_on_lost_robot(id, "robot " + robot_id + " lost for " + waited,
+                            "robot " + robot_id + " lost with the pallet for " + waited);
     } else {
       ++it;
     }

@@ -114,6 +114,10 @@ class FleetServer {
   /// The pallet standing on `area_id`, if any.
   const model::PalletTruth* pallet_on(const std::string& area_id) const;
   void return_pallet_of(const std::string& robot_id, const std::string& preferred_area);
+  /// The lost robot of a waiting order came back restarted, or did not come back in time: the
+  /// order is re-queued when the robot had not lifted the pallet (pallet truth), else failed and
+  /// the pallet put back.
+  void give_up_on_lost_robot(std::int64_t order_id, const std::string& why, const std::string& failure);
 
   ServerOptions options_;
   Logger log_;
