@@ -173,6 +173,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   };
   std::vector<FaultRecord> faults;
   std::size_t next_fault = 0;
+  double retry_fault_at_wall = 0.0;  // a refused fault is tried again from then
+  int fault_retries = 0;
   std::size_t current_map = 0;  // site_maps[0] is the site itself
   struct Pending {
     double at_wall;
@@ -251,7 +253,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       }
     }
 
-    while (next_fault < plan.size() && plan[next_fault].at_sim <= elapsed_sim) {
+    while (next_fault < plan.size() && plan[next_fault].at_sim <= elapsed_sim && now_wall >= retry_fault_at_wall) {
       const auto& fault = plan[next_fault++];
       FaultRecord record{fault.kind, "", now_wall, elapsed_sim, 0, std::nullopt, std::nullopt};
       auto open_order_of = [&](const std::string& robot) -> std::int64_t {
@@ -299,10 +301,24 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           break;
         }
         case monitor::FaultKind::kMapSwitch: {
-          // Every robot onto the next map of the site, round the list.
+          // Every robot onto the next map of the site, round the list. The server refuses while a
+          // robot stands on a road the next map closes: try again each wall second, for a while.
+          constexpr int kMaxRetries = 20;
+          const std::string& next_map = site_maps[(current_map + 1) % site_maps.size()];
+          if (!command_server("map", "", next_map).empty()) {
+            if (++fault_retries <= kMaxRetries) {
+              --next_fault;
+              retry_fault_at_wall = now_wall + 1.0;
+            } else {
+              log->warn("fault {}: map-switch to {} given up after {} refusals", faults.size() + 1, next_map,
+                        kMaxRetries);
+              fault_retries = 0;
+            }
+            continue;
+          }
+          fault_retries = 0;
           current_map = (current_map + 1) % site_maps.size();
-          record.target = site_maps[current_map];
-          command_server("map", "", record.target);
+          record.target = next_map;
           break;
         }
       }

@@ -195,6 +195,28 @@ std::string FleetServer::switch_map(const std::string& map_id) {
     return std::string("map '") + map_id + "' cannot be loaded: " + e.what();
   }
   if (std::string why = map::revision_mismatch(options_.site, next->site); !why.empty()) return why;
+  // A robot standing on a road the new map closes would be off its graph with no way back onto
+  // it: it waited there until the map was switched back. Refused, as an obstacle over a robot is.
+  if (options_.site_map) {
+    constexpr double kOnRoadM = 0.15;     // half a lane: the robot stands on that road
+    constexpr double kSamePointM = 0.02;  // a point the new graph has too
+    const auto& old_points = options_.site_map->graph.graph.points;
+    const auto& new_points = next->graph.graph.points;
+    for (const auto& [id, robot] : robots_) {
+      if (!robot.registered) continue;
+      const geometry::Vec2 at = robot.last.pose.position();
+      for (const auto& p : old_points) {
+        if (geometry::distance(at, {p.x, p.y}) > kOnRoadM) continue;
+        const bool kept = std::any_of(new_points.begin(), new_points.end(), [&](const auto& q) {
+          return geometry::distance({p.x, p.y}, {q.x, q.y}) <= kSamePointM;
+        });
+        if (!kept) {
+          return fmt::format("robot {} stands at ({:.2f}, {:.2f}) on a road map '{}' closes: switch once it has left",
+                             id, at.x, at.y, map_id);
+        }
+      }
+    }
+  }
   const std::string previous = options_.site.name;
   options_.site_map = next;
   options_.site = next->site;
