@@ -212,22 +212,25 @@ def table_a(site_name="table_a", closed=()):
     areas = [(q1, 0.15, N, True), (q2, 0.15, N, False), (2.85, q1, W, True), (2.85, q2, W, False),
              (q2, 2.85, S, True), (q1, 2.85, S, False), (0.15, q2, E, True), (0.15, q1, E, False)]
     # Each closes a road away from every loading area and home, so the ring still serves them all.
-    obstacles = [(1.40, 1.05, 1.60, 1.25), (1.40, 1.75, 1.60, 1.95), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
+    obstacles = [(1.40, 0.85, 1.60, 1.05), (1.40, 1.95, 1.60, 2.15), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
     # Homes inside the courtyards, three to a courtyard: two side by side facing the ring road
     # they leave by, and one nearer the cross facing +x (the seed starts forklifts at zero
-    # heading). A forklift turning on the spot in a lane sweeps 0.15 m from the road centre, and
-    # one leaving a T-junction cuts the corner by up to 13 cm (a collision with a parked robot in
-    # the 2-hour soak): parked bodies stand at least 0.26 m from a road centre, 0.265 m from the
-    # ring. The pair stands 0.29 m apart (0.13 m between bodies): one turning on the spot at home
-    # keeps 6 cm from its neighbour and 4 cm from the third home, beyond the agents' 3 cm safety
-    # gap, so a robot leaving home is not stopped by the ones parked beside it.
+    # heading). A forklift turning on the spot in a lane sweeps 0.15 m from the road centre; every
+    # parked body stands at least 9.5 cm beyond that, more than the 8 cm the agents stop at, so
+    # parked robots never stop the traffic passing them. The pair stands 0.29 m apart (0.13 m
+    # between bodies): one turning on the spot at home keeps 6 cm from its neighbour, beyond the
+    # agents' 3 cm safety gap, so a robot leaving home is not stopped by the one parked beside it.
+    # Each home of a pair is nearer the ring's south or north side than any other road, so the
+    # road it is reached from is not one an obstacle or a revision closes. (Homes 2 cm further
+    # from the ring were nearer the cross or the west ring: robots were shut in at home while the
+    # cross's north arm was closed.)
     def courtyard_homes(x_ring, x_cross, y_ring, y_cross):
         sx = 1.0 if x_cross > x_ring else -1.0
         sy = 1.0 if y_cross > y_ring else -1.0
         facing_ring = S if sy > 0 else N
-        return [(x_ring + sx * 0.38, y_ring + sy * 0.39, facing_ring), (x_cross - sx * 0.38, y_ring + sy * 0.39, facing_ring),
-                ((x_ring + x_cross) / 2, y_cross - sy * 0.34, 0.0)]
+        return [(x_ring + sx * 0.38, y_ring + sy * 0.37, facing_ring), (x_cross - sx * 0.38, y_ring + sy * 0.37, facing_ring),
+                ((x_ring + x_cross) / 2, y_cross - sy * 0.35, 0.0)]
     sw, se = courtyard_homes(lo, mid, lo, mid), courtyard_homes(hi, mid, lo, mid)
     ne, nw = courtyard_homes(hi, mid, hi, mid), courtyard_homes(lo, mid, hi, mid)
     homes = [sw[0], se[0], ne[0], nw[0], sw[1], se[1], ne[1], nw[1], sw[2], se[2], ne[2], nw[2]]
