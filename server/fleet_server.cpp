@@ -121,6 +121,13 @@ void FleetServer::update_pallet(model::PalletTruth pallet) {
   pallets_[pallet.pallet_id] = std::move(pallet);
 }
 
+const model::PalletTruth* FleetServer::pallet_carried_by(const std::string& robot_id) const {
+  for (const auto& [id, pallet] : pallets_) {
+    if (pallet.carried_by == robot_id) return &pallet;
+  }
+  return nullptr;
+}
+
 const model::PalletTruth* FleetServer::pallet_on(const std::string& area_id) const {
   for (const auto& [id, pallet] : pallets_) {
     if (pallet.area_id == area_id && pallet.carried_by.empty()) return &pallet;
@@ -684,12 +691,16 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
                  options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
       return;
     }
-    book_.requeue(id, clock_.now(), "robot " + robot.id + " lost");
-    log_->warn("order {} re-queued: robot {} lost", id, robot.id);
-    awaiting_ack_since_.erase(id);
-    publish_order(*book_.find(id));
-    if (book_.find(id)->status == OrderStatus::Queued) withdraw(*book_.find(id), robot.id);
+    requeue_taken_from(id, robot.id, "robot " + robot.id + " lost");
   }
+}
+
+void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason) {
+  if (book_.requeue(order_id, clock_.now(), reason) != TransitionResult::Applied) return;
+  log_->warn("order {} re-queued: {}", order_id, reason);
+  awaiting_ack_since_.erase(order_id);
+  publish_order(*book_.find(order_id));
+  withdraw(*book_.find(order_id), robot_id);
 }
 
 void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {
@@ -704,9 +715,8 @@ void FleetServer::return_pallet_of(const std::string& robot_id, const std::strin
   // nowhere, and a fleet that loses one pallet per crash soon has no work. Where a real fleet's
   // operator takes the pallet off the crashed robot and puts it back, the simulation puts it on
   // the order's pick area, or the first free one.
-  auto carried =
-      std::find_if(pallets_.begin(), pallets_.end(), [&](const auto& p) { return p.second.carried_by == robot_id; });
-  if (carried == pallets_.end()) return;
+  const model::PalletTruth* carried = pallet_carried_by(robot_id);
+  if (!carried) return;
   const map::LoadingArea* area = options_.site.find_area(preferred_area);
   if (!area || pallet_on(area->id)) {
     area = nullptr;
@@ -718,10 +728,10 @@ void FleetServer::return_pallet_of(const std::string& robot_id, const std::strin
     }
   }
   if (!area) {
-    log_->warn("pallet {} of restarted robot {} has no free loading area to go back to", carried->first, robot_id);
+    log_->warn("pallet {} of restarted robot {} has no free loading area to go back to", carried->pallet_id, robot_id);
     return;
   }
-  model::PalletTruth pallet = carried->second;
+  model::PalletTruth pallet = *carried;
   pallet.pose = area->pose;
   pallet.area_id = area->id;
   pallet.carried_by.clear();
@@ -734,15 +744,9 @@ void FleetServer::give_up_on_lost_robot(std::int64_t order_id, const std::string
   const Order* order = book_.find(order_id);
   if (!order) return;
   const std::string robot_id = order->robot_id;
-  const bool lifted =
-      std::any_of(pallets_.begin(), pallets_.end(), [&](const auto& p) { return p.second.carried_by == robot_id; });
-  if (!lifted) {
+  if (!pallet_carried_by(robot_id)) {
     // Lost while picking, before the lift: the pallet still stands on the pick area.
-    if (book_.requeue(order_id, clock_.now(), why + " before lifting the pallet") != TransitionResult::Applied) return;
-    log_->warn("order {} re-queued: {} before lifting the pallet", order_id, why);
-    awaiting_ack_since_.erase(order_id);
-    publish_order(*book_.find(order_id));
-    withdraw(*book_.find(order_id), robot_id);
+    requeue_taken_from(order_id, robot_id, why + " before lifting the pallet");
     return;
   }
   const std::string pick_area = order->pick_area;

@@ -113,6 +113,9 @@ class FleetServer {
   void update_pallet(model::PalletTruth pallet);
   /// The pallet standing on `area_id`, if any.
   const model::PalletTruth* pallet_on(const std::string& area_id) const;
+  const model::PalletTruth* pallet_carried_by(const std::string& robot_id) const;
+  /// Back to the queue, taken from `robot_id` (told to drop it), with `reason` in its history.
+  void requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason);
   void return_pallet_of(const std::string& robot_id, const std::string& preferred_area);
   /// The lost robot of a waiting order came back restarted, or did not come back in time: the
   /// order is re-queued when the robot had not lifted the pallet (pallet truth), else failed and
