@@ -765,9 +765,12 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     it = awaiting_lost_robot_.erase(it);
     if (orders::is_final(order->status)) continue;
     // A restarted agent may report the order too: it read the latched assignment before its
-    // first state, and runs the order from the start. It has no pallet where the order had one
-    // on the way to the drop.
-    const bool restarted = state.order_id != id || (order->phase == OrderPhase::ToDrop && !state.carrying_pallet);
+    // first state, and runs the order from the start. Its forks are empty while the pallet truth
+    // has the pallet on them (and it was not putting it down). The order's phase does not tell:
+    // the restarted agent's TO_PICK report can arrive before its first state.
+    const bool dropping = order->phase == OrderPhase::Dropping;
+    const bool restarted =
+        state.order_id != id || (pallet_carried_by(state.robot_id) && !state.carrying_pallet && !dropping);
     if (!restarted) {
       // Its software still runs the order: the pallet is on its forks, or it was put down at the
       // drop area as the robot froze and the DONE report follows, or it was still picking.
