@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/paths.hpp"
+#include "common/process_memory.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::agent {
@@ -373,6 +374,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   double last_publish_wall = 0.0;
   double target = clock_.now();
   publish_state(target);
+  ProcessMemory memory;
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(2));
     handle_site_inputs();
@@ -400,6 +402,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       publish_traffic(target);
     }
     flush_delayed_states();
+    memory.tick(now_wall);
   }
   log_->info("stopping");
 }

@@ -7,6 +7,7 @@
 #include "agent/fleet_agent.hpp"
 #include "common/args.hpp"
 #include "common/paths.hpp"
+#include "common/process_memory.hpp"
 #include "dds/environment.hpp"
 #include "model/names.hpp"
 
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
     }
 
     dds::use_fleet_dds_config();
+    ProcessMemory::limit_arenas();
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
 

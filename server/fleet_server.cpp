@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "common/process_memory.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "traffic/traffic_settings.hpp"
@@ -246,6 +247,7 @@ std::string FleetServer::switch_map(const std::string& map_id) {
 }
 
 void FleetServer::run(const std::atomic<bool>& stop) {
+  ProcessMemory memory;
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(5));
     handle_order_requests();
@@ -271,6 +273,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     dispatch();
     publish_fleet_view();
     publish_web_snapshot();
+    memory.tick(SimClock::wall_now());
   }
   log_->info("stopping; {} orders known", book_.all().size());
 }

@@ -9,6 +9,7 @@
 
 #include "common/args.hpp"
 #include "common/paths.hpp"
+#include "common/process_memory.hpp"
 #include "dds/environment.hpp"
 #include "map/site_map.hpp"
 #include "server/fleet_server.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
     }
 
     dds::use_fleet_dds_config();
+    ProcessMemory::limit_arenas();
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
 
