@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <thread>
@@ -39,6 +40,26 @@ bool eventually(Predicate p, std::chrono::milliseconds timeout) {
     std::this_thread::sleep_for(20ms);
   }
   return p();
+}
+
+/// Asks the server for an order from A1 (which holds a pallet) to A2.
+std::optional<model::RequestReply> order_a1_to_a2(cli::FleetClient& client) {
+  model::OrderRequest request;
+  request.pick_area = "A1";
+  request.drop_area = "A2";
+  return client.request_order(request, 5s);
+}
+
+/// Whether order `id` is seen in `phase` within `timeout` (on `robot`, unless it is empty).
+bool reaches_phase(cli::FleetClient& client, std::int64_t id, const std::string& phase, const std::string& robot,
+                   std::chrono::milliseconds timeout) {
+  return eventually(
+      [&] {
+        const auto o = client.orders(50ms);
+        auto it = o.find(id);
+        return it != o.end() && it->second.phase == phase && (robot.empty() || it->second.robot_id == robot);
+      },
+      timeout);
 }
 
 }  // namespace
@@ -91,20 +112,11 @@ TEST(Recovery, AgentKilledWithoutPalletHasItsOrderRequeuedAndDoneByAnother) {
   fleet.start_agent("fl2");
   cli::FleetClient client(71);
   ASSERT_TRUE(client.find_server(5s));
-  model::OrderRequest request;
-  request.pick_area = "A1";
-  request.drop_area = "A2";
-  const auto reply = client.request_order(request, 5s);
+  const auto reply = order_a1_to_a2(client);
   ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
   const std::int64_t id = reply->order_id;
 
-  ASSERT_TRUE(eventually(
-      [&] {
-        const auto o = client.orders(50ms);
-        auto it = o.find(id);
-        return it != o.end() && it->second.robot_id == "fl1" && it->second.phase == "TO_PICK";
-      },
-      10s));
+  ASSERT_TRUE(reaches_phase(client, id, "TO_PICK", "fl1", 10s));
   fleet.processes().signal(1, SIGKILL);  // fl1, on its way to the pallet
 
   const auto final_info = client.follow_order(
@@ -125,20 +137,10 @@ TEST(Recovery, AgentKilledWithThePalletComesBackEmptyAndThePalletGoesBackToItsAr
   ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));
   cli::FleetClient client(78);
   ASSERT_TRUE(client.find_server(5s));
-  model::OrderRequest request;
-  request.pick_area = "A1";
-  request.drop_area = "A2";
-  const auto reply = client.request_order(request, 5s);
+  const auto reply = order_a1_to_a2(client);
   ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
   const std::int64_t id = reply->order_id;
-  ASSERT_TRUE(eventually(
-      [&] {
-        const auto o = client.orders(50ms);
-        auto it = o.find(id);
-        return it != o.end() && it->second.phase == "TO_DROP";
-      },
-      60s))
-      << fleet.log_of("fleet-agent-fl1");
+  ASSERT_TRUE(reaches_phase(client, id, "TO_DROP", "", 60s)) << fleet.log_of("fleet-agent-fl1");
   int pallet = -1;
   for (const auto& [pallet_id, p] : client.pallets(300ms)) {
     if (p.carried_by == "fl1") pallet = pallet_id;
@@ -163,7 +165,7 @@ TEST(Recovery, AgentKilledWithThePalletComesBackEmptyAndThePalletGoesBackToItsAr
       10s))
       << fleet.log_of("fleet-server");
   // The pallet is in circulation again: an order from A1 is done.
-  const auto again = client.request_order(request, 5s);
+  const auto again = order_a1_to_a2(client);
   ASSERT_TRUE(again && again->accepted) << (again ? again->error : "no reply");
   const auto done = client.follow_order(
       again->order_id, [](const model::OrderInfo&) {}, 150s);
