@@ -343,7 +343,7 @@ void FleetAgent::publish_traffic(double now_sim) {
   const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size();
   if (!changed && now_sim == last_traffic_sim_) return;
   if (!changed && route.points.empty() && last_traffic_.points.empty() && last_traffic_sim_ >= 0.0) return;
-  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, now_sim});
+  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim});
   last_traffic_ = std::move(route);
   last_traffic_sim_ = now_sim;
 }

@@ -160,7 +160,13 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
     if (auto t = trims_.find(request.robot_id); t != trims_.end() && t->second.version == request.version) {
       progress -= t->second.offset;
     }
-    manager_.report_progress({id, request.version, progress}, now_sim);
+    std::vector<int> stopped_for;
+    for (const auto& other : request.stopped_for) {
+      if (auto known = numbers_.find(other); known != numbers_.end() && known->second != id) {
+        stopped_for.push_back(known->second);
+      }
+    }
+    manager_.report_progress({id, request.version, progress, std::move(stopped_for)}, now_sim);
   });
 }
 
@@ -290,6 +296,14 @@ void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
   auto sent = sent_.find(grant.robot_id);
   if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[grant.robot_id] < kGrantRepeatWall) {
     return;
+  }
+  if (log_->should_log(spdlog::level::debug) &&
+      (sent == sent_.end() || sent->second.status != grant.status || sent->second.blocked_by != grant.blocked_by)) {
+    // Who waits for whom, as it changes: what a jam is read back from.
+    std::string blockers;
+    for (const auto& b : grant.blocked_by) blockers += (blockers.empty() ? "" : ", ") + b;
+    log_->debug("traffic: {} {} v{} up to point {} ({:.2f} m){}{}", grant.robot_id, grant.status, grant.version,
+                grant.granted_index, grant.granted_distance, blockers.empty() ? "" : ", waits for ", blockers);
   }
   grant_writer_.write(grant);
   sent_wall_[grant.robot_id] = now_wall;

@@ -180,6 +180,9 @@ struct TrafficRequest {
   std::uint32_t version = 0;
   std::vector<int> points;
   double progress = 0.0;  ///< metres from the route's first point
+  /// Robots whose bodies the robot's safety check has kept it standing for a while (see
+  /// traffic::ProgressReport::stopped_for).
+  std::vector<std::string> stopped_for;
   double sim_time = 0.0;
 };
 

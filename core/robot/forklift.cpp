@@ -18,6 +18,12 @@ constexpr double kLookahead = 1.0;            // metres of path checked (seed 00
 constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
 constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
 constexpr double kTemporarySize = 0.3;        // side of a temporary obstacle box, metres
+// A safety stop for another robot's body is reported to the traffic manager once it lasted this
+// long (sim seconds) with this robot within kStopMoved of where it began: following a robot that
+// stops briefly is no wait worth a re-route. A stop lapses after kStopGap without the check stopping.
+constexpr double kReportStopAfter = 3.0;
+constexpr double kStopMoved = 0.05;
+constexpr double kStopGap = 1.0;
 
 planning::StaticGrid make_static_grid(const ForkliftConfig& c, const map::SiteMap& site) {
   return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
@@ -322,7 +328,9 @@ void Forklift::step() {
         nearest = n.robot_id;
       }
     }
-    detail_ = std::isfinite(nearest_gap) && nearest_gap < 0.5 ? "robot " + nearest + " ahead" : "an obstacle ahead";
+    const bool robot_ahead = std::isfinite(nearest_gap) && nearest_gap < 0.5;
+    detail_ = robot_ahead ? "robot " + nearest + " ahead" : "an obstacle ahead";
+    note_safety_stop(t, robot_ahead ? nearest : std::string{});
   } else if (held) {
     detail_ = permit_.blocked_by.empty() ? "waiting for a traffic grant"
                                          : "waiting for traffic: road held by " + [&] {
@@ -575,11 +583,27 @@ void Forklift::set_traffic_grant(const TrafficPermit& permit) {
   if (!pending_route_) permit_ = permit;
 }
 
+void Forklift::note_safety_stop(double t, const std::string& nearest) {
+  const Vec2 here = sim_.estimate().position();
+  if (nearest.empty()) return;
+  if (nearest != safety_stop_.robot_id || t - safety_stop_.last_seen > kStopGap ||
+      geometry::distance(here, safety_stop_.where) > kStopMoved) {
+    safety_stop_ = {nearest, t, here, t};
+  }
+  safety_stop_.last_seen = t;
+}
+
 TrafficRoute Forklift::traffic_route() const {
   TrafficRoute r;
   r.version = route_version_;
   r.points = road_points_;
   if (!road_points_.empty()) r.progress = std::clamp(path_s_ - road_start_, 0.0, road_cum_.back());
+  const double t = sim_.time();
+  const SafetyStop& stop = safety_stop_;
+  if (!road_points_.empty() && !stop.robot_id.empty() && t - stop.last_seen <= kStopGap &&
+      t - stop.since >= kReportStopAfter && geometry::distance(sim_.estimate().position(), stop.where) <= kStopMoved) {
+    r.stopped_for.push_back(stop.robot_id);
+  }
   return r;
 }
 

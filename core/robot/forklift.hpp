@@ -63,6 +63,10 @@ struct TrafficRoute {
   std::uint32_t version = 0;
   std::vector<int> points;  ///< graph point ids; empty while off the roads
   double progress = 0.0;    ///< metres driven from the first point
+  /// The robot whose body the safety check has kept this one standing for, once the stop has
+  /// lasted (robot::kReportStopAfter): the traffic manager then sees who waits for whom even
+  /// where the grants alone show no cycle.
+  std::vector<std::string> stopped_for;
 };
 
 /// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).
@@ -203,6 +207,16 @@ class Forklift {
   bool blocked_by_neighbour_ = false;
   double next_dynamic_update_ = 0.0;
   double blocked_since_ = -1.0;
+  /// A safety stop for one robot's body, kept through the flicker of a stop (the check clears for
+  /// a step as poses arrive, then stops again): who, since when, where this robot stood, when last.
+  struct SafetyStop {
+    std::string robot_id;
+    double since = 0.0;
+    geometry::Vec2 where;
+    double last_seen = -1.0;
+  };
+  SafetyStop safety_stop_;
+  void note_safety_stop(double t, const std::string& nearest);
   std::map<std::string, int> seen_free_;
   int next_temporary_ = 1;
 

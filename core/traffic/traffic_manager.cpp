@@ -11,6 +11,9 @@ namespace fleet::traffic {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Seconds a robot sent a re-route or a siding gets to act on it before a wait cycle may pick it
+// again: the robots around it still see it where it stood until it moves.
+constexpr double kActOnInstruction = 2.0;
 
 // Direction of travel through `places[index]` inside its corridor: towards the next different
 // place on the route, 0 when the route leaves the corridor there or ends. Only robots still to
@@ -74,6 +77,7 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.blocked = false;
   robot.stopped = true;
   robot.blocked_by.clear();
+  robot.stopped_for.clear();
   // Previous holdings stay until the robot is past the first edge of the new route.
   std::size_t k = 0;
   while (k + 1 < n && robot.places[k + 1] == robot.places[0]) ++k;
@@ -129,6 +133,12 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   Robot& robot = it->second;
   if (report.version != robot.version) return;
   robot.pending = Instruction::kNone;  // the robot drives this version: the instruction arrived
+  robot.stopped_for.clear();
+  for (int other : report.stopped_for) {
+    if (other != robot.id && robots_.count(other) != 0) robot.stopped_for.push_back(other);
+  }
+  std::sort(robot.stopped_for.begin(), robot.stopped_for.end());
+  robot.stopped_for.erase(std::unique(robot.stopped_for.begin(), robot.stopped_for.end()), robot.stopped_for.end());
   const double limit = robot.cum[static_cast<std::size_t>(robot.grant_end)];
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
 }
@@ -552,6 +562,14 @@ bool TrafficManager::stopped_at_grant_end(const Robot& robot) const {
   return robot.progress >= robot.cum[static_cast<std::size_t>(robot.grant_end)] - configuration_.stop_tolerance;
 }
 
+int TrafficManager::anchor_index(const Robot& robot) const {
+  if (stopped_at_grant_end(robot)) return robot.grant_end;
+  int k = robot.grant_end;
+  const double behind = robot.progress + configuration_.stop_tolerance;
+  while (k > robot.first_held && robot.cum[static_cast<std::size_t>(k)] > behind) --k;
+  return k;
+}
+
 // ---- re-routes and sidings -------------------------------------------------------------------------
 
 std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int>& others, bool with_next_stretch,
@@ -608,13 +626,14 @@ void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instru
 bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
                              TrafficEvent::Kind kind, bool against_one_way) {
   const int slot = slot_of(robot.id);
-  const int anchor = robot.route[static_cast<std::size_t>(robot.grant_end)];
+  const int from = anchor_index(robot);
+  const int anchor = robot.route[static_cast<std::size_t>(from)];
   const int goal = robot.route.back();
   const auto blocked = places_of_others(others, true, 0.0);
   std::vector<int> path = (against_one_way ? search_ : route_search_)->shortest(anchor, goal, &blocked);
   if (path.size() < 2) return false;
   // Only a different way helps, and only one the robot can start on now.
-  std::vector<int> remaining(robot.route.begin() + robot.grant_end, robot.route.end());
+  std::vector<int> remaining(robot.route.begin() + from, robot.route.end());
   if (path == remaining) return false;
   if (!first_stretch_free(path, slot)) return false;
   replace_route(robot, std::move(path), Instruction::kReroute, now);
@@ -622,9 +641,16 @@ bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, doubl
   return true;
 }
 
-bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out) {
+bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
+                                    bool clear_of_self) {
   const int slot = slot_of(robot.id);
-  const int anchor = robot.route[static_cast<std::size_t>(robot.grant_end)];
+  const int anchor = robot.route[static_cast<std::size_t>(anchor_index(robot))];
+  std::vector<std::uint8_t> here(zones_->place_count(), 0);
+  if (clear_of_self) {
+    for (int p : held_places(robot.id)) {
+      for (int q : zones_->conflicts(p)) here[static_cast<std::size_t>(q)] = 1;
+    }
+  }
   // The robot may drive through nothing another robot holds ...
   std::vector<int> everyone;
   for (const auto& [id, o] : robots_) {
@@ -637,7 +663,9 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
   std::vector<int> path;
   for (double window : {kInfinity, configuration_.siding_window}) {
     auto avoid = places_of_others(others, true, window);
-    for (std::size_t p = 0; p < avoid.size(); ++p) avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p]);
+    for (std::size_t p = 0; p < avoid.size(); ++p) {
+      avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p] | here[p]);
+    }
     path = search_->nearest(
         anchor, [&](int place) { return zones_->stoppable(place) && avoid[static_cast<std::size_t>(place)] == 0; },
         &through);
@@ -733,11 +761,28 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     if (index[s] < 0 && slots_[s]->wait_since >= 0.0) connect(static_cast<int>(s));
   }
   for (auto& component : components) {
-    // Lowest priority first: it yields.
+    std::vector<int> ids;
+    for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
+    // A member whose body stops another member's safety check is in the way itself: it yields
+    // first (re-routing the stopped one would not move the body it stands behind). Then lowest
+    // priority first.
+    const auto stops_a_member = [&](const Robot& r) {
+      return std::any_of(ids.begin(), ids.end(), [&](int id) {
+        const auto& stopped_for = robots_.at(id).stopped_for;
+        return std::binary_search(stopped_for.begin(), stopped_for.end(), r.id);
+      });
+    };
+    std::vector<std::uint8_t> in_the_way(n, 0);
+    for (int s : component) {
+      in_the_way[static_cast<std::size_t>(s)] = stops_a_member(*slots_[static_cast<std::size_t>(s)]) ? 1 : 0;
+    }
     std::sort(component.begin(), component.end(), [&](int a, int b) {
+      if (in_the_way[static_cast<std::size_t>(a)] != in_the_way[static_cast<std::size_t>(b)]) {
+        return in_the_way[static_cast<std::size_t>(a)] > in_the_way[static_cast<std::size_t>(b)];
+      }
       return higher_priority(*slots_[static_cast<std::size_t>(b)], *slots_[static_cast<std::size_t>(a)]);
     });
-    std::vector<int> ids;
+    ids.clear();
     for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
     // The members a robot waits for, and the members waiting for it.
     const auto waiting = [&](const Robot& waiter, int for_id) {
@@ -750,16 +795,24 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
       }
       return blockers;
     };
+    // One instruction at a time: a member sent a new route that has not reached it yet may break
+    // the cycle by what it does; and a robot just sent one is not picked again until it could act
+    // on it (it may stand where it did for a moment, and a body it stopped may still be reported).
+    const bool instructed = std::any_of(ids.begin(), ids.end(), [&](int id) {
+      return robots_.at(id).pending != Instruction::kNone;
+    });
+    if (instructed) continue;
     bool resolved = false;
     for (int s : component) {
       Robot& victim = *slots_[static_cast<std::size_t>(s)];
+      if (now - victim.last_reroute < kActOnInstruction) continue;
       // It goes round the robots it waits for, or out of the way of the robots waiting for it.
       std::vector<int> waiters;
       for (int id : ids) {
         if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
       }
       if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
-          send_to_siding(victim, waiters, now, out)) {
+          send_to_siding(victim, waiters, now, out, in_the_way[static_cast<std::size_t>(s)] != 0)) {
         resolved = true;
         break;
       }
@@ -796,7 +849,16 @@ UpdateResult TrafficManager::update(double now) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
     extend(robot, s);
     robot.stopped = stopped_at_grant_end(robot);
-    const bool waiting = robot.blocked && robot.stopped;
+    // Stopped short of its grant by another robot's body: it waits for that robot as surely as
+    // for one holding the road.
+    const bool stopped_by_body = !robot.frozen && !robot.stopped_for.empty();
+    if (stopped_by_body) {
+      robot.blocked = true;
+      robot.blocked_by.insert(robot.blocked_by.end(), robot.stopped_for.begin(), robot.stopped_for.end());
+      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
+      robot.blocked_by.erase(std::unique(robot.blocked_by.begin(), robot.blocked_by.end()), robot.blocked_by.end());
+    }
+    const bool waiting = robot.blocked && (robot.stopped || stopped_by_body);
     if (!waiting) {
       robot.wait_since = -1.0;
     } else if (robot.wait_since < 0.0) {

@@ -48,6 +48,11 @@ struct ProgressReport {
   int robot_id = 0;
   std::uint32_t version = 0;
   double distance = 0.0;
+  /// Robots whose bodies the robot's own safety check has kept it standing for (the agents'
+  /// check is finer than the places: bodies turning onto a road or cutting a corner reach past
+  /// them). The manager counts it as waiting for them, so a robot it waits for in turn closes a
+  /// cycle that resolve_cycles breaks.
+  std::vector<int> stopped_for;
 };
 
 enum class SubmitStatus {
@@ -240,6 +245,7 @@ class TrafficManager {
     bool blocked = false;
     bool stopped = false;
     std::vector<int> blocked_by;
+    std::vector<int> stopped_for;  ///< robots whose bodies its safety check stops it for (ProgressReport)
     Instruction pending = Instruction::kNone;
     bool in_siding = false;
     int resume_goal = -1;
@@ -269,9 +275,15 @@ class TrafficManager {
   bool place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const;
   void extend(Robot& robot, int slot);
   bool stopped_at_grant_end(const Robot& robot) const;
+  /// Where a re-route or siding of the robot starts: the end of its grant when it stands there,
+  /// else (stopped short of it by another robot's body) the route point at or behind it.
+  int anchor_index(const Robot& robot) const;
   bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind,
                bool against_one_way = false);
-  bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out);
+  /// `clear_of_self`: the siding must also lie off the places in conflict with those the robot
+  /// holds now, so it moves a body length at least (its body stands in another's way).
+  bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
+                      bool clear_of_self = false);
   void try_resume(Robot& robot, double now, UpdateResult& out);
   void resolve_cycles(double now, UpdateResult& out);
   std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch,

@@ -176,7 +176,7 @@ void TrafficSim::advance(Body& body) {
       body.pose.y = b.y;
     }
   }
-  if (params_.traffic) manager_.report_progress({body.id, body.version, body.distance}, time_);
+  if (params_.traffic) manager_.report_progress({body.id, body.version, body.distance, {}}, time_);
 
   const auto& zones = manager_.zones();
   if (body.goal >= 0 && body.distance >= end - 1e-9 && zones.place_of(body.route.back()) == zones.place_of(body.goal)) {
@@ -240,7 +240,7 @@ void TrafficSim::step() {
       if (!body) continue;
       if (grant.version > body->version && grant.instruction != Instruction::kNone && !grant.route.empty()) {
         set_route(*body, grant.route, grant.version);
-        manager_.report_progress({body->id, body->version, 0.0}, time_);
+        manager_.report_progress({body->id, body->version, 0.0, {}}, time_);
       }
       if (grant.version == body->version) body->granted = grant.granted_distance;
       report_.max_wait_s = std::max(report_.max_wait_s, grant.waited_s);

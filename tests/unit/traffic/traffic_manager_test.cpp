@@ -129,16 +129,16 @@ TEST(TrafficManager, ReleasesByDistanceTravelledBeforeTheNextNode) {
   ASSERT_GT(r.grants.at(0).granted_index, 2);
   const int first = m.zones().place_of(road[0]);
   // 0.06 m along the first 0.1 m edge: past its midpoint by less than the release margin.
-  m.report_progress({7, 1, 0.06}, 0.3);
+  m.report_progress({7, 1, 0.06, {}}, 0.3);
   m.update(0.3);
   auto held = m.held_places(7);
   EXPECT_TRUE(std::binary_search(held.begin(), held.end(), first));
-  m.report_progress({7, 1, 0.08}, 0.4);
+  m.report_progress({7, 1, 0.08, {}}, 0.4);
   m.update(0.4);
   held = m.held_places(7);
   EXPECT_FALSE(std::binary_search(held.begin(), held.end(), first));
   // Progress on another version is ignored.
-  m.report_progress({7, 5, 1.5}, 0.5);
+  m.report_progress({7, 5, 1.5, {}}, 0.5);
   m.update(0.5);
   held = m.held_places(7);
   EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(road[1])));
@@ -168,11 +168,11 @@ TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDrive
     const Grant* g2 = grant_of(r, 2);
     ASSERT_NE(g2, nullptr);
     progress2 = std::min(g2->granted_distance, progress2 + 0.02);
-    m.report_progress({2, 1, progress2}, t);
+    m.report_progress({2, 1, progress2, {}}, t);
     const Grant* g1 = grant_of(r, 1);
     ASSERT_NE(g1, nullptr);
     EXPECT_LT(g1->granted_distance, 1.3) << "robot 1 entered the closed zone at t=" << t;
-    m.report_progress({1, 1, g1->granted_distance}, t);
+    m.report_progress({1, 1, g1->granted_distance, {}}, t);
     if (m.holders_in_conflict(entry, 3).empty()) break;
   }
   EXPECT_TRUE(m.holders_in_conflict(entry, 3).empty()) << "robot 2 never left the entry's zone";
@@ -188,7 +188,7 @@ TEST(TrafficManager, FrozenRobotKeepsThePlacesUnderItsBodyAndIsGrantedNothingMor
   TrafficManager m(b.graph());
   ASSERT_EQ(m.submit_route({4, 1, road}, 0.0), SubmitStatus::kAccepted);
   auto r = m.update(0.0);
-  m.report_progress({4, 1, 0.35}, 0.1);
+  m.report_progress({4, 1, 0.35, {}}, 0.1);
   r = m.update(0.1);
   const std::size_t held_moving = m.held_places(4).size();
   // Lost at 0.35 m, facing along the road.
@@ -219,7 +219,7 @@ TEST(TrafficManager, AGrantIntoARobotThatTurnsUpStandingIsPulledBack) {
   UpdateResult r = m.update(0.0);
   const double first_grant = grant_of(r, 1)->granted_distance;
   ASSERT_GE(first_grant, 0.6);
-  m.report_progress({1, 2, 0.2}, 0.05);
+  m.report_progress({1, 2, 0.2, {}}, 0.05);
   // Robot 7 turns up standing at 0.9 m, inside what robot 1 was granted (it came back onto the
   // road it stood at): robot 1's grant ends short of it, and no one holds a place in conflict
   // with another's.
@@ -237,8 +237,8 @@ TEST(TrafficManager, AGrantIntoARobotThatTurnsUpStandingIsPulledBack) {
     ASSERT_EQ(m.check_invariant(), "");
     if (const Grant* g7 = grant_of(r, 7)) d7 = std::min(g7->granted_distance, d7 + 0.01);
     if (const Grant* g1 = grant_of(r, 1)) d1 = std::min(g1->granted_distance, d1 + 0.01);
-    m.report_progress({7, 2, d7}, t);
-    m.report_progress({1, 2, d1}, t);
+    m.report_progress({7, 2, d7, {}}, t);
+    m.report_progress({1, 2, d1, {}}, t);
   }
   EXPECT_GE(d1, 1.2);
 }
@@ -263,7 +263,7 @@ TEST(TrafficManager, AStandingBodyIsNotDrivenIntoAndEntersWhereItStands) {
     r = m.update(t);
     g1 = grant_of(r, 1);
     ASSERT_NE(g1, nullptr);
-    m.report_progress({1, 2, g1->granted_distance}, t);
+    m.report_progress({1, 2, g1->granted_distance, {}}, t);
     ASSERT_EQ(m.check_invariant(), "");
   }
   EXPECT_EQ(g1->status, GrantStatus::kWaiting);
@@ -284,14 +284,58 @@ TEST(TrafficManager, AStandingBodyIsNotDrivenIntoAndEntersWhereItStands) {
     const Grant* g7 = grant_of(r, 7);
     ASSERT_NE(g7, nullptr);
     d7 = std::min(g7->granted_distance, d7 + 0.05);
-    m.report_progress({7, 2, d7}, t);
+    m.report_progress({7, 2, d7, {}}, t);
     g1 = grant_of(r, 1);
-    if (g1) m.report_progress({1, 2, std::min(g1->granted_distance, d7 + 1.0)}, t);
+    if (g1) m.report_progress({1, 2, std::min(g1->granted_distance, d7 + 1.0), {}}, t);
   }
   EXPECT_GT(grant_of(r, 1)->granted_distance, 1.5) << "robot 1 never passed where robot 7 stood";
   // Parked clear of the road, a robot holds nothing and is not kept.
   EXPECT_FALSE(m.hold_body(8, geometry::footprint_polygon({1.5, 2.0, 0.0}, geometry::Footprint{}), t));
   EXPECT_FALSE(m.has_robot(8));
+}
+
+TEST(TrafficManager, ARobotStoppedByAnotherBodyClosesACycleAndTheRobotInTheWayBacksOff) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficConfiguration c;
+  c.one_way = false;
+  TrafficManager m(b.graph(), c);
+  // Robot 2 entered at 1.5 m heading east; robot 1 comes up behind it and is granted up to where
+  // robot 2's place allows, short of 1.5 m.
+  const int entry = point_at(b.graph(), 1.5, 0.0);
+  const std::vector<int> onward(road.begin() + (entry - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({2, 1, onward}, 0.0), SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0;
+  UpdateResult r;
+  for (int i = 0; i < 60; ++i, t += 0.05) {
+    r = m.update(t);
+    m.report_progress({1, 1, grant_of(r, 1)->granted_distance, {}}, t);
+    m.report_progress({2, 1, 0.0, {}}, t);
+  }
+  ASSERT_EQ(grant_of(r, 1)->status, GrantStatus::kWaiting);
+  ASSERT_EQ(grant_of(r, 1)->blocked_by, std::vector<int>{2});
+  const std::vector<int> robot1_held = m.held_places(1);
+  // Robot 2 has not moved: its own safety check stops it for robot 1's body (it turns onto the
+  // road across robot 1's path). The grants alone show robot 1 waiting, nobody waiting for it.
+  EXPECT_EQ(grant_of(r, 2)->status, GrantStatus::kMoving);
+  bool sided = false;
+  for (int i = 0; i < 10 && !sided; ++i, t += 0.05) {
+    m.report_progress({2, 1, 0.0, {1}}, t);
+    r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    sided = std::any_of(r.events.begin(), r.events.end(),
+                        [](const TrafficEvent& e) { return e.kind == TrafficEvent::Kind::kSidingSent; });
+  }
+  ASSERT_TRUE(sided) << "the wait cycle through robot 2's safety stop was not broken";
+  const Grant* g1 = grant_of(r, 1);
+  ASSERT_EQ(g1->instruction, Instruction::kSiding);
+  ASSERT_GE(g1->route.size(), 2u);
+  // Robot 1 backs off a body length at least: its siding is clear of where it stood.
+  const int siding = m.zones().place_of(g1->route.back());
+  for (int p : robot1_held) EXPECT_FALSE(m.zones().conflict(siding, p)) << "siding place " << siding;
+  EXPECT_LT(m.zones().position(siding).x, m.zones().position(robot1_held.front()).x);
+  EXPECT_EQ(grant_of(r, 2)->status, GrantStatus::kWaiting);
 }
 
 TEST(TrafficManager, ValidatesRoutes) {
@@ -392,7 +436,7 @@ TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
       break;
     }
     distance = std::min(distance + 0.01, g2->granted_distance);
-    m.report_progress({2, g2->version, distance}, now);
+    m.report_progress({2, g2->version, distance, {}}, now);
   }
   ASSERT_TRUE(rerouted);
   EXPECT_LE(max_wait, config.reroute_wait + 0.1);
@@ -433,8 +477,8 @@ TEST(TrafficManager, RobotsStandingCloseInACorridorBothDriveOnAfterARestart) {
       ASSERT_EQ(m.check_invariant(), "");
       if (const Grant* g3 = grant_of(r, 3)) d3 = std::min(g3->granted_distance, d3 + 0.005);
       if (const Grant* g1 = grant_of(r, 1)) d1 = std::min(g1->granted_distance, d1 + 0.005);
-      m.report_progress({3, 2, d3}, t);
-      m.report_progress({1, 2, d1}, t);
+      m.report_progress({3, 2, d3, {}}, t);
+      m.report_progress({1, 2, d1, {}}, t);
     }
     EXPECT_GT(d3, 0.5) << order;
     EXPECT_GT(d1, 0.5) << order;
@@ -466,8 +510,8 @@ TEST(TrafficManager, RobotsStandingOneBodyApartAfterARestartDriveOnOneAfterTheOt
         ASSERT_EQ(m.check_invariant(), "") << front_yaw << " " << rear_yaw;
         if (const Grant* g5 = grant_of(r, 5)) d5 = std::min(g5->granted_distance, d5 + 0.005);
         if (const Grant* g2 = grant_of(r, 2)) d2 = std::min(g2->granted_distance, d2 + 0.005);
-        m.report_progress({5, 2, d5}, t);
-        m.report_progress({2, 2, d2}, t);
+        m.report_progress({5, 2, d5, {}}, t);
+        m.report_progress({2, 2, d2, {}}, t);
       }
       EXPECT_GT(d5, 1.0) << front_yaw << " " << rear_yaw;
       EXPECT_GT(d2, 0.5) << front_yaw << " " << rear_yaw;
