@@ -497,6 +497,7 @@ void Forklift::adopt_path(const planning::Route& route) {
   path_cum_ = cumulative_lengths(path_);
   path_s_ = 0.0;
   in_siding_ = false;
+  safety_stop_ = {};  // a stop is reported for the route it happened on, after lasting on it
   road_points_ = route.road.point_ids;
   road_cum_ = cumulative_lengths(route.road.points);
   road_start_ = 0.0;
@@ -531,6 +532,7 @@ void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   road_cum_ = cumulative_lengths(road);
   route_version_ = permit.version;
   in_siding_ = permit.siding;
+  safety_stop_ = {};
   if (!to_goal) goal_leg_.clear();
   detail_ = permit.siding ? "yielding on a siding" : "re-routed by traffic";
 }

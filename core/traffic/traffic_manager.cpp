@@ -806,6 +806,14 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     for (int s : component) {
       Robot& victim = *slots_[static_cast<std::size_t>(s)];
       if (now - victim.last_reroute < kActOnInstruction) continue;
+      // A member already yielding to it on a siding makes way for it: sending it off as well
+      // would only swap who yields, again and again.
+      const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
+        const Robot& other = robots_.at(id);
+        return other.in_siding &&
+               std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
+      });
+      if (yielded_to) continue;
       // It goes round the robots it waits for, or out of the way of the robots waiting for it.
       std::vector<int> waiters;
       for (int id : ids) {
