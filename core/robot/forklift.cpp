@@ -586,8 +586,8 @@ void Forklift::set_traffic_grant(const TrafficPermit& permit) {
 }
 
 void Forklift::note_safety_stop(double t, const std::string& nearest) {
-  const Vec2 here = sim_.estimate().position();
   if (nearest.empty()) return;
+  const Vec2 here = sim_.estimate().position();
   if (nearest != safety_stop_.robot_id || t - safety_stop_.last_seen > kStopGap ||
       geometry::distance(here, safety_stop_.where) > kStopMoved) {
     safety_stop_ = {nearest, t, here, t};

@@ -64,8 +64,8 @@ struct TrafficRoute {
   std::vector<int> points;  ///< graph point ids; empty while off the roads
   double progress = 0.0;    ///< metres driven from the first point
   /// The robot whose body the safety check has kept this one standing for, once the stop has
-  /// lasted (robot::kReportStopAfter): the traffic manager then sees who waits for whom even
-  /// where the grants alone show no cycle.
+  /// lasted 3 s sim on this route (forklift.cpp, kReportStopAfter): the traffic manager then sees
+  /// who waits for whom even where the grants alone show no cycle.
   std::vector<std::string> stopped_for;
 };
 

@@ -122,6 +122,38 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   }
 }
 
+TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
+  const auto site = table_a();
+  robot::ForkliftConfig config = robot::ForkliftConfig::defaults();
+  config.traffic = true;
+  const traffic::ConflictZones zones(site->graph.graph);
+  config.route_graph = std::make_shared<const map::RoadGraph>(traffic::one_way_plan(site->graph.graph, zones).graph);
+  robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+  for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
+  const robot::TrafficRoute route = f.traffic_route();
+  ASSERT_GE(route.points.size(), 4u) << f.detail();
+  // The whole route granted: only the safety check can stop it.
+  f.set_traffic_grant({route.version, static_cast<int>(route.points.size()) - 1, 100.0, {}, {}, false});
+  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
+  f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+  for (int i = 0; i < 70 * 30 && !f.detail().ends_with("fl9 ahead"); ++i) f.step();
+  ASSERT_TRUE(f.detail().ends_with("fl9 ahead")) << f.detail();
+  const double stopped_at = f.time();
+  // A short stop is nobody's business but its own ...
+  while (f.time() < stopped_at + 2.5) f.step();
+  EXPECT_TRUE(f.traffic_route().stopped_for.empty());
+  // ... a lasting one names the robot whose body it stands for.
+  while (f.time() < stopped_at + 3.5) f.step();
+  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+  // Once that robot has gone and this one drives on, it waits for no one.
+  f.set_neighbours({});
+  const double freed_at = f.time();
+  while (f.time() < freed_at + 2.0) f.step();
+  EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
+}
+
 TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
   // From the top-left block the one-way plan of table_a leads east along the top road and down
   // the east ring, through O4; the ways round drive the cross's north arm south and the east
