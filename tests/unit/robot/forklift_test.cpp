@@ -53,6 +53,15 @@ geometry::Vec2 point_along(const std::vector<geometry::Vec2>& path, double dista
   return path.back();
 }
 
+/// A forklift's configuration under traffic control: it plans on the site's one-way graph.
+robot::ForkliftConfig under_traffic(const map::SiteMap& site) {
+  robot::ForkliftConfig config = robot::ForkliftConfig::defaults();
+  config.traffic = true;
+  const traffic::ConflictZones zones(site.graph.graph);
+  config.route_graph = std::make_shared<const map::RoadGraph>(traffic::one_way_plan(site.graph.graph, zones).graph);
+  return config;
+}
+
 bool has(const std::vector<ForkliftEvent>& events, ForkliftEvent::Kind kind, const std::string& text = "") {
   for (const auto& e : events) {
     if (e.kind == kind && (text.empty() || e.text == text)) return true;
@@ -124,10 +133,7 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
 
 TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   const auto site = table_a();
-  robot::ForkliftConfig config = robot::ForkliftConfig::defaults();
-  config.traffic = true;
-  const traffic::ConflictZones zones(site->graph.graph);
-  config.route_graph = std::make_shared<const map::RoadGraph>(traffic::one_way_plan(site->graph.graph, zones).graph);
+  const robot::ForkliftConfig config = under_traffic(*site);
   robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
   f.set_standing_pallets(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
@@ -159,10 +165,7 @@ TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
   // the east ring, through O4; the ways round drive the cross's north arm south and the east
   // ring north, against their direction.
   const auto site = table_a();
-  robot::ForkliftConfig config = robot::ForkliftConfig::defaults();
-  config.traffic = true;
-  const traffic::ConflictZones zones(site->graph.graph);
-  config.route_graph = std::make_shared<const map::RoadGraph>(traffic::one_way_plan(site->graph.graph, zones).graph);
+  const robot::ForkliftConfig config = under_traffic(*site);
   robot::Forklift f(config, site, site->site.find_home("H4")->pose, 5, 1);
   f.set_standing_pallets(pallets_of(site->site));
   f.set_obstacle("O4", true);
