@@ -585,13 +585,14 @@ void Forklift::set_traffic_grant(const TrafficPermit& permit) {
   if (!pending_route_) permit_ = permit;
 }
 
+bool Forklift::SafetyStop::current(double t, Vec2 here) const {
+  return !robot_id.empty() && t - last_seen <= kStopGap && geometry::distance(here, where) <= kStopMoved;
+}
+
 void Forklift::note_safety_stop(double t, const std::string& nearest) {
   if (nearest.empty()) return;
   const Vec2 here = sim_.estimate().position();
-  if (nearest != safety_stop_.robot_id || t - safety_stop_.last_seen > kStopGap ||
-      geometry::distance(here, safety_stop_.where) > kStopMoved) {
-    safety_stop_ = {nearest, t, here, t};
-  }
+  if (nearest != safety_stop_.robot_id || !safety_stop_.current(t, here)) safety_stop_ = {nearest, t, here, t};
   safety_stop_.last_seen = t;
 }
 
@@ -601,10 +602,9 @@ TrafficRoute Forklift::traffic_route() const {
   r.points = road_points_;
   if (!road_points_.empty()) r.progress = std::clamp(path_s_ - road_start_, 0.0, road_cum_.back());
   const double t = sim_.time();
-  const SafetyStop& stop = safety_stop_;
-  if (!road_points_.empty() && !stop.robot_id.empty() && t - stop.last_seen <= kStopGap &&
-      t - stop.since >= kReportStopAfter && geometry::distance(sim_.estimate().position(), stop.where) <= kStopMoved) {
-    r.stopped_for.push_back(stop.robot_id);
+  if (!road_points_.empty() && safety_stop_.current(t, sim_.estimate().position()) &&
+      t - safety_stop_.since >= kReportStopAfter) {
+    r.stopped_for.push_back(safety_stop_.robot_id);
   }
   return r;
 }

@@ -214,6 +214,8 @@ class Forklift {
     double since = 0.0;
     geometry::Vec2 where;
     double last_seen = -1.0;
+    /// Still the same stop at time `t` with this robot at `here`: seen lately, not moved away.
+    bool current(double t, geometry::Vec2 here) const;
   };
   SafetyStop safety_stop_;
   void note_safety_stop(double t, const std::string& nearest);

@@ -15,6 +15,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // again: the robots around it still see it where it stood until it moves.
 constexpr double kActOnInstruction = 2.0;
 
+void sort_unique(std::vector<int>& ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+}
+
 // Direction of travel through `places[index]` inside its corridor: towards the next different
 // place on the route, 0 when the route leaves the corridor there or ends. Only robots still to
 // drive along a corridor claim its direction; one standing at its goal does not.
@@ -137,8 +142,7 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   for (int other : report.stopped_for) {
     if (other != robot.id && robots_.count(other) != 0) robot.stopped_for.push_back(other);
   }
-  std::sort(robot.stopped_for.begin(), robot.stopped_for.end());
-  robot.stopped_for.erase(std::unique(robot.stopped_for.begin(), robot.stopped_for.end()), robot.stopped_for.end());
+  sort_unique(robot.stopped_for);
   const double limit = robot.cum[static_cast<std::size_t>(robot.grant_end)];
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
 }
@@ -286,8 +290,7 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   const Robot& robot = it->second;
   std::vector<int> held(robot.trail);
   for (int k = robot.first_held; k <= robot.grant_end; ++k) held.push_back(robot.places[static_cast<std::size_t>(k)]);
-  std::sort(held.begin(), held.end());
-  held.erase(std::unique(held.begin(), held.end()), held.end());
+  sort_unique(held);
   return held;
 }
 
@@ -547,8 +550,7 @@ void TrafficManager::extend(Robot& robot, int slot) {
     }
     if (!free) {
       robot.blocked = true;
-      std::sort(blockers.begin(), blockers.end());
-      blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
+      sort_unique(blockers);
       for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
       std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
       break;
@@ -761,14 +763,12 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     if (index[s] < 0 && slots_[s]->wait_since >= 0.0) connect(static_cast<int>(s));
   }
   for (auto& component : components) {
-    std::vector<int> ids;
-    for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
     // A member whose body stops another member's safety check is in the way itself: it yields
     // first (re-routing the stopped one would not move the body it stands behind). Then lowest
     // priority first.
     const auto stops_a_member = [&](const Robot& r) {
-      return std::any_of(ids.begin(), ids.end(), [&](int id) {
-        const auto& stopped_for = robots_.at(id).stopped_for;
+      return std::any_of(component.begin(), component.end(), [&](int m) {
+        const auto& stopped_for = slots_[static_cast<std::size_t>(m)]->stopped_for;
         return std::binary_search(stopped_for.begin(), stopped_for.end(), r.id);
       });
     };
@@ -782,7 +782,7 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
       }
       return higher_priority(*slots_[static_cast<std::size_t>(b)], *slots_[static_cast<std::size_t>(a)]);
     });
-    ids.clear();
+    std::vector<int> ids;
     for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
     // The members a robot waits for, and the members waiting for it.
     const auto waiting = [&](const Robot& waiter, int for_id) {
@@ -863,8 +863,7 @@ UpdateResult TrafficManager::update(double now) {
     if (stopped_by_body) {
       robot.blocked = true;
       robot.blocked_by.insert(robot.blocked_by.end(), robot.stopped_for.begin(), robot.stopped_for.end());
-      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
-      robot.blocked_by.erase(std::unique(robot.blocked_by.begin(), robot.blocked_by.end()), robot.blocked_by.end());
+      sort_unique(robot.blocked_by);
     }
     const bool waiting = robot.blocked && (robot.stopped || stopped_by_body);
     if (!waiting) {
