@@ -132,15 +132,20 @@ bool FleetRun::poll() {
     progress_.note_state(state.robot_id, state.task_state, state.sim_time);
   });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
+    tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
       log_->warn("deadlock: {} made no progress on order {} for {:.0f} s sim at ({:.3f}, {:.3f})", d.robot_id, d.task,
                  d.detected - d.since, d.pose.x, d.pose.y);
+      write_tracks("deadlock-" + std::to_string(progress_.deadlocks().size()) + "-" + d.robot_id, 90.0,
+                   truth.sim_time);
     }
     for (const auto& c : collisions_.update(truth.robot_id, truth.pose, truth.footprint, truth.sim_time)) {
-      log_->warn("collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}) and {} at ({:.3f}, {:.3f})",
-                 c.sim_time - start_sim_,
-                 c.robot_a, c.pose_a.x, c.pose_a.y, c.robot_b, c.pose_b.x, c.pose_b.y);
+      log_->warn("collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}, yaw {:.2f}) and {} at ({:.3f}, {:.3f}, yaw {:.2f})",
+                 c.sim_time - start_sim_, c.robot_a, c.pose_a.x, c.pose_a.y, c.pose_a.yaw, c.robot_b, c.pose_b.x,
+                 c.pose_b.y, c.pose_b.yaw);
+      write_tracks("collision-" + std::to_string(collisions_.collisions().size()) + "-" + c.robot_a + "-" + c.robot_b,
+                   30.0, truth.sim_time);
     }
   });
   for (std::size_t i : processes_.reap()) {
@@ -167,6 +172,17 @@ void FleetRun::stop() {
   }
   processes_.reap();
   processes_.stop_all(5.0);
+}
+
+void FleetRun::write_tracks(const std::string& name, double seconds, double now_sim) {
+  const std::string file = run_dir_ + "/" + name + ".csv";
+  std::ofstream out(file);
+  tracks_.write_csv(out, now_sim - seconds, start_sim_);
+  if (!out) {
+    log_->error("could not write the robots' tracks to {}", file);
+    return;
+  }
+  log_->warn("the robots' tracks of the last {:.0f} s sim: {}", seconds, file);
 }
 
 double FleetRun::wall_seconds() const {

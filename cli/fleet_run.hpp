@@ -14,6 +14,7 @@
 #include "monitor/collision_monitor.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/progress_monitor.hpp"
+#include "monitor/track_recorder.hpp"
 
 namespace fleet::cli {
 
@@ -71,6 +72,8 @@ class FleetRun {
 
  private:
   std::string binary(const std::string& name) const;
+  /// Writes every robot's track of the last `seconds` sim into the run folder as `name`.csv.
+  void write_tracks(const std::string& name, double seconds, double now_sim);
 
   RunOptions options_;
   config::FleetConfig config_;
@@ -90,6 +93,7 @@ class FleetRun {
   std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
   std::map<std::int64_t, model::OrderInfo> orders_;
   monitor::CollisionMonitor collisions_;
+  monitor::TrackRecorder tracks_;
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;
 };

@@ -472,6 +472,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
   if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
   summary["failures"] = failures;
+  // Kept with the logs and tracks, so a run read back later still has its figures.
+  std::ofstream(run.run_dir() + "/summary.json") << summary.dump(2) << "\n";
   if (command.json) {
     out << summary.dump() << "\n";
   } else {

@@ -2,6 +2,10 @@
 
 #include "monitor/collision_monitor.hpp"
 #include "monitor/order_accounting.hpp"
+#include "monitor/track_recorder.hpp"
+
+#include <cmath>
+#include <sstream>
 
 using namespace fleet;
 using namespace fleet::monitor;
@@ -86,4 +90,36 @@ TEST(OrderStats, PercentileByNearestRank) {
   EXPECT_DOUBLE_EQ(percentile({3, 1, 2}, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.95), 10.0);
   EXPECT_DOUBLE_EQ(percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.0), 1.0);
+}
+
+TEST(TrackRecorder, KeepsTheWindowAtItsRateAndWritesItFromTheRunStart) {
+  TrackRecorder tracks(10.0, 0.5);
+  for (int i = 0; i <= 300; ++i) {  // 30 s at 10 Hz
+    const double t = 100.0 + 0.1 * i;
+    tracks.add("fl1", {0.01 * i, 1.0, 0.5}, t);
+  }
+  tracks.add("fl2", {2.0, 2.0, std::nan("")}, 129.0);  // not a pose: left out
+  tracks.add("fl2", {2.0, 2.0, 1.0}, 129.5);
+  std::ostringstream csv;
+  tracks.write_csv(csv, 125.0, 100.0);
+  std::istringstream lines(csv.str());
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "robot,sim_s,x,y,yaw");
+  int fl1 = 0;
+  std::string first, last_fl2;
+  while (std::getline(lines, line)) {
+    if (line.starts_with("fl1")) {
+      if (fl1++ == 0) first = line;
+    } else {
+      last_fl2 = line;
+    }
+  }
+  EXPECT_EQ(first, "fl1,25.00,2.5000,1.0000,0.5000");  // from `since` on, time from the run's start
+  EXPECT_EQ(fl1, 11);                                   // 25 .. 30 s, one every 0.5 s
+  EXPECT_EQ(last_fl2, "fl2,29.50,2.0000,2.0000,1.0000");
+  std::ostringstream all;
+  tracks.write_csv(all, 0.0, 100.0);
+  EXPECT_EQ(all.str().find("fl1,19.50"), std::string::npos);  // older than the 10 s window: gone
+  EXPECT_NE(all.str().find("fl1,20.00"), std::string::npos);
 }
