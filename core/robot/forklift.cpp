@@ -502,6 +502,7 @@ void Forklift::adopt_path(const planning::Route& route) {
   road_cum_ = cumulative_lengths(route.road.points);
   road_start_ = 0.0;
   goal_leg_.clear();
+  goal_point_ = road_points_.empty() ? -1 : road_points_.back();
   if (road_points_.empty()) return;
   // The road part starts where the path first reaches the first road point; the rest of the path
   // after the last road point is the leg off the road to the goal, kept for re-routes.
@@ -509,7 +510,11 @@ void Forklift::adopt_path(const planning::Route& route) {
   std::size_t first_index = 0;
   while (first_index + 1 < path_.size() && geometry::distance(path_[first_index], first) > 1e-9) ++first_index;
   road_start_ = path_cum_[first_index];
-  const std::size_t last_index = std::min(path_.size() - 1, first_index + route.road.points.size() - 1);
+  // Found by its position, not counted from the first: the path holds each point once, the road
+  // plan repeats the points where its edges join.
+  const Vec2 last = route.road.points.back();
+  std::size_t last_index = path_.size() - 1;
+  while (last_index > first_index && geometry::distance(path_[last_index], last) > 1e-9) --last_index;
   goal_leg_.assign(path_.begin() + static_cast<std::ptrdiff_t>(last_index) + 1, path_.end());
   // Own routes take even versions, the manager's re-routes (its version + 1) odd ones, so a
   // route planned here never shares a version with one the manager sent meanwhile.
@@ -518,7 +523,9 @@ void Forklift::adopt_path(const planning::Route& route) {
 
 void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   const auto& graph = site_->graph.graph;
-  const bool to_goal = !permit.siding && !road_points_.empty() && permit.route.back() == road_points_.back();
+  // Compared with the own plan's last point, not the route being driven: coming back from a
+  // siding, that route is the siding's, and the robot still has to leave the road at the goal.
+  const bool to_goal = !permit.siding && goal_point_ >= 0 && permit.route.back() == goal_point_;
   std::vector<Vec2> road;
   for (int id : permit.route) road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
   const Vec2 here = sim_.estimate().position();
@@ -533,7 +540,6 @@ void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   route_version_ = permit.version;
   in_siding_ = permit.siding;
   safety_stop_ = {};
-  if (!to_goal) goal_leg_.clear();
   detail_ = permit.siding ? "yielding on a siding" : "re-routed by traffic";
 }
 

@@ -233,7 +233,11 @@ class Forklift {
   bool in_siding_ = false;
   TrafficPermit permit_;
   std::optional<TrafficPermit> pending_route_;  ///< an instruction to adopt at the next plan
-  std::vector<geometry::Vec2> goal_leg_;        ///< the path after the road, kept for re-routes
+  /// The last road point of this robot's own plan and the path after it (off the road to the
+  /// loading area or home): kept through the manager's re-routes and sidings, so a route that
+  /// comes back to that point still ends where the task needs the robot.
+  int goal_point_ = -1;
+  std::vector<geometry::Vec2> goal_leg_;
   bool held_by_traffic_ = false;
 };
 

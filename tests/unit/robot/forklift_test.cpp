@@ -160,6 +160,57 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
 }
 
+TEST(Forklift, BackFromASidingItStillLeavesTheRoadForItsHome) {
+  // The traffic manager sends a robot on its way home to a siding partway along its route, then
+  // back to its route's last point: the robot must still drive the leg off the road to its home,
+  // not stop on the road (where it stood in everyone's way, IDLE, in a 2-hour soak).
+  const auto site = table_a();
+  const auto home = site->site.find_home("H1")->pose;
+  robot::Forklift f(under_traffic(*site), site, home, 6, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+  std::uint32_t granted = 0;
+  auto step_granted = [&] {
+    const robot::TrafficRoute r = f.traffic_route();
+    if (!r.points.empty() && r.version != granted) {
+      f.set_traffic_grant({r.version, static_cast<int>(r.points.size()) - 1, 100.0, {}, {}, false});
+      granted = r.version;
+    }
+    f.step();
+  };
+  while (f.time() < 20.0) step_granted();
+  f.withdraw();
+  std::vector<int> way_home;
+  for (int i = 0; i < 400 && way_home.size() < 8; ++i) {
+    step_granted();
+    if (f.task_state() == "GO_HOME") way_home = f.traffic_route().points;
+  }
+  ASSERT_GE(way_home.size(), 8u) << f.task_state() << " " << f.detail();
+  const std::uint32_t own = f.traffic_route().version;
+  const std::size_t siding_end = way_home.size() / 2;
+  // Yield on a siding: the first half of the way home ...
+  f.set_traffic_grant({own + 1, static_cast<int>(siding_end), 100.0, {}, {way_home.begin(), way_home.begin() + siding_end + 1}, true});
+  while (f.traffic_route().version != own + 1 && f.time() < 200.0) step_granted();
+  // It waits at the siding's end (3 cm short of its last point).
+  const geometry::Vec2 siding_point{site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])].x,
+                                    site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])].y};
+  const double sent = f.time();
+  while (geometry::distance(f.estimate().position(), siding_point) > 0.05 && f.time() < sent + 60.0) step_granted();
+  ASSERT_LT(geometry::distance(f.estimate().position(), siding_point), 0.05) << f.detail();
+  for (int i = 0; i < 70; ++i) step_granted();
+  // ... and back from it to the route's last point.
+  f.set_traffic_grant({own + 3, static_cast<int>(way_home.size() - siding_end - 1), 100.0, {},
+                       {way_home.begin() + siding_end, way_home.end()}, false});
+  bool home_reached = false;
+  while (!home_reached && f.time() < sent + 120.0) {
+    step_granted();
+    for (const auto& e : f.take_events()) home_reached = home_reached || e.kind == ForkliftEvent::Kind::kHome;
+  }
+  ASSERT_TRUE(home_reached) << f.task_state() << " " << f.detail();
+  EXPECT_LT(geometry::distance(f.truth().position(), home.position()), 0.05)
+      << "home reached at (" << f.truth().x << ", " << f.truth().y << ")";
+}
+
 TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
   // From the top-left block the one-way plan of table_a leads east along the top road and down
   // the east ring, through O4; the ways round drive the cross's north arm south and the east
