@@ -292,6 +292,12 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
       out.twist = follower_.step({in.pose, dt, in.obstacle_distance});
       if (follower_.arrived()) {
         have_path_ = false;
+        if (geometry::distance(in.pose.position(), goal_for(active_purpose_).position()) > params_.arrival_tolerance) {
+          // The path ended short of the goal (a route handed over from outside without its leg
+          // off the road): the road's end is not the area or home, so plan again from here.
+          request_plan(active_purpose_);
+          break;
+        }
         fire(machine_.state() == State::kGoHome ? Event::kHomeReached : Event::kPathEnded);
       }
       break;

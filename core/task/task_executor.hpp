@@ -55,6 +55,9 @@ struct ExecutorParams {
   control::ForkliftGeometry geometry;
   int max_pick_attempts = 3;     ///< failed picks (search + pick again) before ERROR
   double replan_interval = 1.0;  ///< while WAITING for want of a plan, ask again this often, s
+  /// A path whose end is further than this from the goal (the search pose, or home) is not an
+  /// arrival: the executor plans again from where the robot stands, metres.
+  double arrival_tolerance = 0.10;
 };
 
 /// Per-step inputs, at the pose rate (seed 000: 70 Hz).

@@ -44,6 +44,7 @@ struct World {
   std::vector<Transition> transitions;
   int plan_requests = 0;
   bool answer_plans = true;
+  int plans_short = 0;  ///< this many plans end 0.3 m short of their goal
 
   World()
       : pallets([] {
@@ -71,7 +72,14 @@ struct World {
     truth = control::integrate_twist(truth, out.twist, kDt);
     if (auto req = exec.take_plan_request()) {
       ++plan_requests;
-      if (answer_plans) {
+      if (answer_plans && plans_short > 0) {
+        --plans_short;
+        const double len = geometry::distance(truth.position(), req->goal.position());
+        const double keep = std::max(0.0, len - 0.3) / std::max(len, 1e-9);
+        const Pose2 short_goal{truth.x + keep * (req->goal.x - truth.x), truth.y + keep * (req->goal.y - truth.y),
+                               req->goal.yaw};
+        exec.path_received(req->id, straight(truth, short_goal));
+      } else if (answer_plans) {
         exec.path_received(req->id, straight(truth, req->goal));
       } else {
         exec.plan_failed(req->id);
@@ -180,6 +188,20 @@ TEST(TaskExecutor, NoPlanWaitsAndAsksAgain) {
   w.answer_plans = true;
   ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kTrackPath; }, 2.0));
   ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kSearchPallet; }, 60.0));
+}
+
+TEST(TaskExecutor, APathEndingShortOfHomeIsPlannedAgainNotTakenForHome) {
+  World w;
+  w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  w.run_until([] { return false; }, 1.0);
+  ASSERT_TRUE(w.exec.cancel(nullptr));
+  w.plans_short = 1;
+  const int asked_before = w.plan_requests;
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0)) << to_string(w.exec.state());
+  EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.05)
+      << "took (" << w.truth.x << ", " << w.truth.y << ") for home";
+  EXPECT_EQ(w.plan_requests - asked_before, 2) << "the short path, then one from where it ended";
 }
 
 TEST(TaskExecutor, PauseFreezesAndResumeContinues) {
