@@ -141,8 +141,9 @@ std::vector<CommandSpec> make_table() {
        "render",
        "SITE.yaml",
        true,
-       {file("-o", "FILE.svg", true), on_off("--no-points")},
-       "an SVG picture of a site"},
+       {file("-o", "FILE.svg", true), on_off("--no-points"), file("--tracks", "TRACKS.csv"), value("--since", "S")},
+       "an SVG picture of a site; --tracks draws the robots' tracks a soak wrote\n"
+       "                       beside a deadlock or collision report (from --since S sim seconds on)"},
       {Group::Offline,
        "loc-eval",
        "",

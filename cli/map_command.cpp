@@ -1,6 +1,8 @@
 // fleetctl map check|sample|render: wiring only; the work is done in core/map.
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -11,6 +13,7 @@
 #include "map/reference_samples.hpp"
 #include "map/site_map.hpp"
 #include "map/svg_render.hpp"
+#include "monitor/track_recorder.hpp"
 
 namespace fleet::cli {
 
@@ -19,7 +22,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: fleetctl map check SITE.yaml|NAME ...\n"
     "       fleetctl map sample FILE.xodr [--step METRES]\n"
-    "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points]\n";
+    "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points] [--tracks TRACKS.csv [--since S]]\n";
 
 /// A site given by path, or by name as maps/NAME.yaml under the project root (InputError naming
 /// it and listing the sites when there is no such name).
@@ -117,11 +120,26 @@ int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::o
 }
 
 int render(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  std::string site, output;
+  std::string site, output, tracks_file;
+  double since = -std::numeric_limits<double>::infinity();
   map::RenderOptions options;
   for (std::size_t i = 0; i < rest.size(); ++i) {
     if (rest[i] == "-o" && i + 1 < rest.size()) {
       output = rest[++i];
+    } else if (rest[i] == "--tracks" && i + 1 < rest.size()) {
+      tracks_file = rest[++i];
+    } else if (rest[i] == "--since" && i + 1 < rest.size()) {
+      const std::string value = rest[++i];
+      std::size_t used = 0;
+      try {
+        since = std::stod(value, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != value.size() || !std::isfinite(since)) {
+        err << "map render: --since '" << value << "': expected sim seconds\n";
+        return kExitBadInput;
+      }
     } else if (rest[i] == "--no-points") {
       options.graph_points = false;
     } else if (site.empty() && !rest[i].starts_with("-")) {
@@ -134,6 +152,28 @@ int render(const CommandArgs& args, const std::vector<std::string>& rest, std::o
   if (site.empty() || output.empty()) {
     err << kUsage;
     return kExitBadInput;
+  }
+  if (!tracks_file.empty()) {
+    // Tracks a soak wrote beside a deadlock or collision report (TrackRecorder's CSV).
+    std::ifstream in(tracks_file);
+    if (!in) {
+      err << "map render: " << tracks_file << ": cannot read\n";
+      return kExitBadInput;
+    }
+    try {
+      for (auto& t : monitor::read_tracks_csv(in, tracks_file)) {
+        map::RenderTrack r{t.robot_id, {}, {}};
+        for (std::size_t k = 0; k < t.poses.size(); ++k) {
+          if (t.sim_s[k] < since) continue;
+          r.times.push_back(t.sim_s[k]);
+          r.poses.push_back(t.poses[k]);
+        }
+        if (!r.poses.empty()) options.tracks.push_back(std::move(r));
+      }
+    } catch (const std::runtime_error& e) {
+      err << "map render: " << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
   try {
     const map::SiteMap m = map::load_site_map_unchecked(resolve_site(args, site));

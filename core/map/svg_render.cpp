@@ -220,6 +220,38 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
   }
   svg << "</g>\n";
 
+  if (!o.tracks.empty()) {
+    // Colours far apart in hue, so that eight robots stay apart.
+    static const char* kColours[] = {"#e6194b", "#3cb44b", "#4363d8", "#f58231", "#911eb4",
+                                     "#42d4f4", "#f032e6", "#9a6324", "#000075", "#808000"};
+    svg << "<g id=\"tracks\" font-size=\"" << num(font) << "\">\n";
+    for (std::size_t i = 0; i < o.tracks.size(); ++i) {
+      const RenderTrack& track = o.tracks[i];
+      if (track.poses.empty()) continue;
+      const char* colour = kColours[i % std::size(kColours)];
+      double next_footprint = track.times.empty() ? 0.0 : track.times.front();
+      for (std::size_t k = 0; k < track.poses.size() && k < track.times.size(); ++k) {
+        if (track.times[k] < next_footprint) continue;
+        next_footprint = track.times[k] + o.track_footprint_every;
+        svg << "<polygon points=\"" << rotated_rect(cv, track.poses[k], o.robot_length, o.robot_width)
+            << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-opacity=\"0.35\" stroke-width=\"1\"/>\n";
+      }
+      std::string line;
+      for (const auto& p : track.poses) line += cv.pt(p.x, p.y) + " ";
+      svg << "<polyline points=\"" << line << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n";
+      const geometry::Pose2& last = track.poses.back();
+      svg << "<polygon points=\"" << rotated_rect(cv, last, o.robot_length, o.robot_width) << "\" fill=\"" << colour
+          << "\" fill-opacity=\"0.45\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n";
+      svg << "<line x1=\"" << num(cv.X(last.x)) << "\" y1=\"" << num(cv.Y(last.y)) << "\" x2=\""
+          << num(cv.X(last.x + 0.5 * o.robot_length * std::cos(last.yaw))) << "\" y2=\""
+          << num(cv.Y(last.y + 0.5 * o.robot_length * std::sin(last.yaw))) << "\" stroke=\"#000\" stroke-width=\"2\"/>\n";
+      svg << "<text x=\"" << num(cv.X(last.x)) << "\" y=\"" << num(cv.Y(last.y) - cv.len(0.5 * o.robot_length) - 4.0)
+          << "\" text-anchor=\"middle\" fill=\"" << colour << "\" font-weight=\"bold\">" << escape(track.label)
+          << "</text>\n";
+    }
+    svg << "</g>\n";
+  }
+
   svg << "<text x=\"" << num(o.margin) << "\" y=\"" << num(cv.height() + 16.0) << "\" font-size=\"14\" fill=\"#333\">"
       << escape(site.name) << ": " << num(site.bounds.max_x - site.bounds.min_x) << " m x "
       << num(site.bounds.max_y - site.bounds.min_y) << " m, " << map.network.roads.size() << " roads, "

@@ -3,11 +3,24 @@
 #include <deque>
 #include <map>
 #include <ostream>
+#include <istream>
 #include <string>
+#include <vector>
 
 #include "geometry/pose.hpp"
 
 namespace fleet::monitor {
+
+/// One robot's track read back: poses in time order, sim seconds from the run's start.
+struct Track {
+  std::string robot_id;
+  std::vector<double> sim_s;
+  std::vector<geometry::Pose2> poses;
+};
+
+/// Reads what TrackRecorder::write_csv wrote. Throws std::runtime_error naming `source` and the
+/// line of the first row that is not `robot,sim_s,x,y,yaw` with finite numbers.
+std::vector<Track> read_tracks_csv(std::istream& in, const std::string& source);
 
 /// The recent true tracks of every robot: what a soak writes next to a collision or a deadlock
 /// report, so the minutes before it can be read back (who drove where, facing which way).

@@ -1,6 +1,7 @@
 // fleetctl map check|sample|render, driven through the same entry point fleetctl calls.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -94,4 +95,29 @@ TEST(MapCommand, RenderWritesAnSvg) {
   EXPECT_NE(svg.str().find("<svg"), std::string::npos);
   EXPECT_EQ(run({"render", "table_a"}).code, kExitBadInput);  // no -o
   EXPECT_EQ(run({"frobnicate"}).code, kExitBadInput);
+}
+
+TEST(MapCommand, RenderDrawsTheTracksASoakWroteFromTheGivenTimeOn) {
+  const auto dir = std::filesystem::temp_directory_path() / ("fleet_tracks_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto csv = (dir / "deadlock-1-fl7.csv").string();
+  const auto svg_file = (dir / "jam.svg").string();
+  std::ofstream(csv) << "robot,sim_s,x,y,yaw\nfl7,10.00,2.0,0.45,3.14\nfl7,20.00,1.9,0.45,3.14\n"
+                        "fl5,10.00,1.2,0.46,-1.57\nfl5,20.00,1.17,0.46,-1.57\nfl1,5.00,2.4,0.46,3.1\n";
+  const CommandRun r = run({"render", "table_a", "-o", svg_file, "--tracks", csv, "--since", "8"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream in(svg_file);
+  std::stringstream svg;
+  svg << in.rdbuf();
+  EXPECT_NE(svg.str().find(">fl7</text>"), std::string::npos);
+  EXPECT_NE(svg.str().find(">fl5</text>"), std::string::npos);
+  EXPECT_EQ(svg.str().find(">fl1</text>"), std::string::npos) << "fl1's only pose is before --since";
+
+  std::ofstream(csv, std::ios::app) << "fl7,21.00,oops,0.45,3.14\n";
+  const CommandRun bad = run({"render", "table_a", "-o", svg_file, "--tracks", csv});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("deadlock-1-fl7.csv:7"), std::string::npos) << bad.err;
+  EXPECT_EQ(run({"render", "table_a", "-o", svg_file, "--tracks", (dir / "none.csv").string()}).code, kExitBadInput);
+  EXPECT_EQ(run({"render", "table_a", "-o", svg_file, "--tracks", csv, "--since", "soon"}).code, kExitBadInput);
+  std::filesystem::remove_all(dir);
 }

@@ -123,3 +123,29 @@ TEST(TrackRecorder, KeepsTheWindowAtItsRateAndWritesItFromTheRunStart) {
   EXPECT_EQ(all.str().find("fl1,19.50"), std::string::npos);  // older than the 10 s window: gone
   EXPECT_NE(all.str().find("fl1,20.00"), std::string::npos);
 }
+
+TEST(TrackRecorder, WhatItWritesReadsBackAndABadRowIsNamedWithItsLine) {
+  TrackRecorder tracks(60.0, 0.1);
+  tracks.add("fl2", {1.0, 2.0, 0.5}, 10.0);
+  tracks.add("fl1", {0.5, 0.25, -1.0}, 10.0);
+  tracks.add("fl1", {0.6, 0.25, -1.0}, 10.5);
+  std::stringstream csv;
+  tracks.write_csv(csv, 0.0, 4.0);
+  const auto read = read_tracks_csv(csv, "deadlock-1-fl1.csv");
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[0].robot_id, "fl1");
+  ASSERT_EQ(read[0].poses.size(), 2u);
+  EXPECT_DOUBLE_EQ(read[0].sim_s[1], 6.5);
+  EXPECT_DOUBLE_EQ(read[0].poses[1].x, 0.6);
+  EXPECT_DOUBLE_EQ(read[1].poses[0].yaw, 0.5);
+
+  std::istringstream bad("robot,sim_s,x,y,yaw\nfl1,1.0,0.5,0.5,0.0\nfl1,2.0,0.5,nan,0.0\n");
+  try {
+    read_tracks_csv(bad, "tracks.csv");
+    FAIL() << "a NaN coordinate was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("tracks.csv:3"), std::string::npos) << e.what();
+  }
+  std::istringstream short_row("fl1,1.0,0.5\n");
+  EXPECT_THROW(read_tracks_csv(short_row, "tracks.csv"), std::runtime_error);
+}
