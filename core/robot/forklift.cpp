@@ -315,6 +315,14 @@ void Forklift::step() {
     held_by_traffic_ = held;
     if (was_stopped != (blocked || held)) executor_.set_blocked(blocked || held);
   }
+  // Counted from the first hold on this siding, not reset when a hold flickers at its end.
+  if (in_siding_ && held && siding_held_since_ < 0.0) siding_held_since_ = t;
+  if (in_siding_ && siding_held_since_ >= 0.0 && t - siding_held_since_ > config_.siding_timeout && !pending_route_) {
+    // Nobody called it back (a manager restarted meanwhile has no record of the siding): plan
+    // the way on from here, as a route of its own the manager then grants.
+    in_siding_ = false;
+    executor_.replan();
+  }
   if (blocked) {
     // Name the nearest robot: what an operator needs to see why this one waits.
     const Pose2 here = sim_.estimate();
@@ -497,6 +505,7 @@ void Forklift::adopt_path(const planning::Route& route) {
   path_cum_ = cumulative_lengths(path_);
   path_s_ = 0.0;
   in_siding_ = false;
+  siding_held_since_ = -1.0;
   safety_stop_ = {};  // a stop is reported for the route it happened on, after lasting on it
   road_points_ = route.road.point_ids;
   road_cum_ = cumulative_lengths(route.road.points);
@@ -539,6 +548,7 @@ void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   road_cum_ = cumulative_lengths(road);
   route_version_ = permit.version;
   in_siding_ = permit.siding;
+  siding_held_since_ = -1.0;
   safety_stop_ = {};
   detail_ = permit.siding ? "yielding on a siding" : "re-routed by traffic";
 }

@@ -42,6 +42,10 @@ struct ForkliftConfig {
   /// Traffic control (issue 8): report the road part of every route and drive only as far as
   /// the server grants (set_traffic_grant). Off: the seed's local avoidance alone.
   bool traffic = false;
+  /// Sim seconds a robot stands held on a siding before it plans its own way on and asks for it.
+  /// The manager calls it back sooner (its yield_timeout, 20 s); a restarted manager does not
+  /// know the robot waits on a siding: it sees a route that has arrived.
+  double siding_timeout = 30.0;
   /// The graph routes are planned on; the traffic manager's one-way graph when traffic is on.
   /// Null: the site's road graph.
   std::shared_ptr<const map::RoadGraph> route_graph;
@@ -231,6 +235,7 @@ class Forklift {
   std::vector<double> road_cum_;
   double road_start_ = 0.0;
   bool in_siding_ = false;
+  double siding_held_since_ = -1.0;  ///< sim time it was first held on its siding, -1 when not
   TrafficPermit permit_;
   std::optional<TrafficPermit> pending_route_;  ///< an instruction to adopt at the next plan
   /// The last road point of this robot's own plan and the path after it (off the road to the

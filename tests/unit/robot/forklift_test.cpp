@@ -160,55 +160,91 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
 }
 
-TEST(Forklift, BackFromASidingItStillLeavesTheRoadForItsHome) {
-  // The traffic manager sends a robot on its way home to a siding partway along its route, then
-  // back to its route's last point: the robot must still drive the leg off the road to its home,
-  // not stop on the road (where it stood in everyone's way, IDLE, in a 2-hour soak).
-  const auto site = table_a();
-  const auto home = site->site.find_home("H1")->pose;
-  robot::Forklift f(under_traffic(*site), site, home, 6, 1);
-  f.set_standing_pallets(pallets_of(site->site));
-  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+/// A forklift from H1 under traffic whose every route is granted whole as soon as it reports
+/// it: it sets out for A3, is called home, and is sent by the "manager" to yield on a siding,
+/// the first half of its way home. Construct, then call yield_on_siding().
+struct SidingOnTheWayHome {
+  std::shared_ptr<const map::SiteMap> site = table_a();
+  geometry::Pose2 home = site->site.find_home("H1")->pose;
+  robot::Forklift f{under_traffic(*site), site, home, 6, 1};
   std::uint32_t granted = 0;
-  auto step_granted = [&] {
+  std::vector<int> way_home;
+  std::uint32_t own_version = 0;
+  std::size_t siding_end = 0;  ///< index in way_home of the siding's last point
+
+  void step() {
     const robot::TrafficRoute r = f.traffic_route();
     if (!r.points.empty() && r.version != granted) {
       f.set_traffic_grant({r.version, static_cast<int>(r.points.size()) - 1, 100.0, {}, {}, false});
       granted = r.version;
     }
     f.step();
-  };
-  while (f.time() < 20.0) step_granted();
-  f.withdraw();
-  std::vector<int> way_home;
-  for (int i = 0; i < 400 && way_home.size() < 8; ++i) {
-    step_granted();
-    if (f.task_state() == "GO_HOME") way_home = f.traffic_route().points;
   }
-  ASSERT_GE(way_home.size(), 8u) << f.task_state() << " " << f.detail();
-  const std::uint32_t own = f.traffic_route().version;
-  const std::size_t siding_end = way_home.size() / 2;
-  // Yield on a siding: the first half of the way home ...
-  f.set_traffic_grant({own + 1, static_cast<int>(siding_end), 100.0, {}, {way_home.begin(), way_home.begin() + siding_end + 1}, true});
-  while (f.traffic_route().version != own + 1 && f.time() < 200.0) step_granted();
-  // It waits at the siding's end (3 cm short of its last point).
-  const geometry::Vec2 siding_point{site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])].x,
-                                    site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])].y};
-  const double sent = f.time();
-  while (geometry::distance(f.estimate().position(), siding_point) > 0.05 && f.time() < sent + 60.0) step_granted();
-  ASSERT_LT(geometry::distance(f.estimate().position(), siding_point), 0.05) << f.detail();
-  for (int i = 0; i < 70; ++i) step_granted();
-  // ... and back from it to the route's last point.
-  f.set_traffic_grant({own + 3, static_cast<int>(way_home.size() - siding_end - 1), 100.0, {},
-                       {way_home.begin() + siding_end, way_home.end()}, false});
-  bool home_reached = false;
-  while (!home_reached && f.time() < sent + 120.0) {
-    step_granted();
-    for (const auto& e : f.take_events()) home_reached = home_reached || e.kind == ForkliftEvent::Kind::kHome;
+
+  /// Drives until the robot waits at the siding's end (3 cm short of its last point).
+  void yield_on_siding() {
+    f.set_standing_pallets(pallets_of(site->site));
+    ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+    while (f.time() < 20.0) step();
+    f.withdraw();
+    for (int i = 0; i < 400 && way_home.size() < 8; ++i) {
+      step();
+      if (f.task_state() == "GO_HOME") way_home = f.traffic_route().points;
+    }
+    ASSERT_GE(way_home.size(), 8u) << f.task_state() << " " << f.detail();
+    own_version = f.traffic_route().version;
+    siding_end = way_home.size() / 2;
+    f.set_traffic_grant({own_version + 1, static_cast<int>(siding_end), 100.0, {},
+                         {way_home.begin(), way_home.begin() + static_cast<std::ptrdiff_t>(siding_end) + 1}, true});
+    while (f.traffic_route().version != own_version + 1 && f.time() < 200.0) step();
+    const auto& end = site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])];
+    const double sent = f.time();
+    while (geometry::distance(f.estimate().position(), {end.x, end.y}) > 0.05 && f.time() < sent + 60.0) step();
+    ASSERT_LT(geometry::distance(f.estimate().position(), {end.x, end.y}), 0.05) << f.detail();
   }
-  ASSERT_TRUE(home_reached) << f.task_state() << " " << f.detail();
-  EXPECT_LT(geometry::distance(f.truth().position(), home.position()), 0.05)
-      << "home reached at (" << f.truth().x << ", " << f.truth().y << ")";
+
+  /// Steps until the robot reports home, up to `limit_s` sim seconds.
+  bool drive_home(double limit_s) {
+    const double end = f.time() + limit_s;
+    while (f.time() < end) {
+      step();
+      for (const auto& e : f.take_events()) {
+        if (e.kind == ForkliftEvent::Kind::kHome) return true;
+      }
+    }
+    return false;
+  }
+};
+
+TEST(Forklift, BackFromASidingItStillLeavesTheRoadForItsHome) {
+  // The traffic manager sends a robot on its way home to a siding partway along its route, then
+  // back to its route's last point: the robot must still drive the leg off the road to its home,
+  // not stop on the road (where it stood in everyone's way, IDLE, in a 2-hour soak).
+  SidingOnTheWayHome g;
+  ASSERT_NO_FATAL_FAILURE(g.yield_on_siding());
+  for (int i = 0; i < 70; ++i) g.step();
+  g.f.set_traffic_grant({g.own_version + 3, static_cast<int>(g.way_home.size() - g.siding_end - 1), 100.0, {},
+                         {g.way_home.begin() + static_cast<std::ptrdiff_t>(g.siding_end), g.way_home.end()}, false});
+  ASSERT_TRUE(g.drive_home(120.0)) << g.f.task_state() << " " << g.f.detail();
+  EXPECT_LT(geometry::distance(g.f.truth().position(), g.home.position()), 0.05)
+      << "home reached at (" << g.f.truth().x << ", " << g.f.truth().y << ")";
+}
+
+TEST(Forklift, NotCalledBackFromASidingItAsksForItsOwnWayOn) {
+  // The manager that sent the robot to the siding was restarted: the new one sees a route that
+  // has arrived, and never calls it back. After siding_timeout the robot plans its way on.
+  SidingOnTheWayHome g;
+  ASSERT_NO_FATAL_FAILURE(g.yield_on_siding());
+  const double arrived = g.f.time();
+  while (g.f.time() < arrived + 25.0) g.step();
+  EXPECT_EQ(g.f.traffic_route().version, g.own_version + 1) << "still waits on the siding";
+  while (g.f.time() < arrived + 35.0 && g.f.traffic_route().version == g.own_version + 1) g.step();
+  const robot::TrafficRoute own = g.f.traffic_route();
+  EXPECT_EQ(own.version % 2, 0u) << "a route of its own";
+  ASSERT_FALSE(own.points.empty());
+  EXPECT_EQ(own.points.back(), g.way_home.back());
+  ASSERT_TRUE(g.drive_home(120.0)) << g.f.task_state() << " " << g.f.detail();
+  EXPECT_LT(geometry::distance(g.f.truth().position(), g.home.position()), 0.05);
 }
 
 TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
