@@ -1,6 +1,7 @@
 #include "robot/forklift.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <chrono>
 #include <limits>
@@ -18,6 +19,9 @@ constexpr double kLookahead = 1.0;            // metres of path checked (seed 00
 constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
 constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
 constexpr double kTemporarySize = 0.3;        // side of a temporary obstacle box, metres
+// Lidar returns within this range feed the safety stop: the footprint's reach plus what the
+// stop's 0.4 s horizon can cover at top speed, with room to spare.
+constexpr double kSafetyScanRange = 0.6;  // metres
 // A safety stop for another robot's body is reported to the traffic manager once it lasted this
 // long (sim seconds) with this robot within kStopMoved of where it began: following a robot that
 // stops briefly is no wait worth a re-route. A stop lapses after kStopGap without the check stopping.
@@ -216,6 +220,12 @@ bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, con
   }
   return false;
 }
+
+/// Distance from `p` to the footprint standing at `pose`, 0 inside.
+double footprint_distance(const Pose2& pose, const geometry::Footprint& fp, Vec2 p) {
+  const Vec2 b = geometry::map_to_body(pose, p);
+  return std::hypot(std::max(std::abs(b.x) - fp.length / 2.0, 0.0), std::max(std::abs(b.y) - fp.width / 2.0, 0.0));
+}
 }  // namespace
 
 double Forklift::clearance_ahead() const {
@@ -276,6 +286,13 @@ void Forklift::step() {
     }
     planning::LidarScan scan = lidar_.scan(sim_.truth(), seen);
     scan.pose = sim_.estimate();
+    near_returns_.clear();
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      const double r = scan.ranges[i];
+      if (!(r < kSafetyScanRange)) continue;
+      const double a = scan.pose.yaw + scan.angle_min + static_cast<double>(i) * scan.angle_increment;
+      near_returns_.push_back({scan.pose.x + r * std::cos(a), scan.pose.y + r * std::sin(a)});
+    }
     octomap_.insert_scan(scan);
     dynamic_.update(static_grid_.permanent_grid(), others, &octomap_.sensed());
     // Seed 000, Fig. 5.13: a temporary obstacle goes once its area is seen free again.
@@ -393,21 +410,34 @@ void Forklift::step() {
 }
 
 control::BodyTwist Forklift::safe(const control::BodyTwist& cmd) const {
-  // The last line of defence under traffic and local planning, in every state: a command that
-  // would bring this footprint within `safety_gap` of another robot (grown by what it may have
-  // moved since its pose was measured) within the horizon, and closer than it is now, becomes a
-  // stop. Moving apart stays allowed, so two robots that met can always separate.
+  // The last line of defence under traffic and local planning, in every state and every
+  // manoeuvre (backing out of a drop too): a command that would bring this footprint within
+  // `safety_gap` of another robot within the horizon, and closer than it is now, becomes a stop.
+  // Moving apart stays allowed, so two robots that met can always separate. The footprint is
+  // swept over the horizon (passing a corner, the closest approach lies inside it), and checked
+  // against two views of the others: the poses they publish (grown by what they may have moved
+  // since), and the lidar's own returns, which a bias of this robot's estimate does not move.
   constexpr double kHorizon = 0.4;  // sim seconds of the current command looked ahead
-  if (neighbours_.empty() || cmd == control::BodyTwist{}) return cmd;
+  constexpr int kSweepSteps = 4;
+  if (cmd == control::BodyTwist{} || (neighbours_.empty() && near_returns_.empty())) return cmd;
   const Pose2 now = sim_.estimate();
+  std::array<Pose2, kSweepSteps> ahead;
+  for (int k = 0; k < kSweepSteps; ++k) ahead[k] = control::integrate_twist(now, cmd, kHorizon * (k + 1) / kSweepSteps);
   const auto mine_now = geometry::footprint_polygon(now, footprint());
-  const auto mine_ahead = geometry::footprint_polygon(control::integrate_twist(now, cmd, kHorizon), footprint());
   for (const auto& n : neighbours_) {
     const double moved = n.age > config_.stale_after ? config_.neighbour_max_speed * n.age : n.speed * n.age;
     const auto theirs = geometry::footprint_polygon(n.pose, n.footprint, std::min(moved, 1.0));
-    const double gap_ahead = geometry::convex_polygons_distance(mine_ahead, theirs);
-    if (gap_ahead < config_.safety_gap && gap_ahead < geometry::convex_polygons_distance(mine_now, theirs)) {
-      return {};
+    const double gap_now = geometry::convex_polygons_distance(mine_now, theirs);
+    for (const Pose2& pose : ahead) {
+      const double gap = geometry::convex_polygons_distance(geometry::footprint_polygon(pose, footprint()), theirs);
+      if (gap < config_.safety_gap && gap < gap_now) return {};
+    }
+  }
+  for (const Vec2& p : near_returns_) {
+    const double gap_now = footprint_distance(now, footprint(), p);
+    for (const Pose2& pose : ahead) {
+      const double gap = footprint_distance(pose, footprint(), p);
+      if (gap < config_.safety_gap && gap < gap_now) return {};
     }
   }
   return cmd;

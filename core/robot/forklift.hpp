@@ -191,6 +191,9 @@ class Forklift {
   planning::LidarSim lidar_;
   planning::OctoMapLayer octomap_;
   std::vector<geometry::Polygon> true_neighbours_;
+  /// The lidar's latest returns near the robot, placed with the pose estimate of the scan: the
+  /// safety stop reads them relative to the estimate now, so a bias of the estimate cancels.
+  std::vector<geometry::Vec2> near_returns_;
   planning::RoadPlanner road_;
   planning::GridAStar grid_astar_;
   planning::RoutePlanner routes_;
