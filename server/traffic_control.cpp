@@ -125,7 +125,8 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // the road (granted_index -1), keeping what its body stands on.
       const bool already_there = standing && stands_at(request.robot_id, id, route.points.front());
       if (!already_there) {
-        const auto holders = manager_.holders_in_conflict(route.points.front(), id);
+        auto holders = manager_.holders_in_conflict(route.points.front(), id);
+        if (holders.empty()) holders = manager_.earlier_entry_claims(route.points.front(), id, now_sim);
         if (!holders.empty()) {
           manager_.claim_entry(id, route.points.front(), now_sim);
           model::TrafficGrant wait;

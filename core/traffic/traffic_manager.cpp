@@ -309,6 +309,25 @@ void TrafficManager::drop_entry(int robot_id) {
   entries_.erase(robot_id);
 }
 
+std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, double now) const {
+  std::vector<int> out;
+  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;
+  const int place = zones_->place_of(point);
+  const auto mine = entries_.find(robot_id);
+  const auto self = robots_.find(robot_id);
+  for (const auto& [id, claim] : entries_) {
+    if (id == robot_id || robots_.count(id) != 0 || now - claim.since < configuration_.priority_wait) continue;
+    if (mine != entries_.end() &&
+        (mine->second.since < claim.since || (mine->second.since == claim.since && robot_id < id))) {
+      continue;
+    }
+    if (!zones_->conflict(place, claim.place)) continue;
+    if (self != robots_.end() && closes(self->second, claim.place)) continue;
+    out.push_back(id);
+  }
+  return out;
+}
+
 std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
   std::vector<int> out;
   if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;

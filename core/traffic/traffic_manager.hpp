@@ -221,6 +221,11 @@ class TrafficManager {
   /// Call every cycle while it waits; `drop_entry` once it entered or gave up.
   void claim_entry(int robot_id, int point, double now);
   void drop_entry(int robot_id);
+  /// Robots beside the roads whose active entry claim (waited `priority_wait`) conflicts with an
+  /// entry at `point` and is older than `robot_id`'s own, sorted: first come, first in, so a robot
+  /// leaving a loading area does not slip in ahead of one that has waited at its home. A claim
+  /// whose entry this robot's body stands in the way of is left out (that one must go first).
+  std::vector<int> earlier_entry_claims(int point, int robot_id, double now) const;
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
   std::uint32_t version(int robot_id) const;

@@ -182,6 +182,37 @@ TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDrive
   EXPECT_EQ(m.check_invariant(), "");
 }
 
+TEST(TrafficManager, RobotsEnteringTheRoadsGoInTheOrderTheyCameUnlessOneStandsInTheOthersWay) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficConfiguration c;
+  c.priority_wait = 8.0;
+  c.one_way = false;
+  TrafficManager m(b.graph(), c);
+  const int home_entry = point_at(b.graph(), 1.5, 0.0);
+  const int area_entry = point_at(b.graph(), 1.6, 0.0);
+  const int far_entry = point_at(b.graph(), 2.8, 0.0);
+  // Robot 1 waits at its home for a robot on the road (2) to clear its entry.
+  std::vector<int> through(road.begin() + (point_at(b.graph(), 1.4, 0.0) - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({2, 1, through}, 0.0), SubmitStatus::kAccepted);
+  m.claim_entry(1, home_entry, 0.0);
+  // Before priority_wait nobody defers to the claim.
+  EXPECT_TRUE(m.earlier_entry_claims(area_entry, 3, 5.0).empty());
+  // Robot 2 has gone; robot 3, done at a loading area beside the entry, would enter next to it.
+  ASSERT_TRUE(m.remove_robot(2, 9.0));
+  EXPECT_TRUE(m.holders_in_conflict(area_entry, 3).empty());
+  EXPECT_EQ(m.earlier_entry_claims(area_entry, 3, 9.0), std::vector<int>{1});
+  EXPECT_TRUE(m.earlier_entry_claims(home_entry, 1, 9.0).empty()) << "the older claim waits for no newer one";
+  EXPECT_TRUE(m.earlier_entry_claims(far_entry, 3, 9.0).empty()) << "an entry clear of the claim";
+  // Once robot 3 has waited longer than robot 1's claim, ...
+  m.claim_entry(3, area_entry, 9.0);
+  EXPECT_EQ(m.earlier_entry_claims(area_entry, 3, 20.0), std::vector<int>{1});
+  // ... and a robot whose body stands in the claimant's way goes first.
+  geometry::Polygon body{{1.45, -0.1}, {1.75, -0.1}, {1.75, 0.1}, {1.45, 0.1}};
+  ASSERT_TRUE(m.hold_body(3, body, 20.0));
+  EXPECT_TRUE(m.earlier_entry_claims(area_entry, 3, 20.0).empty());
+}
+
 TEST(TrafficManager, FrozenRobotKeepsThePlacesUnderItsBodyAndIsGrantedNothingMore) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 2.0, 0.0);
