@@ -342,3 +342,43 @@ TEST(Forklift, BackingOutOfADropItStopsForARobotOnlyItsLidarSees) {
   }
   EXPECT_GT(closest, 0.01);
 }
+
+TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfTheParkedBodies) {
+  // table_a's homes stand clear of the lanes: a robot driving orders out of H1 and H2 (the homes
+  // beside the south ring's junctions with the cross) and back keeps the agents' safety gap to
+  // every body parked at another home, turning at home beside its neighbour included.
+  const auto site = table_a();
+  const robot::ForkliftConfig config = under_traffic(*site);
+  double worst = 1.0;
+  std::string where;
+  for (const char* start : {"H1", "H2"}) {
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"A1", "A2"}, {"A3", "A8"}, {"A5", "A2"}, {"A7", "A4"}}) {
+      robot::Forklift f(config, site, site->site.find_home(start)->pose, 7, 1);
+      f.set_standing_pallets({{1, site->site.find_area(from)->pose}});
+      ASSERT_TRUE(f.submit(order_between(site->site, from, to), nullptr));
+      std::uint32_t granted = 0;
+      bool home = false;
+      while (f.time() < 400.0 && !home) {
+        const robot::TrafficRoute r = f.traffic_route();
+        if (!r.points.empty() && r.version != granted) {
+          f.set_traffic_grant({r.version, static_cast<int>(r.points.size()) - 1, 100.0, {}, {}, false});
+          granted = r.version;
+        }
+        f.step();
+        for (const auto& e : f.take_events()) home = home || e.kind == ForkliftEvent::Kind::kHome;
+        const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
+        for (const auto& h : site->site.homes) {
+          if (h.id == start) continue;
+          const double gap = geometry::convex_polygons_distance(mine, geometry::footprint_polygon(h.pose, {0.25, 0.16}));
+          if (gap < worst) {
+            worst = gap;
+            where = std::string(start) + " " + from + "->" + to + ": " + h.id;
+          }
+        }
+      }
+      EXPECT_TRUE(home) << start << " " << from << "->" << to << ": " << f.task_state() << " " << f.detail();
+    }
+  }
+  EXPECT_GE(worst, robot::ForkliftConfig::defaults().safety_gap) << where;
+}
