@@ -199,9 +199,11 @@ std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
 }
 
 namespace {
-/// Whether any occupied cell of `layer` lies inside the footprint at `pose`, grown by `margin`.
-bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
-                    double margin) {
+/// The occupied cells of `layer` inside the footprint at `pose`, grown by `margin`, as indices
+/// y * width + x in ascending order.
+std::vector<int> footprint_cells(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
+                                 double margin) {
+  std::vector<int> cells;
   const double hl = fp.length / 2.0 + margin;
   const double hw = fp.width / 2.0 + margin;
   const double reach = std::hypot(hl, hw);
@@ -215,8 +217,18 @@ bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, con
     for (int x = x0; x <= x1; ++x) {
       if (!layer.in_bounds(x, y) || !layer.occupied(x, y)) continue;
       const Vec2 b = geometry::map_to_body(pose, layer.cell_center(x, y));
-      if (std::abs(b.x) <= hl && std::abs(b.y) <= hw) return true;
+      if (std::abs(b.x) <= hl && std::abs(b.y) <= hw) cells.push_back(y * layer.width() + x);
     }
+  }
+  return cells;
+}
+
+/// Whether the footprint at `pose` meets an occupied cell other than the `already_touched` ones
+/// (sorted indices).
+bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
+                    double margin, const std::vector<int>& already_touched) {
+  for (int cell : footprint_cells(layer, pose, fp, margin)) {
+    if (!std::binary_search(already_touched.begin(), already_touched.end(), cell)) return true;
   }
   return false;
 }
@@ -254,6 +266,11 @@ double Forklift::clearance_ahead() const {
   const double len2 = geometry::dot(ab, ab);
   const double t = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
   Vec2 prev = a + t * ab;
+  // Cells the footprint touches where it stands are no reason to stop: a robot that came to a
+  // halt a little close to a parked body (grown by the margins) may drive on along a path that
+  // leads away; deeper cells still stop it, and the safety stop refuses any move closer than
+  // its gap.
+  const std::vector<int> touched = footprint_cells(layer, sim_.estimate(), footprint(), kMargin);
   double travelled = 0.0;
   for (std::size_t i = segment + 1; i < path_.size() && travelled < kLookahead; ++i) {
     const Vec2 next = path_[i];
@@ -262,7 +279,9 @@ double Forklift::clearance_ahead() const {
     const double heading = std::atan2(next.y - prev.y, next.x - prev.x);
     for (double s = kSample; s <= len && travelled + s <= kLookahead; s += kSample) {
       const Vec2 p = prev + (s / len) * (next - prev);
-      if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin)) return std::max(0.0, travelled + s - kSample);
+      if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin, touched)) {
+        return std::max(0.0, travelled + s - kSample);
+      }
     }
     travelled += len;
     prev = next;
@@ -413,13 +432,39 @@ control::BodyTwist Forklift::safe(const control::BodyTwist& cmd) const {
   // The last line of defence under traffic and local planning, in every state and every
   // manoeuvre (backing out of a drop too): a command that would bring this footprint within
   // `safety_gap` of another robot within the horizon, and closer than it is now, becomes a stop.
-  // Moving apart stays allowed, so two robots that met can always separate. The footprint is
-  // swept over the horizon (passing a corner, the closest approach lies inside it), and checked
-  // against two views of the others: the poses they publish (grown by what they may have moved
-  // since), and the lidar's own returns, which a bias of this robot's estimate does not move.
+  // Moving apart stays allowed, so two robots that met can always separate.
+  if (cmd == control::BodyTwist{} || !moves_too_close(cmd)) return cmd;
+  // Refused close beside a body (a turn on the spot would swing a corner into it): the mecanum
+  // base steps straight away from the nearest lidar return, slowly, when that step is safe, so
+  // the robot makes room for the turn instead of standing there for good.
+  constexpr double kEscapeWithin = 0.10;  // metres: only this close to a body
+  constexpr double kEscapeSpeed = 0.03;   // m/s
+  const Pose2 now = sim_.estimate();
+  const Vec2* nearest = nullptr;
+  double nearest_gap = kEscapeWithin;
+  for (const Vec2& p : near_returns_) {
+    const double gap = footprint_distance(now, footprint(), p);
+    if (gap < nearest_gap) {
+      nearest_gap = gap;
+      nearest = &p;
+    }
+  }
+  if (nearest == nullptr) return {};
+  const Vec2 away = geometry::map_to_body(now, *nearest);
+  const double norm = std::hypot(away.x, away.y);
+  if (norm < 1e-6) return {};
+  const control::BodyTwist escape{-kEscapeSpeed * away.x / norm, -kEscapeSpeed * away.y / norm, 0.0};
+  return moves_too_close(escape) ? control::BodyTwist{} : escape;
+}
+
+bool Forklift::moves_too_close(const control::BodyTwist& cmd) const {
+  // The footprint is swept over the horizon (passing a corner, the closest approach lies inside
+  // it) and checked against two views of the others: the poses they publish (grown by what they
+  // may have moved since), and the lidar's own returns, which a bias of this robot's estimate
+  // does not move.
   constexpr double kHorizon = 0.4;  // sim seconds of the current command looked ahead
   constexpr int kSweepSteps = 4;
-  if (cmd == control::BodyTwist{} || (neighbours_.empty() && near_returns_.empty())) return cmd;
+  if (neighbours_.empty() && near_returns_.empty()) return false;
   const Pose2 now = sim_.estimate();
   std::array<Pose2, kSweepSteps> ahead;
   for (int k = 0; k < kSweepSteps; ++k) ahead[k] = control::integrate_twist(now, cmd, kHorizon * (k + 1) / kSweepSteps);
@@ -430,17 +475,17 @@ control::BodyTwist Forklift::safe(const control::BodyTwist& cmd) const {
     const double gap_now = geometry::convex_polygons_distance(mine_now, theirs);
     for (const Pose2& pose : ahead) {
       const double gap = geometry::convex_polygons_distance(geometry::footprint_polygon(pose, footprint()), theirs);
-      if (gap < config_.safety_gap && gap < gap_now) return {};
+      if (gap < config_.safety_gap && gap < gap_now) return true;
     }
   }
   for (const Vec2& p : near_returns_) {
     const double gap_now = footprint_distance(now, footprint(), p);
     for (const Pose2& pose : ahead) {
       const double gap = footprint_distance(pose, footprint(), p);
-      if (gap < config_.safety_gap && gap < gap_now) return {};
+      if (gap < config_.safety_gap && gap < gap_now) return true;
     }
   }
-  return cmd;
+  return false;
 }
 
 void Forklift::answer_plan_requests() {

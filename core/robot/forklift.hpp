@@ -174,6 +174,8 @@ class Forklift {
   void collect_reports();
   double clearance_ahead() const;
   control::BodyTwist safe(const control::BodyTwist& cmd) const;
+  /// Whether `cmd` would bring the footprint within `safety_gap` of another robot (see safe()).
+  bool moves_too_close(const control::BodyTwist& cmd) const;
   std::vector<geometry::Polygon> uwb_blockers() const;
 
   ForkliftConfig config_;

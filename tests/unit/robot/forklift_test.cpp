@@ -382,3 +382,26 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
   }
   EXPECT_GE(worst, robot::ForkliftConfig::defaults().safety_gap) << where;
 }
+
+TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
+  // fl4's pose in a 2-hour soak: out of A1 onto the south ring it overshot north, 9 cm off the
+  // lane towards the robot parked at H5, and stood there for good: turning towards the lane on
+  // the spot would swing its rear corner into that body, and the safety stop refused it.
+  const auto site = table_a();
+  const geometry::Pose2 close_by{1.07, 0.541, -0.14};
+  const geometry::Pose2 parked = site->site.find_home("H5")->pose;
+  const auto parked_body = geometry::footprint_polygon(parked, {0.25, 0.16});
+  robot::Forklift f(robot::ForkliftConfig::defaults(), site, close_by, 8, 1);
+  f.set_standing_pallets(pallets_of(site->site));
+  f.set_neighbours({{"fl5", parked, {0.25, 0.16}, 0.0, 0.0}});
+  f.set_true_neighbours({parked_body});
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+  double closest = 1.0;
+  while (f.time() < 30.0 && geometry::distance(f.truth().position(), close_by.position()) < 0.3) {
+    f.step();
+    closest = std::min(closest, geometry::convex_polygons_distance(geometry::footprint_polygon(f.truth(), f.footprint()),
+                                                                   parked_body));
+  }
+  EXPECT_GE(geometry::distance(f.truth().position(), close_by.position()), 0.3) << f.task_state() << " " << f.detail();
+  EXPECT_GT(closest, 0.01);
+}
