@@ -613,14 +613,29 @@ void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   std::vector<Vec2> road;
   for (int id : permit.route) road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
   const Vec2 here = sim_.estimate().position();
+  // A route handed over while the robot stood short of its grant starts at the route point at or
+  // behind it: the path joins the route at the first point ahead, so the robot does not turn
+  // round (sweeping its body into whoever stopped it) to touch a point it has passed. A route that
+  // leads back the way the robot came still starts at its first point.
+  std::size_t first = 0;
+  while (first + 1 < road.size()) {
+    const Vec2 ab = road[first + 1] - road[first];
+    const double len2 = geometry::dot(ab, ab);
+    const double along = len2 > 0.0 ? geometry::dot(here - road[first], ab) / len2 : 1.0;
+    if (along <= 0.0) break;
+    ++first;
+    if (along < 1.0) break;
+  }
+  road_cum_ = cumulative_lengths(road);
   path_.assign(1, here);
-  path_.insert(path_.end(), road.begin(), road.end());
-  road_start_ = geometry::distance(here, road.front());
+  path_.insert(path_.end(), road.begin() + static_cast<std::ptrdiff_t>(first), road.end());
+  // Where road point `first` sits on the path, less its distance along the road: progress along
+  // the road is then path position - road_start_, as for a path through every road point.
+  road_start_ = geometry::distance(here, road[first]) - road_cum_[first];
   if (to_goal) path_.insert(path_.end(), goal_leg_.begin(), goal_leg_.end());
   path_cum_ = cumulative_lengths(path_);
   path_s_ = 0.0;
   road_points_ = permit.route;
-  road_cum_ = cumulative_lengths(road);
   route_version_ = permit.version;
   in_siding_ = permit.siding;
   siding_held_since_ = -1.0;

@@ -405,3 +405,40 @@ TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
   EXPECT_GE(geometry::distance(f.truth().position(), close_by.position()), 0.3) << f.task_state() << " " << f.detail();
   EXPECT_GT(closest, 0.01);
 }
+
+TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRound) {
+  // The traffic manager re-routes a robot stopped short of its grant from the route point at or
+  // behind it. Turning round to touch that point swept the robot's body into the one that had
+  // stopped it, and a robot sent to a siding this way never got there (sent again every 3 s).
+  SidingOnTheWayHome g;
+  g.f.set_standing_pallets(pallets_of(g.site->site));
+  ASSERT_TRUE(g.f.submit(order_between(g.site->site, "A3", "A2"), nullptr));
+  while (g.f.time() < 20.0) g.step();
+  const robot::TrafficRoute own = g.f.traffic_route();
+  ASSERT_GE(own.points.size(), 8u);
+  const auto& points = g.site->graph.graph.points;
+  auto at = [&](int id) { return geometry::Vec2{points[static_cast<std::size_t>(id)].x, points[static_cast<std::size_t>(id)].y}; };
+  // The route point just behind the robot: it stands between it and the next one.
+  std::size_t behind = 0;
+  double best = 1e9;
+  for (std::size_t k = 0; k + 1 < own.points.size(); ++k) {
+    const double d = geometry::point_segment_distance(g.f.estimate().position(), at(own.points[k]), at(own.points[k + 1]));
+    if (d < best) {
+      best = d;
+      behind = k;
+    }
+  }
+  const geometry::Vec2 a = at(own.points[behind]), b = at(own.points[behind + 1]);
+  const double heading = std::atan2(b.y - a.y, b.x - a.x);
+  g.f.set_traffic_grant({own.version + 1, static_cast<int>(own.points.size() - behind - 1), 100.0, {},
+                         {own.points.begin() + static_cast<std::ptrdiff_t>(behind), own.points.end()}, false});
+  const geometry::Vec2 start = g.f.truth().position();
+  double worst_turn = 0.0;
+  while (g.f.time() < 23.0) {
+    g.step();
+    worst_turn = std::max(worst_turn, std::abs(geometry::angle_diff(g.f.truth().yaw, heading)));
+  }
+  EXPECT_EQ(g.f.traffic_route().version, own.version + 1);
+  EXPECT_LT(worst_turn, 0.8) << "turned round to the point behind";
+  EXPECT_GT(geometry::distance(g.f.truth().position(), start), 0.2) << g.f.detail();
+}
