@@ -58,6 +58,9 @@ class FleetRun {
   /// Robots with an order that made no progress for 60 sim seconds (see ProgressMonitor).
   const monitor::ProgressMonitor& progress() const { return progress_; }
   const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
+  /// The robot was frozen or down by an injected fault: its progress watch starts again, so the
+  /// time it was gone does not count as time without progress.
+  void forget_progress(const std::string& robot_id) { progress_.forget(robot_id); }
   /// An injected fault will end this child: its end is not a crash.
   void expect_exit(std::size_t child_index) { expected_exits_.insert(child_index); }
   /// Index of the server (0) and of each agent (1..N) in processes().

@@ -34,7 +34,9 @@ constexpr double kFaultPeriodSim = 120.0;  // a fault every two simulated minute
 constexpr double kKillPauseWall = 2.0;     // a killed agent stays down this long
 constexpr double kStallWall = 3.0;         // a stopped agent stays frozen this long
 constexpr double kServerPauseWall = 1.0;   // a killed server stays down this long
-constexpr double kObstacleOnSim = 60.0;    // an obstacle switched on stays on this long
+// An obstacle switched on stays on this long: shorter than the 60 s deadlock window, so a robot
+// whose every way it closes waits it out (seed 000, Fig. 5.11) without counting as deadlocked.
+constexpr double kObstacleOnSim = 45.0;
 
 /// Resident memory (kB) and CPU time (s) of a process, from /proc; nothing once it is gone.
 struct Usage {
@@ -270,7 +272,11 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           record.order = open_order_of(record.target);
           run.expect_exit(child);
           run.processes().signal(child, SIGKILL);
-          pending.push_back({now_wall + kKillPauseWall, [&run, child] { run.processes().restart(child); }});
+          run.forget_progress(record.target);
+          pending.push_back({now_wall + kKillPauseWall, [&run, child, robot = record.target] {
+                               run.processes().restart(child);
+                               run.forget_progress(robot);
+                             }});
           break;
         }
         case monitor::FaultKind::kStallAgent: {
@@ -279,7 +285,11 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
           if (!run.processes().children()[child].running) continue;
           record.order = open_order_of(record.target);
           run.processes().signal(child, SIGSTOP);
-          pending.push_back({now_wall + kStallWall, [&run, child] { run.processes().signal(child, SIGCONT); }});
+          run.forget_progress(record.target);
+          pending.push_back({now_wall + kStallWall, [&run, child, robot = record.target] {
+                               run.processes().signal(child, SIGCONT);
+                               run.forget_progress(robot);
+                             }});
           break;
         }
         case monitor::FaultKind::kKillServer: {

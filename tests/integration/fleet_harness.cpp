@@ -10,10 +10,13 @@
 #include <chrono>
 #include <set>
 
+#include <gtest/gtest.h>
+
 #include "cli/client.hpp"
 #include "dds/environment.hpp"
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <thread>
 
@@ -68,6 +71,10 @@ CommandResult run_command(const std::vector<std::string>& argv, double timeout_s
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
   result.out = slurp(out_file);
   result.err = slurp(err_file);
+  // What the command printed is in the result now; thousands of runs left their files in /tmp.
+  std::error_code ignored;
+  std::filesystem::remove(out_file, ignored);
+  std::filesystem::remove(err_file, ignored);
   return result;
 }
 
@@ -80,7 +87,16 @@ FleetHarness::FleetHarness(int domain, double time_scale, std::string site)
   std::filesystem::create_directories(log_dir_);
 }
 
-FleetHarness::~FleetHarness() { processes_.stop_all(5.0); }
+FleetHarness::~FleetHarness() {
+  processes_.stop_all(5.0);
+  // The processes' logs are kept for a failed test (its messages name them), dropped otherwise.
+  if (::testing::Test::HasFailure()) {
+    std::cerr << "logs of this fleet: " << log_dir_ << "/\n";
+  } else {
+    std::error_code ignored;
+    std::filesystem::remove_all(log_dir_, ignored);
+  }
+}
 
 std::vector<std::string> FleetHarness::common_args() const {
   return {"--config", std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml", "--domain", std::to_string(domain_),

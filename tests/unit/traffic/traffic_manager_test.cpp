@@ -144,13 +144,18 @@ TEST(TrafficManager, ReleasesByDistanceTravelledBeforeTheNextNode) {
   EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(road[1])));
 }
 
-TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDriveOut) {
-  GraphBuilder b;
-  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+/// Two-way roads whose entry claims act after 8 s: the setting of the entry-claim tests.
+TrafficConfiguration entry_claims_after_8s() {
   TrafficConfiguration c;
   c.priority_wait = 8.0;
   c.one_way = false;
-  TrafficManager m(b.graph(), c);
+  return c;
+}
+
+TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDriveOut) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficManager m(b.graph(), entry_claims_after_8s());
   const int entry = point_at(b.graph(), 1.5, 0.0);
   // Robot 2 stands inside the entry's zone, robot 1 comes from behind; both go to the end.
   std::vector<int> from_inside(road.begin() + (point_at(b.graph(), 1.4, 0.0) - road.front()), road.end());
@@ -185,10 +190,7 @@ TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDrive
 TEST(TrafficManager, RobotsEnteringTheRoadsGoInTheOrderTheyCameUnlessOneStandsInTheOthersWay) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 3.0, 0.0);
-  TrafficConfiguration c;
-  c.priority_wait = 8.0;
-  c.one_way = false;
-  TrafficManager m(b.graph(), c);
+  TrafficManager m(b.graph(), entry_claims_after_8s());
   const int home_entry = point_at(b.graph(), 1.5, 0.0);
   const int area_entry = point_at(b.graph(), 1.6, 0.0);
   const int far_entry = point_at(b.graph(), 2.8, 0.0);
