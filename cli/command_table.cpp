@@ -74,7 +74,12 @@ std::vector<CommandSpec> make_table() {
       {Group::Server, "pause", "", "ROBOT", false, {}, "stop a robot where it is (PAUSED)"},
       {Group::Server, "resume", "", "ROBOT", false, {}, "let a paused robot go on"},
       {Group::Server, "map", "list", "", false, {}, "the maps the server knows, and the one it serves"},
-      {Group::Server, "map", "set", "MAP", false, {value("--robot", "R")},
+      {Group::Server,
+       "map",
+       "set",
+       "MAP",
+       false,
+       {value("--robot", "R")},
        "switch every robot (or one, when traffic is off) to another map of the site;\n"
        "agents replan on it"},
       {Group::Server,

@@ -137,13 +137,13 @@ bool FleetRun::poll() {
       const auto& d = progress_.deadlocks().back();
       log_->warn("deadlock: {} made no progress on order {} for {:.0f} s sim at ({:.3f}, {:.3f})", d.robot_id, d.task,
                  d.detected - d.since, d.pose.x, d.pose.y);
-      write_tracks("deadlock-" + std::to_string(progress_.deadlocks().size()) + "-" + d.robot_id, 90.0,
-                   truth.sim_time);
+      write_tracks("deadlock-" + std::to_string(progress_.deadlocks().size()) + "-" + d.robot_id, 90.0, truth.sim_time);
     }
     for (const auto& c : collisions_.update(truth.robot_id, truth.pose, truth.footprint, truth.sim_time)) {
-      log_->warn("collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}, yaw {:.2f}) and {} at ({:.3f}, {:.3f}, yaw {:.2f})",
-                 c.sim_time - start_sim_, c.robot_a, c.pose_a.x, c.pose_a.y, c.pose_a.yaw, c.robot_b, c.pose_b.x,
-                 c.pose_b.y, c.pose_b.yaw);
+      log_->warn(
+          "collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}, yaw {:.2f}) and {} at ({:.3f}, {:.3f}, yaw {:.2f})",
+          c.sim_time - start_sim_, c.robot_a, c.pose_a.x, c.pose_a.y, c.pose_a.yaw, c.robot_b, c.pose_b.x, c.pose_b.y,
+          c.pose_b.yaw);
       write_tracks("collision-" + std::to_string(collisions_.collisions().size()) + "-" + c.robot_a + "-" + c.robot_b,
                    30.0, truth.sim_time);
     }

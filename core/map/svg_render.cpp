@@ -244,7 +244,8 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
           << "\" fill-opacity=\"0.45\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n";
       svg << "<line x1=\"" << num(cv.X(last.x)) << "\" y1=\"" << num(cv.Y(last.y)) << "\" x2=\""
           << num(cv.X(last.x + 0.5 * o.robot_length * std::cos(last.yaw))) << "\" y2=\""
-          << num(cv.Y(last.y + 0.5 * o.robot_length * std::sin(last.yaw))) << "\" stroke=\"#000\" stroke-width=\"2\"/>\n";
+          << num(cv.Y(last.y + 0.5 * o.robot_length * std::sin(last.yaw)))
+          << "\" stroke=\"#000\" stroke-width=\"2\"/>\n";
       svg << "<text x=\"" << num(cv.X(last.x)) << "\" y=\"" << num(cv.Y(last.y) - cv.len(0.5 * o.robot_length) - 4.0)
           << "\" text-anchor=\"middle\" fill=\"" << colour << "\" font-weight=\"bold\">" << escape(track.label)
           << "</text>\n";

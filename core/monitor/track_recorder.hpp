@@ -1,9 +1,9 @@
 #pragma once
 
 #include <deque>
+#include <istream>
 #include <map>
 #include <ostream>
-#include <istream>
 #include <string>
 #include <vector>
 

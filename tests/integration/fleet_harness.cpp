@@ -1,6 +1,7 @@
 #include "fleet_harness.hpp"
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -8,17 +9,15 @@
 
 #include <algorithm>
 #include <chrono>
-#include <set>
-
-#include <gtest/gtest.h>
-
-#include "cli/client.hpp"
-#include "dds/environment.hpp"
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <thread>
+
+#include "cli/client.hpp"
+#include "dds/environment.hpp"
 
 namespace fleet::testing {
 
@@ -75,6 +74,7 @@ CommandResult run_command(const std::vector<std::string>& argv, double timeout_s
   std::error_code ignored;
   std::filesystem::remove(out_file, ignored);
   std::filesystem::remove(err_file, ignored);
+  std::filesystem::remove(dir, ignored);  // only when empty
   return result;
 }
 

@@ -1,11 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <sstream>
+
 #include "monitor/collision_monitor.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/track_recorder.hpp"
-
-#include <cmath>
-#include <sstream>
 
 using namespace fleet;
 using namespace fleet::monitor;
@@ -116,7 +116,7 @@ TEST(TrackRecorder, KeepsTheWindowAtItsRateAndWritesItFromTheRunStart) {
     }
   }
   EXPECT_EQ(first, "fl1,25.00,2.5000,1.0000,0.5000");  // from `since` on, time from the run's start
-  EXPECT_EQ(fl1, 11);                                   // 25 .. 30 s, one every 0.5 s
+  EXPECT_EQ(fl1, 11);                                  // 25 .. 30 s, one every 0.5 s
   EXPECT_EQ(last_fl2, "fl2,29.50,2.0000,2.0000,1.0000");
   std::ostringstream all;
   tracks.write_csv(all, 0.0, 100.0);

@@ -195,8 +195,12 @@ struct SidingOnTheWayHome {
     ASSERT_GE(way_home.size(), 8u) << f.task_state() << " " << f.detail();
     own_version = f.traffic_route().version;
     siding_end = way_home.size() / 2;
-    f.set_traffic_grant({own_version + 1, static_cast<int>(siding_end), 100.0, {},
-                         {way_home.begin(), way_home.begin() + static_cast<std::ptrdiff_t>(siding_end) + 1}, true});
+    f.set_traffic_grant({own_version + 1,
+                         static_cast<int>(siding_end),
+                         100.0,
+                         {},
+                         {way_home.begin(), way_home.begin() + static_cast<std::ptrdiff_t>(siding_end) + 1},
+                         true});
     while (f.traffic_route().version != own_version + 1 && f.time() < 200.0) step();
     const auto& end = site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])];
     const double sent = f.time();
@@ -224,8 +228,12 @@ TEST(Forklift, BackFromASidingItStillLeavesTheRoadForItsHome) {
   SidingOnTheWayHome g;
   ASSERT_NO_FATAL_FAILURE(g.yield_on_siding());
   for (int i = 0; i < 70; ++i) g.step();
-  g.f.set_traffic_grant({g.own_version + 3, static_cast<int>(g.way_home.size() - g.siding_end - 1), 100.0, {},
-                         {g.way_home.begin() + static_cast<std::ptrdiff_t>(g.siding_end), g.way_home.end()}, false});
+  g.f.set_traffic_grant({g.own_version + 3,
+                         static_cast<int>(g.way_home.size() - g.siding_end - 1),
+                         100.0,
+                         {},
+                         {g.way_home.begin() + static_cast<std::ptrdiff_t>(g.siding_end), g.way_home.end()},
+                         false});
   ASSERT_TRUE(g.drive_home(120.0)) << g.f.task_state() << " " << g.f.detail();
   EXPECT_LT(geometry::distance(g.f.truth().position(), g.home.position()), 0.05)
       << "home reached at (" << g.f.truth().x << ", " << g.f.truth().y << ")";
@@ -331,7 +339,8 @@ TEST(Forklift, BackingOutOfADropItStopsForARobotOnlyItsLidarSees) {
   for (int i = 0; i < 70 * 300 && !(f.task_state() == "DROP_PALLET" && f.truth().y < 0.33); ++i) f.step();
   ASSERT_EQ(f.task_state(), "DROP_PALLET");
   // The back-out ends with the body's centre at about y = 0.47 (its rear edge at 0.60).
-  const geometry::Polygon other = geometry::footprint_polygon({f.truth().x, 0.693, -std::numbers::pi / 2}, {0.25, 0.16});
+  const geometry::Polygon other =
+      geometry::footprint_polygon({f.truth().x, 0.693, -std::numbers::pi / 2}, {0.25, 0.16});
   f.set_true_neighbours({other});
   double closest = 1.0;
   for (int i = 0; i < 70 * 20; ++i) {
@@ -352,8 +361,8 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
   double worst = 1.0;
   std::string where;
   for (const char* start : {"H1", "H2"}) {
-    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
-             {"A1", "A2"}, {"A3", "A8"}, {"A5", "A2"}, {"A7", "A4"}}) {
+    for (const auto& [from, to] :
+         std::vector<std::pair<std::string, std::string>>{{"A1", "A2"}, {"A3", "A8"}, {"A5", "A2"}, {"A7", "A4"}}) {
       robot::Forklift f(config, site, site->site.find_home(start)->pose, 7, 1);
       f.set_standing_pallets({{1, site->site.find_area(from)->pose}});
       ASSERT_TRUE(f.submit(order_between(site->site, from, to), nullptr));
@@ -370,7 +379,8 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
         const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
         for (const auto& h : site->site.homes) {
           if (h.id == start) continue;
-          const double gap = geometry::convex_polygons_distance(mine, geometry::footprint_polygon(h.pose, {0.25, 0.16}));
+          const double gap =
+              geometry::convex_polygons_distance(mine, geometry::footprint_polygon(h.pose, {0.25, 0.16}));
           if (gap < worst) {
             worst = gap;
             where = std::string(start) + " " + from + "->" + to + ": " + h.id;
@@ -399,8 +409,8 @@ TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
   double closest = 1.0;
   while (f.time() < 30.0 && geometry::distance(f.truth().position(), close_by.position()) < 0.3) {
     f.step();
-    closest = std::min(closest, geometry::convex_polygons_distance(geometry::footprint_polygon(f.truth(), f.footprint()),
-                                                                   parked_body));
+    closest = std::min(closest, geometry::convex_polygons_distance(
+                                    geometry::footprint_polygon(f.truth(), f.footprint()), parked_body));
   }
   EXPECT_GE(geometry::distance(f.truth().position(), close_by.position()), 0.3) << f.task_state() << " " << f.detail();
   EXPECT_GT(closest, 0.01);
@@ -417,12 +427,15 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
   const robot::TrafficRoute own = g.f.traffic_route();
   ASSERT_GE(own.points.size(), 8u);
   const auto& points = g.site->graph.graph.points;
-  auto at = [&](int id) { return geometry::Vec2{points[static_cast<std::size_t>(id)].x, points[static_cast<std::size_t>(id)].y}; };
+  auto at = [&](int id) {
+    return geometry::Vec2{points[static_cast<std::size_t>(id)].x, points[static_cast<std::size_t>(id)].y};
+  };
   // The route point just behind the robot: it stands between it and the next one.
   std::size_t behind = 0;
   double best = 1e9;
   for (std::size_t k = 0; k + 1 < own.points.size(); ++k) {
-    const double d = geometry::point_segment_distance(g.f.estimate().position(), at(own.points[k]), at(own.points[k + 1]));
+    const double d =
+        geometry::point_segment_distance(g.f.estimate().position(), at(own.points[k]), at(own.points[k + 1]));
     if (d < best) {
       best = d;
       behind = k;
@@ -430,8 +443,12 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
   }
   const geometry::Vec2 a = at(own.points[behind]), b = at(own.points[behind + 1]);
   const double heading = std::atan2(b.y - a.y, b.x - a.x);
-  g.f.set_traffic_grant({own.version + 1, static_cast<int>(own.points.size() - behind - 1), 100.0, {},
-                         {own.points.begin() + static_cast<std::ptrdiff_t>(behind), own.points.end()}, false});
+  g.f.set_traffic_grant({own.version + 1,
+                         static_cast<int>(own.points.size() - behind - 1),
+                         100.0,
+                         {},
+                         {own.points.begin() + static_cast<std::ptrdiff_t>(behind), own.points.end()},
+                         false});
   const geometry::Vec2 start = g.f.truth().position();
   double worst_turn = 0.0;
   while (g.f.time() < 23.0) {
