@@ -1,6 +1,5 @@
 // fleetctl map check|sample|render: wiring only; the work is done in core/map.
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/args.hpp"
 #include "map/reference_samples.hpp"
 #include "map/site_map.hpp"
 #include "map/svg_render.hpp"
@@ -129,17 +129,12 @@ int render(const CommandArgs& args, const std::vector<std::string>& rest, std::o
     } else if (rest[i] == "--tracks" && i + 1 < rest.size()) {
       tracks_file = rest[++i];
     } else if (rest[i] == "--since" && i + 1 < rest.size()) {
-      const std::string value = rest[++i];
-      std::size_t used = 0;
-      try {
-        since = std::stod(value, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != value.size() || !std::isfinite(since)) {
-        err << "map render: --since '" << value << "': expected sim seconds\n";
+      const auto value = parse_finite(rest[++i]);
+      if (!value) {
+        err << "map render: --since '" << rest[i] << "': expected sim seconds\n";
         return kExitBadInput;
       }
+      since = *value;
     } else if (rest[i] == "--no-points") {
       options.graph_points = false;
     } else if (site.empty() && !rest[i].starts_with("-")) {

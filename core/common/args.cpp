@@ -33,14 +33,19 @@ bool Args::flag(const std::string& name) {
   return false;
 }
 
+std::optional<double> parse_finite(const std::string& text) {
+  double v = 0.0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 std::optional<double> Args::number(const std::string& name, double min, double max) {
   const auto text = value(name);
   if (!text) return std::nullopt;
-  double v = 0.0;
-  auto [ptr, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
-  if (ec != std::errc() || ptr != text->data() + text->size() || !std::isfinite(v)) {
-    throw ArgError("flag --" + name + ": '" + *text + "' is not a number");
-  }
+  const auto parsed = parse_finite(*text);
+  if (!parsed) throw ArgError("flag --" + name + ": '" + *text + "' is not a number");
+  const double v = *parsed;
   if (v < min || v > max) {
     throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
   }

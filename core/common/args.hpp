@@ -15,6 +15,9 @@ class ArgError : public InputError {
   using InputError::InputError;
 };
 
+/// The whole of `text` as a finite number; nothing when it is not one.
+std::optional<double> parse_finite(const std::string& text);
+
 /// Takes flags out of an argument list one by one; what remains is positional. Accepts
 /// `--name value` and `--name=value`.
 class Args {

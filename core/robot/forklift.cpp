@@ -466,14 +466,18 @@ bool Forklift::moves_too_close(const control::BodyTwist& cmd) const {
   if (neighbours_.empty() && near_returns_.empty()) return false;
   const Pose2 now = sim_.estimate();
   std::array<Pose2, kSweepSteps> ahead;
-  for (int k = 0; k < kSweepSteps; ++k) ahead[k] = control::integrate_twist(now, cmd, kHorizon * (k + 1) / kSweepSteps);
+  std::array<geometry::Polygon, kSweepSteps> mine_ahead;
+  for (int k = 0; k < kSweepSteps; ++k) {
+    ahead[k] = control::integrate_twist(now, cmd, kHorizon * (k + 1) / kSweepSteps);
+    mine_ahead[k] = geometry::footprint_polygon(ahead[k], footprint());
+  }
   const auto mine_now = geometry::footprint_polygon(now, footprint());
   for (const auto& n : neighbours_) {
     const double moved = n.age > config_.stale_after ? config_.neighbour_max_speed * n.age : n.speed * n.age;
     const auto theirs = geometry::footprint_polygon(n.pose, n.footprint, std::min(moved, 1.0));
     const double gap_now = geometry::convex_polygons_distance(mine_now, theirs);
-    for (const Pose2& pose : ahead) {
-      const double gap = geometry::convex_polygons_distance(geometry::footprint_polygon(pose, footprint()), theirs);
+    for (const auto& mine : mine_ahead) {
+      const double gap = geometry::convex_polygons_distance(mine, theirs);
       if (gap < config_.safety_gap && gap < gap_now) return true;
     }
   }
