@@ -1,6 +1,7 @@
 #include "control/pallet_search.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace fleet::control {
@@ -43,6 +44,9 @@ void PalletSearch::start(const Pose2& area) {
   sweep_leg_ = 0;
   marker_id_ = -1;
   hits_ = 0;
+  frames_seen_ = 0;
+  nearest_rejected_id_ = -1;
+  nearest_rejected_m_ = 0.0;
 }
 
 void PalletSearch::stop() {
@@ -55,13 +59,34 @@ void PalletSearch::count(const Pose2& pose, std::span<const perception::MarkerDe
       area_.position() + geometry_.marker_offset * geometry::Vec2{std::cos(area_.yaw), std::sin(area_.yaw)};
   for (const auto& det : detections) {
     const perception::Marker seen = perception::marker_from_detection(pose, geometry_.camera_x, det);
-    if (geometry::distance(seen.pose.position(), expected) > params_.match_radius) continue;
+    ++frames_seen_;
+    const double off = geometry::distance(seen.pose.position(), expected);
+    if (off > params_.match_radius) {
+      if (nearest_rejected_id_ < 0 || off < nearest_rejected_m_) {
+        nearest_rejected_id_ = det.id;
+        nearest_rejected_m_ = off;
+      }
+      continue;
+    }
     if (det.id != marker_id_) {
       marker_id_ = det.id;
       hits_ = 0;
     }
     ++hits_;
   }
+}
+
+std::string PalletSearch::empty_reason() const {
+  if (frames_seen_ == 0) return "no marker in view";
+  char text[160];
+  if (nearest_rejected_id_ < 0) {
+    std::snprintf(text, sizeof text, "marker %d seen in %d frames, fewer than %d", marker_id_, hits_,
+                  params_.confirm_frames);
+  } else {
+    std::snprintf(text, sizeof text, "nearest marker %d seen %.3f m from the pallet's place (accepted within %.2f m)",
+                  nearest_rejected_id_, nearest_rejected_m_, params_.match_radius);
+  }
+  return text;
 }
 
 BodyTwist PalletSearch::step(const Pose2& pose, std::span<const perception::MarkerDetection> detections, double dt) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include "control/forklift_geometry.hpp"
 #include "control/path_follower.hpp"
@@ -50,6 +51,9 @@ class PalletSearch {
   SearchStatus status() const { return status_; }
   bool done() const { return status_ == SearchStatus::kFound || status_ == SearchStatus::kEmpty; }
   int marker_id() const { return marker_id_; }  ///< valid when found
+  /// Why a sweep ended empty, for the operator: what the camera saw and how far from where the
+  /// order puts the pallet ("no marker in view", or the nearest marker and its distance).
+  std::string empty_reason() const;
 
  private:
   void count(const geometry::Pose2& pose, std::span<const perception::MarkerDetection> detections);
@@ -63,6 +67,9 @@ class PalletSearch {
   int sweep_leg_ = 0;  ///< 0: towards +half, 1: towards -half, 2: back to centre
   int marker_id_ = -1;
   int hits_ = 0;
+  int frames_seen_ = 0;           ///< detections counted since start, matched or not
+  int nearest_rejected_id_ = -1;  ///< the marker seen nearest the expected place but outside match_radius
+  double nearest_rejected_m_ = 0.0;
 };
 
 }  // namespace fleet::control

@@ -110,6 +110,20 @@ double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   return distance(p, a + t * ab);
 }
 
+double segment_polygon_distance(Vec2 a, Vec2 b, const Polygon& polygon) {
+  if (polygon.empty()) return std::numeric_limits<double>::infinity();
+  if (segment_intersects_polygon(a, b, polygon)) return 0.0;
+  // Apart: the closest pair is a polygon corner to the segment, or an end of the segment to an edge.
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2 p = polygon[i];
+    const Vec2 q = polygon[(i + 1) % polygon.size()];
+    best = std::min(
+        {best, point_segment_distance(p, a, b), point_segment_distance(a, p, q), point_segment_distance(b, p, q)});
+  }
+  return best;
+}
+
 double convex_polygons_distance(const Polygon& a, const Polygon& b) {
   if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
   if (convex_polygons_overlap(a, b)) return 0.0;

@@ -39,6 +39,9 @@ bool polygons_overlap(const Polygon& a, const Polygon& b);
 /// Distance from `p` to the closed segment ab.
 double point_segment_distance(Vec2 p, Vec2 a, Vec2 b);
 
+/// Gap between the closed segment ab and a simple polygon: 0 when it touches or enters it.
+double segment_polygon_distance(Vec2 a, Vec2 b, const Polygon& polygon);
+
 /// Gap between two convex polygons: 0 when they touch or overlap.
 double convex_polygons_distance(const Polygon& a, const Polygon& b);
 

@@ -197,6 +197,25 @@ std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
   return out;
 }
 
+std::vector<std::size_t> Forklift::shadowed_anchors() const {
+  std::vector<std::size_t> out;
+  const auto& anchors = site_->site.uwb_anchors;
+  const Vec2 tag = geometry::body_to_map(sim_.estimate(), config_.sim.uwb.antenna_offset);
+  for (std::size_t i = 0; i < anchors.size(); ++i) {
+    const Vec2 anchor{anchors[i].x, anchors[i].y};
+    for (const auto& o : site_->site.static_obstacles) {
+      if (obstacles_.at(o.id) &&
+          geometry::segment_polygon_distance(anchor, tag, o.polygon) <= config_.anchor_shadow_margin) {
+        out.push_back(i);
+        break;
+      }
+    }
+  }
+  // Three ranges fix a position; with fewer left, a biased fix still beats none for long.
+  if (anchors.size() - out.size() < 3) out.clear();
+  return out;
+}
+
 namespace {
 /// The occupied cells of `layer` inside the footprint at `pose`, grown by `margin`, as indices
 /// y * width + x in ascending order.
@@ -422,7 +441,7 @@ void Forklift::step() {
 
   command_ = safe(out.twist);
   const auto blockers = uwb_blockers();
-  sim_.step(command_, dt, blockers);
+  sim_.step(command_, dt, blockers, shadowed_anchors());
   answer_plan_requests();
   collect_reports();
 }
@@ -549,9 +568,12 @@ void Forklift::collect_reports() {
         events_.push_back(e);
         break;
       }
-      case K::kAreaEmpty:
-        events_.push_back({ForkliftEvent::Kind::kAreaEmpty, r.order_id, "loading area " + r.area_id + " is empty", -1, {}});
+      case K::kAreaEmpty: {
+        std::string text = "loading area " + r.area_id + " is empty";
+        if (!r.detail.empty()) text += " (" + r.detail + ")";
+        events_.push_back({ForkliftEvent::Kind::kAreaEmpty, r.order_id, text, -1, {}});
         break;
+      }
       case K::kFailed:
         events_.push_back({ForkliftEvent::Kind::kFailed, r.order_id, r.detail, -1, {}});
         break;

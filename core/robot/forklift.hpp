@@ -39,6 +39,10 @@ struct ForkliftConfig {
   /// Other robots are this tall; the UWB tag sits at the sim's tag height. A robot shadows an
   /// anchor only where the anchor-tag ray is still below its top (see uwb_blockers()).
   double robot_height = 0.15;  ///< metres
+  /// A UWB range whose line from the anchor passes this close to an enabled static obstacle of
+  /// the map (grown by the estimate's uncertainty) is left out of the fix: a shadowed range is
+  /// always too long, and at rest the filter would average the bias into a 10 cm error.
+  double anchor_shadow_margin = 0.05;  ///< metres
   /// Traffic control (issue 8): report the road part of every route and drive only as far as
   /// the server grants (set_traffic_grant). Off: the seed's local avoidance alone.
   bool traffic = false;
@@ -177,6 +181,8 @@ class Forklift {
   /// Whether `cmd` would bring the footprint within `safety_gap` of another robot (see safe()).
   bool moves_too_close(const control::BodyTwist& cmd) const;
   std::vector<geometry::Polygon> uwb_blockers() const;
+  /// Anchors the map shows behind an enabled static obstacle, seen from the estimate.
+  std::vector<std::size_t> shadowed_anchors() const;
 
   ForkliftConfig config_;
   std::shared_ptr<const map::SiteMap> site_;

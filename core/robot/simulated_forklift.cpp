@@ -35,7 +35,8 @@ void SimulatedForklift::warm_up(double seconds, double dt) {
   for (double t = 0.0; t < seconds; t += dt) step({}, dt);
 }
 
-void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span<const geometry::Polygon> blockers) {
+void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span<const geometry::Polygon> blockers,
+                             std::span<const std::size_t> distrusted) {
   body_.step(sim::BodyTwist{cmd.vx, cmd.vy, cmd.omega}, dt);
   t_ += dt;
   // Gyro at the control rate: predict, then the commanded velocity (what the robot knows).
@@ -57,7 +58,8 @@ void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span
     next_uwb_ += uwb_period_;
     // After a long pause (a stopped process) do not replay every missed fix.
     next_uwb_ = std::max(next_uwb_, t_);
-    if (const auto fix = tag_.measure(body_.pose(), t_, blockers)) ekf_.update_uwb(fix->position, fix->covariance);
+    if (const auto fix = tag_.measure(body_.pose(), t_, blockers, distrusted))
+      ekf_.update_uwb(fix->position, fix->covariance);
   }
 }
 

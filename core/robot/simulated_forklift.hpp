@@ -46,8 +46,10 @@ class SimulatedForklift {
 
   /// Applies `cmd` for `dt` seconds: the body moves, the gyro feeds the EKF's prediction and the
   /// commanded velocity its update (what the robot knows it asked for), and a UWB fix updates it
-  /// when one is due (seed 000, Table 3.1: 20 Hz). UWB paths crossing `blockers` are NLOS.
-  void step(const control::BodyTwist& cmd, double dt, std::span<const geometry::Polygon> blockers = {});
+  /// when one is due (seed 000, Table 3.1: 20 Hz). UWB paths crossing `blockers` are NLOS (the
+  /// truth); the fix leaves out the ranges of `distrusted` anchors (what the robot believes).
+  void step(const control::BodyTwist& cmd, double dt, std::span<const geometry::Polygon> blockers = {},
+            std::span<const std::size_t> distrusted = {});
 
   const geometry::Pose2& truth() const { return body_.pose(); }
   geometry::Pose2 estimate() const;

@@ -246,11 +246,15 @@ std::vector<RangeReading> UwbTag::measure_ranges(const geometry::Pose2& truth,
 }
 
 std::optional<UwbFix> UwbTag::measure(const geometry::Pose2& truth, double stamp,
-                                      std::span<const geometry::Polygon> blockers) {
+                                      std::span<const geometry::Polygon> blockers,
+                                      std::span<const std::size_t> distrusted) {
   const std::vector<RangeReading> readings = measure_ranges(truth, blockers);
   std::vector<AnchorRange> ranges;
   ranges.reserve(readings.size());
-  for (const RangeReading& r : readings) ranges.push_back({r.anchor, r.range});
+  for (const RangeReading& r : readings) {
+    if (std::find(distrusted.begin(), distrusted.end(), r.anchor) == distrusted.end())
+      ranges.push_back({r.anchor, r.range});
+  }
   std::optional<UwbFix> fix = solve_multilateration(anchors_, ranges, params_.solver, last_fix_);
   if (fix) {
     fix->stamp = stamp;

@@ -154,9 +154,11 @@ class UwbTag {
                                            std::span<const geometry::Polygon> blockers = {});
 
   /// Ranges, then a fix (nothing when fewer than 3 ranges remain). The previous fix seeds the
-  /// solver.
+  /// solver. The ranges of `distrusted` anchors (those the robot's map shows behind an obstacle)
+  /// are measured but left out of the fix.
   std::optional<UwbFix> measure(const geometry::Pose2& truth, double stamp,
-                                std::span<const geometry::Polygon> blockers = {});
+                                std::span<const geometry::Polygon> blockers = {},
+                                std::span<const std::size_t> distrusted = {});
 
   /// Where the antenna of a body at `pose` is (seed 000 eq. 4.11).
   geometry::Vec2 antenna_position(const geometry::Pose2& pose) const;

@@ -88,6 +88,20 @@ TEST(PalletSearch, ReportsAnEmptyArea) {
       [&] { return search.done(); });
   EXPECT_EQ(search.status(), SearchStatus::kEmpty);
   EXPECT_GT(sweeping_steps, 0) << "it turned looking for the marker before giving up";
+  // The operator learns what the camera saw: the neighbour's marker, 35 cm from where it looked.
+  EXPECT_TRUE(search.empty_reason().starts_with("nearest marker 1 seen 0.3")) << search.empty_reason();
+  EXPECT_TRUE(search.empty_reason().ends_with("(accepted within 0.10 m)")) << search.empty_reason();
+
+  perception::PalletWorld bare(world_params(g));
+  search.start(kArea);
+  drive(
+      {0.6, 0.43, 0.0}, bare, cam, 60.0,
+      [&](double, const Pose2& pose, const std::vector<MarkerDetection>& dets) {
+        return ForkCommand{search.step(pose, dets, kDt), false};
+      },
+      [&] { return search.done(); });
+  EXPECT_EQ(search.status(), SearchStatus::kEmpty);
+  EXPECT_EQ(search.empty_reason(), "no marker in view");
 }
 
 TEST(PalletPick, ServoCommandFollowsFig67Order) {

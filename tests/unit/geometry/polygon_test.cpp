@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 using namespace fleet::geometry;
@@ -61,4 +62,14 @@ TEST(Polygon, ConvexDistanceIsTheGapOrZero) {
   EXPECT_DOUBLE_EQ(convex_polygons_distance(a, footprint_polygon({0.2, 0.0, 0.0}, {0.25, 0.16})), 0.0);
   EXPECT_NEAR(point_segment_distance({0.5, 1.0}, {0, 0}, {1, 0}), 1.0, 1e-12);
   EXPECT_NEAR(point_segment_distance({2.0, 0.0}, {0, 0}, {1, 0}), 1.0, 1e-12);
+}
+
+TEST(Polygon, SegmentDistanceIsTheGapOrZero) {
+  const Polygon box{{1, 1}, {2, 1}, {2, 2}, {1, 2}};
+  EXPECT_DOUBLE_EQ(segment_polygon_distance({0, 0}, {3, 3}, box), 0.0);          // through it
+  EXPECT_DOUBLE_EQ(segment_polygon_distance({1.5, 1.5}, {1.6, 1.6}, box), 0.0);  // inside it
+  EXPECT_NEAR(segment_polygon_distance({0, 0.5}, {3, 0.5}, box), 0.5, 1e-12);    // passes below
+  EXPECT_NEAR(segment_polygon_distance({0, 3}, {0.7, 1.5}, box), 0.3, 1e-12);    // ends short: its end to an edge
+  EXPECT_NEAR(segment_polygon_distance({0, 0.8}, {0.8, 0}, box), 1.2 / std::sqrt(2.0),
+              1e-12);  // corner (1, 1) to x + y = 0.8
 }

@@ -185,6 +185,24 @@ TEST(UwbTag, BlockedPathsAreBiasedOrDropped) {
   EXPECT_FALSE(dropping.measure(pose, 0.0, two));
 }
 
+TEST(UwbTag, DistrustedAnchorsAreMeasuredButLeftOutOfTheFix) {
+  UwbParams p;
+  p.rx_timestamp_std = 0.0;
+  p.clock_ppm_std = 0.0;
+  const Pose2 pose{1.5, 1.5, 0.0};
+  const std::vector<fleet::geometry::Polygon> blockers{{{0.5, 0.3}, {0.8, 0.3}, {0.8, 0.8}, {0.5, 0.8}}};
+  UwbTag tag(corners(), p, std::mt19937_64(1));
+  const auto all = tag.measure(pose, 0.0, blockers);
+  ASSERT_TRUE(all);
+  EXPECT_EQ(all->ranges_used, 4);
+  EXPECT_GT(fleet::geometry::distance(all->position, tag.antenna_position(pose)), 0.02) << "U1's range is biased";
+  const std::vector<std::size_t> distrusted{0};
+  const auto three = tag.measure(pose, 0.05, blockers, distrusted);
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->ranges_used, 3);
+  EXPECT_LT(fleet::geometry::distance(three->position, tag.antenna_position(pose)), 1e-6);
+}
+
 TEST(UwbTag, FixesAreAboutAsGoodAsTheRangeNoise) {
   UwbTag tag(corners(), {}, std::mt19937_64(3));
   double sq = 0.0;
