@@ -130,13 +130,20 @@ void TaskExecutor::apply(const Transition& tr) {
       break;
     case Effect::kReportEmpty:
       search_.stop();
-      report(TaskReport::Kind::kAreaEmpty, order_->pick_area_id);
+      report(TaskReport::Kind::kAreaEmpty, order_->pick_area_id, search_.empty_reason());
       order_.reset();
       request_plan(PlanPurpose::kHome);
       break;
     case Effect::kFinishOrder:
       place_.stop();
       report(TaskReport::Kind::kDropped, order_->drop_area_id);
+      order_.reset();
+      request_plan(PlanPurpose::kHome);
+      break;
+    case Effect::kAbandonPick:
+      pick_.stop();
+      search_.stop();
+      report(TaskReport::Kind::kFailed, order_->pick_area_id, tr.reason);
       order_.reset();
       request_plan(PlanPurpose::kHome);
       break;
@@ -320,7 +327,7 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
       } else if (pick_.status() == control::PickStatus::kFailed) {
         ++pick_attempts_;
         if (pick_attempts_ >= params_.max_pick_attempts) {
-          fire(Event::kFault,
+          fire(Event::kPickGaveUp,
                std::string("pick failed ") + std::to_string(pick_attempts_) + " times: " + pick_.failure());
         } else {
           fire(Event::kPickFailed);

@@ -25,6 +25,9 @@ constexpr std::array kTable = {
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kAreaEmpty, S::kGoHome, P::kNone, F::kReportEmpty},
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickDone, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickFailed, S::kSearchPallet, P::kSearching, F::kStartSearch},
+    // Beyond the seed: a robot that cannot pick stands in front of the area, usually on the road;
+    // with empty forks nothing stops it from clearing the way and going home.
+    TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickGaveUp, S::kGoHome, P::kNone, F::kAbandonPick},
     TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kPathEnded, S::kDropPallet, P::kDropping, F::kStartDrop},
     TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropDone, S::kGoHome, P::kNone, F::kFinishOrder},
     TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropFailed, S::kError, P::kNone, F::kFail},
@@ -128,6 +131,8 @@ const char* to_string(Event e) {
       return "resume";
     case E::kCancel:
       return "cancel";
+    case E::kPickGaveUp:
+      return "pick_gave_up";
     case E::kFault:
       return "fault";
     case E::kReset:
@@ -162,6 +167,8 @@ const char* to_string(Effect e) {
       return "suspend";
     case F::kRestore:
       return "restore";
+    case F::kAbandonPick:
+      return "abandon_pick";
     case F::kFail:
       return "fail";
     case F::kClear:
@@ -204,6 +211,7 @@ Transition TaskStateMachine::handle(Event event, const std::string& reason) {
     if (!row.any_phase && row.phase != phase_) continue;
     tr.accepted = true;
     tr.effect = row.effect;
+    tr.reason = reason;
     if (row.effect == F::kSuspend) {
       // The order phase survives the interruption: OrderState still says where the order stands.
       suspended_.push_back({state_, phase_});

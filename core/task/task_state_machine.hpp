@@ -24,6 +24,7 @@ enum class Event {
   kAreaEmpty,    ///< the search swept without seeing the marker
   kPickDone,     ///< pallet on the forks and lifted
   kPickFailed,   ///< marker lost or pick timed out; the search runs again
+  kPickGaveUp,   ///< the pick failed too often; the forks are empty, so the order fails and it goes home
   kDropDone,     ///< pallet lowered on the target area and the forklift backed out
   kDropFailed,   ///< placement did not converge
   kHomeReached,  ///< the follower reached the home pose
@@ -47,6 +48,7 @@ enum class Effect {
   kReportEmpty,  ///< report the pick area empty, end the order, request a plan home
   kFinishOrder,  ///< report the pallet dropped, end the order, request a plan home
   kCancelOrder,  ///< report the order cancelled, request a plan home
+  kAbandonPick,  ///< report the order failed with the reason, request a plan home
   kStop,         ///< home reached: stop and wait
   kSuspend,      ///< stand still, remember what was interrupted
   kRestore,      ///< continue what was interrupted
@@ -85,7 +87,7 @@ struct Transition {
   OrderPhase from_phase = OrderPhase::kNone;
   OrderPhase to_phase = OrderPhase::kNone;
   Effect effect = Effect::kNone;
-  std::string reason;  ///< why rejected, or the fault's reason
+  std::string reason;  ///< why rejected, or the reason the event carried (a fault, a pick given up)
 };
 
 /// The state machine itself: pure bookkeeping over the table, no timing, no I/O. Rejected

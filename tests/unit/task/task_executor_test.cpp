@@ -46,8 +46,9 @@ struct World {
   bool answer_plans = true;
   int plans_short = 0;  ///< this many plans end 0.3 m short of their goal
 
-  World()
-      : pallets([] {
+  explicit World(ExecutorParams executor_params = {})
+      : params(executor_params),
+        pallets([] {
           perception::PalletWorldParams p;
           p.carry_x = ExecutorParams{}.geometry.carry_x;
           p.marker_offset = ExecutorParams{}.geometry.marker_offset;
@@ -238,6 +239,31 @@ TEST(TaskExecutor, ALongPauseDuringThePickDoesNotFailIt) {
     EXPECT_FALSE(tr.from == State::kPickPallet && tr.to == State::kSearchPallet) << "the pick was not given up";
   }
   EXPECT_TRUE(w.exec.carrying());
+}
+
+TEST(TaskExecutor, APickThatKeepsFailingFailsTheOrderAndClearsTheWayHome) {
+  // A pick that never finishes in time (too short a timeout stands in for a neighbour that keeps
+  // the robot from backing to d_min): after max_pick_attempts the forks are still empty, so the
+  // robot reports the order failed with the reason and leaves the area instead of standing in
+  // ERROR in front of it, where it held the road for every other robot.
+  ExecutorParams params;
+  params.pick.timeout = 0.2;
+  World w(params);
+  w.pallets.add(kA1);
+  ASSERT_TRUE(w.exec.submit({"o1", "A1", kA1, "A2", kA2}));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kGoHome; }, 200.0))
+      << "in " << to_string(w.exec.state()) << " " << w.exec.error_reason();
+  int picks = 0;
+  for (const auto& tr : w.transitions) picks += tr.to == State::kPickPallet && tr.from != State::kPickPallet;
+  EXPECT_EQ(picks, params.max_pick_attempts);
+  ASSERT_FALSE(w.reports.empty());
+  const TaskReport& failed = w.reports.back();
+  EXPECT_EQ(failed.kind, Kind::kFailed);
+  EXPECT_EQ(failed.order_id, "o1");
+  EXPECT_EQ(failed.detail, "pick failed 3 times: pick timed out");
+  EXPECT_FALSE(w.exec.carrying());
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 120.0));
+  EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.05);
 }
 
 TEST(TaskExecutor, FaultStopsAndReportsTheReason) {

@@ -160,9 +160,11 @@ TEST(TaskStateMachine, FaultFromAnywhereAndReset) {
   }
 }
 
-TEST(TaskStateMachine, PickFailureSearchesAgainDropFailureIsAnError) {
+TEST(TaskStateMachine, PickFailureSearchesAgainGivingUpGoesHomeDropFailureIsAnError) {
   TaskStateMachine m = machine_in(State::kPickPallet);
   expect(m, Event::kPickFailed, State::kSearchPallet, OrderPhase::kSearching, Effect::kStartSearch);
+  TaskStateMachine g = machine_in(State::kPickPallet);
+  expect(g, Event::kPickGaveUp, State::kGoHome, OrderPhase::kNone, Effect::kAbandonPick);
   TaskStateMachine d = machine_in(State::kDropPallet);
   expect(d, Event::kDropFailed, State::kError, OrderPhase::kNone, Effect::kFail);
 }
