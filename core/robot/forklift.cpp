@@ -199,6 +199,7 @@ std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
 
 std::vector<std::size_t> Forklift::shadowed_anchors() const {
   std::vector<std::size_t> out;
+  if (config_.anchor_shadow_margin < 0.0) return out;
   const auto& anchors = site_->site.uwb_anchors;
   const Vec2 tag = geometry::body_to_map(sim_.estimate(), config_.sim.uwb.antenna_offset);
   for (std::size_t i = 0; i < anchors.size(); ++i) {

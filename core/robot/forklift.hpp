@@ -42,6 +42,7 @@ struct ForkliftConfig {
   /// A UWB range whose line from the anchor passes this close to an enabled static obstacle of
   /// the map (grown by the estimate's uncertainty) is left out of the fix: a shadowed range is
   /// always too long, and at rest the filter would average the bias into a 10 cm error.
+  /// Negative: every range is used (the seed's behaviour).
   double anchor_shadow_margin = 0.05;  ///< metres
   /// Traffic control (issue 8): report the road part of every route and drive only as far as
   /// the server grants (set_traffic_grant). Off: the seed's local avoidance alone.
