@@ -52,20 +52,26 @@ Pose2 drive(Pose2 pose, perception::PalletWorld& world, perception::MarkerCamera
   return pose;
 }
 
+/// Searches kArea, arriving on the road beside it heading along the road (+x), short of the
+/// search pose.
+void search_from_the_road(PalletSearch& search, perception::PalletWorld& world, perception::MarkerCamera& cam,
+                          double max_time) {
+  search.start(kArea);
+  drive(
+      {0.6, 0.43, 0.0}, world, cam, max_time,
+      [&](double, const Pose2& pose, const std::vector<MarkerDetection>& dets) {
+        return ForkCommand{search.step(pose, dets, kDt), false};
+      },
+      [&] { return search.done(); });
+}
+
 TEST(PalletSearch, FindsThePalletInFrontOfTheArea) {
   ForkliftGeometry g;
   perception::PalletWorld world(world_params(g));
   world.add(kArea);
   perception::MarkerCamera cam(camera_params(g), 5);
   PalletSearch search({}, g);
-  search.start(kArea);
-  // Arrives on the road beside the area, heading along the road (+x), short of the search pose.
-  drive(
-      {0.6, 0.43, 0.0}, world, cam, 30.0,
-      [&](double, const Pose2& pose, const std::vector<MarkerDetection>& dets) {
-        return ForkCommand{search.step(pose, dets, kDt), false};
-      },
-      [&] { return search.done(); });
+  search_from_the_road(search, world, cam, 30.0);
   EXPECT_EQ(search.status(), SearchStatus::kFound);
   EXPECT_EQ(search.marker_id(), 1);
 }
@@ -93,13 +99,7 @@ TEST(PalletSearch, ReportsAnEmptyArea) {
   EXPECT_TRUE(search.empty_reason().ends_with("(accepted within 0.10 m)")) << search.empty_reason();
 
   perception::PalletWorld bare(world_params(g));
-  search.start(kArea);
-  drive(
-      {0.6, 0.43, 0.0}, bare, cam, 60.0,
-      [&](double, const Pose2& pose, const std::vector<MarkerDetection>& dets) {
-        return ForkCommand{search.step(pose, dets, kDt), false};
-      },
-      [&] { return search.done(); });
+  search_from_the_road(search, bare, cam, 60.0);
   EXPECT_EQ(search.status(), SearchStatus::kEmpty);
   EXPECT_EQ(search.empty_reason(), "no marker in view");
 }
