@@ -72,6 +72,8 @@ std::vector<KeySpec> make_schema() {
              "sim seconds a stopped robot waits before its next stretch is reserved for it"),
       number("traffic.reroute_wait_s", 30.0, "s", 1.0, 3600.0,
              "bound on waiting: a robot waiting this long (sim seconds) is re-routed around its blockers"),
+      number("traffic.lost_reroute_wait_s", 3.0, "s", 0.1, 3600.0,
+             "a robot waiting this long (sim seconds) only on lost robots is re-routed around them"),
       number("traffic.margin", 0.03, "m", 0.0, 1.0,
              "gap kept between the regions of reservations; larger values make junction zones swallow whole "
              "corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its own distance"),

@@ -47,6 +47,7 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
   check_positive(configuration.lookahead, "lookahead");
   check_positive(configuration.priority_wait, "priority_wait");
   check_positive(configuration.reroute_wait, "reroute_wait");
+  check_positive(configuration.lost_reroute_wait, "lost_reroute_wait");
   check_positive(configuration.yield_timeout, "yield_timeout");
   check_positive(configuration.siding_window, "siding_window");
   if (!(configuration.release_margin >= 0.0))
@@ -62,6 +63,7 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
 // ---- robots and routes ----------------------------------------------------------------------------
 
 void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::uint32_t version) {
+  robot.lost = false;  // a route again: it is heard from
   robot.version = version;
   robot.route = std::move(points);
   const std::size_t n = robot.route.size();
@@ -235,6 +237,7 @@ bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, d
   const std::vector<int> under = places_under(body, &touched);
   if (under.empty()) return remove_robot(robot_id, now);
   stand(it->second, under, std::move(touched));
+  it->second.lost = true;
   return true;
 }
 
@@ -252,6 +255,7 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
     robot.id = robot_id;
     it = robots_.emplace(robot_id, std::move(robot)).first;
   } else if (held_places(robot_id) == under && it->second.body_reach == touched) {
+    it->second.lost = false;  // heard from again, standing where it was lost
     return true;
   }
   stand(it->second, under, std::move(touched));
@@ -896,7 +900,13 @@ UpdateResult TrafficManager::update(double now) {
   resolve_cycles(now, out);
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
-    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.wait_since < configuration_.reroute_wait ||
+    const bool behind_lost_only =
+        !robot.blocked_by.empty() && std::all_of(robot.blocked_by.begin(), robot.blocked_by.end(), [&](int id) {
+          const auto it = robots_.find(id);
+          return it != robots_.end() && it->second.lost;
+        });
+    const double bound = behind_lost_only ? configuration_.lost_reroute_wait : configuration_.reroute_wait;
+    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.wait_since < bound ||
         now - robot.last_reroute < configuration_.reroute_wait) {
       continue;
     }

@@ -26,6 +26,10 @@ struct TrafficConfiguration {
   /// Seconds: the bound on waiting. A robot waiting this long is re-routed around its blockers
   /// (when a route exists), at most once per bound.
   double reroute_wait = 30.0;
+  /// Seconds a robot waits on robots that are all lost before it is re-routed around them: a
+  /// lost robot holds where it stands for as long as it is away (a frozen process, a restart),
+  /// so waiting out the whole bound behind it only adds to the fault.
+  double lost_reroute_wait = 3.0;
   double yield_timeout = 20.0;  ///< seconds a robot sent to a siding stays there at most
   /// Metres of the other robots' routes (ahead of them) a siding must keep clear of, and of the
   /// yielding robot's way back that must be clear of them before it resumes.
@@ -256,7 +260,8 @@ class TrafficManager {
     int resume_goal = -1;
     std::vector<int> yield_to;
     double siding_arrival = -1.0;
-    bool frozen = false;  ///< lost: holds where it stands, granted nothing more (freeze_robot)
+    bool frozen = false;  ///< holds where it stands, granted nothing more (freeze_robot, hold_body)
+    bool lost = false;    ///< frozen by freeze_robot and not heard from since
     /// While it holds where its body stands (standing, or not yet past the first edge of the
     /// route it sent from there): the places whose regions touch that body, sorted. A held place
     /// among them closes only itself, not the places in conflict with it: another robot may drive

@@ -18,6 +18,7 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
   c.lookahead = s.get_double("traffic.lookahead");
   c.priority_wait = s.get_double("traffic.priority_wait_s");
   c.reroute_wait = s.get_double("traffic.reroute_wait_s");
+  c.lost_reroute_wait = s.get_double("traffic.lost_reroute_wait_s");
   c.one_way = s.get_bool("traffic.one_way");
   return c;
 }

@@ -481,6 +481,86 @@ TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
   EXPECT_EQ(m.zones().place_of(g2->route.back()), m.zones().place_of(point_at(g, 2.1, 0.0)));
 }
 
+TEST(TrafficManager, ARobotWaitingOnlyOnALostOneIsReroutedWithoutWaitingOutTheBound) {
+  // The layout of the test above. Robot 1 drives the straight way and is lost in its middle (a
+  // frozen process keeps its body there for as long as it is away); robot 2 behind it goes
+  // round after lost_reroute_wait, not after the whole reroute_wait.
+  GraphBuilder b;
+  b.road(-0.6, 0.0, 0.0, 0.0);
+  b.road(0.0, 0.0, 1.5, 0.0);
+  b.road(1.5, 0.0, 2.1, 0.0);
+  b.road(0.0, 0.0, 0.0, 0.9);
+  b.road(0.0, 0.9, 1.5, 0.9);
+  b.road(1.5, 0.9, 1.5, 0.0);
+  const auto& g = b.graph();
+  TrafficConfiguration config;
+  config.reroute_wait = 30.0;
+  config.lost_reroute_wait = 3.0;
+  config.one_way = false;
+  TrafficManager m(g, config);
+  ASSERT_EQ(m.submit_route({1, 1, m.search().shortest(point_at(g, 0.8, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
+            SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({2, 1, m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
+            SubmitStatus::kAccepted);
+  ASSERT_TRUE(m.freeze_robot(1, geometry::footprint_polygon({0.8, 0.0, 0.0}, geometry::Footprint{}), 0.0));
+  double now = 0.0;
+  double distance = 0.0;
+  double rerouted_at = -1.0;
+  const Grant* g2 = nullptr;
+  UpdateResult r;
+  for (int i = 0; i < 800 && rerouted_at < 0.0; ++i) {
+    now += 0.05;
+    r = m.update(now);
+    g2 = grant_of(r, 2);
+    if (g2->instruction == Instruction::kReroute) {
+      rerouted_at = now;
+      break;
+    }
+    distance = std::min(distance + 0.01, g2->granted_distance);
+    m.report_progress({2, g2->version, distance, {}}, now);
+  }
+  ASSERT_GT(rerouted_at, 0.0) << "never re-routed";
+  EXPECT_LE(g2->waited_s, config.lost_reroute_wait + 0.1);
+  EXPECT_LT(rerouted_at, config.reroute_wait);
+  for (int p : g2->route) {
+    for (int q : m.held_places(1)) EXPECT_FALSE(m.zones().conflict(m.zones().place_of(p), q));
+  }
+  EXPECT_EQ(m.check_invariant(), "");
+}
+
+TEST(TrafficManager, ARobotBackFromBeingLostIsWaitedForUpToTheBoundAgain) {
+  // Once the lost robot is heard from again (a route from where it stands), robots waiting on it
+  // wait for it like for any other robot: up to reroute_wait.
+  GraphBuilder b;
+  b.road(-0.6, 0.0, 0.0, 0.0);
+  b.road(0.0, 0.0, 1.5, 0.0);
+  b.road(1.5, 0.0, 2.1, 0.0);
+  b.road(0.0, 0.0, 0.0, 0.9);
+  b.road(0.0, 0.9, 1.5, 0.9);
+  b.road(1.5, 0.9, 1.5, 0.0);
+  const auto& g = b.graph();
+  TrafficConfiguration config;
+  config.reroute_wait = 30.0;
+  config.lost_reroute_wait = 3.0;
+  config.one_way = false;
+  TrafficManager m(g, config);
+  ASSERT_EQ(m.submit_route({1, 1, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);
+  ASSERT_TRUE(m.freeze_robot(1, geometry::footprint_polygon({0.8, 0.0, 0.0}, geometry::Footprint{}), 0.0));
+  ASSERT_EQ(m.submit_route({1, 2, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);  // back, parked
+  ASSERT_EQ(m.submit_route({2, 1, m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
+            SubmitStatus::kAccepted);
+  double now = 0.0;
+  double distance = 0.0;
+  for (int i = 0; i < 400; ++i) {  // 20 s
+    now += 0.05;
+    const UpdateResult r = m.update(now);
+    const Grant* g2 = grant_of(r, 2);
+    ASSERT_NE(g2->instruction, Instruction::kReroute) << "re-routed after " << now << " s";
+    distance = std::min(distance + 0.01, g2->granted_distance);
+    m.report_progress({2, g2->version, distance, {}}, now);
+  }
+}
+
 // After a server restart two robots stand 0.38 m apart on the east ring of table_a, both to drive
 // on southwards. The places under each body must leave the other free to move: before, each held
 // every place its body touched and each waited for the other for good.
