@@ -82,8 +82,7 @@ std::vector<KeySpec> make_schema() {
       // Fault injection (soak tests only; everything off by default)
       number("faults.pose_delay_ms", 0.0, "ms", 0.0, 10000.0,
              "agents publish RobotState this much late (wall time), as a slow network would deliver it"),
-      number("faults.pose_delay_jitter_ms", 0.0, "ms", 0.0, 10000.0,
-             "uniform +- jitter on faults.pose_delay_ms"),
+      number("faults.pose_delay_jitter_ms", 0.0, "ms", 0.0, 10000.0, "uniform +- jitter on faults.pose_delay_ms"),
   };
 }
 
