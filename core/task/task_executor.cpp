@@ -92,6 +92,12 @@ void TaskExecutor::report(TaskReport::Kind kind, const std::string& area, const 
   reports_.push_back(std::move(r));
 }
 
+void TaskExecutor::end_order(TaskReport::Kind kind, const std::string& area, const std::string& detail) {
+  report(kind, area, detail);
+  order_.reset();
+  request_plan(PlanPurpose::kHome);
+}
+
 Transition TaskExecutor::fire(Event e, const std::string& reason) {
   Transition tr = machine_.handle(e, reason);
   if (tr.accepted) {
@@ -130,28 +136,20 @@ void TaskExecutor::apply(const Transition& tr) {
       break;
     case Effect::kReportEmpty:
       search_.stop();
-      report(TaskReport::Kind::kAreaEmpty, order_->pick_area_id, search_.empty_reason());
-      order_.reset();
-      request_plan(PlanPurpose::kHome);
+      end_order(TaskReport::Kind::kAreaEmpty, order_->pick_area_id, search_.empty_reason());
       break;
     case Effect::kFinishOrder:
       place_.stop();
-      report(TaskReport::Kind::kDropped, order_->drop_area_id);
-      order_.reset();
-      request_plan(PlanPurpose::kHome);
+      end_order(TaskReport::Kind::kDropped, order_->drop_area_id);
       break;
     case Effect::kAbandonPick:
       pick_.stop();
       search_.stop();
-      report(TaskReport::Kind::kFailed, order_->pick_area_id, tr.reason);
-      order_.reset();
-      request_plan(PlanPurpose::kHome);
+      end_order(TaskReport::Kind::kFailed, order_->pick_area_id, tr.reason);
       break;
     case Effect::kCancelOrder:
       search_.stop();
-      report(TaskReport::Kind::kCancelled, order_ ? order_->pick_area_id : std::string{});
-      order_.reset();
-      request_plan(PlanPurpose::kHome);
+      end_order(TaskReport::Kind::kCancelled, order_ ? order_->pick_area_id : std::string{});
       break;
     case Effect::kStop:
       follower_.clear();

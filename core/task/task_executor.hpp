@@ -128,6 +128,8 @@ class TaskExecutor {
   void request_plan(PlanPurpose purpose);
   geometry::Pose2 goal_for(PlanPurpose purpose) const;
   void report(TaskReport::Kind kind, const std::string& area, const std::string& detail = {});
+  /// Reports how the order ended, forgets it and asks for the way home.
+  void end_order(TaskReport::Kind kind, const std::string& area, const std::string& detail = {});
 
   ExecutorParams params_;
   geometry::Pose2 home_;
