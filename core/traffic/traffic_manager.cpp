@@ -900,14 +900,13 @@ UpdateResult TrafficManager::update(double now) {
   resolve_cycles(now, out);
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.last_reroute < configuration_.reroute_wait) continue;
     const bool behind_lost_only =
         !robot.blocked_by.empty() && std::all_of(robot.blocked_by.begin(), robot.blocked_by.end(), [&](int id) {
           const auto it = robots_.find(id);
           return it != robots_.end() && it->second.lost;
         });
-    const double bound = behind_lost_only ? configuration_.lost_reroute_wait : configuration_.reroute_wait;
-    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.wait_since < bound ||
-        now - robot.last_reroute < configuration_.reroute_wait) {
+    if (now - robot.wait_since < (behind_lost_only ? configuration_.lost_reroute_wait : configuration_.reroute_wait)) {
       continue;
     }
     if (!reroute(robot, robot.blocked_by, now, out, TrafficEvent::Kind::kRerouted)) robot.last_reroute = now;

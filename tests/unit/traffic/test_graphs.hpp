@@ -61,6 +61,19 @@ inline map::RoadGraph corridor_with_siding() {
   return b.graph();
 }
 
+/// Two ways between junctions L (0, 0) and R (1.5, 0): straight, or round by y = 0.9; a 0.6 m
+/// tail beyond each junction.
+inline map::RoadGraph two_ways_between_junctions() {
+  GraphBuilder b;
+  b.road(-0.6, 0.0, 0.0, 0.0);
+  b.road(0.0, 0.0, 1.5, 0.0);
+  b.road(1.5, 0.0, 2.1, 0.0);
+  b.road(0.0, 0.0, 0.0, 0.9);
+  b.road(0.0, 0.9, 1.5, 0.9);
+  b.road(1.5, 0.9, 1.5, 0.0);
+  return b.graph();
+}
+
 /// A crossing: four 1 m arms from (0, 0) to (1, 0), (0, 1), (-1, 0), (0, -1).
 inline map::RoadGraph plus_junction(double arm = 1.0) {
   GraphBuilder b;

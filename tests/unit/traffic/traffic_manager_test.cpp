@@ -434,17 +434,34 @@ TEST(TrafficManager, OppositeDirectionWaitsOutsideTheCorridor) {
   }
 }
 
+/// Robot `id` followed every 0.05 s for up to `limit` s, driving 0.2 m/s within its grants,
+/// until the manager re-routes it.
+struct RerouteWatch {
+  double at = -1.0;       ///< when it was re-routed; negative: not within the limit
+  double max_wait = 0.0;  ///< longest `waited_s` its grants showed
+  Grant grant;            ///< the re-routing grant, or the last one
+};
+RerouteWatch follow_until_rerouted(TrafficManager& m, int id, double limit) {
+  RerouteWatch watch;
+  double now = 0.0;
+  double distance = 0.0;
+  while (now < limit) {
+    now += 0.05;
+    const UpdateResult r = m.update(now);
+    watch.grant = *grant_of(r, id);
+    watch.max_wait = std::max(watch.max_wait, watch.grant.waited_s);
+    if (watch.grant.instruction == Instruction::kReroute) {
+      watch.at = now;
+      break;
+    }
+    distance = std::min(distance + 0.01, watch.grant.granted_distance);
+    m.report_progress({id, watch.grant.version, distance, {}}, now);
+  }
+  return watch;
+}
+
 TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
-  // Two ways between junctions L (0, 0) and R (1.5, 0): straight, or round by y = 0.9; a tail
-  // beyond each junction.
-  GraphBuilder b;
-  b.road(-0.6, 0.0, 0.0, 0.0);
-  b.road(0.0, 0.0, 1.5, 0.0);
-  b.road(1.5, 0.0, 2.1, 0.0);
-  b.road(0.0, 0.0, 0.0, 0.9);
-  b.road(0.0, 0.9, 1.5, 0.9);
-  b.road(1.5, 0.9, 1.5, 0.0);
-  const auto& g = b.graph();
+  const auto g = testing::two_ways_between_junctions();
   TrafficConfiguration config;
   config.reroute_wait = 10.0;
   config.one_way = false;  // both ways on every road, so the straight way is the shortest
@@ -453,76 +470,43 @@ TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
   ASSERT_EQ(m.submit_route({1, 1, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);
   auto path = m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0));
   ASSERT_EQ(m.submit_route({2, 1, path}, 0.0), SubmitStatus::kAccepted);
-  double now = 0.0;
-  const Grant* g2 = nullptr;
-  UpdateResult r;
-  double distance = 0.0;
-  bool rerouted = false;
-  double max_wait = 0.0;
-  for (int i = 0; i < 800 && !rerouted; ++i) {
-    now += 0.05;
-    r = m.update(now);
-    g2 = grant_of(r, 2);
-    max_wait = std::max(max_wait, g2->waited_s);
-    if (g2->instruction == Instruction::kReroute) {
-      rerouted = true;
-      break;
-    }
-    distance = std::min(distance + 0.01, g2->granted_distance);
-    m.report_progress({2, g2->version, distance, {}}, now);
-  }
-  ASSERT_TRUE(rerouted);
-  EXPECT_LE(max_wait, config.reroute_wait + 0.1);
-  EXPECT_EQ(g2->version, 2u);
+  const RerouteWatch watch = follow_until_rerouted(m, 2, 40.0);
+  ASSERT_GE(watch.at, 0.0);
+  EXPECT_LE(watch.max_wait, config.reroute_wait + 0.1);
+  EXPECT_EQ(watch.grant.version, 2u);
   // The new route goes round the other way: it never comes near robot 1.
-  for (int p : g2->route) {
+  for (int p : watch.grant.route) {
     for (int q : m.held_places(1)) EXPECT_FALSE(m.zones().conflict(m.zones().place_of(p), q));
   }
-  EXPECT_EQ(m.zones().place_of(g2->route.back()), m.zones().place_of(point_at(g, 2.1, 0.0)));
+  EXPECT_EQ(m.zones().place_of(watch.grant.route.back()), m.zones().place_of(point_at(g, 2.1, 0.0)));
+}
+
+/// Both ways on every road; a lost robot is gone round after 3 s, any other after 30 s.
+TrafficConfiguration lost_robot_config() {
+  TrafficConfiguration config;
+  config.reroute_wait = 30.0;
+  config.lost_reroute_wait = 3.0;
+  config.one_way = false;
+  return config;
 }
 
 TEST(TrafficManager, ARobotWaitingOnlyOnALostOneIsReroutedWithoutWaitingOutTheBound) {
   // The layout of the test above. Robot 1 drives the straight way and is lost in its middle (a
   // frozen process keeps its body there for as long as it is away); robot 2 behind it goes
   // round after lost_reroute_wait, not after the whole reroute_wait.
-  GraphBuilder b;
-  b.road(-0.6, 0.0, 0.0, 0.0);
-  b.road(0.0, 0.0, 1.5, 0.0);
-  b.road(1.5, 0.0, 2.1, 0.0);
-  b.road(0.0, 0.0, 0.0, 0.9);
-  b.road(0.0, 0.9, 1.5, 0.9);
-  b.road(1.5, 0.9, 1.5, 0.0);
-  const auto& g = b.graph();
-  TrafficConfiguration config;
-  config.reroute_wait = 30.0;
-  config.lost_reroute_wait = 3.0;
-  config.one_way = false;
+  const auto g = testing::two_ways_between_junctions();
+  const TrafficConfiguration config = lost_robot_config();
   TrafficManager m(g, config);
   ASSERT_EQ(m.submit_route({1, 1, m.search().shortest(point_at(g, 0.8, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
             SubmitStatus::kAccepted);
   ASSERT_EQ(m.submit_route({2, 1, m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
             SubmitStatus::kAccepted);
   ASSERT_TRUE(m.freeze_robot(1, geometry::footprint_polygon({0.8, 0.0, 0.0}, geometry::Footprint{}), 0.0));
-  double now = 0.0;
-  double distance = 0.0;
-  double rerouted_at = -1.0;
-  const Grant* g2 = nullptr;
-  UpdateResult r;
-  for (int i = 0; i < 800 && rerouted_at < 0.0; ++i) {
-    now += 0.05;
-    r = m.update(now);
-    g2 = grant_of(r, 2);
-    if (g2->instruction == Instruction::kReroute) {
-      rerouted_at = now;
-      break;
-    }
-    distance = std::min(distance + 0.01, g2->granted_distance);
-    m.report_progress({2, g2->version, distance, {}}, now);
-  }
-  ASSERT_GT(rerouted_at, 0.0) << "never re-routed";
-  EXPECT_LE(g2->waited_s, config.lost_reroute_wait + 0.1);
-  EXPECT_LT(rerouted_at, config.reroute_wait);
-  for (int p : g2->route) {
+  const RerouteWatch watch = follow_until_rerouted(m, 2, 40.0);
+  ASSERT_GT(watch.at, 0.0) << "never re-routed";
+  EXPECT_LE(watch.grant.waited_s, config.lost_reroute_wait + 0.1);
+  EXPECT_LT(watch.at, config.reroute_wait);
+  for (int p : watch.grant.route) {
     for (int q : m.held_places(1)) EXPECT_FALSE(m.zones().conflict(m.zones().place_of(p), q));
   }
   EXPECT_EQ(m.check_invariant(), "");
@@ -531,34 +515,16 @@ TEST(TrafficManager, ARobotWaitingOnlyOnALostOneIsReroutedWithoutWaitingOutTheBo
 TEST(TrafficManager, ARobotBackFromBeingLostIsWaitedForUpToTheBoundAgain) {
   // Once the lost robot is heard from again (a route from where it stands), robots waiting on it
   // wait for it like for any other robot: up to reroute_wait.
-  GraphBuilder b;
-  b.road(-0.6, 0.0, 0.0, 0.0);
-  b.road(0.0, 0.0, 1.5, 0.0);
-  b.road(1.5, 0.0, 2.1, 0.0);
-  b.road(0.0, 0.0, 0.0, 0.9);
-  b.road(0.0, 0.9, 1.5, 0.9);
-  b.road(1.5, 0.9, 1.5, 0.0);
-  const auto& g = b.graph();
-  TrafficConfiguration config;
-  config.reroute_wait = 30.0;
-  config.lost_reroute_wait = 3.0;
-  config.one_way = false;
+  const auto g = testing::two_ways_between_junctions();
+  const TrafficConfiguration config = lost_robot_config();
   TrafficManager m(g, config);
   ASSERT_EQ(m.submit_route({1, 1, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);
   ASSERT_TRUE(m.freeze_robot(1, geometry::footprint_polygon({0.8, 0.0, 0.0}, geometry::Footprint{}), 0.0));
   ASSERT_EQ(m.submit_route({1, 2, {point_at(g, 0.8, 0.0)}}, 0.0), SubmitStatus::kAccepted);  // back, parked
   ASSERT_EQ(m.submit_route({2, 1, m.search().shortest(point_at(g, -0.6, 0.0), point_at(g, 2.1, 0.0))}, 0.0),
             SubmitStatus::kAccepted);
-  double now = 0.0;
-  double distance = 0.0;
-  for (int i = 0; i < 400; ++i) {  // 20 s
-    now += 0.05;
-    const UpdateResult r = m.update(now);
-    const Grant* g2 = grant_of(r, 2);
-    ASSERT_NE(g2->instruction, Instruction::kReroute) << "re-routed after " << now << " s";
-    distance = std::min(distance + 0.01, g2->granted_distance);
-    m.report_progress({2, g2->version, distance, {}}, now);
-  }
+  const RerouteWatch watch = follow_until_rerouted(m, 2, 20.0);
+  EXPECT_LT(watch.at, 0.0) << "re-routed after " << watch.at << " s";
 }
 
 // After a server restart two robots stand 0.38 m apart on the east ring of table_a, both to drive
