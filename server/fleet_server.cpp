@@ -627,7 +627,20 @@ void FleetServer::handle_order_reports() {
       result = book_.transition(id, OrderStatus::Failed, now, report.reason);
       if (result == TransitionResult::Applied) {
         log_->warn("order {} failed on {}: {}", id, report.robot_id, report.reason);
-        if (report.reason.find("empty") != std::string::npos) pallet_at_[order->pick_area] = false;
+        if (report.reason.find("empty") != std::string::npos) {
+          // A search that finds no pallet where one was put down is a miss of the robot's camera
+          // or estimate, not news that the area is free: taking it for free would let a later
+          // order put a second pallet on the first. Only an area without a recorded pallet is
+          // marked free.
+          if (const auto* standing = pallet_on(order->pick_area)) {
+            log_->warn(
+                "order {}: {} found loading area {} empty, but pallet {} stands there at ({:.3f}, {:.3f}) "
+                "by the record; the area stays occupied",
+                id, report.robot_id, order->pick_area, standing->pallet_id, standing->pose.x, standing->pose.y);
+          } else {
+            pallet_at_[order->pick_area] = false;
+          }
+        }
       }
     } else if (const auto phase = orders::parse_phase(report.status)) {
       if (*phase == order->phase) return;

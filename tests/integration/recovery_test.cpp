@@ -1,5 +1,6 @@
 // Faults that real fleets meet, with real processes: a server killed with SIGKILL and restarted,
-// an agent killed mid-order, an agent that starts after obstacles were switched on.
+// an agent killed mid-order, an agent that starts after obstacles were switched on, a search that
+// misses a pallet the server put down.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -12,6 +13,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "dds/qos.hpp"
 #include "fleet_harness.hpp"
 #include "orders/order.hpp"
 
@@ -215,4 +217,72 @@ TEST(Recovery, FrozenAgentMissesItsDeadlineIsStalledThenLostAndComesBack) {
       },
       10s))
       << fleet.log_of("fleet-server");
+}
+
+TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
+  // A robot whose camera misses the pallet at A1 (an estimate off by more than the search's match
+  // radius, a marker out of view) reports the area empty. The server put that pallet there: it
+  // must not take A1 for free, or the next order would put a second pallet on the first. The
+  // robot is played over DDS by the test, so its search can fail while the pallet stands.
+  FleetHarness fleet(79, 10.0);
+  fleet.start_server();
+  cli::FleetClient client(79);
+  ASSERT_TRUE(client.find_server(5s));
+
+  dds::Writer<model::RobotState> state_writer(client.participant(), dds::qos::robot_state());
+  dds::Writer<model::OrderReport> report_writer(client.participant(), dds::qos::latched_state());
+  dds::Reader<model::OrderAssignment> orders(client.participant(), dds::qos::latched_state());
+  model::RobotState state;
+  state.robot_id = "fl1";
+  state.fleet_id = "forklifts";
+  state.map_id = "table_a";
+  state.pose = {0.83, 0.82, -1.57};  // home H1
+  state.task_state = "IDLE";
+  auto publish_state = [&] { state_writer.write(state); };
+  auto registered = [&] {
+    publish_state();
+    return fleet.log_of("fleet-server").find("robot fl1 (forklifts) registered") != std::string::npos;
+  };
+  ASSERT_TRUE(eventually(registered, 10s)) << fleet.log_of("fleet-server");
+
+  const auto reply = order_a1_to_a2(client);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  std::optional<model::OrderAssignment> assignment;
+  ASSERT_TRUE(eventually(
+      [&] {
+        publish_state();  // within the 0.5 s deadline of RobotState
+        orders.take_data([&](model::OrderAssignment&& a) {
+          if (a.order_id == reply->order_id && a.robot_id == "fl1" && !a.cancelled) assignment = a;
+        });
+        return assignment.has_value();
+      },
+      10s));
+  model::OrderReport report;
+  report.order_id = assignment->order_id;
+  report.robot_id = "fl1";
+  report.update_id = assignment->update_id;
+  report.status = "ACCEPTED";
+  report_writer.write(report);
+  report.status = "FAILED";
+  report.reason = "loading area A1 is empty (no marker in view)";
+  report_writer.write(report);
+  ASSERT_TRUE(eventually(
+      [&] {
+        publish_state();
+        const auto known = client.orders(50ms);
+        const auto it = known.find(reply->order_id);
+        return it != known.end() && it->second.state == "FAILED";
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+
+  EXPECT_NE(fleet.log_of("fleet-server").find("found loading area A1 empty, but pallet"), std::string::npos)
+      << fleet.log_of("fleet-server");
+  model::OrderRequest onto_a1;
+  onto_a1.pick_area = "A3";
+  onto_a1.drop_area = "A1";
+  const auto refused = client.request_order(onto_a1, 5s);
+  ASSERT_TRUE(refused.has_value());
+  EXPECT_FALSE(refused->accepted);
+  EXPECT_NE(refused->error.find("'A1' is occupied by a pallet"), std::string::npos) << refused->error;
 }
