@@ -84,6 +84,7 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.blocked = false;
   robot.stopped = true;
   robot.blocked_by.clear();
+  robot.kept_out_by.clear();
   robot.stopped_for.clear();
   // Previous holdings stay until the robot is past the first edge of the new route.
   std::size_t k = 0;
@@ -304,9 +305,49 @@ void TrafficManager::claim_entry(int robot_id, int point, double now) {
   auto it = entries_.find(robot_id);
   if (it == entries_.end() || it->second.place != place) {
     entries_[robot_id] = {place, now};
-  } else if (now - it->second.since > configuration_.priority_wait + configuration_.reroute_wait) {
-    it->second.since = now;  // lapsed unmet: start again, so no robot waits on it without bound
+    return;
   }
+  EntryClaim& claim = it->second;
+  if (claim_active(robot_id, claim, now) && claim_waits_on_itself(robot_id, claim)) {
+    claim.lifted_until = now + configuration_.priority_wait;
+  }
+}
+
+bool TrafficManager::claim_in_line(int robot_id, const EntryClaim& claim, double now) const {
+  // A robot the manager knows (standing at a loading area) is already on the roads' edge: it
+  // claims no place in line.
+  return robots_.count(robot_id) == 0 && now - claim.since >= configuration_.priority_wait;
+}
+
+bool TrafficManager::claim_active(int robot_id, const EntryClaim& claim, double now) const {
+  return claim_in_line(robot_id, claim, now) && now >= claim.lifted_until;
+}
+
+bool TrafficManager::claim_waits_on_itself(int robot_id, const EntryClaim& claim) const {
+  // Depth-first over who waits for whom: a robot on the roads waits for the robots it is blocked
+  // by and the entrants whose claims keep it out; an entrant waits for the holders of its entry.
+  std::vector<int> stack;
+  std::vector<int> seen;
+  auto push_holders = [&](int entrant, int place) {
+    for (const auto& [id, robot] : robots_) {
+      if (id != entrant && closes(robot, place)) stack.push_back(id);
+    }
+  };
+  push_holders(robot_id, claim.place);
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (id == robot_id) return true;
+    if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+    seen.push_back(id);
+    if (auto robot = robots_.find(id); robot != robots_.end()) {
+      stack.insert(stack.end(), robot->second.blocked_by.begin(), robot->second.blocked_by.end());
+      stack.insert(stack.end(), robot->second.kept_out_by.begin(), robot->second.kept_out_by.end());
+    } else if (auto entrant = entries_.find(id); entrant != entries_.end()) {
+      push_holders(id, entrant->second.place);
+    }
+  }
+  return false;
 }
 
 void TrafficManager::drop_entry(int robot_id) {
@@ -320,7 +361,7 @@ std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, d
   const auto mine = entries_.find(robot_id);
   const auto self = robots_.find(robot_id);
   for (const auto& [id, claim] : entries_) {
-    if (id == robot_id || robots_.count(id) != 0 || now - claim.since < configuration_.priority_wait) continue;
+    if (id == robot_id || !claim_in_line(id, claim, now)) continue;
     if (mine != entries_.end() &&
         (mine->second.since < claim.since || (mine->second.since == claim.since && robot_id < id))) {
       continue;
@@ -451,7 +492,7 @@ void TrafficManager::rebuild_occupancy() {
   // Entry claims of robots waiting beside the roads longer than priority_wait.
   entry_closed_.assign(zones_->place_count(), 0);
   for (const auto& [id, claim] : entries_) {
-    if (robots_.count(id) != 0 || now_ - claim.since < configuration_.priority_wait) continue;
+    if (!claim_active(id, claim, now_)) continue;
     for (int q : zones_->conflicts(claim.place)) entry_closed_[static_cast<std::size_t>(q)] = 1;
   }
   // Reservations of robots waiting longer than priority_wait: the places of the stretch they wait
@@ -479,6 +520,14 @@ void TrafficManager::rebuild_occupancy() {
       if (d != 0) add_span(zones_->corridor(p), s, d, zones_->corridor_index(p), true);
     }
   }
+}
+
+bool TrafficManager::entry_closes(const std::vector<int>& places, int index) const {
+  // Closed to robots coming from outside the claim's places; one inside may drive on and out.
+  const auto closed = [&](int k) {
+    return entry_closed_[static_cast<std::size_t>(places[static_cast<std::size_t>(k)])] != 0;
+  };
+  return closed(index) && (index == 0 || !closed(index - 1));
 }
 
 bool TrafficManager::higher_priority(const Robot& a, const Robot& b) const {
@@ -517,12 +566,9 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
     if (higher_priority(self, claimant)) return;
     blockers.push_back(w);
   };
-  // A place closed by an entry claim is closed to robots coming from outside it; one inside may
-  // drive on. The claimant is off the graph: it blocks without being a robot to wait for.
-  if (entry_closed_[static_cast<std::size_t>(p)] != 0 &&
-      (index == 0 || entry_closed_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] == 0)) {
-    return false;
-  }
+  // The claimant of an entry is off the graph: it blocks without being a robot to wait for
+  // (extend notes it in kept_out_by).
+  if (entry_closes(places, index)) return false;
   // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
   const int claimant = claim_place_[static_cast<std::size_t>(p)];
   if (claimant >= 0 &&
@@ -558,6 +604,7 @@ void TrafficManager::extend(Robot& robot, int slot) {
   const int last = static_cast<int>(robot.route.size()) - 1;
   robot.blocked = false;
   robot.blocked_by.clear();
+  robot.kept_out_by.clear();
   if (robot.frozen) return;
   const double target = robot.progress + configuration_.lookahead;
   std::vector<int> blockers;
@@ -576,6 +623,12 @@ void TrafficManager::extend(Robot& robot, int slot) {
       sort_unique(blockers);
       for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
       std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
+      if (entry_closes(robot.places, j)) {
+        const int p = robot.places[static_cast<std::size_t>(j)];
+        for (const auto& [id, claim] : entries_) {
+          if (claim_active(id, claim, now_) && zones_->conflict(p, claim.place)) robot.kept_out_by.push_back(id);
+        }
+      }
       break;
     }
     for (int k = robot.grant_end + 1; k <= j; ++k) mark(robot, slot, k);

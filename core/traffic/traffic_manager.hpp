@@ -220,12 +220,16 @@ class TrafficManager {
   std::vector<int> holders_in_conflict(int point, int robot_id) const;
   /// A robot beside the roads waits to enter at `point` (see holders_in_conflict). Once it has
   /// waited `priority_wait`, the places in conflict with its entry close to robots from outside
-  /// them (those inside drive on and out), so a busy road cannot keep it out for ever. A claim
-  /// lapses after `reroute_wait` unmet and starts again: nothing waits on it without bound.
+  /// them (those inside drive on and out), so a busy road cannot keep it out for ever. The claim
+  /// stays active for as long as the robots in the way take to drive off, but no longer than
+  /// they can: when one of them waits, directly or down the line, on a robot the claim keeps
+  /// out, the closure is lifted for `priority_wait` (the claim keeps its place in line). So
+  /// nothing waits on a claim without bound, and a queue that drains slowly lets no newcomer in
+  /// ahead of the entrant.
   /// Call every cycle while it waits; `drop_entry` once it entered or gave up.
   void claim_entry(int robot_id, int point, double now);
   void drop_entry(int robot_id);
-  /// Robots beside the roads whose active entry claim (waited `priority_wait`) conflicts with an
+  /// Robots beside the roads whose entry claim (waited `priority_wait`, lifted or not) conflicts with an
   /// entry at `point` and is older than `robot_id`'s own, sorted: first come, first in, so a robot
   /// leaving a loading area does not slip in ahead of one that has waited at its home. A claim
   /// whose entry this robot's body stands in the way of is left out (that one must go first).
@@ -255,6 +259,7 @@ class TrafficManager {
     bool stopped = false;
     std::vector<int> blocked_by;
     std::vector<int> stopped_for;  ///< robots whose bodies its safety check stops it for (ProgressReport)
+    std::vector<int> kept_out_by;  ///< entrants whose active entry claim stops its grant, sorted
     Instruction pending = Instruction::kNone;
     bool in_siding = false;
     int resume_goal = -1;
@@ -331,8 +336,18 @@ class TrafficManager {
   std::vector<int> claim_place_;                  ///< slot of the waiting robot that reserved the place, -1 when none
   struct EntryClaim {
     int place = 0;
-    double since = 0.0;
+    double since = 0.0;                                              ///< first come, first in
+    double lifted_until = -std::numeric_limits<double>::infinity();  ///< closure lifted before this
   };
+  /// Waited `priority_wait`: other entrants defer to it (earlier_entry_claims).
+  bool claim_in_line(int robot_id, const EntryClaim& claim, double now) const;
+  /// In line and not lifted: its places are closed to robots from outside them.
+  bool claim_active(int robot_id, const EntryClaim& claim, double now) const;
+  /// Whether the robots in the way of an entry claim wait, down the line, on the claim itself
+  /// (a robot it keeps out): then holding the closure would keep them waiting on each other.
+  bool claim_waits_on_itself(int robot_id, const EntryClaim& claim) const;
+  /// Whether `places[index]` is closed by an entry claim to a robot coming from before it.
+  bool entry_closes(const std::vector<int>& places, int index) const;
   std::map<int, EntryClaim> entries_;       ///< robots waiting beside the roads, by id
   std::vector<std::uint8_t> entry_closed_;  ///< places closed by an active entry claim
 };

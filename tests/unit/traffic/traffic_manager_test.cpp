@@ -187,6 +187,89 @@ TEST(TrafficManager, EntryClaimClosesTheEntryToNewcomersButLetsRobotsInsideDrive
   EXPECT_EQ(m.check_invariant(), "");
 }
 
+// The road of the claim tests below: robot 2 stands at 1.7 m, inside the zone of an entry at
+// 1.5 m (1.2-1.8 m), on its way east; robot 3 waits beside the road to enter there from t = 0, and
+// robot 1 comes from behind once the claim is active. Robot 2 alone would let robot 1 come up to
+// 1.3 m; the claim keeps it before 1.2 m.
+struct ClaimedRoad {
+  GraphBuilder b;
+  std::vector<int> road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficManager m{b.graph(), entry_claims_after_8s()};
+  int entry = point_at(b.graph(), 1.5, 0.0);
+  std::vector<int> from_inside{road.begin() + (point_at(b.graph(), 1.7, 0.0) - road.front()), road.end()};
+  static constexpr double kZoneStart = 1.15;
+
+  ClaimedRoad() { EXPECT_EQ(m.submit_route({2, 1, from_inside}, 0.0), SubmitStatus::kAccepted); }
+  // One cycle: robot 3 claims, robot 1 drives to its grant; how far robot 1 got (-1 before it came).
+  double step(double t) {
+    if (t >= 8.5 && !m.has_robot(1)) {
+      EXPECT_EQ(m.submit_route({1, 1, road}, t), SubmitStatus::kAccepted);
+    }
+    m.claim_entry(3, entry, t);
+    const auto r = m.update(t);
+    const Grant* g1 = grant_of(r, 1);
+    if (g1 == nullptr) return -1.0;
+    m.report_progress({1, 1, g1->granted_distance, {}}, t);
+    return g1->granted_distance;
+  }
+};
+
+TEST(TrafficManager, EntryClaimHoldsForAsLongAsTheRobotInItsZoneTakesToDriveOut) {
+  ClaimedRoad road;
+  // Robot 2 stands still until t = 70 s (its safety check stops it for something off the roads,
+  // or it queues behind a robot at work): however long that is, robot 1 stays out of the zone.
+  for (double t = 0.0; t < 70.0; t += 0.1) {
+    const double reached = road.step(t);
+    if (t >= 9.0) {
+      ASSERT_GT(reached, 0.5) << "robot 1 did not come";
+      ASSERT_LT(reached, ClaimedRoad::kZoneStart) << "robot 1 entered the closed zone ahead of the entrant at t=" << t;
+    }
+  }
+  EXPECT_EQ(road.m.holders_in_conflict(road.entry, 3), std::vector<int>{2});
+  // Robot 2 drives on out of the zone, and robot 3 enters first.
+  double progress2 = 0.0;
+  for (double t = 70.0; t < 100.0 && !road.m.holders_in_conflict(road.entry, 3).empty(); t += 0.1) {
+    ASSERT_LT(road.step(t), ClaimedRoad::kZoneStart)
+        << "robot 1 entered the closed zone ahead of the entrant at t=" << t;
+    progress2 += 0.02;
+    road.m.report_progress({2, 1, progress2, {}}, t);
+  }
+  EXPECT_TRUE(road.m.holders_in_conflict(road.entry, 3).empty()) << "robot 2 never left the entry's zone";
+  EXPECT_EQ(road.m.check_invariant(), "");
+}
+
+TEST(TrafficManager, EntryClaimIsLiftedWhenTheRobotInItsWayWaitsOnIt) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 3.0, 0.0);
+  TrafficManager m(b.graph(), entry_claims_after_8s());
+  const int entry = point_at(b.graph(), 1.5, 0.0);
+  // Robot 2 works beside the road, its body reaching over the entry, when robot 3 comes to enter.
+  geometry::Polygon at_work{{1.05, -0.1}, {1.52, -0.1}, {1.52, 0.1}, {1.05, 0.1}};
+  ASSERT_TRUE(m.hold_body(2, at_work, 0.0));
+  for (int i = 0; i < 100; ++i) {
+    m.claim_entry(3, entry, i * 0.1);
+    m.update(i * 0.1);
+  }
+  ASSERT_EQ(m.holders_in_conflict(entry, 3), std::vector<int>{2});
+  // Done, it sets off from behind the claimed zone: the claim keeps it out while robot 3 waits for
+  // it to leave. The claim is lifted and robot 2 drives off.
+  const std::vector<int> leave(road.begin() + (point_at(b.graph(), 1.1, 0.0) - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({2, 1, leave}, 10.0), SubmitStatus::kAccepted);
+  double reached = 0.0;
+  for (int i = 100; i < 130; ++i) {
+    m.claim_entry(3, entry, i * 0.1);
+    const auto r = m.update(i * 0.1);
+    const Grant* g2 = grant_of(r, 2);
+    ASSERT_NE(g2, nullptr);
+    reached = g2->granted_distance;
+    m.report_progress({2, 1, reached, {}}, i * 0.1);
+  }
+  EXPECT_GT(reached, 0.5) << "robot 2 is kept in the entrant's way by the entrant's claim";
+  EXPECT_TRUE(m.holders_in_conflict(entry, 3).empty());
+  // The claim keeps its place in line: robot 5, leaving an area beside the entry, defers to it.
+  EXPECT_EQ(m.earlier_entry_claims(point_at(b.graph(), 1.6, 0.0), 5, 13.0), std::vector<int>{3});
+}
+
 TEST(TrafficManager, RobotsEnteringTheRoadsGoInTheOrderTheyCameUnlessOneStandsInTheOthersWay) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 3.0, 0.0);
