@@ -695,15 +695,16 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
-    // Lost while picking, it may be lifting the pallet as it froze: like one lost with the pallet
-    // on its forks, only this robot can finish the order, and a stalled robot carries on when it
-    // answers again. (Re-queued instead, the order was withdrawn from it as it came back with the
-    // pallet, and it stood in the lane with it for good.)
-    const bool picking = order->phase == OrderPhase::Picking;
-    if (robot.last.carrying_pallet || picking) {
+    // Lost at the pick area, searching or picking, it may be lifting the pallet as it froze, or
+    // do so within a second of answering again, before a withdrawal reaches it: like one lost with
+    // the pallet on its forks, only this robot can finish the order, and a stalled robot carries
+    // on when it answers again. (Re-queued instead, the order was withdrawn from it as it came
+    // back with the pallet, and it stood in the lane with it for good.)
+    const bool at_pick = order->phase == OrderPhase::Searching || order->phase == OrderPhase::Picking;
+    if (robot.last.carrying_pallet || at_pick) {
       awaiting_lost_robot_.emplace(id, SimClock::wall_now());
       log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
-                 robot.last.carrying_pallet ? "with the pallet on its forks" : "while picking",
+                 robot.last.carrying_pallet ? "with the pallet on its forks" : "at the pick area",
                  options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
       return;
     }
@@ -761,7 +762,7 @@ void FleetServer::give_up_on_lost_robot(std::int64_t order_id, const std::string
   if (!order) return;
   const std::string robot_id = order->robot_id;
   if (!pallet_carried_by(robot_id)) {
-    // Lost while picking, before the lift: the pallet still stands on the pick area.
+    // Lost at the pick area before the lift: the pallet still stands there.
     requeue_taken_from(order_id, robot_id, why + " before lifting the pallet");
     return;
   }
@@ -789,11 +790,12 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
         state.order_id != id || (pallet_carried_by(state.robot_id) && !state.carrying_pallet && !dropping);
     if (!restarted) {
       // Its software still runs the order: the pallet is on its forks, or it was put down at the
-      // drop area as the robot froze and the DONE report follows, or it was still picking.
+      // drop area as the robot froze and the DONE report follows, or it was still at the pick.
+      const bool at_pick = order->phase == OrderPhase::Searching || order->phase == OrderPhase::Picking;
       log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
-                 state.carrying_pallet                 ? "pallet on its forks"
-                 : order->phase == OrderPhase::Picking ? "still picking"
-                                                       : "pallet put down at the drop area");
+                 state.carrying_pallet ? "pallet on its forks"
+                 : at_pick             ? "still at the pick area"
+                                       : "pallet put down at the drop area");
     } else {
       give_up_on_lost_robot(id, "robot " + state.robot_id + " came back restarted",
                             "robot " + state.robot_id + " came back without the order's pallet (restarted)");

@@ -1,6 +1,6 @@
 // Faults that real fleets meet, with real processes: a server killed with SIGKILL and restarted,
 // an agent killed mid-order, an agent that starts after obstacles were switched on, a search that
-// misses a pallet the server put down.
+// misses a pallet the server put down, a robot lost while it searches at the pick area.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -63,6 +63,64 @@ bool reaches_phase(cli::FleetClient& client, std::int64_t id, const std::string&
       },
       timeout);
 }
+
+/// Robot fl1, standing at home H1, played by the test over DDS: the server hears from it only
+/// what the test makes it say, so it can fail a search, or fall silent, at a chosen moment.
+struct ScriptedRobot {
+  dds::Writer<model::RobotState> state_writer;
+  dds::Writer<model::OrderReport> report_writer;
+  dds::Reader<model::OrderAssignment> orders;
+  model::RobotState state;
+
+  explicit ScriptedRobot(cli::FleetClient& client)
+      : state_writer(client.participant(), dds::qos::robot_state()),
+        report_writer(client.participant(), dds::qos::latched_state()),
+        orders(client.participant(), dds::qos::latched_state()) {
+    state.robot_id = "fl1";
+    state.fleet_id = "forklifts";
+    state.map_id = "table_a";
+    state.pose = {0.83, 0.82, -1.57};  // home H1
+    state.task_state = "IDLE";
+  }
+  void publish_state() { state_writer.write(state); }
+  /// Publishing its state (within the 0.5 s deadline of RobotState) until `done`.
+  template <typename Predicate>
+  bool keeps_answering_until(Predicate done, std::chrono::milliseconds timeout) {
+    return eventually(
+        [&] {
+          publish_state();
+          return done();
+        },
+        timeout);
+  }
+  bool registers_with(const FleetHarness& fleet) {
+    return keeps_answering_until(
+        [&] { return fleet.log_of("fleet-server").find("robot fl1 (forklifts) registered") != std::string::npos; },
+        10s);
+  }
+  std::optional<model::OrderAssignment> assignment_of(std::int64_t order_id) {
+    std::optional<model::OrderAssignment> assignment;
+    keeps_answering_until(
+        [&] {
+          orders.take_data([&](model::OrderAssignment&& a) {
+            if (a.order_id == order_id && a.robot_id == "fl1" && !a.cancelled) assignment = a;
+          });
+          return assignment.has_value();
+        },
+        10s);
+    return assignment;
+  }
+  void report(const model::OrderAssignment& assignment, const std::string& status, const std::string& reason = {}) {
+    model::OrderReport r;
+    r.order_id = assignment.order_id;
+    r.robot_id = "fl1";
+    r.update_id = assignment.update_id;
+    r.status = status;
+    r.reason = reason;
+    r.carrying_pallet = state.carrying_pallet;
+    report_writer.write(r);
+  }
+};
 
 }  // namespace
 
@@ -222,53 +280,22 @@ TEST(Recovery, FrozenAgentMissesItsDeadlineIsStalledThenLostAndComesBack) {
 TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
   // A robot whose camera misses the pallet at A1 (an estimate off by more than the search's match
   // radius, a marker out of view) reports the area empty. The server put that pallet there: it
-  // must not take A1 for free, or the next order would put a second pallet on the first. The
-  // robot is played over DDS by the test, so its search can fail while the pallet stands.
+  // must not take A1 for free, or the next order would put a second pallet on the first.
   FleetHarness fleet(79, 10.0);
   fleet.start_server();
   cli::FleetClient client(79);
   ASSERT_TRUE(client.find_server(5s));
-
-  dds::Writer<model::RobotState> state_writer(client.participant(), dds::qos::robot_state());
-  dds::Writer<model::OrderReport> report_writer(client.participant(), dds::qos::latched_state());
-  dds::Reader<model::OrderAssignment> orders(client.participant(), dds::qos::latched_state());
-  model::RobotState state;
-  state.robot_id = "fl1";
-  state.fleet_id = "forklifts";
-  state.map_id = "table_a";
-  state.pose = {0.83, 0.82, -1.57};  // home H1
-  state.task_state = "IDLE";
-  auto publish_state = [&] { state_writer.write(state); };
-  auto registered = [&] {
-    publish_state();
-    return fleet.log_of("fleet-server").find("robot fl1 (forklifts) registered") != std::string::npos;
-  };
-  ASSERT_TRUE(eventually(registered, 10s)) << fleet.log_of("fleet-server");
+  ScriptedRobot robot(client);
+  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
 
   const auto reply = order_a1_to_a2(client);
   ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
-  std::optional<model::OrderAssignment> assignment;
-  ASSERT_TRUE(eventually(
+  const auto assignment = robot.assignment_of(reply->order_id);
+  ASSERT_TRUE(assignment.has_value());
+  robot.report(*assignment, "ACCEPTED");
+  robot.report(*assignment, "FAILED", "loading area A1 is empty (no marker in view)");
+  ASSERT_TRUE(robot.keeps_answering_until(
       [&] {
-        publish_state();  // within the 0.5 s deadline of RobotState
-        orders.take_data([&](model::OrderAssignment&& a) {
-          if (a.order_id == reply->order_id && a.robot_id == "fl1" && !a.cancelled) assignment = a;
-        });
-        return assignment.has_value();
-      },
-      10s));
-  model::OrderReport report;
-  report.order_id = assignment->order_id;
-  report.robot_id = "fl1";
-  report.update_id = assignment->update_id;
-  report.status = "ACCEPTED";
-  report_writer.write(report);
-  report.status = "FAILED";
-  report.reason = "loading area A1 is empty (no marker in view)";
-  report_writer.write(report);
-  ASSERT_TRUE(eventually(
-      [&] {
-        publish_state();
         const auto known = client.orders(50ms);
         const auto it = known.find(reply->order_id);
         return it != known.end() && it->second.state == "FAILED";
@@ -285,4 +312,51 @@ TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
   ASSERT_TRUE(refused.has_value());
   EXPECT_FALSE(refused->accepted);
   EXPECT_NE(refused->error.find("'A1' is occupied by a pallet"), std::string::npos) << refused->error;
+}
+
+TEST(Recovery, RobotLostWhileSearchingKeepsItsOrderAndCarriesOnWhenBack) {
+  // A robot stalled while it searches at the pick area may find and lift the pallet within a
+  // second of answering again, before a withdrawal reaches it. Re-queued, the order was withdrawn
+  // from it with the pallet on its forks, and it stood in the lane for good. The server waits for
+  // it instead, as for a robot lost while picking.
+  FleetHarness fleet(86, 10.0);
+  fleet.start_server();
+  cli::FleetClient client(86);
+  ASSERT_TRUE(client.find_server(5s));
+  ScriptedRobot robot(client);
+  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
+
+  const auto reply = order_a1_to_a2(client);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  const std::int64_t id = reply->order_id;
+  const auto assignment = robot.assignment_of(id);
+  ASSERT_TRUE(assignment.has_value());
+  robot.state.order_id = id;
+  robot.report(*assignment, "ACCEPTED");
+  robot.report(*assignment, "TO_PICK");
+  robot.state.task_state = "SEARCH_PALLET";
+  robot.report(*assignment, "SEARCHING");
+  ASSERT_TRUE(robot.keeps_answering_until([&] { return client.orders(50ms)[id].phase == "SEARCHING"; }, 10s))
+      << fleet.log_of("fleet-server");
+
+  // Frozen: silent past the 1 s after which the server counts it lost.
+  ASSERT_TRUE(eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 lost") != std::string::npos; }, 10s))
+      << fleet.log_of("fleet-server");
+  EXPECT_NE(fleet.log_of("fleet-server").find("waits for robot fl1: lost at the pick area"), std::string::npos)
+      << fleet.log_of("fleet-server");
+
+  // Back, it lifts the pallet and drives off with it on the order it was given.
+  robot.state.task_state = "PICK_PALLET";
+  robot.report(*assignment, "PICKING");
+  robot.state.carrying_pallet = true;
+  robot.state.task_state = "TRACK_PATH";
+  robot.report(*assignment, "TO_DROP");
+  EXPECT_TRUE(robot.keeps_answering_until(
+      [&] {
+        const auto o = client.orders(50ms)[id];
+        return o.phase == "TO_DROP" && o.robot_id == "fl1";
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+  EXPECT_EQ(fleet.log_of("fleet-server").find("re-queued"), std::string::npos) << fleet.log_of("fleet-server");
 }
