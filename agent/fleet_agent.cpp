@@ -114,9 +114,16 @@ void FleetAgent::handle_orders() {
     if (assignment.cancelled) {
       // A withdrawal older than the assignment we run is a late duplicate.
       if (is_current && assignment.update_id >= order_->assignment.update_id) {
-        log_->warn("order {} withdrawn by the server", assignment.order_id);
-        forklift_.withdraw();
-        order_.reset();
+        if (forklift_.withdraw()) {
+          log_->warn("order {} withdrawn by the server", assignment.order_id);
+          order_.reset();
+        } else {
+          // Withdrawn while it was lost, the order was re-queued; the robot lifted the pallet
+          // before the withdrawal reached it. It carries the order on and says so: the server
+          // hands the order back to the robot that has the pallet.
+          log_->warn("order {} withdrawn by the server after the pallet was lifted: carrying it on",
+                     assignment.order_id);
+        }
       }
       return;
     }

@@ -568,6 +568,7 @@ void FleetServer::handle_order_reports() {
       return;
     }
     if (order->robot_id != report.robot_id || report.update_id != order->update_id) {
+      if (hand_back(*order, report)) return;
       // A late duplicate or a report from a robot the order was taken from (VDA 5050 style).
       log_->debug("ignoring stale report {} on order {} from {} (update {} vs {})", report.status, report.order_id,
                   report.robot_id, report.update_id, order->update_id);
@@ -718,6 +719,42 @@ void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& r
   awaiting_ack_since_.erase(order_id);
   publish_order(*book_.find(order_id));
   withdraw(*book_.find(order_id), robot_id);
+}
+
+bool FleetServer::hand_back(const Order& order, const model::OrderReport& report) {
+  // A robot lost on its way to the pick had its order re-queued; answering again, it may reach
+  // the pick area, search and lift the pallet before the withdrawal reaches it. It cannot put the
+  // pallet back (seed 000, 6.4: no cancel after the pick) and carries the order on; no other
+  // robot can pick that pallet now. So the order goes back to it, unless its new robot has
+  // lifted a pallet for it already.
+  const auto phase = orders::parse_phase(report.status);
+  const bool lifted =
+      report.carrying_pallet && phase && (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping);
+  if (!lifted || report.robot_id == order.robot_id || orders::is_final(order.status)) return false;
+  if (order.phase == OrderPhase::Picking || order.phase == OrderPhase::ToDrop || order.phase == OrderPhase::Dropping) {
+    return false;
+  }
+  const auto robot = robots_.find(report.robot_id);
+  if (robot == robots_.end() || !robot->second.registered || robot->second.lost) return false;
+  const std::int64_t id = order.id;
+  const std::string holder = order.robot_id;
+  const double now = clock_.now();
+  if (order.status != OrderStatus::Queued) {
+    if (book_.requeue(id, now, "handed back to " + report.robot_id + ", which has the pallet") !=
+        TransitionResult::Applied) {
+      return false;
+    }
+    withdraw(*book_.find(id), holder);
+  }
+  if (book_.assign(id, report.robot_id, now) != TransitionResult::Applied) return false;
+  const Order& handed = *book_.find(id);
+  log_->warn("order {} handed back to {}: it lifted the pallet at {} before the order's withdrawal reached it{}", id,
+             report.robot_id, handed.pick_area, holder.empty() ? "" : " (taken from " + holder + ")");
+  awaiting_lost_robot_.erase(id);
+  resends_[id] = 0;
+  publish_order(handed);
+  send_assignment(handed);
+  return true;
 }
 
 void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {

@@ -85,6 +85,9 @@ class FleetServer {
   /// Tells `robot_id` to drop `order` (VDA 5050 style: with the order's update id, so a late
   /// duplicate of an older assignment cannot undo it).
   void withdraw(const orders::Order& order, const std::string& robot_id);
+  /// A report from a robot the order was taken from, with the order's pallet on its forks: the
+  /// order goes back to it (see handle_order_reports). False when the report is just stale.
+  bool hand_back(const orders::Order& order, const model::OrderReport& report);
   void reply(const model::RequestReply& answer);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);

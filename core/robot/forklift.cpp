@@ -126,14 +126,8 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
 
 bool Forklift::submit(const task::TaskOrder& order, std::string* why) { return executor_.submit(order, why); }
 
-void Forklift::withdraw() {
-  std::string why;
-  if (!executor_.cancel(&why)) {
-    // Past the pick the order cannot be cancelled in the state machine; the server has already
-    // written it off, so stop and wait for an operator or a new order at home.
-    executor_.fault("order withdrawn by the server: " + why);
-    executor_.reset();
-  }
+bool Forklift::withdraw() {
+  return executor_.cancel();
 }
 
 void Forklift::set_paused(bool paused) {

@@ -360,3 +360,63 @@ TEST(Recovery, RobotLostWhileSearchingKeepsItsOrderAndCarriesOnWhenBack) {
       << fleet.log_of("fleet-server");
   EXPECT_EQ(fleet.log_of("fleet-server").find("re-queued"), std::string::npos) << fleet.log_of("fleet-server");
 }
+
+TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
+  // Lost on its way to the pick, a robot has its order re-queued and withdrawn. Answering again,
+  // it reaches the pick area, searches and lifts the pallet before the withdrawal reaches it
+  // (all within half a second of wall time at time scale 10). It cannot put the pallet back and
+  // carries the order on; the server gives the order back to it.
+  FleetHarness fleet(87, 10.0);
+  fleet.start_server();
+  cli::FleetClient client(87);
+  ASSERT_TRUE(client.find_server(5s));
+  ScriptedRobot robot(client);
+  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
+
+  const auto reply = order_a1_to_a2(client);
+  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+  const std::int64_t id = reply->order_id;
+  const auto first = robot.assignment_of(id);
+  ASSERT_TRUE(first.has_value());
+  robot.state.order_id = id;
+  robot.state.task_state = "TRACK_PATH";
+  robot.report(*first, "ACCEPTED");
+  robot.report(*first, "TO_PICK");
+  ASSERT_TRUE(robot.keeps_answering_until([&] { return client.orders(50ms)[id].phase == "TO_PICK"; }, 10s))
+      << fleet.log_of("fleet-server");
+
+  // Silent: lost, and the order is re-queued (no other robot to take it).
+  ASSERT_TRUE(eventually(
+      [&] {
+        return fleet.log_of("fleet-server").find("order " + std::to_string(id) + " re-queued") != std::string::npos;
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+
+  // Back with the pallet lifted, still on the first assignment.
+  robot.report(*first, "SEARCHING");
+  robot.report(*first, "PICKING");
+  robot.state.carrying_pallet = true;
+  robot.report(*first, "TO_DROP");
+  std::optional<model::OrderAssignment> again;
+  ASSERT_TRUE(robot.keeps_answering_until(
+      [&] {
+        robot.orders.take_data([&](model::OrderAssignment&& a) {
+          if (a.order_id == id && a.robot_id == "fl1" && !a.cancelled && a.update_id > first->update_id) again = a;
+        });
+        return again.has_value();
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+  robot.report(*again, "ACCEPTED");
+  robot.report(*again, "TO_DROP");
+  EXPECT_TRUE(robot.keeps_answering_until(
+      [&] {
+        const auto o = client.orders(50ms)[id];
+        return o.phase == "TO_DROP" && o.robot_id == "fl1";
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+  EXPECT_NE(fleet.log_of("fleet-server").find("lifted by fl1 from A1"), std::string::npos)
+      << fleet.log_of("fleet-server");
+}
