@@ -122,6 +122,24 @@ struct ScriptedRobot {
   }
 };
 
+/// A real server on `domain` and the scripted robot fl1.
+struct ScriptedFleet {
+  FleetHarness fleet;
+  cli::FleetClient client;
+  ScriptedRobot robot;
+
+  explicit ScriptedFleet(int domain) : fleet(domain, 10.0), client(domain), robot(client) {}
+  std::string server_log() const { return fleet.log_of("fleet-server"); }
+  /// Starts the server, registers fl1 and orders a pallet from A1 to A2: fl1's assignment.
+  std::optional<model::OrderAssignment> start_with_order() {
+    fleet.start_server();
+    if (!client.find_server(5s) || !robot.registers_with(fleet)) return std::nullopt;
+    const auto reply = order_a1_to_a2(client);
+    if (!reply || !reply->accepted) return std::nullopt;
+    return robot.assignment_of(reply->order_id);
+  }
+};
+
 }  // namespace
 
 TEST(Recovery, ServerKilledMidRunAndRestartedLosesNoOrderAndRunsNoneTwice) {
@@ -281,23 +299,19 @@ TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
   // A robot whose camera misses the pallet at A1 (an estimate off by more than the search's match
   // radius, a marker out of view) reports the area empty. The server put that pallet there: it
   // must not take A1 for free, or the next order would put a second pallet on the first.
-  FleetHarness fleet(79, 10.0);
-  fleet.start_server();
-  cli::FleetClient client(79);
-  ASSERT_TRUE(client.find_server(5s));
-  ScriptedRobot robot(client);
-  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
-
-  const auto reply = order_a1_to_a2(client);
-  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
-  const auto assignment = robot.assignment_of(reply->order_id);
-  ASSERT_TRUE(assignment.has_value());
+  ScriptedFleet s(79);
+  const auto assignment = s.start_with_order();
+  ASSERT_TRUE(assignment.has_value()) << s.server_log();
+  auto& robot = s.robot;
+  auto& client = s.client;
+  auto& fleet = s.fleet;
+  const std::int64_t id = assignment->order_id;
   robot.report(*assignment, "ACCEPTED");
   robot.report(*assignment, "FAILED", "loading area A1 is empty (no marker in view)");
   ASSERT_TRUE(robot.keeps_answering_until(
       [&] {
         const auto known = client.orders(50ms);
-        const auto it = known.find(reply->order_id);
+        const auto it = known.find(id);
         return it != known.end() && it->second.state == "FAILED";
       },
       10s))
@@ -319,18 +333,13 @@ TEST(Recovery, RobotLostWhileSearchingKeepsItsOrderAndCarriesOnWhenBack) {
   // second of answering again, before a withdrawal reaches it. Re-queued, the order was withdrawn
   // from it with the pallet on its forks, and it stood in the lane for good. The server waits for
   // it instead, as for a robot lost while picking.
-  FleetHarness fleet(86, 10.0);
-  fleet.start_server();
-  cli::FleetClient client(86);
-  ASSERT_TRUE(client.find_server(5s));
-  ScriptedRobot robot(client);
-  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
-
-  const auto reply = order_a1_to_a2(client);
-  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
-  const std::int64_t id = reply->order_id;
-  const auto assignment = robot.assignment_of(id);
-  ASSERT_TRUE(assignment.has_value());
+  ScriptedFleet s(86);
+  const auto assignment = s.start_with_order();
+  ASSERT_TRUE(assignment.has_value()) << s.server_log();
+  auto& robot = s.robot;
+  auto& client = s.client;
+  auto& fleet = s.fleet;
+  const std::int64_t id = assignment->order_id;
   robot.state.order_id = id;
   robot.report(*assignment, "ACCEPTED");
   robot.report(*assignment, "TO_PICK");
@@ -366,18 +375,13 @@ TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
   // it reaches the pick area, searches and lifts the pallet before the withdrawal reaches it
   // (all within half a second of wall time at time scale 10). It cannot put the pallet back and
   // carries the order on; the server gives the order back to it.
-  FleetHarness fleet(87, 10.0);
-  fleet.start_server();
-  cli::FleetClient client(87);
-  ASSERT_TRUE(client.find_server(5s));
-  ScriptedRobot robot(client);
-  ASSERT_TRUE(robot.registers_with(fleet)) << fleet.log_of("fleet-server");
-
-  const auto reply = order_a1_to_a2(client);
-  ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
-  const std::int64_t id = reply->order_id;
-  const auto first = robot.assignment_of(id);
-  ASSERT_TRUE(first.has_value());
+  ScriptedFleet s(87);
+  const auto first = s.start_with_order();
+  ASSERT_TRUE(first.has_value()) << s.server_log();
+  auto& robot = s.robot;
+  auto& client = s.client;
+  auto& fleet = s.fleet;
+  const std::int64_t id = first->order_id;
   robot.state.order_id = id;
   robot.state.task_state = "TRACK_PATH";
   robot.report(*first, "ACCEPTED");
