@@ -121,10 +121,9 @@ class Forklift {
   // --- inputs ---------------------------------------------------------------------------------
   /// An order; false with the reason when the robot cannot take it now.
   bool submit(const task::TaskOrder& order, std::string* why);
-  /// The server withdrew the order: drop it and go home (a pallet on the forks stays there).
-  /// The server took the order away. False, with the order left running, once the pallet is on
-  /// the forks: it cannot be cancelled then (seed 000, 6.4), and a robot that stopped with it
-  /// would stand in the lane for good.
+  /// The server took the order away: drop it and go home. False, with the order left running,
+  /// once the pallet is on the forks: it cannot be cancelled then (seed 000, 6.4), and a robot
+  /// that stopped with it would stand in the lane for good.
   bool withdraw();
   void set_paused(bool paused);
   /// A designated static obstacle switched on or off. True when the robot is driving and asked
