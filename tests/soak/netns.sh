@@ -8,19 +8,22 @@
 # Everything stays inside the namespaces this script creates (10.77.0.0/24, names fleet-*);
 # nothing touches the host's own interfaces or routes. The namespaces go when the script ends.
 #
-# usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--json FILE]
+# usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--json FILE] [--verbose]
+# --verbose: debug logs of every process in the run directory (the soak's --verbose).
 set -euo pipefail
 
 duration=120
 loss=0.02
 agents=4
 json_out=""
+verbose=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --duration) duration="$2"; shift 2 ;;
     --loss) loss="$2"; shift 2 ;;
     --agents) agents="$2"; shift 2 ;;
     --json) json_out="$2"; shift 2 ;;
+    --verbose) verbose=(--verbose); shift ;;
     *) echo "netns.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -82,7 +85,7 @@ set +e
 ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 soak --agents "$agents" --site table_a --duration "$duration" \
   --time-scale 10 --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
   --set faults.pose_delay_ms=20 --set faults.pose_delay_jitter_ms=10 \
-  --agent-wrap "ip netns exec ${tag}-a{n}" --json > "${json_out:-/dev/stdout}"
+  --agent-wrap "ip netns exec ${tag}-a{n}" "${verbose[@]}" --json > "${json_out:-/dev/stdout}"
 status=$?
 set -e
 [ -n "$json_out" ] && cat "$json_out"
