@@ -44,6 +44,16 @@ model::OrderInfo info_of(const Order& o) {
           o.updated_sim,
           std::move(history)};
 }
+
+/// Searching or picking: the robot stands at the pick area, the pallet perhaps on its way up.
+bool at_pick_area(OrderPhase phase) {
+  return phase == OrderPhase::Searching || phase == OrderPhase::Picking;
+}
+
+/// Driving to the drop or putting the pallet down: it was lifted.
+bool past_the_lift(OrderPhase phase) {
+  return phase == OrderPhase::ToDrop || phase == OrderPhase::Dropping;
+}
 }  // namespace
 
 FleetServer::FleetServer(ServerOptions options, Logger log)
@@ -649,7 +659,7 @@ void FleetServer::handle_order_reports() {
       if (result == TransitionResult::Applied) {
         log_->info("order {} on {}: {}", id, report.robot_id, report.status);
         // Seed 000, section 8: the server keeps the pallet map up to date as robots pick.
-        if (report.carrying_pallet && (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping)) {
+        if (report.carrying_pallet && past_the_lift(*phase)) {
           auto lifted = pallets_.find(report.pallet_id);
           if (lifted == pallets_.end()) {
             if (const auto* standing = pallet_on(order->pick_area)) lifted = pallets_.find(standing->pallet_id);
@@ -701,8 +711,7 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
     // the pallet on its forks, only this robot can finish the order, and a stalled robot carries
     // on when it answers again. (Re-queued instead, the order was withdrawn from it as it came
     // back with the pallet, and it stood in the lane with it for good.)
-    const bool at_pick = order->phase == OrderPhase::Searching || order->phase == OrderPhase::Picking;
-    if (robot.last.carrying_pallet || at_pick) {
+    if (robot.last.carrying_pallet || at_pick_area(order->phase)) {
       awaiting_lost_robot_.emplace(id, SimClock::wall_now());
       log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
                  robot.last.carrying_pallet ? "with the pallet on its forks" : "at the pick area",
@@ -728,12 +737,9 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
   // robot can pick that pallet now. So the order goes back to it, unless its new robot has
   // lifted a pallet for it already.
   const auto phase = orders::parse_phase(report.status);
-  const bool lifted =
-      report.carrying_pallet && phase && (*phase == OrderPhase::ToDrop || *phase == OrderPhase::Dropping);
+  const bool lifted = report.carrying_pallet && phase && past_the_lift(*phase);
   if (!lifted || report.robot_id == order.robot_id || orders::is_final(order.status)) return false;
-  if (order.phase == OrderPhase::Picking || order.phase == OrderPhase::ToDrop || order.phase == OrderPhase::Dropping) {
-    return false;
-  }
+  if (order.phase == OrderPhase::Picking || past_the_lift(order.phase)) return false;
   const auto robot = robots_.find(report.robot_id);
   if (robot == robots_.end() || !robot->second.registered || robot->second.lost) return false;
   const std::int64_t id = order.id;
@@ -828,11 +834,10 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     if (!restarted) {
       // Its software still runs the order: the pallet is on its forks, or it was put down at the
       // drop area as the robot froze and the DONE report follows, or it was still at the pick.
-      const bool at_pick = order->phase == OrderPhase::Searching || order->phase == OrderPhase::Picking;
       log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
-                 state.carrying_pallet ? "pallet on its forks"
-                 : at_pick             ? "still at the pick area"
-                                       : "pallet put down at the drop area");
+                 state.carrying_pallet        ? "pallet on its forks"
+                 : at_pick_area(order->phase) ? "still at the pick area"
+                                              : "pallet put down at the drop area");
     } else {
       give_up_on_lost_robot(id, "robot " + state.robot_id + " came back restarted",
                             "robot " + state.robot_id + " came back without the order's pallet (restarted)");

@@ -326,14 +326,8 @@ bool TrafficManager::claim_active(int robot_id, const EntryClaim& claim, double 
 bool TrafficManager::claim_waits_on_itself(int robot_id, const EntryClaim& claim) const {
   // Depth-first over who waits for whom: a robot on the roads waits for the robots it is blocked
   // by and the entrants whose claims keep it out; an entrant waits for the holders of its entry.
-  std::vector<int> stack;
+  std::vector<int> stack = holders_of(claim.place, robot_id);
   std::vector<int> seen;
-  auto push_holders = [&](int entrant, int place) {
-    for (const auto& [id, robot] : robots_) {
-      if (id != entrant && closes(robot, place)) stack.push_back(id);
-    }
-  };
-  push_holders(robot_id, claim.place);
   while (!stack.empty()) {
     const int id = stack.back();
     stack.pop_back();
@@ -344,7 +338,8 @@ bool TrafficManager::claim_waits_on_itself(int robot_id, const EntryClaim& claim
       stack.insert(stack.end(), robot->second.blocked_by.begin(), robot->second.blocked_by.end());
       stack.insert(stack.end(), robot->second.kept_out_by.begin(), robot->second.kept_out_by.end());
     } else if (auto entrant = entries_.find(id); entrant != entries_.end()) {
-      push_holders(id, entrant->second.place);
+      const std::vector<int> holders = holders_of(entrant->second.place, id);
+      stack.insert(stack.end(), holders.begin(), holders.end());
     }
   }
   return false;
@@ -374,9 +369,12 @@ std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, d
 }
 
 std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
+  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return {};
+  return holders_of(zones_->place_of(point), robot_id);
+}
+
+std::vector<int> TrafficManager::holders_of(int place, int robot_id) const {
   std::vector<int> out;
-  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;
-  const int place = zones_->place_of(point);
   for (const auto& [id, robot] : robots_) {
     if (id != robot_id && closes(robot, place)) out.push_back(id);
   }

@@ -229,10 +229,10 @@ class TrafficManager {
   /// Call every cycle while it waits; `drop_entry` once it entered or gave up.
   void claim_entry(int robot_id, int point, double now);
   void drop_entry(int robot_id);
-  /// Robots beside the roads whose entry claim (waited `priority_wait`, lifted or not) conflicts with an
-  /// entry at `point` and is older than `robot_id`'s own, sorted: first come, first in, so a robot
-  /// leaving a loading area does not slip in ahead of one that has waited at its home. A claim
-  /// whose entry this robot's body stands in the way of is left out (that one must go first).
+  /// Robots beside the roads whose entry claim (waited `priority_wait`, lifted or not) conflicts
+  /// with an entry at `point` and is older than `robot_id`'s own, sorted: first come, first in, so
+  /// a robot leaving a loading area does not slip in ahead of one that has waited at its home. A
+  /// claim whose entry this robot's body stands in the way of is left out (that one must go first).
   std::vector<int> earlier_entry_claims(int point, int robot_id, double now) const;
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
@@ -280,6 +280,8 @@ class TrafficManager {
   bool under_body(const Robot& robot, int place) const;
   /// Whether `holder` keeps other robots out of `place`.
   bool closes(const Robot& holder, int place) const;
+  /// Robots other than `robot_id` that keep others out of `place` (holders_in_conflict by place).
+  std::vector<int> holders_of(int place, int robot_id) const;
   void pull_back_grants_into(const Robot& standing);
   void replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now);
   void release_passed(Robot& robot);

@@ -138,6 +138,27 @@ struct ScriptedFleet {
     if (!reply || !reply->accepted) return std::nullopt;
     return robot.assignment_of(reply->order_id);
   }
+  /// Whether order `id` is seen in `phase` on fl1, fl1 answering meanwhile.
+  bool order_reaches(std::int64_t id, const std::string& phase) {
+    return robot.keeps_answering_until(
+        [&] {
+          const auto o = client.orders(50ms);
+          const auto it = o.find(id);
+          return it != o.end() && it->second.phase == phase && it->second.robot_id == "fl1";
+        },
+        10s);
+  }
+  /// start_with_order, then fl1 accepts the order and drives off towards A1.
+  std::optional<model::OrderAssignment> start_on_the_way_to_pick() {
+    auto assignment = start_with_order();
+    if (!assignment) return std::nullopt;
+    robot.state.order_id = assignment->order_id;
+    robot.state.task_state = "TRACK_PATH";
+    robot.report(*assignment, "ACCEPTED");
+    robot.report(*assignment, "TO_PICK");
+    if (!order_reaches(assignment->order_id, "TO_PICK")) return std::nullopt;
+    return assignment;
+  }
 };
 
 }  // namespace
@@ -302,27 +323,23 @@ TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
   ScriptedFleet s(79);
   const auto assignment = s.start_with_order();
   ASSERT_TRUE(assignment.has_value()) << s.server_log();
-  auto& robot = s.robot;
-  auto& client = s.client;
-  auto& fleet = s.fleet;
   const std::int64_t id = assignment->order_id;
-  robot.report(*assignment, "ACCEPTED");
-  robot.report(*assignment, "FAILED", "loading area A1 is empty (no marker in view)");
-  ASSERT_TRUE(robot.keeps_answering_until(
+  s.robot.report(*assignment, "ACCEPTED");
+  s.robot.report(*assignment, "FAILED", "loading area A1 is empty (no marker in view)");
+  ASSERT_TRUE(s.robot.keeps_answering_until(
       [&] {
-        const auto known = client.orders(50ms);
+        const auto known = s.client.orders(50ms);
         const auto it = known.find(id);
         return it != known.end() && it->second.state == "FAILED";
       },
       10s))
-      << fleet.log_of("fleet-server");
+      << s.server_log();
 
-  EXPECT_NE(fleet.log_of("fleet-server").find("found loading area A1 empty, but pallet"), std::string::npos)
-      << fleet.log_of("fleet-server");
+  EXPECT_NE(s.server_log().find("found loading area A1 empty, but pallet"), std::string::npos) << s.server_log();
   model::OrderRequest onto_a1;
   onto_a1.pick_area = "A3";
   onto_a1.drop_area = "A1";
-  const auto refused = client.request_order(onto_a1, 5s);
+  const auto refused = s.client.request_order(onto_a1, 5s);
   ASSERT_TRUE(refused.has_value());
   EXPECT_FALSE(refused->accepted);
   EXPECT_NE(refused->error.find("'A1' is occupied by a pallet"), std::string::npos) << refused->error;
@@ -334,40 +351,26 @@ TEST(Recovery, RobotLostWhileSearchingKeepsItsOrderAndCarriesOnWhenBack) {
   // from it with the pallet on its forks, and it stood in the lane for good. The server waits for
   // it instead, as for a robot lost while picking.
   ScriptedFleet s(86);
-  const auto assignment = s.start_with_order();
+  const auto assignment = s.start_on_the_way_to_pick();
   ASSERT_TRUE(assignment.has_value()) << s.server_log();
-  auto& robot = s.robot;
-  auto& client = s.client;
-  auto& fleet = s.fleet;
   const std::int64_t id = assignment->order_id;
-  robot.state.order_id = id;
-  robot.report(*assignment, "ACCEPTED");
-  robot.report(*assignment, "TO_PICK");
-  robot.state.task_state = "SEARCH_PALLET";
-  robot.report(*assignment, "SEARCHING");
-  ASSERT_TRUE(robot.keeps_answering_until([&] { return client.orders(50ms)[id].phase == "SEARCHING"; }, 10s))
-      << fleet.log_of("fleet-server");
+  s.robot.state.task_state = "SEARCH_PALLET";
+  s.robot.report(*assignment, "SEARCHING");
+  ASSERT_TRUE(s.order_reaches(id, "SEARCHING")) << s.server_log();
 
   // Frozen: silent past the 1 s after which the server counts it lost.
-  ASSERT_TRUE(eventually([&] { return fleet.log_of("fleet-server").find("robot fl1 lost") != std::string::npos; }, 10s))
-      << fleet.log_of("fleet-server");
-  EXPECT_NE(fleet.log_of("fleet-server").find("waits for robot fl1: lost at the pick area"), std::string::npos)
-      << fleet.log_of("fleet-server");
+  ASSERT_TRUE(eventually([&] { return s.server_log().find("robot fl1 lost") != std::string::npos; }, 10s))
+      << s.server_log();
+  EXPECT_NE(s.server_log().find("waits for robot fl1: lost at the pick area"), std::string::npos) << s.server_log();
 
   // Back, it lifts the pallet and drives off with it on the order it was given.
-  robot.state.task_state = "PICK_PALLET";
-  robot.report(*assignment, "PICKING");
-  robot.state.carrying_pallet = true;
-  robot.state.task_state = "TRACK_PATH";
-  robot.report(*assignment, "TO_DROP");
-  EXPECT_TRUE(robot.keeps_answering_until(
-      [&] {
-        const auto o = client.orders(50ms)[id];
-        return o.phase == "TO_DROP" && o.robot_id == "fl1";
-      },
-      10s))
-      << fleet.log_of("fleet-server");
-  EXPECT_EQ(fleet.log_of("fleet-server").find("re-queued"), std::string::npos) << fleet.log_of("fleet-server");
+  s.robot.state.task_state = "PICK_PALLET";
+  s.robot.report(*assignment, "PICKING");
+  s.robot.state.carrying_pallet = true;
+  s.robot.state.task_state = "TRACK_PATH";
+  s.robot.report(*assignment, "TO_DROP");
+  EXPECT_TRUE(s.order_reaches(id, "TO_DROP")) << s.server_log();
+  EXPECT_EQ(s.server_log().find("re-queued"), std::string::npos) << s.server_log();
 }
 
 TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
@@ -376,51 +379,32 @@ TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
   // (all within half a second of wall time at time scale 10). It cannot put the pallet back and
   // carries the order on; the server gives the order back to it.
   ScriptedFleet s(87);
-  const auto first = s.start_with_order();
+  const auto first = s.start_on_the_way_to_pick();
   ASSERT_TRUE(first.has_value()) << s.server_log();
-  auto& robot = s.robot;
-  auto& client = s.client;
-  auto& fleet = s.fleet;
   const std::int64_t id = first->order_id;
-  robot.state.order_id = id;
-  robot.state.task_state = "TRACK_PATH";
-  robot.report(*first, "ACCEPTED");
-  robot.report(*first, "TO_PICK");
-  ASSERT_TRUE(robot.keeps_answering_until([&] { return client.orders(50ms)[id].phase == "TO_PICK"; }, 10s))
-      << fleet.log_of("fleet-server");
 
   // Silent: lost, and the order is re-queued (no other robot to take it).
   ASSERT_TRUE(eventually(
-      [&] {
-        return fleet.log_of("fleet-server").find("order " + std::to_string(id) + " re-queued") != std::string::npos;
-      },
-      10s))
-      << fleet.log_of("fleet-server");
+      [&] { return s.server_log().find("order " + std::to_string(id) + " re-queued") != std::string::npos; }, 10s))
+      << s.server_log();
 
   // Back with the pallet lifted, still on the first assignment.
-  robot.report(*first, "SEARCHING");
-  robot.report(*first, "PICKING");
-  robot.state.carrying_pallet = true;
-  robot.report(*first, "TO_DROP");
+  s.robot.report(*first, "SEARCHING");
+  s.robot.report(*first, "PICKING");
+  s.robot.state.carrying_pallet = true;
+  s.robot.report(*first, "TO_DROP");
   std::optional<model::OrderAssignment> again;
-  ASSERT_TRUE(robot.keeps_answering_until(
+  ASSERT_TRUE(s.robot.keeps_answering_until(
       [&] {
-        robot.orders.take_data([&](model::OrderAssignment&& a) {
+        s.robot.orders.take_data([&](model::OrderAssignment&& a) {
           if (a.order_id == id && a.robot_id == "fl1" && !a.cancelled && a.update_id > first->update_id) again = a;
         });
         return again.has_value();
       },
       10s))
-      << fleet.log_of("fleet-server");
-  robot.report(*again, "ACCEPTED");
-  robot.report(*again, "TO_DROP");
-  EXPECT_TRUE(robot.keeps_answering_until(
-      [&] {
-        const auto o = client.orders(50ms)[id];
-        return o.phase == "TO_DROP" && o.robot_id == "fl1";
-      },
-      10s))
-      << fleet.log_of("fleet-server");
-  EXPECT_NE(fleet.log_of("fleet-server").find("lifted by fl1 from A1"), std::string::npos)
-      << fleet.log_of("fleet-server");
+      << s.server_log();
+  s.robot.report(*again, "ACCEPTED");
+  s.robot.report(*again, "TO_DROP");
+  EXPECT_TRUE(s.order_reaches(id, "TO_DROP")) << s.server_log();
+  EXPECT_NE(s.server_log().find("lifted by fl1 from A1"), std::string::npos) << s.server_log();
 }
