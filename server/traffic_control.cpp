@@ -92,13 +92,27 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       }
       return;
     }
-    const bool standing = manager_.frozen(id);
+    bool standing = manager_.frozen(id);
     bool enter = !manager_.has_robot(id) || standing;
     if (!enter && request.version > manager_.version(id)) {
       // A new route from where it is. It starts somewhere it does not hold when it drove off the
-      // graph and came back elsewhere (e.g. from a loading area): then it enters afresh there.
+      // graph and came back elsewhere, or replanned beside the road before it set off (an
+      // obstacle toggled): then it enters afresh there. Its old route is void: kept, it would go
+      // on being granted while the robot waits to enter, and hold others up for a route nobody
+      // drives. The robot stands where its body is until it is let in, as one beside the road.
       const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
-      if (result == traffic::SubmitStatus::kInvalid) enter = true;
+      if (result == traffic::SubmitStatus::kInvalid) {
+        const std::uint32_t dropped = manager_.version(id);
+        manager_.remove_robot(id, now_sim);
+        held_bodies_.erase(request.robot_id);
+        if (const auto body = bodies_.find(request.robot_id); body != bodies_.end()) {
+          hold_body(request.robot_id, id, body->second, now_sim);
+        }
+        standing = manager_.frozen(id);
+        enter = true;
+        log_->debug("traffic: {} route {} starts where it does not stand; route {} dropped, it enters afresh",
+                    request.robot_id, request.version, dropped);
+      }
       if (result == traffic::SubmitStatus::kAccepted) trims_.erase(request.robot_id);
     }
     if (enter) {

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <optional>
 #include <regex>
@@ -13,9 +15,13 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "config/fleet_config.hpp"
 #include "dds/qos.hpp"
 #include "fleet_harness.hpp"
+#include "map/road_graph_builder.hpp"
+#include "map/site_map.hpp"
 #include "orders/order.hpp"
+#include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
 using namespace fleet::testing;
@@ -64,22 +70,24 @@ bool reaches_phase(cli::FleetClient& client, std::int64_t id, const std::string&
       timeout);
 }
 
-/// Robot fl1, standing at home H1, played by the test over DDS: the server hears from it only
-/// what the test makes it say, so it can fail a search, or fall silent, at a chosen moment.
+/// A robot (fl1 at home H1 unless told) played by the test over DDS: the server hears from it only
+/// what the test makes it say, so it can fail a search, fall silent, or send a route, at a chosen
+/// moment.
 struct ScriptedRobot {
   dds::Writer<model::RobotState> state_writer;
   dds::Writer<model::OrderReport> report_writer;
   dds::Reader<model::OrderAssignment> orders;
   model::RobotState state;
 
-  explicit ScriptedRobot(cli::FleetClient& client)
+  explicit ScriptedRobot(cli::FleetClient& client, const std::string& robot_id = "fl1",
+                         geometry::Pose2 at = {0.83, 0.82, -1.57})  // home H1
       : state_writer(client.participant(), dds::qos::robot_state()),
         report_writer(client.participant(), dds::qos::latched_state()),
         orders(client.participant(), dds::qos::latched_state()) {
-    state.robot_id = "fl1";
+    state.robot_id = robot_id;
     state.fleet_id = "forklifts";
     state.map_id = "table_a";
-    state.pose = {0.83, 0.82, -1.57};  // home H1
+    state.pose = at;
     state.task_state = "IDLE";
   }
   void publish_state() { state_writer.write(state); }
@@ -95,7 +103,10 @@ struct ScriptedRobot {
   }
   bool registers_with(const FleetHarness& fleet) {
     return keeps_answering_until(
-        [&] { return fleet.log_of("fleet-server").find("robot fl1 (forklifts) registered") != std::string::npos; },
+        [&] {
+          return fleet.log_of("fleet-server").find("robot " + state.robot_id + " (forklifts) registered") !=
+                 std::string::npos;
+        },
         10s);
   }
   std::optional<model::OrderAssignment> assignment_of(std::int64_t order_id) {
@@ -103,7 +114,7 @@ struct ScriptedRobot {
     keeps_answering_until(
         [&] {
           orders.take_data([&](model::OrderAssignment&& a) {
-            if (a.order_id == order_id && a.robot_id == "fl1" && !a.cancelled) assignment = a;
+            if (a.order_id == order_id && a.robot_id == state.robot_id && !a.cancelled) assignment = a;
           });
           return assignment.has_value();
         },
@@ -113,7 +124,7 @@ struct ScriptedRobot {
   void report(const model::OrderAssignment& assignment, const std::string& status, const std::string& reason = {}) {
     model::OrderReport r;
     r.order_id = assignment.order_id;
-    r.robot_id = "fl1";
+    r.robot_id = state.robot_id;
     r.update_id = assignment.update_id;
     r.status = status;
     r.reason = reason;
@@ -407,4 +418,101 @@ TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
   s.robot.report(*again, "TO_DROP");
   EXPECT_TRUE(s.order_reaches(id, "TO_DROP")) << s.server_log();
   EXPECT_NE(s.server_log().find("lifted by fl1 from A1"), std::string::npos) << s.server_log();
+}
+
+TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManager) {
+  // fl1, admitted from home H1, replans before it sets off (an obstacle toggled) onto a route that
+  // starts at another graph point, where fl2 stands: it waits to enter there. Its first route was
+  // kept and granted meanwhile, so others waited on the places of a route nobody drove, and fl1
+  // on them: a wait the manager's cycle detection never saw.
+  const std::string root = FLEET_SOURCE_DIR;
+  const auto config = config::load_fleet_config(root + "/config/fleet.yaml");
+  const auto site = map::load_site_map(root + "/maps/table_a.yaml");
+  traffic::TrafficManager routes(site.graph.graph, traffic::configuration_from(config));
+  const auto& graph = routes.route_graph();
+  const auto point_near = [&](double x, double y) { return map::nearest_point(graph, x, y); };
+  const int h1_entry = point_near(0.83, 0.82);
+  const int h2_entry = point_near(2.17, 0.82);
+  const int a1_stop = point_near(0.975, 0.45);
+  const int a4_stop = point_near(2.55, 2.025);
+  const std::vector<int> first = routes.search().shortest(h1_entry, a1_stop);
+  const std::vector<int> replanned = routes.search().shortest(h2_entry, a1_stop);
+  const std::vector<int> fl2_route = routes.search().shortest(h2_entry, a4_stop);
+  ASSERT_GE(first.size(), 2u);
+  ASSERT_GE(replanned.size(), 2u);
+  ASSERT_GE(fl2_route.size(), 2u);
+  ASSERT_NE(h1_entry, h2_entry);
+
+  ScriptedFleet s(88);
+  s.fleet.start_server();
+  ASSERT_TRUE(s.client.find_server(5s));
+  ScriptedRobot fl2(s.client, "fl2", {2.17, 0.82, -1.57});  // home H2
+  ASSERT_TRUE(s.robot.registers_with(s.fleet)) << s.server_log();
+  ASSERT_TRUE(fl2.registers_with(s.fleet)) << s.server_log();
+  dds::Writer<model::TrafficRequest> requests(s.client.participant(), dds::qos::live_state());
+  dds::Reader<model::TrafficGrant> grants(s.client.participant(), dds::qos::live_state());
+  const auto both_answer = [&] {
+    s.robot.publish_state();
+    fl2.publish_state();
+  };
+  const auto request = [&](const std::string& robot, std::uint32_t version, const std::vector<int>& points) {
+    requests.write({robot, version, points, 0.0, {}, 0.0});
+  };
+  // Waits, both robots answering and `send` repeated as an agent does, for a grant to `robot` that
+  // `wanted` accepts; every grant seen on the way goes to `seen`.
+  const auto grant_to = [&](const std::string& robot, const std::function<void()>& send,
+                            const std::function<bool(const model::TrafficGrant&)>& wanted,
+                            std::vector<model::TrafficGrant>* seen = nullptr, std::chrono::milliseconds timeout = 10s) {
+    bool found = false;
+    eventually(
+        [&] {
+          both_answer();
+          send();
+          grants.take_data([&](model::TrafficGrant&& g) {
+            if (g.robot_id != robot) return;
+            if (wanted(g)) found = true;
+            if (seen) seen->push_back(g);
+          });
+          return found;
+        },
+        timeout);
+    return found;
+  };
+
+  // fl1 is admitted from H1 onto its first route.
+  constexpr std::uint32_t kFirst = 16, kReplanned = 32, kFl2 = 48;
+  ASSERT_TRUE(grant_to(
+      "fl1", [&] { request("fl1", kFirst, first); },
+      [&](const auto& g) { return g.version == kFirst && g.status == "MOVING"; }))
+      << s.server_log();
+  // fl2 drives onto the road at H2's entry.
+  ASSERT_TRUE(grant_to(
+      "fl2", [&] { request("fl2", kFl2, fl2_route); },
+      [&](const auto& g) { return g.version == kFl2 && g.granted_index >= 0; }))
+      << s.server_log();
+  // fl1 replans from there, before it set off: it waits for fl2 beside the road, and from then on
+  // only the replanned route is fl1's: nothing more is granted on the first.
+  std::vector<model::TrafficGrant> seen;
+  grant_to(
+      "fl1", [&] { request("fl1", kReplanned, replanned); }, [](const auto&) { return false; }, &seen, 3s);
+  const auto replanned_from =
+      std::find_if(seen.begin(), seen.end(), [](const auto& g) { return g.version == kReplanned; });
+  const auto on_first = [](const auto& g) { return g.version == kFirst; };
+  ASSERT_FALSE(seen.empty()) << s.server_log();
+  EXPECT_NE(replanned_from, seen.end()) << "fl1 granted only its first route, "
+                                        << std::count_if(seen.begin(), seen.end(), on_first) << " times";
+  EXPECT_EQ(std::count_if(replanned_from, seen.end(), on_first), 0)
+      << "of " << seen.end() - replanned_from << " grants to fl1 since the replanned route";
+  EXPECT_EQ(seen.back().version, kReplanned);
+  EXPECT_EQ(seen.back().status, "WAITING");
+  EXPECT_EQ(seen.back().blocked_by, std::vector<std::string>{"fl2"});
+  // fl2 drives off the road back into its home: fl1 enters on the replanned route.
+  ASSERT_TRUE(grant_to(
+      "fl1",
+      [&] {
+        request("fl2", kFl2 + 16, {});
+        request("fl1", kReplanned, replanned);
+      },
+      [&](const auto& g) { return g.version == kReplanned && g.status == "MOVING"; }))
+      << s.server_log();
 }
