@@ -454,9 +454,12 @@ void TrafficManager::mark(const Robot& robot, int slot, int index) {
   if (d != 0) {
     add_span(c, slot, d, zones_->corridor_index(p), false);
   } else if (c >= 0 && index + 1 == static_cast<int>(robot.route.size()) && !robot.in_siding) {
-    // Standing at the end of its route, it may leave either way: nobody drives up to it head-on.
+    // Standing at the end of its route, it leaves the way the corridor lets it: either way in a
+    // two-way corridor, so nobody drives up to it head-on; only on along a one-way corridor, so
+    // robots behind it queue up to it instead of waiting outside while it works at a loading area.
     // (A robot in a siding stands off the others' routes and leaves only once they have passed.)
-    add_span(c, slot, 0, zones_->corridor_index(p), false);
+    const int leaves = configuration_.one_way ? one_way_.corridor_direction[static_cast<std::size_t>(c)] : 0;
+    add_span(c, slot, leaves, zones_->corridor_index(p), false);
   }
 }
 

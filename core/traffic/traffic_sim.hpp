@@ -37,6 +37,7 @@ struct SimReport {
   double mean_trip_s = 0.0;          ///< from being given a pick to leaving the drop
   std::size_t collisions = 0;        ///< pairs of footprints that start to overlap
   std::size_t deadlocks = 0;         ///< robots with a task not moving for deadlock_timeout
+  std::vector<int> stalled_at;       ///< per deadlock: the route point the robot stood nearest
   double max_wait_s = 0.0;           ///< longest continuous wait the manager reported
   std::size_t invariant_violations = 0;
   std::string first_violation;

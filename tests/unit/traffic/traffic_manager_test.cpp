@@ -517,6 +517,60 @@ TEST(TrafficManager, OppositeDirectionWaitsOutsideTheCorridor) {
   }
 }
 
+/// Robot `id` drives on route `version`, always up to its grant, until it waits or arrives.
+Grant drive_until_it_stops(TrafficManager& m, int id, std::uint32_t version, double& now) {
+  for (int step = 0; step < 1000; ++step, now += 0.1) {
+    const auto r = m.update(now);
+    const Grant* g = grant_of(r, id);
+    if (g == nullptr) return {};
+    if (g->status != GrantStatus::kMoving) return *g;
+    m.report_progress({id, version, g->granted_distance, {}}, now);
+  }
+  return {};
+}
+
+TEST(TrafficManager, InAOneWayCorridorRobotsQueueUpToARobotStandingAtItsGoal) {
+  // Robot 1 stands at the end of its route in the middle of the straight corridor between the
+  // junctions (at work at a loading area). Along a one-way corridor it can only leave ahead, so
+  // robot 2 behind it drives in up to it; in a two-way corridor it may come back, and robot 2
+  // waits outside.
+  const auto g = testing::two_ways_between_junctions();
+  for (const bool one_way : {true, false}) {
+    SCOPED_TRACE(one_way ? "one-way" : "two-way");
+    TrafficConfiguration c;
+    c.one_way = one_way;
+    TrafficManager m(g, c);
+    // The straight corridor's driving direction (either, when both ways are open).
+    const auto& successors = m.route_graph().successors[static_cast<std::size_t>(point_at(g, 0.7, 0.0))];
+    const bool eastwards = std::find(successors.begin(), successors.end(), point_at(g, 0.8, 0.0)) != successors.end();
+    const double ahead = eastwards ? 1.0 : -1.0;
+    const double junction_behind = eastwards ? 0.0 : 1.5;
+    const int tail_behind = point_at(g, junction_behind - 0.6 * ahead, 0.0);
+    const int tail_ahead = point_at(g, junction_behind + 2.1 * ahead, 0.0);
+    const int middle = point_at(g, junction_behind + 0.8 * ahead, 0.0);
+
+    const auto to_middle = m.search().shortest(point_at(g, junction_behind, 0.0), middle);
+    ASSERT_EQ(m.submit_route({1, 1, to_middle}, 0.0), SubmitStatus::kAccepted);
+    double now = 0.0;
+    ASSERT_EQ(drive_until_it_stops(m, 1, 1, now).status, GrantStatus::kArrived);
+
+    const auto through = m.search().shortest(tail_behind, tail_ahead);
+    ASSERT_TRUE(std::find(through.begin(), through.end(), middle) != through.end()) << "robot 2 drives past robot 1";
+    ASSERT_EQ(m.submit_route({2, 1, through}, now), SubmitStatus::kAccepted);
+    const Grant waits = drive_until_it_stops(m, 2, 1, now);
+    ASSERT_EQ(waits.status, GrantStatus::kWaiting);
+    EXPECT_EQ(waits.blocked_by, std::vector<int>{1});
+    const auto& at = g.points[static_cast<std::size_t>(through[static_cast<std::size_t>(waits.granted_index)])];
+    const double into_corridor = (at.x - junction_behind) * ahead;
+    if (one_way) {
+      EXPECT_GT(into_corridor, 0.2) << "robot 2 stands at x = " << at.x;
+    } else {
+      EXPECT_LT(into_corridor, 0.0) << "robot 2 stands at x = " << at.x;
+    }
+    EXPECT_TRUE(m.check_invariant().empty()) << m.check_invariant();
+  }
+}
+
 /// Robot `id` followed every 0.05 s for up to `limit` s, driving 0.2 m/s within its grants,
 /// until the manager re-routes it.
 struct RerouteWatch {
