@@ -740,8 +740,10 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
   const bool lifted = report.carrying_pallet && phase && past_the_lift(*phase);
   if (!lifted || report.robot_id == order.robot_id || orders::is_final(order.status)) return false;
   if (order.phase == OrderPhase::Picking || past_the_lift(order.phase)) return false;
+  // Counted lost still, it is back all the same: its report may come before its first state
+  // (and is not sent again), and was written after it fell silent.
   const auto robot = robots_.find(report.robot_id);
-  if (robot == robots_.end() || !robot->second.registered || robot->second.lost) return false;
+  if (robot == robots_.end() || !robot->second.registered) return false;
   const std::int64_t id = order.id;
   const std::string holder = order.robot_id;
   const double now = clock_.now();

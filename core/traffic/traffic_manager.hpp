@@ -130,7 +130,8 @@ struct UpdateResult {
 ///    `route_graph()` never meet head-on there; the remaining two-way corridors are dead ends,
 ///    bridges and junction interiors.
 /// 2. Corridor direction: a robot may not drive into a corridor towards another robot that drives
-///    the other way in it, or that stands at the end of its route in it (it may leave either way).
+///    the other way in it, or that stands at the end of its route in a two-way corridor (it may
+///    leave either way; in a one-way corridor it leaves ahead, and robots behind queue up to it).
 ///    Head-on meetings inside a two-way corridor therefore do not start: the second robot waits
 ///    outside the junction at the corridor's end.
 /// 3. Fair waiting: a robot stopped longer than `priority_wait` reserves its next stretch (its

@@ -198,11 +198,10 @@ void TrafficSim::advance(Body& body) {
   if (has_task && !body.deadlocked && time_ - body.last_progress >= params_.deadlock_timeout) {
     body.deadlocked = true;
     ++report_.deadlocks;
-    const std::size_t nearer = body.segment + 1 < body.route.size() && body.distance - body.cum[body.segment] >
-                                                                           body.cum[body.segment + 1] - body.distance
-                                   ? body.segment + 1
-                                   : body.segment;
-    report_.stalled_at.push_back(body.route[nearer]);
+    // Where it stalled: the route point it stands nearest.
+    std::size_t at = body.segment;
+    if (at + 1 < body.route.size() && body.cum[at + 1] - body.distance < body.distance - body.cum[at]) ++at;
+    report_.stalled_at.push_back(body.route[at]);
   }
 }
 
