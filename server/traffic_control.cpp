@@ -81,10 +81,8 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // of the lanes, it holds nothing.
       manager_.drop_entry(id);
       status_.erase(request.robot_id);
-      const bool was_on_roads = manager_.remove_robot(id, now_sim);
-      held_bodies_.erase(request.robot_id);  // held anew from where it stands now
-      const auto body = bodies_.find(request.robot_id);
-      if (body != bodies_.end() && hold_body(request.robot_id, id, body->second, now_sim)) {
+      const bool was_on_roads = manager_.has_robot(id);
+      if (stand_where_it_is(request.robot_id, id, now_sim)) {
         log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
                     manager_.held_places(id).size());
       } else if (was_on_roads) {
@@ -103,12 +101,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
       if (result == traffic::SubmitStatus::kInvalid) {
         const std::uint32_t dropped = manager_.version(id);
-        manager_.remove_robot(id, now_sim);
-        held_bodies_.erase(request.robot_id);
-        if (const auto body = bodies_.find(request.robot_id); body != bodies_.end()) {
-          hold_body(request.robot_id, id, body->second, now_sim);
-        }
-        standing = manager_.frozen(id);
+        standing = stand_where_it_is(request.robot_id, id, now_sim);
         enter = true;
         log_->debug("traffic: {} route {} starts where it does not stand; route {} dropped, it enters afresh",
                     request.robot_id, request.version, dropped);
@@ -226,6 +219,13 @@ bool TrafficControl::hold_body(const std::string& robot_id, int id, const geomet
   if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return manager_.frozen(id);
   held_bodies_[robot_id] = body;
   return manager_.hold_body(id, body, now_sim);
+}
+
+bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, double now_sim) {
+  manager_.remove_robot(id, now_sim);
+  held_bodies_.erase(robot_id);  // held anew from where it stands now
+  const auto body = bodies_.find(robot_id);
+  return body != bodies_.end() && hold_body(robot_id, id, body->second, now_sim);
 }
 
 void TrafficControl::update(double now_sim, double now_wall) {

@@ -46,6 +46,9 @@ class TrafficControl {
   /// Holds the places under the robot's body when it has no route (see set_body). True when it
   /// now stands holding places; false when its body is clear of the roads (it is removed).
   bool hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim);
+  /// Drops the robot's route and holds the places under its body instead (none when its body is
+  /// unknown or clear of the roads); true when it holds some.
+  bool stand_where_it_is(const std::string& robot_id, int id, double now_sim);
   /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
   bool stands_at(const std::string& robot_id, int id, int point) const;
   void publish(model::TrafficGrant grant, double now_wall);
