@@ -1,4 +1,4 @@
-// Localization micro-benchmarks (issue 4 target: EKF predict + update <= 5 us). They measure;
+// Localization micro-benchmarks (target: EKF predict + update <= 5 us). They measure;
 // they never assert a time.
 #include <benchmark/benchmark.h>
 
@@ -39,7 +39,7 @@ void BM_EkfPredictUpdate(benchmark::State& state) {
 }
 BENCHMARK(BM_EkfPredictUpdate);
 
-// The same with the seed's filter (no gating, no velocity update).
+// The same with the thesis's filter (no gating, no velocity update).
 void BM_EkfPredictUpdateSeed(benchmark::State& state) {
   Ekf ekf = warmed_up(EkfParams::seed());
   std::mt19937_64 rng(1);

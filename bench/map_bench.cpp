@@ -1,4 +1,4 @@
-// Parse + evaluate + road graph of a large generated OpenDRIVE network (issue 3: a 1.6 MB network
+// Parse + evaluate + road graph of a large generated OpenDRIVE network (target: a 1.6 MB network
 // with hundreds of roads in under 200 ms). The network is written in memory so the benchmark
 // needs no data file: a grid of two-way roads, each chaining line, spiral, arc, spiral and
 // paramPoly3 records, four driving lanes plus sidewalks, two lane sections, joined through
@@ -8,8 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "map/opendrive.hpp"
 #include "map/road_graph_builder.hpp"
@@ -32,14 +32,16 @@ std::string lanes_xml(double length) {
     for (int id = 1; id <= 3; ++id) {
       out += "<lane id=\"" + std::to_string(id) + "\" type=\"" + (id == 3 ? "sidewalk" : "driving") +
              "\" level=\"false\"><link><predecessor id=\"" + std::to_string(id) + "\"/><successor id=\"" +
-             std::to_string(id) + "\"/></link><width sOffset=\"0\" a=\"3.5\" b=\"0\" c=\"0\" d=\"0\"/>"
+             std::to_string(id) +
+             "\"/></link><width sOffset=\"0\" a=\"3.5\" b=\"0\" c=\"0\" d=\"0\"/>"
              "<roadMark sOffset=\"0\" type=\"solid\" weight=\"standard\" color=\"standard\" width=\"0.12\"/></lane>";
     }
     out += "</left><center><lane id=\"0\" type=\"none\" level=\"false\"/></center><right>";
     for (int id = 1; id <= 3; ++id) {
       out += "<lane id=\"-" + std::to_string(id) + "\" type=\"" + (id == 3 ? "sidewalk" : "driving") +
              "\" level=\"false\"><link><predecessor id=\"-" + std::to_string(id) + "\"/><successor id=\"-" +
-             std::to_string(id) + "\"/></link><width sOffset=\"0\" a=\"3.5\" b=\"0\" c=\"0\" d=\"0\"/>"
+             std::to_string(id) +
+             "\"/></link><width sOffset=\"0\" a=\"3.5\" b=\"0\" c=\"0\" d=\"0\"/>"
              "<roadMark sOffset=\"0\" type=\"solid\" weight=\"standard\" color=\"standard\" width=\"0.12\"/></lane>";
     }
     out += "</right></laneSection>";
@@ -92,8 +94,9 @@ std::string plan_view_xml(double x, double y, double hdg, double& length) {
   g.bv = 0.0;
   g.cv = -0.004;
   g.dv = 0.0001;
-  emit("<paramPoly3 aU=\"0\" bU=\"1\" cU=\"0\" dU=\"0\" aV=\"0\" bV=\"0\" cV=\"-0.004\" dV=\"0.0001\" "
-       "pRange=\"arcLength\"/>");
+  emit(
+      "<paramPoly3 aU=\"0\" bU=\"1\" cU=\"0\" dU=\"0\" aV=\"0\" bV=\"0\" cV=\"-0.004\" dV=\"0.0001\" "
+      "pRange=\"arcLength\"/>");
   length = g.s;
   return out + "</planView>";
 }
@@ -131,8 +134,8 @@ std::string make_network(int rows, int cols) {
       const int from_south = 2 * (((i + rows - 1) % rows) * cols + j) + 1;
       junctions += "<junction id=\"" + std::to_string(here) + "\" type=\"direct\">";
       int c = 0;
-      for (const auto& [in, out] : {std::pair{from_west, east}, std::pair{from_south, north}, std::pair{from_west, north},
-                                   std::pair{from_south, east}}) {
+      for (const auto& [in, out] : {std::pair{from_west, east}, std::pair{from_south, north},
+                                    std::pair{from_west, north}, std::pair{from_south, east}}) {
         junctions += "<connection id=\"" + std::to_string(c++) + "\" incomingRoad=\"" + std::to_string(in) +
                      "\" linkedRoad=\"" + std::to_string(out) +
                      "\" contactPoint=\"start\"><laneLink from=\"-1\" to=\"-1\"/><laneLink from=\"-2\" to=\"-2\"/>"

@@ -1,4 +1,4 @@
-// Planning micro-benchmarks (issue 5). Targets, read from the output, never asserted:
+// Planning micro-benchmarks. Targets, read from the output, never asserted:
 //   road A* on table_a median <= 0.1 ms; grid A* on the warehouse at 5 cm median <= 3 ms;
 //   one 360-beam 4 m lidar scan into OctoMap at 2 cm <= 1 ms.
 // Sites come from maps/; FLEET_SOURCE_DIR is the project root.

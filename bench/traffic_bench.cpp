@@ -1,4 +1,4 @@
-// Traffic (issue 8): cost of the manager's cycle with 12 robots on table_a, of precomputing the
+// Traffic: cost of the manager's cycle with 12 robots on table_a, of precomputing the
 // conflict zones, and the evaluation figure: trips completed in 30 simulated minutes by 1, 4, 8
 // and 12 robots on table_a and table_b in the core simulator (counters; no time is asserted).
 // Reads maps/ from the source tree.

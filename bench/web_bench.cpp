@@ -1,4 +1,4 @@
-// The web view under load (issue 9): N synthetic robots published at 20 Hz into a WebBridge,
+// The web view under load: N synthetic robots published at 20 Hz into a WebBridge,
 // streamed to M server-sent-event clients. Measures the CPU time of the web server's threads
 // (the process's CPU time minus the synthetic publisher's), as a share of one core. The clients
 // run in a child process so that their parsing is not counted.
@@ -20,10 +20,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "common/args.hpp"
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
@@ -46,20 +48,19 @@ struct Options {
 };
 
 Options parse(int argc, char** argv) {
+  constexpr long kIntMax = std::numeric_limits<int>::max();
+  constexpr double kAny = std::numeric_limits<double>::max();
+  Args args(argc, argv);
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
-    if (a == "--robots") o.robots = std::stoi(next());
-    else if (a == "--clients") o.clients = std::stoi(next());
-    else if (a == "--seconds") o.seconds = std::stod(next());
-    else if (a == "--hz") o.hz = std::stod(next());
-    else if (a == "--port") o.port = std::stoi(next());
-    else if (a == "--replan-every") o.replan_every = std::stoi(next());
-    else if (a == "--serve") o.serve = true;
-    else if (a == "--client-only") o.client_only = true;
-    else throw std::invalid_argument("unknown argument " + a);
-  }
+  o.robots = static_cast<int>(args.integer("robots", 0, kIntMax).value_or(o.robots));
+  o.clients = static_cast<int>(args.integer("clients", 0, kIntMax).value_or(o.clients));
+  o.seconds = args.number("seconds", -kAny, kAny).value_or(o.seconds);
+  o.hz = args.number("hz", -kAny, kAny).value_or(o.hz);
+  o.port = static_cast<int>(args.integer("port", 0, 65535).value_or(o.port));
+  o.replan_every = static_cast<int>(args.integer("replan-every", 0, kIntMax).value_or(o.replan_every));
+  o.serve = args.flag("serve");
+  o.client_only = args.flag("client-only");
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unknown argument " + rest.front());
   return o;
 }
 
@@ -78,7 +79,9 @@ double process_cpu_s() {
 
 /// "r<i>"; appended rather than `"r" + std::to_string(i)`, which trips GCC 12's -Wrestrict false
 /// positive at -O3.
-std::string robot_name(std::size_t i) { return std::string("r").append(std::to_string(i)); }
+std::string robot_name(std::size_t i) {
+  return std::string("r").append(std::to_string(i));
+}
 
 /// Robots driving round the road graph, each with its next 40 graph points as its path, plus 20
 /// open and 50 ended orders with histories: about what a busy 50-robot site publishes.
@@ -130,7 +133,8 @@ class SyntheticFleet {
       v.health = "alive";
       // Agents publish a path when they plan, not every frame: here each robot replans every
       // 100 frames (5 s at 20 Hz), staggered; `--replan-every 1` gives the worst case.
-      if (paths_[i].empty() || (frame_ + i) % static_cast<std::size_t>(replan_every_) == 0) paths_[i] = path_from(at_[i]);
+      if (paths_[i].empty() || (frame_ + i) % static_cast<std::size_t>(replan_every_) == 0)
+        paths_[i] = path_from(at_[i]);
       v.path = paths_[i];
       s.robots.push_back(std::move(v));
     }
@@ -230,8 +234,8 @@ int main(int argc, char** argv) {
   });
 
   if (o.serve) {
-    std::cerr << "web_bench: serving " << o.robots << " robots at http://127.0.0.1:" << web.port() << "/?token=bench for "
-              << o.seconds << " s\n";
+    std::cerr << "web_bench: serving " << o.robots << " robots at http://127.0.0.1:" << web.port()
+              << "/?token=bench for " << o.seconds << " s\n";
     std::this_thread::sleep_for(std::chrono::duration<double>(o.seconds));
     stop = true;
     publisher.join();
@@ -279,7 +283,8 @@ int main(int argc, char** argv) {
   const double web_cpu = cpu - pub;
   std::printf(
       "{\"robots\": %d, \"clients\": %d, \"hz\": %.0f, \"seconds\": %.1f, \"frames_built_per_s\": %.1f, "
-      "\"web_cpu_percent_of_one_core\": %.2f, \"publisher_cpu_percent\": %.2f, \"stream_bytes_per_client_per_s\": %.0f, "
+      "\"web_cpu_percent_of_one_core\": %.2f, \"publisher_cpu_percent\": %.2f, \"stream_bytes_per_client_per_s\": "
+      "%.0f, "
       "\"events_per_client_per_s\": %.1f}\n",
       o.robots, o.clients, o.hz, wall, static_cast<double>(frames) / wall, 100.0 * web_cpu / wall, 100.0 * pub / wall,
       o.clients > 0 ? static_cast<double>(bytes) / (o.seconds + warmup) / o.clients : 0.0,

@@ -14,23 +14,23 @@ using Kind = FlagSpec::Kind;
 using Group = CommandSpec::Group;
 
 FlagSpec value(std::string name, std::string hint, bool required = false) {
-  return {std::move(name), Kind::Value, std::move(hint), {}, required};
+  return {std::move(name), Kind::kValue, std::move(hint), {}, required};
 }
 FlagSpec file(std::string name, std::string hint, bool required = false) {
-  return {std::move(name), Kind::File, std::move(hint), {}, required};
+  return {std::move(name), Kind::kFile, std::move(hint), {}, required};
 }
 FlagSpec choice(std::string name, std::vector<std::string> choices, std::string hint = "") {
-  return {std::move(name), Kind::Choice, std::move(hint), std::move(choices), false};
+  return {std::move(name), Kind::kChoice, std::move(hint), std::move(choices), false};
 }
 FlagSpec on_off(std::string name) {
-  return {std::move(name), Kind::Switch, "", {}, false};
+  return {std::move(name), Kind::kSwitch, "", {}, false};
 }
 
 const std::vector<std::string> kOrderStates{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
 
 std::vector<CommandSpec> make_table() {
   return {
-      {Group::Server,
+      {Group::kServer,
        "order",
        "add",
        "",
@@ -39,16 +39,16 @@ std::vector<CommandSpec> make_table() {
         value("--fleet", "F"), on_off("--wait")},
        "create a transport order, print its id; --wait follows it to its end\n"
        "(exit 0 DONE, 1 FAILED or CANCELLED)"},
-      {Group::Server,
+      {Group::kServer,
        "order",
        "list",
        "",
        false,
        {choice("--state", kOrderStates, "S")},
        "the orders the server knows"},
-      {Group::Server, "order", "show", "ID", false, {}, "one order with its history"},
-      {Group::Server, "order", "cancel", "ID", false, {}, "cancel an order (exit 1 when it already ended)"},
-      {Group::Server,
+      {Group::kServer, "order", "show", "ID", false, {}, "one order with its history"},
+      {Group::kServer, "order", "cancel", "ID", false, {}, "cancel an order (exit 1 when it already ended)"},
+      {Group::kServer,
        "order",
        "watch",
        "[ID]",
@@ -58,7 +58,7 @@ std::vector<CommandSpec> make_table() {
        "redrawn in place on a terminal, one line per change when piped (--json: JSON\n"
        "lines); with ID it ends with the order (exit 0 DONE, 1 FAILED or CANCELLED),\n"
        "without ID at --timeout or Ctrl-C"},
-      {Group::Server,
+      {Group::kServer,
        "inject",
        "",
        "",
@@ -68,13 +68,13 @@ std::vector<CommandSpec> make_table() {
        "random valid orders (--count M, --rate N/min, default 60/min; --seed S) or the\n"
        "rows of a CSV file (from,to,priority,delay_s; checked whole before any is sent);\n"
        "prints one line per order; --wait follows them all and prints a summary"},
-      {Group::Server, "obstacle", "list", "", false, {}, "the designated static obstacles, on or off"},
-      {Group::Server, "obstacle", "on", "ID", false, {}, "switch an obstacle on (robots avoid it)"},
-      {Group::Server, "obstacle", "off", "ID", false, {}, "switch an obstacle off"},
-      {Group::Server, "pause", "", "ROBOT", false, {}, "stop a robot where it is (PAUSED)"},
-      {Group::Server, "resume", "", "ROBOT", false, {}, "let a paused robot go on"},
-      {Group::Server, "map", "list", "", false, {}, "the maps the server knows, and the one it serves"},
-      {Group::Server,
+      {Group::kServer, "obstacle", "list", "", false, {}, "the designated static obstacles, on or off"},
+      {Group::kServer, "obstacle", "on", "ID", false, {}, "switch an obstacle on (robots avoid it)"},
+      {Group::kServer, "obstacle", "off", "ID", false, {}, "switch an obstacle off"},
+      {Group::kServer, "pause", "", "ROBOT", false, {}, "stop a robot where it is (PAUSED)"},
+      {Group::kServer, "resume", "", "ROBOT", false, {}, "let a paused robot go on"},
+      {Group::kServer, "map", "list", "", false, {}, "the maps the server knows, and the one it serves"},
+      {Group::kServer,
        "map",
        "set",
        "MAP",
@@ -82,28 +82,28 @@ std::vector<CommandSpec> make_table() {
        {value("--robot", "R")},
        "switch every robot (or one, when traffic is off) to another map of the site;\n"
        "agents replan on it"},
-      {Group::Server,
+      {Group::kServer,
        "robots",
        "",
        "",
        false,
        {},
        "table of robots: fleet, state, pose, order, localization score, health"},
-      {Group::Server,
+      {Group::kServer,
        "stats",
        "",
        "",
        false,
        {},
        "orders by state, done per hour, mean and p95 order time, robot utilisation"},
-      {Group::Server,
+      {Group::kServer,
        "routing-age",
        "",
        "",
        false,
        {value("--seconds", "S=10")},
        "a pose's age on arrival, straight from the robot vs routed by the server"},
-      {Group::StartsFleet,
+      {Group::kStartsFleet,
        "demo",
        "",
        "",
@@ -113,7 +113,7 @@ std::vector<CommandSpec> make_table() {
        "one fleet-server and N fleet-agents with automatic orders; Ctrl-C or\n"
        "--duration (wall seconds) stops them all and prints a summary; the web\n"
        "view's address (with its token) is printed at start"},
-      {Group::StartsFleet,
+      {Group::kStartsFleet,
        "soak",
        "",
        "",
@@ -127,21 +127,21 @@ std::vector<CommandSpec> make_table() {
        "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"
        "--seed; exit 0 only when nothing was lost, duplicated, collided or deadlocked;\n"
        "--verbose: debug logs of every process in the run directory"},
-      {Group::Offline,
+      {Group::kOffline,
        "map",
        "check",
        "SITE.yaml ...",
        true,
        {},
        "validate sites: roads, graph, loading areas and their reachability"},
-      {Group::Offline,
+      {Group::kOffline,
        "map",
        "sample",
        "FILE.xodr",
        true,
        {value("--step", "M")},
        "CSV road_id,s,x,y,hdg along every reference line"},
-      {Group::Offline,
+      {Group::kOffline,
        "map",
        "render",
        "SITE.yaml",
@@ -149,7 +149,7 @@ std::vector<CommandSpec> make_table() {
        {file("-o", "FILE.svg", true), on_off("--no-points"), file("--tracks", "TRACKS.csv"), value("--since", "S")},
        "an SVG picture of a site; --tracks draws the robots' tracks a soak wrote\n"
        "                       beside a deadlock or collision report (from --since S sim seconds on)"},
-      {Group::Offline,
+      {Group::kOffline,
        "loc-eval",
        "",
        "",
@@ -157,7 +157,7 @@ std::vector<CommandSpec> make_table() {
        {choice("--trajectory", {"square", "figure8", "table_a_loop"}), value("--duration", "S"), value("--seed", "N"),
         value("--nlos", "F"), file("--plot", "FILE.svg")},
        "localization on core/ alone: raw UWB vs EKF errors"},
-      {Group::Offline,
+      {Group::kOffline,
        "plan-eval",
        "",
        "",
@@ -165,7 +165,7 @@ std::vector<CommandSpec> make_table() {
        {value("--site", "NAME", true), value("--queries", "N"), value("--seed", "S"), value("--resolution", "M"),
         value("--optimal-budget-ms", "MS"), on_off("--no-ompl")},
        "every planner on the same random queries: time, success, length ratio"},
-      {Group::Offline,
+      {Group::kOffline,
        "ctrl-eval",
        "",
        "",
@@ -173,14 +173,14 @@ std::vector<CommandSpec> make_table() {
        {value("--seed", "S"), value("--runs", "N"), value("--site", "NAME"), value("--speed", "V"),
         choice("--follower", {"seed", "regulated"}), on_off("--gyro-cal"), file("--plot", "F.svg")},
        "path tracking, picks and drops on core/ alone"},
-      {Group::Offline,
+      {Group::kOffline,
        "config",
        "keys",
        "",
        false,
-       {},
-       "every configuration key with default, unit, range and meaning"},
-      {Group::Offline,
+       {on_off("--markdown")},
+       "every configuration key with default, unit, range and meaning; --markdown: docs/configuration.md"},
+      {Group::kOffline,
        "completion",
        "bash",
        "",
@@ -199,9 +199,9 @@ std::string flag_usage(const FlagSpec& flag) {
   // Appended piece by piece: GCC 12 warns wrongly (-Wrestrict) about "literal" + std::string.
   std::string text = flag.required ? "" : "[";
   text += flag.name;
-  if (flag.kind != Kind::Switch) {
+  if (flag.kind != Kind::kSwitch) {
     text += ' ';
-    text += flag.kind == Kind::Choice && flag.hint.empty() ? model::join(flag.choices, "|") : flag.hint;
+    text += flag.kind == Kind::kChoice && flag.hint.empty() ? model::join(flag.choices, "|") : flag.hint;
   }
   if (!flag.required) text += ']';
   return text;
@@ -217,11 +217,11 @@ std::string words(const std::vector<std::string>& items) {
 
 const char* group_title(Group group) {
   switch (group) {
-    case Group::Server:
+    case Group::kServer:
       return "commands (need a running fleet-server):";
-    case Group::StartsFleet:
+    case Group::kStartsFleet:
       return "commands that start a fleet:";
-    case Group::Offline:
+    case Group::kOffline:
       return "offline tools (core libraries only, no DDS):";
   }
   return "";
@@ -229,13 +229,13 @@ const char* group_title(Group group) {
 
 std::string kind_name(Kind kind) {
   switch (kind) {
-    case Kind::Switch:
+    case Kind::kSwitch:
       return "switch";
-    case Kind::Value:
+    case Kind::kValue:
       return "value";
-    case Kind::File:
+    case Kind::kFile:
       return "file";
-    case Kind::Choice:
+    case Kind::kChoice:
       return "choice";
   }
   return "";
@@ -284,7 +284,7 @@ std::string help_text() {
   out << "usage: fleetctl [global flags] COMMAND [flags]\n\n"
          "Drive a Fleet from the terminal or from scripts. fleetctl is a DDS participant of its own.\n"
          "Every command takes --json.\n";
-  for (const Group group : {Group::Server, Group::StartsFleet, Group::Offline}) {
+  for (const Group group : {Group::kServer, Group::kStartsFleet, Group::kOffline}) {
     out << "\n" << group_title(group) << "\n";
     for (const auto& spec : command_table()) {
       if (spec.group != group) continue;
@@ -327,13 +327,13 @@ std::string bash_completion_script() {
   std::vector<std::string> global;
   for (const auto& flag : global_flags()) {
     global.push_back(flag.name);
-    if (flag.kind != Kind::Switch) valued.insert(flag.name);
+    if (flag.kind != Kind::kSwitch) valued.insert(flag.name);
   }
   std::vector<std::pair<std::string, const FlagSpec*>> value_completions;
   const auto note_flag = [&](const FlagSpec& flag) {
-    if (flag.kind == Kind::Switch) return;
+    if (flag.kind == Kind::kSwitch) return;
     valued.insert(flag.name);
-    if (flag.kind == Kind::File || flag.kind == Kind::Choice) {
+    if (flag.kind == Kind::kFile || flag.kind == Kind::kChoice) {
       const bool seen = std::any_of(value_completions.begin(), value_completions.end(),
                                     [&](const auto& entry) { return entry.first == flag.name; });
       if (!seen) value_completions.emplace_back(flag.name, &flag);
@@ -369,7 +369,7 @@ std::string bash_completion_script() {
        "  case \"$prev\" in\n";
   for (const auto& [name, flag] : value_completions) {
     s << "    " << name << ") ";
-    if (flag->kind == Kind::File) {
+    if (flag->kind == Kind::kFile) {
       s << "compopt -o filenames 2>/dev/null; mapfile -t COMPREPLY < <(compgen -f -- \"$cur\"); return ;;\n";
     } else {
       s << "mapfile -t COMPREPLY < <(compgen -W " << words(flag->choices) << " -- \"$cur\"); return ;;\n";

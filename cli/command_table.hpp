@@ -8,11 +8,11 @@ namespace fleet::cli {
 
 /// One flag of a command, as --help shows it and the shell completes it.
 struct FlagSpec {
-  enum class Kind { Switch, Value, File, Choice };
+  enum class Kind { kSwitch, kValue, kFile, kChoice };
   std::string name;  ///< with its dashes: "--from", "-o"
-  Kind kind = Kind::Switch;
+  Kind kind = Kind::kSwitch;
   std::string hint;                  ///< what the value is: "AREA", "N/min"; empty for a switch
-  std::vector<std::string> choices;  ///< for Kind::Choice; completed and shown as a|b|c
+  std::vector<std::string> choices;  ///< for Kind::kChoice; completed and shown as a|b|c
   bool required = false;
 };
 
@@ -20,8 +20,8 @@ struct FlagSpec {
 /// arguments and flags. --help and the shell completion are both generated from the table of
 /// these, so neither can forget a command.
 struct CommandSpec {
-  enum class Group { Server, StartsFleet, Offline };
-  Group group = Group::Server;
+  enum class Group { kServer, kStartsFleet, kOffline };
+  Group group = Group::kServer;
   std::string command;            ///< "order"
   std::string subcommand;         ///< "add"; empty when the command has none
   std::string positionals;        ///< "ID", "[ID]", "SITE.yaml ..."; empty for none

@@ -1,11 +1,10 @@
-// fleetctl ctrl-eval: argument parsing and printing only; the evaluation is control::run_ctrl_eval.
+// fleetctl ctrl-eval: argument parsing and printing only; the evaluation is eval::run_ctrl_eval.
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <ostream>
@@ -14,7 +13,7 @@
 
 #include "cli/commands.hpp"
 #include "common/args.hpp"
-#include "control/ctrl_eval.hpp"
+#include "eval/ctrl_eval.hpp"
 #include "map/site.hpp"
 
 namespace fleet::cli {
@@ -25,7 +24,7 @@ constexpr const char* kUsage =
     "usage: fleetctl ctrl-eval [--seed S] [--runs N] [--site NAME] [--speed M_PER_S]\n"
     "                          [--follower seed|regulated] [--gyro-cal]\n"
     "                          [--plot FILE.svg] [--json]\n"
-    "Path tracking on the site's standard paths (perfect localization and EKF, the seed's follower\n"
+    "Path tracking on the site's standard paths (perfect localization and EKF, the Forklift thesis's follower\n"
     "and the regulated one), then N pick-and-drop orders with sensor noise. Exit 0 when the run\n"
     "completes, 2 on bad flags or an unusable site. --gyro-cal subtracts a gyro bias estimated at\n"
     "standstill before the EKF (not done by the agent; shows what it would bring).\n";
@@ -39,7 +38,7 @@ std::string cm(double metres) {
 }  // namespace
 
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
-  control::CtrlEvalParams params;
+  eval::CtrlEvalParams params;
   bool json = args.json;
   std::string site = "table_a";
   std::string plot_file;
@@ -52,8 +51,7 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
     json = a.flag("json") || json;
     params.gyro_standstill_calibration = a.flag("gyro-cal");
     if (const auto v = a.value("plot")) plot_file = *v;
-    if (const auto v = a.integer("seed", 0, std::numeric_limits<long>::max()))
-      params.seed = static_cast<std::uint64_t>(*v);
+    if (const auto v = a.u64("seed")) params.seed = *v;
     if (const auto v = a.integer("runs", 0, 100000)) params.runs = static_cast<int>(*v);
     if (const auto v = a.number("speed", 0.01, 1.0)) params.speed = *v;
     if (const auto v = a.value("site")) site = *v;
@@ -73,9 +71,9 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
     return kExitBadInput;
   }
 
-  control::CtrlEvalResult r;
+  eval::CtrlEvalResult r;
   try {
-    r = control::run_ctrl_eval(params);
+    r = eval::run_ctrl_eval(params);
   } catch (const map::MapError& e) {
     err << "ctrl-eval: " << e.what() << '\n';
     return kExitBadInput;
@@ -136,7 +134,7 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
 
   if (!plot_file.empty()) {
     std::ofstream f(plot_file);
-    f << control::ctrl_eval_svg(r);
+    f << eval::ctrl_eval_svg(r);
     if (!f) {
       err << "ctrl-eval: cannot write " << plot_file << '\n';
       return kExitBadInput;

@@ -57,7 +57,7 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
                    std::to_string(robots.size()) + " robots; choose 1 .. " + std::to_string(robots.size()));
   }
   for (int i = 0; i < options_.agents; ++i) robot_ids_.push_back(robots[static_cast<std::size_t>(i)].second->id);
-  run_dir_ = project_root() + "/var/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
+  run_dir_ = state_dir() + "/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir_);
 }
 

@@ -19,7 +19,7 @@
 namespace fleet::cli {
 
 struct RunOptions {
-  std::string kind = "demo";  ///< names the run folder: var/runs/<kind>-<time>
+  std::string kind = "demo";  ///< names the run folder: <state folder>/runs/<kind>-<time>
   int agents = 4;
   std::string site;
   double duration_s = 0.0;  ///< wall seconds; 0 runs until Ctrl-C

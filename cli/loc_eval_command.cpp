@@ -1,6 +1,4 @@
 // fleetctl loc-eval: argument parsing and printing only; the evaluation is eval::run_loc_eval.
-#include <charconv>
-#include <cmath>
 #include <exception>
 #include <fstream>
 #include <iomanip>
@@ -9,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "common/args.hpp"
 #include "eval/loc_eval.hpp"
 #include "map/site.hpp"
 
@@ -19,22 +18,6 @@ namespace {
 constexpr const char* kUsage =
     "usage: fleetctl loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N]\n"
     "                         [--nlos FRACTION] [--plot FILE.svg] [--json]\n";
-
-bool parse_double(const std::string& text, double& out) {
-  try {
-    std::size_t used = 0;
-    out = std::stod(text, &used);
-    return used == text.size() && std::isfinite(out);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-bool parse_u64(const std::string& text, std::uint64_t& out) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && !text.empty();
-}
 
 nlohmann::json stats_json(const eval::ErrorStats& s) {
   return {{"pos_rmse_m", s.pos_rmse},
@@ -82,28 +65,26 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
       return kExitBadInput;
     }
     const std::string& value = a[++i];
+    const auto bad = [&](const char* what) {
+      err << "loc-eval: " << flag << " '" << value << "' " << what << "\n";
+      return kExitBadInput;
+    };
     if (flag == "--trajectory") {
       const auto t = eval::parse_trajectory(value);
-      if (!t) {
-        err << "loc-eval: --trajectory '" << value << "' is not one of square, figure8, table_a_loop\n";
-        return kExitBadInput;
-      }
+      if (!t) return bad("is not one of square, figure8, table_a_loop");
       params.trajectory = *t;
     } else if (flag == "--duration") {
-      if (!parse_double(value, params.duration) || params.duration <= 0.0 || params.duration > 36000.0) {
-        err << "loc-eval: --duration '" << value << "' must be a number of seconds in (0, 36000]\n";
-        return kExitBadInput;
-      }
+      const auto duration = parse_finite(value);
+      if (!duration || *duration <= 0.0 || *duration > 36000.0) return bad("must be a number of seconds in (0, 36000]");
+      params.duration = *duration;
     } else if (flag == "--seed") {
-      if (!parse_u64(value, params.seed)) {
-        err << "loc-eval: --seed '" << value << "' must be a non-negative integer\n";
-        return kExitBadInput;
-      }
+      const auto seed = parse_u64(value);
+      if (!seed) return bad("must be a non-negative integer");
+      params.seed = *seed;
     } else if (flag == "--nlos") {
-      if (!parse_double(value, params.nlos_fraction) || params.nlos_fraction < 0.0 || params.nlos_fraction > 1.0) {
-        err << "loc-eval: --nlos '" << value << "' must be a fraction in [0, 1]\n";
-        return kExitBadInput;
-      }
+      const auto fraction = parse_finite(value);
+      if (!fraction || *fraction < 0.0 || *fraction > 1.0) return bad("must be a fraction in [0, 1]");
+      params.nlos_fraction = *fraction;
     } else if (flag == "--plot") {
       plot_file = value;
     }

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "app/process.hpp"
 #include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/fleet_run.hpp"
@@ -29,11 +30,11 @@ nlohmann::json schema_json() {
                          {"default", key.default_value},
                          {"unit", key.unit},
                          {"description", key.description}};
-    if (key.type == fleet::config::ValueType::Double || key.type == fleet::config::ValueType::Int) {
+    if (key.type == fleet::config::ValueType::kDouble || key.type == fleet::config::ValueType::kInt) {
       entry["min"] = key.min;
       entry["max"] = key.max;
     }
-    if (key.type == fleet::config::ValueType::Choice) entry["choices"] = key.choices;
+    if (key.type == fleet::config::ValueType::kChoice) entry["choices"] = key.choices;
     keys.push_back(entry);
   }
   return keys;
@@ -65,13 +66,23 @@ int main(int argc, char** argv) {
 
     // Offline tools need no configuration or DDS (`map list` asks the server).
     // map list and map set talk to the server; map check, sample and render read files.
-    const bool map_list = name == "map" && !command.args.empty() && (command.args[0] == "list" || command.args[0] == "set");
+    const bool map_list =
+        name == "map" && !command.args.empty() && (command.args[0] == "list" || command.args[0] == "set");
     if (name == "map" && !map_list) return map_command(command, out, err);
     if (name == "loc-eval") return loc_eval_command(command, out, err);
     if (name == "plan-eval") return plan_eval_command(command, out, err);
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
     if (name == "config") {
-      if (command.args.size() == 1 && command.args[0] == "keys") {
+      if (!command.args.empty() && command.args[0] == "keys") {
+        Args keys_args(std::vector<std::string>(command.args.begin() + 1, command.args.end()));
+        const bool markdown = keys_args.flag("markdown");
+        if (const auto extra = keys_args.positionals(); !extra.empty()) {
+          throw ArgError("config keys takes no argument, got '" + extra.front() + "'");
+        }
+        if (markdown) {
+          out << config::configuration_page();
+          return kExitOk;
+        }
         out << (command.json ? schema_json().dump() + "\n" : config::schema_markdown());
         return kExitOk;
       }
@@ -114,11 +125,7 @@ int main(int argc, char** argv) {
     if (name == "demo") return demo_command(command, out, err, connection.domain);
     if (name == "soak") return soak_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
-  } catch (const InputError& e) {
-    err << "fleetctl: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    err << "fleetctl: " << e.what() << "\n";
-    return kExitFailed;
+  } catch (...) {
+    return app::exit_code_of_current_exception("fleetctl", err, false);
   }
 }

@@ -81,14 +81,12 @@ int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::o
   double step = 1.0;
   for (std::size_t i = 0; i < rest.size(); ++i) {
     if (rest[i] == "--step" && i + 1 < rest.size()) {
-      try {
-        std::size_t used = 0;
-        step = std::stod(rest[++i], &used);
-        if (used != rest[i].size()) throw std::invalid_argument(rest[i]);
-      } catch (const std::exception&) {
+      const auto value = parse_finite(rest[++i]);
+      if (!value) {
         err << "map sample: --step '" << rest[i] << "' is not a number\n";
         return kExitBadInput;
       }
+      step = *value;
     } else if (file.empty() && !rest[i].starts_with("--")) {
       file = rest[i];
     } else {

@@ -1,8 +1,6 @@
 #include "cli/order_injection.hpp"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <istream>
 
 #include "common/args.hpp"
@@ -113,14 +111,13 @@ double parse_rate(const std::string& text) {
   const auto slash = text.find('/');
   const std::string number = text.substr(0, slash);
   const std::string unit = slash == std::string::npos ? "" : text.substr(slash + 1);
-  double count = 0.0;
-  const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), count);
-  const bool is_number = ec == std::errc() && ptr == number.data() + number.size() && std::isfinite(count);
+  const auto parsed = parse_finite(number);
+  const double count = parsed.value_or(0.0);
   double per_second = 0.0;
   if (unit == "s") per_second = 1.0;
   if (unit == "min") per_second = 1.0 / 60.0;
   if (unit == "h") per_second = 1.0 / 3600.0;
-  if (!is_number || per_second == 0.0) {
+  if (!parsed || per_second == 0.0) {
     throw ArgError("flag --rate: '" + text + "' is not a rate; write N/min (or N/s, N/h), for example 30/min");
   }
   if (count <= 0.0) throw ArgError("flag --rate: " + text + " is not above 0");
@@ -159,20 +156,20 @@ OrdersFile parse_orders_csv(std::istream& in) {
       problem("from and to are the same area ('" + row.pick_area + "')");
       ok = false;
     }
-    long priority = 0;
     const auto& p = fields[2];
-    const auto [p_end, p_error] = std::from_chars(p.data(), p.data() + p.size(), priority);
-    if (p.empty() || p_error != std::errc() || p_end != p.data() + p.size()) {
+    const auto priority = parse_long(p);
+    if (!priority) {
       problem("priority '" + p + "' is not an integer");
       ok = false;
-    } else if (priority < -1000 || priority > 1000) {
+    } else if (*priority < -1000 || *priority > 1000) {
       problem("priority " + p + " is outside -1000 .. 1000");
       ok = false;
     }
-    row.priority = static_cast<int>(priority);
+    row.priority = static_cast<int>(priority.value_or(0));
     const auto& d = fields[3];
-    const auto [d_end, d_error] = std::from_chars(d.data(), d.data() + d.size(), row.delay_s);
-    if (d.empty() || d_error != std::errc() || d_end != d.data() + d.size() || !std::isfinite(row.delay_s)) {
+    const auto delay = parse_finite(d);
+    row.delay_s = delay.value_or(0.0);
+    if (!delay) {
       problem("delay_s '" + d + "' is not a number of seconds");
       ok = false;
     } else if (row.delay_s < 0.0) {

@@ -1,6 +1,4 @@
 // fleetctl plan-eval: argument parsing and printing only; the evaluation is planning::run_plan_eval.
-#include <charconv>
-#include <cmath>
 #include <exception>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -8,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "common/args.hpp"
 #include "common/errors.hpp"
 #include "map/site.hpp"
 #include "map/site_map.hpp"
@@ -23,22 +22,6 @@ constexpr const char* kUsage =
     "Runs road_astar, grid_astar, ompl_rrtconnect and ompl_bitstar on the same random start/goal\n"
     "pairs of maps/NAME.yaml and prints per planner the median and p95 time, the success rate and\n"
     "the mean path length relative to the shortest path any planner found for each query.\n";
-
-bool parse_double(const std::string& text, double& out) {
-  try {
-    std::size_t used = 0;
-    out = std::stod(text, &used);
-    return used == text.size() && std::isfinite(out);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-bool parse_u64(const std::string& text, std::uint64_t& out) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && !text.empty();
-}
 
 }  // namespace
 
@@ -72,34 +55,28 @@ int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       return kExitBadInput;
     }
     const std::string& value = a[++i];
-    std::uint64_t u = 0;
-    double d = 0.0;
+    const auto bad = [&](const char* what) {
+      err << "plan-eval: " << flag << " '" << value << "' " << what << "\n";
+      return kExitBadInput;
+    };
     if (flag == "--site") {
       site_name = value;
     } else if (flag == "--queries") {
-      if (!parse_u64(value, u) || u == 0 || u > 1000000) {
-        err << "plan-eval: --queries '" << value << "' is not a count in [1, 1000000]\n";
-        return kExitBadInput;
-      }
-      config.queries = static_cast<int>(u);
+      const auto queries = parse_u64(value);
+      if (!queries || *queries == 0 || *queries > 1000000) return bad("is not a count in [1, 1000000]");
+      config.queries = static_cast<int>(*queries);
     } else if (flag == "--seed") {
-      if (!parse_u64(value, u)) {
-        err << "plan-eval: --seed '" << value << "' is not a non-negative integer\n";
-        return kExitBadInput;
-      }
-      config.seed = u;
+      const auto seed = parse_u64(value);
+      if (!seed) return bad("is not a non-negative integer");
+      config.seed = *seed;
     } else if (flag == "--resolution") {
-      if (!parse_double(value, d) || d < 0.005 || d > 1.0) {
-        err << "plan-eval: --resolution '" << value << "' is not a cell size in [0.005, 1] m\n";
-        return kExitBadInput;
-      }
-      config.resolution = d;
+      const auto resolution = parse_finite(value);
+      if (!resolution || *resolution < 0.005 || *resolution > 1.0) return bad("is not a cell size in [0.005, 1] m");
+      config.resolution = *resolution;
     } else {
-      if (!parse_double(value, d) || d <= 0.0 || d > 60000.0) {
-        err << "plan-eval: --optimal-budget-ms '" << value << "' is not in (0, 60000]\n";
-        return kExitBadInput;
-      }
-      config.optimal_budget_ms = d;
+      const auto budget = parse_finite(value);
+      if (!budget || *budget <= 0.0 || *budget > 60000.0) return bad("is not in (0, 60000]");
+      config.optimal_budget_ms = *budget;
     }
   }
   if (site_name.empty()) {

@@ -6,7 +6,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -15,22 +14,9 @@
 
 namespace fleet::cli {
 
-namespace {
-std::atomic<bool> g_stop{false};
-void on_stop_signal(int) { g_stop = true; }
-}  // namespace
-
-void install_stop_handlers() {
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+ProcessGroup::~ProcessGroup() {
+  stop_all(2.0);
 }
-
-bool stop_requested() { return g_stop.load(); }
-
-ProcessGroup::~ProcessGroup() { stop_all(2.0); }
 
 std::size_t ProcessGroup::start(const std::string& name, const std::vector<std::string>& argv,
                                 const std::string& log_file) {

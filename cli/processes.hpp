@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "app/process.hpp"
+
 namespace fleet::cli {
 
 /// Child processes started by fleetctl (demo, soak). Each child is told by the kernel to die
@@ -50,9 +52,9 @@ class ProcessGroup {
   std::vector<Child> children_;
 };
 
-/// Installs SIGINT and SIGTERM handlers that set a flag instead of killing fleetctl, so it can
-/// stop its children and print its summary.
-void install_stop_handlers();
-bool stop_requested();
+/// SIGINT and SIGTERM set a flag instead of killing fleetctl, so it can stop its children and
+/// print its summary: the daemons' handlers (app/process.hpp).
+using app::install_stop_handlers;
+using app::stop_requested;
 
 }  // namespace fleet::cli

@@ -1,6 +1,6 @@
 // `fleetctl soak`: the demo's fleet (real server and agents as processes, automatic orders) under
 // ground-truth watch — collisions, deadlocks, lost and duplicated orders — with faults injected
-// on a seeded schedule (issues 8 and 11).
+// on a seeded schedule.
 
 #include <signal.h>
 #include <unistd.h>
@@ -35,7 +35,7 @@ constexpr double kKillPauseWall = 2.0;     // a killed agent stays down this lon
 constexpr double kStallWall = 3.0;         // a stopped agent stays frozen this long
 constexpr double kServerPauseWall = 1.0;   // a killed server stays down this long
 // An obstacle switched on stays on this long: shorter than the 60 s deadlock window, so a robot
-// whose every way it closes waits it out (seed 000, Fig. 5.11) without counting as deadlocked.
+// whose every way it closes waits it out [Forklift thesis, Fig. 5.11] without counting as deadlocked.
 constexpr double kObstacleOnSim = 45.0;
 
 /// Resident memory (kB) and CPU time (s) of a process, from /proc; nothing once it is gone.

@@ -13,6 +13,9 @@ option(FLEET_WARNINGS_AS_ERRORS "Treat compiler warnings as errors (CI turns thi
 option(FLEET_BUILD_TESTS "Build unit and integration tests" ON)
 option(FLEET_BUILD_BENCH "Build benchmarks" ON)
 option(FLEET_BUILD_FUZZ "Build libFuzzer targets (needs clang)" ON)
+# Third-party OpenDRIVE networks for the parser tests; $FLEET_TEST_DATA overrides it at test time.
+set(FLEET_DEFAULT_TEST_DATA "${PROJECT_SOURCE_DIR}/../shared/data/opendrive" CACHE PATH
+    "Folder of third-party OpenDRIVE files read by the parser tests (skipped when absent)")
 
 set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin)
 set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/lib)
@@ -39,8 +42,9 @@ function(fleet_unit_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main fleet_warnings)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
   target_compile_definitions(${name} PRIVATE
     FLEET_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    FLEET_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared")
+    FLEET_DEFAULT_TEST_DATA="${FLEET_DEFAULT_TEST_DATA}")
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
 endfunction()

@@ -47,12 +47,12 @@ model::OrderInfo info_of(const Order& o) {
 
 /// Searching or picking: the robot stands at the pick area, the pallet perhaps on its way up.
 bool at_pick_area(OrderPhase phase) {
-  return phase == OrderPhase::Searching || phase == OrderPhase::Picking;
+  return phase == OrderPhase::kSearching || phase == OrderPhase::kPicking;
 }
 
 /// Driving to the drop or putting the pallet down: it was lifted.
 bool past_the_lift(OrderPhase phase) {
-  return phase == OrderPhase::ToDrop || phase == OrderPhase::Dropping;
+  return phase == OrderPhase::kToDrop || phase == OrderPhase::kDropping;
 }
 }  // namespace
 
@@ -91,7 +91,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
     traffic_ = std::make_unique<TrafficControl>(options_.site_map->graph.graph,
                                                 traffic::configuration_from(options_.config), participant_, log_);
   } else {
-    log_->info("traffic control off: robots avoid each other only locally (the seed's behaviour)");
+    log_->info("traffic control off: robots avoid each other only locally (the Forklift thesis's behaviour)");
   }
   if (options_.maps.empty()) options_.maps = {options_.site.name};
   log_->info("maps of site '{}': {}", options_.site.name, model::join(options_.maps));
@@ -157,7 +157,7 @@ void FleetServer::restore_orders() {
       continue;
     }
     ++open;
-    if (order.status != OrderStatus::Queued) {
+    if (order.status != OrderStatus::kQueued) {
       // Assigned before the restart: offer it to its robot again. A robot still working on it
       // acknowledges and goes on; its latched OrderState tells us how far it got, also if it
       // finished while we were down.
@@ -377,9 +377,9 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
     const Order* order = error.empty() ? book_.find(id) : nullptr;
     if (error.empty() && !order) error = "unknown order " + command.target;
     if (order) {
-      const bool was_assigned = !order->robot_id.empty() && order->status != OrderStatus::Queued;
-      if (book_.transition(id, OrderStatus::Cancelled, clock_.now(), "cancelled by operator") !=
-          TransitionResult::Applied) {
+      const bool was_assigned = !order->robot_id.empty() && order->status != OrderStatus::kQueued;
+      if (book_.transition(id, OrderStatus::kCancelled, clock_.now(), "cancelled by operator") !=
+          TransitionResult::kApplied) {
         error = "order " + command.target + " is already " + std::string(orders::to_string(order->status));
       } else {
         log_->info("order {} cancelled by operator", id);
@@ -550,11 +550,11 @@ void FleetServer::publish_web_snapshot() {
     } else {
       ended.push_back(&order);
     }
-    if (order.status == OrderStatus::Done) {
+    if (order.status == OrderStatus::kDone) {
       ++snap.orders_done;
       durations.push_back(order.finished_sim - order.created_sim);
     }
-    if (order.status == OrderStatus::Failed) ++snap.orders_failed;
+    if (order.status == OrderStatus::kFailed) ++snap.orders_failed;
   }
   for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size();
        ++i) {
@@ -584,8 +584,8 @@ void FleetServer::handle_order_reports() {
                   report.robot_id, report.update_id, order->update_id);
       return;
     }
-    if ((report.status == "DONE" && order->status == OrderStatus::Done) ||
-        (report.status == "FAILED" && order->status == OrderStatus::Failed)) {
+    if ((report.status == "DONE" && order->status == OrderStatus::kDone) ||
+        (report.status == "FAILED" && order->status == OrderStatus::kFailed)) {
       // Reports are kept for late joiners: a restarted server hears every robot's finished
       // orders again. The same end state twice is news to no one.
       log_->debug("order {}: {} repeated by {}", order->id, report.status, report.robot_id);
@@ -603,7 +603,7 @@ void FleetServer::handle_order_reports() {
     const double now = clock_.now();
     const std::int64_t id = order->id;
     awaiting_ack_since_.erase(id);
-    TransitionResult result = TransitionResult::Applied;
+    TransitionResult result = TransitionResult::kApplied;
     if (report.status == "ACCEPTED") {
       log_->info("order {} accepted by {}", id, report.robot_id);
       return;
@@ -613,8 +613,8 @@ void FleetServer::handle_order_reports() {
       // Its published state may lag its real one: do not offer it another order at once.
       rejected_at_wall_[report.robot_id] = SimClock::wall_now();
     } else if (report.status == "DONE") {
-      result = book_.transition(id, OrderStatus::Done, now);
-      if (result == TransitionResult::Applied) {
+      result = book_.transition(id, OrderStatus::kDone, now);
+      if (result == TransitionResult::kApplied) {
         // The pallet stands where the robot really put it (simulation truth), so a sloppy drop
         // makes the next pick from that area harder.
         const auto* drop = options_.site.find_area(order->drop_area);
@@ -635,8 +635,8 @@ void FleetServer::handle_order_reports() {
         }
       }
     } else if (report.status == "FAILED") {
-      result = book_.transition(id, OrderStatus::Failed, now, report.reason);
-      if (result == TransitionResult::Applied) {
+      result = book_.transition(id, OrderStatus::kFailed, now, report.reason);
+      if (result == TransitionResult::kApplied) {
         log_->warn("order {} failed on {}: {}", id, report.robot_id, report.reason);
         if (report.reason.find("empty") != std::string::npos) {
           // A search that finds no pallet where one was put down is a miss of the robot's camera
@@ -656,7 +656,7 @@ void FleetServer::handle_order_reports() {
     } else if (const auto phase = orders::parse_phase(report.status)) {
       if (*phase == order->phase) return;
       result = book_.set_phase(id, *phase, now);
-      if (result == TransitionResult::Applied) {
+      if (result == TransitionResult::kApplied) {
         log_->info("order {} on {}: {}", id, report.robot_id, report.status);
         // Seed 000, section 8: the server keeps the pallet map up to date as robots pick.
         if (report.carrying_pallet && past_the_lift(*phase)) {
@@ -677,7 +677,7 @@ void FleetServer::handle_order_reports() {
       log_->warn("order {}: unknown status '{}' from {}", id, report.status, report.robot_id);
       return;
     }
-    if (result == TransitionResult::Illegal) {
+    if (result == TransitionResult::kIllegal) {
       log_->warn("order {}: refused illegal transition {} -> {} reported by {}", id,
                  orders::to_string(book_.find(id)->status), report.status, report.robot_id);
       return;
@@ -723,7 +723,7 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
 }
 
 void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason) {
-  if (book_.requeue(order_id, clock_.now(), reason) != TransitionResult::Applied) return;
+  if (book_.requeue(order_id, clock_.now(), reason) != TransitionResult::kApplied) return;
   log_->warn("order {} re-queued: {}", order_id, reason);
   awaiting_ack_since_.erase(order_id);
   publish_order(*book_.find(order_id));
@@ -733,13 +733,13 @@ void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& r
 bool FleetServer::hand_back(const Order& order, const model::OrderReport& report) {
   // A robot lost on its way to the pick had its order re-queued; answering again, it may reach
   // the pick area, search and lift the pallet before the withdrawal reaches it. It cannot put the
-  // pallet back (seed 000, 6.4: no cancel after the pick) and carries the order on; no other
+  // pallet back (no cancel after the pick [Forklift thesis, section 6.4]) and carries the order on; no other
   // robot can pick that pallet now. So the order goes back to it, unless its new robot has
   // lifted a pallet for it already.
   const auto phase = orders::parse_phase(report.status);
   const bool lifted = report.carrying_pallet && phase && past_the_lift(*phase);
   if (!lifted || report.robot_id == order.robot_id || orders::is_final(order.status)) return false;
-  if (order.phase == OrderPhase::Picking || past_the_lift(order.phase)) return false;
+  if (order.phase == OrderPhase::kPicking || past_the_lift(order.phase)) return false;
   // Counted lost still, it is back all the same: its report may come before its first state
   // (and is not sent again), and was written after it fell silent.
   const auto robot = robots_.find(report.robot_id);
@@ -747,14 +747,14 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
   const std::int64_t id = order.id;
   const std::string holder = order.robot_id;
   const double now = clock_.now();
-  if (order.status != OrderStatus::Queued) {
+  if (order.status != OrderStatus::kQueued) {
     if (book_.requeue(id, now, "handed back to " + report.robot_id + ", which has the pallet") !=
-        TransitionResult::Applied) {
+        TransitionResult::kApplied) {
       return false;
     }
     withdraw(*book_.find(id), holder);
   }
-  if (book_.assign(id, report.robot_id, now) != TransitionResult::Applied) return false;
+  if (book_.assign(id, report.robot_id, now) != TransitionResult::kApplied) return false;
   const Order& handed = *book_.find(id);
   log_->warn("order {} handed back to {}: it lifted the pallet at {} before the order's withdrawal reached it{}", id,
              report.robot_id, handed.pick_area, holder.empty() ? "" : " (taken from " + holder + ")");
@@ -766,7 +766,7 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
 }
 
 void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {
-  if (book_.transition(order_id, OrderStatus::Failed, clock_.now(), reason) != TransitionResult::Applied) return;
+  if (book_.transition(order_id, OrderStatus::kFailed, clock_.now(), reason) != TransitionResult::kApplied) return;
   log_->warn("order {} failed: {}", order_id, reason);
   awaiting_ack_since_.erase(order_id);
   publish_order(*book_.find(order_id));
@@ -830,7 +830,7 @@ void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) 
     // first state, and runs the order from the start. Its forks are empty while the pallet truth
     // has the pallet on them (and it was not putting it down). The order's phase does not tell:
     // the restarted agent's TO_PICK report can arrive before its first state.
-    const bool dropping = order->phase == OrderPhase::Dropping;
+    const bool dropping = order->phase == OrderPhase::kDropping;
     const bool restarted =
         state.order_id != id || (pallet_carried_by(state.robot_id) && !state.carrying_pallet && !dropping);
     if (!restarted) {
@@ -885,12 +885,12 @@ void FleetServer::check_robot_health() {
   // grace period the robot counts as lost. A robot in TO_DROP or DROPPING had the pallet on board.
   if (now - started_wall_ > std::max(3.0, 3.0 * lost_after)) {
     for (const auto& [order_id, order] : book_.all()) {
-      if (orders::is_final(order.status) || order.status == OrderStatus::Queued) continue;
+      if (orders::is_final(order.status) || order.status == OrderStatus::kQueued) continue;
       if (robots_.contains(order.robot_id)) continue;
       RobotEntry& ghost = robots_[order.robot_id];
       ghost.id = order.robot_id;
       ghost.registered = false;
-      ghost.last.carrying_pallet = order.phase == OrderPhase::ToDrop || order.phase == OrderPhase::Dropping;
+      ghost.last.carrying_pallet = order.phase == OrderPhase::kToDrop || order.phase == OrderPhase::kDropping;
       robot_lost(ghost, "not seen since the server restarted");
       break;  // book_ changed; the next pass handles the rest
     }
@@ -918,7 +918,7 @@ void FleetServer::check_acknowledgements() {
       continue;
     }
     const Order* order = book_.find(id);
-    if (!order || order->status != OrderStatus::Assigned) {
+    if (!order || order->status != OrderStatus::kAssigned) {
       it = awaiting_ack_since_.erase(it);
       continue;
     }
@@ -958,7 +958,7 @@ void FleetServer::create_auto_orders() {
   // pallet to a free one.
   const long free_robots =
       std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
-  const long queued = static_cast<long>(book_.with_status(OrderStatus::Queued).size());
+  const long queued = static_cast<long>(book_.with_status(OrderStatus::kQueued).size());
   if (free_robots <= queued) return;
   // From a pallet standing there now to an area free now, neither promised to an open order:
   // an automatic order never waits on another.
@@ -1006,7 +1006,7 @@ void FleetServer::dispatch() {
     return travel_cost(robot_id, area_id);
   };
   for (const auto& assignment : policy_->assign(queue, free, cost)) {
-    if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::Applied) continue;
+    if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::kApplied) continue;
     const Order& order = *book_.find(assignment.order_id);
     log_->info("order {} assigned to {}", order.id, order.robot_id);
     resends_[order.id] = 0;

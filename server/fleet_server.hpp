@@ -44,7 +44,7 @@ struct RobotEntry {
   bool stalled = false;  ///< missed its RobotState deadline (DDS) and not heard from since
 };
 
-/// The command centre and message router of seed 000, chapter 3: takes orders, dispatches them,
+/// The command centre and message router [Forklift thesis, chapter 3]: takes orders, dispatches them,
 /// tracks robots, owns the site state (obstacles, pallets) and routes poses as FleetView.
 class FleetServer {
  public:

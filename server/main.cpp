@@ -1,25 +1,20 @@
 // fleet-server: orders, dispatch, fleet registry, site state and pose routing over DDS.
 
-#include <algorithm>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
-#include "common/args.hpp"
+#include "app/process.hpp"
+#include "common/logging.hpp"
 #include "common/paths.hpp"
-#include "common/process_memory.hpp"
-#include "dds/environment.hpp"
 #include "map/site_map.hpp"
 #include "server/fleet_server.hpp"
 #include "server/web_server.hpp"
 
+using namespace fleet;
+
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-void on_signal(int) { g_stop = true; }
 
 constexpr const char* kHelp = R"(usage: fleet-server [options]
 
@@ -33,7 +28,7 @@ options:
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of the random order generator (default: seed)
   --dispatch POLICY    ascending-id | nearest | optimal (default: server.dispatch_policy)
-  --db FILE            SQLite database of orders (default: server.db_path, var/fleet.db)
+  --db FILE            SQLite database of orders (default: server.db_path, fleet.db in the state folder)
   --auto-orders        create random orders whenever a robot is free
   --http-port N        port of the web view and JSON API (default: server.http_port, 8080; 0: off)
   --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
@@ -47,116 +42,94 @@ Logs go to stderr, one line per event; the web view's address with its token is 
 SIGINT or SIGTERM stops it cleanly.
 )";
 
+/// The API token of the web view, and where it came from: --api-token, then the environment,
+/// then the configuration file, then a fresh one.
+std::pair<std::string, std::string> choose_api_token(const std::optional<std::string>& token_flag,
+                                                     const config::FleetConfig& config) {
+  const char* env_token = std::getenv("FLEET_API_TOKEN");
+  if (token_flag && !token_flag->empty()) return {*token_flag, "--api-token"};
+  if (env_token && *env_token) return {env_token, "FLEET_API_TOKEN"};
+  if (const auto configured = config.settings.get_string("server.api_token"); !configured.empty()) {
+    return {configured, "server.api_token"};
+  }
+  return {server::generate_api_token(), "generated"};
+}
+
+/// The web view when server.http_port is not 0, started; nothing when it is off or its port is
+/// taken. Orders and robots do not depend on the web view: a taken port costs the page, not the
+/// fleet. The web view draws the site from its road network and graph; it and the server loop
+/// meet only in `bridge`. `web_config` must outlive it.
+std::unique_ptr<server::WebServer> start_web_view(const server::ServerOptions& options,
+                                                  const config::FleetConfig& web_config,
+                                                  const std::optional<std::string>& token_flag,
+                                                  server::WebBridge& bridge, const Logger& log) {
+  const auto http_port = options.config.settings.get_int("server.http_port");
+  if (http_port == 0) return nullptr;
+  server::WebOptions web_options;
+  web_options.host = options.config.settings.get_string("server.http_host");
+  web_options.port = static_cast<int>(http_port);
+  web_options.stream_hz = options.config.settings.get_double("server.web_stream_hz");
+  const auto [token, token_source] = choose_api_token(token_flag, options.config);
+  web_options.token = token;
+  server::WebSiteInfo info;
+  info.site_map = options.site_map.get();
+  info.config = &web_config;
+  info.maps = options.maps;
+  const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
+  auto web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);
+  try {
+    web->start();
+    log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
+  } catch (const std::runtime_error& e) {
+    log->error("web view off: {}; choose another port with --http-port", e.what());
+    web.reset();
+  }
+  return web;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace fleet;
-  std::string config_path = default_config_path();
   try {
     Args args(argc, argv);
-    if (args.flag("help")) {
-      std::cout << kHelp;
-      return 0;
-    }
-    if (auto c = args.value("config")) config_path = *c;
-    config::FleetConfig config = config::load_fleet_config(config_path);
-    config::apply_common_flags(args, config);
-    if (auto v = args.value("dispatch")) config.settings.set("server.dispatch_policy", *v, "--dispatch");
-    if (auto v = args.value("db")) config.settings.set("server.db_path", *v, "--db");
-    if (args.flag("auto-orders")) config.settings.set("server.auto_orders", "true", "--auto-orders");
-    if (auto v = args.value("http-port")) config.settings.set("server.http_port", *v, "--http-port");
-    if (auto v = args.value("http-host")) config.settings.set("server.http_host", *v, "--http-host");
+    auto config = app::read_config(args, kHelp, std::cout);
+    if (!config) return 0;
+    if (auto v = args.value("dispatch")) config->settings.set("server.dispatch_policy", *v, "--dispatch");
+    if (auto v = args.value("db")) config->settings.set("server.db_path", *v, "--db");
+    if (args.flag("auto-orders")) config->settings.set("server.auto_orders", "true", "--auto-orders");
+    if (auto v = args.value("http-port")) config->settings.set("server.http_port", *v, "--http-port");
+    if (auto v = args.value("http-host")) config->settings.set("server.http_host", *v, "--http-host");
     const std::optional<std::string> token_flag = args.value("api-token");
-    const bool verbose = args.flag("verbose");
-    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+    const auto level = app::finish_args(args);
 
-    const std::string site_file = map::site_path(maps_dir(), config.settings.get_string("site"));
+    std::vector<const config::RobotSpec*> robots;
+    for (const auto& [fleet, robot] : config->all_robots()) robots.push_back(robot);
     // Loaded once, road network and graph included: dispatch costs and the web view use them.
-    const auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
-    const map::Site& site = site_map->site;
-    for (const auto& [fleet, robot] : config.all_robots()) {
-      if (!site.find_home(robot->home)) {
-        throw config::ConfigError(config.source + ": robot '" + robot->id + "': home '" + robot->home +
-                                  "' is not a home of " + site_file);
-      }
-    }
-
-    dds::use_fleet_dds_config();
-    ProcessMemory::limit_arenas();
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    const auto site_map = app::load_site(*config, robots);
+    const std::atomic<bool>& stop = app::start_daemon();
 
     server::ServerOptions options;
-    options.domain = static_cast<std::uint32_t>(config.settings.get_int("dds.domain"));
-    options.time_scale = config.settings.get_double("time_scale");
-    options.seed = static_cast<std::uint64_t>(config.settings.get_int("seed"));
-    const std::filesystem::path db(config.settings.get_string("server.db_path"));
-    options.db_path = (db.is_absolute() ? db : std::filesystem::path(project_root()) / db).string();
-    options.config = std::move(config);
-    options.site = site;
+    app::set_run_options(options, *config);
+    const std::filesystem::path db(config->settings.get_string("server.db_path"));
+    options.db_path = (db.is_absolute() ? db : std::filesystem::path(state_dir()) / db).string();
+    options.config = std::move(*config);
+    options.site = site_map->site;
     options.site_map = site_map;
     // The maps robots can be switched to: the site and its revisions in maps/ (read once, for the
     // server loop and the web view).
-    options.maps = map::site_revisions(site);
-    auto log = make_logger("fleet-server", "", verbose ? spdlog::level::debug : spdlog::level::info);
+    options.maps = map::site_revisions(options.site);
+    auto log = make_logger("fleet-server", "", level);
 
-    // The web view draws the site from its road network and graph; it and the server loop meet
-    // only in the bridge.
     server::WebBridge bridge;
     // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
     const config::FleetConfig web_config = options.config;
-    std::unique_ptr<server::WebServer> web;
-    const auto http_port = options.config.settings.get_int("server.http_port");
-    if (http_port != 0) {
-      server::WebOptions web_options;
-      web_options.host = options.config.settings.get_string("server.http_host");
-      web_options.port = static_cast<int>(http_port);
-      web_options.stream_hz = options.config.settings.get_double("server.web_stream_hz");
-      // Precedence: --api-token, then the environment, then the configuration file, then a fresh one.
-      const char* env_token = std::getenv("FLEET_API_TOKEN");
-      std::string token_source;
-      if (token_flag && !token_flag->empty()) {
-        web_options.token = *token_flag;
-        token_source = "--api-token";
-      } else if (env_token && *env_token) {
-        web_options.token = env_token;
-        token_source = "FLEET_API_TOKEN";
-      } else if (const auto configured = options.config.settings.get_string("server.api_token"); !configured.empty()) {
-        web_options.token = configured;
-        token_source = "server.api_token";
-      } else {
-        web_options.token = server::generate_api_token();
-        token_source = "generated";
-      }
-      server::WebSiteInfo info;
-      info.site_map = site_map.get();
-      info.config = &web_config;
-      info.maps = options.maps;
-      const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
-      const std::string token = web_options.token;
-      web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);
-      try {
-        web->start();
-        log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
-      } catch (const std::runtime_error& e) {
-        // Orders and robots do not depend on the web view: a taken port costs the page, not the fleet.
-        log->error("web view off: {}; choose another port with --http-port", e.what());
-        web.reset();
-      }
-    }
+    auto web = start_web_view(options, web_config, token_flag, bridge, log);
     server::FleetServer fleet_server(std::move(options), log);
     if (web) fleet_server.attach_web(&bridge);
-    fleet_server.run(g_stop);
+    fleet_server.run(stop);
     if (web) web->stop();
     return 0;
-  } catch (const ArgError& e) {
-    std::cerr << "fleet-server: " << e.what() << " (see --help)\n";
-    return 2;
-  } catch (const InputError& e) {
-    std::cerr << "fleet-server: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "fleet-server: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return app::exit_code_of_current_exception("fleet-server", std::cerr, true);
   }
 }

@@ -129,7 +129,8 @@ void OrderStore::save(const orders::Order& o) {
 
     sqlite3_bind_int64(count_events_, 1, o.id);
     std::size_t stored = 0;
-    if (sqlite3_step(count_events_) == SQLITE_ROW) stored = static_cast<std::size_t>(sqlite3_column_int64(count_events_, 0));
+    if (sqlite3_step(count_events_) == SQLITE_ROW)
+      stored = static_cast<std::size_t>(sqlite3_column_int64(count_events_, 0));
     sqlite3_reset(count_events_);
     for (std::size_t i = stored; i < o.history.size(); ++i) {
       const auto& e = o.history[i];
@@ -170,9 +171,11 @@ std::vector<orders::Order> OrderStore::load_all() const {
     o.robot_requested = sqlite3_column_int(stmt, 6) != 0;
     o.priority = sqlite3_column_int(stmt, 7);
     const auto status = orders::parse_status(text_column(stmt, 8));
-    if (!status) throw StoreError(path_ + ": order " + std::to_string(o.id) + " has unknown status '" + text_column(stmt, 8) + "'");
+    if (!status)
+      throw StoreError(path_ + ": order " + std::to_string(o.id) + " has unknown status '" + text_column(stmt, 8) +
+                       "'");
     o.status = *status;
-    o.phase = orders::parse_phase(text_column(stmt, 9)).value_or(orders::OrderPhase::None);
+    o.phase = orders::parse_phase(text_column(stmt, 9)).value_or(orders::OrderPhase::kNone);
     o.reason = text_column(stmt, 10);
     o.update_id = static_cast<std::uint32_t>(sqlite3_column_int64(stmt, 11));
     o.created_sim = sqlite3_column_double(stmt, 12);
@@ -193,8 +196,8 @@ std::vector<orders::Order> OrderStore::load_all() const {
     if (cursor >= out.size() || out[cursor].id != id) continue;
     orders::OrderEvent e;
     e.sim_time = sqlite3_column_double(stmt, 1);
-    e.status = orders::parse_status(text_column(stmt, 2)).value_or(orders::OrderStatus::Queued);
-    e.phase = orders::parse_phase(text_column(stmt, 3)).value_or(orders::OrderPhase::None);
+    e.status = orders::parse_status(text_column(stmt, 2)).value_or(orders::OrderStatus::kQueued);
+    e.phase = orders::parse_phase(text_column(stmt, 3)).value_or(orders::OrderPhase::kNone);
     e.robot_id = text_column(stmt, 4);
     e.reason = text_column(stmt, 5);
     e.robot_x = sqlite3_column_double(stmt, 6);

@@ -12,18 +12,24 @@ constexpr double kGrantRepeatWall = 1.0;  // seconds: unchanged grants are repea
 
 const char* status_name(traffic::GrantStatus s) {
   switch (s) {
-    case traffic::GrantStatus::kMoving: return "MOVING";
-    case traffic::GrantStatus::kWaiting: return "WAITING";
-    case traffic::GrantStatus::kArrived: return "ARRIVED";
+    case traffic::GrantStatus::kMoving:
+      return "MOVING";
+    case traffic::GrantStatus::kWaiting:
+      return "WAITING";
+    case traffic::GrantStatus::kArrived:
+      return "ARRIVED";
   }
   return "MOVING";
 }
 
 const char* instruction_name(traffic::Instruction i) {
   switch (i) {
-    case traffic::Instruction::kNone: return "";
-    case traffic::Instruction::kReroute: return "REROUTE";
-    case traffic::Instruction::kSiding: return "SIDING";
+    case traffic::Instruction::kNone:
+      return "";
+    case traffic::Instruction::kReroute:
+      return "REROUTE";
+    case traffic::Instruction::kSiding:
+      return "SIDING";
   }
   return "";
 }
@@ -40,8 +46,8 @@ TrafficControl::TrafficControl(const map::RoadGraph& graph, const traffic::Traff
       log_(std::move(log)),
       grant_writer_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
-  log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}",
-             manager_.zones().place_count(), configuration.lookahead, configuration.one_way ? "on" : "off");
+  log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_.zones().place_count(),
+             configuration.lookahead, configuration.one_way ? "on" : "off");
 }
 
 int TrafficControl::number_of(const std::string& robot_id) {
@@ -100,7 +106,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // drives. The robot stands where its body is until it is let in, as one beside the road.
       const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
       if (result == traffic::SubmitStatus::kInvalid) {
-        const std::uint32_t dropped = manager_.version(id);
+        const std::uint64_t dropped = manager_.version(id);
         standing = stand_where_it_is(request.robot_id, id, now_sim);
         enter = true;
         log_->debug("traffic: {} route {} starts where it does not stand; route {} dropped, it enters afresh",
@@ -205,7 +211,9 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
   return geometry::distance(centre, {at.x, at.y}) <= kOnPointM;
 }
 
-void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) { bodies_[robot_id] = body; }
+void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {
+  bodies_[robot_id] = body;
+}
 
 bool TrafficControl::hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim) {
   // Finding the places under a body costs a pass over every place: only when it moved.
@@ -309,7 +317,8 @@ void TrafficControl::update(double now_sim, double now_wall) {
 void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
   // Written when it changed, and repeated now and then for an agent that (re)started.
   auto sent = sent_.find(grant.robot_id);
-  if (sent != sent_.end() && same_grant(sent->second, grant) && now_wall - sent_wall_[grant.robot_id] < kGrantRepeatWall) {
+  if (sent != sent_.end() && same_grant(sent->second, grant) &&
+      now_wall - sent_wall_[grant.robot_id] < kGrantRepeatWall) {
     return;
   }
   if (log_->should_log(spdlog::level::debug) &&

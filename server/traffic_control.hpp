@@ -21,7 +21,7 @@ struct TrafficStatus {
   std::vector<geometry::Vec2> held;  ///< where the places the robot holds are
 };
 
-/// The server side of traffic control (issue 8): agents' TrafficRequests into a
+/// The server side of traffic control: agents' TrafficRequests into a
 /// traffic::TrafficManager, its grants out as TrafficGrant, one update per cycle.
 class TrafficControl {
  public:
@@ -61,14 +61,14 @@ class TrafficControl {
   std::map<std::string, double> sent_wall_;
   std::map<std::string, TrafficStatus> status_;
   struct Trim {
-    std::uint32_t version = 0;
+    std::uint64_t version = 0;
     int skipped = 0;      ///< route points cut off behind the robot when it entered
     double offset = 0.0;  ///< metres cut off
   };
   std::map<std::string, Trim> trims_;
-  std::set<std::string> heard_;  ///< robots that sent this manager a request
-  double settle_until_wall_ = -1.0;  ///< requests wait until then: robots' bodies are learnt first
-  std::map<std::string, geometry::Polygon> bodies_;  ///< last known footprint of each robot
+  std::set<std::string> heard_;                           ///< robots that sent this manager a request
+  double settle_until_wall_ = -1.0;                       ///< requests wait until then: robots' bodies are learnt first
+  std::map<std::string, geometry::Polygon> bodies_;       ///< last known footprint of each robot
   std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
   dds::Writer<model::TrafficGrant> grant_writer_;
   dds::Reader<model::TrafficRequest> request_reader_;

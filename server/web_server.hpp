@@ -1,6 +1,6 @@
 #pragma once
 
-// The web view of seed 000's visualization server (chapter 3, Fig. 3.3): a page and a JSON API
+// The web view of the thesis's visualization server [Forklift thesis, chapter 3, Fig. 3.3]: a page and a JSON API
 // served over HTTP, with a server-sent-event stream of what changed. It runs on its own threads
 // and touches the server loop only through a WebBridge.
 
@@ -9,11 +9,10 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"

@@ -1,5 +1,6 @@
 #include "common/args.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -33,11 +34,38 @@ bool Args::flag(const std::string& name) {
   return false;
 }
 
-std::optional<double> parse_finite(const std::string& text) {
-  double v = 0.0;
-  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+namespace {
+
+/// std::from_chars over the whole of `text`; nothing when it stops early or fails.
+template <class T>
+std::optional<T> parse_whole(const std::string& text) {
+  T v{};
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || ptr != end) return std::nullopt;
   return v;
+}
+
+}  // namespace
+
+std::optional<double> parse_finite(const std::string& text) {
+  const auto v = parse_whole<double>(text);
+  if (!v || !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
+std::optional<long> parse_long(const std::string& text) {
+  return parse_whole<long>(text);
+}
+
+std::optional<std::uint64_t> parse_u64(const std::string& text) {
+  return parse_whole<std::uint64_t>(text);
+}
+
+std::uint64_t parse_u64(const std::string& name, const std::string& text) {
+  const auto v = parse_u64(text);
+  if (!v) throw ArgError("flag --" + name + ": '" + text + "' is not a non-negative integer");
+  return *v;
 }
 
 std::optional<double> Args::number(const std::string& name, double min, double max) {
@@ -47,7 +75,8 @@ std::optional<double> Args::number(const std::string& name, double min, double m
   if (!parsed) throw ArgError("flag --" + name + ": '" + *text + "' is not a number");
   const double v = *parsed;
   if (v < min || v > max) {
-    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
+    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " +
+                   std::to_string(max));
   }
   return v;
 }
@@ -55,20 +84,26 @@ std::optional<double> Args::number(const std::string& name, double min, double m
 std::optional<long> Args::integer(const std::string& name, long min, long max) {
   const auto text = value(name);
   if (!text) return std::nullopt;
-  long v = 0;
-  auto [ptr, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
-  if (ec != std::errc() || ptr != text->data() + text->size()) {
-    throw ArgError("flag --" + name + ": '" + *text + "' is not an integer");
-  }
+  const auto parsed = parse_long(*text);
+  if (!parsed) throw ArgError("flag --" + name + ": '" + *text + "' is not an integer");
+  const long v = *parsed;
   if (v < min || v > max) {
-    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " + std::to_string(max));
+    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " +
+                   std::to_string(max));
   }
   return v;
 }
 
+std::optional<std::uint64_t> Args::u64(const std::string& name) {
+  const auto text = value(name);
+  if (!text) return std::nullopt;
+  return parse_u64(name, *text);
+}
+
 std::vector<std::string> Args::positionals() const {
   for (const auto& a : args_) {
-    if (a.size() > 1 && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
+    if (a.size() > 1 && a[0] == '-' &&
+        !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
       throw ArgError("unknown flag '" + a + "'");
     }
   }

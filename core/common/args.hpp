@@ -1,11 +1,11 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
-
-#include "common/errors.hpp"
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/errors.hpp"
 
 namespace fleet {
 
@@ -15,8 +15,19 @@ class ArgError : public InputError {
   using InputError::InputError;
 };
 
+// The number parsers of every Fleet program: the whole text or nothing, no leading blanks or
+// signs beyond a minus, no locale.
+
 /// The whole of `text` as a finite number; nothing when it is not one.
 std::optional<double> parse_finite(const std::string& text);
+/// The whole of `text` as an integer (a minus allowed); nothing when it is not one or out of range.
+std::optional<long> parse_long(const std::string& text);
+/// The whole of `text` as a non-negative integer (digits only); nothing when it is not one or out
+/// of range.
+std::optional<std::uint64_t> parse_u64(const std::string& text);
+/// The value `text` of flag --`name` as a non-negative integer; ArgError naming the flag and the
+/// value when it is not one.
+std::uint64_t parse_u64(const std::string& name, const std::string& text);
 
 /// Takes flags out of an argument list one by one; what remains is positional. Accepts
 /// `--name value` and `--name=value`.
@@ -35,6 +46,8 @@ class Args {
   /// Parsed numbers, with ArgError naming the flag when the text is not a number or out of range.
   std::optional<double> number(const std::string& name, double min, double max);
   std::optional<long> integer(const std::string& name, long min, long max);
+  /// A non-negative integer of the whole 64-bit range (seeds).
+  std::optional<std::uint64_t> u64(const std::string& name);
 
   /// The remaining arguments; ArgError if any of them still looks like a flag.
   std::vector<std::string> positionals() const;

@@ -18,7 +18,7 @@ struct RobotSpec {
 /// A fleet: robots of one type sharing a footprint. The seed's forklifts are the first fleet.
 struct FleetSpec {
   std::string id;
-  std::string robot_type;  ///< "forklift" (seed 000); later "stacker", "picker"
+  std::string robot_type;  ///< "forklift" [Forklift thesis]; later "stacker", "picker"
   geometry::Footprint footprint;
   std::vector<RobotSpec> robots;
 };

@@ -9,20 +9,20 @@ namespace {
 KeySpec number(std::string key, double def, std::string unit, double lo, double hi, std::string what) {
   std::ostringstream d;
   d << def;
-  return {std::move(key), ValueType::Double, d.str(), std::move(unit), lo, hi, {}, std::move(what)};
+  return {std::move(key), ValueType::kDouble, d.str(), std::move(unit), lo, hi, {}, std::move(what)};
 }
 KeySpec integer(std::string key, long def, std::string unit, long lo, long hi, std::string what) {
-  return {std::move(key), ValueType::Int, std::to_string(def), std::move(unit),
+  return {std::move(key), ValueType::kInt, std::to_string(def), std::move(unit),
           static_cast<double>(lo), static_cast<double>(hi), {}, std::move(what)};
 }
 KeySpec flag(std::string key, bool def, std::string what) {
-  return {std::move(key), ValueType::Bool, def ? "true" : "false", "", 0, 0, {}, std::move(what)};
+  return {std::move(key), ValueType::kBool, def ? "true" : "false", "", 0, 0, {}, std::move(what)};
 }
 KeySpec text(std::string key, std::string def, std::string what) {
-  return {std::move(key), ValueType::String, std::move(def), "", 0, 0, {}, std::move(what)};
+  return {std::move(key), ValueType::kString, std::move(def), "", 0, 0, {}, std::move(what)};
 }
 KeySpec choice(std::string key, std::string def, std::vector<std::string> choices, std::string what) {
-  return {std::move(key), ValueType::Choice, std::move(def), "", 0, 0, std::move(choices), std::move(what)};
+  return {std::move(key), ValueType::kChoice, std::move(def), "", 0, 0, std::move(choices), std::move(what)};
 }
 
 std::vector<KeySpec> make_schema() {
@@ -36,9 +36,9 @@ std::vector<KeySpec> make_schema() {
       // Server
       choice("server.dispatch_policy", "ascending-id", {"ascending-id", "nearest", "optimal"},
              "how queued orders are matched with free robots"),
-      flag("server.auto_orders", false, "create random orders whenever a robot is free (seed 000, section 3)"),
+      flag("server.auto_orders", false, "create random orders whenever a robot is free [Forklift thesis, section 3]"),
       flag("server.reject_when_busy", false,
-           "reject manual orders while no robot is free (the seed's mode) instead of queueing them"),
+           "reject manual orders while no robot is free (the Forklift thesis's mode) instead of queueing them"),
       number("server.fleet_view_hz", 20.0, "Hz", 1.0, 100.0, "rate of FleetView, per map, in sim time"),
       number("server.robot_lost_after_s", 1.0, "s", 0.1, 60.0,
              "wall seconds without RobotState after which a robot is marked lost"),
@@ -47,8 +47,9 @@ std::vector<KeySpec> make_schema() {
              "before it is FAILED"),
       number("server.order_ack_timeout_s", 2.0, "s", 0.1, 60.0,
              "wall seconds an agent has to acknowledge an order before it is re-sent"),
-      text("server.db_path", "var/fleet.db",
-           "SQLite database of orders and their events, relative to the project root unless absolute"),
+      text("server.db_path", "fleet.db",
+           "SQLite database of orders and their events, relative to the state folder (FLEET_STATE_DIR; var/ "
+           "in the source tree) unless absolute"),
       integer("server.order_resend_limit", 2, "", 0, 100, "re-sends of an unacknowledged order before it is re-queued"),
       // Web view and HTTP API (server/web_server.hpp)
       integer("server.http_port", 8080, "", 0, 65535, "port of the web view and JSON API; 0 turns them off"),
@@ -66,7 +67,7 @@ std::vector<KeySpec> make_schema() {
 
       // Traffic (core/traffic): reservations on the road graph, granted by the server
       flag("traffic.enabled", true,
-           "robots drive only into road stretches the server granted them; false: the seed's local avoidance only"),
+           "robots drive only into road stretches the server granted them; false: the Forklift thesis's local avoidance only"),
       number("traffic.lookahead", 0.6, "m", 0.1, 5.0, "route granted ahead of a robot when the road is free"),
       number("traffic.priority_wait_s", 8.0, "s", 0.0, 600.0,
              "sim seconds a stopped robot waits before its next stretch is reserved for it"),
@@ -100,29 +101,35 @@ const KeySpec* find_key(const std::string& key) {
   return nullptr;
 }
 
-std::string schema_markdown() {
-  std::ostringstream out;
-  out << "| key | default | unit | allowed | meaning |\n|---|---|---|---|---|\n";
-  for (const KeySpec& spec : schema()) {
-    std::string allowed;
-    switch (spec.type) {
-      case ValueType::Double:
-      case ValueType::Int: {
-        std::ostringstream r;
-        r << spec.min << " .. " << spec.max;
-        allowed = r.str();
-        break;
-      }
-      case ValueType::Bool: allowed = "true, false"; break;
-      case ValueType::String: allowed = "text"; break;
-      case ValueType::Choice:
-        for (std::size_t i = 0; i < spec.choices.size(); ++i) allowed += (i ? ", " : "") + spec.choices[i];
-        break;
+std::string markdown_row(const KeySpec& spec) {
+  std::string allowed;
+  switch (spec.type) {
+    case ValueType::kDouble: {
+      std::ostringstream r;
+      r << spec.min << " .. " << spec.max;
+      allowed = r.str();
+      break;
     }
-    out << "| `" << spec.key << "` | " << spec.default_value << " | " << spec.unit << " | " << allowed << " | "
-        << spec.description << " |\n";
+    case ValueType::kInt:
+      allowed = std::to_string(static_cast<long long>(spec.min)) + " .. " +
+                std::to_string(static_cast<long long>(spec.max));
+      break;
+    case ValueType::kBool: allowed = "true, false"; break;
+    case ValueType::kString: allowed = "text"; break;
+    case ValueType::kChoice:
+      for (std::size_t i = 0; i < spec.choices.size(); ++i) allowed += (i ? ", " : "") + spec.choices[i];
+      break;
   }
+  std::ostringstream out;
+  out << "| `" << spec.key << "` | " << spec.default_value << " | " << spec.unit << " | " << allowed << " | "
+      << spec.description << " |\n";
   return out.str();
+}
+
+std::string schema_markdown() {
+  std::string out = std::string(kMarkdownHeader);
+  for (const KeySpec& spec : schema()) out += markdown_row(spec);
+  return out;
 }
 
 }  // namespace fleet::config

@@ -5,13 +5,13 @@
 
 namespace fleet::config {
 
-enum class ValueType { Double, Int, Bool, String, Choice };
+enum class ValueType { kDouble, kInt, kBool, kString, kChoice };
 
 /// One configuration key, declared once with its default, unit, allowed range and meaning.
 /// Everything else (validation, `fleetctl config keys`, the README table) derives from it.
 struct KeySpec {
   std::string key;  ///< dotted path in fleet.yaml, e.g. "server.dispatch_policy"
-  ValueType type = ValueType::Double;
+  ValueType type = ValueType::kDouble;
   std::string default_value;
   std::string unit;                  ///< SI unit or empty
   double min = 0.0;                  ///< for Double and Int
@@ -26,7 +26,18 @@ const std::vector<KeySpec>& schema();
 /// Null when the key is not declared.
 const KeySpec* find_key(const std::string& key);
 
-/// A Markdown table of the schema, for the README and `fleetctl config keys`.
+/// The header of the Markdown table of keys: key, default, unit, allowed, meaning.
+inline constexpr const char* kMarkdownHeader =
+    "| key | default | unit | allowed | meaning |\n|---|---|---|---|---|\n";
+
+/// One key as a row of that table.
+std::string markdown_row(const KeySpec& spec);
+
+/// A Markdown table of the schema, printed by `fleetctl config keys`.
 std::string schema_markdown();
+
+/// docs/configuration.md: how keys are set, then one table per section (server, agent, ...),
+/// printed by `fleetctl config keys --markdown`.
+std::string configuration_page();
 
 }  // namespace fleet::config

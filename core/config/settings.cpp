@@ -1,20 +1,13 @@
 #include "config/settings.hpp"
 
-#include <charconv>
 #include <cmath>
 
+#include "common/args.hpp"
 #include "config/schema.hpp"
 
 namespace fleet::config {
 
 namespace {
-
-bool parse_double(const std::string& text, double& out) {
-  const char* begin = text.data();
-  const char* end = begin + text.size();
-  auto [ptr, ec] = std::from_chars(begin, end, out);
-  return ec == std::errc() && ptr == end && std::isfinite(out);
-}
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -35,27 +28,28 @@ void Settings::set(const std::string& key, const std::string& value, const std::
     return ConfigError(origin + ": key '" + key + "': value '" + value + "' " + why);
   };
   switch (spec->type) {
-    case ValueType::Double:
-    case ValueType::Int: {
-      double v = 0.0;
-      if (!parse_double(value, v)) throw bad("is not a finite number");
-      if (spec->type == ValueType::Int && v != std::floor(v)) throw bad("is not an integer");
+    case ValueType::kDouble:
+    case ValueType::kInt: {
+      const auto parsed = parse_finite(value);
+      if (!parsed) throw bad("is not a finite number");
+      const double v = *parsed;
+      if (spec->type == ValueType::kInt && v != std::floor(v)) throw bad("is not an integer");
       if (v < spec->min || v > spec->max) {
         throw bad("is outside " + std::to_string(spec->min) + " .. " + std::to_string(spec->max) +
                   (spec->unit.empty() ? "" : " " + spec->unit));
       }
       break;
     }
-    case ValueType::Bool:
+    case ValueType::kBool:
       if (value != "true" && value != "false") throw bad("is not true or false");
       break;
-    case ValueType::Choice: {
+    case ValueType::kChoice: {
       bool found = false;
       for (const auto& c : spec->choices) found = found || c == value;
       if (!found) throw bad("is not one of " + join(spec->choices));
       break;
     }
-    case ValueType::String:
+    case ValueType::kString:
       break;
   }
   values_[key] = value;
@@ -67,9 +61,17 @@ const std::string& Settings::raw(const std::string& key) const {
   return it->second;
 }
 
-double Settings::get_double(const std::string& key) const { return std::stod(raw(key)); }
-long Settings::get_int(const std::string& key) const { return std::stol(raw(key)); }
-bool Settings::get_bool(const std::string& key) const { return raw(key) == "true"; }
-const std::string& Settings::get_string(const std::string& key) const { return raw(key); }
+double Settings::get_double(const std::string& key) const {
+  return std::stod(raw(key));
+}
+long Settings::get_int(const std::string& key) const {
+  return std::stol(raw(key));
+}
+bool Settings::get_bool(const std::string& key) const {
+  return raw(key) == "true";
+}
+const std::string& Settings::get_string(const std::string& key) const {
+  return raw(key);
+}
 
 }  // namespace fleet::config

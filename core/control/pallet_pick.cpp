@@ -43,7 +43,7 @@ void PalletPick::stop() {
 }
 
 BodyTwist PalletPick::servo_command(const perception::MarkerDetection& det, const PickParams& p, bool& aligned) {
-  // seed 000, eq. 6.4 and Fig. 6.7: one error at a time, in the order alpha, gamma, d.
+  // One error at a time, in the order alpha, gamma, d [Forklift thesis, eq. 6.4 and Fig. 6.7].
   BodyTwist cmd;
   aligned = false;
   const double dd = det.d - p.d_min;

@@ -8,7 +8,7 @@
 
 namespace fleet::control {
 
-/// Settings of the visual-servoing pick, seed 000, section 6.2 (eq. 6.4, Fig. 6.7).
+/// Settings of the visual-servoing pick [Forklift thesis, section 6.2, eq. 6.4, Fig. 6.7].
 struct PickParams {
   double v_minx = 0.03;          ///< constant forward/backward speed while servoing, m/s
   double v_miny = 0.02;          ///< constant sideways speed while servoing, m/s
@@ -53,7 +53,7 @@ class PalletPick {
   bool done() const { return status_ == PickStatus::kDone || status_ == PickStatus::kFailed; }
   const char* failure() const { return failure_; }
 
-  /// Fig. 6.7's decision for one detection: the command the seed's algorithm gives, and whether
+  /// Fig. 6.7's decision for one detection: the command the thesis's algorithm gives, and whether
   /// all three errors are inside their tolerances (the "drive towards pallet" branch).
   static BodyTwist servo_command(const perception::MarkerDetection& det, const PickParams& p, bool& aligned);
 

@@ -84,8 +84,8 @@ ForkCommand PalletPlace::step(double t, const Pose2& pose, double dt) {
     // act on exactly the error they are meant to close even while a small heading error remains.
     const double dh = angle_diff(pose.yaw, target_.yaw);
     const Vec2 to_target = geometry::map_to_body(pose, target_.position());
-    const double d_lat = -to_target.y;   // d_x of the seed: sideways offset from the target line
-    const double d_long = -to_target.x;  // d_y of the seed: distance still to go, negated
+    const double d_lat = -to_target.y;   // d_x of the thesis: sideways offset from the target line
+    const double d_long = -to_target.x;  // d_y of the thesis: distance still to go, negated
     const bool h_ok = std::abs(dh) <= params_.heading_tol;
     const bool lat_ok = std::abs(d_lat) <= params_.lateral_tol;
     const bool long_ok = std::abs(d_long) <= params_.longitudinal_tol;
@@ -117,7 +117,7 @@ ForkCommand PalletPlace::step(double t, const Pose2& pose, double dt) {
       phase_start_ = t;
       if (status_ == PlaceStatus::kSettling) return out;
     } else {
-      // seed 000, eq. 6.5: omega = -a d_h, v_y = -b d_x, v_x = -c d_y; each stage keeps the
+      // omega = -a d_h, v_y = -b d_x, v_x = -c d_y [Forklift thesis, eq. 6.5]; each stage keeps the
       // earlier ones closed.
       out.twist.omega = shaped(-params_.a * dh, params_.omega_floor, params_.omega_limit, dh, params_.heading_tol);
       if (status_ >= PlaceStatus::kLateral) {

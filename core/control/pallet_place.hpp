@@ -7,7 +7,7 @@
 
 namespace fleet::control {
 
-/// Settings of the placing controller, seed 000, section 6.3 (eq. 6.5).
+/// Settings of the placing controller [Forklift thesis, section 6.3, eq. 6.5].
 struct PlaceParams {
   double a = 1.5;                   ///< heading gain, 1/s (eq. 6.5: omega = -a d_h)
   double b = 1.5;                   ///< lateral gain, 1/s (eq. 6.5: v_y = -b d_x)
@@ -26,7 +26,7 @@ struct PlaceParams {
   /// Inside all tolerances, stand still this long before lowering and check again: at rest the
   /// localization averages many more UWB fixes than it can while moving, so the check after the
   /// pause is made on a better estimate, and a remaining error is corrected first.
-  double settle_time = 1.0;         ///< s; 0 lowers at once (the seed's behaviour)
+  double settle_time = 1.0;         ///< s; 0 lowers at once (the thesis's behaviour)
   int max_settles = 3;              ///< then lower whatever the last check said
   double lower_time = 1.0;          ///< time to lower the forks, s
   double back_out_distance = 0.15;  ///< reverse this far after lowering, m
@@ -37,8 +37,8 @@ struct PlaceParams {
 enum class PlaceStatus { kIdle, kHeading, kLateral, kLongitudinal, kSettling, kLowering, kBackingOut, kDone, kFailed };
 const char* to_string(PlaceStatus status);
 
-/// Places the carried pallet on a loading area using the localization estimate (seed 000,
-/// section 6.3): the heading error, then the lateral error, then the longitudinal error are
+/// Places the carried pallet on a loading area using the localization estimate
+/// [Forklift thesis, section 6.3]: the heading error, then the lateral error, then the longitudinal error are
 /// driven to zero one after another (eq. 6.5), so that the forklift faces the area and then
 /// drives straight into it without sweeping over its neighbours. Then lowers and backs out.
 class PalletPlace {

@@ -54,7 +54,7 @@ const char* to_string(FollowerStatus status) {
 }
 
 double speed_law(double omega, double v_max, double omega_max) {
-  // seed 000, eq. 6.2, normalised so that v = v_max at omega = 0 and v = 0 at omega_max.
+  // [Forklift thesis, eq. 6.2], normalised so that v = v_max at omega = 0 and v = 0 at omega_max.
   if (omega_max <= 0.0) return 0.0;
   const double ratio = std::min(std::abs(omega) / omega_max, 1.0);
   return v_max * (1.0 - ratio);
@@ -173,8 +173,8 @@ Vec2 PathFollower::point_at(double s) const {
 }
 
 Vec2 PathFollower::seed_target(Vec2 p, std::size_t& index) {
-  // seed 000, section 6.1: the first path point past the robot that is at least the minimum
-  // distance away. The index never goes back, so the target only ever moves forward.
+  // The first path point past the robot that is at least the minimum
+  // distance away [Forklift thesis, section 6.1]. The index never goes back, so the target only ever moves forward.
   const std::size_t end = leg_end();
   std::size_t i = std::max(target_index_, progress_ + 1);
   while (i < end && geometry::distance(p, path_[i].position()) < params_.lookahead) ++i;
@@ -238,7 +238,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     if (remaining <= params_.goal_tolerance) {
       status_ = FollowerStatus::kAligning;
     } else {
-      // seed 000, eq. 6.3: beta = h - atan2(yd - y, xd - x).
+      // beta = h - atan2(yd - y, xd - x) [Forklift thesis, eq. 6.3].
       const double beta = normalize_angle(in.pose.yaw - std::atan2(target.y - p.y, target.x - p.x));
       debug_.beta = beta;
       double derivative = 0.0;
@@ -254,7 +254,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
       if (params_.limit_acceleration && in.dt > 0.0) {
         cmd.omega = step_towards(last_cmd_.omega, cmd.omega, params_.max_angular_accel * in.dt);
       }
-      // seed 000, eq. 6.2: slower the harder it turns; turns in place at omega_max.
+      // Slower the harder it turns; turns in place at omega_max [Forklift thesis, eq. 6.2].
       cmd.vx = speed_law(cmd.omega, params_.v_max, params_.omega_max);
       if (params_.regulate_curvature) {
         // Nav2 RPP: curvature of the arc through the target, kappa = 2 y / L^2 in the body frame.
@@ -293,7 +293,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     }
   }
 
-  // Aligning: the seed's controller does not stop by itself; it is stopped once the heading
+  // Aligning: the thesis's controller does not stop by itself; it is stopped once the heading
   // error to the final pose is near zero (section 6.1).
   const double dh = angle_diff(goal.yaw, in.pose.yaw);
   debug_.beta = -dh;

@@ -9,11 +9,11 @@
 
 namespace fleet::control {
 
-/// Settings of the path follower, fixed per instance. The first block is the seed's controller
-/// (seed 000, section 6.1); the second switches on the extensions, each off by default so the
-/// seed's behaviour is what one gets unless asked otherwise.
+/// Settings of the path follower, fixed per instance. The first block is the thesis's controller
+/// [Forklift thesis, section 6.1]; the second switches on the extensions, each off by default so the
+/// thesis's behaviour is what one gets unless asked otherwise.
 struct FollowerParams {
-  // --- seed 000, section 6.1 ---
+  // --- [Forklift thesis, section 6.1] ---
   double v_max = 0.20;              ///< forward speed at omega = 0, m/s
   double omega_max = 2.0;           ///< angular speed limit, rad/s; forward speed is 0 there (eq. 6.2)
   double lookahead = 0.10;          ///< minimum distance to the target point on the path, metres
@@ -26,10 +26,10 @@ struct FollowerParams {
   double rotate_gain = 3.0;         ///< turn-in-place gain on the final heading error, 1/s
   double rotate_omega_min = 0.15;   ///< slowest useful turn in place, rad/s (motor deadband)
 
-  // --- beyond the seed: switchable ---
+  // --- beyond the thesis: switchable ---
   /// Target moves continuously along the path (interpolated at `lookahead` arc length ahead of
   /// the robot's projection) instead of jumping from one path point to the next; removes the
-  /// command jumps the seed reports when the target switches (section 6.1, Fig. 6.4b).
+  /// command jumps the thesis reports when the target switches (section 6.1, Fig. 6.4b).
   bool smooth_lookahead = false;
   /// Slow down where the arc to the target is tight (Nav2 Regulated Pure Pursuit).
   bool regulate_curvature = false;
@@ -80,7 +80,7 @@ struct FollowerDebug {
 /// the factor 1/omega_max that makes the units and the stated end points agree.
 double speed_law(double omega, double v_max, double omega_max);
 
-/// Path follower of seed 000, section 6.1 (Fig. 6.3): a target point on the path at least
+/// Path follower [Forklift thesis, section 6.1, Fig. 6.3]: a target point on the path at least
 /// `lookahead` away, turning error beta = h - atan2(yd - y, xd - x) (eq. 6.3) through a PID to
 /// omega, clamped to omega_max, forward speed from eq. 6.2, differential mode (vy = 0). At the
 /// end it turns in place until the heading error is near zero, then stops.

@@ -6,7 +6,7 @@
 
 namespace fleet::control {
 
-/// A velocity command in the body frame (seed 000, eq. 6.1 inputs): vx forward, vy left, omega
+/// A velocity command in the body frame, the inputs of [Forklift thesis, eq. 6.1]: vx forward, vy left, omega
 /// counter-clockwise. A mecanum base turns it into wheel speeds; the path follower keeps vy = 0.
 struct BodyTwist {
   double vx = 0.0;     ///< m/s

@@ -93,14 +93,14 @@ std::vector<Vec2> rounded_rectangle(double min_x, double min_y, double max_x, do
 
 ReferenceLoop make_loop(Trajectory t) {
   switch (t) {
-    case Trajectory::square:
+    case Trajectory::kSquare:
       return ReferenceLoop(rounded_rectangle(0.5, 0.5, 2.5, 2.5, 0.25));
-    case Trajectory::table_a_loop:
+    case Trajectory::kTableALoop:
       // table_a's outer road loop (road centre lines about 0.4 m inside the 3 m table edge).
       return ReferenceLoop(rounded_rectangle(0.4, 0.4, 2.6, 2.6, 0.3));
-    case Trajectory::figure8: {
+    case Trajectory::kFigure8: {
       // Lissajous 1:2 figure of eight centred on the table. It starts at the crossing, heading
-      // about 40 degrees: not the seed's mandatory heading 0, so heading initialisation matters.
+      // about 40 degrees: not the thesis's mandatory heading 0, so heading initialisation matters.
       std::vector<Vec2> pts;
       const int n = 4000;
       for (int i = 0; i < n; ++i) {
@@ -119,10 +119,10 @@ std::mt19937_64 engine(std::uint64_t seed, std::uint64_t stream) {
   return std::mt19937_64(seq);
 }
 
-enum class EventKind { gyro, uwb };
+enum class EventKind { kGyro, kUwb };
 
 struct Event {
-  EventKind kind = EventKind::gyro;
+  EventKind kind = EventKind::kGyro;
   double t = 0.0;
   double gyro = 0.0;
   localization::BodyVelocity command;
@@ -172,10 +172,10 @@ VariantResult replay(const std::string& name, const localization::EkfParams& par
   double last_gyro_t = -1.0;
   double score_sum = 0.0;
   for (const Event& e : events) {
-    if (e.kind == EventKind::uwb) {
+    if (e.kind == EventKind::kUwb) {
       if (!e.fix) continue;
       const auto status = ekf.update_uwb(e.fix->position, e.fix->covariance);
-      if (status == localization::UpdateStatus::gated) ++r.fixes_gated;
+      if (status == localization::UpdateStatus::kGated) ++r.fixes_gated;
       continue;
     }
     // Fig. 4.3: an IMU reading triggers prediction and publishes the pose.
@@ -205,19 +205,19 @@ std::string fmt(double v, int precision = 3) {
 }  // namespace
 
 std::optional<Trajectory> parse_trajectory(const std::string& name) {
-  if (name == "square") return Trajectory::square;
-  if (name == "figure8") return Trajectory::figure8;
-  if (name == "table_a_loop") return Trajectory::table_a_loop;
+  if (name == "square") return Trajectory::kSquare;
+  if (name == "figure8") return Trajectory::kFigure8;
+  if (name == "table_a_loop") return Trajectory::kTableALoop;
   return std::nullopt;
 }
 
 std::string to_string(Trajectory t) {
   switch (t) {
-    case Trajectory::square:
+    case Trajectory::kSquare:
       return "square";
-    case Trajectory::figure8:
+    case Trajectory::kFigure8:
       return "figure8";
-    case Trajectory::table_a_loop:
+    case Trajectory::kTableALoop:
       return "table_a_loop";
   }
   return "?";
@@ -274,7 +274,7 @@ LocEvalResult run_loc_eval(const LocEvalParams& params) {
 
     if (k % uwb_every == 0) {
       Event e;
-      e.kind = EventKind::uwb;
+      e.kind = EventKind::kUwb;
       e.t = t;
       e.truth = truth;
       const auto readings = tag.measure_ranges(truth);
@@ -317,7 +317,7 @@ LocEvalResult run_loc_eval(const LocEvalParams& params) {
       cmd.omega = params.speed * kappa + 2.0 * e_th;
 
       Event e;
-      e.kind = EventKind::gyro;
+      e.kind = EventKind::kGyro;
       e.t = t;
       e.truth = truth;
       e.gyro = gyro.measure(body.twist().omega, 1.0 / params.gyro.rate_hz);
@@ -352,14 +352,14 @@ LocEvalResult run_loc_eval(const LocEvalParams& params) {
     p.gating = false;
     result.variants.push_back(replay("fixed_q_no_gating", p, events, nullptr));
     p = params.ekf;
-    p.velocity_source = localization::VelocitySource::none;
+    p.velocity_source = localization::VelocitySource::kNone;
     result.variants.push_back(replay("no_velocity", p, events, nullptr));
     p = params.ekf;
     p.heading_init = false;
     result.variants.push_back(replay("no_heading_init", p, events, nullptr));
     if (params.encoders.enabled) {
       p = params.ekf;
-      p.velocity_source = localization::VelocitySource::encoders;
+      p.velocity_source = localization::VelocitySource::kEncoders;
       result.variants.push_back(replay("encoders", p, events, nullptr));
     }
     result.variants.push_back(replay("seed", localization::EkfParams::seed(), events, nullptr));

@@ -15,7 +15,7 @@
 
 namespace fleet::eval {
 
-enum class Trajectory { square, figure8, table_a_loop };
+enum class Trajectory { kSquare, kFigure8, kTableALoop };
 
 /// "square" | "figure8" | "table_a_loop"; nothing for anything else.
 std::optional<Trajectory> parse_trajectory(const std::string& name);
@@ -25,7 +25,7 @@ std::string to_string(Trajectory t);
 /// sensors recorded once and replayed into one filter per variant, so every variant sees exactly
 /// the same data.
 struct LocEvalParams {
-  Trajectory trajectory = Trajectory::figure8;
+  Trajectory trajectory = Trajectory::kFigure8;
   double duration = 60.0;      ///< seconds of simulated time
   std::uint64_t seed = 1;      ///< every noise source derives its engine from it
   double nlos_fraction = 0.0;  ///< probability that a range is NLOS (biased), in [0, 1]
@@ -35,11 +35,11 @@ struct LocEvalParams {
   sim::ForkliftParams forklift;
   sim::UwbParams uwb;
   sim::GyroParams gyro;
-  sim::EncoderParams encoders;    ///< off by default, like the seed's hardware
-  double control_rate_hz = 70.0;  ///< path-tracker rate (seed 000, Table 3.1)
+  sim::EncoderParams encoders;    ///< off by default, like the thesis's hardware
+  double control_rate_hz = 70.0;  ///< path-tracker rate [Forklift thesis, Table 3.1]
   double physics_dt = 1.0 / 1400.0;
   localization::EkfParams ekf = localization::EkfParams::tuned();
-  /// Also run each variant with one beyond-seed feature off, and the seed's filter.
+  /// Also run each variant with one beyond-thesis feature off, and the thesis's filter.
   bool variants = true;
 };
 
@@ -90,7 +90,7 @@ struct LocEvalResult {
 /// fraction outside [0, 1].
 LocEvalResult run_loc_eval(const LocEvalParams& params);
 
-/// Truth, UWB fixes and EKF track in map coordinates (like seed 000 Fig. 4.4), as a standalone SVG.
+/// Truth, UWB fixes and EKF track in map coordinates (like [Forklift thesis, Fig. 4.4]), as a standalone SVG.
 std::string loc_eval_svg(const LocEvalResult& result);
 
 /// Default anchors: table_a's corners at 1 m.

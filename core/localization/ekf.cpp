@@ -55,7 +55,7 @@ EkfParams EkfParams::tuned() {
   p.uwb_std = 0.03;  // floor of Q_t; the solver's covariance is normally above it
   p.init_heading_std = 0.05;
   p.gating = true;
-  p.velocity_source = VelocitySource::commanded;
+  p.velocity_source = VelocitySource::kCommanded;
   p.heading_init = true;
   p.gyro_bias = true;
   p.standstill_update = true;
@@ -93,8 +93,8 @@ Ekf::Ekf(const EkfParams& params) : params_(params) {
 }
 
 StateVector Ekf::motion_model(const StateVector& x, double gyro_omega, double dt) {
-  // seed 000, eq. 4.8: body velocities rotated into the map frame; heading from the gyro. Beyond
-  // the seed the gyro reading is corrected by the bias state (b = 0 gives eq. 4.8 exactly); b
+  // Body velocities rotated into the map frame; heading from the gyro [Forklift thesis, eq. 4.8].
+  // Beyond the thesis, the gyro reading is corrected by the bias state (b = 0 gives eq. 4.8 exactly); b
   // itself is a random walk, so its prediction is b.
   StateVector out = x;
   const double th = x(kTheta);
@@ -105,7 +105,7 @@ StateVector Ekf::motion_model(const StateVector& x, double gyro_omega, double dt
 }
 
 StateCovariance Ekf::motion_jacobian(const StateVector& x, double dt) {
-  // seed 000, eq. 4.15. The printed matrix also has dt at (theta, omega); that entry is the
+  // [Forklift thesis, eq. 4.15]. The printed matrix also has dt at (theta, omega); that entry is the
   // derivative only if theta were propagated with the state's omega. Eq. 4.8 propagates it with
   // the gyro reading, an input, so the true derivative there is 0 and that is what is used here
   // (a Jacobian that disagrees with its model makes the filter over-confident about omega).
@@ -117,19 +117,19 @@ StateCovariance Ekf::motion_jacobian(const StateVector& x, double dt) {
   g(kY, kTheta) = dt * (std::cos(th) * x(kVx) + std::cos(th + kPi / 2.0) * x(kVy));
   g(kY, kVx) = std::sin(th) * dt;
   g(kY, kVy) = std::sin(th + kPi / 2.0) * dt;
-  g(kTheta, kBias) = -dt;  // beyond the seed: theta integrates (gyro - b)
+  g(kTheta, kBias) = -dt;  // beyond the thesis: theta integrates (gyro - b)
   return g;
 }
 
 Eigen::Vector2d Ekf::measurement_model(const StateVector& x, const geometry::Vec2& offset) {
-  // seed 000, eq. 4.13
+  // [Forklift thesis, eq. 4.13]
   const double th = x(kTheta);
   return {offset.x * std::cos(th) - offset.y * std::sin(th) + x(kX),
           offset.x * std::sin(th) + offset.y * std::cos(th) + x(kY)};
 }
 
 Eigen::Matrix<double, 2, kStateSize> Ekf::measurement_jacobian(const StateVector& x, const geometry::Vec2& offset) {
-  // seed 000, eq. 4.17 (the printed matrix drops the omega column; it is zero, as is the bias's).
+  // [Forklift thesis, eq. 4.17] (the printed matrix drops the omega column; it is zero, as is the bias's).
   const double th = x(kTheta);
   Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
   h(0, kX) = 1.0;
@@ -149,7 +149,7 @@ Eigen::Matrix2d Ekf::measurement_noise(const Eigen::Matrix2d& fix_covariance) co
 }
 
 void Ekf::initialize(const geometry::Vec2& antenna, const Eigen::Matrix2d& covariance) {
-  // seed 000, eq. 4.14: position from the first valid fix, heading assumed, at rest. The printed
+  // Position from the first valid fix, heading assumed, at rest [Forklift thesis, eq. 4.14]. The printed
   // vector puts the antenna position itself into x, y; inverting eq. 4.13 at the assumed heading
   // removes the 5 cm antenna offset as well.
   const double th = params_.initial_heading;
@@ -162,7 +162,7 @@ void Ekf::initialize(const geometry::Vec2& antenna, const Eigen::Matrix2d& covar
   const double vel2 = params_.init_velocity_std * params_.init_velocity_std;
   P_ = StateCovariance::Zero();
   // The bias variance stays exactly 0 when the bias is not estimated: b = 0 is then a constant and
-  // the filter is the seed's six-state one.
+  // the filter is the thesis's six-state one.
   const double bias2 = params_.gyro_bias ? params_.init_gyro_bias_std * params_.init_gyro_bias_std : 0.0;
   P_.diagonal() << pos2, pos2, params_.init_heading_std * params_.init_heading_std, vel2, vel2, vel2, bias2;
   if (params_.use_fix_covariance) P_.block<2, 2>(kX, kX) += measurement_noise(covariance);
@@ -283,7 +283,7 @@ void Ekf::try_resolve_heading() {
     // ignores.
     theta_var = 1.0 / std::max(sum_wd2, 1e-6) + 0.02 * 0.02;
   } else {
-    // No velocity source: assume the forklift drove forwards, as the seed's path follower does.
+    // No velocity source: assume the forklift drove forwards, as the thesis's path follower does.
     const geometry::Vec2 d = track_.back().fix - track_.front().fix;
     if (geometry::norm(d) < params_.heading_init_distance) return;
     theta_now = std::atan2(d.y, d.x) + 0.5 * dr_yaw_;
@@ -315,16 +315,16 @@ void Ekf::try_resolve_heading() {
 
 UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d& covariance) {
   if (!std::isfinite(z_pos.x) || !std::isfinite(z_pos.y) || !covariance.allFinite()) {
-    return UpdateStatus::rejected_non_finite;
+    return UpdateStatus::kRejectedNonFinite;
   }
   if (!initialized_) {
     if (params_.use_fix_covariance) {
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(0.5 * (covariance + covariance.transpose()));
       const double worst = eig.eigenvalues().maxCoeff();
-      if (!(worst <= params_.init_max_fix_std * params_.init_max_fix_std)) return UpdateStatus::not_initialized;
+      if (!(worst <= params_.init_max_fix_std * params_.init_max_fix_std)) return UpdateStatus::kNotInitialized;
     }
     initialize(z_pos, covariance);  // Fig. 4.3, lines 1-3
-    return UpdateStatus::initialized;
+    return UpdateStatus::kInitialized;
   }
 
   const Eigen::Vector2d z(z_pos.x, z_pos.y);                                                  // eq. 4.10
@@ -334,11 +334,11 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
   const Eigen::Matrix2d q = measurement_noise(covariance);
   Eigen::Matrix2d s = h * P_ * h.transpose() + q;
   double nis = innovation.dot(s.ldlt().solve(innovation));
-  if (!std::isfinite(nis)) return UpdateStatus::rejected_non_finite;
+  if (!std::isfinite(nis)) return UpdateStatus::kRejectedNonFinite;
 
   if (params_.gating && nis > params_.gate_chi2) {
     ++consecutive_rejections_;
-    if (consecutive_rejections_ < params_.max_consecutive_rejections) return UpdateStatus::gated;
+    if (consecutive_rejections_ < params_.max_consecutive_rejections) return UpdateStatus::kGated;
     // Too many rejections in a row: the estimate, not the fixes, is off. Widen the position
     // uncertainty to cover the innovation and accept.
     P_.block<2, 2>(kX, kX) += innovation * innovation.transpose();
@@ -359,12 +359,12 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
   nis_mean_ += 0.05 * (std::min(nis, 50.0) - nis_mean_);
 
   if (!heading_resolved_) try_resolve_heading();
-  return UpdateStatus::accepted;
+  return UpdateStatus::kAccepted;
 }
 
 UpdateStatus Ekf::update_commanded(const BodyVelocity& cmd) {
   if (params_.standstill_update) {
-    if (!finite(cmd)) return UpdateStatus::rejected_non_finite;
+    if (!finite(cmd)) return UpdateStatus::kRejectedNonFinite;
     // Exactly zero: the drive was told to stop. predict() counts how long ago that was, so the
     // first standstill_delay seconds (wheels still spinning down) get the ordinary update.
     const bool zero = cmd.vx == 0.0 && cmd.vy == 0.0 && cmd.omega == 0.0;
@@ -372,16 +372,16 @@ UpdateStatus Ekf::update_commanded(const BodyVelocity& cmd) {
     command_zero_ = zero;
     if (zero && zero_command_for_ >= params_.standstill_delay) return update_standstill();
   }
-  if (params_.velocity_source != VelocitySource::commanded) return UpdateStatus::ignored;
+  if (params_.velocity_source != VelocitySource::kCommanded) return UpdateStatus::kIgnored;
   return update_velocity(cmd, params_.commanded_velocity_std);
 }
 
 UpdateStatus Ekf::update_standstill() {
-  if (!params_.standstill_update) return UpdateStatus::ignored;
+  if (!params_.standstill_update) return UpdateStatus::kIgnored;
   last_velocity_ = {};
   have_velocity_ = true;
-  if (!initialized_) return UpdateStatus::not_initialized;
-  if (!heading_resolved_) return UpdateStatus::deferred;
+  if (!initialized_) return UpdateStatus::kNotInitialized;
+  if (!heading_resolved_) return UpdateStatus::kDeferred;
   // Zero-velocity update: z = (vx, vy, omega) = 0. With the bias state, the gyro reading taken at
   // rest adds z = gyro = omega + b (+ white noise), which is what makes b observable without any
   // heading information from the fixes. That reading also drove the last prediction; the
@@ -409,20 +409,20 @@ UpdateStatus Ekf::update_standstill() {
   }
   x_(kTheta) = geometry::normalize_angle(x_(kTheta));
   symmetrize(P_);
-  return UpdateStatus::accepted;
+  return UpdateStatus::kAccepted;
 }
 
 UpdateStatus Ekf::update_encoders(const BodyVelocity& measured) {
-  if (params_.velocity_source != VelocitySource::encoders) return UpdateStatus::ignored;
+  if (params_.velocity_source != VelocitySource::kEncoders) return UpdateStatus::kIgnored;
   return update_velocity(measured, params_.encoder_velocity_std);
 }
 
 UpdateStatus Ekf::update_velocity(const BodyVelocity& z, const std::array<double, 3>& std) {
-  if (!finite(z)) return UpdateStatus::rejected_non_finite;
+  if (!finite(z)) return UpdateStatus::kRejectedNonFinite;
   last_velocity_ = z;
   have_velocity_ = true;
-  if (!initialized_) return UpdateStatus::not_initialized;
-  if (!heading_resolved_) return UpdateStatus::deferred;
+  if (!initialized_) return UpdateStatus::kNotInitialized;
+  if (!heading_resolved_) return UpdateStatus::kDeferred;
   // z = (vx, vy, omega), H = [0 | I3]: a linear update on the velocity block.
   const Eigen::Vector3d innovation(z.vx - x_(kVx), z.vy - x_(kVy), z.omega - x_(kOmega));
   const Eigen::Matrix<double, kStateSize, 3> pht = P_.block<kStateSize, 3>(0, kVx);
@@ -433,7 +433,7 @@ UpdateStatus Ekf::update_velocity(const BodyVelocity& z, const std::array<double
   x_(kTheta) = geometry::normalize_angle(x_(kTheta));
   P_ -= k * pht.transpose();
   symmetrize(P_);
-  return UpdateStatus::accepted;
+  return UpdateStatus::kAccepted;
 }
 
 geometry::Pose2 Ekf::pose() const {

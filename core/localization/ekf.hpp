@@ -8,9 +8,9 @@
 
 namespace fleet::localization {
 
-/// State of seed 000 eq. 4.6: x, y, theta (map frame), vx, vy (body frame), omega; plus, beyond
-/// the seed, the gyro bias b (rad/s). With EkfParams::gyro_bias off, b is held at exactly 0 with
-/// zero variance and no correlation to the rest, which is the seed's six-state filter: the extra
+/// The state: x, y, theta (map frame), vx, vy (body frame), omega [Forklift thesis, eq. 4.6]; plus,
+/// beyond the thesis, the gyro bias b (rad/s). With EkfParams::gyro_bias off, b is held at exactly 0
+/// with zero variance and no correlation to the rest, which is the thesis's six-state filter: the extra
 /// row and column only ever multiply zeros.
 inline constexpr int kStateSize = 7;
 using StateVector = Eigen::Matrix<double, kStateSize, 1>;
@@ -25,15 +25,15 @@ struct BodyVelocity {
   double omega = 0.0;  ///< rad/s
 };
 
-/// Where velocity updates come from (beyond the seed: its estimate lagged in curves "for want of
-/// wheel speeds", seed 000 section 4.1).
-enum class VelocitySource { none, commanded, encoders };
+/// Where velocity updates come from (beyond the thesis: its estimate lagged in curves "for want of
+/// wheel speeds" [Forklift thesis, section 4.1]).
+enum class VelocitySource { kNone, kCommanded, kEncoders };
 
 struct EkfParams {
-  /// Antenna offset (a, b) in the body frame, seed 000 eq. 4.12.
+  /// Antenna offset (a, b) in the body frame [Forklift thesis, eq. 4.12].
   geometry::Vec2 antenna_offset{0.05, 0.0};
 
-  /// R_t diagonal per prediction at `nominal_dt` (seed 000 eq. 4.16 at the 70 Hz IMU rate). A
+  /// R_t diagonal per prediction at `nominal_dt` (at the 70 Hz IMU rate [Forklift thesis, eq. 4.16]). A
   /// prediction over dt uses R_t * dt / nominal_dt, so the filter behaves the same at other rates.
   std::array<double, 6> process_noise{1e-5, 1e-5, 1e-4, 1e-8, 1e-3, 1e-6};
   double nominal_dt = 1.0 / 70.0;
@@ -43,7 +43,7 @@ struct EkfParams {
   double uwb_std = 0.05;  ///< metres
   bool use_fix_covariance = false;
 
-  /// Sigma_0 of the initialisation (eq. 4.14); the seed gives none. With use_fix_covariance the
+  /// Sigma_0 of the initialisation (eq. 4.14); the thesis gives none. With use_fix_covariance the
   /// first fix's Q_t is added to the position block, so that a fix spoiled by NLOS does not pin
   /// the filter to the wrong place.
   double init_position_std = 0.05;  ///< metres
@@ -51,10 +51,10 @@ struct EkfParams {
   /// largest standard deviation is at most this: a fix whose ranges disagree (NLOS) waits.
   double init_max_fix_std = 0.10;   ///< metres
   double init_heading_std = 0.05;   ///< rad, when the start heading is trusted (seed: always 0)
-  double init_velocity_std = 0.05;  ///< m/s and rad/s; the seed starts at rest
-  double initial_heading = 0.0;     ///< rad; the seed's forklifts always start at heading 0
+  double init_velocity_std = 0.05;  ///< m/s and rad/s; the thesis starts at rest
+  double initial_heading = 0.0;     ///< rad; the thesis's forklifts always start at heading 0
 
-  // Beyond the seed, each switchable so its effect can be measured.
+  // Beyond the thesis, each switchable so its effect can be measured.
 
   /// 1. Mahalanobis gating of UWB fixes: a fix whose squared innovation distance exceeds
   /// gate_chi2 (chi-square, 2 dof) is rejected. After max_consecutive_rejections in a row the
@@ -65,7 +65,7 @@ struct EkfParams {
   int max_consecutive_rejections = 10;
 
   /// 2. Velocity updates from commands or encoders, z = (vx, vy, omega), H = [0 | I3].
-  VelocitySource velocity_source = VelocitySource::none;
+  VelocitySource velocity_source = VelocitySource::kNone;
   std::array<double, 3> commanded_velocity_std{0.02, 0.02, 0.10};  ///< m/s, m/s, rad/s
   std::array<double, 3> encoder_velocity_std{0.01, 0.01, 0.05};
 
@@ -99,22 +99,22 @@ struct EkfParams {
   /// The seed's filter exactly: R_t of eq. 4.16, fixed Q_t, no gating, no velocity updates,
   /// heading 0 at start, no gyro bias state, no zero-velocity updates.
   static EkfParams seed();
-  /// Every beyond-seed feature on, noise tuned to the simulated sensors (see the README).
+  /// Every beyond-thesis feature on, noise tuned to the simulated sensors (see the README).
   static EkfParams tuned();
 };
 
 enum class UpdateStatus {
-  accepted,             ///< applied to the state
-  gated,                ///< UWB fix rejected by the Mahalanobis gate
-  rejected_non_finite,  ///< NaN or infinity in the input; nothing changed
-  not_initialized,      ///< no state yet (velocity before the first fix, or a first fix too
-                        ///< uncertain to initialise from)
-  initialized,          ///< this fix initialised the filter
-  deferred,             ///< velocity recorded for heading initialisation, state not updated yet
-  ignored,              ///< the source is switched off in EkfParams
+  kAccepted,           ///< applied to the state
+  kGated,              ///< UWB fix rejected by the Mahalanobis gate
+  kRejectedNonFinite,  ///< NaN or infinity in the input; nothing changed
+  kNotInitialized,     ///< no state yet (velocity before the first fix, or a first fix too
+                       ///< uncertain to initialise from)
+  kInitialized,        ///< this fix initialised the filter
+  kDeferred,           ///< velocity recorded for heading initialisation, state not updated yet
+  kIgnored,            ///< the source is switched off in EkfParams
 };
 
-/// The forklift's localization filter, seed 000 chapter 4, loop of Fig. 4.3:
+/// The forklift's localization filter, the loop of [Forklift thesis, chapter 4, Fig. 4.3]:
 ///   on a UWB fix:  initialise if needed (eq. 4.14), else update (eqs. 4.10-4.13, 4.17, 4.3-4.5);
 ///   on a gyro reading: predict (eqs. 4.8, 4.15, 4.16, 4.1-4.2) and publish the pose.
 /// Every input is checked: a NaN or infinity is rejected and leaves the state untouched.
@@ -170,13 +170,13 @@ class Ekf {
   const EkfParams& params() const { return params_; }
 
   // The models, public so that tests can check the Jacobians against numerical derivatives.
-  /// g(u_t, mu_{t-1}), seed 000 eq. 4.8, with the heading integrating (gyro - b); b = 0 is eq. 4.8.
+  /// g(u_t, mu_{t-1}) [Forklift thesis, eq. 4.8], with the heading integrating (gyro - b); b = 0 is eq. 4.8.
   static StateVector motion_model(const StateVector& x, double gyro_omega, double dt);
-  /// G_t = dg/dx, seed 000 eq. 4.15 (see ekf.cpp for the theta/omega entry), plus d theta / d b.
+  /// G_t = dg/dx [Forklift thesis, eq. 4.15] (see ekf.cpp for the theta/omega entry), plus d theta / d b.
   static StateCovariance motion_jacobian(const StateVector& x, double dt);
-  /// h(mu), seed 000 eq. 4.13.
+  /// h(mu) [Forklift thesis, eq. 4.13].
   static Eigen::Vector2d measurement_model(const StateVector& x, const geometry::Vec2& offset);
-  /// H_t = dh/dx, seed 000 eq. 4.17.
+  /// H_t = dh/dx [Forklift thesis, eq. 4.17].
   static Eigen::Matrix<double, 2, kStateSize> measurement_jacobian(const StateVector& x, const geometry::Vec2& offset);
 
  private:

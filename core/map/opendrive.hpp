@@ -6,7 +6,7 @@
 
 namespace fleet::map {
 
-// OpenDRIVE road networks (seed 000, section 5.1; ASAM OpenDRIVE 1.4-1.7). Only what a planar
+// OpenDRIVE road networks ([Forklift thesis, section 5.1]; ASAM OpenDRIVE 1.4-1.7). Only what a planar
 // planner needs is kept: elevation, superelevation, road marks, objects and signals are skipped.
 
 enum class ContactPoint { kNone, kStart, kEnd };
@@ -34,18 +34,18 @@ enum class GeometryKind { kLine, kArc, kSpiral, kPoly3, kParamPoly3 };
 struct Geometry {
   GeometryKind kind = GeometryKind::kLine;
   double s = 0.0, x = 0.0, y = 0.0, hdg = 0.0, length = 0.0;
-  double curvature = 0.0;                       ///< arc
-  double curv_start = 0.0, curv_end = 0.0;      ///< spiral
-  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;    ///< poly3: v(u)
+  double curvature = 0.0;                         ///< arc
+  double curv_start = 0.0, curv_end = 0.0;        ///< spiral
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;      ///< poly3: v(u)
   double au = 0.0, bu = 0.0, cu = 0.0, du = 0.0;  ///< paramPoly3 u(p)
   double av = 0.0, bv = 0.0, cv = 0.0, dv = 0.0;  ///< paramPoly3 v(p)
-  bool normalized = true;  ///< paramPoly3 pRange: p in [0, 1] (true) or [0, length] (false)
+  bool normalized = true;                         ///< paramPoly3 pRange: p in [0, 1] (true) or [0, length] (false)
   int line = 0;
 };
 
 struct Lane {
   int id = 0;
-  std::string type;  ///< "driving", "sidewalk", "none", ...
+  std::string type;                ///< "driving", "sidewalk", "none", ...
   std::vector<CubicPoly> widths;   ///< by sOffset, ascending
   std::optional<int> predecessor;  ///< lane id in the previous section or linked road
   std::optional<int> successor;
@@ -72,9 +72,9 @@ struct Road {
   bool left_hand_traffic = false;  ///< rule="LHT": left lanes drive along the reference line
   std::optional<RoadLink> predecessor;
   std::optional<RoadLink> successor;
-  std::vector<Geometry> plan_view;       ///< by s, ascending
-  std::vector<CubicPoly> lane_offsets;   ///< by s, ascending
-  std::vector<LaneSection> sections;     ///< by s, ascending
+  std::vector<Geometry> plan_view;      ///< by s, ascending
+  std::vector<CubicPoly> lane_offsets;  ///< by s, ascending
+  std::vector<LaneSection> sections;    ///< by s, ascending
   int line = 0;
 
   bool in_junction() const { return junction != "-1"; }

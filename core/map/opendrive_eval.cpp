@@ -1,5 +1,5 @@
-// Reference-line and lane-centre evaluation (seed 000, section 5.1, eq. 5.1-5.4, generalised to
-// every OpenDRIVE plan-view geometry).
+// Reference-line and lane-centre evaluation [Forklift thesis, section 5.1, eq. 5.1-5.4], generalised
+// to every OpenDRIVE plan-view geometry.
 
 #include <algorithm>
 #include <array>
@@ -43,7 +43,7 @@ auto gauss_legendre(F&& f, double a, double b, int panels) {
 RefPoint to_global(const Geometry& g, double u, double v, double local_hdg) {
   const double c = std::cos(g.hdg);
   const double s = std::sin(g.hdg);
-  // seed 000, eq. 5.3-5.4
+  // [Forklift thesis, eq. 5.3-5.4]
   return {g.x + u * c - v * s, g.y + u * s + v * c, g.hdg + local_hdg};
 }
 
@@ -65,8 +65,7 @@ RefPoint spiral_quadrature(const Geometry& g, double k0, double rate, double ds)
   // Capped so that absurd inputs (a fuzzed file) cost bounded time instead of hanging.
   const double wanted = 1.0 + turn / 0.25 + ds / 50.0;
   const int panels = std::isfinite(wanted) ? static_cast<int>(std::min(wanted, 1e5)) : 1;
-  const std::complex<double> z =
-      gauss_legendre([&](double u) { return std::polar(1.0, heading(u)); }, 0.0, ds, panels);
+  const std::complex<double> z = gauss_legendre([&](double u) { return std::polar(1.0, heading(u)); }, 0.0, ds, panels);
   return {g.x + z.real(), g.y + z.imag(), heading(ds)};
 }
 
@@ -97,7 +96,9 @@ RefPoint poly3(const Geometry& g, double ds) {
   const auto speed = [&](double u) { return std::sqrt(1.0 + dv(u) * dv(u)); };
   const auto arc_length = [&](double u) {
     const double wanted = 1.0 + std::abs(u) / 5.0;
-    return u == 0.0 ? 0.0 : gauss_legendre(speed, 0.0, u, std::isfinite(wanted) ? static_cast<int>(std::min(wanted, 1e4)) : 1);
+    return u == 0.0
+               ? 0.0
+               : gauss_legendre(speed, 0.0, u, std::isfinite(wanted) ? static_cast<int>(std::min(wanted, 1e4)) : 1);
   };
   double u = ds / speed(0.0);
   for (int i = 0; i < 30; ++i) {

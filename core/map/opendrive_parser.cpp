@@ -1,12 +1,11 @@
-// OpenDRIVE reader (seed 000, section 5.1, Fig. 5.3 steps 1-6): pulls roads, links, junctions,
+// OpenDRIVE reader [Forklift thesis, section 5.1, Fig. 5.3 steps 1-6]: pulls roads, links, junctions,
 // plan-view geometry and lanes out of the XML and refuses anything it cannot place exactly.
-
-#include <pugixml.hpp>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <pugixml.hpp>
 #include <set>
 #include <sstream>
 
@@ -79,7 +78,8 @@ class Parser {
     const pugi::xml_attribute attr = node.attribute(name);
     if (!attr) fail(node, name, "is missing");
     const double v = to_number(node, name, attr.value());
-    if (v != std::floor(v) || std::abs(v) > 1e6) fail(node, name, "'" + std::string(attr.value()) + "' is not an integer");
+    if (v != std::floor(v) || std::abs(v) > 1e6)
+      fail(node, name, "'" + std::string(attr.value()) + "' is not an integer");
     return static_cast<int>(v);
   }
 
@@ -230,9 +230,9 @@ void side(const Parser& p, const pugi::xml_node& node, int sign, std::vector<Lan
   // 1, 2, ... without gaps or the offsets would be silently wrong.
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (std::abs(out[i].id) != static_cast<int>(i + 1)) {
-      p.fail_at(out[i].line, "lane", "id", "lane ids on the " + std::string(node.name()) + " must run " +
-                                                std::to_string(sign) + ", " + std::to_string(2 * sign) +
-                                                ", ... without gaps or repeats");
+      p.fail_at(out[i].line, "lane", "id",
+                "lane ids on the " + std::string(node.name()) + " must run " + std::to_string(sign) + ", " +
+                    std::to_string(2 * sign) + ", ... without gaps or repeats");
     }
   }
 }
@@ -297,9 +297,10 @@ Junction junction(const Parser& p, const pugi::xml_node& node) {
     con.incoming_road = p.text(c, "incomingRoad");
     // Direct junctions (OpenDRIVE 1.7) name the linked road instead of a connecting road.
     con.connecting_road = c.attribute("connectingRoad") || !c.attribute("linkedRoad") ? p.text(c, "connectingRoad")
-                                                                                        : p.text(c, "linkedRoad");
+                                                                                      : p.text(c, "linkedRoad");
     con.contact = p.contact(c, "contactPoint", true);
-    for (const pugi::xml_node ll : c.children("laneLink")) con.lane_links.push_back({p.integer(ll, "from"), p.integer(ll, "to")});
+    for (const pugi::xml_node ll : c.children("laneLink"))
+      con.lane_links.push_back({p.integer(ll, "from"), p.integer(ll, "to")});
     j.connections.push_back(std::move(con));
   }
   return j;
@@ -319,7 +320,9 @@ const Lane* LaneSection::find(int lane_id) const {
   return &lanes[k - 1];
 }
 
-double Road::section_end(std::size_t i) const { return i + 1 < sections.size() ? sections[i + 1].s : length; }
+double Road::section_end(std::size_t i) const {
+  return i + 1 < sections.size() ? sections[i + 1].s : length;
+}
 
 const Road* RoadNetwork::find_road(const std::string& id) const {
   const std::size_t i = road_index(id);
@@ -384,7 +387,8 @@ RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file
       const RoadLink& l = **link;
       const char* element = link == &r.predecessor ? "predecessor" : "successor";
       if (l.target == LinkTarget::kRoad && !road_ids.contains(l.element_id)) {
-        p.fail_at(l.line, element, "elementId", "road '" + l.element_id + "' does not exist (linked from road '" + r.id + "')");
+        p.fail_at(l.line, element, "elementId",
+                  "road '" + l.element_id + "' does not exist (linked from road '" + r.id + "')");
       }
       if (l.target == LinkTarget::kJunction && !junction_ids.contains(l.element_id)) {
         p.fail_at(l.line, element, "elementId",

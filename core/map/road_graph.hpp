@@ -6,7 +6,7 @@
 
 namespace fleet::map {
 
-/// A point sampled on the centre line of a driving lane (seed 000, section 5.1, Fig. 5.3-5.5).
+/// A point sampled on the centre line of a driving lane [Forklift thesis, section 5.1, Fig. 5.3-5.5].
 struct GraphPoint {
   int id = 0;  ///< index into RoadGraph::points, unique within the graph
   double x = 0.0;

@@ -1,4 +1,4 @@
-// Road graph from OpenDRIVE (seed 000, section 5.1, Fig. 5.3-5.5): points sampled on lane
+// Road graph from OpenDRIVE [Forklift thesis, section 5.1, Fig. 5.3-5.5]: points sampled on lane
 // centres, connected along lanes, across lane sections, road links and junction connections.
 
 #include "map/road_graph_builder.hpp"
@@ -61,8 +61,8 @@ class Builder {
       const LaneSection& sec = road.sections[si];
       const double s0 = sec.s;
       const double s1 = std::max(s0, road.section_end(si));
-      // seed 000 used M = 10 points a road; here the count follows the length so that long and
-      // short roads get the same density, with both section ends always sampled.
+      // The thesis takes M = 10 points a road [Forklift thesis, section 5.1]; here the count follows the length so that
+      // long and short roads get the same density, with both section ends always sampled.
       const double wanted = std::ceil((s1 - s0) / options_.spacing - 1e-9);
       if (!(wanted <= kMaxSamplesPerLane)) {
         throw MapError(net_.file + ":" + std::to_string(sec.line) + ": <laneSection> of road '" + road.id +
@@ -84,7 +84,7 @@ class Builder {
             out_.graph.successors.emplace_back();
             gl.points.push_back(id);
           }
-          // seed 000, section 5.1: inner points connect to the previous and next point.
+          // Inner points connect to the previous and next point [Forklift thesis, section 5.1].
           for (std::size_t i = 0; i + 1 < gl.points.size(); ++i) {
             if (gl.direction != LaneDirection::kBackward) add_edge(gl.points[i], gl.points[i + 1]);
             if (gl.direction != LaneDirection::kForward) add_edge(gl.points[i + 1], gl.points[i]);
@@ -166,7 +166,9 @@ class Builder {
     }
   }
 
-  RefPoint road_end(const Road& road, bool at_end) const { return evaluate_reference(road, at_end ? road.length : 0.0); }
+  RefPoint road_end(const Road& road, bool at_end) const {
+    return evaluate_reference(road, at_end ? road.length : 0.0);
+  }
 
   /// Which end of `other` touches the `at_end` end of `road`, by distance.
   bool nearer_end(const Road& road, bool at_end, const Road& other) const {
@@ -190,8 +192,8 @@ class Builder {
         std::size_t a = 0, b = 0;
         if (lane_of(r, rs, lane.id, &a) == nullptr) continue;
         const std::optional<int> explicit_target = lane_target(lane);
-        const int target = explicit_target ? *explicit_target
-                                           : default_lane(rsec, lane.id, other.sections[os], r_at_end != o_at_end);
+        const int target =
+            explicit_target ? *explicit_target : default_lane(rsec, lane.id, other.sections[os], r_at_end != o_at_end);
         if (lane_of(o, os, target, &b) == nullptr) continue;
         join({a, r_at_end}, {b, o_at_end});
       }
@@ -206,9 +208,8 @@ class Builder {
       const std::size_t o = net_.road_index(link->element_id);
       if (o >= net_.roads.size()) continue;
       const bool o_at_end = link->contact == ContactPoint::kNone ? nearer_end(road, at_end, net_.roads[o])
-                                                                  : link->contact == ContactPoint::kEnd;
-      join_roads(r, at_end, o, o_at_end,
-                 [at_end](const Lane& l) { return at_end ? l.successor : l.predecessor; });
+                                                                 : link->contact == ContactPoint::kEnd;
+      join_roads(r, at_end, o, o_at_end, [at_end](const Lane& l) { return at_end ? l.successor : l.predecessor; });
     }
   }
 
@@ -242,9 +243,7 @@ class Builder {
   struct Key {
     std::size_t road, section;
     int lane;
-    bool operator<(const Key& o) const {
-      return std::tie(road, section, lane) < std::tie(o.road, o.section, o.lane);
-    }
+    bool operator<(const Key& o) const { return std::tie(road, section, lane) < std::tie(o.road, o.section, o.lane); }
   };
 
   const RoadNetwork& net_;

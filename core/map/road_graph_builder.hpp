@@ -9,7 +9,7 @@
 
 namespace fleet::map {
 
-/// How the road graph is sampled (seed 000, section 5.1).
+/// How the road graph is sampled [Forklift thesis, section 5.1].
 struct GraphOptions {
   double spacing = 0.10;  ///< metres between samples along a lane; the site file's graph_spacing
   /// The seed's table has single-lane roads a forklift drives both ways. When true, a road with
@@ -37,7 +37,7 @@ struct RoadGraphBuild {
 
 /// Samples the centre of every drivable lane and connects the samples along each lane, across
 /// lane sections, across road links (honouring contactPoint) and through junction connections
-/// (honouring laneLinks), in the lanes' driving directions (seed 000, section 5.1, Fig. 5.3).
+/// (honouring laneLinks), in the lanes' driving directions [Forklift thesis, section 5.1, Fig. 5.3].
 /// Throws MapError when spacing is not positive.
 RoadGraphBuild build_road_graph_detailed(const RoadNetwork& network, const GraphOptions& options);
 

@@ -15,8 +15,8 @@ class MapError : public InputError {
   using InputError::InputError;
 };
 
-/// Where a pallet stands and which way it faces (seed 000, section 3: "location and direction of
-/// the loading area and their ids"). `pose.yaw` points from the pallet towards the side a forklift
+/// Where a pallet stands and which way it faces ("location and direction of the loading area and
+/// their ids" [Forklift thesis, section 3]). `pose.yaw` points from the pallet towards the side a forklift
 /// approaches from, so a forklift picks facing `yaw + pi`.
 struct LoadingArea {
   std::string id;
@@ -24,14 +24,14 @@ struct LoadingArea {
   bool pallet_at_start = false;
 };
 
-/// A designated static obstacle the user switches on and off (seed 000, section 3).
+/// A designated static obstacle the user switches on and off [Forklift thesis, section 3].
 struct StaticObstacle {
   std::string id;
   geometry::Polygon polygon;
   bool enabled_at_start = false;
 };
 
-/// A permanent structure beside the roads (a rack row, seed 004): drawn, and never crossed by a
+/// A permanent structure beside the roads (a rack row) [Picker thesis]: drawn, and never crossed by a
 /// road (check_site_map refuses a site whose roads run through one).
 struct Rack {
   std::string id;
@@ -52,12 +52,12 @@ struct Home {
 
 /// A site file, maps/NAME.yaml: the road network it uses and what stands around it.
 struct Site {
-  std::string name;              ///< file stem, e.g. "table_a"
-  std::string file;              ///< path of the site file
-  std::string opendrive_file;    ///< path of the .xodr, resolved relative to the site file
-  geometry::Bounds bounds;       ///< the area, metres
-  double road_width = 0.30;      ///< metres
-  double graph_spacing = 0.10;   ///< road-graph sample spacing, metres
+  std::string name;             ///< file stem, e.g. "table_a"
+  std::string file;             ///< path of the site file
+  std::string opendrive_file;   ///< path of the .xodr, resolved relative to the site file
+  geometry::Bounds bounds;      ///< the area, metres
+  double road_width = 0.30;     ///< metres
+  double graph_spacing = 0.10;  ///< road-graph sample spacing, metres
   std::vector<LoadingArea> loading_areas;
   std::vector<StaticObstacle> static_obstacles;
   std::vector<UwbAnchor> uwb_anchors;

@@ -68,8 +68,8 @@ struct OrderReport {
   std::uint32_t update_id = 0;
   double sim_time = 0.0;
   bool carrying_pallet = false;
-  int pallet_id = -1;          ///< the pallet on the forks, or put down on DONE
-  geometry::Pose2 pallet_pose; ///< on DONE: where the pallet really stands
+  int pallet_id = -1;           ///< the pallet on the forks, or put down on DONE
+  geometry::Pose2 pallet_pose;  ///< on DONE: where the pallet really stands
 };
 
 /// Simulation truth of a pallet, owned by the server.
@@ -173,11 +173,11 @@ struct SimTruth {
   double sim_time = 0.0;
 };
 
-/// An agent's road-graph route and its progress along it (traffic, issue 8). Empty `points`: the
+/// An agent's road-graph route and its progress along it, for traffic control. Empty `points`: the
 /// robot is off the roads and holds nothing.
 struct TrafficRequest {
   std::string robot_id;
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   std::vector<int> points;
   double progress = 0.0;  ///< metres from the route's first point
   /// Robots whose bodies the robot's safety check has kept it standing for a while (see
@@ -189,7 +189,7 @@ struct TrafficRequest {
 /// The server's traffic grant for one robot (see traffic::Grant).
 struct TrafficGrant {
   std::string robot_id;
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   int granted_index = 0;
   double granted_distance = 0.0;
   std::string status;  ///< MOVING, WAITING, ARRIVED

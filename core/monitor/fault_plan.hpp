@@ -6,7 +6,7 @@
 
 namespace fleet::monitor {
 
-/// The faults a soak run can inject (issue 11).
+/// The faults a soak run can inject.
 enum class FaultKind { kKillAgent, kStallAgent, kKillServer, kObstacles, kMapSwitch };
 
 const char* to_string(FaultKind kind);
@@ -18,7 +18,7 @@ std::vector<FaultKind> parse_fault_list(const std::string& list);
 struct ScheduledFault {
   double at_sim = 0.0;  ///< sim seconds after the run's start
   FaultKind kind = FaultKind::kKillAgent;
-  int target = 0;       ///< agent index (0-based) for agent faults, obstacle index for obstacles
+  int target = 0;  ///< agent index (0-based) for agent faults, obstacle index for obstacles
 };
 
 /// A reproducible fault schedule: one fault every `period_s` sim seconds from `period_s / 2`,

@@ -68,10 +68,18 @@ OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, 
     const auto status = orders::parse_status(it->second.state);
     if (!status) continue;  // an unreadable state counts as lost below
     switch (*status) {
-      case orders::OrderStatus::Done: ++t.done; break;
-      case orders::OrderStatus::Failed: ++t.failed; break;
-      case orders::OrderStatus::Cancelled: ++t.cancelled; break;
-      default: ++t.open; break;
+      case orders::OrderStatus::kDone:
+        ++t.done;
+        break;
+      case orders::OrderStatus::kFailed:
+        ++t.failed;
+        break;
+      case orders::OrderStatus::kCancelled:
+        ++t.cancelled;
+        break;
+      default:
+        ++t.open;
+        break;
     }
   }
   t.lost = t.created - t.done - t.failed - t.cancelled - t.open;

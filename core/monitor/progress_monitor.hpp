@@ -11,13 +11,13 @@ namespace fleet::monitor {
 /// A robot that worked on an order without progress for the monitor's timeout.
 struct Deadlock {
   std::string robot_id;
-  std::string task;      ///< what it was working on: order id and phase
-  double since = 0.0;    ///< sim time of its last progress
-  double detected = 0.0; ///< sim time the timeout passed
-  geometry::Pose2 pose;  ///< where it stood (truth)
+  std::string task;       ///< what it was working on: order id and phase
+  double since = 0.0;     ///< sim time of its last progress
+  double detected = 0.0;  ///< sim time the timeout passed
+  geometry::Pose2 pose;   ///< where it stood (truth)
 };
 
-/// Ground-truth progress watch for demo and soak runs (issue 8): a robot with an order that has
+/// Ground-truth progress watch for demo and soak runs: a robot with an order that has
 /// neither moved `move_threshold` metres nor changed its order or phase for `timeout_s` sim
 /// seconds counts as deadlocked, once per episode. Also keeps the longest continuous WAITING.
 class ProgressMonitor {

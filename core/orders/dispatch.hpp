@@ -34,7 +34,7 @@ class DispatchPolicy {
                                          const TravelCost& cost) const = 0;
 };
 
-/// "ascending-id" (seed 000, section 3), "nearest", "optimal" (Hungarian); throws
+/// "ascending-id" [Forklift thesis, section 3], "nearest", "optimal" (Hungarian); throws
 /// std::invalid_argument for other names.
 std::unique_ptr<DispatchPolicy> make_dispatch_policy(std::string_view name);
 

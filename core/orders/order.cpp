@@ -9,8 +9,12 @@ constexpr std::array<std::string_view, 6> kStatusNames{"QUEUED", "ASSIGNED", "AC
 constexpr std::array<std::string_view, 6> kPhaseNames{"", "TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"};
 }  // namespace
 
-std::string_view to_string(OrderStatus status) { return kStatusNames[static_cast<std::size_t>(status)]; }
-std::string_view to_string(OrderPhase phase) { return kPhaseNames[static_cast<std::size_t>(phase)]; }
+std::string_view to_string(OrderStatus status) {
+  return kStatusNames[static_cast<std::size_t>(status)];
+}
+std::string_view to_string(OrderPhase phase) {
+  return kPhaseNames[static_cast<std::size_t>(phase)];
+}
 
 std::optional<OrderStatus> parse_status(std::string_view text) {
   for (std::size_t i = 0; i < kStatusNames.size(); ++i)
@@ -25,20 +29,22 @@ std::optional<OrderPhase> parse_phase(std::string_view text) {
 }
 
 bool is_final(OrderStatus status) {
-  return status == OrderStatus::Done || status == OrderStatus::Failed || status == OrderStatus::Cancelled;
+  return status == OrderStatus::kDone || status == OrderStatus::kFailed || status == OrderStatus::kCancelled;
 }
 
 bool is_legal_transition(OrderStatus from, OrderStatus to) {
   using S = OrderStatus;
   switch (from) {
-    case S::Queued: return to == S::Assigned || to == S::Cancelled || to == S::Failed;
-    case S::Assigned:
-      return to == S::Active || to == S::Queued || to == S::Done || to == S::Failed || to == S::Cancelled;
-    case S::Active:
-      return to == S::Active || to == S::Queued || to == S::Done || to == S::Failed || to == S::Cancelled;
-    case S::Done:
-    case S::Failed:
-    case S::Cancelled: return false;
+    case S::kQueued:
+      return to == S::kAssigned || to == S::kCancelled || to == S::kFailed;
+    case S::kAssigned:
+      return to == S::kActive || to == S::kQueued || to == S::kDone || to == S::kFailed || to == S::kCancelled;
+    case S::kActive:
+      return to == S::kActive || to == S::kQueued || to == S::kDone || to == S::kFailed || to == S::kCancelled;
+    case S::kDone:
+    case S::kFailed:
+    case S::kCancelled:
+      return false;
   }
   return false;
 }

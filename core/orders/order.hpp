@@ -9,10 +9,10 @@
 namespace fleet::orders {
 
 /// Lifecycle of a transport order (openTCS-like; VDA 5050 order/state semantics).
-enum class OrderStatus { Queued, Assigned, Active, Done, Failed, Cancelled };
+enum class OrderStatus { kQueued, kAssigned, kActive, kDone, kFailed, kCancelled };
 
-/// What an active order's robot is doing (seed 000, section 6.4).
-enum class OrderPhase { None, ToPick, Searching, Picking, ToDrop, Dropping };
+/// What an active order's robot is doing [Forklift thesis, section 6.4].
+enum class OrderPhase { kNone, kToPick, kSearching, kPicking, kToDrop, kDropping };
 
 std::string_view to_string(OrderStatus status);
 std::string_view to_string(OrderPhase phase);
@@ -30,8 +30,8 @@ bool is_legal_transition(OrderStatus from, OrderStatus to);
 /// One step of an order's lifecycle.
 struct OrderEvent {
   double sim_time = 0.0;
-  OrderStatus status = OrderStatus::Queued;
-  OrderPhase phase = OrderPhase::None;
+  OrderStatus status = OrderStatus::kQueued;
+  OrderPhase phase = OrderPhase::kNone;
   std::string robot_id;
   std::string reason;
   double robot_x = 0.0;  ///< where the robot was, when the event concerns one
@@ -47,8 +47,8 @@ struct Order {
   std::string robot_id;  ///< requested robot before assignment; the robot after it
   bool robot_requested = false;
   int priority = 0;  ///< higher first
-  OrderStatus status = OrderStatus::Queued;
-  OrderPhase phase = OrderPhase::None;
+  OrderStatus status = OrderStatus::kQueued;
+  OrderPhase phase = OrderPhase::kNone;
   std::string reason;  ///< why FAILED or CANCELLED, or why re-queued
   std::uint32_t update_id = 0;
   double created_sim = 0.0;

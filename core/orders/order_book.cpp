@@ -6,10 +6,10 @@ namespace fleet::orders {
 
 const Order& OrderBook::create(Order draft, double now_sim) {
   draft.id = next_id_++;
-  draft.status = OrderStatus::Queued;
-  draft.phase = OrderPhase::None;
+  draft.status = OrderStatus::kQueued;
+  draft.phase = OrderPhase::kNone;
   draft.created_sim = draft.updated_sim = now_sim;
-  draft.history = {{now_sim, OrderStatus::Queued, OrderPhase::None, "", "", 0.0, 0.0}};
+  draft.history = {{now_sim, OrderStatus::kQueued, OrderPhase::kNone, "", "", 0.0, 0.0}};
   return orders_[draft.id] = std::move(draft);
 }
 
@@ -20,26 +20,26 @@ void OrderBook::restore(const Order& order) {
 
 TransitionResult OrderBook::transition(std::int64_t id, OrderStatus to, double now_sim, const std::string& reason) {
   auto it = orders_.find(id);
-  if (it == orders_.end()) return TransitionResult::UnknownOrder;
+  if (it == orders_.end()) return TransitionResult::kUnknownOrder;
   Order& order = it->second;
-  if (!is_legal_transition(order.status, to)) return TransitionResult::Illegal;
+  if (!is_legal_transition(order.status, to)) return TransitionResult::kIllegal;
   order.status = to;
   order.updated_sim = now_sim;
   if (!reason.empty()) order.reason = reason;
-  if (to == OrderStatus::Queued) {
-    order.phase = OrderPhase::None;
+  if (to == OrderStatus::kQueued) {
+    order.phase = OrderPhase::kNone;
     if (!order.robot_requested) order.robot_id.clear();
   }
   if (is_final(to)) order.finished_sim = now_sim;
   order.history.push_back({now_sim, to, order.phase, order.robot_id, reason, 0.0, 0.0});
-  return TransitionResult::Applied;
+  return TransitionResult::kApplied;
 }
 
 TransitionResult OrderBook::assign(std::int64_t id, const std::string& robot_id, double now_sim) {
   auto it = orders_.find(id);
-  if (it == orders_.end()) return TransitionResult::UnknownOrder;
-  if (it->second.status != OrderStatus::Queued) return TransitionResult::Illegal;
-  const auto result = transition(id, OrderStatus::Assigned, now_sim);
+  if (it == orders_.end()) return TransitionResult::kUnknownOrder;
+  if (it->second.status != OrderStatus::kQueued) return TransitionResult::kIllegal;
+  const auto result = transition(id, OrderStatus::kAssigned, now_sim);
   it->second.robot_id = robot_id;
   it->second.history.back().robot_id = robot_id;
   it->second.assigned_sim = now_sim;
@@ -49,9 +49,9 @@ TransitionResult OrderBook::assign(std::int64_t id, const std::string& robot_id,
 
 TransitionResult OrderBook::set_phase(std::int64_t id, OrderPhase phase, double now_sim) {
   auto it = orders_.find(id);
-  if (it == orders_.end()) return TransitionResult::UnknownOrder;
-  const auto result = transition(id, OrderStatus::Active, now_sim);
-  if (result == TransitionResult::Applied) {
+  if (it == orders_.end()) return TransitionResult::kUnknownOrder;
+  const auto result = transition(id, OrderStatus::kActive, now_sim);
+  if (result == TransitionResult::kApplied) {
     it->second.phase = phase;
     it->second.history.back().phase = phase;
   }
@@ -60,11 +60,11 @@ TransitionResult OrderBook::set_phase(std::int64_t id, OrderPhase phase, double 
 
 TransitionResult OrderBook::requeue(std::int64_t id, double now_sim, const std::string& reason) {
   auto it = orders_.find(id);
-  if (it == orders_.end()) return TransitionResult::UnknownOrder;
-  if (it->second.status != OrderStatus::Assigned && it->second.status != OrderStatus::Active) {
-    return TransitionResult::Illegal;
+  if (it == orders_.end()) return TransitionResult::kUnknownOrder;
+  if (it->second.status != OrderStatus::kAssigned && it->second.status != OrderStatus::kActive) {
+    return TransitionResult::kIllegal;
   }
-  const auto result = transition(id, OrderStatus::Queued, now_sim, reason);
+  const auto result = transition(id, OrderStatus::kQueued, now_sim, reason);
   ++it->second.update_id;
   return result;
 }
@@ -89,14 +89,14 @@ std::vector<const Order*> OrderBook::with_status(OrderStatus status) const {
 }
 
 std::vector<const Order*> OrderBook::queue() const {
-  std::vector<const Order*> out = with_status(OrderStatus::Queued);
+  std::vector<const Order*> out = with_status(OrderStatus::kQueued);
   std::stable_sort(out.begin(), out.end(), [](const Order* a, const Order* b) { return a->priority > b->priority; });
   return out;
 }
 
 const Order* OrderBook::open_order_of(const std::string& robot_id) const {
   for (const auto& [id, order] : orders_) {
-    if (!is_final(order.status) && order.status != OrderStatus::Queued && order.robot_id == robot_id) return &order;
+    if (!is_final(order.status) && order.status != OrderStatus::kQueued && order.robot_id == robot_id) return &order;
   }
   return nullptr;
 }

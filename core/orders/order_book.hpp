@@ -11,7 +11,7 @@
 namespace fleet::orders {
 
 /// Outcome of a requested transition.
-enum class TransitionResult { Applied, UnknownOrder, Illegal };
+enum class TransitionResult { kApplied, kUnknownOrder, kIllegal };
 
 /// Every order the server knows, keyed by id. Ids are handed out increasing and never reused;
 /// `next_id` is restored from persistence so this also holds across restarts.

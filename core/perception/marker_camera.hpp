@@ -9,7 +9,7 @@
 
 namespace fleet::perception {
 
-/// A visual marker fixed to the front face of a pallet (seed 000, section 6.2). `pose` is the
+/// A visual marker fixed to the front face of a pallet [Forklift thesis, section 6.2]. `pose` is the
 /// marker's centre in the map frame; `pose.yaw` is the direction the printed face looks at, which
 /// for a pallet is the side a forklift approaches from.
 struct Marker {
@@ -17,7 +17,7 @@ struct Marker {
   geometry::Pose2 pose;
 };
 
-/// One detected marker relative to the camera, the three numbers of seed 000 Fig. 6.6.
+/// One detected marker relative to the camera, the three numbers of [Forklift thesis, Fig. 6.6].
 struct MarkerDetection {
   int id = 0;
   double time = 0.0;   ///< sim time of the frame, seconds
@@ -30,7 +30,7 @@ struct MarkerDetection {
 };
 
 struct MarkerCameraParams {
-  double rate_hz = 30.0;         ///< frame rate (seed 000, Table 3.1: camera 30 Hz)
+  double rate_hz = 30.0;         ///< frame rate (camera 30 Hz [Forklift thesis, Table 3.1])
   double camera_x = 0.12;        ///< optical centre in the body frame, metres ahead of the centre
   double half_fov = 0.52;        ///< half horizontal field of view, rad (about 60 deg total)
   double range_min = 0.05;       ///< closer than this the marker overfills the image, metres
@@ -44,7 +44,7 @@ struct MarkerCameraParams {
 };
 
 /// Simulated marker camera: from the robot's true pose and the true marker poses, returns what an
-/// ArUco-style detector reports, with Gaussian noise and random misses (the seed's detection
+/// ArUco-style detector reports, with Gaussian noise and random misses (the thesis's detection
 /// failed in poor light). Frames come at `rate_hz`; randomness comes from the seed given at
 /// construction so a run is reproducible.
 class MarkerCamera {

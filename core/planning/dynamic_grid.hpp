@@ -27,7 +27,7 @@ struct DynamicGridConfiguration {
   double max_reach = 3.0;       ///< metres; caps a stale neighbour's disc
 };
 
-/// The dynamic occupancy grid of seed 000, section 5.3: the static grid plus the other robots
+/// The dynamic occupancy grid [Forklift thesis, section 5.3]: the static grid plus the other robots
 /// and what the lidar sees, all grown by our robot's radius so a path point is checked as a point.
 ///
 /// Fresh neighbours occupy their footprint grown by the margin and by speed x data age (how far

@@ -24,7 +24,7 @@ struct LidarScan {
   std::vector<double> ranges;  ///< metres; +infinity for no return within max_range
 };
 
-/// The onboard range sensor the seed's conclusion asks for, simulated by casting rays against
+/// The onboard range sensor the thesis's conclusion asks for, simulated by casting rays against
 /// polygons: static obstacles and the other robots' true footprints (SimTruth). No noise here;
 /// a sensor model adds it where needed.
 class LidarSim {

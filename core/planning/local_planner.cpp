@@ -159,7 +159,7 @@ LocalStep LocalPlanner::step(const geometry::Pose2& pose, double speed, const Dy
     const bool covered = std::any_of(temporaries_.begin(), temporaries_.end(),
                                      [&](const auto& t) { return geometry::contains(t.second, p); });
     if (!covered) {
-      // seed 000, Fig. 5.13: a temporary static obstacle where the collision is predicted, then a
+      // [Forklift thesis, Fig. 5.13]: a temporary static obstacle where the collision is predicted, then a
       // new global plan around it, or up to it when there is no way round.
       const std::string id = configuration_.id_prefix + "-" + std::to_string(next_id_++);
       geometry::Polygon square = blob_box(layer, p, configuration_.temporary_size, configuration_.max_temporary_extent);

@@ -14,7 +14,7 @@ namespace fleet::planning {
 
 /// Fixed per LocalPlanner.
 struct LocalPlannerConfiguration {
-  double min_lookahead = 1.0;         ///< metres checked ahead at low speed (seed 000, section 5.3: 1 m)
+  double min_lookahead = 1.0;         ///< metres checked ahead at low speed (1 m [Forklift thesis, section 5.3])
   double lookahead_time = 2.0;        ///< s; the checked distance is max(min_lookahead, speed x this)
   double temporary_size = 0.3;        ///< least side of a temporary obstacle's box, metres
   double max_temporary_extent = 1.5;  ///< metres from the collision point a temporary box may reach
@@ -32,7 +32,7 @@ struct LocalStep {
   std::vector<std::string> removed;  ///< temporary obstacles removed this cycle
 };
 
-/// Local planning of seed 000, section 5.3 (Fig. 5.12-5.13), called once per control cycle.
+/// Local planning [Forklift thesis, section 5.3, Fig. 5.12-5.13], called once per control cycle.
 ///
 /// The next stretch of the global plan is checked against the dynamic layer; on a predicted
 /// collision a temporary static obstacle goes into the static grid there and the road planner

@@ -15,8 +15,8 @@ struct CellIndex {
 };
 
 /// A binary occupancy grid over a rectangle of the map frame, row-major from (min_x, min_y).
-/// The seed keeps binary values (seed 000, section 5.3: "absence or presence of the obstacle is
-/// denoted by either 0 or 1"); probabilities live in the OctoMap layer and are thresholded here.
+/// The thesis keeps binary values ("absence or presence of the obstacle is denoted by either 0 or
+/// 1" [Forklift thesis, section 5.3]); probabilities live in the OctoMap layer and are thresholded here.
 class OccupancyGrid {
  public:
   static constexpr std::uint8_t kFree = 0;

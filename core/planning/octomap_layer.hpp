@@ -30,7 +30,8 @@ struct OctoMapConfiguration {
 };
 
 /// An OctoMap OcTree fed by planar lidar scans and projected to a 2D occupancy grid
-/// (the dynamic grid's sensed layer, beyond seed 000 whose conclusion asks for range sensors).
+/// (the dynamic grid's sensed layer, beyond the thesis, whose conclusion asks for range sensors
+/// [Forklift thesis]).
 ///
 /// `insert_scan` ray-casts in the tree's key space itself instead of calling insertPointCloud:
 /// the cells of all 360 beams are de-duplicated in a flat stamp window (not a hash set), and a

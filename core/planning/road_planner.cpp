@@ -24,7 +24,7 @@ bool heap_less(const auto& a, const auto& b) {
 RoadPlanner::RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfiguration& configuration)
     : configuration_(configuration) {
   if (configuration.w_d < 0.0 || configuration.w_h < 0.0 || configuration.obstacle_cost < 0.0) {
-    // Negative costs would let A* revisit closed states (seed 000, section 5.2).
+    // Negative costs would let A* revisit closed states [Forklift thesis, section 5.2].
     throw std::invalid_argument("road planner: w_d, w_h and obstacle_cost must be >= 0");
   }
   if (graph.successors.size() != graph.points.size()) {
@@ -86,7 +86,7 @@ int RoadPlanner::nearest_point(Vec2 p) const {
 }
 
 RoadPlan RoadPlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
-  // seed 000, Fig. 5.6: the states nearest the poses; C(x_S) is the distance to the start state.
+  // [Forklift thesis, Fig. 5.6]: the states nearest the poses; C(x_S) is the distance to the start state.
   const int s = nearest_point(start.position());
   const int g = nearest_point(goal.position());
   if (s < 0 || g < 0) {
@@ -160,7 +160,7 @@ RoadPlan RoadPlanner::plan_between(int start_point, int goal_point, double start
       const int y = targets_[e];
       touch(y);
       if (closed_[y]) continue;
-      // seed 000, eq. 5.5: C(x1, x2) = w_d * Euc + w_h * |norm(h1 - atan2(dy, dx))|; no heading
+      // [Forklift thesis, eq. 5.5]: C(x1, x2) = w_d * Euc + w_h * |norm(h1 - atan2(dy, dx))|; no heading
       // cost out of a state without an assigned heading.
       double c = w_d * edge_length_[e];
       if (!std::isnan(h1)) c += w_h * std::abs(geometry::normalize_angle(h1 - edge_angle_[e]));
@@ -185,7 +185,7 @@ RoadPlan RoadPlanner::plan_between(int start_point, int goal_point, double start
   result.cost = g_[goal_point];
   result.status = PlanStatus::kFound;
 
-  // seed 000, Fig. 5.11: a route through an obstacle is kept only up to the obstacle, so the robot
+  // [Forklift thesis, Fig. 5.11]: a route through an obstacle is kept only up to the obstacle, so the robot
   // waits at the last free point and goes on once the obstacle is removed. A start already inside
   // an obstacle is left behind first: the robot may drive out of it.
   std::size_t first = 0;

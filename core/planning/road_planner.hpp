@@ -10,11 +10,11 @@
 
 namespace fleet::planning {
 
-/// Weights of seed 000, eq. 5.5 and the obstacle cost of section 5.3. Fixed per planner.
+/// Weights of [Forklift thesis, eq. 5.5] and the obstacle cost of [Forklift thesis, section 5.3]. Fixed per planner.
 struct RoadPlannerConfiguration {
   double w_d = 1.0;              ///< per metre
   double w_h = 0.2;              ///< per radian of heading change
-  double obstacle_cost = 100.0;  ///< Obs(x') of a point inside an obstacle (the seed's value)
+  double obstacle_cost = 100.0;  ///< Obs(x') of a point inside an obstacle (the thesis's value)
 };
 
 struct RoadPlan {
@@ -27,7 +27,7 @@ struct RoadPlan {
   std::size_t expanded = 0;            ///< states moved to the closed list
 };
 
-/// A* on the road graph, as in seed 000, section 5.2 (Fig. 5.7).
+/// A* on the road graph [Forklift thesis, section 5.2, Fig. 5.7].
 ///
 /// The graph is turned into flat arrays once at construction and the search buffers are reused
 /// between queries, so a query allocates nothing but its result. One query at a time per instance.
@@ -35,7 +35,7 @@ class RoadPlanner {
  public:
   RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfiguration& configuration = {});
 
-  /// Reads Obs(x') for every graph point from the static grid (seed 000, section 5.3). Call again
+  /// Reads Obs(x') for every graph point from the static grid [Forklift thesis, section 5.3]. Call again
   /// when the grid's revision changes.
   void set_obstacles(const OccupancyGrid& static_grid);
   void clear_obstacles();

@@ -28,7 +28,7 @@ struct Route {
 std::vector<geometry::Pose2> poses_along(const std::vector<geometry::Vec2>& points);
 
 /// Road A* between the graph points nearest the poses, with grid legs where a pose lies off the
-/// graph: from the road's end to a loading area and back (issue 5, after seed 000, Fig. 5.1).
+/// graph: from the road's end to a loading area and back (after [Forklift thesis, Fig. 5.1]).
 /// The grid planner must hold the static grid (inflated). When the road plan is blocked
 /// (Fig. 5.11) the route ends at the last free road point and no goal leg is planned.
 class RoutePlanner {

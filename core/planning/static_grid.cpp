@@ -29,8 +29,8 @@ StaticGrid::StaticGrid(const StaticGridConfiguration& configuration, const map::
   if (!(road_width_ > 0.0)) throw std::invalid_argument("static grid: road_width must be positive");
   if (configuration.obstacle_inflation < 0.0)
     throw std::invalid_argument("static grid: obstacle_inflation must be >= 0");
-  // seed 000, section 5.3: "setting the values of map points with a square of side equal to road
-  // width"; the points are close enough that the squares join into roads (Fig. 5.9a).
+  // "Setting the values of map points with a square of side equal to road width" [Forklift thesis,
+  // section 5.3]; the points are close enough that the squares join into roads (Fig. 5.9a).
   const double h = road_width_ / 2.0;
   for (const auto& p : graph.points) {
     map_layer_.fill_polygon({{p.x - h, p.y - h}, {p.x + h, p.y - h}, {p.x + h, p.y + h}, {p.x - h, p.y + h}}, false);

@@ -20,7 +20,7 @@ struct StaticGridConfiguration {
   double loading_area_width = 0.0;  ///< width of the free corridor to a loading area; <= 0: road width
 };
 
-/// The static occupancy grid of seed 000, section 5.3 (Fig. 5.9): the road squares around every
+/// The static occupancy grid [Forklift thesis, section 5.3, Fig. 5.9]: the road squares around every
 /// graph point are free (5.9a), loading areas and the corridor from each to its nearest graph
 /// point are free, enabled static obstacles and temporary obstacles are occupied (5.9b).
 ///
@@ -35,7 +35,7 @@ class StaticGrid {
   /// An obstacle outside the site file (from the server or the operator), by id.
   void add_obstacle(const std::string& id, const geometry::Polygon& polygon);
   bool remove_obstacle(const std::string& id);
-  /// Temporary obstacles from local planning (seed 000, Fig. 5.13).
+  /// Temporary obstacles from local planning [Forklift thesis, Fig. 5.13].
   void add_temporary(const std::string& id, const geometry::Polygon& polygon);
   bool remove_temporary(const std::string& id);
   const std::map<std::string, geometry::Polygon>& temporaries() const { return temporaries_; }

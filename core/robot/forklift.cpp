@@ -14,7 +14,7 @@ using geometry::Vec2;
 namespace {
 
 constexpr double kDynamicUpdatePeriod = 0.1;  // sim seconds between dynamic-grid rebuilds (10 Hz)
-constexpr double kLookahead = 1.0;            // metres of path checked (seed 000, section 5.3)
+constexpr double kLookahead = 1.0;            // metres of path checked [Forklift thesis, section 5.3]
 constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
 constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
 constexpr double kTemporarySize = 0.3;        // side of a temporary obstacle box, metres
@@ -89,13 +89,16 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
       two_way_routes_(two_way_road_, grid_astar_) {
   reset_obstacles();
   sim_.warm_up(1.0, step_period());
-  // Route versions must grow across restarts of the agent too, or the traffic manager, which
-  // still knows the robot, would take a restarted agent's routes for stale ones. Sixteen per
-  // second of wall time since 2023 leaves room for 16 routes a second and lasts until 2031.
-  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
-  route_version_ = static_cast<std::uint32_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000) * 16);
+  route_version_ = first_route_version(std::chrono::system_clock::now());
+}
+
+std::uint64_t first_route_version(std::chrono::system_clock::time_point now) {
+  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count();
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000)) * 16;
+}
+
+std::uint64_t next_own_route_version(std::uint64_t current) {
+  return (current + 2) & ~std::uint64_t{1};
 }
 
 void Forklift::reset_obstacles() {
@@ -124,7 +127,9 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
   executor_.replan();
 }
 
-bool Forklift::submit(const task::TaskOrder& order, std::string* why) { return executor_.submit(order, why); }
+bool Forklift::submit(const task::TaskOrder& order, std::string* why) {
+  return executor_.submit(order, why);
+}
 
 bool Forklift::withdraw() {
   return executor_.cancel();
@@ -157,13 +162,17 @@ void Forklift::set_standing_pallets(const std::map<int, Pose2>& standing) {
   for (const auto& [id, pose] : standing) pallets_.place(id, pose);
 }
 
-void Forklift::set_neighbours(std::vector<Neighbour> neighbours) { neighbours_ = std::move(neighbours); }
+void Forklift::set_neighbours(std::vector<Neighbour> neighbours) {
+  neighbours_ = std::move(neighbours);
+}
 
 void Forklift::set_true_neighbours(std::vector<geometry::Polygon> footprints) {
   true_neighbours_ = std::move(footprints);
 }
 
-std::string Forklift::task_state() const { return task::to_string(executor_.state()); }
+std::string Forklift::task_state() const {
+  return task::to_string(executor_.state());
+}
 
 std::optional<std::string> Forklift::order_id() const {
   if (executor_.order()) return executor_.order()->order_id;
@@ -256,7 +265,7 @@ double footprint_distance(const Pose2& pose, const geometry::Footprint& fp, Vec2
 double Forklift::clearance_ahead() const {
   // How far the robot can move along its path before its footprint meets a cell of the dynamic
   // layer: the other robots from FleetView (grown by their speed x data age, or the stale rule)
-  // and what the lidar sees (seed 000 section 5.3). The footprint itself is swept, not a point
+  // and what the lidar sees [Forklift thesis, section 5.3]. The footprint itself is swept, not a point
   // against grown obstacles, because an obstacle beside the path meets the front corner first.
   constexpr double kSample = 0.03;  // metres between swept poses
   constexpr double kMargin = 0.01;  // metres around our footprint
@@ -348,13 +357,12 @@ void Forklift::step() {
   }
 
   // Another robot in the way: wait (WAITING, with the reason), and after a while plan around it
-  // with a temporary obstacle (seed 000, section 5.3). Under traffic control the robot also
+  // with a temporary obstacle [Forklift thesis, section 5.3]. Under traffic control the robot also
   // stops at the end of its grant; the neighbour check stays underneath as the safety layer.
   const double clearance = clearance_ahead();
   const double room = traffic_room();
-  const bool driving =
-      executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
-      (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
+  const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
+                       (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
   const bool blocked = driving && clearance <= config_.stop_distance;
   const bool held = driving && room <= 0.0;
   if (blocked != blocked_by_neighbour_ || held != held_by_traffic_) {
@@ -389,12 +397,11 @@ void Forklift::step() {
     detail_ = robot_ahead ? "robot " + nearest + " ahead" : "an obstacle ahead";
     note_safety_stop(t, robot_ahead ? nearest : std::string{});
   } else if (held) {
-    detail_ = permit_.blocked_by.empty() ? "waiting for a traffic grant"
-                                         : "waiting for traffic: road held by " + [&] {
-                                             std::string ids;
-                                             for (const auto& id : permit_.blocked_by) ids += (ids.empty() ? "" : ", ") + id;
-                                             return ids;
-                                           }();
+    detail_ = permit_.blocked_by.empty() ? "waiting for a traffic grant" : "waiting for traffic: road held by " + [&] {
+      std::string ids;
+      for (const auto& id : permit_.blocked_by) ids += (ids.empty() ? "" : ", ") + id;
+      return ids;
+    }();
   } else if (driving && (detail_.ends_with(" ahead") || detail_.starts_with("waiting for"))) {
     detail_.clear();
   }
@@ -533,7 +540,7 @@ void Forklift::answer_plan_requests() {
     adopt_path(route);
     executor_.path_received(request->id, planning::poses_along(route.points));
   } else {
-    // Blocked by a static obstacle (seed 000, Fig. 5.11) or no way at all: wait and ask again.
+    // Blocked by a static obstacle [Forklift thesis, Fig. 5.11] or no way at all: wait and ask again.
     path_.clear();
     detail_ = route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle" : "no route";
     executor_.plan_failed(request->id);
@@ -546,8 +553,9 @@ void Forklift::collect_reports() {
       events_.push_back({ForkliftEvent::Kind::kState, order_id().value_or(""), task::to_string(tr.to), -1, {}});
       if (tr.to != task::State::kWaiting && !blocked_by_neighbour_) detail_.clear();
     }
-    if (tr.to_phase != tr.from_phase && tr.to_phase != task::OrderPhase::kNone) {
-      events_.push_back({ForkliftEvent::Kind::kPhase, order_id().value_or(""), task::to_string(tr.to_phase), -1, {}});
+    if (tr.to_phase != tr.from_phase && tr.to_phase != orders::OrderPhase::kNone) {
+      events_.push_back(
+          {ForkliftEvent::Kind::kPhase, order_id().value_or(""), std::string(orders::to_string(tr.to_phase)), -1, {}});
     }
   }
   for (const task::TaskReport& r : executor_.take_reports()) {
@@ -620,9 +628,7 @@ void Forklift::adopt_path(const planning::Route& route) {
   std::size_t last_index = path_.size() - 1;
   while (last_index > first_index && geometry::distance(path_[last_index], last) > 1e-9) --last_index;
   goal_leg_.assign(path_.begin() + static_cast<std::ptrdiff_t>(last_index) + 1, path_.end());
-  // Own routes take even versions, the manager's re-routes (its version + 1) odd ones, so a
-  // route planned here never shares a version with one the manager sent meanwhile.
-  route_version_ = (route_version_ + 2) & ~1u;
+  route_version_ = next_own_route_version(route_version_);
 }
 
 void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
@@ -631,7 +637,8 @@ void Forklift::adopt_traffic_route(const TrafficPermit& permit) {
   // siding, that route is the siding's, and the robot still has to leave the road at the goal.
   const bool to_goal = !permit.siding && goal_point_ >= 0 && permit.route.back() == goal_point_;
   std::vector<Vec2> road;
-  for (int id : permit.route) road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
+  for (int id : permit.route)
+    road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
   const Vec2 here = sim_.estimate().position();
   // A route handed over while the robot stood short of its grant starts at the route point at or
   // behind it: the path joins the route at the first point ahead, so the robot does not turn

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,16 +27,16 @@ struct ForkliftConfig {
   SimulatedForkliftParams sim;
   task::ExecutorParams task;  ///< its follower defaults to the regulated one
   perception::MarkerCameraParams camera;
-  double control_rate_hz = 70.0;  ///< pose and control rate (seed 000, Table 3.1)
+  double control_rate_hz = 70.0;  ///< pose and control rate [Forklift thesis, Table 3.1]
   double grid_resolution = 0.02;  ///< static grid of the route planner, metres
   /// Another robot closer than this ahead (footprint to footprint) stops this one.
   /// The safety stop keeps at least this gap to every other robot, whatever the task state.
-  double safety_gap = 0.03;  ///< metres
-  double stop_distance = 0.08;  ///< metres: pose latency and the sweep of a turn need a margin
+  double safety_gap = 0.03;        ///< metres
+  double stop_distance = 0.08;     ///< metres: pose latency and the sweep of a turn need a margin
   double neighbour_margin = 0.03;  ///< metres added around other robots' footprints
   /// A neighbour's pose older than this counts as everywhere it could have reached since
-  /// (issue 5: the stale-neighbour rule).
-  double stale_after = 0.5;  ///< sim seconds
+  /// (the stale-neighbour rule).
+  double stale_after = 0.5;          ///< sim seconds
   double neighbour_max_speed = 0.3;  ///< m/s, bounds how far a stale neighbour may have moved
   /// Other robots are this tall; the UWB tag sits at the sim's tag height. A robot shadows an
   /// anchor only where the anchor-tag ray is still below its top (see uwb_blockers()).
@@ -42,10 +44,10 @@ struct ForkliftConfig {
   /// A UWB range whose line from the anchor passes this close to an enabled static obstacle of
   /// the map (grown by the estimate's uncertainty) is left out of the fix: a shadowed range is
   /// always too long, and at rest the filter would average the bias into a 10 cm error.
-  /// Negative: every range is used (the seed's behaviour).
+  /// Negative: every range is used (the thesis's behaviour).
   double anchor_shadow_margin = 0.05;  ///< metres
-  /// Traffic control (issue 8): report the road part of every route and drive only as far as
-  /// the server grants (set_traffic_grant). Off: the seed's local avoidance alone.
+  /// Traffic control: report the road part of every route and drive only as far as
+  /// the server grants (set_traffic_grant). Off: the thesis's local avoidance alone.
   bool traffic = false;
   /// Sim seconds a robot stands held on a siding before it plans its own way on and asks for it.
   /// The manager calls it back sooner (its yield_timeout, 20 s); a restarted manager does not
@@ -69,7 +71,7 @@ struct Neighbour {
 
 /// The road part of the route being driven, for the traffic manager (see model::TrafficRequest).
 struct TrafficRoute {
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   std::vector<int> points;  ///< graph point ids; empty while off the roads
   double progress = 0.0;    ///< metres driven from the first point
   /// The robot whose body the safety check has kept this one standing for, once the stop has
@@ -78,9 +80,21 @@ struct TrafficRoute {
   std::vector<std::string> stopped_for;
 };
 
+/// The version of the first route of an agent started at wall time `now`. Versions must grow
+/// across restarts of the agent too, or the traffic manager, which still knows the robot, would
+/// take a restarted agent's routes for stale ones: sixteen per second of wall time since
+/// 2023-11-14 (unix time 1.7e9). An agent takes two per new route, so a restarted one starts
+/// above its previous run unless that run planned eight routes a second or more on average.
+/// 64 bits: in 32, sixteen a second would run out on 2032-05-17.
+std::uint64_t first_route_version(std::chrono::system_clock::time_point now);
+/// The version of the agent's next own route after `current`: the next even number. The
+/// manager's re-routes take odd ones (its version + 1), so the two never give one version to
+/// different routes.
+std::uint64_t next_own_route_version(std::uint64_t current);
+
 /// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).
 struct TrafficPermit {
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   int granted_index = 0;
   double granted_distance = 0.0;
   std::vector<std::string> blocked_by;
@@ -93,13 +107,13 @@ struct TrafficPermit {
 /// What happened during a step, for the agent to report.
 struct ForkliftEvent {
   enum class Kind {
-    kPhase,       ///< the order's phase changed: `text` is TO_PICK, SEARCHING, PICKING, TO_DROP, DROPPING
-    kLifted,      ///< a pallet is on the forks: `pallet_id`
-    kDone,        ///< pallet put down on the drop area: `pallet_id`, `pallet_pose` (truth)
-    kAreaEmpty,   ///< no pallet at the pick area: the order fails, the robot goes home
-    kFailed,      ///< the order failed: `text` says why
-    kHome,        ///< home reached, idle
-    kState,       ///< the task state changed: `text` is its name
+    kPhase,      ///< the order's phase changed: `text` is TO_PICK, SEARCHING, PICKING, TO_DROP, DROPPING
+    kLifted,     ///< a pallet is on the forks: `pallet_id`
+    kDone,       ///< pallet put down on the drop area: `pallet_id`, `pallet_pose` (truth)
+    kAreaEmpty,  ///< no pallet at the pick area: the order fails, the robot goes home
+    kFailed,     ///< the order failed: `text` says why
+    kHome,       ///< home reached, idle
+    kState,      ///< the task state changed: `text` is its name
   };
   Kind kind = Kind::kState;
   std::string order_id;
@@ -109,9 +123,9 @@ struct ForkliftEvent {
 };
 
 /// One forklift: its simulated body and sensors (SimulatedForklift), the marker camera on the
-/// pallets it knows of, and its software: EKF pose into the task executor (seed 000, Fig. 6.9),
-/// route planning on the road graph with the static grid (seed 000, chapter 5), pallet search,
-/// pick and place (seed 000, sections 6.2-6.3). No I/O: the agent feeds it what arrives over DDS
+/// pallets it knows of, and its software: EKF pose into the task executor [Forklift thesis, Fig. 6.9],
+/// route planning on the road graph with the static grid [Forklift thesis, chapter 5], pallet search,
+/// pick and place [Forklift thesis, sections 6.2-6.3]. No I/O: the agent feeds it what arrives over DDS
 /// and publishes what it reports.
 class Forklift {
  public:
@@ -122,7 +136,7 @@ class Forklift {
   /// An order; false with the reason when the robot cannot take it now.
   bool submit(const task::TaskOrder& order, std::string* why);
   /// The server took the order away: drop it and go home. False, with the order left running,
-  /// once the pallet is on the forks: it cannot be cancelled then (seed 000, 6.4), and a robot
+  /// once the pallet is on the forks: it cannot be cancelled then [Forklift thesis, section 6.4], and a robot
   /// that stopped with it would stand in the lane for good.
   bool withdraw();
   void set_paused(bool paused);
@@ -166,7 +180,7 @@ class Forklift {
   /// The route to report to the traffic manager, with the progress along it.
   TrafficRoute traffic_route() const;
   /// Its version alone: changes with every new route (no copy of the route).
-  std::uint32_t route_version() const { return route_version_; }
+  std::uint64_t route_version() const { return route_version_; }
   /// Whether the robot stands at the end of what traffic granted it.
   bool held_by_traffic() const { return held_by_traffic_; }
 
@@ -194,10 +208,10 @@ class Forklift {
   perception::PalletWorld pallets_;
   task::TaskExecutor executor_;
   planning::StaticGrid static_grid_;
-  // Local planning (seed 000, section 5.3): the other robots on a dynamic grid, temporary
+  // Local planning [Forklift thesis, section 5.3]: the other robots on a dynamic grid, temporary
   // obstacles for the ones in the way, removed once their area is seen free.
   planning::DynamicGrid dynamic_;
-  // The onboard lidar (beyond seed 000, whose conclusion asks for range sensing) into OctoMap,
+  // The onboard lidar (beyond the thesis, whose conclusion asks for range sensing [Forklift thesis]) into OctoMap,
   // projected onto the dynamic grid as its sensed layer.
   planning::LidarSim lidar_;
   planning::OctoMapLayer octomap_;
@@ -240,11 +254,11 @@ class Forklift {
   std::map<std::string, int> seen_free_;
   int next_temporary_ = 1;
 
-  // Traffic (issue 8). The path's arc length is the common measure: the road part of the path
+  // Traffic control. The path's arc length is the common measure: the road part of the path
   // starts at `road_start_` and its graph points sit at `road_start_ + road_cum_[i]`.
-  std::vector<double> path_cum_;         ///< metres from the path's start to each point
-  mutable double path_s_ = 0.0;          ///< where the robot was last found along the path
-  std::uint32_t route_version_ = 0;
+  std::vector<double> path_cum_;  ///< metres from the path's start to each point
+  mutable double path_s_ = 0.0;   ///< where the robot was last found along the path
+  std::uint64_t route_version_ = 0;
   std::vector<int> road_points_;
   std::vector<double> road_cum_;
   double road_start_ = 0.0;

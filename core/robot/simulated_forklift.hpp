@@ -18,7 +18,7 @@ struct SimulatedForkliftParams {
   sim::UwbParams uwb;
   sim::GyroParams gyro;
   localization::EkfParams ekf = localization::EkfParams::tuned();
-  /// The seed's forklifts start at a known heading (seed 000, section 7.2: always zero); the
+  /// The thesis's forklifts start at a known heading (always zero [Forklift thesis, section 7.2]); the
   /// filter is then told the start heading instead of resolving it from motion.
   bool known_start_heading = true;
   /// Estimate the gyro bias whenever the robot stands still and subtract it before the EKF.
@@ -32,7 +32,7 @@ struct SimulatedForkliftParams {
 std::mt19937_64 seeded_engine(std::uint64_t seed, std::uint64_t stream);
 
 /// One simulated forklift as its software sees it: the true body (mecanum kinematics, wheel lag,
-/// slip), its UWB tag and gyro, and the EKF fusing them (seed 000, Fig. 4.3). The software under
+/// slip), its UWB tag and gyro, and the EKF fusing them [Forklift thesis, Fig. 4.3]. The software under
 /// test reads estimate(); the simulation, collision checks and the truth layer read truth().
 ///
 /// Not thread-safe: one owner steps it.
@@ -46,7 +46,7 @@ class SimulatedForklift {
 
   /// Applies `cmd` for `dt` seconds: the body moves, the gyro feeds the EKF's prediction and the
   /// commanded velocity its update (what the robot knows it asked for), and a UWB fix updates it
-  /// when one is due (seed 000, Table 3.1: 20 Hz). UWB paths crossing `blockers` are NLOS (the
+  /// when one is due (20 Hz [Forklift thesis, Table 3.1]). UWB paths crossing `blockers` are NLOS (the
   /// truth); the fix leaves out the ranges of `distrusted` anchors (what the robot believes).
   void step(const control::BodyTwist& cmd, double dt, std::span<const geometry::Polygon> blockers = {},
             std::span<const std::size_t> distrusted = {});

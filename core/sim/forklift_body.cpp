@@ -42,7 +42,7 @@ void ForkliftBody::step(const BodyTwist& cmd, double dt) {
 }
 
 void ForkliftBody::substep(const WheelSpeeds& target, double dt) {
-  // First-order servo response, seed 004 eq. 4.29, discretised exactly for a held command.
+  // First-order servo response, [Picker thesis, eq. 4.29], discretised exactly for a held command.
   // The mean wheel speed over the step (not its end value) moves the body, so that the distance
   // travelled is exact for the lag too.
   const double tau = params_.wheel_time_constant;

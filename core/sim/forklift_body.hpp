@@ -10,8 +10,8 @@ namespace fleet::sim {
 
 struct ForkliftParams {
   MecanumParams mecanum;
-  geometry::Footprint footprint{0.25, 0.16};  ///< seed 000: about 15-18 x 25 cm
-  /// First-order wheel response, seed 004 eq. 4.29 (tau = 0.02 s after the seed's experiments).
+  geometry::Footprint footprint{0.25, 0.16};  ///< about 15-18 x 25 cm [Forklift thesis]
+  /// First-order wheel response, [Picker thesis, eq. 4.29] (tau = 0.02 s after the thesis's experiments).
   double wheel_time_constant = 0.02;
   /// Relative ground-speed error of each wheel (roller slip), a slowly varying Gauss-Markov
   /// process per wheel. 0 turns slip off. It makes commanded and wheel-encoder velocities differ

@@ -4,7 +4,7 @@
 
 namespace fleet::sim {
 
-/// A MEMS yaw-rate gyro (seed 000, Table 3.1: 70 Hz). Defaults are those of a consumer 9-axis
+/// A MEMS yaw-rate gyro (70 Hz [Forklift thesis, Table 3.1]). Defaults are those of a consumer 9-axis
 /// IMU after start-up bias calibration.
 struct GyroParams {
   double rate_hz = 70.0;

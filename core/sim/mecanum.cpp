@@ -18,7 +18,7 @@ MecanumKinematics::MecanumKinematics(const MecanumParams& params) : params_(para
 }
 
 WheelSpeeds MecanumKinematics::inverse(const BodyTwist& t) const {
-  // seed 000, eq. 6.1
+  // [Forklift thesis, eq. 6.1]
   const double l = params_.half_wheelbase + params_.half_track;
   const double k = 1.0 / params_.wheel_radius;
   return {k * (t.vx - t.vy - l * t.omega), k * (t.vx + t.vy + l * t.omega), k * (t.vx + t.vy - l * t.omega),
@@ -26,7 +26,7 @@ WheelSpeeds MecanumKinematics::inverse(const BodyTwist& t) const {
 }
 
 BodyTwist MecanumKinematics::forward(const WheelSpeeds& w) const {
-  // seed 004, eq. 3.7 (r/4 matrix), rows reordered to seed 000's wheel numbering so that
+  // [Picker thesis, eq. 3.7] (r/4 matrix), rows reordered to the wheel numbering of [Forklift thesis, eq. 6.1] so that
   // forward(inverse(t)) == t.
   const double l = params_.half_wheelbase + params_.half_track;
   const double k = params_.wheel_radius / 4.0;

@@ -11,7 +11,7 @@ struct BodyTwist {
   double omega = 0.0;  ///< rad/s
 };
 
-/// Wheel angular velocities in rad/s, numbered as in seed 000, Fig. 6.1 / eq. 6.1.
+/// Wheel angular velocities in rad/s, numbered as in [Forklift thesis, Fig. 6.1 / eq. 6.1].
 using WheelSpeeds = std::array<double, 4>;
 
 /// Geometry and actuator limits of a four-wheel mecanum base. Defaults match a 15 x 25 cm
@@ -23,8 +23,8 @@ struct MecanumParams {
   double max_wheel_speed = 10.0;  ///< servo limit, rad/s (about 95 rpm)
 };
 
-/// Body speed limits implied by the servo limit (seed 000, section 6.1: "speed limits ... can be
-/// calculated from the speed limits of the servo motors").
+/// Body speed limits implied by the servo limit ("speed limits ... can be calculated from the speed
+/// limits of the servo motors" [Forklift thesis, section 6.1]).
 struct BodyLimits {
   double max_linear = 0.0;   ///< pure translation along x or y with every wheel at the limit, m/s
   double max_angular = 0.0;  ///< pure rotation with every wheel at the limit, rad/s
@@ -34,11 +34,11 @@ class MecanumKinematics {
  public:
   explicit MecanumKinematics(const MecanumParams& params = {});
 
-  /// Wheel speeds for a body twist, seed 000 eq. 6.1 (no slip).
+  /// Wheel speeds for a body twist [Forklift thesis, eq. 6.1] (no slip).
   WheelSpeeds inverse(const BodyTwist& twist) const;
 
-  /// Body twist from wheel speeds: the r/4 pseudo-inverse of eq. 6.1 (seed 004, eq. 3.7, written
-  /// with seed 000's wheel numbering).
+  /// Body twist from wheel speeds: the r/4 pseudo-inverse of eq. 6.1 ([Picker thesis, eq. 3.7], written
+  /// with the wheel numbering of [Forklift thesis, eq. 6.1]).
   BodyTwist forward(const WheelSpeeds& wheels) const;
 
   /// Scales all four wheel speeds by one factor so none exceeds the servo limit. Scaling them

@@ -17,7 +17,7 @@ struct Timestamps {
   double reply_b = 0.0;
 };
 
-// Simulates the SDS-TWR message sequence of seed 000 Fig. 2.4 in true time, then reads each
+// Simulates the SDS-TWR message sequence of [Forklift thesis, Fig. 2.4] in true time, then reads each
 // interval with the measuring device's clock. TWR (Fig. 2.3) is its first half.
 Timestamps exchange(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng) {
   double j_a_resp = 0.0;   // jitter of A's reception of B's response
@@ -52,12 +52,12 @@ Eigen::Vector3d anchor_xyz(const map::UwbAnchor& a) {
 
 double twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng) {
   const Timestamps t = exchange(ex, noise, rng);
-  return 0.5 * (t.round_a - t.reply_b);  // seed 000, eq. 2.2
+  return 0.5 * (t.round_a - t.reply_b);  // [Forklift thesis, eq. 2.2]
 }
 
 double sds_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng) {
   const Timestamps t = exchange(ex, noise, rng);
-  return 0.25 * ((t.round_a - t.reply_a) + (t.round_b - t.reply_b));  // seed 000, eq. 2.6
+  return 0.25 * ((t.round_a - t.reply_a) + (t.round_b - t.reply_b));  // [Forklift thesis, eq. 2.6]
 }
 
 double ads_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng) {
@@ -74,17 +74,17 @@ double ads_twr_drift_error(const RangingExchange& ex) {
 }
 
 double twr_drift_error(const RangingExchange& ex) {
-  return 0.5 * ex.reply_b * (ex.drift_a - ex.drift_b);  // seed 000, eq. 2.4
+  return 0.5 * ex.reply_b * (ex.drift_a - ex.drift_b);  // [Forklift thesis, eq. 2.4]
 }
 
 double sds_twr_drift_error_full(const RangingExchange& ex) {
-  // seed 000, eq. 2.7
+  // [Forklift thesis, eq. 2.7]
   return 0.5 * ex.time_of_flight * (ex.drift_a + ex.drift_b) +
          0.25 * (ex.reply_b - ex.reply_a) * (ex.drift_a - ex.drift_b);
 }
 
 double sds_twr_drift_error(const RangingExchange& ex) {
-  return 0.25 * (ex.reply_b - ex.reply_a) * (ex.drift_a - ex.drift_b);  // seed 000, eq. 2.8
+  return 0.25 * (ex.reply_b - ex.reply_a) * (ex.drift_a - ex.drift_b);  // [Forklift thesis, eq. 2.8]
 }
 
 std::optional<UwbFix> solve_multilateration(const std::vector<map::UwbAnchor>& anchors,
@@ -204,7 +204,7 @@ UwbTag::UwbTag(const map::Site& site, const UwbParams& params, std::mt19937_64 r
     : UwbTag(site.uwb_anchors, params, rng) {}
 
 geometry::Vec2 UwbTag::antenna_position(const geometry::Pose2& pose) const {
-  return geometry::body_to_map(pose, params_.antenna_offset);  // seed 000, eq. 4.11
+  return geometry::body_to_map(pose, params_.antenna_offset);  // [Forklift thesis, eq. 4.11]
 }
 
 std::vector<RangeReading> UwbTag::measure_ranges(const geometry::Pose2& truth,
@@ -233,11 +233,11 @@ std::vector<RangeReading> UwbTag::measure_ranges(const geometry::Pose2& truth,
     nlos = nlos || random_nlos;
     const RangingExchange ex{true_range / kSpeedOfLight, params_.reply_a, params_.reply_b, tag_drift_,
                              anchor_drift_[i]};
-    const double tof = params_.ranging == RangingFormula::ads_twr ? ads_twr_time_of_flight(ex, noise, rng_)
+    const double tof = params_.ranging == RangingFormula::kAdsTwr ? ads_twr_time_of_flight(ex, noise, rng_)
                                                                   : sds_twr_time_of_flight(ex, noise, rng_);
     double range = kSpeedOfLight * tof;
     if (nlos) {
-      if (params_.nlos_mode == NlosMode::drop) continue;
+      if (params_.nlos_mode == NlosMode::kDrop) continue;
       range += extra;
     }
     out.push_back({i, range, true_range, nlos});

@@ -17,7 +17,7 @@ namespace fleet::sim {
 inline constexpr double kSpeedOfLight = 299'792'458.0;  // m/s
 
 // ---------------------------------------------------------------------------------------------
-// Ranging: simulated message exchanges (seed 000, section 2.1.2 - 2.1.3)
+// Ranging: simulated message exchanges [Forklift thesis, sections 2.1.2-2.1.3]
 
 /// One ranging exchange between initiator A (the tag) and responder B (an anchor), in true time.
 /// A device whose crystal is off by e measures a true interval T as T (1 + e).
@@ -35,14 +35,14 @@ struct TimestampNoise {
   double rx_std = 0.0;  ///< seconds
 };
 
-/// Plain two-way ranging: t_p = (t_round (1+e_A) - t_replyB (1+e_B)) / 2, seed 000 eq. 2.2.
+/// Plain two-way ranging: t_p = (t_round (1+e_A) - t_replyB (1+e_B)) / 2 [Forklift thesis, eq. 2.2].
 double twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng);
 
-/// Symmetric double-sided two-way ranging, seed 000 eq. 2.6: the four intervals measured by the two
+/// Symmetric double-sided two-way ranging [Forklift thesis, eq. 2.6]: the four intervals measured by the two
 /// clocks, combined as ((t_roundA - t_replyA) + (t_roundB - t_replyB)) / 4.
 double sds_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng);
 
-/// Asymmetric double-sided two-way ranging, beyond the seed (Neirynck, Luk, McLaughlin, "An
+/// Asymmetric double-sided two-way ranging, beyond the thesis (Neirynck, Luk, McLaughlin, "An
 /// alternative double-sided two-way ranging method", WPNC 2016; the formula of the DW1000 user
 /// manual): t_p = (t_roundA t_roundB - t_replyA t_replyB) / (t_roundA + t_roundB + t_replyA +
 /// t_replyB). The same four intervals as eq. 2.6, but the clock-drift error is
@@ -51,7 +51,7 @@ double sds_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& n
 /// Its timestamp-noise weights are those of eq. 2.6 to first order, so the range noise is the same.
 double ads_twr_time_of_flight(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng);
 
-/// Clock-drift error predicted by seed 000 eq. 2.4 (TWR) and eq. 2.7 / 2.8 (SDS-TWR).
+/// Clock-drift error predicted by eq. 2.4 (TWR) and eq. 2.7 / 2.8 (SDS-TWR) [Forklift thesis].
 double twr_drift_error(const RangingExchange& ex);           // eq. 2.4
 double sds_twr_drift_error_full(const RangingExchange& ex);  // eq. 2.7
 double sds_twr_drift_error(const RangingExchange& ex);       // eq. 2.8
@@ -75,7 +75,7 @@ struct MultilaterationParams {
   double collinear_tolerance = 0.05;  ///< metres
 };
 
-/// A position fix of the UWB antenna in the map frame (seed 000 eq. 4.10).
+/// A position fix of the UWB antenna in the map frame [Forklift thesis, eq. 4.10].
 struct UwbFix {
   double stamp = 0.0;                                        ///< seconds, sensor clock
   geometry::Vec2 position;                                   ///< antenna position, metres
@@ -98,30 +98,30 @@ std::optional<UwbFix> solve_multilateration(const std::vector<map::UwbAnchor>& a
 // ---------------------------------------------------------------------------------------------
 // The UWB tag on a forklift
 
-enum class NlosMode { bias, drop };
+enum class NlosMode { kBias, kDrop };
 
 /// How the tag turns an exchange's four intervals into a time of flight.
 enum class RangingFormula {
-  sds_twr,  ///< seed 000 eq. 2.6: biased by eq. 2.8 when the reply delays differ
-  ads_twr,  ///< asymmetric double-sided (see ads_twr_time_of_flight): no reply-delay bias
+  kSdsTwr,  ///< [Forklift thesis, eq. 2.6]: biased by eq. 2.8 when the reply delays differ
+  kAdsTwr,  ///< asymmetric double-sided (see ads_twr_time_of_flight): no reply-delay bias
 };
 
 struct UwbParams {
-  double rate_hz = 20.0;                     ///< seed 000, Table 3.1
-  geometry::Vec2 antenna_offset{0.05, 0.0};  ///< (a, b) in the body frame, seed 000 eq. 4.12
+  double rate_hz = 20.0;                     ///< [Forklift thesis, Table 3.1]
+  geometry::Vec2 antenna_offset{0.05, 0.0};  ///< (a, b) in the body frame [Forklift thesis, eq. 4.12]
   double clock_ppm_std = 5.0;                ///< crystal offset of each device after trimming, ppm
   double reply_a = 300e-6;                   ///< tag's reply delay, s
   double reply_b = 320e-6;                   ///< anchors' reply delay, s (asymmetry drives eq. 2.8)
-  /// The seed's eq. 2.6 leaves every anchor's range off by a constant c (t_replyB - t_replyA)
+  /// The thesis's eq. 2.6 leaves every anchor's range off by a constant c (t_replyB - t_replyA)
   /// (e_A - e_B) / 4: with 20 us of asymmetry and 5 ppm crystals about 1 cm each, so a fix carries
   /// a steady bias of the same size that no filter can average away. The asymmetric formula
-  /// removes it from the same messages, so it is the default; sds_twr reproduces the seed.
-  RangingFormula ranging = RangingFormula::ads_twr;
+  /// removes it from the same messages, so it is the default; kSdsTwr reproduces the thesis.
+  RangingFormula ranging = RangingFormula::kAdsTwr;
   /// Receive-timestamp jitter. SDS-TWR combines three receptions with weights 2, 1, 1 over 4, so
   /// the range noise is c * rx_std * sqrt(6) / 4: 0.272 ns gives 5.0 cm.
   double rx_timestamp_std = 0.272e-9;  ///< seconds
   double max_range = 30.0;             ///< ranges beyond this are lost, metres
-  NlosMode nlos_mode = NlosMode::bias;
+  NlosMode nlos_mode = NlosMode::kBias;
   /// Extra path length of a blocked or reflected signal: exponential with this mean, plus the
   /// minimum. Always positive: NLOS never shortens a UWB range.
   double nlos_bias_mean = 0.30;  ///< metres
@@ -160,7 +160,7 @@ class UwbTag {
                                 std::span<const geometry::Polygon> blockers = {},
                                 std::span<const std::size_t> distrusted = {});
 
-  /// Where the antenna of a body at `pose` is (seed 000 eq. 4.11).
+  /// Where the antenna of a body at `pose` is [Forklift thesis, eq. 4.11].
   geometry::Vec2 antenna_position(const geometry::Pose2& pose) const;
 
   const std::vector<map::UwbAnchor>& anchors() const { return anchors_; }

@@ -60,7 +60,7 @@ struct ExecutorParams {
   double arrival_tolerance = 0.10;
 };
 
-/// Per-step inputs, at the pose rate (seed 000: 70 Hz).
+/// Per-step inputs, at the pose rate (70 Hz [Forklift thesis, Table 3.1]).
 struct TaskInput {
   double time = 0.0;                                        ///< sim time, s
   geometry::Pose2 pose;                                     ///< localization estimate
@@ -112,7 +112,7 @@ class TaskExecutor {
   std::vector<TaskReport> take_reports();
 
   State state() const { return machine_.state(); }
-  OrderPhase phase() const { return machine_.phase(); }
+  orders::OrderPhase phase() const { return machine_.phase(); }
   const std::string& error_reason() const { return machine_.error_reason(); }
   const std::optional<TaskOrder>& order() const { return order_; }
   bool carrying() const { return fork_up_; }

@@ -7,16 +7,16 @@ namespace fleet::task {
 namespace {
 
 using S = State;
-using P = OrderPhase;
+using P = orders::OrderPhase;
 using E = Event;
 using F = Effect;
 
 constexpr bool kAny = true;
 constexpr bool kOnly = false;
 
-// seed 000, section 6.4 and Fig. 6.9, extended with WAITING, PAUSED and ERROR.
+// [Forklift thesis, section 6.4 and Fig. 6.9], extended with WAITING, PAUSED and ERROR.
 constexpr std::array kTable = {
-    // Orders: only when idle or on the way home (the seed's IDLE_GO_HOME accepts new orders).
+    // Orders: only when idle or on the way home (the thesis's IDLE_GO_HOME accepts new orders).
     TransitionRow{S::kIdle, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
     TransitionRow{S::kGoHome, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
     // The order's stages.
@@ -25,7 +25,7 @@ constexpr std::array kTable = {
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kAreaEmpty, S::kGoHome, P::kNone, F::kReportEmpty},
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickDone, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickFailed, S::kSearchPallet, P::kSearching, F::kStartSearch},
-    // Beyond the seed: a robot that cannot pick stands in front of the area, usually on the road;
+    // Beyond the thesis: a robot that cannot pick stands in front of the area, usually on the road;
     // with empty forks nothing stops it from clearing the way and going home.
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPickGaveUp, S::kGoHome, P::kNone, F::kAbandonPick},
     TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kPathEnded, S::kDropPallet, P::kDropping, F::kStartDrop},
@@ -79,24 +79,6 @@ const char* to_string(State s) {
       return "PAUSED";
     case S::kError:
       return "ERROR";
-  }
-  return "UNKNOWN";
-}
-
-const char* to_string(OrderPhase p) {
-  switch (p) {
-    case P::kNone:
-      return "NONE";
-    case P::kToPick:
-      return "TO_PICK";
-    case P::kSearching:
-      return "SEARCHING";
-    case P::kPicking:
-      return "PICKING";
-    case P::kToDrop:
-      return "TO_DROP";
-    case P::kDropping:
-      return "DROPPING";
   }
   return "UNKNOWN";
 }
@@ -233,7 +215,7 @@ Transition TaskStateMachine::handle(Event event, const std::string& reason) {
     return tr;
   }
   tr.reason = std::string(to_string(event)) + " not accepted in " + to_string(state_);
-  if (phase_ != P::kNone) tr.reason += std::string(" (") + to_string(phase_) + ")";
+  if (phase_ != P::kNone) tr.reason += " (" + std::string(orders::to_string(phase_)) + ")";
   return tr;
 }
 

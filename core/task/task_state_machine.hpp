@@ -5,16 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "orders/order.hpp"
+
 namespace fleet::task {
 
-/// The agent's task states, seed 000 section 6.4 (Fig. 6.9), plus WAITING (blocked by traffic or
+/// The agent's task states [Forklift thesis, section 6.4, Fig. 6.9], plus WAITING (blocked by traffic or
 /// no plan), PAUSED (on command) and ERROR (with a reason). The seed's IDLE_GO_HOME is kGoHome:
 /// it drives home like TRACK_PATH but, unlike it, accepts new orders.
 enum class State { kIdle, kTrackPath, kSearchPallet, kPickPallet, kDropPallet, kGoHome, kWaiting, kPaused, kError };
-
-/// Where the current order stands; published in OrderState. kNone when there is no order
-/// (idle, going home after it, error).
-enum class OrderPhase { kNone, kToPick, kSearching, kPicking, kToDrop, kDropping };
 
 /// Inputs that can move the machine. The agent (or the TaskExecutor on its behalf) raises them.
 enum class Event {
@@ -57,7 +55,6 @@ enum class Effect {
 };
 
 const char* to_string(State s);
-const char* to_string(OrderPhase p);
 const char* to_string(Event e);
 const char* to_string(Effect e);
 
@@ -67,10 +64,10 @@ const char* to_string(Effect e);
 struct TransitionRow {
   State from;
   bool any_phase;
-  OrderPhase phase;
+  orders::OrderPhase phase;
   Event event;
   State to;
-  OrderPhase to_phase;
+  orders::OrderPhase to_phase;
   Effect effect;
   bool restore = false;
 };
@@ -84,8 +81,8 @@ struct Transition {
   bool accepted = false;
   State from = State::kIdle;
   State to = State::kIdle;
-  OrderPhase from_phase = OrderPhase::kNone;
-  OrderPhase to_phase = OrderPhase::kNone;
+  orders::OrderPhase from_phase = orders::OrderPhase::kNone;
+  orders::OrderPhase to_phase = orders::OrderPhase::kNone;
   Effect effect = Effect::kNone;
   std::string reason;  ///< why rejected, or the reason the event carried (a fault, a pick given up)
 };
@@ -95,10 +92,10 @@ struct Transition {
 class TaskStateMachine {
  public:
   State state() const { return state_; }
-  OrderPhase phase() const { return phase_; }
+  orders::OrderPhase phase() const { return phase_; }
   /// Reason of the last fault while in kError, else empty.
   const std::string& error_reason() const { return error_; }
-  /// Orders are accepted only in IDLE and GO_HOME (seed 000, section 6.4).
+  /// Orders are accepted only in IDLE and GO_HOME [Forklift thesis, section 6.4].
   bool accepts_orders() const { return state_ == State::kIdle || state_ == State::kGoHome; }
   /// The state a PAUSED or WAITING machine returns to, if any.
   std::optional<State> suspended_state() const;
@@ -109,10 +106,10 @@ class TaskStateMachine {
  private:
   struct Frame {
     State state;
-    OrderPhase phase;
+    orders::OrderPhase phase;
   };
   State state_ = State::kIdle;
-  OrderPhase phase_ = OrderPhase::kNone;
+  orders::OrderPhase phase_ = orders::OrderPhase::kNone;
   std::vector<Frame> suspended_;  ///< kPause on top of kWaiting stacks two frames
   std::string error_;
 };

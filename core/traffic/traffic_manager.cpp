@@ -62,7 +62,7 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
 
 // ---- robots and routes ----------------------------------------------------------------------------
 
-void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::uint32_t version) {
+void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::uint64_t version) {
   robot.lost = false;  // a route again: it is heard from
   robot.version = version;
   robot.route = std::move(points);
@@ -387,7 +387,7 @@ const std::vector<int>& TrafficManager::route(int robot_id) const {
   return it == robots_.end() ? empty : it->second.route;
 }
 
-std::uint32_t TrafficManager::version(int robot_id) const {
+std::uint64_t TrafficManager::version(int robot_id) const {
   auto it = robots_.find(robot_id);
   return it == robots_.end() ? 0 : it->second.version;
 }
@@ -875,9 +875,8 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     // One instruction at a time: a member sent a new route that has not reached it yet may break
     // the cycle by what it does; and a robot just sent one is not picked again until it could act
     // on it (it may stand where it did for a moment, and a body it stopped may still be reported).
-    const bool instructed = std::any_of(ids.begin(), ids.end(), [&](int id) {
-      return robots_.at(id).pending != Instruction::kNone;
-    });
+    const bool instructed =
+        std::any_of(ids.begin(), ids.end(), [&](int id) { return robots_.at(id).pending != Instruction::kNone; });
     if (instructed) continue;
     bool resolved = false;
     for (int s : component) {

@@ -43,14 +43,14 @@ struct TrafficConfiguration {
 /// by graph edges. `version` must grow with every new route of the robot.
 struct RouteRequest {
   int robot_id = 0;
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   std::vector<int> points;
 };
 
 /// How far a robot has driven along its route version, metres from the route's first point.
 struct ProgressReport {
   int robot_id = 0;
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   double distance = 0.0;
   /// Robots whose bodies the robot's own safety check has kept it standing for (the agents'
   /// check is finer than the places: bodies turning onto a road or cutting a corner reach past
@@ -81,7 +81,7 @@ enum class Instruction {
 /// `granted_index` (metres `granted_distance`) and stop there".
 struct Grant {
   int robot_id = 0;
-  std::uint32_t version = 0;
+  std::uint64_t version = 0;
   int granted_index = 0;
   double granted_distance = 0.0;
   GrantStatus status = GrantStatus::kMoving;
@@ -237,14 +237,14 @@ class TrafficManager {
   std::vector<int> earlier_entry_claims(int point, int robot_id, double now) const;
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
-  std::uint32_t version(int robot_id) const;
+  std::uint64_t version(int robot_id) const;
   /// Checks the safety invariant over all robots; returns a description of the first violation.
   std::string check_invariant() const;
 
  private:
   struct Robot {
     int id = 0;
-    std::uint32_t version = 0;
+    std::uint64_t version = 0;
     std::vector<int> route;
     std::vector<int> places;
     std::vector<double> cum;         ///< metres from the route start to each point
@@ -275,7 +275,7 @@ class TrafficManager {
     std::vector<int> body_reach;
   };
 
-  void install_route(Robot& robot, std::vector<int> points, std::uint32_t version);
+  void install_route(Robot& robot, std::vector<int> points, std::uint64_t version);
   std::vector<int> places_under(const geometry::Polygon& body, std::vector<int>* touched = nullptr) const;
   void stand(Robot& robot, const std::vector<int>& under, std::vector<int> touched);
   bool under_body(const Robot& robot, int place) const;

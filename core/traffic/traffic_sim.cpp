@@ -15,7 +15,8 @@ SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, 
     const double x = area.pose.x + approach_distance * std::cos(area.pose.yaw);
     const double y = area.pose.y + approach_distance * std::sin(area.pose.yaw);
     const int p = map::nearest_point(graph, x, y);
-    if (p >= 0 && std::find(scenario.goal_points.begin(), scenario.goal_points.end(), p) == scenario.goal_points.end()) {
+    if (p >= 0 &&
+        std::find(scenario.goal_points.begin(), scenario.goal_points.end(), p) == scenario.goal_points.end()) {
       scenario.goal_points.push_back(p);
     }
   }
@@ -105,10 +106,11 @@ void TrafficSim::remove_robot(int robot_id) {
   if (params_.traffic) manager_.remove_robot(robot_id, time_);
 }
 
-void TrafficSim::set_route(Body& body, std::vector<int> route, std::uint32_t version) {
+void TrafficSim::set_route(Body& body, std::vector<int> route, std::uint64_t version) {
   body.route = std::move(route);
   body.cum.assign(body.route.size(), 0.0);
-  for (std::size_t i = 1; i < body.route.size(); ++i) body.cum[i] = body.cum[i - 1] + search_.edge_length(body.route[i - 1], body.route[i]);
+  for (std::size_t i = 1; i < body.route.size(); ++i)
+    body.cum[i] = body.cum[i - 1] + search_.edge_length(body.route[i - 1], body.route[i]);
   body.version = version;
   body.distance = 0.0;
   body.granted = 0.0;
@@ -135,7 +137,7 @@ void TrafficSim::start_next_goal(Body& body) {
   body.goals.pop_front();
   std::vector<int> path = search_.shortest(here, next);
   if (path.empty()) return;  // unreachable goal: skip it
-  const std::uint32_t version = std::max(body.version, manager_.version(body.id)) + 1;
+  const std::uint64_t version = std::max(body.version, manager_.version(body.id)) + 1;
   set_route(body, std::move(path), version);
   body.goal = next;
   body.last_progress = time_;
@@ -152,7 +154,8 @@ void TrafficSim::advance(Body& body) {
   }
   const double end = body.cum.back();
   const double limit = params_.traffic ? body.granted : end;
-  const double next = std::min(body.distance + params_.speed * params_.dt, std::max(body.distance, std::min(limit, end)));
+  const double next =
+      std::min(body.distance + params_.speed * params_.dt, std::max(body.distance, std::min(limit, end)));
   if (next > body.distance + 1e-12) {
     body.total += next - body.distance;
     body.last_progress = time_;
@@ -221,8 +224,9 @@ void TrafficSim::check_collisions() {
         ++report_.collisions;
         if (report_.first_collision.empty()) {
           std::ostringstream out;
-          out << "t=" << time_ << " s: robots " << bodies_[i].id << " (" << bodies_[i].pose.x << ", " << bodies_[i].pose.y
-              << ") and " << bodies_[j].id << " (" << bodies_[j].pose.x << ", " << bodies_[j].pose.y << ")";
+          out << "t=" << time_ << " s: robots " << bodies_[i].id << " (" << bodies_[i].pose.x << ", "
+              << bodies_[i].pose.y << ") and " << bodies_[j].id << " (" << bodies_[j].pose.x << ", "
+              << bodies_[j].pose.y << ")";
           report_.first_collision = out.str();
         }
       }
@@ -252,10 +256,17 @@ void TrafficSim::step() {
     for (const TrafficEvent& event : result.events) {
       switch (event.kind) {
         case TrafficEvent::Kind::kRerouted:
-        case TrafficEvent::Kind::kDeadlockResolved: ++report_.reroutes; break;
-        case TrafficEvent::Kind::kSidingSent: ++report_.sidings; break;
-        case TrafficEvent::Kind::kUnresolvedDeadlock: ++report_.unresolved_cycles; break;
-        default: break;
+        case TrafficEvent::Kind::kDeadlockResolved:
+          ++report_.reroutes;
+          break;
+        case TrafficEvent::Kind::kSidingSent:
+          ++report_.sidings;
+          break;
+        case TrafficEvent::Kind::kUnresolvedDeadlock:
+          ++report_.unresolved_cycles;
+          break;
+        default:
+          break;
       }
     }
     if (params_.check_invariant) {

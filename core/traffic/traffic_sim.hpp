@@ -18,14 +18,14 @@ namespace fleet::traffic {
 /// grants, the uncoordinated baseline), and the run counts trips, waits, footprint collisions and
 /// deadlocks. Deterministic for a given seed.
 struct SimParams {
-  double speed = 0.2;                ///< m/s along the route
-  double dt = 0.05;                  ///< s per step; the manager updates every step
-  double dwell = 2.0;                ///< s standing at a pick or drop
-  double deadlock_timeout = 60.0;    ///< s without progress on a task that count as a deadlock
-  geometry::Footprint footprint;     ///< for the collision count (no margin)
-  bool traffic = true;               ///< false: drive the whole route regardless of others
-  bool random_trips = true;          ///< robots without goals get a random pick and drop
-  bool check_invariant = true;       ///< verify the manager's safety invariant every step
+  double speed = 0.2;              ///< m/s along the route
+  double dt = 0.05;                ///< s per step; the manager updates every step
+  double dwell = 2.0;              ///< s standing at a pick or drop
+  double deadlock_timeout = 60.0;  ///< s without progress on a task that count as a deadlock
+  geometry::Footprint footprint;   ///< for the collision count (no margin)
+  bool traffic = true;             ///< false: drive the whole route regardless of others
+  bool random_trips = true;        ///< robots without goals get a random pick and drop
+  bool check_invariant = true;     ///< verify the manager's safety invariant every step
   std::uint64_t seed = 1;
 };
 
@@ -33,18 +33,18 @@ struct SimReport {
   double sim_seconds = 0.0;
   int robots = 0;
   std::size_t goals_reached = 0;
-  std::size_t trips = 0;             ///< pick then drop completed
-  double mean_trip_s = 0.0;          ///< from being given a pick to leaving the drop
-  std::size_t collisions = 0;        ///< pairs of footprints that start to overlap
-  std::size_t deadlocks = 0;         ///< robots with a task not moving for deadlock_timeout
-  std::vector<int> stalled_at;       ///< per deadlock: the route point the robot stood nearest
-  double max_wait_s = 0.0;           ///< longest continuous wait the manager reported
+  std::size_t trips = 0;        ///< pick then drop completed
+  double mean_trip_s = 0.0;     ///< from being given a pick to leaving the drop
+  std::size_t collisions = 0;   ///< pairs of footprints that start to overlap
+  std::size_t deadlocks = 0;    ///< robots with a task not moving for deadlock_timeout
+  std::vector<int> stalled_at;  ///< per deadlock: the route point the robot stood nearest
+  double max_wait_s = 0.0;      ///< longest continuous wait the manager reported
   std::size_t invariant_violations = 0;
   std::string first_violation;
-  std::size_t reroutes = 0;          ///< bounded-wait and deadlock re-routes
+  std::size_t reroutes = 0;  ///< bounded-wait and deadlock re-routes
   std::size_t sidings = 0;
-  std::size_t unresolved_cycles = 0; ///< update cycles in which a wait-for cycle had no way out
-  std::string first_collision;       ///< time, robots and positions of the first collision
+  std::size_t unresolved_cycles = 0;  ///< update cycles in which a wait-for cycle had no way out
+  std::string first_collision;        ///< time, robots and positions of the first collision
 };
 
 /// Where robots work and start on a site.
@@ -56,7 +56,8 @@ struct SimScenario {
 /// Goals: the graph point nearest each loading area's approach position (`approach_distance` in
 /// front of the pallet). Starts: for each robot the graph point nearest a home (cycling through
 /// the homes, then the goal points) that conflicts with no start chosen before.
-SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, int robots, double approach_distance = 0.30);
+SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, int robots,
+                          double approach_distance = 0.30);
 
 class TrafficSim {
  public:
@@ -88,7 +89,7 @@ class TrafficSim {
     bool active = true;
     std::vector<int> route;
     std::vector<double> cum;
-    std::uint32_t version = 0;
+    std::uint64_t version = 0;
     double distance = 0.0;
     double granted = 0.0;
     std::size_t segment = 0;
@@ -104,7 +105,7 @@ class TrafficSim {
     std::size_t reached = 0;
   };
 
-  void set_route(Body& body, std::vector<int> route, std::uint32_t version);
+  void set_route(Body& body, std::vector<int> route, std::uint64_t version);
   void start_next_goal(Body& body);
   void advance(Body& body);
   void check_collisions();

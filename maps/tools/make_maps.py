@@ -215,7 +215,7 @@ def table_a(site_name="table_a", closed=()):
     obstacles = [(1.40, 0.85, 1.60, 1.05), (1.40, 1.95, 1.60, 2.15), (0.35, 1.55, 0.55, 1.75), (2.45, 2.25, 2.65, 2.45)]
     anchors = [(0.0, 0.0, 1.0), (3.0, 0.0, 1.0), (3.0, 3.0, 1.0), (0.0, 3.0, 1.0)]
     # Homes inside the courtyards, three to a courtyard: two side by side facing the ring road
-    # they leave by, and one nearer the cross facing +x (the seed starts forklifts at zero
+    # they leave by, and one nearer the cross facing +x (the thesis starts forklifts at zero
     # heading). A forklift turning on the spot in a lane sweeps 0.15 m from the road centre; every
     # parked body stands at least 9.5 cm beyond that, more than the 8 cm the agents stop at, so
     # parked robots never stop the traffic passing them. The pair stands 0.29 m apart (0.13 m
@@ -223,8 +223,8 @@ def table_a(site_name="table_a", closed=()):
     # agents' 3 cm safety gap, so a robot leaving home is not stopped by the one parked beside it.
     # Each home of a pair is nearer the ring's south or north side than any other road, so the
     # road it is reached from is not one an obstacle or a revision closes. (Homes 2 cm further
-    # from the ring were nearer the cross or the west ring: robots were shut in at home while the
-    # cross's north arm was closed.)
+    # from the ring would be nearer the cross or the west ring: robots would be shut in at home
+    # while the cross's north arm is closed.)
     def courtyard_homes(x_ring, x_cross, y_ring, y_cross):
         sx = 1.0 if x_cross > x_ring else -1.0
         sy = 1.0 if y_cross > y_ring else -1.0
@@ -234,7 +234,7 @@ def table_a(site_name="table_a", closed=()):
     sw, se = courtyard_homes(lo, mid, lo, mid), courtyard_homes(hi, mid, lo, mid)
     ne, nw = courtyard_homes(hi, mid, hi, mid), courtyard_homes(lo, mid, hi, mid)
     homes = [sw[0], se[0], ne[0], nw[0], sw[1], se[1], ne[1], nw[1], sw[2], se[2], ne[2], nw[2]]
-    comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1a):
+    comment = """Demo table A: 3 m x 3 m, 30 cm single-lane roads driven both ways [Forklift thesis, Fig. 3.1a]:
 a ring road with a cross through the middle, 4 T-junctions and a crossing."""
     if closed:
         comment = f"""Demo table A with {', '.join(closed)} closed: the same table, loading areas, homes and
@@ -275,13 +275,13 @@ def table_b():
     cells = [(0.975, r1 + 0.34, 0.0), (2.025, r1 + 0.34, 0.0)]
     homes = [south[0], north[4], south[4], north[0], cells[0], cells[1], south[2], north[2], south[1], north[3],
              south[3], north[1]]
-    comment = """Demo table B: 3 m x 3 m, 30 cm single-lane roads driven both ways (seed 000, Fig. 3.1b):
+    comment = """Demo table B: 3 m x 3 m, 30 cm single-lane roads driven both ways [Forklift thesis, Fig. 3.1b]:
 a ladder of two rungs inside a ring road, six T-junctions."""
     return net, site_yaml("table_b", comment, (0, 0, 3, 3), 0.30, 0.10, areas, obstacles, anchors, homes)
 
 
 def warehouse():
-    # 40 m x 20 m: rack rows along x, 1.2 m deep, with 3 m aisles between their faces (seed 004).
+    # 40 m x 20 m: rack rows along x, 1.2 m deep, with 3 m aisles between their faces [Picker thesis].
     # Aisle roads at y = 4.2, 8.4, 12.6, 16.8 join cross aisles at x = 2, 20 and 38.
     net = Network("warehouse", 1.0)
     ys = [4.2, 8.4, 12.6, 16.8]
@@ -311,7 +311,7 @@ def warehouse():
                (0.0, 20.0, 4.0)]
     # Homes beside the west cross aisle, parked along it, 0.6 m from its centre line.
     homes = [(1.4, 5.0 + 0.9 * k, N) for k in range(12)]
-    comment = """Warehouse: 40 m x 20 m, rack rows 1.2 m deep with 3 m aisles (seed 004); 1 m roads on the
+    comment = """Warehouse: 40 m x 20 m, rack rows 1.2 m deep with 3 m aisles [Picker thesis]; 1 m roads on the
 aisle centres and three cross aisles; for scale and planner benchmarks."""
     return net, site_yaml("warehouse", comment, (0, 0, 40, 20), 1.0, 0.5, areas, obstacles, anchors, homes, racks)
 

@@ -10,15 +10,15 @@
   // ?fps: redraw every animation frame, even without news, to measure drawing speed.
   const alwaysDraw = params.has('fps');
 
-  // Task states of the seed's state machine (plus WAITING, PAUSED, ERROR).
+  // Task states of the thesis's state machine (plus WAITING, PAUSED, ERROR).
   const STATE_COLOURS = {
     IDLE: '#5b7083', TRACK_PATH: '#2e8b57', SEARCH_PALLET: '#e07a1f', PICK_PALLET: '#d0611a',
     DROP_PALLET: '#b5541c', GO_HOME: '#1f8a9d', WAITING: '#e0b000', PAUSED: '#8e6cc0', ERROR: '#d62828',
   };
   const LOST_COLOUR = '#a8b0b8';
-  const GLOBAL_PLAN = '#1f5fd6';  // seed 000, Fig. 5.12: the global plan in blue
+  const GLOBAL_PLAN = '#1f5fd6';  // the global plan in blue [Forklift thesis, Fig. 5.12]
   const RESERVATION = 'rgba(230,120,20,0.85)';  // traffic: road places a robot holds
-  const LOCAL_PLAN = '#d62828';  // seed 000, Fig. 5.12: the local plan in red
+  const LOCAL_PLAN = '#d62828';  // the local plan in red [Forklift thesis, Fig. 5.12]
   const LOCAL_PLAN_LENGTH = 1.0;  // metres of path the robot checks against the dynamic grid (core/robot)
   const PALLET = '#9a6a3a';
 
@@ -251,7 +251,7 @@
   }
 
   // The local plan: the stretch of the path just ahead of the robot that it checks against the
-  // other robots and what its lidar sees (the dynamic grid, seed 000 section 5.3).
+  // other robots and what its lidar sees (the dynamic grid [Forklift thesis, section 5.3]).
   function drawLocalPlan(r) {
     if (!r.path || r.path.length < 2 || r.health === 'lost') return;
     let best = 0, bestD = Infinity;
@@ -278,7 +278,7 @@
   }
 
   // Traffic reservations: the road places a robot holds, as dots along its way, hollow while it
-  // waits for them to grow (issue 8).
+  // waits for them to grow.
   function drawReservations(r) {
     if (!r.traffic || !r.traffic.reserved || r.health === 'lost') return;
     const waiting = r.traffic.status === 'WAITING';

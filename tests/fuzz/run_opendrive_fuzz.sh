@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Builds the OpenDRIVE parser fuzzer with clang's libFuzzer and AddressSanitizer and runs it for a
-# few seconds on a copy of the seed corpus (the shared real-world .xodr files plus the shipped
-# maps). Exit status 0: no crash found. Usage:
-#   run_opendrive_fuzz.sh SOURCE_DIR SHARED_DIR WORK_DIR [SECONDS]
+# few seconds on a copy of the seed corpus: the shipped maps, plus the third-party .xodr files of
+# $FLEET_TEST_DATA (default OPENDRIVE_DIR) where that folder exists. Exit status 0: no crash found.
+# Usage:
+#   run_opendrive_fuzz.sh SOURCE_DIR OPENDRIVE_DIR WORK_DIR [SECONDS]
 set -euo pipefail
 src=$1
-shared=$2
+third_party=${FLEET_TEST_DATA:-$2}
 work=$3
 seconds=${4:-20}
 clang=${CLANGXX:-clang++-14}
@@ -29,7 +30,12 @@ if [ $rebuild -eq 1 ]; then
     -I"$src/core" "${sources[@]}" -lpugixml -o "$bin"
 fi
 # The corpus folder grows with what the fuzzer finds; seeds are copied in, never the reverse.
-cp -f "$shared"/data/opendrive/*.xodr "$src"/maps/*.xodr "$work/corpus/"
+cp -f "$src"/maps/*.xodr "$work/corpus/"
+if [ -d "$third_party" ]; then
+  cp -f "$third_party"/*.xodr "$work/corpus/"
+else
+  echo "run_opendrive_fuzz: $third_party is absent: seeding with the shipped maps only" >&2
+fi
 cd "$work"
 exec "$bin" -max_total_time="$seconds" -max_len=70000 -rss_limit_mb=2048 -timeout=10 \
   -print_final_stats=1 "$work/corpus"

@@ -422,9 +422,9 @@ TEST(Recovery, RobotThatLiftedThePalletOfItsRequeuedOrderGetsTheOrderBack) {
 
 TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManager) {
   // fl1, admitted from home H1, replans before it sets off (an obstacle toggled) onto a route that
-  // starts at another graph point, where fl2 stands: it waits to enter there. Its first route was
-  // kept and granted meanwhile, so others waited on the places of a route nobody drove, and fl1
-  // on them: a wait the manager's cycle detection never saw.
+  // starts at another graph point, where fl2 stands: it waits to enter there. Were its first route
+  // kept and granted meanwhile, others would wait on the places of a route nobody drives, and fl1
+  // on them: a wait the manager's cycle detection cannot see.
   const std::string root = FLEET_SOURCE_DIR;
   const auto config = config::load_fleet_config(root + "/config/fleet.yaml");
   const auto site = map::load_site_map(root + "/maps/table_a.yaml");
@@ -455,7 +455,7 @@ TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManage
     s.robot.publish_state();
     fl2.publish_state();
   };
-  const auto request = [&](const std::string& robot, std::uint32_t version, const std::vector<int>& points) {
+  const auto request = [&](const std::string& robot, std::uint64_t version, const std::vector<int>& points) {
     requests.write({robot, version, points, 0.0, {}, 0.0});
   };
   // Waits, both robots answering and `send` repeated as an agent does, for a grant to `robot` that
@@ -480,7 +480,7 @@ TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManage
   };
 
   // fl1 is admitted from H1 onto its first route.
-  constexpr std::uint32_t kFirst = 16, kReplanned = 32, kFl2 = 48;
+  constexpr std::uint64_t kFirst = 16, kReplanned = 32, kFl2 = 48;
   ASSERT_TRUE(grant_to(
       "fl1", [&] { request("fl1", kFirst, first); },
       [&](const auto& g) { return g.version == kFirst && g.status == "MOVING"; }))

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <thread>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "fleet_harness.hpp"
 #include "map/site.hpp"
@@ -20,12 +20,14 @@ namespace {
 json last_json_line(const std::string& text) {
   const auto end = text.find_last_not_of('\n');
   const auto start = text.rfind('\n', end);
-  return json::parse(text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1));
+  return json::parse(
+      text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1));
 }
 
 /// Processes whose command line mentions this DDS domain.
 int fleet_processes_on_domain(int domain) {
-  const auto r = run_command({"/usr/bin/pgrep", "-fc", "fleet-(server|agent).*--domain " + std::to_string(domain) + " "});
+  const auto r =
+      run_command({"/usr/bin/pgrep", "-fc", "fleet-(server|agent).*--domain " + std::to_string(domain) + " "});
   return std::atoi(r.out.c_str());
 }
 
@@ -55,7 +57,7 @@ TEST(Skeleton, OrderGoesThroughItsLifecycleAndTheRobotEndsAtTheDropPose) {
   for (const char* phase : {"TO_PICK", "PICKING", "TO_DROP", "DROPPING"}) {
     EXPECT_NE(std::find(phases.begin(), phases.end(), phase), phases.end()) << phase << " missing: " << order.dump();
   }
-  // Ascending robot id (seed 000, section 3): fl1 takes the first order.
+  // Ascending robot id [Forklift thesis, section 3]: fl1 takes the first order.
   EXPECT_EQ(order["robot_id"], "fl1");
 
   // At DONE the robot stands at area A2's service pose: 0.30 m out from the pallet along the
@@ -99,8 +101,8 @@ TEST(Skeleton, UnknownConfigKeyNamesKeyAndFile) {
 }
 
 TEST(Skeleton, DemoEndsByItselfWithOrdersDoneNoneLostAndNoProcessLeft) {
-  const auto r = run_command({bin("fleetctl"), "--domain", "64", "demo", "--http-port", "0", "--agents", "2", "--duration", "25",
-                              "--time-scale", "10", "--json"},
+  const auto r = run_command({bin("fleetctl"), "--domain", "64", "demo", "--http-port", "0", "--agents", "2",
+                              "--duration", "25", "--time-scale", "10", "--json"},
                              120);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const json summary = last_json_line(r.out);
@@ -115,25 +117,31 @@ TEST(Skeleton, DemoEndsByItselfWithOrdersDoneNoneLostAndNoProcessLeft) {
 
 TEST(Skeleton, DemoKilledWithSigtermLeavesNoChildBehind) {
   FleetHarness launcher(65, 10.0);
-  launcher.processes().start("fleetctl demo",
-                             {bin("fleetctl"), "--domain", "65", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
-                             ::testing::TempDir() + "/demo65.log");
+  launcher.processes().start(
+      "fleetctl demo",
+      {bin("fleetctl"), "--domain", "65", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
+      ::testing::TempDir() + "/demo65.log");
   // Wait for the fleet to be up.
-  for (int i = 0; i < 100 && fleet_processes_on_domain(65) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i < 100 && fleet_processes_on_domain(65) < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ASSERT_EQ(fleet_processes_on_domain(65), 3);
   launcher.processes().signal(0, SIGTERM);
-  for (int i = 0; i < 100 && fleet_processes_on_domain(65) > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i < 100 && fleet_processes_on_domain(65) > 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_EQ(fleet_processes_on_domain(65), 0);
 }
 
 TEST(Skeleton, DemoKilledWithSigkillLeavesNoChildBehind) {
   FleetHarness launcher(66, 10.0);
-  launcher.processes().start("fleetctl demo",
-                             {bin("fleetctl"), "--domain", "66", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
-                             ::testing::TempDir() + "/demo66.log");
-  for (int i = 0; i < 100 && fleet_processes_on_domain(66) < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  launcher.processes().start(
+      "fleetctl demo",
+      {bin("fleetctl"), "--domain", "66", "demo", "--http-port", "0", "--agents", "2", "--time-scale", "10"},
+      ::testing::TempDir() + "/demo66.log");
+  for (int i = 0; i < 100 && fleet_processes_on_domain(66) < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ASSERT_EQ(fleet_processes_on_domain(66), 3);
   launcher.processes().signal(0, SIGKILL);
-  for (int i = 0; i < 100 && fleet_processes_on_domain(66) > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i < 100 && fleet_processes_on_domain(66) > 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_EQ(fleet_processes_on_domain(66), 0);
 }

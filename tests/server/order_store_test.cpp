@@ -33,7 +33,7 @@ TEST(OrderStore, OrdersAndTheirEventsSurviveReopening) {
     book.assign(id, "fl2", 11.0);
     book.locate_last_event(id, 0.5, 0.25);
     store.save(*book.find(id));
-    book.set_phase(id, orders::OrderPhase::Picking, 12.0);
+    book.set_phase(id, orders::OrderPhase::kPicking, 12.0);
     store.save(*book.find(id));
     store.save(*book.find(id));  // saving again adds no duplicate events
   }
@@ -44,13 +44,13 @@ TEST(OrderStore, OrdersAndTheirEventsSurviveReopening) {
   EXPECT_EQ(o.pick_area, "A1");
   EXPECT_EQ(o.priority, 3);
   EXPECT_EQ(o.robot_id, "fl2");
-  EXPECT_EQ(o.status, orders::OrderStatus::Active);
-  EXPECT_EQ(o.phase, orders::OrderPhase::Picking);
+  EXPECT_EQ(o.status, orders::OrderStatus::kActive);
+  EXPECT_EQ(o.phase, orders::OrderPhase::kPicking);
   EXPECT_EQ(o.update_id, 1u);
   ASSERT_EQ(o.history.size(), 3u);
-  EXPECT_EQ(o.history[1].status, orders::OrderStatus::Assigned);
+  EXPECT_EQ(o.history[1].status, orders::OrderStatus::kAssigned);
   EXPECT_DOUBLE_EQ(o.history[1].robot_x, 0.5);
-  EXPECT_EQ(o.history[2].phase, orders::OrderPhase::Picking);
+  EXPECT_EQ(o.history[2].phase, orders::OrderPhase::kPicking);
   EXPECT_EQ(reopened.next_id(), 2);
 }
 

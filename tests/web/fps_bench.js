@@ -1,4 +1,4 @@
-// The page's drawing speed with many robots (issue 9: >= 30 frames per second in headless
+// The page's drawing speed with many robots (target: >= 30 frames per second in headless
 // chromium with 50 robots). Starts `web_bench --serve` (synthetic robots streamed at 20 Hz),
 // opens the page with ?fps (it then redraws on every animation frame, news or not) and counts
 // frames drawn over a window. Reports; asserts nothing.

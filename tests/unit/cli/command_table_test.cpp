@@ -28,7 +28,7 @@ TEST(CommandTable, FlagsTakeAValueEverywhereOrNowhere) {
   std::map<std::string, bool> takes_value;
   for (const auto& spec : command_table()) {
     for (const auto& flag : spec.flags) {
-      const bool valued = flag.kind != FlagSpec::Kind::Switch;
+      const bool valued = flag.kind != FlagSpec::Kind::kSwitch;
       const auto [it, inserted] = takes_value.emplace(flag.name, valued);
       EXPECT_EQ(it->second, valued) << flag.name;
     }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include "config/schema.hpp"
 
 using namespace fleet::config;
@@ -36,7 +39,8 @@ TEST(FleetConfig, ShippedDefaultsLoad) {
 }
 
 TEST(FleetConfig, ReadsNestedKeysAndFleets) {
-  const FleetConfig config = parse_fleet_config(std::string("server:\n  dispatch_policy: optimal\ntime_scale: 5\n") + kFleets, "t");
+  const FleetConfig config =
+      parse_fleet_config(std::string("server:\n  dispatch_policy: optimal\ntime_scale: 5\n") + kFleets, "t");
   EXPECT_EQ(config.settings.get_string("server.dispatch_policy"), "optimal");
   EXPECT_DOUBLE_EQ(config.settings.get_double("time_scale"), 5.0);
   EXPECT_EQ(config.all_robots().size(), 2u);
@@ -91,4 +95,26 @@ TEST(FleetConfig, CommonFlagsOverrideTheFileAndAreChecked) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--seed"), std::string::npos) << e.what();
   }
+}
+
+// docs/configuration.md is what `fleetctl config keys --markdown` prints; a key added, removed or
+// changed in the schema without re-making the page fails here.
+TEST(ConfigurationPage, CommittedPageMatchesTheSchema) {
+  const std::string path = FLEET_SOURCE_DIR "/docs/configuration.md";
+  std::ifstream file(path);
+  ASSERT_TRUE(file) << path << " is missing: build/bin/fleetctl config keys --markdown > docs/configuration.md";
+  std::stringstream committed;
+  committed << file.rdbuf();
+  EXPECT_EQ(committed.str(), fleet::config::configuration_page())
+      << path << " is stale: re-make it with build/bin/fleetctl config keys --markdown > docs/configuration.md";
+}
+
+TEST(ConfigurationPage, EveryKeyHasARowUnderItsSection) {
+  const std::string page = fleet::config::configuration_page();
+  for (const auto& spec : fleet::config::schema()) {
+    EXPECT_NE(page.find("| `" + spec.key + "` |"), std::string::npos) << spec.key;
+  }
+  EXPECT_LT(page.find("## Server"), page.find("| `server.dispatch_policy` |"));
+  EXPECT_LT(page.find("## Traffic control"), page.find("| `traffic.enabled` |"));
+  EXPECT_NE(page.find("| `seed` | 1 |  | 0 .. 2147483647 |"), std::string::npos) << "integer ranges print whole";
 }

@@ -11,7 +11,7 @@ namespace {
 
 using geometry::Pose2;
 
-constexpr double kDt = 1.0 / 70.0;  // seed 000: pose and control at 70 Hz
+constexpr double kDt = 1.0 / 70.0;  // pose and control at 70 Hz [Forklift thesis, Table 3.1]
 
 std::vector<Pose2> line_path(double length, double spacing) {
   std::vector<Pose2> path;
@@ -64,7 +64,7 @@ RunResult run(PathFollower& f, Pose2 pose, double max_time, double late_from_s) 
 }
 
 TEST(SpeedLaw, Eq62EndPoints) {
-  // seed 000, eq. 6.2: v_max at omega = 0, zero at omega_max, linear in between.
+  // v_max at omega = 0, zero at omega_max, linear in between [Forklift thesis, eq. 6.2].
   EXPECT_DOUBLE_EQ(speed_law(0.0, 0.2, 2.0), 0.2);
   EXPECT_DOUBLE_EQ(speed_law(2.0, 0.2, 2.0), 0.0);
   EXPECT_DOUBLE_EQ(speed_law(-2.0, 0.2, 2.0), 0.0);
@@ -218,7 +218,7 @@ TEST(PathFollower, AccelerationLimitBoundsCommandSteps) {
   BodyTwist prev;
   for (int i = 0; i < 1500 && !f.arrived(); ++i) {
     const BodyTwist cmd = f.step({pose, kDt});
-    if (f.arrived()) break;  // the final stop is one step, as the seed's "stopped" is
+    if (f.arrived()) break;  // the final stop is one step, as the thesis's "stopped" is
     EXPECT_LE(std::abs(cmd.vx - prev.vx), p.max_linear_accel * kDt + 1e-9);
     EXPECT_LE(std::abs(cmd.omega - prev.omega), p.max_angular_accel * kDt + 1e-9);
     prev = cmd;

@@ -180,7 +180,7 @@ TEST(Ekf, InitialisesFromTheFirstFixLikeEquation414) {
   EXPECT_FALSE(ekf.initialized());
   EXPECT_FALSE(ekf.predict(0.1, 0.01));
   EXPECT_EQ(ekf.score(), 0.0);
-  EXPECT_EQ(ekf.update_uwb({1.05, 2.0}), UpdateStatus::initialized);
+  EXPECT_EQ(ekf.update_uwb({1.05, 2.0}), UpdateStatus::kInitialized);
   EXPECT_TRUE(ekf.initialized());
   EXPECT_TRUE(ekf.heading_resolved());
   // Heading 0, so the body centre is 5 cm behind the antenna along x.
@@ -192,7 +192,7 @@ TEST(Ekf, InitialisesFromTheFirstFixLikeEquation414) {
 
 TEST(Ekf, NonFiniteInputsAreRejectedAndLeaveTheStateUntouched) {
   Ekf ekf(EkfParams::tuned());
-  EXPECT_EQ(ekf.update_uwb({kNaN, 1.0}), UpdateStatus::rejected_non_finite);
+  EXPECT_EQ(ekf.update_uwb({kNaN, 1.0}), UpdateStatus::kRejectedNonFinite);
   EXPECT_FALSE(ekf.initialized());
   ekf.update_uwb({1.0, 1.0});
   ekf.predict(0.0, 0.01);
@@ -201,12 +201,12 @@ TEST(Ekf, NonFiniteInputsAreRejectedAndLeaveTheStateUntouched) {
   EXPECT_FALSE(ekf.predict(kNaN, 0.01));
   EXPECT_FALSE(ekf.predict(0.1, kInf));
   EXPECT_FALSE(ekf.predict(0.1, -0.01));
-  EXPECT_EQ(ekf.update_uwb({1.0, kInf}), UpdateStatus::rejected_non_finite);
+  EXPECT_EQ(ekf.update_uwb({1.0, kInf}), UpdateStatus::kRejectedNonFinite);
   Eigen::Matrix2d bad = Eigen::Matrix2d::Identity();
   bad(0, 1) = kNaN;
-  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, bad), UpdateStatus::rejected_non_finite);
-  EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::rejected_non_finite);
-  EXPECT_EQ(ekf.update_commanded({0.0, 0.0, -kInf}), UpdateStatus::rejected_non_finite);
+  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, bad), UpdateStatus::kRejectedNonFinite);
+  EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::kRejectedNonFinite);
+  EXPECT_EQ(ekf.update_commanded({0.0, 0.0, -kInf}), UpdateStatus::kRejectedNonFinite);
   // A NaN gyro reading must not become the standstill bias measurement either.
   for (int i = 0; i < 10; ++i) EXPECT_FALSE(ekf.predict(kNaN, 0.1));
   EXPECT_EQ(ekf.state(), x);
@@ -217,13 +217,13 @@ TEST(Ekf, NonFiniteInputsAreRejectedAndLeaveTheStateUntouched) {
     ekf.update_commanded({});
     ekf.predict(0.0, 0.01);
   }
-  EXPECT_NE(ekf.update_commanded({}), UpdateStatus::rejected_non_finite);
+  EXPECT_NE(ekf.update_commanded({}), UpdateStatus::kRejectedNonFinite);
   EXPECT_TRUE(ekf.state().allFinite());
   EXPECT_TRUE(ekf.covariance().allFinite());
   const StateVector x2 = ekf.state();
   const StateCovariance p2 = ekf.covariance();
   EXPECT_FALSE(ekf.predict(kInf, 0.01));
-  EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::rejected_non_finite);
+  EXPECT_EQ(ekf.update_commanded({kNaN, 0.0, 0.0}), UpdateStatus::kRejectedNonFinite);
   EXPECT_EQ(ekf.state(), x2);
   EXPECT_EQ(ekf.covariance(), p2);
 }
@@ -273,7 +273,7 @@ TEST(Ekf, HeadingInitialisationRecoversANonZeroStartHeading) {
 TEST(Ekf, GatingRejectsAnOutlierAndRecoversAfterPersistentRejections) {
   EkfParams p = EkfParams::tuned();
   p.heading_init = false;
-  p.velocity_source = VelocitySource::none;
+  p.velocity_source = VelocitySource::kNone;
   Ekf ekf(p);
   ekf.update_uwb({1.05, 1.0});
   for (int i = 0; i < 40; ++i) {
@@ -281,7 +281,7 @@ TEST(Ekf, GatingRejectsAnOutlierAndRecoversAfterPersistentRejections) {
     if (i % 4 == 0) ekf.update_uwb({1.05, 1.0});
   }
   const StateVector before = ekf.state();
-  EXPECT_EQ(ekf.update_uwb({2.05, 1.0}), UpdateStatus::gated);
+  EXPECT_EQ(ekf.update_uwb({2.05, 1.0}), UpdateStatus::kGated);
   EXPECT_EQ(ekf.state(), before);
 
   // Without gating the same fix drags the estimate.
@@ -289,14 +289,14 @@ TEST(Ekf, GatingRejectsAnOutlierAndRecoversAfterPersistentRejections) {
   open.gating = false;
   Ekf ungated(open);
   ungated.update_uwb({1.05, 1.0});
-  EXPECT_EQ(ungated.update_uwb({2.05, 1.0}), UpdateStatus::accepted);
+  EXPECT_EQ(ungated.update_uwb({2.05, 1.0}), UpdateStatus::kAccepted);
   EXPECT_GT(ungated.pose().x, 1.1);
 
   // If the robot really is elsewhere (kidnapped), the filter gives in after a few rejections.
   int accepted_at = -1;
   for (int i = 0; i < 3 * p.max_consecutive_rejections; ++i) {
     ekf.predict(0.0, 0.05);
-    if (ekf.update_uwb({2.05, 1.0}) == UpdateStatus::accepted) {
+    if (ekf.update_uwb({2.05, 1.0}) == UpdateStatus::kAccepted) {
       accepted_at = i;
       break;
     }
@@ -314,15 +314,15 @@ TEST(Ekf, VelocityUpdatesFollowTheConfiguredSource) {
   EkfParams p = EkfParams::tuned();
   p.heading_init = false;
   Ekf ekf(p);
-  EXPECT_EQ(ekf.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::not_initialized);
+  EXPECT_EQ(ekf.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::kNotInitialized);
   ekf.update_uwb({1.0, 1.0});
-  EXPECT_EQ(ekf.update_encoders({0.2, 0.0, 0.0}), UpdateStatus::ignored);
-  EXPECT_EQ(ekf.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::accepted);
+  EXPECT_EQ(ekf.update_encoders({0.2, 0.0, 0.0}), UpdateStatus::kIgnored);
+  EXPECT_EQ(ekf.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::kAccepted);
   EXPECT_GT(ekf.velocity().vx, 0.1);
   EkfParams seed = EkfParams::seed();
   Ekf s(seed);
   s.update_uwb({1.0, 1.0});
-  EXPECT_EQ(s.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::ignored);
+  EXPECT_EQ(s.update_commanded({0.2, 0.0, 0.0}), UpdateStatus::kIgnored);
 }
 
 TEST(Ekf, ScoreDropsWhenInnovationsAreInconsistent) {
@@ -369,30 +369,30 @@ TEST(Ekf, WaitsForAValidFirstFix) {
   EkfParams p = EkfParams::tuned();
   Ekf ekf(p);
   // Ranges that disagree (NLOS) give the solver a wide covariance: not a fix to start from.
-  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, 0.3 * 0.3 * Eigen::Matrix2d::Identity()), UpdateStatus::not_initialized);
+  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, 0.3 * 0.3 * Eigen::Matrix2d::Identity()), UpdateStatus::kNotInitialized);
   EXPECT_FALSE(ekf.initialized());
-  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, 0.04 * 0.04 * Eigen::Matrix2d::Identity()), UpdateStatus::initialized);
+  EXPECT_EQ(ekf.update_uwb({1.0, 1.0}, 0.04 * 0.04 * Eigen::Matrix2d::Identity()), UpdateStatus::kInitialized);
   // The seed's filter takes any finite fix.
   Ekf seed(EkfParams::seed());
-  EXPECT_EQ(seed.update_uwb({1.0, 1.0}, 0.3 * 0.3 * Eigen::Matrix2d::Identity()), UpdateStatus::initialized);
+  EXPECT_EQ(seed.update_uwb({1.0, 1.0}, 0.3 * 0.3 * Eigen::Matrix2d::Identity()), UpdateStatus::kInitialized);
 }
 
 TEST(Ekf, StandstillUpdatesNeedAStoppedCommandForTheDelay) {
   EkfParams p = EkfParams::tuned();
   p.heading_init = false;
-  p.velocity_source = VelocitySource::none;  // zero-velocity updates work without a velocity source
+  p.velocity_source = VelocitySource::kNone;  // zero-velocity updates work without a velocity source
   Ekf ekf(p);
-  EXPECT_EQ(ekf.update_standstill(), UpdateStatus::not_initialized);
+  EXPECT_EQ(ekf.update_standstill(), UpdateStatus::kNotInitialized);
   ekf.update_uwb({1.05, 1.0});
-  EXPECT_EQ(ekf.update_commanded({0.1, 0.0, 0.0}), UpdateStatus::ignored);
-  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::ignored);  // just stopped: wheels still turning
+  EXPECT_EQ(ekf.update_commanded({0.1, 0.0, 0.0}), UpdateStatus::kIgnored);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::kIgnored);  // just stopped: wheels still turning
   const int steps = static_cast<int>(std::ceil(p.standstill_delay * 70.0)) + 1;
   for (int i = 0; i < steps; ++i) ekf.predict(0.0, 1.0 / 70.0);
-  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::accepted);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::kAccepted);
   // Any motion command restarts the wait.
-  EXPECT_EQ(ekf.update_commanded({0.0, 0.0, 0.1}), UpdateStatus::ignored);
+  EXPECT_EQ(ekf.update_commanded({0.0, 0.0, 0.1}), UpdateStatus::kIgnored);
   ekf.predict(0.0, 1.0 / 70.0);
-  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::ignored);
+  EXPECT_EQ(ekf.update_commanded({}), UpdateStatus::kIgnored);
 
   // Off in the parameters: never applied.
   EkfParams off = p;
@@ -401,9 +401,9 @@ TEST(Ekf, StandstillUpdatesNeedAStoppedCommandForTheDelay) {
   plain.update_uwb({1.05, 1.0});
   for (int i = 0; i < 2 * steps; ++i) {
     plain.predict(0.0, 1.0 / 70.0);
-    EXPECT_EQ(plain.update_commanded({}), UpdateStatus::ignored);
+    EXPECT_EQ(plain.update_commanded({}), UpdateStatus::kIgnored);
   }
-  EXPECT_EQ(plain.update_standstill(), UpdateStatus::ignored);
+  EXPECT_EQ(plain.update_standstill(), UpdateStatus::kIgnored);
 }
 
 TEST(Ekf, StandstillReadsTheGyroBias) {

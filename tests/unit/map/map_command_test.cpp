@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "test_data.hpp"
 
 using namespace fleet::cli;
 
@@ -52,7 +53,8 @@ TEST(MapCommand, CheckOfABrokenSiteExitsTwoWithTheReason) {
   const auto dir = std::filesystem::temp_directory_path() / "fleet_map_command_test";
   std::filesystem::create_directories(dir);
   const auto path = (dir / "broken.yaml").string();
-  std::ofstream(path) << "opendrive: " FLEET_SOURCE_DIR "/maps/table_a.xodr\n"
+  std::ofstream(path) << "opendrive: " FLEET_SOURCE_DIR
+                         "/maps/table_a.xodr\n"
                          "bounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n"
                          "loading_areas:\n  - {id: A1, x: 0.15, y: 0.975, yaw: 3.1415927}\n";
   const CommandRun r = run({"check", path});
@@ -63,14 +65,15 @@ TEST(MapCommand, CheckOfABrokenSiteExitsTwoWithTheReason) {
 }
 
 TEST(MapCommand, SamplePrintsCsv) {
-  const CommandRun r = run({"sample", FLEET_SHARED_DIR "/data/opendrive/curves.xodr", "--step", "0.5"});
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
+  const CommandRun r = run({"sample", fleet::test::opendrive_test_file("curves.xodr"), "--step", "0.5"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_EQ(r.out.rfind("road_id,s,x,y,hdg\n1,0.000000,0.000000,0.000000,0.000000\n", 0), 0u) << r.out.substr(0, 200);
   std::istringstream lines(r.out);
   std::string line;
   std::size_t n = 0;
   while (std::getline(lines, line)) ++n;
-  EXPECT_GT(n, 2000u);  // 1154 m at 0.5 m
+  EXPECT_GT(n, 2000u);                                           // 1154 m at 0.5 m
   EXPECT_NE(r.out.find("\n1,1154.399475,"), std::string::npos);  // the road's end, inclusive
 }
 

@@ -1,4 +1,4 @@
-// Real OpenDRIVE files written by other tools (../shared/data/opendrive) parse, their geometry
+// Real OpenDRIVE files written by other tools (see test_data.hpp for where they are) parse, their geometry
 // is continuous and their road graph follows their links and junctions.
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 
 #include "map/opendrive.hpp"
 #include "map/road_graph_builder.hpp"
+#include "test_data.hpp"
 
 using namespace fleet::map;
 
@@ -17,7 +18,7 @@ namespace {
 
 std::vector<std::string> shared_files() {
   std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(FLEET_SHARED_DIR "/data/opendrive")) {
+  for (const auto& e : std::filesystem::directory_iterator(fleet::test::opendrive_test_data_dir())) {
     if (e.path().extension() == ".xodr") files.push_back(e.path().string());
   }
   std::sort(files.begin(), files.end());
@@ -50,9 +51,13 @@ std::set<std::pair<std::string, std::string>> edge_road_pairs(const RoadGraph& g
 
 }  // namespace
 
-TEST(OpenDriveFiles, SharedFilesAreThere) { EXPECT_GE(shared_files().size(), 5u); }
+TEST(OpenDriveFiles, SharedFilesAreThere) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
+  EXPECT_GE(shared_files().size(), 5u);
+}
 
 TEST(OpenDriveFiles, EveryFileParses) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   for (const std::string& f : shared_files()) {
     SCOPED_TRACE(f);
     RoadNetwork net;
@@ -64,13 +69,14 @@ TEST(OpenDriveFiles, EveryFileParses) {
       EXPECT_FALSE(r.sections.empty());
     }
   }
-  const RoadNetwork fab = load_opendrive(FLEET_SHARED_DIR "/data/opendrive/fabriksgatan.xodr");
+  const RoadNetwork fab = load_opendrive(fleet::test::opendrive_test_file("fabriksgatan.xodr"));
   EXPECT_EQ(fab.roads.size(), 16u);
   ASSERT_EQ(fab.junctions.size(), 1u);
   EXPECT_EQ(fab.junctions[0].connections.size(), 12u);
 }
 
 TEST(OpenDriveFiles, ConsecutiveGeometriesJoinWithinOneMillimetre) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   std::size_t joins = 0;
   for (const std::string& f : shared_files()) {
     const RoadNetwork net = load_opendrive(f);
@@ -90,8 +96,9 @@ TEST(OpenDriveFiles, ConsecutiveGeometriesJoinWithinOneMillimetre) {
 }
 
 TEST(OpenDriveFiles, VelodromeClosesItsLoop) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   // One road whose successor is its own start: the end of the reference line meets the start.
-  const RoadNetwork net = load_opendrive(FLEET_SHARED_DIR "/data/opendrive/velodrome.xodr");
+  const RoadNetwork net = load_opendrive(fleet::test::opendrive_test_file("velodrome.xodr"));
   const Road& r = net.roads.at(0);
   const RefPoint a = evaluate_reference(r, 0.0);
   const RefPoint b = evaluate_reference(r, r.length);
@@ -100,6 +107,7 @@ TEST(OpenDriveFiles, VelodromeClosesItsLoop) {
 }
 
 TEST(OpenDriveFiles, GraphConnectivityMatchesLinksAndJunctions) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   for (const std::string& f : shared_files()) {
     SCOPED_TRACE(f);
     const RoadNetwork net = load_opendrive(f);
@@ -111,7 +119,8 @@ TEST(OpenDriveFiles, GraphConnectivityMatchesLinksAndJunctions) {
       for (const auto* link : {&r.predecessor, &r.successor}) {
         if (!link->has_value() || (*link)->target != LinkTarget::kRoad) continue;
         const Road* o = net.find_road((*link)->element_id);
-        if (o != nullptr && o->id != r.id && has_drivable(r) && has_drivable(*o)) linked.insert(std::minmax(r.id, o->id));
+        if (o != nullptr && o->id != r.id && has_drivable(r) && has_drivable(*o))
+          linked.insert(std::minmax(r.id, o->id));
       }
     }
     for (const Junction& j : net.junctions) {
@@ -134,8 +143,9 @@ TEST(OpenDriveFiles, GraphConnectivityMatchesLinksAndJunctions) {
 }
 
 TEST(OpenDriveFiles, LoopRoadWithTwoWayTrafficIsStronglyConnectedPerDirection) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   // velodrome: three right lanes on a closed loop, each a one-way ring along s.
-  const RoadNetwork net = load_opendrive(FLEET_SHARED_DIR "/data/opendrive/velodrome.xodr");
+  const RoadNetwork net = load_opendrive(fleet::test::opendrive_test_file("velodrome.xodr"));
   const RoadGraph g = build_road_graph(net, {.spacing = 5.0, .single_lane_roads_both_ways = true});
   std::vector<int> weak, strong;
   EXPECT_EQ(weak_components(g, weak), 3u);
@@ -150,9 +160,10 @@ TEST(OpenDriveFiles, LoopRoadWithTwoWayTrafficIsStronglyConnectedPerDirection) {
 }
 
 TEST(OpenDriveFiles, JunctionTurnsFollowLaneDirections) {
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
   // fabriksgatan: right lanes drive along s. From incoming road 0's lane 1 (driving against s,
   // so leaving road 0 at its start into junction 4) traffic may enter connecting road 8.
-  const RoadNetwork net = load_opendrive(FLEET_SHARED_DIR "/data/opendrive/fabriksgatan.xodr");
+  const RoadNetwork net = load_opendrive(fleet::test::opendrive_test_file("fabriksgatan.xodr"));
   const RoadGraph g = build_road_graph(net, {.spacing = 1.0, .single_lane_roads_both_ways = false});
   bool into = false, out_of = false;
   for (std::size_t i = 0; i < g.points.size(); ++i) {

@@ -1,4 +1,4 @@
-// Plan-view geometry against analytic cases (seed 000, section 5.1, eq. 5.1-5.4).
+// Plan-view geometry against analytic cases [Forklift thesis, section 5.1, eq. 5.1-5.4].
 
 #include <gtest/gtest.h>
 
@@ -54,7 +54,7 @@ TEST(OpenDriveGeometry, LineRunsAlongItsHeading) {
 
 TEST(OpenDriveGeometry, ArcOfKnownRadiusTurnsAQuarterCircle) {
   Geometry left = make(GeometryKind::kArc, 10.0);
-  left.curvature = 0.5;  // radius 2 m
+  left.curvature = 0.5;                             // radius 2 m
   const RefPoint p = evaluate_geometry(left, kPi);  // a quarter of the circumference
   EXPECT_NEAR(p.x, 2.0, 1e-12);
   EXPECT_NEAR(p.y, 2.0, 1e-12);

@@ -1,4 +1,4 @@
-// Road graph construction on small fixtures whose answer is known (seed 000, section 5.1).
+// Road graph construction on small fixtures whose answer is known [Forklift thesis, section 5.1].
 
 #include <gtest/gtest.h>
 
@@ -40,11 +40,12 @@ bool edge_between(const RoadGraph& g, const std::string& road_a, int lane_a, con
 TEST(RoadGraph, HeadToHeadRoadsSwapLaneSides) {
   // Road A runs +x from 0 to 10; road B runs -x from 20 to 10, so their ends meet (contactPoint
   // end). A's right lane (driving +x) continues into B's left lane (driving against B's s, +x).
-  const std::string xml = "<OpenDRIVE><header/>" +
-                          two_lane_road("A", 0.0, "0", R"(<successor elementType="road" elementId="B" contactPoint="end"/>)") +
-                          two_lane_road("B", 20.0, "3.141592653589793",
-                                        R"(<successor elementType="road" elementId="A" contactPoint="end"/>)") +
-                          "</OpenDRIVE>";
+  const std::string xml =
+      "<OpenDRIVE><header/>" +
+      two_lane_road("A", 0.0, "0", R"(<successor elementType="road" elementId="B" contactPoint="end"/>)") +
+      two_lane_road("B", 20.0, "3.141592653589793",
+                    R"(<successor elementType="road" elementId="A" contactPoint="end"/>)") +
+      "</OpenDRIVE>";
   const RoadNetwork net = parse_opendrive(xml, "head_to_head.xodr");
   const RoadGraph g = build_road_graph(net, {.spacing = 1.0, .single_lane_roads_both_ways = true});
   EXPECT_TRUE(edge_between(g, "A", -1, "B", 1));
@@ -64,9 +65,11 @@ TEST(RoadGraph, HeadToHeadRoadsSwapLaneSides) {
 TEST(RoadGraph, SingleLaneRoadIsDrivenBothWaysOnlyWhenAsked) {
   const std::string xml =
       "<OpenDRIVE><header/><road id=\"1\" length=\"1\" junction=\"-1\"><planView><geometry s=\"0\" x=\"0\" y=\"0\" "
-      "hdg=\"0\" length=\"1\"><line/></geometry></planView><lanes><laneOffset s=\"0\" a=\"0.15\" b=\"0\" c=\"0\" d=\"0\"/>"
+      "hdg=\"0\" length=\"1\"><line/></geometry></planView><lanes><laneOffset s=\"0\" a=\"0.15\" b=\"0\" c=\"0\" "
+      "d=\"0\"/>"
       "<laneSection s=\"0\"><center><lane id=\"0\" type=\"none\"/></center><right><lane id=\"-1\" type=\"driving\">"
-      "<width sOffset=\"0\" a=\"0.3\" b=\"0\" c=\"0\" d=\"0\"/></lane></right></laneSection></lanes></road></OpenDRIVE>";
+      "<width sOffset=\"0\" a=\"0.3\" b=\"0\" c=\"0\" "
+      "d=\"0\"/></lane></right></laneSection></lanes></road></OpenDRIVE>";
   const RoadNetwork net = parse_opendrive(xml, "single.xodr");
   const RoadGraph both = build_road_graph(net, {.spacing = 0.1, .single_lane_roads_both_ways = true});
   ASSERT_EQ(both.points.size(), 11u);  // s = 0, 0.1, ..., 1 inclusive
@@ -88,8 +91,10 @@ TEST(RoadGraph, LaneSectionsJoinThroughLaneLinks) {
       "hdg=\"0\" length=\"20\"><line/></geometry></planView><lanes>"
       "<laneSection s=\"0\"><right><lane id=\"-1\" type=\"driving\"><link><successor id=\"-2\"/></link>"
       "<width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" d=\"0\"/></lane></right></laneSection>"
-      "<laneSection s=\"10\"><right><lane id=\"-1\" type=\"driving\"><width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" d=\"0\"/></lane>"
-      "<lane id=\"-2\" type=\"driving\"><link><predecessor id=\"-1\"/></link><width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" d=\"0\"/>"
+      "<laneSection s=\"10\"><right><lane id=\"-1\" type=\"driving\"><width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" "
+      "d=\"0\"/></lane>"
+      "<lane id=\"-2\" type=\"driving\"><link><predecessor id=\"-1\"/></link><width sOffset=\"0\" a=\"3\" b=\"0\" "
+      "c=\"0\" d=\"0\"/>"
       "</lane></right></laneSection></lanes></road></OpenDRIVE>";
   const RoadNetwork net = parse_opendrive(xml, "sections.xodr");
   const RoadGraphBuild b = build_road_graph_detailed(net, {.spacing = 1.0, .single_lane_roads_both_ways = true});

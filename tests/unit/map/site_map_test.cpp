@@ -1,6 +1,8 @@
 // The shipped maps load with their road networks and graphs, every loading area and home is
 // reachable, and broken sites are refused with the file and key named.
 
+#include "map/site_map.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,8 +13,8 @@
 
 #include "geometry/polygon.hpp"
 #include "map/reference_samples.hpp"
-#include "map/site_map.hpp"
 #include "map/svg_render.hpp"
+#include "test_data.hpp"
 
 using namespace fleet::map;
 
@@ -20,7 +22,9 @@ namespace {
 
 const char* const kShipped[] = {"table_a", "table_b", "warehouse"};
 
-std::string shipped(const std::string& name) { return FLEET_SOURCE_DIR "/maps/" + name + ".yaml"; }
+std::string shipped(const std::string& name) {
+  return FLEET_SOURCE_DIR "/maps/" + name + ".yaml";
+}
 
 /// Writes a site file next to a copy of table_a.xodr in a fresh temporary folder.
 std::string write_site(const std::string& name, const std::string& yaml) {
@@ -156,14 +160,16 @@ TEST(SiteMap, UnreachableLoadingAreaIsNamedWithFileLineAndKey) {
 
 TEST(SiteMap, PalletOnTheRoadIsRefused) {
   // Facing the road but standing on it: the approach point is near a road, the pallet is too.
-  const std::string path = write_site("on_road", kHead + "loading_areas:\n  - {id: A1, x: 0.975, y: 0.40, yaw: 1.5707963}\n");
+  const std::string path =
+      write_site("on_road", kHead + "loading_areas:\n  - {id: A1, x: 0.975, y: 0.40, yaw: 1.5707963}\n");
   const SiteReport report = check_site_map(load_site_map_unchecked(path));
   ASSERT_FALSE(report.usable());
   EXPECT_NE(report.problems[0].find("stands on a road"), std::string::npos) << report.problems[0];
 }
 
 TEST(SiteMap, AreaFacingAwayFromTheRoadIsUnreachable) {
-  const std::string path = write_site("away", kHead + "loading_areas:\n  - {id: A1, x: 0.975, y: 0.15, yaw: -1.5707963}\n");
+  const std::string path =
+      write_site("away", kHead + "loading_areas:\n  - {id: A1, x: 0.975, y: 0.15, yaw: -1.5707963}\n");
   const SiteReport report = check_site_map(load_site_map_unchecked(path));
   ASSERT_EQ(report.areas.size(), 1u);
   EXPECT_FALSE(report.areas[0].reachable);
@@ -188,7 +194,8 @@ TEST(SiteMap, BadSiteFilesAreNamed) {
             std::string::npos);
   EXPECT_NE(message("noxodr", "bounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n").find("key 'opendrive' is missing"),
             std::string::npos);
-  const std::string missing = message("missing", "opendrive: nowhere.xodr\nbounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n");
+  const std::string missing =
+      message("missing", "opendrive: nowhere.xodr\nbounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n");
   EXPECT_NE(missing.find("nowhere.xodr: cannot open"), std::string::npos) << missing;
 }
 
@@ -203,7 +210,8 @@ TEST(SiteMap, ReportListsTheFacts) {
 }
 
 TEST(ReferenceSamples, CoverEveryRoadFromZeroToItsLengthInclusive) {
-  const RoadNetwork net = load_opendrive(FLEET_SHARED_DIR "/data/opendrive/curves.xodr");
+  FLEET_SKIP_WITHOUT_OPENDRIVE_DATA();
+  const RoadNetwork net = load_opendrive(fleet::test::opendrive_test_file("curves.xodr"));
   const auto samples = sample_reference_lines(net, 0.5);
   ASSERT_FALSE(samples.empty());
   EXPECT_DOUBLE_EQ(samples.front().s, 0.0);
@@ -223,8 +231,8 @@ TEST(SvgRender, DrawsEveryLayerOfTheSite) {
   const std::string svg = render_svg(map);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  for (const char* layer : {"lanes", "reference", "graph-edges", "graph-points", "obstacles", "loading-areas", "homes",
-                            "uwb-anchors"}) {
+  for (const char* layer :
+       {"lanes", "reference", "graph-edges", "graph-points", "obstacles", "loading-areas", "homes", "uwb-anchors"}) {
     EXPECT_NE(svg.find(std::string("id=\"") + layer + "\""), std::string::npos) << layer;
   }
   for (const auto& a : map.site.loading_areas) EXPECT_NE(svg.find(">" + a.id + "</text>"), std::string::npos) << a.id;

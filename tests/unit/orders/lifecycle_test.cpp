@@ -16,25 +16,25 @@ Order draft(const std::string& from, const std::string& to, int priority = 0) {
 
 TEST(OrderLifecycle, LegalTransitionsOnly) {
   using S = OrderStatus;
-  EXPECT_TRUE(is_legal_transition(S::Queued, S::Assigned));
-  EXPECT_TRUE(is_legal_transition(S::Assigned, S::Active));
-  EXPECT_TRUE(is_legal_transition(S::Active, S::Done));
-  EXPECT_TRUE(is_legal_transition(S::Active, S::Queued));
-  EXPECT_FALSE(is_legal_transition(S::Queued, S::Active));
-  EXPECT_FALSE(is_legal_transition(S::Queued, S::Done));
-  for (S final_state : {S::Done, S::Failed, S::Cancelled}) {
-    for (S any : {S::Queued, S::Assigned, S::Active, S::Done, S::Failed, S::Cancelled}) {
+  EXPECT_TRUE(is_legal_transition(S::kQueued, S::kAssigned));
+  EXPECT_TRUE(is_legal_transition(S::kAssigned, S::kActive));
+  EXPECT_TRUE(is_legal_transition(S::kActive, S::kDone));
+  EXPECT_TRUE(is_legal_transition(S::kActive, S::kQueued));
+  EXPECT_FALSE(is_legal_transition(S::kQueued, S::kActive));
+  EXPECT_FALSE(is_legal_transition(S::kQueued, S::kDone));
+  for (S final_state : {S::kDone, S::kFailed, S::kCancelled}) {
+    for (S any : {S::kQueued, S::kAssigned, S::kActive, S::kDone, S::kFailed, S::kCancelled}) {
       EXPECT_FALSE(is_legal_transition(final_state, any));
     }
   }
 }
 
 TEST(OrderLifecycle, NamesRoundTrip) {
-  for (auto s : {OrderStatus::Queued, OrderStatus::Assigned, OrderStatus::Active, OrderStatus::Done,
-                 OrderStatus::Failed, OrderStatus::Cancelled}) {
+  for (auto s : {OrderStatus::kQueued, OrderStatus::kAssigned, OrderStatus::kActive, OrderStatus::kDone,
+                 OrderStatus::kFailed, OrderStatus::kCancelled}) {
     EXPECT_EQ(parse_status(to_string(s)), s);
   }
-  EXPECT_EQ(parse_phase("PICKING"), OrderPhase::Picking);
+  EXPECT_EQ(parse_phase("PICKING"), OrderPhase::kPicking);
   EXPECT_FALSE(parse_phase("FLYING").has_value());
 }
 
@@ -51,24 +51,24 @@ TEST(OrderBook, IdsIncreaseAndAreNeverReused) {
 TEST(OrderBook, FullRunAndRefusedIllegalStep) {
   OrderBook book;
   const auto id = book.create(draft("A1", "A2"), 1.0).id;
-  EXPECT_EQ(book.set_phase(id, OrderPhase::ToPick, 2.0), TransitionResult::Illegal);  // not yet assigned
-  EXPECT_EQ(book.assign(id, "fl1", 2.0), TransitionResult::Applied);
+  EXPECT_EQ(book.set_phase(id, OrderPhase::kToPick, 2.0), TransitionResult::kIllegal);  // not yet assigned
+  EXPECT_EQ(book.assign(id, "fl1", 2.0), TransitionResult::kApplied);
   EXPECT_EQ(book.find(id)->update_id, 1u);
-  EXPECT_EQ(book.set_phase(id, OrderPhase::ToPick, 3.0), TransitionResult::Applied);
+  EXPECT_EQ(book.set_phase(id, OrderPhase::kToPick, 3.0), TransitionResult::kApplied);
   EXPECT_EQ(book.open_order_of("fl1")->id, id);
-  EXPECT_EQ(book.transition(id, OrderStatus::Done, 9.0), TransitionResult::Applied);
-  EXPECT_EQ(book.transition(id, OrderStatus::Cancelled, 10.0), TransitionResult::Illegal);
-  EXPECT_EQ(book.find(id)->status, OrderStatus::Done);
-  EXPECT_EQ(book.transition(999, OrderStatus::Done, 10.0), TransitionResult::UnknownOrder);
+  EXPECT_EQ(book.transition(id, OrderStatus::kDone, 9.0), TransitionResult::kApplied);
+  EXPECT_EQ(book.transition(id, OrderStatus::kCancelled, 10.0), TransitionResult::kIllegal);
+  EXPECT_EQ(book.find(id)->status, OrderStatus::kDone);
+  EXPECT_EQ(book.transition(999, OrderStatus::kDone, 10.0), TransitionResult::kUnknownOrder);
 }
 
 TEST(OrderBook, RequeueClearsRobotAndPhase) {
   OrderBook book;
   const auto id = book.create(draft("A1", "A2"), 0.0).id;
   book.assign(id, "fl2", 1.0);
-  book.set_phase(id, OrderPhase::Picking, 2.0);
-  EXPECT_EQ(book.requeue(id, 3.0, "robot fl2 lost"), TransitionResult::Applied);
-  EXPECT_EQ(book.find(id)->status, OrderStatus::Queued);
+  book.set_phase(id, OrderPhase::kPicking, 2.0);
+  EXPECT_EQ(book.requeue(id, 3.0, "robot fl2 lost"), TransitionResult::kApplied);
+  EXPECT_EQ(book.find(id)->status, OrderStatus::kQueued);
   EXPECT_TRUE(book.find(id)->robot_id.empty());
   EXPECT_EQ(book.find(id)->reason, "robot fl2 lost");
   EXPECT_EQ(book.open_order_of("fl2"), nullptr);

@@ -15,7 +15,8 @@ using robot::ForkliftEvent;
 namespace {
 
 std::shared_ptr<const map::SiteMap> table_a() {
-  static const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
+  static const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
   return site;
 }
 
@@ -105,7 +106,7 @@ TEST(Forklift, WithdrawnWithThePalletLiftedItCarriesTheOrderOnToTheDrop) {
   f.set_standing_pallets(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
   ASSERT_TRUE(has(run_until(f, ForkliftEvent::Kind::kLifted, 300.0), ForkliftEvent::Kind::kLifted)) << f.task_state();
-  // The order cannot be cancelled now (seed 000, 6.4); stopping would leave the robot in the lane.
+  // The order cannot be cancelled now [Forklift thesis, section 6.4]; stopping would leave the robot in the lane.
   EXPECT_FALSE(f.withdraw());
   const auto events = run_until(f, ForkliftEvent::Kind::kDone, 300.0);
   ASSERT_TRUE(has(events, ForkliftEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
@@ -143,7 +144,8 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   for (int i = 0; i < 70 * 60; ++i) {
     f.step();
     const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
-    ASSERT_FALSE(geometry::convex_polygons_overlap(mine, geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16})));
+    ASSERT_FALSE(
+        geometry::convex_polygons_overlap(mine, geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16})));
   }
 }
 
@@ -183,9 +185,9 @@ struct SidingOnTheWayHome {
   std::shared_ptr<const map::SiteMap> site = table_a();
   geometry::Pose2 home = site->site.find_home("H1")->pose;
   robot::Forklift f{under_traffic(*site), site, home, 6, 1};
-  std::uint32_t granted = 0;
+  std::uint64_t granted = 0;
   std::vector<int> way_home;
-  std::uint32_t own_version = 0;
+  std::uint64_t own_version = 0;
   std::size_t siding_end = 0;  ///< index in way_home of the siding's last point
 
   void step() {
@@ -381,7 +383,7 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
       robot::Forklift f(config, site, site->site.find_home(start)->pose, 7, 1);
       f.set_standing_pallets({{1, site->site.find_area(from)->pose}});
       ASSERT_TRUE(f.submit(order_between(site->site, from, to), nullptr));
-      std::uint32_t granted = 0;
+      std::uint64_t granted = 0;
       bool home = false;
       while (f.time() < 400.0 && !home) {
         const robot::TrafficRoute r = f.traffic_route();
@@ -433,8 +435,8 @@ TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
 
 TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRound) {
   // The traffic manager re-routes a robot stopped short of its grant from the route point at or
-  // behind it. Turning round to touch that point swept the robot's body into the one that had
-  // stopped it, and a robot sent to a siding this way never got there (sent again every 3 s).
+  // behind it. Turning round to touch that point would sweep the robot's body into the one that
+  // stopped it, and a robot sent to a siding this way would never get there (sent again every 3 s).
   SidingOnTheWayHome g;
   g.f.set_standing_pallets(pallets_of(g.site->site));
   ASSERT_TRUE(g.f.submit(order_between(g.site->site, "A3", "A2"), nullptr));
@@ -477,8 +479,8 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
 
 TEST(Forklift, StandingAtA1WithO3EnabledItLeavesTheShadowedAnchorOutOfItsFix) {
   // O3 stands on the line from A1 to anchor U4: that range comes in too long on every fix, and a
-  // robot at rest to place or search averaged it into a 10 cm error (the "A1 is empty" reports
-  // and most drops > 6 cm off in the long soaks were at A1). The map says which line crosses an
+  // robot at rest to place or search would average it into a 10 cm error, enough for "A1 is
+  // empty" reports and drops > 6 cm off at A1 in long soaks. The map says which line crosses an
   // enabled obstacle; that range is left out. Side by side over the same seeds, with the figure.
   const auto site = table_a();
   const auto place = control::PalletPlace::place_pose(site->site.find_area("A1")->pose, 0.17);

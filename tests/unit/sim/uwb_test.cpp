@@ -41,7 +41,7 @@ TEST(Ranging, SdsTwrDriftErrorMatchesEquation28AndBeatsTwr) {
     // TWR: eq. 2.3 exactly, eq. 2.4 without t_p e_A.
     EXPECT_NEAR(twr_err, twr_drift_error(ex) + ex.time_of_flight * ea, 1e-18);
     EXPECT_LT(std::abs(sds_err), std::abs(twr_err));
-    // "reduces the clock drift error by at least half" (seed 000, section 2.1.3)
+    // "reduces the clock drift error by at least half" [Forklift thesis, section 2.1.3]
     EXPECT_LT(std::abs(sds_twr_drift_error(ex)), 0.5 * std::abs(twr_drift_error(ex)));
   }
 }
@@ -174,7 +174,7 @@ TEST(UwbTag, BlockedPathsAreBiasedOrDropped) {
     EXPECT_FALSE(r[i].nlos);
     EXPECT_NEAR(r[i].range, r[i].true_range, 1e-6);
   }
-  p.nlos_mode = NlosMode::drop;
+  p.nlos_mode = NlosMode::kDrop;
   UwbTag dropping(corners(), p, std::mt19937_64(1));
   const auto d = dropping.measure_ranges(pose, blockers);
   ASSERT_EQ(d.size(), 3u);
@@ -219,9 +219,10 @@ TEST(UwbTag, FixesAreAboutAsGoodAsTheRangeNoise) {
   EXPECT_LT(rmse, 0.10);
 }
 
-// Regression: with the seed's eq. 2.6 and the anchors replying 20 us later than the tag, every
-// anchor's range carries a constant eq. 2.8 bias, and the fixes a steady offset of about a
-// centimetre (ctrl-eval's drops were off by it). The asymmetric formula leaves only the noise.
+// With the thesis's eq. 2.6 and the anchors replying 20 us later than the tag, every anchor's
+// range carries a constant eq. 2.8 bias [Forklift thesis, eq. 2.8], and the fixes a steady offset
+// of about a centimetre, enough to put ctrl-eval's drops off by as much. The asymmetric formula
+// leaves only the noise.
 TEST(UwbTag, FixesHaveNoSteadyBiasFromTheReplyDelays) {
   auto steady_offset = [](RangingFormula formula) {
     double sq = 0.0;
@@ -240,9 +241,9 @@ TEST(UwbTag, FixesHaveNoSteadyBiasFromTheReplyDelays) {
     return std::sqrt(sq / tags);  // rms over tags (clock draws) of the mean fix error
   };
   // Averaging 400 fixes of ~5 cm leaves ~0.3 cm of noise in each mean.
-  const double ads = steady_offset(RangingFormula::ads_twr);
-  const double sds = steady_offset(RangingFormula::sds_twr);
+  const double ads = steady_offset(RangingFormula::kAdsTwr);
+  const double sds = steady_offset(RangingFormula::kSdsTwr);
   EXPECT_LT(ads, 0.004);
   EXPECT_GT(sds, 0.006);
-  EXPECT_EQ(UwbParams{}.ranging, RangingFormula::ads_twr);
+  EXPECT_EQ(UwbParams{}.ranging, RangingFormula::kAdsTwr);
 }

@@ -9,6 +9,8 @@
 namespace fleet::task {
 namespace {
 
+using orders::OrderPhase;
+
 const std::vector<State> kAllStates = {State::kIdle,       State::kTrackPath,  State::kSearchPallet,
                                        State::kPickPallet, State::kDropPallet, State::kGoHome,
                                        State::kWaiting,    State::kPaused,     State::kError};

@@ -518,7 +518,7 @@ TEST(TrafficManager, OppositeDirectionWaitsOutsideTheCorridor) {
 }
 
 /// Robot `id` drives on route `version`, always up to its grant, until it waits or arrives.
-Grant drive_until_it_stops(TrafficManager& m, int id, std::uint32_t version, double& now) {
+Grant drive_until_it_stops(TrafficManager& m, int id, std::uint64_t version, double& now) {
   for (int step = 0; step < 1000; ++step, now += 0.1) {
     const auto r = m.update(now);
     const Grant* g = grant_of(r, id);
@@ -665,8 +665,8 @@ TEST(TrafficManager, ARobotBackFromBeingLostIsWaitedForUpToTheBoundAgain) {
 }
 
 // After a server restart two robots stand 0.38 m apart on the east ring of table_a, both to drive
-// on southwards. The places under each body must leave the other free to move: before, each held
-// every place its body touched and each waited for the other for good.
+// on southwards. The places under each body must leave the other free to move: were each to hold
+// every place its body touches, each would wait for the other for good.
 TEST(TrafficManager, RobotsStandingCloseInACorridorBothDriveOnAfterARestart) {
   const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;

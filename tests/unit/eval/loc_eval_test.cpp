@@ -7,9 +7,9 @@
 using namespace fleet::eval;
 
 TEST(LocEval, Figure8MeetsTheAccuracyTargets) {
-  // Acceptance of issue 4: figure8, 60 s, seed 1, default noise.
+  // The accuracy targets hold on figure8, 60 s, seed 1, default noise.
   LocEvalParams p;
-  p.trajectory = Trajectory::figure8;
+  p.trajectory = Trajectory::kFigure8;
   p.duration = 60.0;
   p.seed = 1;
   const LocEvalResult r = run_loc_eval(p);
@@ -40,7 +40,7 @@ TEST(LocEval, GatingKeepsTheErrorNearTheCleanRunWithNlosRanges) {
   const LocEvalResult nlos = run_loc_eval(p);
   EXPECT_GT(nlos.nlos_ranges, 0.07 * nlos.ranges);
   EXPECT_LE(nlos.full.ekf.pos_rmse, 1.3 * clean.full.ekf.pos_rmse);
-  // With Q_t fixed as in the seed, gating is what keeps NLOS fixes out.
+  // With Q_t fixed as in the thesis, gating is what keeps NLOS fixes out.
   const VariantResult* gated = nullptr;
   const VariantResult* open = nullptr;
   for (const auto& v : nlos.variants) {
@@ -53,7 +53,7 @@ TEST(LocEval, GatingKeepsTheErrorNearTheCleanRunWithNlosRanges) {
 }
 
 TEST(LocEval, IsReproducibleFromTheSeedAndRunsEveryTrajectory) {
-  for (const Trajectory t : {Trajectory::square, Trajectory::figure8, Trajectory::table_a_loop}) {
+  for (const Trajectory t : {Trajectory::kSquare, Trajectory::kFigure8, Trajectory::kTableALoop}) {
     LocEvalParams p;
     p.trajectory = t;
     p.duration = 10.0;
@@ -83,7 +83,7 @@ TEST(LocEval, RejectsBadParameters) {
   p.duration = 5.0;
   p.nlos_fraction = 1.5;
   EXPECT_THROW(run_loc_eval(p), std::invalid_argument);
-  EXPECT_EQ(parse_trajectory("figure8"), Trajectory::figure8);
+  EXPECT_EQ(parse_trajectory("figure8"), Trajectory::kFigure8);
   EXPECT_FALSE(parse_trajectory("circle"));
 }
 

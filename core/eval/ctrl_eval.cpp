@@ -1,4 +1,4 @@
-#include "control/ctrl_eval.hpp"
+#include "eval/ctrl_eval.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,7 @@
 #include "planning/route_planner.hpp"
 #include "robot/simulated_forklift.hpp"
 
-namespace fleet::control {
+namespace fleet::eval {
 
 using geometry::Pose2;
 using geometry::Vec2;
@@ -40,7 +40,6 @@ robot::SimulatedForklift make_robot(const CtrlEvalParams& p, const map::Site& si
   sp.perfect_localization = perfect;
   return robot::SimulatedForklift(sp, site, start, p.seed, stream);
 }
-
 
 Percentiles percentiles(std::vector<double> v) {
   Percentiles p;
@@ -85,9 +84,9 @@ TrackingRun track(const CtrlEvalParams& p, const map::Site& site, const NamedPat
   r.path = path.name;
   r.follower = regulated ? "regulated" : "seed";
   r.localization = perfect ? "perfect" : "ekf";
-  FollowerParams fp = regulated ? p.regulated_follower : p.seed_follower;
+  control::FollowerParams fp = regulated ? p.regulated_follower : p.seed_follower;
   fp.v_max = p.speed;
-  PathFollower follower(fp);
+  control::PathFollower follower(fp);
   const double dt = 1.0 / p.control_rate_hz;
   robot::SimulatedForklift robot = make_robot(p, site, path.poses.front(), perfect, stream);
   robot.warm_up(2.0, dt);
@@ -97,7 +96,7 @@ TrackingRun track(const CtrlEvalParams& p, const map::Site& site, const NamedPat
   }
   Accum cross;
   Accum loc;
-  BodyTwist prev;
+  control::BodyTwist prev;
   r.path_poses = path.poses;
   long step_count = 0;
   const double t0 = robot.time();
@@ -105,18 +104,18 @@ TrackingRun track(const CtrlEvalParams& p, const map::Site& site, const NamedPat
   bool first = true;
   while (robot.time() - t0 < limit) {
     const Pose2 est = robot.estimate();
-    const BodyTwist cmd = follower.step({est, first ? 0.0 : dt});
+    const control::BodyTwist cmd = follower.step({est, first ? 0.0 : dt});
     if (follower.arrived()) {
       r.arrived = true;
       break;
     }
-    if (!first && follower.status() == FollowerStatus::kTracking) {
+    if (!first && follower.status() == control::FollowerStatus::kTracking) {
       r.omega_jump_max = std::max(r.omega_jump_max, std::abs(cmd.omega - prev.omega));
     }
     first = false;
     prev = cmd;
     robot.step(cmd, dt);
-    if (follower.status() == FollowerStatus::kTracking) {
+    if (follower.status() == control::FollowerStatus::kTracking) {
       cross.add(distance_to_path(path.poses, robot.truth().position()));
     }
     loc.add(geometry::distance(robot.truth().position(), robot.estimate().position()));
@@ -308,7 +307,7 @@ std::vector<NamedPath> standard_paths(const std::string& site_file) {
   } else {
     // Any other site: one route visiting the road in front of each loading area in turn.
     std::vector<Pose2> tour;
-    for (const auto& area : sm.site.loading_areas) tour.push_back(PalletSearch::search_pose(area.pose, 0.30));
+    for (const auto& area : sm.site.loading_areas) tour.push_back(control::PalletSearch::search_pose(area.pose, 0.30));
     if (tour.size() < 2) throw std::invalid_argument("ctrl-eval: " + site_file + " has fewer than two loading areas");
     routes = {{"area_tour", tour}};
   }
@@ -384,7 +383,8 @@ CtrlEvalResult run_ctrl_eval(const CtrlEvalParams& params) {
   const map::SiteMap sm = map::load_site_map(params.site_file);
   const map::Site& site = sm.site;
 
-  // --- path tracking (seed 000, Fig. 6.4 with perfect localization, Fig. 6.5 with the EKF) ---
+  // --- path tracking with perfect localization [Forklift thesis, Fig. 6.4] and with the EKF [Forklift thesis,
+  // Fig. 6.5] ---
   const auto paths = standard_paths(params.site_file);
   std::uint64_t stream = 1000;
   Accum headline;
@@ -428,4 +428,4 @@ CtrlEvalResult run_ctrl_eval(const CtrlEvalParams& params) {
   return result;
 }
 
-}  // namespace fleet::control
+}  // namespace fleet::eval

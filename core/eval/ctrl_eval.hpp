@@ -12,7 +12,7 @@
 #include "sim/uwb.hpp"
 #include "task/task_executor.hpp"
 
-namespace fleet::control {
+namespace fleet::eval {
 
 /// The control evaluation behind `fleetctl ctrl-eval`, on core/ alone: the real forklift body
 /// (mecanum kinematics, wheel lag, slip), UWB + gyro into the EKF, the marker camera, and the
@@ -22,13 +22,13 @@ struct CtrlEvalParams {
   int runs = 100;                 ///< pick-and-drop orders, one after another with the same pallets
   std::string site_file;          ///< e.g. maps/table_a.yaml; its road graph gives the paths
   double speed = 0.20;            ///< v_max of the follower, m/s
-  double control_rate_hz = 70.0;  ///< pose and control rate (seed 000, Table 3.1)
+  double control_rate_hz = 70.0;  ///< pose and control rate [Forklift thesis, Table 3.1]
   /// Jitter of the pallets' starting poses around their areas (a previous, imperfect drop).
-  double pallet_jitter = 0.005;                                     ///< metres, 1 sigma
-  double pallet_yaw_jitter = 0.02;                                  ///< rad, 1 sigma
-  double order_timeout = 240.0;                                     ///< sim seconds before an order counts as failed
-  FollowerParams seed_follower;                                     ///< the seed's follower
-  FollowerParams regulated_follower = FollowerParams::regulated();  ///< with the extensions
+  double pallet_jitter = 0.005;           ///< metres, 1 sigma
+  double pallet_yaw_jitter = 0.02;        ///< rad, 1 sigma
+  double order_timeout = 240.0;           ///< sim seconds before an order counts as failed
+  control::FollowerParams seed_follower;  ///< the thesis's follower
+  control::FollowerParams regulated_follower = control::FollowerParams::regulated();  ///< with the extensions
   bool use_regulated = true;  ///< which of the two the pick-and-drop runs and the headline use
   /// Estimate the gyro bias whenever the robot stands still and subtract it before the EKF (the
   /// filter has no bias state, so a wandering bias turns into a heading error over a long run).
@@ -115,11 +115,11 @@ std::vector<NamedPath> standard_paths(const std::string& site_file);
 double distance_to_path(const std::vector<geometry::Pose2>& path, geometry::Vec2 p);
 
 /// The headline follower's EKF runs as a standalone SVG: planned path, true track and estimate
-/// on the site (like seed 000, Fig. 6.5a).
+/// on the site (like [Forklift thesis, Fig. 6.5a]).
 std::string ctrl_eval_svg(const CtrlEvalResult& result);
 
 /// Runs everything. Throws std::invalid_argument for bad parameters and map::MapError for an
 /// unusable site.
 CtrlEvalResult run_ctrl_eval(const CtrlEvalParams& params);
 
-}  // namespace fleet::control
+}  // namespace fleet::eval

@@ -1,10 +1,10 @@
+#include "eval/ctrl_eval.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "control/ctrl_eval.hpp"
-
-namespace fleet::control {
+namespace fleet::eval {
 namespace {
 
 const std::string kSite = std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml";
@@ -38,7 +38,7 @@ TEST(CtrlEval, SmallRunMeetsTheTargetsAndIsReproducible) {
   const CtrlEvalResult a = run_ctrl_eval(params);
   ASSERT_EQ(a.tracking.size(), 8u);
   for (const auto& t : a.tracking) EXPECT_TRUE(t.arrived) << t.path << " " << t.follower << " " << t.localization;
-  // Issue 6 targets for tracking with the EKF at 0.2 m/s.
+  // The targets for tracking with the EKF at 0.2 m/s.
   EXPECT_LE(a.cross_track_rms, 0.02);
   EXPECT_LE(a.cross_track_max, 0.05);
   EXPECT_LE(a.cross_track_rms_perfect, 0.01);
@@ -71,4 +71,4 @@ TEST(CtrlEval, RejectsBadParameters) {
 }
 
 }  // namespace
-}  // namespace fleet::control
+}  // namespace fleet::eval

@@ -1,0 +1,87 @@
+#include "app/process.hpp"
+
+#include <signal.h>
+
+#include "common/paths.hpp"
+#include "common/process_memory.hpp"
+#include "dds/environment.hpp"
+
+namespace fleet::app {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void on_stop_signal(int) {
+  g_stop = true;
+}
+
+}  // namespace
+
+std::optional<config::FleetConfig> read_config(Args& args, const char* help, std::ostream& out) {
+  if (args.flag("help")) {
+    out << help;
+    return std::nullopt;
+  }
+  const std::string config_path = args.value("config").value_or(default_config_path());
+  config::FleetConfig config = config::load_fleet_config(config_path);
+  config::apply_common_flags(args, config);
+  return config;
+}
+
+spdlog::level::level_enum finish_args(Args& args) {
+  const bool verbose = args.flag("verbose");
+  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+  return verbose ? spdlog::level::debug : spdlog::level::info;
+}
+
+std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
+                                              const std::vector<const config::RobotSpec*>& robots) {
+  const std::string site_file = map::site_path(maps_dir(), config.settings.get_string("site"));
+  auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
+  for (const config::RobotSpec* robot : robots) {
+    if (!site_map->site.find_home(robot->home)) {
+      throw config::ConfigError(config.source + ": robot '" + robot->id + "': home '" + robot->home +
+                                "' is not a home of " + site_file);
+    }
+  }
+  return site_map;
+}
+
+const std::atomic<bool>& install_stop_handlers() {
+  // SA_RESTART: a signal interrupts no system call of the DDS threads, as with std::signal.
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  return g_stop;
+}
+
+bool stop_requested() {
+  return g_stop.load();
+}
+
+const std::atomic<bool>& start_daemon() {
+  dds::use_fleet_dds_config();
+  ProcessMemory::limit_arenas();
+  return install_stop_handlers();
+}
+
+int exit_code_of_current_exception(const std::string& program, std::ostream& err, bool help_hint) {
+  try {
+    throw;
+  } catch (const ArgError& e) {
+    err << program << ": " << e.what() << (help_hint ? " (see --help)" : "") << "\n";
+    return 2;
+  } catch (const InputError& e) {
+    err << program << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    err << program << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace fleet::app
