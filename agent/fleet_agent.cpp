@@ -86,8 +86,11 @@ void FleetAgent::report(const std::string& status, const std::string& reason, in
   if (!order_) return;
   const auto& a = order_->assignment;
   const int pallet = pallet_id >= 0 ? pallet_id : forklift_.carried_pallet();
-  report_writer_.write({a.order_id, options_.robot_id, status, reason, a.update_id, clock_.now(),
-                        forklift_.carried_pallet() >= 0, pallet, pallet_pose});
+  const model::OrderReport message{
+      a.order_id, options_.robot_id, status, reason, a.update_id, clock_.now(), forklift_.carried_pallet() >= 0,
+      pallet,     pallet_pose};
+  report_writer_.write(message);
+  if (status == "DONE" || status == "FAILED") final_reports_[a.order_id] = message;
 }
 
 void FleetAgent::finish_order() {
@@ -98,6 +101,7 @@ void FleetAgent::finish_order() {
     model::OrderReport key;
     key.order_id = finished_orders_.front();
     report_writer_.unregister(key);
+    final_reports_.erase(key.order_id);
     finished_orders_.pop_front();
   }
   order_.reset();
@@ -109,7 +113,17 @@ void FleetAgent::handle_orders() {
     const bool is_current = order_ && order_->assignment.order_id == assignment.order_id;
     auto seen = seen_updates_.find(assignment.order_id);
     const bool duplicate = seen != seen_updates_.end() && assignment.update_id <= seen->second;
-    if (duplicate && !assignment.cancelled && !is_current) return;  // a late duplicate (VDA 5050 style)
+    if (duplicate && !assignment.cancelled && !is_current) {
+      // A late duplicate (VDA 5050 style), or the assignment of an order this robot finished,
+      // re-sent by a server that restarted without hearing how it ended: say it again. The
+      // latched report should have told it; this does not depend on that.
+      if (const auto ended = final_reports_.find(assignment.order_id); ended != final_reports_.end()) {
+        log_->info("order {} offered again, already {}: repeating the report", assignment.order_id,
+                   ended->second.status);
+        report_writer_.write(ended->second);
+      }
+      return;
+    }
     seen_updates_[assignment.order_id] = std::max(assignment.update_id, duplicate ? seen->second : 0u);
     if (assignment.cancelled) {
       // A withdrawal older than the assignment we run is a late duplicate.
@@ -204,7 +218,7 @@ void FleetAgent::handle_site_inputs() {
 }
 
 void FleetAgent::switch_map(const std::string& map_id) {
-  // Seed 000, section 3: the map is assigned by the server at the start and whenever the user
+  // [Forklift thesis, section 3]: the map is assigned by the server at the start and whenever the user
   // changes it. Only a revision of the same site can be driven without moving the robot.
   std::shared_ptr<const map::SiteMap> next;
   try {

@@ -70,6 +70,9 @@ class FleetAgent {
   std::map<std::string, model::SimTruth> truths_;
   robot::NeighbourMemory neighbours_;
   std::deque<std::int64_t> finished_orders_;
+  /// The final report (DONE or FAILED) of each order in finished_orders_, repeated when a
+  /// restarted server offers the order again.
+  std::map<std::int64_t, model::OrderReport> final_reports_;
   bool paused_ = false;
   std::string last_state_;
   std::size_t last_path_size_ = 0;

@@ -2,9 +2,14 @@
 
 #include <signal.h>
 
+#include <algorithm>
+#include <filesystem>
+
+#include "common/errors.hpp"
 #include "common/paths.hpp"
 #include "common/process_memory.hpp"
 #include "dds/environment.hpp"
+#include "model/names.hpp"
 
 namespace fleet::app {
 
@@ -37,7 +42,16 @@ spdlog::level::level_enum finish_args(Args& args) {
 
 std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
                                               const std::vector<const config::RobotSpec*>& robots) {
-  const std::string site_file = map::site_path(maps_dir(), config.settings.get_string("site"));
+  const std::string site = config.settings.get_string("site");
+  const std::string site_file = map::site_path(maps_dir(), site);
+  if (!std::filesystem::exists(site_file)) {
+    std::vector<std::string> sites;
+    for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
+      if (entry.path().extension() == ".yaml") sites.push_back(entry.path().stem().string());
+    }
+    std::sort(sites.begin(), sites.end());
+    throw InputError("site: " + model::unknown_name_message("site", site, sites) + " (" + maps_dir() + "/NAME.yaml)");
+  }
   auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
   for (const config::RobotSpec* robot : robots) {
     if (!site_map->site.find_home(robot->home)) {

@@ -14,7 +14,8 @@ using namespace std::chrono_literals;
 std::string make_request_id() {
   static std::mt19937_64 rng(std::random_device{}() ^ static_cast<std::uint64_t>(getpid()));
   static int counter = 0;
-  return "fleetctl-" + std::to_string(getpid()) + "-" + std::to_string(++counter) + "-" + std::to_string(rng() % 100000);
+  return "fleetctl-" + std::to_string(getpid()) + "-" + std::to_string(++counter) + "-" +
+         std::to_string(rng() % 100000);
 }
 
 FleetClient::FleetClient(std::uint32_t domain)
@@ -41,7 +42,8 @@ void FleetClient::poll_server_info() {
 }
 
 bool FleetClient::server_alive() const {
-  return server_alive_ && (!server_gone_since_ || std::chrono::steady_clock::now() - *server_gone_since_ < kServerGoneGrace);
+  return server_alive_ &&
+         (!server_gone_since_ || std::chrono::steady_clock::now() - *server_gone_since_ < kServerGoneGrace);
 }
 
 std::optional<model::ServerInfo> FleetClient::find_server(std::chrono::milliseconds timeout) {
@@ -85,9 +87,9 @@ std::optional<model::RequestReply> FleetClient::send_command(model::Command comm
   return await_reply(command.request_id, timeout);
 }
 
-std::optional<model::OrderInfo> FleetClient::follow_order(
-    std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change,
-    std::chrono::milliseconds timeout) {
+std::optional<model::OrderInfo> FleetClient::follow_order(std::int64_t order_id,
+                                                          const std::function<void(const model::OrderInfo&)>& on_change,
+                                                          std::chrono::milliseconds timeout) {
   std::string last_state, last_phase;
   const auto start = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - start < timeout) {

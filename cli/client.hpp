@@ -30,9 +30,9 @@ class FleetClient {
 
   /// Follows one order until it ends, calling `on_change` on every new state or phase; returns
   /// its final OrderInfo, or nothing when the server went away or `timeout` passed.
-  std::optional<model::OrderInfo> follow_order(
-      std::int64_t order_id, const std::function<void(const model::OrderInfo&)>& on_change,
-      std::chrono::milliseconds timeout = kNoTimeout);
+  std::optional<model::OrderInfo> follow_order(std::int64_t order_id,
+                                               const std::function<void(const model::OrderInfo&)>& on_change,
+                                               std::chrono::milliseconds timeout = kNoTimeout);
 
   /// Reads RobotState for `window` and returns the newest of each robot.
   std::map<std::string, model::RobotState> robot_states(std::chrono::milliseconds window);

@@ -73,6 +73,8 @@ std::vector<CommandSpec> make_table() {
       {Group::kServer, "obstacle", "off", "ID", false, {}, "switch an obstacle off"},
       {Group::kServer, "pause", "", "ROBOT", false, {}, "stop a robot where it is (PAUSED)"},
       {Group::kServer, "resume", "", "ROBOT", false, {}, "let a paused robot go on"},
+      {Group::kServer, "auto-orders", "on", "", false, {}, "the server creates random orders for free robots"},
+      {Group::kServer, "auto-orders", "off", "", false, {}, "no more automatic orders (open ones go on)"},
       {Group::kServer, "map", "list", "", false, {}, "the maps the server knows, and the one it serves"},
       {Group::kServer,
        "map",
@@ -87,8 +89,9 @@ std::vector<CommandSpec> make_table() {
        "",
        "",
        false,
-       {},
-       "table of robots: fleet, state, pose, order, localization score, health"},
+       {on_off("--all")},
+       "table of the robots that reported: fleet, state, pose, order, localization score, health;\n"
+       "--all adds the configured robots not seen"},
       {Group::kServer,
        "stats",
        "",
@@ -109,10 +112,10 @@ std::vector<CommandSpec> make_table() {
        "",
        false,
        {value("--agents", "N=4"), value("--site", "NAME"), value("--duration", "SECONDS"), value("--time-scale", "K"),
-        value("--seed", "S"), value("--http-port", "P=8080")},
-       "one fleet-server and N fleet-agents with automatic orders; Ctrl-C or\n"
-       "--duration (wall seconds) stops them all and prints a summary; the web\n"
-       "view's address (with its token) is printed at start"},
+        value("--seed", "S"), value("--http-port", "P=8080"), on_off("--no-auto-orders")},
+       "one fleet-server and N fleet-agents with automatic orders (off with\n"
+       "--no-auto-orders); Ctrl-C or --duration (wall seconds) stops them all\n"
+       "and prints a summary; the web view's address (with its token) is printed at start"},
       {Group::kStartsFleet,
        "soak",
        "",

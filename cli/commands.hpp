@@ -8,10 +8,10 @@ namespace fleet::cli {
 
 /// Exit codes of every fleetctl command (documented in --help and the README).
 enum ExitCode : int {
-  kExitOk = 0,          ///< the operation succeeded
-  kExitFailed = 1,      ///< the operation ran and failed (order FAILED, target missed, ...)
-  kExitBadInput = 2,    ///< bad input: unknown area, malformed file, bad flag
-  kExitNoServer = 3,    ///< no fleet-server reachable
+  kExitOk = 0,        ///< the operation succeeded
+  kExitFailed = 1,    ///< the operation ran and failed (order FAILED, target missed, ...)
+  kExitBadInput = 2,  ///< bad input: unknown area, malformed file, bad flag
+  kExitNoServer = 3,  ///< no fleet-server reachable
 };
 
 /// Arguments of one subcommand: everything after the subcommand name, global flags removed.
@@ -30,9 +30,9 @@ std::string known_site_path(const std::string& source_dir, const std::string& na
 
 // Offline subcommands working on core/ alone. Each returns an ExitCode and prints results to
 // `out`, errors to `err`.
-int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);       // map check|sample|render
-int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // loc-eval
-int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err); // plan-eval
-int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err); // ctrl-eval
+int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);        // map check|sample|render
+int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);   // loc-eval
+int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // plan-eval
+int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // ctrl-eval
 
 }  // namespace fleet::cli

@@ -5,12 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <random>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
 #include <thread>
 
 #include "cli/client.hpp"
@@ -61,7 +62,9 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
   std::filesystem::create_directories(run_dir_);
 }
 
-FleetRun::~FleetRun() { stop(); }
+FleetRun::~FleetRun() {
+  stop();
+}
 
 std::string FleetRun::binary(const std::string& name) const {
   return (std::filesystem::read_symlink("/proc/self/exe").parent_path() / name).string();
@@ -73,14 +76,16 @@ void FleetRun::start() {
   truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
   state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state());
 
-  const std::vector<std::string> common{"--config", options_.config_file, "--domain", std::to_string(options_.domain),
-                                        "--site", options_.site, "--time-scale", std::to_string(options_.time_scale),
-                                        "--seed", std::to_string(options_.seed)};
+  const std::vector<std::string> common{"--config",     options_.config_file,
+                                        "--domain",     std::to_string(options_.domain),
+                                        "--site",       options_.site,
+                                        "--time-scale", std::to_string(options_.time_scale),
+                                        "--seed",       std::to_string(options_.seed)};
   std::vector<std::string> server_argv{binary("fleet-server")};
   server_argv.insert(server_argv.end(), common.begin(), common.end());
   if (options_.auto_orders) server_argv.push_back("--auto-orders");
-  server_argv.insert(server_argv.end(), {"--db", run_dir_ + "/fleet.db", "--http-port",
-                                         std::to_string(options_.http_port)});
+  server_argv.insert(server_argv.end(),
+                     {"--db", run_dir_ + "/fleet.db", "--http-port", std::to_string(options_.http_port)});
   if (!options_.api_token.empty()) server_argv.insert(server_argv.end(), {"--api-token", options_.api_token});
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
@@ -128,9 +133,8 @@ bool FleetRun::poll() {
     if (open && !info.robot_id.empty()) task_of_[info.robot_id] = std::to_string(info.order_id) + "/" + info.phase;
     orders_[info.order_id] = std::move(info);
   });
-  state_reader_->take_data([&](model::RobotState&& state) {
-    progress_.note_state(state.robot_id, state.task_state, state.sim_time);
-  });
+  state_reader_->take_data(
+      [&](model::RobotState&& state) { progress_.note_state(state.robot_id, state.task_state, state.sim_time); });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
@@ -190,9 +194,13 @@ double FleetRun::wall_seconds() const {
   return std::chrono::duration<double>(end - started_).count();
 }
 
-double FleetRun::sim_seconds() const { return wall_seconds() * options_.time_scale; }
+double FleetRun::sim_seconds() const {
+  return wall_seconds() * options_.time_scale;
+}
 
-monitor::OrderTally FleetRun::tally() const { return monitor::tally_orders(orders_, 1); }
+monitor::OrderTally FleetRun::tally() const {
+  return monitor::tally_orders(orders_, 1);
+}
 
 int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
   Args args(command.args);
@@ -205,8 +213,10 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.duration_s = args.number("duration", 0.0, 1e7).value_or(0.0);
   options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(config.settings.get_double("time_scale"));
   options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
-  options.http_port = static_cast<int>(args.integer("http-port", 0, 65535).value_or(config.settings.get_int("server.http_port")));
+  options.http_port =
+      static_cast<int>(args.integer("http-port", 0, 65535).value_or(config.settings.get_int("server.http_port")));
   options.api_token = random_token();
+  options.auto_orders = !args.flag("no-auto-orders");
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
     std::vector<std::string> sites;
@@ -230,37 +240,66 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   run.start();
   err << "Fleet demo: fleet-server and " << options.agents << " fleet-agents (" << model::join(run.robot_ids())
       << ") on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
-      << ", automatic orders on.\n"
+      << ", automatic orders " << (options.auto_orders ? "on" : "off") << ".\n"
       << "  logs:    " << run.run_dir() << "/\n"
       << (options.http_port > 0 ? "  web:     http://127.0.0.1:" + std::to_string(options.http_port) +
                                       "/?token=" + options.api_token + "\n"
                                 : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"
-      << "  order:   fleetctl --domain " << domain << " order add --from A1 --to A2 --wait\n"
+      << "  order:   fleetctl --domain " << domain << " inject --count 1 --wait   (one order the fleet can take now)\n"
+      << "  by hand: fleetctl --domain " << domain << " order add --from AREA --to AREA --wait"
+      << (options.auto_orders ? "   (with fleetctl auto-orders off first, the pallets stay where you see them)" : "")
+      << "\n"
       << (options.duration_s > 0 ? "  stops after " + std::to_string(static_cast<int>(options.duration_s)) + " s"
                                  : std::string("  Ctrl-C stops it"))
       << "\n";
   double next_progress = 10.0;
+  std::size_t stalls_told = 0;
   while (run.poll()) {
+    // A stall (an open order without progress for the watch's timeout) is told when seen: it
+    // is what an operator must act on, and a quiet demo hides it.
+    for (const auto& stalls = run.progress().deadlocks(); stalls_told < stalls.size(); ++stalls_told) {
+      const auto& d = stalls[stalls_told];
+      err << "  STALL at t=" << static_cast<int>(d.detected - run.start_sim()) << " s sim: " << d.robot_id
+          << " made no progress on order " << d.task << " for " << static_cast<int>(d.detected - d.since)
+          << " s sim, at (" << std::fixed << std::setprecision(2) << d.pose.x << ", " << d.pose.y << ")\n"
+          << std::defaultfloat;
+    }
     if (run.wall_seconds() >= next_progress) {
       const auto t = run.tally();
       err << "  t=" << static_cast<int>(run.sim_seconds()) << " s sim: " << t.done << " orders done, " << t.open
-          << " open, " << t.failed << " failed, " << run.collisions().size() << " collisions\n";
+          << " open, " << t.failed << " failed, " << run.collisions().size() << " collisions, "
+          << run.progress().deadlocks().size() << " stalls\n";
       next_progress += 10.0;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   run.stop();
   const auto t = run.tally();
-  nlohmann::json summary{{"orders_created", t.created},     {"orders_done", t.done},
-                         {"orders_failed", t.failed},       {"orders_cancelled", t.cancelled},
-                         {"orders_open", t.open},           {"orders_lost", t.lost},
+  nlohmann::json stalls = nlohmann::json::array();
+  for (const auto& d : run.progress().deadlocks()) {
+    stalls.push_back({{"robot", d.robot_id},
+                      {"order", d.task},
+                      {"since_sim_s", std::round((d.since - run.start_sim()) * 10) / 10},
+                      {"at", {std::round(d.pose.x * 1000) / 1000, std::round(d.pose.y * 1000) / 1000}}});
+  }
+  nlohmann::json summary{{"orders_created", t.created},
+                         {"orders_done", t.done},
+                         {"orders_failed", t.failed},
+                         {"orders_cancelled", t.cancelled},
+                         {"orders_open", t.open},
+                         {"orders_lost", t.lost},
                          {"collisions", run.collisions().size()},
-                         {"agents", options.agents},        {"site", options.site},
+                         {"stalls", stalls.size()},
+                         {"stalled", stalls},
+                         {"agents", options.agents},
+                         {"site", options.site},
                          {"sim_seconds", std::round(run.sim_seconds() * 10) / 10},
                          {"wall_seconds", std::round(run.wall_seconds() * 10) / 10},
-                         {"time_scale", options.time_scale}, {"domain", domain},
-                         {"crashed", run.crashes()},         {"run_dir", run.run_dir()}};
+                         {"time_scale", options.time_scale},
+                         {"domain", domain},
+                         {"crashed", run.crashes()},
+                         {"run_dir", run.run_dir()}};
   if (command.json) {
     out << summary.dump() << "\n";
   } else {
@@ -268,6 +307,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "  orders: " << t.created << " created, " << t.done << " done, " << t.failed << " failed, " << t.cancelled
         << " cancelled, " << t.open << " open, " << t.lost << " lost\n"
         << "  collisions: " << run.collisions().size() << "\n"
+        << "  stalls (an open order without progress for 60 s sim): " << stalls.size() << "\n"
         << "  processes that ended on their own: " << (run.crashes().empty() ? "none" : model::join(run.crashes()))
         << "\n  logs: " << run.run_dir() << "/\n";
   }

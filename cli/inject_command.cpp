@@ -38,8 +38,11 @@ struct Injection {
   std::string not_placed_reason;
 };
 
+/// The server's refusals for pallets (FleetServer::validate_areas): none to pick, one in the way,
+/// or promised to another order.
 bool refused_for_pallets(const std::string& error) {
-  return error.find("holds no pallet") != std::string::npos || error.find("occupied") != std::string::npos;
+  return error.find("holds no pallet") != std::string::npos || error.find("holds a pallet") != std::string::npos ||
+         error.find("is promised to order") != std::string::npos;
 }
 
 class Injector {
@@ -408,8 +411,7 @@ int inject_command(const CommandArgs& command, const Connection& connection, std
     const bool server_lost = !server_answers || (wait && !injector.follow());
     return injector.finish(server_lost, source, origin);
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 

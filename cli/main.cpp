@@ -4,12 +4,14 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "app/process.hpp"
 #include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/fleet_run.hpp"
 #include "cli/online_commands.hpp"
+#include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "common/paths.hpp"
 #include "config/fleet_config.hpp"
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
   using namespace fleet::cli;
   std::ostream& out = std::cout;
   std::ostream& err = std::cerr;
+  // Known before anything can fail, so that every error honours --json.
+  const bool json_output = std::any_of(argv + 1, argv + argc, [](const char* a) { return std::string(a) == "--json"; });
   try {
     Args args(argc, argv);
     CommandArgs command;
@@ -119,6 +123,7 @@ int main(int argc, char** argv) {
     if (name == "stats") return stats_command(command, connection, out, err);
     if (name == "obstacle") return obstacle_command(command, connection, out, err);
     if (name == "pause" || name == "resume") return robot_control_command(name, command, connection, out, err);
+    if (name == "auto-orders") return auto_orders_command(command, connection, out, err);
     if (map_list) return map_list_command(command, connection, out, err);
     if (name == "inject") return inject_command(command, connection, out, err);
     if (name == "routing-age") return routing_age_command(command, connection, out, err);
@@ -126,6 +131,12 @@ int main(int argc, char** argv) {
     if (name == "soak") return soak_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
   } catch (...) {
-    return app::exit_code_of_current_exception("fleetctl", err, false);
+    // The message without the program name, which report_failure adds.
+    std::ostringstream message;
+    const int code = app::exit_code_of_current_exception("", message, false);
+    std::string text = message.str();
+    if (text.starts_with(": ")) text.erase(0, 2);
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    return cli::report_failure(json_output, code, text, out, err);
   }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -12,9 +13,11 @@
 #include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
+#include "config/fleet_config.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "orders/order.hpp"
+#include "orders/order_request_check.hpp"
 
 namespace fleet::cli {
 
@@ -28,7 +31,8 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   if (!from || !to) throw ArgError("order add needs --from AREA and --to AREA");
   request.pick_area = *from;
   request.drop_area = *to;
-  request.priority = static_cast<int>(args.integer("priority", -1000, 1000).value_or(0));
+  const long priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority).value_or(0);
+  request.priority = static_cast<int>(priority);
   request.robot_id = args.value("robot").value_or("");
   request.fleet_id = args.value("fleet").value_or("");
   const bool wait = args.flag("wait");
@@ -36,16 +40,23 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
 
   FleetClient client(connection.domain);
   const model::ServerInfo info = require_server(client, connection);
-  require_known("loading area", request.pick_area, info.loading_areas);
-  require_known("loading area", request.drop_area, info.loading_areas);
-  if (!request.robot_id.empty()) require_known("robot", request.robot_id, info.robots);
+  // The check the server and the web API make too; a name it refuses is bad input (exit 2).
+  orders::KnownNames names{info.loading_areas, info.robots, {}};
+  for (const auto& fleet : config::load_fleet_config(command.config_file).fleets) names.fleets.push_back(fleet.id);
+  const std::map<std::string, std::string> flag_of{
+      {"from", "--from"}, {"to", "--to"}, {"robot", "--robot"}, {"fleet", "--fleet"}, {"priority", "--priority"}};
+  if (const auto problem = orders::check_order_request(
+          {request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority}, names)) {
+    throw ArgError(flag_of.at(problem->field) + ": " + problem->message);
+  }
 
   const auto reply = client.request_order(request, connection.timeout);
   if (!reply) {
     throw CommandExit{kExitNoServer, "fleet-server on DDS domain " + std::to_string(connection.domain) +
                                          " did not answer the order request"};
   }
-  if (!reply->accepted) throw CommandExit{kExitBadInput, "order refused: " + reply->error};
+  // The request was well formed: a refusal is the fleet's (pallets, busy robots), not bad input.
+  if (!reply->accepted) throw CommandExit{kExitFailed, "order refused: " + reply->error};
   if (command.json && !wait) {
     out << nlohmann::json{{"order_id", reply->order_id}, {"state", "QUEUED"}}.dump() << "\n";
   } else if (!command.json) {
@@ -53,15 +64,17 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   }
   if (!wait) return kExitOk;
 
-  const double started = SimClock::wall_now();
+  // Sim seconds, as order watch counts them.
+  const SimClock clock(info.time_scale);
+  const double started = clock.now();
   const auto limit = connection.timeout_given ? connection.timeout : FleetClient::kNoTimeout;
   const auto final_info = client.follow_order(
       reply->order_id,
       [&](const model::OrderInfo& o) {
         if (command.json) return;
         std::ostringstream line;
-        line << std::fixed << std::setprecision(1) << "[" << SimClock::wall_now() - started << " s] order "
-             << o.order_id << " " << o.state;
+        line << std::fixed << std::setprecision(1) << "[" << clock.now() - started << " s sim] order " << o.order_id
+             << " " << o.state;
         if (o.state == "ACTIVE" && !o.phase.empty()) line << " " << o.phase;
         if (!o.robot_id.empty()) line << " on " << o.robot_id;
         if (!o.reason.empty()) line << ": " << o.reason;
@@ -119,8 +132,9 @@ int order_list(Args& args, const CommandArgs& command, const Connection& connect
     out << rows.dump() << "\n";
     return kExitOk;
   }
-  out << std::left << std::setw(7) << "ORDER" << std::setw(6) << "FROM" << std::setw(6) << "TO" << std::setw(7) << "ROBOT"
-      << std::setw(11) << "STATE" << std::setw(11) << "PHASE" << "REASON\n";
+  out << std::left << std::setw(7) << "ORDER" << std::setw(6) << "FROM" << std::setw(6) << "TO" << std::setw(7)
+      << "ROBOT" << std::setw(11) << "STATE" << std::setw(11) << "PHASE"
+      << "REASON\n";
   for (const auto& r : rows) {
     out << std::left << std::setw(7) << r["order_id"].get<long>() << std::setw(6) << r["pick_area"].get<std::string>()
         << std::setw(6) << r["drop_area"].get<std::string>() << std::setw(7) << r["robot_id"].get<std::string>()
@@ -143,8 +157,8 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
     return kExitOk;
   }
   out << "order " << id << ": " << o["pick_area"].get<std::string>() << " -> " << o["drop_area"].get<std::string>()
-      << ", " << o["state"].get<std::string>() << (o["robot_id"].get<std::string>().empty() ? "" : " on " + o["robot_id"].get<std::string>())
-      << "\n";
+      << ", " << o["state"].get<std::string>()
+      << (o["robot_id"].get<std::string>().empty() ? "" : " on " + o["robot_id"].get<std::string>()) << "\n";
   const double created = it->second.created_sim;
   for (const auto& e : it->second.history) {
     out << std::fixed << std::setprecision(1) << "  +" << e.sim_time - created << " s  " << e.state
@@ -184,7 +198,8 @@ int obstacle_command(const CommandArgs& command, const Connection& connection, s
       if (command.json) {
         out << rows.dump() << "\n";
       } else {
-        for (const auto& r : rows) out << r["obstacle_id"].get<std::string>() << "  " << (r["enabled"].get<bool>() ? "on" : "off") << "\n";
+        for (const auto& r : rows)
+          out << r["obstacle_id"].get<std::string>() << "  " << (r["enabled"].get<bool>() ? "on" : "off") << "\n";
       }
       return kExitOk;
     }
@@ -200,8 +215,7 @@ int obstacle_command(const CommandArgs& command, const Connection& connection, s
     }
     throw ArgError("usage: obstacle list | obstacle on ID | obstacle off ID");
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
@@ -219,8 +233,25 @@ int robot_control_command(const std::string& verb, const CommandArgs& command, c
     return run_command_on_server(client, connection, c, command, out, "robot " + robot + " " + verb + "d",
                                  {{"robot_id", robot}, {"paused", verb == "pause"}});
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
+  }
+}
+
+int auto_orders_command(const CommandArgs& command, const Connection& connection, std::ostream& out,
+                        std::ostream& err) {
+  try {
+    Args args(command.args);
+    const std::string value = one_positional(args, "on or off");
+    if (value != "on" && value != "off") throw ArgError("auto-orders takes on or off, got '" + value + "'");
+    FleetClient client(connection.domain);
+    require_server(client, connection);
+    model::Command c;
+    c.verb = "auto-orders";
+    c.value = value;
+    return run_command_on_server(client, connection, c, command, out, "automatic orders " + value,
+                                 {{"auto_orders", value == "on"}});
+  } catch (const CommandExit& e) {
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
@@ -256,8 +287,7 @@ int map_list_command(const CommandArgs& command, const Connection& connection, s
     }
     return kExitOk;
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
@@ -274,8 +304,7 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
     throw ArgError(sub.empty() ? "order needs a subcommand: add, list, show, cancel, watch"
                                : "unknown order subcommand '" + sub + "' (add, list, show, cancel, watch)");
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
@@ -289,8 +318,8 @@ int stats_command(const CommandArgs& command, const Connection& connection, std:
     const monitor::OrderStats s = monitor::order_stats(orders, SimClock(info.time_scale).now());
     nlohmann::json utilisation = nlohmann::json::object();
     for (const auto& [robot, share] : s.utilisation) utilisation[robot] = share;
-    const nlohmann::json doc{{"orders_by_state", s.by_state},        {"span_s", s.span_s},
-                             {"done_per_hour", s.done_per_hour},     {"order_time_mean_s", s.order_time_mean_s},
+    const nlohmann::json doc{{"orders_by_state", s.by_state},          {"span_s", s.span_s},
+                             {"done_per_hour", s.done_per_hour},       {"order_time_mean_s", s.order_time_mean_s},
                              {"order_time_p95_s", s.order_time_p95_s}, {"utilisation", utilisation}};
     if (command.json) {
       out << doc.dump() << "\n";
@@ -305,14 +334,13 @@ int stats_command(const CommandArgs& command, const Connection& connection, std:
     out << "\n";
     return kExitOk;
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
 int routing_age_command(const CommandArgs& command, const Connection& connection, std::ostream& out,
                         std::ostream& err) {
-  // Seed 000, section 3: poses reach the other robots through the server. Each pose's age on
+  // [Forklift thesis, section 3]: poses reach the other robots through the server. Each pose's age on
   // arrival here (now minus the sim time it was measured at) is sampled twice: straight from the
   // robot (RobotState) and as routed by the server (FleetView). The difference is what routing
   // costs; both share this process's scheduling, so it cancels out of the comparison.
@@ -329,7 +357,8 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
     std::vector<double> direct_ms, routed_ms;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (std::chrono::steady_clock::now() < end) {
-      direct.take_data([&](model::RobotState&& s) { direct_ms.push_back(1000.0 * clock.to_wall(clock.now() - s.sim_time)); });
+      direct.take_data(
+          [&](model::RobotState&& s) { direct_ms.push_back(1000.0 * clock.to_wall(clock.now() - s.sim_time)); });
       routed.take_data([&](model::FleetView&& v) {
         const double now = clock.now();
         for (const auto& r : v.robots) routed_ms.push_back(1000.0 * clock.to_wall(now - r.sim_time));
@@ -337,14 +366,14 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     if (direct_ms.empty() || routed_ms.empty()) {
-      throw CommandExit{kExitFailed, "no robot poses on DDS domain " + std::to_string(connection.domain) +
-                                         " within " + std::to_string(seconds) + " s"};
+      throw CommandExit{kExitFailed, "no robot poses on DDS domain " + std::to_string(connection.domain) + " within " +
+                                         std::to_string(seconds) + " s"};
     }
     const double d50 = monitor::percentile(direct_ms, 0.5), d95 = monitor::percentile(direct_ms, 0.95);
     const double r50 = monitor::percentile(routed_ms, 0.5), r95 = monitor::percentile(routed_ms, 0.95);
-    const nlohmann::json doc{{"direct_samples", direct_ms.size()}, {"routed_samples", routed_ms.size()},
-                             {"direct_age_median_ms", d50},       {"direct_age_p95_ms", d95},
-                             {"routed_age_median_ms", r50},       {"routed_age_p95_ms", r95},
+    const nlohmann::json doc{{"direct_samples", direct_ms.size()},  {"routed_samples", routed_ms.size()},
+                             {"direct_age_median_ms", d50},         {"direct_age_p95_ms", d95},
+                             {"routed_age_median_ms", r50},         {"routed_age_p95_ms", r95},
                              {"routing_adds_median_ms", r50 - d50}, {"routing_adds_p95_ms", r95 - d95},
                              {"time_scale", info.time_scale}};
     if (command.json) {
@@ -357,24 +386,28 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
     }
     return kExitOk;
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 
 int robots_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
     Args args(command.args);
+    const bool all = args.flag("all");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     const auto states = client.robot_states(std::chrono::milliseconds(600));
     const SimClock clock(info.time_scale);
     nlohmann::json rows = nlohmann::json::array();
+    std::vector<std::string> not_seen;
     for (const auto& id : info.robots) {
       auto it = states.find(id);
       if (it == states.end()) {
-        rows.push_back({{"robot_id", id}, {"health", "not seen"}});
+        // Configured robots without an agent are listed only on request: a 4-robot demo of a
+        // 12-robot configuration is four rows.
+        not_seen.push_back(id);
+        if (all) rows.push_back({{"robot_id", id}, {"health", "not seen"}});
         continue;
       }
       const auto& s = it->second;
@@ -394,8 +427,9 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
       out << rows.dump() << "\n";
       return kExitOk;
     }
-    out << std::left << std::setw(8) << "ROBOT" << std::setw(11) << "FLEET" << std::setw(15) << "STATE"
-        << std::setw(24) << "POSE (x, y, yaw)" << std::setw(7) << "ORDER" << std::setw(7) << "LOC" << "HEALTH\n";
+    out << std::left << std::setw(8) << "ROBOT" << std::setw(11) << "FLEET" << std::setw(15) << "STATE" << std::setw(24)
+        << "POSE (x, y, yaw)" << std::setw(7) << "ORDER" << std::setw(7) << "LOC"
+        << "HEALTH\n";
     for (const auto& r : rows) {
       std::ostringstream pose, order, loc;
       if (r.contains("x")) {
@@ -404,14 +438,18 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
         order << (r["order_id"].get<long>() ? std::to_string(r["order_id"].get<long>()) : "-");
         loc << std::fixed << std::setprecision(2) << r["localization_score"].get<double>();
       }
-      out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(11)
-          << r.value("fleet_id", "-") << std::setw(15) << r.value("state", "-") << std::setw(24) << pose.str()
-          << std::setw(7) << order.str() << std::setw(7) << loc.str() << r["health"].get<std::string>() << "\n";
+      out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(11) << r.value("fleet_id", "-")
+          << std::setw(15) << r.value("state", "-") << std::setw(24) << pose.str() << std::setw(7) << order.str()
+          << std::setw(7) << loc.str() << r["health"].get<std::string>() << "\n";
+    }
+    if (rows.empty()) out << "no robot has reported to this server\n";
+    if (!all && !not_seen.empty()) {
+      out << not_seen.size() << " configured robot" << (not_seen.size() == 1 ? " has" : "s have")
+          << " not reported (--all lists them): " << model::join(not_seen) << "\n";
     }
     return kExitOk;
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 

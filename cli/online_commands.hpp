@@ -22,6 +22,8 @@ int order_command(const CommandArgs& args, const Connection& connection, std::os
 int obstacle_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int robot_control_command(const std::string& verb, const CommandArgs& args, const Connection& connection,
                           std::ostream& out, std::ostream& err);
+/// `auto-orders on|off`: switches the server's automatic orders.
+int auto_orders_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int map_list_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int stats_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int routing_age_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);

@@ -1,11 +1,28 @@
 #include "cli/online_support.hpp"
 
 #include <algorithm>
+#include <ostream>
 
 #include "common/args.hpp"
 #include "model/names.hpp"
 
 namespace fleet::cli {
+
+int report_failure(bool json, int code, const std::string& message, std::ostream& out, std::ostream& err) {
+  err << "fleetctl: " << message << "\n";
+  if (json) {
+    nlohmann::json doc{{"error", message}, {"exit_code", code}};
+    // "--from: ..." (a command's own check) or "flag --from: ..." (the argument parser's).
+    const std::size_t flag = message.starts_with("--") ? 0 : message.starts_with("flag --") ? 5 : std::string::npos;
+    if (flag != std::string::npos) {
+      const auto colon = message.find(':', flag);
+      if (colon != std::string::npos && message.find(' ', flag) > colon)
+        doc["field"] = message.substr(flag + 2, colon - flag - 2);
+    }
+    out << doc.dump() << "\n" << std::flush;
+  }
+  return code;
+}
 
 model::ServerInfo require_server(FleetClient& client, const Connection& connection) {
   auto info = client.find_server(connection.timeout);

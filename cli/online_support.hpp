@@ -12,6 +12,11 @@
 
 namespace fleet::cli {
 
+/// How fleetctl ends on an error: "fleetctl: MESSAGE" on stderr and, with --json, one JSON
+/// document as the last line on stdout: {"error", "exit_code"}, with "field" when the message
+/// starts with the flag it is about ("--from: ..."). Returns `code`.
+int report_failure(bool json, int code, const std::string& message, std::ostream& out, std::ostream& err);
+
 /// Thrown to leave a command with an exit code after printing `message` to stderr.
 struct CommandExit {
   int code;

@@ -130,6 +130,8 @@ OrdersFile parse_orders_csv(std::istream& in) {
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_number;
+    // Spreadsheets save UTF-8 with a byte order mark before the first cell.
+    if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
     const std::string text = trim(line);
     if (text.empty() || text[0] == '#') continue;
     const auto fields = split_fields(text);

@@ -216,8 +216,7 @@ int order_watch(const std::vector<std::string>& words, const CommandArgs& comman
     err << "fleetctl: " << stopped_why << " while order " << watched << " was still " << o.state << "\n";
     return kExitFailed;
   } catch (const CommandExit& e) {
-    err << "fleetctl: " << e.message << "\n";
-    return e.code;
+    return report_failure(command.json, e.code, e.message, out, err);
   }
 }
 

@@ -11,6 +11,7 @@
 #include "common/process_memory.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
+#include "orders/order_request_check.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::server {
@@ -185,7 +186,7 @@ void FleetServer::publish_server_info() {
 }
 
 void FleetServer::publish_site_state() {
-  // Seed 000, section 3: the map is assigned at the start; obstacles are forwarded when they
+  // [Forklift thesis, section 3]: the map is assigned at the start; obstacles are forwarded when they
   // change and when robots start (latched topics give late joiners the current set).
   for (const auto& [fleet, robot] : options_.config.all_robots()) control_writer_.write({robot->id, false});
   publish_map_and_obstacles();
@@ -293,6 +294,23 @@ void FleetServer::reply(const model::RequestReply& answer) {
   replies_written_[answer.request_id] = SimClock::wall_now();
 }
 
+std::string FleetServer::not_seen_message(const std::string& robot_id) const {
+  std::vector<std::string> seen;
+  for (const auto& [id, robot] : robots_) {
+    if (robot.registered) seen.push_back(id);
+  }
+  return "robot " + robot_id + " is configured but has not been seen: no fleet-agent --id " + robot_id +
+         " has reported to this server" + (seen.empty() ? std::string() : " (seen: " + model::join(seen) + ")");
+}
+
+orders::KnownNames FleetServer::known_names() const {
+  orders::KnownNames names;
+  names.areas = options_.site.area_ids();
+  for (const auto& [fleet, robot] : options_.config.all_robots()) names.robots.push_back(robot->id);
+  for (const auto& fleet : options_.config.fleets) names.fleets.push_back(fleet.id);
+  return names;
+}
+
 int FleetServer::expected_pallets(const std::string& area) const {
   // What will stand at `area` once every open order is done: a pallet there now, minus open
   // orders taking it away, plus open orders bringing one.
@@ -306,12 +324,28 @@ int FleetServer::expected_pallets(const std::string& area) const {
 }
 
 std::string FleetServer::validate_areas(const std::string& pick, const std::string& drop) const {
-  const auto ids = options_.site.area_ids();
-  if (!options_.site.find_area(pick)) return model::unknown_name_message("loading area", pick, ids);
-  if (!options_.site.find_area(drop)) return model::unknown_name_message("loading area", drop, ids);
-  if (pick == drop) return "pick and drop area are the same ('" + pick + "')";
-  if (expected_pallets(pick) <= 0) return "loading area '" + pick + "' holds no pallet to pick";
-  if (expected_pallets(drop) > 0) return "loading area '" + drop + "' is occupied by a pallet";
+  // The names were checked (check_order_request); what is left is the pallets, counted once every
+  // open order is done. A refusal says what is true now: a pallet there, or an order's promise.
+  auto open_order = [&](auto&& uses_area) -> const Order* {
+    for (const auto& [id, o] : book_.all()) {
+      if (!orders::is_final(o.status) && uses_area(o)) return &o;
+    }
+    return nullptr;
+  };
+  if (expected_pallets(pick) <= 0) {
+    if (const Order* taker = open_order([&](const Order& o) { return o.pick_area == pick; })) {
+      return "the pallet on loading area '" + pick + "' is promised to order " + std::to_string(taker->id) +
+             ", which picks it up";
+    }
+    return "loading area '" + pick + "' holds no pallet to pick";
+  }
+  if (expected_pallets(drop) > 0) {
+    if (const Order* bringer = open_order([&](const Order& o) { return o.drop_area == drop; })) {
+      return "loading area '" + drop + "' is promised to order " + std::to_string(bringer->id) +
+             ", which drops its pallet there";
+    }
+    return "loading area '" + drop + "' holds a pallet";
+  }
   return "";
 }
 
@@ -327,20 +361,19 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
     log_->warn("order request {} refused: {}", request.request_id, error);
     return model::RequestReply{request.request_id, false, 0, error};
   };
+  if (const auto problem = orders::check_order_request(
+          {request.pick_area, request.drop_area, request.robot_id, request.fleet_id, request.priority},
+          known_names())) {
+    return refuse(problem->field + ": " + problem->message);
+  }
+  if (!request.robot_id.empty()) {
+    // An order for a robot that never reported would wait for it for good, unseen.
+    if (const auto it = robots_.find(request.robot_id); it == robots_.end() || !it->second.registered) {
+      return refuse(not_seen_message(request.robot_id));
+    }
+  }
   if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
     return refuse(error);
-  }
-  if (!request.robot_id.empty() && !options_.config.find_robot(request.robot_id)) {
-    std::vector<std::string> ids;
-    for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
-    return refuse(model::unknown_name_message("robot", request.robot_id, ids));
-  }
-  if (!request.fleet_id.empty()) {
-    std::vector<std::string> ids;
-    for (const auto& f : options_.config.fleets) ids.push_back(f.id);
-    if (std::find(ids.begin(), ids.end(), request.fleet_id) == ids.end()) {
-      return refuse(model::unknown_name_message("fleet", request.fleet_id, ids));
-    }
   }
   if (options_.config.settings.get_bool("server.reject_when_busy")) {
     const bool any_free =
@@ -409,7 +442,7 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       log_->info("static obstacle {} {}", command.target, command.value);
     }
   } else if (command.verb == "map") {
-    // Seed 000, section 3: maps are assigned at the start and whenever the user changes them.
+    // [Forklift thesis, section 3]: maps are assigned at the start and whenever the user changes them.
     std::vector<std::string> robot_ids;
     for (const auto& [fleet, robot] : options_.config.all_robots()) robot_ids.push_back(robot->id);
     const bool one_robot = !command.target.empty() && command.target != "all";
@@ -439,6 +472,8 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       std::vector<std::string> ids;
       for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
       error = model::unknown_name_message("robot", command.target, ids);
+    } else if (const auto it = robots_.find(command.target); it == robots_.end() || !it->second.registered) {
+      error = not_seen_message(command.target);
     } else {
       paused_[command.target] = command.verb == "pause";
       control_writer_.write({command.target, command.verb == "pause"});
@@ -658,7 +693,7 @@ void FleetServer::handle_order_reports() {
       result = book_.set_phase(id, *phase, now);
       if (result == TransitionResult::kApplied) {
         log_->info("order {} on {}: {}", id, report.robot_id, report.status);
-        // Seed 000, section 8: the server keeps the pallet map up to date as robots pick.
+        // [Forklift thesis, section 8]: the server keeps the pallet map up to date as robots pick.
         if (report.carrying_pallet && past_the_lift(*phase)) {
           auto lifted = pallets_.find(report.pallet_id);
           if (lifted == pallets_.end()) {
@@ -954,7 +989,7 @@ bool FleetServer::robot_is_free(const RobotEntry& robot) const {
 }
 
 void FleetServer::create_auto_orders() {
-  // Seed 000, section 3: random orders whenever a forklift is free, from an area holding a
+  // [Forklift thesis, section 3]: random orders whenever a forklift is free, from an area holding a
   // pallet to a free one.
   const long free_robots =
       std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });

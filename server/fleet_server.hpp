@@ -14,6 +14,7 @@
 #include "map/site_map.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
+#include "orders/order_request_check.hpp"
 #include "planning/road_planner.hpp"
 #include "server/order_store.hpp"
 #include "server/traffic_control.hpp"
@@ -94,6 +95,10 @@ class FleetServer {
   model::RequestReply execute(const model::Command& command);
   /// Why a pick/drop pair cannot be ordered now, or empty.
   std::string validate_areas(const std::string& pick, const std::string& drop) const;
+  /// The loading areas, robots and fleets an order request may name.
+  orders::KnownNames known_names() const;
+  /// Why a command or order naming a configured robot that never reported is refused.
+  std::string not_seen_message(const std::string& robot_id) const;
   /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
   int expected_pallets(const std::string& area) const;
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf

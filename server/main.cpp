@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/process.hpp"
+#include "common/errors.hpp"
 #include "common/logging.hpp"
 #include "common/paths.hpp"
 #include "map/site_map.hpp"
@@ -55,10 +56,11 @@ std::pair<std::string, std::string> choose_api_token(const std::optional<std::st
   return {server::generate_api_token(), "generated"};
 }
 
-/// The web view when server.http_port is not 0, started; nothing when it is off or its port is
-/// taken. Orders and robots do not depend on the web view: a taken port costs the page, not the
-/// fleet. The web view draws the site from its road network and graph; it and the server loop
-/// meet only in `bridge`. `web_config` must outlive it.
+/// The web view when server.http_port is not 0, started; nothing when it is off. A port that
+/// cannot be bound (another server listens there) is an InputError naming it: a server whose
+/// page and API answer at a URL that is not its own is worse than one that does not start.
+/// The web view draws the site from its road network and graph; it and the server loop meet
+/// only in `bridge`. `web_config` must outlive it.
 std::unique_ptr<server::WebServer> start_web_view(const server::ServerOptions& options,
                                                   const config::FleetConfig& web_config,
                                                   const std::optional<std::string>& token_flag,
@@ -79,11 +81,10 @@ std::unique_ptr<server::WebServer> start_web_view(const server::ServerOptions& o
   auto web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);
   try {
     web->start();
-    log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
   } catch (const std::runtime_error& e) {
-    log->error("web view off: {}; choose another port with --http-port", e.what());
-    web.reset();
+    throw InputError(std::string(e.what()) + "; choose another port with --http-port (0: no web view)");
   }
+  log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
   return web;
 }
 

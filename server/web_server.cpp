@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "model/names.hpp"
+#include "server/web_http.hpp"
 
 namespace fleet::server {
 
@@ -38,8 +39,12 @@ double round_places(double v, int places) {
   const double k = std::pow(10.0, places);
   return std::round(v * k) / k;
 }
-double r4(double v) { return round_places(v, 4); }
-double r3(double v) { return round_places(v, 3); }
+double r4(double v) {
+  return round_places(v, 4);
+}
+double r3(double v) {
+  return round_places(v, 3);
+}
 /// Three significant digits, for covariances that span many orders of magnitude.
 double sig3(double v) {
   if (v == 0.0 || !std::isfinite(v)) return 0.0;
@@ -47,7 +52,9 @@ double sig3(double v) {
   return places >= 0 ? round_places(v, places) : std::round(v / std::pow(10.0, -places)) * std::pow(10.0, -places);
 }
 
-json point(double x, double y) { return json::array({r3(x), r3(y)}); }
+json point(double x, double y) {
+  return json::array({r3(x), r3(y)});
+}
 
 json robot_json(const RobotView& view) {
   const auto& s = view.state;
@@ -58,8 +65,8 @@ json robot_json(const RobotView& view) {
          {"yaw", r4(s.pose.yaw)},
          // x-x, x-y, y-y and yaw-yaw of the row-major 3x3 covariance: what the ellipse and the
          // heading uncertainty need.
-         {"cov", json::array({sig3(s.covariance[0]), sig3(s.covariance[1]), sig3(s.covariance[4]),
-                              sig3(s.covariance[8])})},
+         {"cov",
+          json::array({sig3(s.covariance[0]), sig3(s.covariance[1]), sig3(s.covariance[4]), sig3(s.covariance[8])})},
          {"score", r3(s.localization_score)},
          {"speed", r3(s.speed)},
          {"state", s.task_state},
@@ -86,10 +93,17 @@ json robot_json(const RobotView& view) {
 }
 
 json order_json(const model::OrderInfo& o) {
-  return json{{"id", o.order_id},        {"from", o.pick_area},    {"to", o.drop_area},
-              {"fleet", o.fleet_id},     {"robot", o.robot_id},    {"state", o.state},
-              {"phase", o.phase},        {"reason", o.reason},     {"priority", o.priority},
-              {"created", r3(o.created_sim)}, {"updated", r3(o.updated_sim)}};
+  return json{{"id", o.order_id},
+              {"from", o.pick_area},
+              {"to", o.drop_area},
+              {"fleet", o.fleet_id},
+              {"robot", o.robot_id},
+              {"state", o.state},
+              {"phase", o.phase},
+              {"reason", o.reason},
+              {"priority", o.priority},
+              {"created", r3(o.created_sim)},
+              {"updated", r3(o.updated_sim)}};
 }
 
 json globals_json(const LiveSnapshot& s) {
@@ -178,71 +192,6 @@ std::string mime_of(const std::string& path) {
   return "application/octet-stream";
 }
 
-/// Compares without an early exit, so the time taken does not tell how much of a guess matched.
-bool same_token(const std::string& given, const std::string& expected) {
-  unsigned char diff = given.size() == expected.size() ? 0 : 1;
-  for (std::size_t i = 0; i < given.size(); ++i) {
-    diff |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<std::size_t>(expected.size(), 1)]);
-  }
-  return diff == 0;
-}
-
-void send_json(httplib::Response& res, int status, const json& body) {
-  res.status = status;
-  res.set_content(body.dump(), "application/json");
-}
-
-void send_error(httplib::Response& res, int status, const std::string& field, const std::string& message) {
-  json body{{"error", field.empty() ? message : field + ": " + message}};
-  if (!field.empty()) body["field"] = field;
-  send_json(res, status, body);
-}
-
-/// The request body as a JSON object, or an error response naming the body.
-std::optional<json> body_object(const httplib::Request& req, httplib::Response& res) {
-  if (req.body.empty()) return json::object();
-  json body = json::parse(req.body, nullptr, false);
-  if (body.is_discarded() || !body.is_object()) {
-    send_error(res, 400, "body", "not a JSON object");
-    return std::nullopt;
-  }
-  return body;
-}
-
-/// An optional string field; nullopt and an error response when it is there but not a string.
-std::optional<std::string> string_field(const json& body, const char* name, bool required, httplib::Response& res) {
-  const auto it = body.find(name);
-  if (it == body.end() || it->is_null()) {
-    if (required) {
-      send_error(res, 400, name, "missing");
-      return std::nullopt;
-    }
-    return std::string();
-  }
-  if (!it->is_string()) {
-    send_error(res, 400, name, "must be a string, got " + it->dump());
-    return std::nullopt;
-  }
-  if (required && it->get<std::string>().empty()) {
-    send_error(res, 400, name, "must not be empty");
-    return std::nullopt;
-  }
-  return it->get<std::string>();
-}
-
-std::optional<bool> bool_field(const json& body, const char* name, httplib::Response& res) {
-  const auto it = body.find(name);
-  if (it == body.end()) {
-    send_error(res, 400, name, "missing (true or false)");
-    return std::nullopt;
-  }
-  if (!it->is_boolean()) {
-    send_error(res, 400, name, "must be true or false, got " + it->dump());
-    return std::nullopt;
-  }
-  return it->get<bool>();
-}
-
 std::string sse_event(const char* name, std::uint64_t version, const json& data) {
   return std::string("event: ") + name + "\nid: " + std::to_string(version) + "\ndata: " + data.dump() + "\n\n";
 }
@@ -256,8 +205,10 @@ json site_json(const WebSiteInfo& info) {
   const map::Site& site = sm.site;
   json j;
   j["site"] = site.name;
-  j["bounds"] = {{"min_x", site.bounds.min_x}, {"min_y", site.bounds.min_y},
-                 {"max_x", site.bounds.max_x}, {"max_y", site.bounds.max_y}};
+  j["bounds"] = {{"min_x", site.bounds.min_x},
+                 {"min_y", site.bounds.min_y},
+                 {"max_x", site.bounds.max_x},
+                 {"max_y", site.bounds.max_y}};
   j["road_width"] = site.road_width;
   j["pallet_size"] = 0.4 * site.road_width;  // as drawn by map::render_svg
 
@@ -463,7 +414,9 @@ WebServer::WebServer(WebOptions options, WebBridge& bridge, WebSiteInfo site, Lo
   site_body_ = site_json(site_).dump();
 }
 
-WebServer::~WebServer() { stop(); }
+WebServer::~WebServer() {
+  stop();
+}
 
 void WebServer::start() {
   http_ = std::make_unique<httplib::Server>();
@@ -472,12 +425,18 @@ void WebServer::start() {
   http_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   http_->set_payload_max_length(64 * 1024);
   http_->set_keep_alive_timeout(2);
+  // Exclusive: cpp-httplib's default adds SO_REUSEPORT, with which a second server on the same
+  // port binds too and the kernel spreads requests over both.
+  http_->set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   routes();
   port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;
   if (port_ <= 0 || (options_.port != 0 && !http_->bind_to_port(options_.host, options_.port))) {
     http_.reset();
     throw std::runtime_error("cannot listen on http://" + options_.host + ":" + std::to_string(options_.port) +
-                             " (address in use or not local?)");
+                             ": the port is in use, or the address is not this host's");
   }
   stopping_ = false;
   pump_ = std::thread([this] { pump(); });
@@ -642,189 +601,7 @@ void WebServer::routes() {
         [this](bool) { --stream_clients_; });
   });
 
-  // ---- changing: every call needs the token ----
-  auto authorized = [this](const Request& req, Response& res) {
-    std::string given;
-    const std::string header = req.get_header_value("Authorization");
-    if (header.rfind("Bearer ", 0) == 0) {
-      given = header.substr(7);
-    } else if (req.has_param("token")) {
-      given = req.get_param_value("token");
-    }
-    if (given.empty()) {
-      res.set_header("WWW-Authenticate", "Bearer");
-      send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
-      return false;
-    }
-    if (!same_token(given, options_.token)) {
-      send_error(res, 403, "token", "wrong token");
-      return false;
-    }
-    return true;
-  };
-  // Hands a request to the server loop and waits for its answer (the same execute() as fleetctl's
-  // requests over DDS). A request that times out stays queued and may still be carried out; the
-  // 503 says only that no answer came in time.
-  auto ask = [this](WebRequest request, Response& res) -> std::optional<model::RequestReply> {
-    auto reply = bridge_.submit(std::move(request));
-    if (reply.wait_for(std::chrono::duration<double>(options_.reply_timeout_s)) != std::future_status::ready) {
-      send_error(res, 503, "", "the server loop did not answer within " +
-                                   std::to_string(static_cast<int>(options_.reply_timeout_s)) + " s");
-      return std::nullopt;
-    }
-    return reply.get();
-  };
-  auto next_request_id = [this] {
-    return "web-" + std::to_string(::getpid()) + "-" + std::to_string(++request_counter_);
-  };
-  auto robot_ids = [this] {
-    std::vector<std::string> ids;
-    for (const auto& [fleet, robot] : site_.config->all_robots()) ids.push_back(robot->id);
-    return ids;
-  };
-  auto command = [this, ask, next_request_id](Response& res, std::string verb, std::string target,
-                                               std::string value) -> std::optional<model::RequestReply> {
-    model::Command c;
-    c.request_id = next_request_id();
-    c.verb = std::move(verb);
-    c.target = std::move(target);
-    c.value = std::move(value);
-    log_->info("web: {} {} {} ({})", c.verb, c.target, c.value, c.request_id);
-    return ask(c, res);
-  };
-  auto ok = [](Response& res, const model::RequestReply& reply, json extra = json::object()) {
-    extra["accepted"] = true;
-    extra["request_id"] = reply.request_id;
-    send_json(res, 200, extra);
-  };
-
-  http.Post("/api/orders", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body) return;
-    const auto from = string_field(*body, "from", true, res);
-    if (!from) return;
-    const auto to = string_field(*body, "to", true, res);
-    if (!to) return;
-    const auto robot = string_field(*body, "robot", false, res);
-    if (!robot) return;
-    const auto fleet = string_field(*body, "fleet", false, res);
-    if (!fleet) return;
-    int priority = 0;
-    if (const auto it = body->find("priority"); it != body->end()) {
-      if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
-      priority = it->get<int>();
-    }
-    const map::Site& site = site_.site_map->site;
-    if (!site.find_area(*from)) {
-      return send_error(res, 400, "from", model::unknown_name_message("loading area", *from, site.area_ids()));
-    }
-    if (!site.find_area(*to)) {
-      return send_error(res, 400, "to", model::unknown_name_message("loading area", *to, site.area_ids()));
-    }
-    if (!robot->empty() && !site_.config->find_robot(*robot)) {
-      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
-    }
-    if (!fleet->empty()) {
-      std::vector<std::string> fleets;
-      for (const auto& f : site_.config->fleets) fleets.push_back(f.id);
-      if (std::find(fleets.begin(), fleets.end(), *fleet) == fleets.end()) {
-        return send_error(res, 400, "fleet", model::unknown_name_message("fleet", *fleet, fleets));
-      }
-    }
-    model::OrderRequest request;
-    request.request_id = next_request_id();
-    request.pick_area = *from;
-    request.drop_area = *to;
-    request.robot_id = *robot;
-    request.fleet_id = *fleet;
-    request.priority = priority;
-    const auto reply = ask(request, res);
-    if (!reply) return;
-    if (!reply->accepted) {
-      log_->info("web: order {} -> {} refused: {}", *from, *to, reply->error);
-      return send_error(res, 409, "", reply->error);
-    }
-    log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
-    send_json(res, 201, {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}});
-  });
-
-  http.Delete(R"(/api/orders/([^/]+))", [=](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    if (id.empty() || id.size() > 18 || !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      return send_error(res, 400, "id", "order id '" + id + "' is not a number");
-    }
-    const auto reply = command(res, "cancel-order", id, "");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, reply->error.rfind("unknown order", 0) == 0 ? 404 : 409, "", reply->error);
-    ok(res, *reply, {{"order_id", std::stoll(id)}, {"state", "CANCELLED"}});
-  });
-
-  http.Post(R"(/api/obstacles/([^/]+))", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    const map::Site& site = site_.site_map->site;
-    if (!site.find_obstacle(id)) {
-      std::vector<std::string> ids;
-      for (const auto& o : site.static_obstacles) ids.push_back(o.id);
-      return send_error(res, 404, "id", model::unknown_name_message("obstacle", id, ids));
-    }
-    const auto body = body_object(req, res);
-    if (!body) return;
-    const auto enabled = bool_field(*body, "enabled", res);
-    if (!enabled) return;
-    const auto reply = command(res, "obstacle", id, *enabled ? "on" : "off");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"obstacle", id}, {"enabled", *enabled}});
-  });
-
-  http.Post("/api/map", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body) return;
-    const auto map_id = string_field(*body, "map", true, res);
-    if (!map_id) return;
-    const auto robot = string_field(*body, "robot", false, res);
-    if (!robot) return;
-    if (std::find(site_.maps.begin(), site_.maps.end(), *map_id) == site_.maps.end()) {
-      return send_error(res, 400, "map", model::unknown_name_message("map", *map_id, site_.maps));
-    }
-    if (!robot->empty() && !site_.config->find_robot(*robot)) {
-      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
-    }
-    // Empty target: every robot.
-    const auto reply = command(res, "map", *robot, *map_id);
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"map", *map_id}, {"robot", *robot}});
-  });
-
-  http.Post(R"(/api/robots/([^/]+)/(pause|resume))", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    const std::string verb = req.matches[2];
-    if (!site_.config->find_robot(id)) {
-      return send_error(res, 404, "id", model::unknown_name_message("robot", id, robot_ids()));
-    }
-    const auto reply = command(res, verb, id, "");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"robot", id}, {"paused", verb == "pause"}});
-  });
-
-  http.Post("/api/auto-orders", [=](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body) return;
-    const auto enabled = bool_field(*body, "enabled", res);
-    if (!enabled) return;
-    const auto reply = command(res, "auto-orders", "", *enabled ? "on" : "off");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"auto_orders", *enabled}});
-  });
+  api_routes();
 }
 
 }  // namespace fleet::server

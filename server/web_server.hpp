@@ -86,6 +86,7 @@ class WebServer {
  private:
   struct Frame;
   void routes();
+  void api_routes();  ///< the calls that change something (web_api.cpp)
   void pump();
   std::shared_ptr<const Frame> wait_frame(std::uint64_t after, double timeout_s);
 

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace fleet {
 
@@ -68,6 +70,15 @@ std::uint64_t parse_u64(const std::string& name, const std::string& text) {
   return *v;
 }
 
+std::string format_number(double value) {
+  if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e15) {
+    return std::to_string(static_cast<long long>(value));
+  }
+  std::ostringstream out;
+  out << std::setprecision(10) << value;
+  return out.str();
+}
+
 std::optional<double> Args::number(const std::string& name, double min, double max) {
   const auto text = value(name);
   if (!text) return std::nullopt;
@@ -75,8 +86,7 @@ std::optional<double> Args::number(const std::string& name, double min, double m
   if (!parsed) throw ArgError("flag --" + name + ": '" + *text + "' is not a number");
   const double v = *parsed;
   if (v < min || v > max) {
-    throw ArgError("flag --" + name + ": " + *text + " is outside " + std::to_string(min) + " .. " +
-                   std::to_string(max));
+    throw ArgError("flag --" + name + ": " + *text + " is outside " + format_number(min) + " .. " + format_number(max));
   }
   return v;
 }

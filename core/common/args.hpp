@@ -18,6 +18,9 @@ class ArgError : public InputError {
 // The number parsers of every Fleet program: the whole text or nothing, no leading blanks or
 // signs beyond a minus, no locale.
 
+/// A number as a person writes it in a message: 232, 0.5, 1e-06 (never 232.000000).
+std::string format_number(double value);
+
 /// The whole of `text` as a finite number; nothing when it is not one.
 std::optional<double> parse_finite(const std::string& text);
 /// The whole of `text` as an integer (a minus allowed); nothing when it is not one or out of range.

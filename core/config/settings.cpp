@@ -35,7 +35,7 @@ void Settings::set(const std::string& key, const std::string& value, const std::
       const double v = *parsed;
       if (spec->type == ValueType::kInt && v != std::floor(v)) throw bad("is not an integer");
       if (v < spec->min || v > spec->max) {
-        throw bad("is outside " + std::to_string(spec->min) + " .. " + std::to_string(spec->max) +
+        throw bad("is outside " + format_number(spec->min) + " .. " + format_number(spec->max) +
                   (spec->unit.empty() ? "" : " " + spec->unit));
       }
       break;

@@ -43,7 +43,7 @@ void sort_robots(std::vector<FreeRobot>& robots) {
   std::sort(robots.begin(), robots.end(), [](const FreeRobot& a, const FreeRobot& b) { return robot_id_less(a.id, b.id); });
 }
 
-/// Seed 000, section 3: "Orders are sent to the forklifts based on ascending order of forklift id."
+/// [Forklift thesis, section 3]: "Orders are sent to the forklifts based on ascending order of forklift id."
 class AscendingIdPolicy final : public DispatchPolicy {
  public:
   std::vector<Assignment> assign(const std::vector<const Order*>& queue, std::vector<FreeRobot> robots,

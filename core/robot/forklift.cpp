@@ -336,7 +336,7 @@ void Forklift::step() {
     }
     octomap_.insert_scan(scan);
     dynamic_.update(static_grid_.permanent_grid(), others, &octomap_.sensed());
-    // Seed 000, Fig. 5.13: a temporary obstacle goes once its area is seen free again.
+    // [Forklift thesis, Fig. 5.13]: a temporary obstacle goes once its area is seen free again.
     std::vector<std::string> cleared;
     for (const auto& [id, polygon] : static_grid_.temporaries()) {
       Vec2 centre{};

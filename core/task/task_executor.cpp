@@ -117,6 +117,8 @@ void TaskExecutor::apply(const Transition& tr) {
       waiting_for_plan_ = false;
       report(TaskReport::Kind::kAccepted, order_->pick_area_id);
       request_plan(PlanPurpose::kToPick);
+      // Taken while waiting for traffic on the way home: wait on until the road is granted.
+      if (blocked_) fire(Event::kBlocked);
       break;
     case Effect::kStartSearch:
       follower_.clear();
@@ -179,6 +181,11 @@ void TaskExecutor::apply(const Transition& tr) {
       if ((blocked_ || waiting_for_plan_) &&
           (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome)) {
         fire(Event::kBlocked);
+      } else if (machine_.state() == State::kWaiting && !blocked_ && !waiting_for_plan_) {
+        // Paused while waiting, and what it waited for (a grant, a clear road, a plan) came
+        // during the pause: set_blocked and path_received only unblock a robot in WAITING, so
+        // the resume must, or the robot stands on a road the traffic manager granted it.
+        fire(Event::kUnblocked);
       }
       break;
     case Effect::kNone:

@@ -19,6 +19,9 @@ constexpr std::array kTable = {
     // Orders: only when idle or on the way home (the thesis's IDLE_GO_HOME accepts new orders).
     TransitionRow{S::kIdle, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
     TransitionRow{S::kGoHome, kAny, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    // Waiting for traffic on the way home is still on the way home: the server offers orders to
+    // robots going home, and one that stopped for a moment would reject them.
+    TransitionRow{S::kWaiting, kOnly, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
     // The order's stages.
     TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kPathEnded, S::kSearchPallet, P::kSearching, F::kStartSearch},
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kPalletFound, S::kPickPallet, P::kPicking, F::kStartPick},

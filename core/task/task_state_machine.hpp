@@ -96,7 +96,11 @@ class TaskStateMachine {
   /// Reason of the last fault while in kError, else empty.
   const std::string& error_reason() const { return error_; }
   /// Orders are accepted only in IDLE and GO_HOME [Forklift thesis, section 6.4].
-  bool accepts_orders() const { return state_ == State::kIdle || state_ == State::kGoHome; }
+  /// Idle, on the way home, or waiting on the way home (WAITING with no order phase).
+  bool accepts_orders() const {
+    return state_ == State::kIdle || state_ == State::kGoHome ||
+           (state_ == State::kWaiting && phase_ == orders::OrderPhase::kNone);
+  }
   /// The state a PAUSED or WAITING machine returns to, if any.
   std::optional<State> suspended_state() const;
 

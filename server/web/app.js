@@ -422,9 +422,11 @@
 
     const rows = [];
     const known = new Set();
+    // Configured robots that never reported are left out: a 4-robot demo of a 12-robot
+    // configuration shows four rows, and the orders stay in view.
     for (const spec of site.robots) {
       known.add(spec.id);
-      rows.push([spec.id, frame.robots[spec.id]]);
+      if (frame.robots[spec.id]) rows.push([spec.id, frame.robots[spec.id]]);
     }
     const extra = Object.keys(frame.robots).filter((id) => !known.has(id));
     extra.sort((a, b) => a.localeCompare(b, undefined, { numeric: true }));

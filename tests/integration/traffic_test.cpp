@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <future>
+#include <map>
 #include <thread>
 
 #include "cli/client.hpp"
@@ -15,6 +16,31 @@ using namespace fleet;
 using namespace fleet::testing;
 using namespace std::chrono_literals;
 
+namespace {
+
+/// One order per robot, each across the table: right to left, left to right, bottom to top,
+/// top to bottom, all at once, so that the four routes meet in the middle and on the ring.
+/// The ids of the orders placed; fewer than the robots when one was refused (a test failure).
+std::vector<std::int64_t> send_crossing_orders(cli::FleetClient& client, const std::vector<std::string>& robots,
+                                               const std::string& request_prefix) {
+  const std::vector<std::pair<std::string, std::string>> trips{{"A3", "A8"}, {"A7", "A4"}, {"A1", "A6"}, {"A5", "A2"}};
+  std::vector<std::int64_t> ids;
+  for (std::size_t i = 0; i < trips.size() && i < robots.size(); ++i) {
+    model::OrderRequest request;
+    request.request_id = request_prefix + std::to_string(i);
+    request.pick_area = trips[i].first;
+    request.drop_area = trips[i].second;
+    request.robot_id = robots[i];
+    const auto reply = client.request_order(request, 5000ms);
+    EXPECT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
+    if (!reply || !reply->accepted) break;
+    ids.push_back(reply->order_id);
+  }
+  return ids;
+}
+
+}  // namespace
+
 TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
   FleetHarness fleet(74, 10.0);
   fleet.start_server();
@@ -23,23 +49,11 @@ TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
   ASSERT_TRUE(fleet.wait_for_robots(robots));
   EXPECT_NE(fleet.log_of("fleet-server").find("traffic control on"), std::string::npos);
 
-  // Every order crosses the table: right to left, left to right, bottom to top, top to bottom,
-  // all at once, so the four routes meet in the middle and on the ring.
   cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
   ASSERT_TRUE(client.find_server(5000ms));
   dds::Reader<model::SimTruth> truths(client.participant(), dds::qos::live_state());
-  const std::vector<std::pair<std::string, std::string>> trips{{"A3", "A8"}, {"A7", "A4"}, {"A1", "A6"}, {"A5", "A2"}};
-  std::vector<std::int64_t> ids;
-  for (std::size_t i = 0; i < trips.size(); ++i) {
-    model::OrderRequest request;
-    request.request_id = "traffic-test-" + std::to_string(i);
-    request.pick_area = trips[i].first;
-    request.drop_area = trips[i].second;
-    request.robot_id = robots[i];
-    const auto reply = client.request_order(request, 5000ms);
-    ASSERT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
-    ids.push_back(reply->order_id);
-  }
+  const std::vector<std::int64_t> ids = send_crossing_orders(client, robots, "traffic-test-");
+  ASSERT_EQ(ids.size(), robots.size());
 
   monitor::CollisionMonitor collisions;
   std::map<std::int64_t, std::string> final_state;
@@ -58,9 +72,67 @@ TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
                                           << fleet.log_of("fleet-server");
     EXPECT_EQ(final_state[id], "DONE") << "order " << id;
   }
-  EXPECT_TRUE(collisions.collisions().empty()) << collisions.collisions().size() << " collisions, the first between "
-                                               << collisions.collisions().front().robot_a << " and "
-                                               << collisions.collisions().front().robot_b;
+  EXPECT_TRUE(collisions.collisions().empty())
+      << collisions.collisions().size() << " collisions, the first between " << collisions.collisions().front().robot_a
+      << " and " << collisions.collisions().front().robot_b;
+}
+
+// Regression: a robot paused while it waited for traffic and resumed after the road was granted
+// to it stood in WAITING for good, and the robots behind it waited on that grant.
+TEST(Traffic, ARobotPausedWhileItWaitsForTrafficDrivesOnWhenResumedAndEveryOrderFinishes) {
+  FleetHarness fleet(89, 10.0);
+  fleet.start_server();
+  const std::vector<std::string> robots{"fl1", "fl2", "fl3", "fl4"};
+  for (const auto& r : robots) fleet.start_agent(r);
+  ASSERT_TRUE(fleet.wait_for_robots(robots));
+  cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
+  ASSERT_TRUE(client.find_server(5000ms));
+  dds::Reader<model::RobotState> states(client.participant(), dds::qos::live_state());
+  const std::vector<std::int64_t> ids = send_crossing_orders(client, robots, "pause-test-");
+  ASSERT_EQ(ids.size(), robots.size());
+
+  auto control = [&](const std::string& verb, const std::string& robot) {
+    model::Command command;
+    command.request_id = "pause-test-" + verb + "-" + robot;
+    command.verb = verb;
+    command.target = robot;
+    const auto reply = client.send_command(command, 5000ms);
+    return reply && reply->accepted;
+  };
+  // The first robot seen waiting for traffic is paused for 60 s sim, long enough for the road
+  // it waits for to be granted meanwhile, then resumed.
+  std::string paused;
+  std::map<std::int64_t, std::string> final_state;
+  auto paused_at = std::chrono::steady_clock::now();
+  bool resumed = false;
+  const auto deadline = std::chrono::steady_clock::now() + 170s;
+  while (final_state.size() < ids.size() && std::chrono::steady_clock::now() < deadline) {
+    states.take_data([&](model::RobotState&& state) {
+      if (paused.empty() && state.task_state == "WAITING" && state.order_id != 0) {
+        ASSERT_TRUE(control("pause", state.robot_id));
+        paused = state.robot_id;
+        paused_at = std::chrono::steady_clock::now();
+      }
+    });
+    if (!paused.empty() && !resumed && std::chrono::steady_clock::now() - paused_at > 6s) {
+      ASSERT_TRUE(control("resume", paused));
+      resumed = true;
+    }
+    for (const auto& info : client.take_order_updates()) {
+      if (info.state == "DONE" || info.state == "FAILED" || info.state == "CANCELLED") {
+        final_state[info.order_id] = info.state + (info.reason.empty() ? "" : ": " + info.reason);
+      }
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_FALSE(paused.empty()) << "no robot waited for traffic; server log:\n" << fleet.log_of("fleet-server");
+  EXPECT_TRUE(resumed);
+  for (std::int64_t id : ids) {
+    ASSERT_TRUE(final_state.contains(id)) << "order " << id << " did not end within 170 s (1700 s sim); " << paused
+                                          << " was paused while waiting; its log:\n"
+                                          << fleet.log_of("fleet-agent-" + paused);
+    EXPECT_EQ(final_state[id], "DONE") << "order " << id;
+  }
 }
 
 TEST(MapSwitch, EveryAgentGetsTheNewMapReplansOnItAndFinishesItsOrder) {
@@ -107,7 +179,8 @@ TEST(MapSwitch, EveryAgentGetsTheNewMapReplansOnItAndFinishesItsOrder) {
               std::string::npos)
         << r;
   }
-  const auto done = client.follow_order(reply->order_id, [](const model::OrderInfo&) {}, 150s);
+  const auto done = client.follow_order(
+      reply->order_id, [](const model::OrderInfo&) {}, 150s);
   ASSERT_TRUE(done);
   EXPECT_EQ(done->state, "DONE") << done->reason;
 }

@@ -99,7 +99,13 @@ async function main() {
     await page.goto(`${BASE}/?token=${TOKEN}`);
     await until('both robots drawn', () => page.evaluate(() => window.fleetView && window.fleetView.drawn.fl1 && window.fleetView.drawn.fl2), 20000);
     check((await page.title()).includes('table_a'), 'page title names the site');
-    check(await page.locator('#robots tbody tr').count() >= 2, 'robot list has the robots');
+    // The list shows the robots that have reported (fl1 and fl2 of the twelve configured), as
+    // the stream brings them.
+    const rows = await until('robot list rows', async () => {
+      const n = await page.locator('#robots tbody tr').count();
+      return n >= 2 ? n : 0;
+    }, 10000).catch(() => 0);
+    check(rows === 2, `robot list has the two robots that run (${rows} rows)`);
     check((await page.locator('#connection').textContent()) === 'live', 'stream is live');
 
     const canvasBox = await page.locator('#map').boundingBox();

@@ -101,6 +101,17 @@ TEST(OrdersCsv, ReadsRowsSkippingHeaderCommentsAndBlankLines) {
   EXPECT_DOUBLE_EQ(file.rows[1].delay_s, 1.5);
 }
 
+// Regression: a file saved by a spreadsheet starts with a UTF-8 byte order mark, which made the
+// header an unknown row.
+TEST(OrdersCsv, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  const auto file = parse(
+      "\xEF\xBB\xBF"
+      "from,to,priority,delay_s\nA1,A2,0,0\n");
+  ASSERT_TRUE(file.problems.empty()) << file.problems[0].message;
+  ASSERT_EQ(file.rows.size(), 1u);
+  EXPECT_EQ(file.rows[0].pick_area, "A1");
+}
+
 TEST(OrdersCsv, FindsEveryBadRowWithItsLine) {
   const auto file = parse("A1,A2,0,0\nA1,A2,0\nA1,A2,high,0\nA1,A2,0,-1\nA3,A3,0,0\nA1,A2,0,soon\nA1,A2,5000,0\n");
   ASSERT_EQ(file.problems.size(), 6u);

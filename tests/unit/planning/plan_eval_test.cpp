@@ -80,7 +80,7 @@ TEST(PlanEval, WarehouseGridAStarSucceedsAtLeastAsOftenAsOmpl) {
   EXPECT_NE(r.find("ompl_bitstar"), nullptr);
 }
 
-// Seed 000, Fig. 5.11 on the real table: switching on obstacle O2 in the middle of the table
+// [Forklift thesis, Fig. 5.11] on the real table: switching on obstacle O2 in the middle of the table
 // either re-routes or stops short of it, never through it.
 TEST(PlanEval, TableAObstaclesNeverCrossed) {
   map::SiteMap s = load("table_a");

@@ -96,6 +96,7 @@ TEST(TaskStateMachine, OrdersAcceptedOnlyInIdleAndGoHome) {
     TaskStateMachine m = machine_in(s);
     const OrderPhase phase_before = m.phase();
     const Transition tr = m.handle(Event::kOrder);
+    // machine_in(kWaiting) waits on its way to a pick: no order then.
     const bool should = s == State::kIdle || s == State::kGoHome;
     EXPECT_EQ(tr.accepted, should) << to_string(s);
     EXPECT_EQ(m.accepts_orders() || tr.accepted, should) << to_string(s);
@@ -105,6 +106,20 @@ TEST(TaskStateMachine, OrdersAcceptedOnlyInIdleAndGoHome) {
       EXPECT_NE(tr.reason.find(to_string(s)), std::string::npos) << tr.reason;
     }
   }
+}
+
+// Regression: a robot waiting for traffic on its way home rejected the orders the server offered
+// it as a robot going home ("order not accepted in WAITING"), several a minute in a demo.
+TEST(TaskStateMachine, WaitingOnTheWayHomeAcceptsAnOrderWaitingInOneDoesNot) {
+  TaskStateMachine going_home = machine_in(State::kGoHome);
+  expect(going_home, Event::kBlocked, State::kWaiting, OrderPhase::kNone, Effect::kSuspend);
+  EXPECT_TRUE(going_home.accepts_orders());
+  expect(going_home, Event::kOrder, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
+
+  TaskStateMachine on_an_order = machine_in(State::kWaiting);
+  ASSERT_EQ(on_an_order.phase(), OrderPhase::kToPick);
+  EXPECT_FALSE(on_an_order.accepts_orders());
+  EXPECT_FALSE(on_an_order.handle(Event::kOrder).accepted);
 }
 
 TEST(TaskStateMachine, PauseAndResumeRestoreStateAndPhase) {

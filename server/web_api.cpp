@@ -1,0 +1,236 @@
+// The web API's calls that change something: orders, obstacles, maps, robots, automatic
+// orders. Each needs the token, checks its input as fleetctl does (one check, in core/orders for
+// orders) and hands the request to the server loop through the bridge.
+
+#include <httplib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <regex>
+
+#include "model/names.hpp"
+#include "orders/order_request_check.hpp"
+#include "server/web_http.hpp"
+#include "server/web_server.hpp"
+
+namespace fleet::server {
+
+using nlohmann::json;
+
+void WebServer::api_routes() {
+  using httplib::Request;
+  using httplib::Response;
+  httplib::Server& http = *http_;
+
+  // A POST or DELETE that announces no body (curl -X POST without -d) would keep cpp-httplib
+  // reading until the client hangs up. Such a request is routed here, before any body is read,
+  // and answered as if its body were empty: at once, with the handler's own answer.
+  struct RouteWithoutBody {
+    std::string method;
+    std::regex pattern;
+    httplib::Server::Handler handler;
+  };
+  auto without_body = std::make_shared<std::vector<RouteWithoutBody>>();
+  auto route = [&http, without_body](const std::string& method, const std::string& pattern,
+                                     httplib::Server::Handler handler) {
+    if (method == "POST") {
+      http.Post(pattern, handler);
+    } else {
+      http.Delete(pattern, handler);
+    }
+    without_body->push_back({method, std::regex(pattern), std::move(handler)});
+  };
+  http.set_pre_routing_handler([without_body](const Request& req, Response& res) {
+    const bool takes_body =
+        req.method == "POST" || req.method == "DELETE" || req.method == "PUT" || req.method == "PATCH";
+    if (!takes_body || announces_body(req)) return httplib::Server::HandlerResponse::Unhandled;
+    Request bodiless = req;
+    for (const auto& r : *without_body) {
+      if (r.method == bodiless.method && std::regex_match(bodiless.path, bodiless.matches, r.pattern)) {
+        r.handler(bodiless, res);
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
+    send_error(res, 404, "", "no such resource");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+
+  // ---- changing: every call needs the token ----
+  auto authorized = [this](const Request& req, Response& res) {
+    std::string given;
+    const std::string header = req.get_header_value("Authorization");
+    if (header.rfind("Bearer ", 0) == 0) {
+      given = header.substr(7);
+    } else if (req.has_param("token")) {
+      given = req.get_param_value("token");
+    }
+    if (given.empty()) {
+      res.set_header("WWW-Authenticate", "Bearer");
+      send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
+      return false;
+    }
+    if (!same_token(given, options_.token)) {
+      send_error(res, 403, "token", "wrong token");
+      return false;
+    }
+    return true;
+  };
+  // Hands a request to the server loop and waits for its answer (the same execute() as fleetctl's
+  // requests over DDS). A request that times out stays queued and may still be carried out; the
+  // 503 says only that no answer came in time.
+  auto ask = [this](WebRequest request, Response& res) -> std::optional<model::RequestReply> {
+    auto reply = bridge_.submit(std::move(request));
+    if (reply.wait_for(std::chrono::duration<double>(options_.reply_timeout_s)) != std::future_status::ready) {
+      send_error(
+          res, 503, "",
+          "the server loop did not answer within " + std::to_string(static_cast<int>(options_.reply_timeout_s)) + " s");
+      return std::nullopt;
+    }
+    return reply.get();
+  };
+  auto next_request_id = [this] {
+    return "web-" + std::to_string(::getpid()) + "-" + std::to_string(++request_counter_);
+  };
+  auto robot_ids = [this] {
+    std::vector<std::string> ids;
+    for (const auto& [fleet, robot] : site_.config->all_robots()) ids.push_back(robot->id);
+    return ids;
+  };
+  auto command = [this, ask, next_request_id](Response& res, std::string verb, std::string target,
+                                              std::string value) -> std::optional<model::RequestReply> {
+    model::Command c;
+    c.request_id = next_request_id();
+    c.verb = std::move(verb);
+    c.target = std::move(target);
+    c.value = std::move(value);
+    log_->info("web: {} {} {} ({})", c.verb, c.target, c.value, c.request_id);
+    return ask(c, res);
+  };
+  auto ok = [](Response& res, const model::RequestReply& reply, json extra = json::object()) {
+    extra["accepted"] = true;
+    extra["request_id"] = reply.request_id;
+    send_json(res, 200, extra);
+  };
+
+  route("POST", "/api/orders", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body || !only_fields(*body, {"from", "to", "robot", "fleet", "priority"}, res)) return;
+    const auto from = string_field(*body, "from", true, res);
+    if (!from) return;
+    const auto to = string_field(*body, "to", true, res);
+    if (!to) return;
+    const auto robot = string_field(*body, "robot", false, res);
+    if (!robot) return;
+    const auto fleet = string_field(*body, "fleet", false, res);
+    if (!fleet) return;
+    long priority = 0;
+    if (const auto it = body->find("priority"); it != body->end()) {
+      if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
+      priority = it->get<long>();
+    }
+    orders::KnownNames names;
+    names.areas = site_.site_map->site.area_ids();
+    names.robots = robot_ids();
+    for (const auto& f : site_.config->fleets) names.fleets.push_back(f.id);
+    if (const auto problem = orders::check_order_request({*from, *to, *robot, *fleet, priority}, names)) {
+      return send_error(res, 400, problem->field, problem->message);
+    }
+    model::OrderRequest request;
+    request.request_id = next_request_id();
+    request.pick_area = *from;
+    request.drop_area = *to;
+    request.robot_id = *robot;
+    request.fleet_id = *fleet;
+    request.priority = static_cast<int>(priority);
+    const auto reply = ask(request, res);
+    if (!reply) return;
+    if (!reply->accepted) {
+      log_->info("web: order {} -> {} refused: {}", *from, *to, reply->error);
+      return send_error(res, 409, "", reply->error);
+    }
+    log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
+    send_json(res, 201, {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}});
+  });
+
+  route("DELETE", R"(/api/orders/([^/]+))", [=](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    if (id.empty() || id.size() > 18 ||
+        !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      return send_error(res, 400, "id", "order id '" + id + "' is not a number");
+    }
+    const auto reply = command(res, "cancel-order", id, "");
+    if (!reply) return;
+    if (!reply->accepted)
+      return send_error(res, reply->error.rfind("unknown order", 0) == 0 ? 404 : 409, "", reply->error);
+    ok(res, *reply, {{"order_id", std::stoll(id)}, {"state", "CANCELLED"}});
+  });
+
+  route("POST", R"(/api/obstacles/([^/]+))", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    const map::Site& site = site_.site_map->site;
+    if (!site.find_obstacle(id)) {
+      std::vector<std::string> ids;
+      for (const auto& o : site.static_obstacles) ids.push_back(o.id);
+      return send_error(res, 404, "id", model::unknown_name_message("obstacle", id, ids));
+    }
+    const auto body = body_object(req, res);
+    if (!body || !only_fields(*body, {"enabled"}, res)) return;
+    const auto enabled = bool_field(*body, "enabled", res);
+    if (!enabled) return;
+    const auto reply = command(res, "obstacle", id, *enabled ? "on" : "off");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"obstacle", id}, {"enabled", *enabled}});
+  });
+
+  route("POST", "/api/map", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body || !only_fields(*body, {"map", "robot"}, res)) return;
+    const auto map_id = string_field(*body, "map", true, res);
+    if (!map_id) return;
+    const auto robot = string_field(*body, "robot", false, res);
+    if (!robot) return;
+    if (std::find(site_.maps.begin(), site_.maps.end(), *map_id) == site_.maps.end()) {
+      return send_error(res, 400, "map", model::unknown_name_message("map", *map_id, site_.maps));
+    }
+    if (!robot->empty() && !site_.config->find_robot(*robot)) {
+      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
+    }
+    // Empty target: every robot.
+    const auto reply = command(res, "map", *robot, *map_id);
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"map", *map_id}, {"robot", *robot}});
+  });
+
+  route("POST", R"(/api/robots/([^/]+)/(pause|resume))", [=, this](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const std::string id = req.matches[1];
+    const std::string verb = req.matches[2];
+    if (!site_.config->find_robot(id)) {
+      return send_error(res, 404, "id", model::unknown_name_message("robot", id, robot_ids()));
+    }
+    const auto reply = command(res, verb, id, "");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"robot", id}, {"paused", verb == "pause"}});
+  });
+
+  route("POST", "/api/auto-orders", [=](const Request& req, Response& res) {
+    if (!authorized(req, res)) return;
+    const auto body = body_object(req, res);
+    if (!body || !only_fields(*body, {"enabled"}, res)) return;
+    const auto enabled = bool_field(*body, "enabled", res);
+    if (!enabled) return;
+    const auto reply = command(res, "auto-orders", "", *enabled ? "on" : "off");
+    if (!reply) return;
+    if (!reply->accepted) return send_error(res, 409, "", reply->error);
+    ok(res, *reply, {{"auto_orders", *enabled}});
+  });
+}
+
+}  // namespace fleet::server

@@ -1,0 +1,87 @@
+#include "server/web_http.hpp"
+
+#include <algorithm>
+
+#include "model/names.hpp"
+
+namespace fleet::server {
+
+using nlohmann::json;
+
+bool same_token(const std::string& given, const std::string& expected) {
+  unsigned char diff = given.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    diff |= static_cast<unsigned char>(given[i] ^ expected[i % std::max<std::size_t>(expected.size(), 1)]);
+  }
+  return diff == 0;
+}
+
+void send_json(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& field, const std::string& message) {
+  json body{{"error", field.empty() ? message : field + ": " + message}};
+  if (!field.empty()) body["field"] = field;
+  send_json(res, status, body);
+}
+
+std::optional<json> body_object(const httplib::Request& req, httplib::Response& res) {
+  if (req.body.empty()) return json::object();
+  json body = json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    send_error(res, 400, "body", "not a JSON object");
+    return std::nullopt;
+  }
+  return body;
+}
+
+std::optional<std::string> string_field(const json& body, const char* name, bool required, httplib::Response& res) {
+  const auto it = body.find(name);
+  if (it == body.end() || it->is_null()) {
+    if (required) {
+      send_error(res, 400, name, "missing");
+      return std::nullopt;
+    }
+    return std::string();
+  }
+  if (!it->is_string()) {
+    send_error(res, 400, name, "must be a string, got " + it->dump());
+    return std::nullopt;
+  }
+  if (required && it->get<std::string>().empty()) {
+    send_error(res, 400, name, "must not be empty");
+    return std::nullopt;
+  }
+  return it->get<std::string>();
+}
+
+std::optional<bool> bool_field(const json& body, const char* name, httplib::Response& res) {
+  const auto it = body.find(name);
+  if (it == body.end()) {
+    send_error(res, 400, name, "missing (true or false)");
+    return std::nullopt;
+  }
+  if (!it->is_boolean()) {
+    send_error(res, 400, name, "must be true or false, got " + it->dump());
+    return std::nullopt;
+  }
+  return it->get<bool>();
+}
+
+bool only_fields(const json& body, std::initializer_list<const char*> allowed, httplib::Response& res) {
+  for (const auto& [key, value] : body.items()) {
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* name) { return key == name; })) {
+      send_error(res, 400, key, "unknown field; the fields are " + model::join({allowed.begin(), allowed.end()}));
+      return false;
+    }
+  }
+  return true;
+}
+
+bool announces_body(const httplib::Request& req) {
+  return req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
+}
+
+}  // namespace fleet::server
