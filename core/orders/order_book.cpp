@@ -25,13 +25,18 @@ TransitionResult OrderBook::transition(std::int64_t id, OrderStatus to, double n
   if (!is_legal_transition(order.status, to)) return TransitionResult::kIllegal;
   order.status = to;
   order.updated_sim = now_sim;
-  if (!reason.empty()) order.reason = reason;
+  // The reason of this state, not of an earlier one: a re-queued order that is assigned again
+  // no longer says why it was re-queued (the history keeps every reason).
+  order.reason = reason;
   if (to == OrderStatus::kQueued) {
     order.phase = OrderPhase::kNone;
     if (!order.robot_requested) order.robot_id.clear();
   }
   if (is_final(to)) order.finished_sim = now_sim;
   order.history.push_back({now_sim, to, order.phase, order.robot_id, reason, 0.0, 0.0});
+  // A done order is in no phase; the history says it ended DROPPING. FAILED and CANCELLED keep
+  // the phase they stopped in, which says where.
+  if (to == OrderStatus::kDone) order.phase = OrderPhase::kNone;
   return TransitionResult::kApplied;
 }
 

@@ -26,6 +26,11 @@
   const canvas = el('map');
   const ctx = canvas.getContext('2d');
   const staticLayer = document.createElement('canvas');
+  // A label right of what it names, or left of it where it would run off the map's east edge.
+  function label(c, text, x, y, leftX) {
+    const w = c.measureText(text).width;
+    c.fillText(text, x + w > view.width - 2 ? leftX - w : x, y);
+  }
 
   let site = null;
   let frame = { globals: {}, robots: {}, orders: {}, obstacles: {}, pallets: {} };
@@ -137,7 +142,7 @@
       c.lineWidth = 1.2;
       c.strokeRect(X(h.x) - s, Y(h.y) - s, 2 * s, 2 * s);
       c.fillStyle = '#4a6fa5';
-      c.fillText(h.id, X(h.x) + s + 2, Y(h.y) + s);
+      label(c, h.id, X(h.x) + s + 2, Y(h.y) + s, X(h.x) - s - 2);
     }
     for (const a of site.anchors) {
       const px = X(a.x), py = Y(a.y);
@@ -148,7 +153,7 @@
       c.lineTo(px - 6, py + 5);
       c.closePath();
       c.fill();
-      c.fillText(a.id, px + 8, py + 4);
+      label(c, a.id, px + 8, py + 4, px - 8);
     }
   }
 
@@ -190,7 +195,7 @@
         ctx.stroke();
       }
       ctx.fillStyle = '#3d2b16';
-      ctx.fillText(a.id, px + size / 2 + 3, py - size / 2 - 2);
+      label(ctx, a.id, px + size / 2 + 3, py - size / 2 - 2, px - size / 2 - 3);
     }
   }
 
@@ -364,7 +369,7 @@
       const half = Math.max(length, width) * view.scale * 0.6 + 4;
       ctx.font = 'bold 12px sans-serif';
       ctx.fillStyle = lost ? '#6b7785' : '#10161c';
-      ctx.fillText(id, px + half, py - half + 6);
+      label(ctx, id, px + half, py - half + 6, px - half);
       ctx.font = '11px sans-serif';
       let note = '';
       if (lost) note = `lost ${fmtAge(r.age)} ago`;
@@ -372,10 +377,11 @@
       else if (r.state === 'WAITING' || r.state === 'PAUSED' || r.state === 'ERROR') note = r.detail || r.state.toLowerCase();
       if (note) {
         const w = ctx.measureText(note).width;
+        const nx = px + half + w > view.width - 2 ? px - half - w : px + half;
         ctx.fillStyle = 'rgba(255,255,255,0.85)';
-        ctx.fillRect(px + half - 2, py - half + 9, w + 4, 14);
+        ctx.fillRect(nx - 2, py - half + 9, w + 4, 14);
         ctx.fillStyle = lost ? '#6b7785' : r.state === 'ERROR' ? '#b00' : '#7a5b00';
-        ctx.fillText(note, px + half, py - half + 20);
+        ctx.fillText(note, nx, py - half + 20);
       }
     }
   }

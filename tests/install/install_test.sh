@@ -61,7 +61,9 @@ for f in ./usr/bin/fleet-server ./usr/bin/fleetctl ./usr/share/fleet/config/flee
          ./usr/share/fleet/maps/warehouse.xodr ./usr/lib/systemd/system/fleet-server.service; do
   grep -q " $f\$" <<<"$contents" || fail "the package holds no $f"
 done
-dpkg-deb --ctrl-tarfile "$deb" | tar -t | grep -q '^./postinst$' || fail "the package has no postinst"
-dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/fleet-server.service |
-  grep -qx 'ExecStart=/usr/bin/fleet-server' || fail "the packaged unit does not start /usr/bin/fleet-server"
+# Read whole before grep: with pipefail, grep -q leaving early fails the pipe on tar's SIGPIPE.
+control=$(dpkg-deb --ctrl-tarfile "$deb" | tar -t)
+grep -q '^./postinst$' <<<"$control" || fail "the package has no postinst: $control"
+unit=$(dpkg-deb --fsys-tarfile "$deb" | tar -xO ./usr/lib/systemd/system/fleet-server.service)
+grep -qx 'ExecStart=/usr/bin/fleet-server' <<<"$unit" || fail "the packaged unit does not start /usr/bin/fleet-server"
 echo "install_test: ok"

@@ -74,6 +74,24 @@ TEST(OrderBook, RequeueClearsRobotAndPhase) {
   EXPECT_EQ(book.open_order_of("fl2"), nullptr);
 }
 
+// Regression: a DONE order showed phase DROPPING, and the reason of its re-queueing stuck to it
+// through its second assignment to the end.
+TEST(OrderBook, ADoneOrderIsInNoPhaseAndCarriesOnlyTheReasonOfItsCurrentState) {
+  OrderBook book;
+  const auto id = book.create(draft("A1", "A2"), 0.0).id;
+  book.assign(id, "fl2", 1.0);
+  book.requeue(id, 2.0, "robot fl2 lost");
+  book.assign(id, "fl3", 3.0);
+  EXPECT_EQ(book.find(id)->reason, "");
+  book.set_phase(id, OrderPhase::kDropping, 4.0);
+  EXPECT_EQ(book.transition(id, OrderStatus::kDone, 5.0), TransitionResult::kApplied);
+  const Order& done = *book.find(id);
+  EXPECT_EQ(done.phase, OrderPhase::kNone);
+  EXPECT_EQ(done.reason, "");
+  EXPECT_EQ(done.history.back().phase, OrderPhase::kDropping) << "the history says where it ended";
+  EXPECT_EQ(done.history[2].reason, "robot fl2 lost") << "and keeps every reason";
+}
+
 TEST(OrderBook, QueueIsByPriorityThenAge) {
   OrderBook book;
   const auto low = book.create(draft("A1", "A2", 0), 0.0).id;
