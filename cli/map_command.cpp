@@ -20,8 +20,8 @@ namespace fleet::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: fleetctl map check SITE.yaml|NAME ...\n"
-    "       fleetctl map sample FILE.xodr [--step METRES]\n"
+    "usage: fleetctl map check SITE.yaml|NAME ... [--strict]\n"
+    "       fleetctl map sample FILE.xodr [--step METRES] [--max-rows N] [--tolerance METRES] [--strict]\n"
     "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points] [--tracks TRACKS.csv [--since S]]\n";
 
 /// A site given by path, or by name as maps/NAME.yaml under the project root (InputError naming
@@ -44,7 +44,25 @@ std::string json_escape(const std::string& s) {
   return out;
 }
 
-int check(const CommandArgs& args, const std::vector<std::string>& sites, std::ostream& out, std::ostream& err) {
+/// Prints a road network's warnings; with --strict they make it unusable.
+bool warnings_pass(const std::vector<std::string>& warnings, bool strict, std::ostream& err) {
+  for (const std::string& w : warnings) err << (strict ? "error (--strict): " : "warning: ") << w << "\n";
+  return !strict || warnings.empty();
+}
+
+int check(const CommandArgs& args, const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
+  std::vector<std::string> sites;
+  bool strict = false;
+  for (const std::string& w : words) {
+    if (w == "--strict") {
+      strict = true;
+    } else if (w.starts_with("--")) {
+      err << "map check: unexpected argument '" << w << "'\n" << kUsage;
+      return kExitBadInput;
+    } else {
+      sites.push_back(w);
+    }
+  }
   if (sites.empty()) {
     err << kUsage;
     return kExitBadInput;
@@ -52,6 +70,13 @@ int check(const CommandArgs& args, const std::vector<std::string>& sites, std::o
   int code = kExitOk;
   std::string json = "[";
   for (const std::string& name : sites) {
+    if (name.ends_with(".xodr")) {
+      err << "map check: " << name << " is an OpenDRIVE road network; map check reads a site file (SITE.yaml or a "
+          << "site name), which names its network under 'opendrive'. To read the network alone: fleetctl map sample "
+          << name << "\n";
+      code = kExitBadInput;
+      continue;
+    }
     const std::string path = resolve_site(args, name);
     bool usable = false;
     try {
@@ -59,7 +84,7 @@ int check(const CommandArgs& args, const std::vector<std::string>& sites, std::o
       const map::SiteReport report = map::check_site_map(site);
       out << map::format_report(report);
       for (const std::string& p : report.problems) err << p << "\n";
-      usable = report.usable();
+      usable = warnings_pass(site.network.warnings, strict, err) && report.usable();
       if (json.size() > 1) json += ",";
       json += "{\"site\":\"" + json_escape(path) + "\",\"usable\":" + (usable ? "true" : "false") +
               ",\"roads\":" + std::to_string(report.roads) + ",\"points\":" + std::to_string(report.points) +
@@ -79,6 +104,9 @@ int check(const CommandArgs& args, const std::vector<std::string>& sites, std::o
 int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
   std::string file;
   double step = 1.0;
+  std::size_t max_rows = map::kDefaultMaxSamples;
+  double tolerance = map::kDefaultGeometryTolerance;
+  bool strict = false;
   for (std::size_t i = 0; i < rest.size(); ++i) {
     if (rest[i] == "--step" && i + 1 < rest.size()) {
       const auto value = parse_finite(rest[++i]);
@@ -87,6 +115,22 @@ int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::o
         return kExitBadInput;
       }
       step = *value;
+    } else if (rest[i] == "--max-rows" && i + 1 < rest.size()) {
+      const auto value = parse_u64(rest[++i]);
+      if (!value || *value == 0) {
+        err << "map sample: --max-rows '" << rest[i] << "' is not a positive whole number\n";
+        return kExitBadInput;
+      }
+      max_rows = static_cast<std::size_t>(*value);
+    } else if (rest[i] == "--tolerance" && i + 1 < rest.size()) {
+      const auto value = parse_finite(rest[++i]);
+      if (!value || *value < 0.0) {
+        err << "map sample: --tolerance '" << rest[i] << "' is not a non-negative number of metres\n";
+        return kExitBadInput;
+      }
+      tolerance = *value;
+    } else if (rest[i] == "--strict") {
+      strict = true;
     } else if (file.empty() && !rest[i].starts_with("--")) {
       file = rest[i];
     } else {
@@ -99,17 +143,29 @@ int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::o
     return kExitBadInput;
   }
   try {
-    const auto samples = map::sample_reference_lines(map::load_opendrive(file), step);
-    if (!args.json) {
-      map::write_samples_csv(samples, out);
-      return kExitOk;
-    }
-    nlohmann::json rows = nlohmann::json::array();
-    for (const auto& sample : samples) {
-      rows.push_back(
-          {{"road_id", sample.road_id}, {"s", sample.s}, {"x", sample.x}, {"y", sample.y}, {"hdg", sample.hdg}});
-    }
-    out << rows.dump() << "\n";
+    const map::RoadNetwork network = map::load_opendrive(file, tolerance);
+    if (!warnings_pass(network.warnings, strict, err)) return kExitBadInput;
+    // Rows are written as they are made: memory does not grow with the roads' length.
+    // The header goes out with the first row: a bad step or too many rows print nothing.
+    bool first = true;
+    map::for_each_reference_sample(network, step, max_rows, [&](const map::ReferenceSample& sample) {
+      if (!args.json) {
+        if (first) map::write_samples_csv_header(out);
+        first = false;
+        map::write_sample_csv(sample, out);
+        return;
+      }
+      out << (first ? "[" : ",")
+          << nlohmann::json{{"road_id", sample.road_id},
+                            {"s", sample.s},
+                            {"x", sample.x},
+                            {"y", sample.y},
+                            {"hdg", sample.hdg}}
+                 .dump();
+      first = false;
+    });
+    if (args.json) out << (first ? "[" : "") << "]\n";
+    if (!args.json && first) map::write_samples_csv_header(out);
   } catch (const map::MapError& e) {
     err << e.what() << "\n";
     return kExitBadInput;

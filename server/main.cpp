@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
     // server loop and the web view).
     options.maps = map::site_revisions(options.site);
     auto log = make_logger("fleet-server", "", level);
+    for (const std::string& warning : site_map->network.warnings) log->warn("road network: {}", warning);
 
     server::WebBridge bridge;
     // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.

@@ -115,21 +115,33 @@ struct RoadNetwork {
   Header header;
   std::vector<Road> roads;
   std::vector<Junction> junctions;
+  /// What was read in spite of the standard ("file:line: <element> attribute: what"): links to
+  /// roads or junctions that do not exist (dropped), a road length that disagrees with its
+  /// geometry, pRange spelled in another case.
+  std::vector<std::string> warnings;
 
   const Road* find_road(const std::string& id) const;
   const Junction* find_junction(const std::string& id) const;
   std::size_t road_index(const std::string& id) const;  ///< roads.size() when absent
 };
 
+/// How far consecutive geometries may miss each other in s, and a road's length its geometry's
+/// end, before the file is refused (a gap or an overlap) or warned about (the length).
+inline constexpr double kDefaultGeometryTolerance = 1e-3;
+
 /// Parses OpenDRIVE text; `file` names it in messages. Throws MapError ("file:line: <element>
 /// attribute 'name': what") on malformed XML, missing or non-numeric attributes, NaN or infinite
-/// values, negative lengths, unknown geometry elements and links to roads or junctions that do
-/// not exist. Lane <border> records are refused rather than ignored, because a lane placed
-/// without its border would be silently wrong.
-RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file);
+/// values, negative lengths, unknown geometry elements, and consecutive geometries whose s leave
+/// a gap or an overlap beyond `tolerance_m`. Lane <border> records are refused rather than
+/// ignored, because a lane placed without its border would be silently wrong. What it reads in
+/// spite of the standard it says in RoadNetwork::warnings: links to roads or junctions that do
+/// not exist (dropped), a road length that disagrees with its geometry (the road ends where its
+/// geometry ends), pRange in another case.
+RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file,
+                            double tolerance_m = kDefaultGeometryTolerance);
 
 /// Reads and parses a .xodr file.
-RoadNetwork load_opendrive(const std::string& path);
+RoadNetwork load_opendrive(const std::string& path, double tolerance_m = kDefaultGeometryTolerance);
 
 // ---- evaluation -------------------------------------------------------------------------------
 

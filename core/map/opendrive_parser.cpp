@@ -2,12 +2,14 @@
 // plan-view geometry and lanes out of the XML and refuses anything it cannot place exactly.
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <pugixml.hpp>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "map/opendrive.hpp"
 #include "map/site.hpp"
@@ -18,7 +20,7 @@ namespace {
 
 class Parser {
  public:
-  Parser(const std::string& text, std::string file) : file_(std::move(file)) {
+  Parser(const std::string& text, std::string file, double tolerance) : file_(std::move(file)), tolerance_(tolerance) {
     line_starts_.push_back(0);
     for (std::size_t i = 0; i < text.size(); ++i) {
       if (text[i] == '\n') line_starts_.push_back(i + 1);
@@ -45,6 +47,18 @@ class Parser {
   [[noreturn]] void fail(const pugi::xml_node& node, const std::string& attribute, const std::string& what) const {
     fail_at(line_of(node), node.name(), attribute, what);
   }
+
+  /// What the parser reads in spite of the standard, said in the same form as an error.
+  void warn_at(int line, const std::string& element, const std::string& attribute, const std::string& what) const {
+    std::string msg = where(line) + ": <" + element + ">";
+    if (!attribute.empty()) msg += " attribute '" + attribute + "'";
+    warnings_.push_back(msg + ": " + what);
+  }
+  void warn(const pugi::xml_node& node, const std::string& attribute, const std::string& what) const {
+    warn_at(line_of(node), node.name(), attribute, what);
+  }
+  std::vector<std::string> warnings() const { return warnings_; }
+  double tolerance() const { return tolerance_; }
 
   std::string text(const pugi::xml_node& node, const char* name) const {
     const pugi::xml_attribute attr = node.attribute(name);
@@ -114,6 +128,8 @@ class Parser {
 
   std::string file_;
   std::vector<std::size_t> line_starts_;
+  double tolerance_;
+  mutable std::vector<std::string> warnings_;
 };
 
 CubicPoly cubic(const Parser& p, const pugi::xml_node& node, const char* s_name) {
@@ -181,10 +197,19 @@ Geometry geometry(const Parser& p, const pugi::xml_node& node) {
     g.dv = p.number(shape, "dV");
     // OpenDRIVE 1.4 had no pRange and meant p in [0, 1]; later revisions keep that default.
     const std::string range = p.text_or(shape, "pRange", "normalized");
+    const auto lower = [](std::string t) {
+      for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return t;
+    };
     if (range == "normalized") {
       g.normalized = true;
     } else if (range == "arcLength") {
       g.normalized = false;
+    } else if (lower(range) == "normalized" || lower(range) == "arclength") {
+      // Written by tools that do not mind the case; what they mean is not in doubt.
+      g.normalized = lower(range) == "normalized";
+      p.warn(shape, "pRange",
+             "'" + range + "' read as '" + (g.normalized ? "normalized" : "arcLength") + "' (the standard's spelling)");
     } else {
       p.fail(shape, "pRange", "'" + range + "' is neither normalized nor arcLength");
     }
@@ -263,6 +288,21 @@ Road road(const Parser& p, const pugi::xml_node& node) {
     r.plan_view.push_back(geo);
   }
   if (r.plan_view.empty()) p.fail(plan, "", "road '" + r.id + "' has no <geometry>");
+  // Consecutive geometries meet in s. A gap or an overlap beyond the tolerance cannot be placed
+  // exactly (which geometry holds the s between?), so it is refused, naming where.
+  for (std::size_t i = 1; i < r.plan_view.size(); ++i) {
+    const Geometry& before = r.plan_view[i - 1];
+    const Geometry& next = r.plan_view[i];
+    const double gap = next.s - (before.s + before.length);
+    if (std::abs(gap) > p.tolerance()) {
+      p.fail_at(next.line, "geometry", "s",
+                "road '" + r.id + "': the geometry at s=" + std::to_string(next.s) + " starts " +
+                    std::to_string(std::abs(gap)) + " m " + (gap > 0 ? "after" : "before") +
+                    " the end of the one at s=" + std::to_string(before.s) + " (length " +
+                    std::to_string(before.length) + "): " + (gap > 0 ? "a gap" : "an overlap") +
+                    " beyond the tolerance of " + std::to_string(p.tolerance()) + " m");
+    }
+  }
 
   const pugi::xml_node lanes = node.child("lanes");
   if (!lanes) p.fail(node, "", "road '" + r.id + "' has no <lanes>");
@@ -282,6 +322,15 @@ Road road(const Parser& p, const pugi::xml_node& node) {
     r.sections.push_back(std::move(section));
   }
   if (r.sections.empty()) p.fail(lanes, "", "road '" + r.id + "' has no <laneSection>");
+  // A road whose length disagrees with its geometry ends where its geometry ends: past that end
+  // there is nothing to place points on.
+  const double geometry_end = r.plan_view.back().s + r.plan_view.back().length;
+  if (std::abs(geometry_end - r.length) > p.tolerance()) {
+    p.warn(node, "length",
+           "road '" + r.id + "' is " + std::to_string(r.length) +
+               " m long, but its planView ends at s=" + std::to_string(geometry_end) + ": the road ends there");
+    r.length = geometry_end;
+  }
   return r;
 }
 
@@ -343,8 +392,11 @@ const Junction* RoadNetwork::find_junction(const std::string& id) const {
   return nullptr;
 }
 
-RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file) {
-  const Parser p(xml_text, file);
+RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file, double tolerance_m) {
+  if (!(tolerance_m >= 0.0) || !std::isfinite(tolerance_m)) {
+    throw MapError(file + ": tolerance " + std::to_string(tolerance_m) + " m must be a non-negative number");
+  }
+  const Parser p(xml_text, file, tolerance_m);
   pugi::xml_document doc;
   const pugi::xml_parse_result result = doc.load_buffer(xml_text.data(), xml_text.size());
   if (!result) {
@@ -381,43 +433,49 @@ RoadNetwork parse_opendrive(const std::string& xml_text, const std::string& file
   }
 
   // References are checked once everything is read, because links may point forward in the file.
-  for (const Road& r : net.roads) {
-    for (const auto* link : {&r.predecessor, &r.successor}) {
+  // A link to a road or junction that does not exist is dropped with a warning: real files have
+  // them, other tools load such files, and the rest of the network is sound.
+  for (Road& r : net.roads) {
+    for (auto* link : {&r.predecessor, &r.successor}) {
       if (!link->has_value()) continue;
       const RoadLink& l = **link;
       const char* element = link == &r.predecessor ? "predecessor" : "successor";
-      if (l.target == LinkTarget::kRoad && !road_ids.contains(l.element_id)) {
-        p.fail_at(l.line, element, "elementId",
-                  "road '" + l.element_id + "' does not exist (linked from road '" + r.id + "')");
-      }
-      if (l.target == LinkTarget::kJunction && !junction_ids.contains(l.element_id)) {
-        p.fail_at(l.line, element, "elementId",
-                  "junction '" + l.element_id + "' does not exist (linked from road '" + r.id + "')");
+      const bool dangling = (l.target == LinkTarget::kRoad && !road_ids.contains(l.element_id)) ||
+                            (l.target == LinkTarget::kJunction && !junction_ids.contains(l.element_id));
+      if (dangling) {
+        p.warn_at(l.line, element, "elementId",
+                  std::string(l.target == LinkTarget::kRoad ? "road '" : "junction '") + l.element_id +
+                      "' does not exist: the " + element + " link of road '" + r.id + "' is dropped");
+        link->reset();
       }
     }
     if (r.in_junction() && !junction_ids.contains(r.junction)) {
       p.fail_at(r.line, "road", "junction", "junction '" + r.junction + "' does not exist");
     }
   }
-  for (const Junction& j : net.junctions) {
-    for (const Connection& c : j.connections) {
-      if (!road_ids.contains(c.incoming_road)) {
-        p.fail_at(c.line, "connection", "incomingRoad", "road '" + c.incoming_road + "' does not exist");
+  for (Junction& j : net.junctions) {
+    std::erase_if(j.connections, [&](const Connection& c) {
+      for (const auto& [attribute, id] :
+           {std::pair{"incomingRoad", c.incoming_road}, {"connectingRoad", c.connecting_road}}) {
+        if (!road_ids.contains(id)) {
+          p.warn_at(c.line, "connection", attribute,
+                    "road '" + id + "' does not exist: the connection is dropped from junction '" + j.id + "'");
+          return true;
+        }
       }
-      if (!road_ids.contains(c.connecting_road)) {
-        p.fail_at(c.line, "connection", "connectingRoad", "road '" + c.connecting_road + "' does not exist");
-      }
-    }
+      return false;
+    });
   }
+  net.warnings = p.warnings();
   return net;
 }
 
-RoadNetwork load_opendrive(const std::string& path) {
+RoadNetwork load_opendrive(const std::string& path, double tolerance_m) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MapError(path + ": cannot open the OpenDRIVE file");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_opendrive(buffer.str(), path);
+  return parse_opendrive(buffer.str(), path, tolerance_m);
 }
 
 }  // namespace fleet::map

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -123,4 +124,72 @@ TEST(MapCommand, RenderDrawsTheTracksASoakWroteFromTheGivenTimeOn) {
   EXPECT_EQ(run({"render", "table_a", "-o", svg_file, "--tracks", (dir / "none.csv").string()}).code, kExitBadInput);
   EXPECT_EQ(run({"render", "table_a", "-o", svg_file, "--tracks", csv, "--since", "soon"}).code, kExitBadInput);
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+/// A file of `roads` straight roads, each `length` metres, one with a link to road 99, which is
+/// not in the file.
+std::string write_long_roads(const std::filesystem::path& dir, int roads, double length) {
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n<OpenDRIVE>\n  <header revMajor=\"1\" revMinor=\"6\"/>\n";
+  for (int i = 1; i <= roads; ++i) {
+    xml << "  <road id=\"" << i << "\" length=\"" << length << "\" junction=\"-1\">\n"
+        << (i == 1 ? "    <link><successor elementType=\"road\" elementId=\"99\" contactPoint=\"start\"/></link>\n"
+                   : "")
+        << "    <planView><geometry s=\"0\" x=\"0\" y=\"" << 10 * i << "\" hdg=\"0\" length=\"" << length
+        << "\"><line/></geometry></planView>\n"
+        << "    <lanes><laneSection s=\"0\"><center><lane id=\"0\" type=\"none\"/></center>"
+        << "<right><lane id=\"-1\" type=\"driving\"><width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" "
+           "d=\"0\"/></lane></right>"
+        << "</laneSection></lanes>\n  </road>\n";
+  }
+  xml << "</OpenDRIVE>\n";
+  const std::string path = (dir / "long_roads.xodr").string();
+  std::ofstream(path) << xml.str();
+  return path;
+}
+
+}  // namespace
+
+// Regression: map sample held every row before printing; four roads 5,000 km long needed tens of
+// GB. The rows stream, and their count is capped before anything is printed.
+TEST(MapCommand, SampleOfVeryLongRoadsIsCappedBeforePrintingAndStreamsWithMaxRows) {
+  const auto dir = std::filesystem::temp_directory_path() / ("fleet_map_long_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = write_long_roads(dir, 4, 5.0e6);
+  const CommandRun capped = run({"sample", file, "--step", "1"});
+  EXPECT_EQ(capped.code, kExitBadInput);
+  EXPECT_TRUE(capped.out.empty()) << capped.out.substr(0, 200);
+  EXPECT_NE(capped.err.find("makes about 20000008 rows, more than the limit of 10000000 (--max-rows N raises it"),
+            std::string::npos)
+      << capped.err;
+  // A step that keeps it small streams every row.
+  const CommandRun coarse = run({"sample", file, "--step", "100000", "--max-rows", "500"});
+  EXPECT_EQ(coarse.code, kExitOk) << coarse.err;
+  EXPECT_EQ(std::count(coarse.out.begin(), coarse.out.end(), '\n'), 1 + 4 * 51);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MapCommand, WarningsAreToldAndStrictMakesThemErrors) {
+  const auto dir = std::filesystem::temp_directory_path() / ("fleet_map_warn_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = write_long_roads(dir, 2, 20.0);
+  const CommandRun loose = run({"sample", file, "--step", "10"});
+  EXPECT_EQ(loose.code, kExitOk) << loose.err;
+  EXPECT_NE(loose.err.find("warning: " + file + ":5: <successor> attribute 'elementId': road '99' does not exist"),
+            std::string::npos)
+      << loose.err;
+  const CommandRun strict = run({"sample", file, "--step", "10", "--strict"});
+  EXPECT_EQ(strict.code, kExitBadInput);
+  EXPECT_NE(strict.err.find("error (--strict): " + file + ":5:"), std::string::npos) << strict.err;
+  EXPECT_TRUE(strict.out.empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MapCommand, CheckGivenARoadNetworkSaysItWantsASiteFile) {
+  const CommandRun r = run({"check", FLEET_SOURCE_DIR "/maps/table_a.xodr"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("is an OpenDRIVE road network; map check reads a site file"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("fleetctl map sample"), std::string::npos) << r.err;
 }

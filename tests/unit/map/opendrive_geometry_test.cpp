@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "map/opendrive.hpp"
 
@@ -133,28 +134,112 @@ TEST(OpenDriveGeometry, ClothoidWithinOneMicrometreOver500Metres) {
   }
 }
 
-TEST(OpenDriveGeometry, ParamPoly3NormalizedRange) {
-  // u = 10 p, v = 2 p^2 over p in [0, 1], placed at (1, 1) turned by 90 degrees.
+TEST(OpenDriveGeometry, ParamPoly3NormalizedRangeIsPlacedAndTurned) {
+  // u = 10 p, v = 2 p^2 over p in [0, 1], placed at (1, 1) turned by 90 degrees; its declared
+  // length 10 ends it at p = 1: u = 10, v = 2.
   Geometry g = make(GeometryKind::kParamPoly3, 10.0, 1.0, 1.0, kPi / 2);
   g.bu = 10.0;
   g.cv = 2.0;
   g.normalized = true;
-  const RefPoint p = evaluate_geometry(g, 5.0);  // p = 0.5: u = 5, v = 0.5
-  EXPECT_NEAR(p.x, 1.0 - 0.5, 1e-12);
-  EXPECT_NEAR(p.y, 1.0 + 5.0, 1e-12);
-  EXPECT_NEAR(p.hdg, kPi / 2 + std::atan2(2.0, 10.0), 1e-12);  // du/dp = 10, dv/dp = 4 p = 2
+  const RefPoint start = evaluate_geometry(g, 0.0);
+  EXPECT_NEAR(start.x, 1.0, 1e-12);
+  EXPECT_NEAR(start.y, 1.0, 1e-12);
+  EXPECT_NEAR(start.hdg, kPi / 2, 1e-12);
+  const RefPoint end = evaluate_geometry(g, 10.0);
+  EXPECT_NEAR(end.x, 1.0 - 2.0, 1e-9);
+  EXPECT_NEAR(end.y, 1.0 + 10.0, 1e-9);
+  EXPECT_NEAR(end.hdg, kPi / 2 + std::atan2(4.0, 10.0), 1e-9);  // du/dp = 10, dv/dp = 4 p
+  // Half-way along the arc lies beyond p = 0.5 (u = 5): the speed |(10, 4 p)| grows with p, so
+  // the first half of p covers less than half the arc.
+  EXPECT_GT(evaluate_geometry(g, 5.0).y, 1.0 + 5.0 + 1e-3);
 }
 
-TEST(OpenDriveGeometry, ParamPoly3ArcLengthRange) {
-  // Same curve scaled to p in [0, length]: u = p, v = 0.02 p^2.
+/// Arc length of the cubic (u(p), v(p)) from 0 to `p`, by composite Simpson with many steps:
+/// independent of the evaluator's Gauss-Legendre and Newton steps.
+double simpson_arc_length(const Geometry& g, double p, int steps = 20000) {
+  const auto speed = [&](double q) {
+    return std::hypot(g.bu + q * (2.0 * g.cu + 3.0 * g.du * q), g.bv + q * (2.0 * g.cv + 3.0 * g.dv * q));
+  };
+  const double h = p / steps;
+  double sum = speed(0.0) + speed(p);
+  for (int i = 1; i < steps; ++i) sum += (i % 2 ? 4.0 : 2.0) * speed(i * h);
+  return sum * h / 3.0;
+}
+
+/// Where the cubic is after arc length `s` (scaled so that `g.length` is the whole curve), found
+/// by bisection on the Simpson arc length.
+std::pair<double, double> independent_point(const Geometry& g, double s) {
+  const double p_end = g.normalized ? 1.0 : g.length;
+  const double target = s * simpson_arc_length(g, p_end) / g.length;
+  double lo = 0.0, hi = p_end;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (simpson_arc_length(g, mid, 2000) < target ? lo : hi) = mid;
+  }
+  const double p = 0.5 * (lo + hi);
+  const double u = g.au + p * (g.bu + p * (g.cu + p * g.du));
+  const double v = g.av + p * (g.bv + p * (g.cv + p * g.dv));
+  // The frame of make(): origin (1, 1), heading 0.
+  return {g.x + u, g.y + v};
+}
+
+// Regression: paramPoly3 was evaluated at p = s - s0 (or its normalized share), which puts points
+// on the right curve but shifted along it wherever the cubic's speed is not 1.
+TEST(OpenDriveGeometry, ParamPoly3FollowsArcLengthInBothRanges) {
+  // u = p + 0.03 p^2 / 40, v = 0.001 p^2 - 1e-5 p^3 over p in [0, 40]: the speed runs from 1 to about
+  // 1.06, as on real ramps.
+  Geometry g = make(GeometryKind::kParamPoly3, 40.0, 1.0, 1.0, 0.0);
+  g.normalized = false;
+  g.bu = 1.0;
+  g.cu = 0.03 / 40.0;
+  g.cv = 0.04 / 40.0;
+  g.dv = -0.0004 / 40.0;
+  g.length = simpson_arc_length(g, 40.0);  // the file's length is the curve's length
+  // With that length the p range is [0, length]; the coefficients are for p up to 40, so scale
+  // them to keep the curve: p' = p * 40 / length.
+  const double k = 40.0 / g.length;
+  g.bu *= k;
+  g.cu *= k * k;
+  g.cv *= k * k;
+  g.dv *= k * k * k;
+  for (const double s : {0.0, 3.0, 10.0, 20.0, 33.3, g.length}) {
+    const auto [x, y] = independent_point(g, s);
+    const RefPoint got = evaluate_geometry(g, s);
+    EXPECT_NEAR(got.x, x, 1e-4) << "arcLength range, s = " << s;
+    EXPECT_NEAR(got.y, y, 1e-4) << "arcLength range, s = " << s;
+  }
+  // The same curve over p in [0, 1].
+  Geometry n = g;
+  n.normalized = true;
+  n.bu = g.bu * g.length;
+  n.cu = g.cu * g.length * g.length;
+  n.cv = g.cv * g.length * g.length;
+  n.dv = g.dv * g.length * g.length * g.length;
+  for (const double s : {0.0, 7.5, 20.0, g.length}) {
+    const auto [x, y] = independent_point(n, s);
+    const RefPoint got = evaluate_geometry(n, s);
+    EXPECT_NEAR(got.x, x, 1e-4) << "normalized range, s = " << s;
+    EXPECT_NEAR(got.y, y, 1e-4) << "normalized range, s = " << s;
+  }
+  // The curve is the same in both modes.
+  EXPECT_NEAR(evaluate_geometry(n, 12.0).x, evaluate_geometry(g, 12.0).x, 1e-9);
+}
+
+TEST(OpenDriveGeometry, ParamPoly3EndsWhereTheFilePutsItsEnd) {
+  // A declared length slightly off the curve's own (rounding in a file): s = length is still
+  // the end of the p range.
   Geometry g = make(GeometryKind::kParamPoly3, 10.0, 1.0, 1.0, 0.0);
   g.bu = 1.0;
   g.cv = 0.02;
   g.normalized = false;
-  const RefPoint p = evaluate_geometry(g, 5.0);
-  EXPECT_NEAR(p.x, 6.0, 1e-12);
-  EXPECT_NEAR(p.y, 1.5, 1e-12);
-  EXPECT_NEAR(p.hdg, std::atan(0.2), 1e-12);
+  const RefPoint end = evaluate_geometry(g, 10.0);
+  EXPECT_NEAR(end.x, 11.0, 1e-9);
+  EXPECT_NEAR(end.y, 3.0, 1e-9);
+  EXPECT_NEAR(end.hdg, std::atan(0.4), 1e-9);
+  // Half-way along the arc is not p = 5: the speed grows along the curve.
+  const auto [x, y] = independent_point(g, 5.0);
+  EXPECT_NEAR(evaluate_geometry(g, 5.0).x, x, 1e-4);
+  EXPECT_GT(std::abs(evaluate_geometry(g, 5.0).x - 6.0), 1e-3);
   // The same numbers read as normalized would put the point elsewhere: the mode matters.
   g.normalized = true;
   EXPECT_GT(std::abs(evaluate_geometry(g, 5.0).x - 6.0), 1.0);

@@ -41,8 +41,7 @@ TEST(Site, DuplicateIdsAndNonNumbersAreRefused) {
 }
 
 TEST(Site, ObstacleOutsideTheAreaIsRefused) {
-  const std::string msg =
-      message_of(kBounds + "static_obstacles:\n  - {id: O1, polygon: [[1, 1], [4, 1], [4, 2]]}\n");
+  const std::string msg = message_of(kBounds + "static_obstacles:\n  - {id: O1, polygon: [[1, 1], [4, 1], [4, 2]]}\n");
   EXPECT_NE(msg.find("obstacle 'O1' lies outside the bounds"), std::string::npos) << msg;
 }
 
