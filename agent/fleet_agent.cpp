@@ -81,28 +81,28 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
              home.y, home.yaw, options_.site->site.name, options_.domain);
 }
 
-void FleetAgent::report(const std::string& status, const std::string& reason, int pallet_id,
-                        const geometry::Pose2& pallet_pose) {
-  if (!order_) return;
+std::optional<model::OrderReport> FleetAgent::report(const std::string& status, const std::string& reason,
+                                                     int pallet_id, const geometry::Pose2& pallet_pose) {
+  if (!order_) return std::nullopt;
   const auto& a = order_->assignment;
   const int pallet = pallet_id >= 0 ? pallet_id : forklift_.carried_pallet();
   const model::OrderReport message{
       a.order_id, options_.robot_id, status, reason, a.update_id, clock_.now(), forklift_.carried_pallet() >= 0,
       pallet,     pallet_pose};
   report_writer_.write(message);
-  if (status == "DONE" || status == "FAILED") final_reports_[a.order_id] = message;
+  return message;
 }
 
-void FleetAgent::finish_order() {
+void FleetAgent::finish_order(const std::string& status, const std::string& reason, int pallet_id,
+                              const geometry::Pose2& pallet_pose) {
   // Order reports are latched so a restarted server learns how its orders ended; only the most
   // recent ones need to stay, which keeps the writer's history bounded.
-  finished_orders_.push_back(order_->assignment.order_id);
-  while (finished_orders_.size() > kKeptReports) {
-    model::OrderReport key;
-    key.order_id = finished_orders_.front();
-    report_writer_.unregister(key);
-    final_reports_.erase(key.order_id);
-    finished_orders_.pop_front();
+  if (auto final_report = report(status, reason, pallet_id, pallet_pose)) {
+    finished_reports_.push_back(std::move(*final_report));
+  }
+  while (finished_reports_.size() > kKeptReports) {
+    report_writer_.unregister(finished_reports_.front());
+    finished_reports_.pop_front();
   }
   order_.reset();
 }
@@ -117,10 +117,11 @@ void FleetAgent::handle_orders() {
       // A late duplicate (VDA 5050 style), or the assignment of an order this robot finished,
       // re-sent by a server that restarted without hearing how it ended: say it again. The
       // latched report should have told it; this does not depend on that.
-      if (const auto ended = final_reports_.find(assignment.order_id); ended != final_reports_.end()) {
-        log_->info("order {} offered again, already {}: repeating the report", assignment.order_id,
-                   ended->second.status);
-        report_writer_.write(ended->second);
+      const auto ended = std::find_if(finished_reports_.begin(), finished_reports_.end(),
+                                      [&](const model::OrderReport& r) { return r.order_id == assignment.order_id; });
+      if (ended != finished_reports_.end()) {
+        log_->info("order {} offered again, already {}: repeating the report", assignment.order_id, ended->status);
+        report_writer_.write(*ended);
       }
       return;
     }
@@ -293,15 +294,13 @@ void FleetAgent::handle_events() {
         if (!order_) break;
         log_->info("order {} done: pallet {} placed at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
                    e.pallet_id, order_->assignment.drop_area, e.pallet_pose.x, e.pallet_pose.y, e.pallet_pose.yaw);
-        report("DONE", "", e.pallet_id, e.pallet_pose);
-        finish_order();
+        finish_order("DONE", "", e.pallet_id, e.pallet_pose);
         break;
       case K::kAreaEmpty:
       case K::kFailed:
         if (!order_) break;
         log_->warn("order {} failed: {}", order_->assignment.order_id, e.text);
-        report("FAILED", e.text);
-        finish_order();
+        finish_order("FAILED", e.text);
         break;
       case K::kHome:
         log_->info("home");

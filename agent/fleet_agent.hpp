@@ -48,9 +48,12 @@ class FleetAgent {
   void handle_fleet_view(double now_sim);
   void switch_map(const std::string& map_id);
   void handle_events();
-  void report(const std::string& status, const std::string& reason = "", int pallet_id = -1,
-              const geometry::Pose2& pallet_pose = {});
-  void finish_order();
+  /// Writes an OrderReport on the current order; nothing when there is none.
+  std::optional<model::OrderReport> report(const std::string& status, const std::string& reason = "",
+                                           int pallet_id = -1, const geometry::Pose2& pallet_pose = {});
+  /// Reports the current order's end (DONE or FAILED), keeps the report and drops the order.
+  void finish_order(const std::string& status, const std::string& reason, int pallet_id = -1,
+                    const geometry::Pose2& pallet_pose = {});
   void publish_state(double now_sim);
   void publish_traffic(double now_sim);
   void handle_traffic();
@@ -69,10 +72,9 @@ class FleetAgent {
   std::map<int, model::PalletTruth> pallets_;
   std::map<std::string, model::SimTruth> truths_;
   robot::NeighbourMemory neighbours_;
-  std::deque<std::int64_t> finished_orders_;
-  /// The final report (DONE or FAILED) of each order in finished_orders_, repeated when a
-  /// restarted server offers the order again.
-  std::map<std::int64_t, model::OrderReport> final_reports_;
+  /// The final reports (DONE or FAILED) of the last kKeptReports orders, oldest first: latched
+  /// for a restarted server, and repeated when it offers one of those orders again.
+  std::deque<model::OrderReport> finished_reports_;
   bool paused_ = false;
   std::string last_state_;
   std::size_t last_path_size_ = 0;

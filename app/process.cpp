@@ -2,7 +2,6 @@
 
 #include <signal.h>
 
-#include <algorithm>
 #include <filesystem>
 
 #include "common/errors.hpp"
@@ -45,12 +44,8 @@ std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
   const std::string site = config.settings.get_string("site");
   const std::string site_file = map::site_path(maps_dir(), site);
   if (!std::filesystem::exists(site_file)) {
-    std::vector<std::string> sites;
-    for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
-      if (entry.path().extension() == ".yaml") sites.push_back(entry.path().stem().string());
-    }
-    std::sort(sites.begin(), sites.end());
-    throw InputError("site: " + model::unknown_name_message("site", site, sites) + " (" + maps_dir() + "/NAME.yaml)");
+    throw InputError("site: " + model::unknown_name_message("site", site, map::site_names(maps_dir())) + " (" +
+                     maps_dir() + "/NAME.yaml)");
   }
   auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
   for (const config::RobotSpec* robot : robots) {

@@ -219,12 +219,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.auto_orders = !args.flag("no-auto-orders");
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
-    std::vector<std::string> sites;
-    for (const auto& entry : std::filesystem::directory_iterator(maps_dir())) {
-      if (entry.path().extension() == ".yaml") sites.push_back(entry.path().stem().string());
-    }
-    std::sort(sites.begin(), sites.end());
-    throw ArgError("--site: " + model::unknown_name_message("site", options.site, sites));
+    throw ArgError("--site: " + model::unknown_name_message("site", options.site, map::site_names(maps_dir())));
   }
   {
     FleetClient probe(domain);

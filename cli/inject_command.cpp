@@ -16,6 +16,7 @@
 #include "cli/processes.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
+#include "orders/order_request_check.hpp"
 
 namespace fleet::cli {
 
@@ -348,7 +349,7 @@ int inject_command(const CommandArgs& command, const Connection& connection, std
     const auto count = args.integer("count", 1, 100000);
     const auto rate_text = args.value("rate");
     const auto seed = args.integer("seed", 0, std::numeric_limits<std::int32_t>::max());
-    const auto priority = args.integer("priority", -1000, 1000);
+    const auto priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority);
     const bool wait = args.flag("wait");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     if (file && (count || rate_text || seed || priority)) {

@@ -6,6 +6,7 @@
 #include "common/args.hpp"
 #include "model/names.hpp"
 #include "orders/order.hpp"
+#include "orders/order_request_check.hpp"
 
 namespace fleet::cli {
 
@@ -163,8 +164,9 @@ OrdersFile parse_orders_csv(std::istream& in) {
     if (!priority) {
       problem("priority '" + p + "' is not an integer");
       ok = false;
-    } else if (*priority < -1000 || *priority > 1000) {
-      problem("priority " + p + " is outside -1000 .. 1000");
+    } else if (*priority < orders::kMinPriority || *priority > orders::kMaxPriority) {
+      problem("priority " + p + " is outside " + std::to_string(orders::kMinPriority) + " .. " +
+              std::to_string(orders::kMaxPriority));
       ok = false;
     }
     row.priority = static_cast<int>(priority.value_or(0));

@@ -9,14 +9,7 @@
 namespace fleet::cli {
 
 std::vector<std::string> site_names(const std::string& source_dir) {
-  std::vector<std::string> names;
-  const std::filesystem::path maps = std::filesystem::path(source_dir.empty() ? "." : source_dir) / "maps";
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(maps, error)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return map::site_names((std::filesystem::path(source_dir.empty() ? "." : source_dir) / "maps").string());
 }
 
 std::string known_site_path(const std::string& source_dir, const std::string& name) {

@@ -294,7 +294,13 @@ void FleetServer::reply(const model::RequestReply& answer) {
   replies_written_[answer.request_id] = SimClock::wall_now();
 }
 
-std::string FleetServer::not_seen_message(const std::string& robot_id) const {
+bool FleetServer::registered(const std::string& robot_id) const {
+  const auto it = robots_.find(robot_id);
+  return it != robots_.end() && it->second.registered;
+}
+
+std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) const {
+  if (registered(robot_id)) return std::nullopt;
   std::vector<std::string> seen;
   for (const auto& [id, robot] : robots_) {
     if (robot.registered) seen.push_back(id);
@@ -368,9 +374,7 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
   }
   if (!request.robot_id.empty()) {
     // An order for a robot that never reported would wait for it for good, unseen.
-    if (const auto it = robots_.find(request.robot_id); it == robots_.end() || !it->second.registered) {
-      return refuse(not_seen_message(request.robot_id));
-    }
+    if (const auto why = not_seen(request.robot_id)) return refuse(*why);
   }
   if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
     return refuse(error);
@@ -469,11 +473,9 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
     }
   } else if (command.verb == "pause" || command.verb == "resume") {
     if (!options_.config.find_robot(command.target)) {
-      std::vector<std::string> ids;
-      for (const auto& [f, r] : options_.config.all_robots()) ids.push_back(r->id);
-      error = model::unknown_name_message("robot", command.target, ids);
-    } else if (const auto it = robots_.find(command.target); it == robots_.end() || !it->second.registered) {
-      error = not_seen_message(command.target);
+      error = model::unknown_name_message("robot", command.target, known_names().robots);
+    } else if (const auto why = not_seen(command.target)) {
+      error = *why;
     } else {
       paused_[command.target] = command.verb == "pause";
       control_writer_.write({command.target, command.verb == "pause"});
@@ -777,8 +779,7 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
   if (order.phase == OrderPhase::kPicking || past_the_lift(order.phase)) return false;
   // Counted lost still, it is back all the same: its report may come before its first state
   // (and is not sent again), and was written after it fell silent.
-  const auto robot = robots_.find(report.robot_id);
-  if (robot == robots_.end() || !robot->second.registered) return false;
+  if (!registered(report.robot_id)) return false;
   const std::int64_t id = order.id;
   const std::string holder = order.robot_id;
   const double now = clock_.now();

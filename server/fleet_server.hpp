@@ -3,6 +3,7 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -97,8 +98,11 @@ class FleetServer {
   std::string validate_areas(const std::string& pick, const std::string& drop) const;
   /// The loading areas, robots and fleets an order request may name.
   orders::KnownNames known_names() const;
-  /// Why a command or order naming a configured robot that never reported is refused.
-  std::string not_seen_message(const std::string& robot_id) const;
+  /// Whether `robot_id` has reported to this server (a lost robot too).
+  bool registered(const std::string& robot_id) const;
+  /// Why a command or order naming `robot_id` is refused when that robot never reported to this
+  /// server; nothing when it has.
+  std::optional<std::string> not_seen(const std::string& robot_id) const;
   /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
   int expected_pallets(const std::string& area) const;
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf

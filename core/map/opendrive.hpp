@@ -40,6 +40,9 @@ struct Geometry {
   double au = 0.0, bu = 0.0, cu = 0.0, du = 0.0;  ///< paramPoly3 u(p)
   double av = 0.0, bv = 0.0, cv = 0.0, dv = 0.0;  ///< paramPoly3 v(p)
   bool normalized = true;                         ///< paramPoly3 pRange: p in [0, 1] (true) or [0, length] (false)
+  /// paramPoly3: the cubic's own arc length over its whole p range, which every evaluation scales
+  /// s by. The parser computes it once (paramPoly3_arc_length); 0: computed at each evaluation.
+  double curve_arc_length = 0.0;
   int line = 0;
 };
 
@@ -153,6 +156,9 @@ struct RefPoint {
 
 /// Point and heading of one geometry record at `ds` metres from its start (clamped to [0, length]).
 RefPoint evaluate_geometry(const Geometry& g, double ds);
+
+/// The arc length of a paramPoly3's cubic over its whole p range (Geometry::curve_arc_length).
+double paramPoly3_arc_length(const Geometry& g);
 
 /// The reference line of `road` at `s` (clamped to [0, length]).
 RefPoint evaluate_reference(const Road& road, double s);

@@ -110,33 +110,46 @@ RefPoint poly3(const Geometry& g, double ds) {
   return to_global(g, u, v, std::atan(dv(u)));
 }
 
+/// The end of a paramPoly3's p range: [0, 1] (normalized) or [0, length] (arcLength).
+double p_range_end(const Geometry& g) {
+  return g.normalized ? 1.0 : g.length;
+}
+
+/// |(u'(p), v'(p))|, the speed of a paramPoly3's cubic.
+double param_poly3_speed(const Geometry& g, double p) {
+  return std::hypot(g.bu + p * (2.0 * g.cu + 3.0 * g.du * p), g.bv + p * (2.0 * g.cv + 3.0 * g.dv * p));
+}
+
+/// Arc length of a paramPoly3's cubic from p = 0 to `p`, about one Gauss-Legendre panel per 5 m
+/// of curve, as for poly3.
+double param_poly3_arc_length(const Geometry& g, double p) {
+  if (p == 0.0) return 0.0;
+  const double wanted = 1.0 + std::abs(p / p_range_end(g)) * g.length / 5.0;
+  return gauss_legendre([&](double q) { return param_poly3_speed(g, q); }, 0.0, p,
+                        std::isfinite(wanted) ? static_cast<int>(std::min(wanted, 1e4)) : 1);
+}
+
 RefPoint param_poly3(const Geometry& g, double ds) {
   // s runs along the curve by arc length, and the cubic's parameter p does not: its speed
   // |(u'(p), v'(p))| is near 1 at best. p is found by inverting the arc length A(p) with Newton
   // steps, A scaled so that the geometry's declared length lands on the end of the p range (the
-  // end point stays where the file puts it, whatever rounding its length carries). Both pRange
-  // modes: p in [0, 1] (normalized) or [0, length] (arcLength).
-  const double p_end = g.normalized ? 1.0 : g.length;
-  const auto d_u = [&](double p) { return g.bu + p * (2.0 * g.cu + 3.0 * g.du * p); };
-  const auto d_v = [&](double p) { return g.bv + p * (2.0 * g.cv + 3.0 * g.dv * p); };
-  const auto speed = [&](double p) { return std::hypot(d_u(p), d_v(p)); };
-  const auto arc_length = [&](double p) {
-    // About one Gauss-Legendre panel per 5 m of curve, as for poly3.
-    const double wanted = 1.0 + std::abs(p / p_end) * g.length / 5.0;
-    return p == 0.0
-               ? 0.0
-               : gauss_legendre(speed, 0.0, p, std::isfinite(wanted) ? static_cast<int>(std::min(wanted, 1e4)) : 1);
-  };
+  // end point stays where the file puts it, whatever rounding its length carries).
+  const double p_end = p_range_end(g);
+  const auto speed = [&](double p) { return param_poly3_speed(g, p); };
   double p = 0.0;
   if (g.length > 0.0 && p_end > 0.0) {
     p = ds / g.length * p_end;
-    const double total = arc_length(p_end);
+    const double total = g.curve_arc_length > 0.0 ? g.curve_arc_length : paramPoly3_arc_length(g);
     if (total > 0.0 && std::isfinite(total)) {
       const double target = ds * total / g.length;
+      // One whole integral for the first guess; each Newton step then adds only the integral over
+      // the step itself, which one Gauss-Legendre panel gives exactly enough (the steps shrink).
+      double at_p = param_poly3_arc_length(g, p);
       for (int i = 0; i < 40; ++i) {
         const double sp = speed(p);
         if (!(sp > 1e-12)) break;  // a cusp: the linear guess is as good as any
-        const double step = (arc_length(p) - target) / sp;
+        const double step = (at_p - target) / sp;
+        at_p += gauss_legendre(speed, p, p - step, 1);
         p -= step;
         if (std::abs(step) < 1e-14 * std::max(1.0, p_end)) break;
       }
@@ -144,8 +157,8 @@ RefPoint param_poly3(const Geometry& g, double ds) {
   }
   const double u = g.au + p * (g.bu + p * (g.cu + p * g.du));
   const double v = g.av + p * (g.bv + p * (g.cv + p * g.dv));
-  double du = d_u(p);
-  double dv = d_v(p);
+  double du = g.bu + p * (2.0 * g.cu + 3.0 * g.du * p);
+  double dv = g.bv + p * (2.0 * g.cv + 3.0 * g.dv * p);
   if (du == 0.0 && dv == 0.0) {
     // A cusp where the tangent vanishes: the second derivative gives the direction.
     du = 2.0 * g.cu + 6.0 * g.du * p;
@@ -225,6 +238,10 @@ void fresnel(double x, double& c, double& s) {
     c = -c;
     s = -s;
   }
+}
+
+double paramPoly3_arc_length(const Geometry& g) {
+  return param_poly3_arc_length(g, p_range_end(g));
 }
 
 RefPoint evaluate_geometry(const Geometry& g, double ds) {

@@ -213,6 +213,8 @@ Geometry geometry(const Parser& p, const pugi::xml_node& node) {
     } else {
       p.fail(shape, "pRange", "'" + range + "' is neither normalized nor arcLength");
     }
+    // Every point of the geometry scales s by it: integrated once, here.
+    g.curve_arc_length = paramPoly3_arc_length(g);
   } else {
     p.fail(shape, "", "unknown geometry element");
   }

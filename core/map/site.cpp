@@ -164,7 +164,8 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
     r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet"});
     LoadingArea area{r.text(areas[i], "id", key), pose_of(r, areas[i], key), r.boolean(areas[i], "pallet", key, false)};
     unique_id(r, area_ids, area.id, areas[i], key);
-    if (!site.bounds.contains(area.pose.position())) r.fail(areas[i], key, "loading area '" + area.id + "' lies outside the bounds");
+    if (!site.bounds.contains(area.pose.position()))
+      r.fail(areas[i], key, "loading area '" + area.id + "' lies outside the bounds");
     site.loading_areas.push_back(std::move(area));
   }
 
@@ -231,7 +232,8 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
     r.allow_keys(homes[i], key, {"id", "x", "y", "yaw"});
     Home home{r.text(homes[i], "id", key), pose_of(r, homes[i], key)};
     unique_id(r, home_ids, home.id, homes[i], key);
-    if (!site.bounds.contains(home.pose.position())) r.fail(homes[i], key, "home '" + home.id + "' lies outside the bounds");
+    if (!site.bounds.contains(home.pose.position()))
+      r.fail(homes[i], key, "home '" + home.id + "' lies outside the bounds");
     site.homes.push_back(std::move(home));
   }
   return site;
@@ -249,10 +251,21 @@ std::string site_path(const std::string& maps_dir, const std::string& name) {
   return (std::filesystem::path(maps_dir) / (name + ".yaml")).string();
 }
 
+std::vector<std::string> site_names(const std::string& maps_dir) {
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(maps_dir, error)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 std::string revision_mismatch(const Site& site, const Site& candidate) {
   constexpr double kTolerance = 1e-6;  // metres / radians: the same numbers, as written
   auto same_pose = [](const geometry::Pose2& a, const geometry::Pose2& b) {
-    return std::abs(a.x - b.x) <= kTolerance && std::abs(a.y - b.y) <= kTolerance && std::abs(a.yaw - b.yaw) <= kTolerance;
+    return std::abs(a.x - b.x) <= kTolerance && std::abs(a.y - b.y) <= kTolerance &&
+           std::abs(a.yaw - b.yaw) <= kTolerance;
   };
   const std::string who = candidate.name + " is not a revision of " + site.name + ": ";
   if (std::abs(site.bounds.min_x - candidate.bounds.min_x) > kTolerance ||

@@ -89,4 +89,8 @@ std::vector<std::string> site_revisions(const Site& site);
 /// maps/<name>.yaml under `maps_dir`.
 std::string site_path(const std::string& maps_dir, const std::string& name);
 
+/// The names of the site files (*.yaml, without the extension) in `maps_dir`, sorted; none when
+/// the folder cannot be read. For messages that name the sites there are.
+std::vector<std::string> site_names(const std::string& maps_dir);
+
 }  // namespace fleet::map

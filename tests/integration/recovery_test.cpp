@@ -58,6 +58,13 @@ std::optional<model::RequestReply> order_a1_to_a2(cli::FleetClient& client) {
   return client.request_order(request, 5s);
 }
 
+/// Whether order `id` is in `state` (DONE, FAILED, ...) by the OrderInfo read now.
+bool order_in_state(cli::FleetClient& client, std::int64_t id, const std::string& state) {
+  const auto known = client.orders(50ms);
+  const auto it = known.find(id);
+  return it != known.end() && it->second.state == state;
+}
+
 /// Whether order `id` is seen in `phase` within `timeout` (on `robot`, unless it is empty).
 bool reaches_phase(cli::FleetClient& client, std::int64_t id, const std::string& phase, const std::string& robot,
                    std::chrono::milliseconds timeout) {
@@ -199,13 +206,7 @@ TEST(Recovery, AnOrderFinishedWhileTheServerWasDownIsDoneAfterTheRestart) {
   std::this_thread::sleep_for(500ms);
   s.fleet.processes().restart(0);
   ASSERT_TRUE(s.client.find_server(5s));
-  EXPECT_TRUE(s.robot.keeps_answering_until(
-      [&] {
-        const auto known = s.client.orders(50ms);
-        const auto it = known.find(id);
-        return it != known.end() && it->second.state == "DONE";
-      },
-      10s))
+  EXPECT_TRUE(s.robot.keeps_answering_until([&] { return order_in_state(s.client, id, "DONE"); }, 10s))
       << s.server_log();
 }
 
@@ -226,13 +227,7 @@ TEST(Recovery, ServerKilledAsTheRobotDropsHearsTheOrderDoneWhenBack) {
   fleet.processes().reap();
   fleet.processes().restart(0);
   ASSERT_TRUE(client.find_server(5s));
-  EXPECT_TRUE(eventually(
-      [&] {
-        const auto known = client.orders(50ms);
-        const auto it = known.find(reply->order_id);
-        return it != known.end() && it->second.state == "DONE";
-      },
-      15s))
+  EXPECT_TRUE(eventually([&] { return order_in_state(client, reply->order_id, "DONE"); }, 15s))
       << fleet.log_of("fleet-server") << fleet.log_of("fleet-agent-fl1");
 }
 
@@ -399,13 +394,7 @@ TEST(Recovery, ASearchThatMissesARecordedPalletLeavesItsAreaOccupied) {
   const std::int64_t id = assignment->order_id;
   s.robot.report(*assignment, "ACCEPTED");
   s.robot.report(*assignment, "FAILED", "loading area A1 is empty (no marker in view)");
-  ASSERT_TRUE(s.robot.keeps_answering_until(
-      [&] {
-        const auto known = s.client.orders(50ms);
-        const auto it = known.find(id);
-        return it != known.end() && it->second.state == "FAILED";
-      },
-      10s))
+  ASSERT_TRUE(s.robot.keeps_answering_until([&] { return order_in_state(s.client, id, "FAILED"); }, 10s))
       << s.server_log();
 
   EXPECT_NE(s.server_log().find("found loading area A1 empty, but pallet"), std::string::npos) << s.server_log();
