@@ -32,8 +32,9 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
                                       const map::SiteMap& site) {
   robot::ForkliftConfig c = robot::ForkliftConfig::defaults();
   c.sim.forklift.footprint = fleet.footprint;
-  c.task.follower.v_max = config.settings.get_double("agent.max_speed");
-  c.task.follower.omega_max = config.settings.get_double("agent.max_yaw_rate");
+  // The software's speed setting, within what the fleet's vehicle can do.
+  c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+  c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
   c.traffic = config.settings.get_bool("traffic.enabled");
   c.route_graph = route_graph_for(config, site);
   return c;

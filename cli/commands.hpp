@@ -34,5 +34,6 @@ int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err); 
 int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);   // loc-eval
 int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // plan-eval
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // ctrl-eval
+int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // fleets
 
 }  // namespace fleet::cli

@@ -11,6 +11,7 @@
 
 #include "model/names.hpp"
 #include "server/web_http.hpp"
+#include "vehicle/factsheet.hpp"
 
 namespace fleet::server {
 
@@ -200,6 +201,16 @@ std::string sse_event(const char* name, std::uint64_t version, const json& data)
 
 // ---- JSON --------------------------------------------------------------------------------------
 
+json fleets_json(const config::FleetConfig& config) {
+  json fleets = json::array();
+  for (const auto& fleet : config.fleets) {
+    std::vector<std::string> robot_ids;
+    for (const auto& robot : fleet.robots) robot_ids.push_back(robot.id);
+    fleets.push_back(vehicle::factsheet(fleet.id, fleet.robot_type, fleet.profile, robot_ids));
+  }
+  return json{{"fleets", std::move(fleets)}};
+}
+
 json site_json(const WebSiteInfo& info) {
   const map::SiteMap& sm = *info.site_map;
   const map::Site& site = sm.site;
@@ -290,16 +301,22 @@ json site_json(const WebSiteInfo& info) {
   j["homes"] = std::move(homes);
 
   json robots = json::array();
+  json fleets = json::array();
   if (info.config) {
     for (const auto& [fleet, robot] : info.config->all_robots()) {
+      json polygon = json::array();
+      for (const auto& p : fleet->profile.footprint) polygon.push_back({p.x, p.y});
       robots.push_back({{"id", robot->id},
                         {"fleet", fleet->id},
                         {"type", fleet->robot_type},
                         {"home", robot->home},
-                        {"fp", json::array({fleet->footprint.length, fleet->footprint.width})}});
+                        {"fp", json::array({fleet->footprint.length, fleet->footprint.width})},
+                        {"poly", std::move(polygon)}});
     }
+    for (const auto& fleet : info.config->fleets) fleets.push_back({{"id", fleet.id}, {"type", fleet.robot_type}});
   }
   j["robots"] = std::move(robots);
+  j["fleets"] = std::move(fleets);
   j["maps"] = info.maps;
   return j;
 }
@@ -559,6 +576,10 @@ void WebServer::routes() {
       body = site_body_;
     }
     res.set_content(body, "application/json");
+  });
+  http.Get("/api/fleets", [this](const Request&, Response& res) {
+    std::lock_guard lock(site_mutex_);
+    send_json(res, 200, fleets_json(*site_.config));
   });
   http.Get("/api/state", [this](const Request&, Response& res) {
     const LiveSnapshot snapshot = bridge_.latest().first;

@@ -49,6 +49,10 @@ struct WebSiteInfo {
 /// bounds, the robots of the configuration with their footprints, the map ids.
 nlohmann::json site_json(const WebSiteInfo& info);
 
+/// GET /api/fleets: every fleet of the configuration as a VDA 5050 factsheet
+/// ({"fleets": [vehicle::factsheet, ...]}).
+nlohmann::json fleets_json(const config::FleetConfig& config);
+
 /// GET /api/state: the whole snapshot; robots and orders as arrays, orders with their history.
 nlohmann::json state_json(const LiveSnapshot& snapshot);
 

@@ -6,13 +6,16 @@
 #include <set>
 #include <sstream>
 
+#include "config/vehicle_profile_yaml.hpp"
+#include "config/yaml_checks.hpp"
+
 namespace fleet::config {
 
 namespace {
 
-std::string where(const std::string& source, const YAML::Node& node) {
-  return source + ":" + std::to_string(node.Mark().line + 1);
-}
+using yaml::check_keys;
+using yaml::required_text;
+using yaml::where;
 
 void flatten(const YAML::Node& node, const std::string& prefix, const std::string& source, Settings& settings) {
   for (const auto& item : node) {
@@ -27,39 +30,6 @@ void flatten(const YAML::Node& node, const std::string& prefix, const std::strin
   }
 }
 
-double positive_number(const YAML::Node& node, const std::string& key, const std::string& source) {
-  if (!node || !node.IsScalar()) throw ConfigError(source + ": key '" + key + "' is missing");
-  double v = 0.0;
-  try {
-    v = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' is not a number");
-  }
-  if (!(v > 0.0) || !std::isfinite(v)) {
-    throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must be positive");
-  }
-  return v;
-}
-
-std::string required_text(const YAML::Node& map, const std::string& name, const std::string& key,
-                          const std::string& source) {
-  const YAML::Node node = map[name];
-  if (!node || !node.IsScalar() || node.Scalar().empty()) {
-    throw ConfigError(where(source, map) + ": key '" + key + "." + name + "' is missing");
-  }
-  return node.Scalar();
-}
-
-void check_keys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& key,
-                const std::string& source) {
-  for (const auto& item : map) {
-    const std::string name = item.first.as<std::string>();
-    if (!allowed.contains(name)) {
-      throw ConfigError(where(source, item.first) + ": unknown key '" + key + "." + name + "'");
-    }
-  }
-}
-
 std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& source) {
   if (!node.IsSequence()) throw ConfigError(where(source, node) + ": key 'fleets' must be a list");
   std::vector<FleetSpec> fleets;
@@ -68,22 +38,24 @@ std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& s
     const YAML::Node f = node[i];
     const std::string key = "fleets[" + std::to_string(i) + "]";
     if (!f.IsMap()) throw ConfigError(where(source, f) + ": key '" + key + "' must be a map");
-    check_keys(f, {"id", "robot_type", "footprint", "robots"}, key, source);
+    if (f["footprint"]) {
+      throw ConfigError(where(source, f["footprint"]) + ": key '" + key +
+                        ".footprint' belongs in the vehicle profile: '" + key + ".profile.footprint'");
+    }
+    check_keys(f, {"id", "robot_type", "profile", "robots"}, key, source);
     FleetSpec fleet;
     fleet.id = required_text(f, "id", key, source);
     fleet.robot_type = required_text(f, "robot_type", key, source);
-    if (fleet.robot_type != "forklift") {
+    const vehicle::RobotType* type = vehicle::find_robot_type(fleet.robot_type);
+    if (type == nullptr) {
       throw ConfigError(where(source, f["robot_type"]) + ": key '" + key + ".robot_type': '" + fleet.robot_type +
-                        "' is not a known robot type (forklift)");
+                        "' is not a known robot type (" + vehicle::robot_type_names() + ")");
     }
     if (!fleet_ids.insert(fleet.id).second) {
       throw ConfigError(where(source, f) + ": key '" + key + ".id': duplicate fleet id '" + fleet.id + "'");
     }
-    const YAML::Node fp = f["footprint"];
-    if (!fp || !fp.IsMap()) throw ConfigError(where(source, f) + ": key '" + key + ".footprint' is missing");
-    check_keys(fp, {"length", "width"}, key + ".footprint", source);
-    fleet.footprint.length = positive_number(fp["length"], key + ".footprint.length", source);
-    fleet.footprint.width = positive_number(fp["width"], key + ".footprint.width", source);
+    fleet.profile = parse_vehicle_profile(f["profile"], *type, key + ".profile", source);
+    fleet.footprint = fleet.profile.extent();
     const YAML::Node robots = f["robots"];
     if (!robots || !robots.IsSequence() || robots.size() == 0) {
       throw ConfigError(where(source, f) + ": key '" + key + ".robots' must be a non-empty list");
@@ -114,7 +86,8 @@ std::vector<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::all_robo
   return out;
 }
 
-std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_robot(const std::string& robot_id) const {
+std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_robot(
+    const std::string& robot_id) const {
   for (const auto& pair : all_robots()) {
     if (pair.second->id == robot_id) return pair;
   }

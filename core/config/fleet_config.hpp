@@ -7,6 +7,7 @@
 #include "common/args.hpp"
 #include "config/settings.hpp"
 #include "geometry/polygon.hpp"
+#include "vehicle/profile.hpp"
 
 namespace fleet::config {
 
@@ -15,10 +16,13 @@ struct RobotSpec {
   std::string home;  ///< id of a home pose in the site file
 };
 
-/// A fleet: robots of one type sharing a footprint. The seed's forklifts are the first fleet.
+/// A fleet: robots of one robot type sharing one vehicle profile.
 struct FleetSpec {
   std::string id;
-  std::string robot_type;  ///< "forklift" [Forklift thesis]; later "stacker", "picker"
+  std::string robot_type;  ///< a name of vehicle::robot_types()
+  vehicle::VehicleProfile profile;
+  /// The profile footprint's extent as a rectangle centred on the body origin: what the
+  /// rectangle-based parts (the simulated body, the collision monitor) use.
   geometry::Footprint footprint;
   std::vector<RobotSpec> robots;
 };

@@ -12,8 +12,14 @@ KeySpec number(std::string key, double def, std::string unit, double lo, double 
   return {std::move(key), ValueType::kDouble, d.str(), std::move(unit), lo, hi, {}, std::move(what)};
 }
 KeySpec integer(std::string key, long def, std::string unit, long lo, long hi, std::string what) {
-  return {std::move(key), ValueType::kInt, std::to_string(def), std::move(unit),
-          static_cast<double>(lo), static_cast<double>(hi), {}, std::move(what)};
+  return {std::move(key),
+          ValueType::kInt,
+          std::to_string(def),
+          std::move(unit),
+          static_cast<double>(lo),
+          static_cast<double>(hi),
+          {},
+          std::move(what)};
 }
 KeySpec flag(std::string key, bool def, std::string what) {
   return {std::move(key), ValueType::kBool, def ? "true" : "false", "", 0, 0, {}, std::move(what)};
@@ -67,7 +73,8 @@ std::vector<KeySpec> make_schema() {
 
       // Traffic (core/traffic): reservations on the road graph, granted by the server
       flag("traffic.enabled", true,
-           "robots drive only into road stretches the server granted them; false: the Forklift thesis's local avoidance only"),
+           "robots drive only into road stretches the server granted them; false: the Forklift thesis's local "
+           "avoidance only"),
       number("traffic.lookahead", 0.6, "m", 0.1, 5.0, "route granted ahead of a robot when the road is free"),
       number("traffic.priority_wait_s", 8.0, "s", 0.0, 600.0,
              "sim seconds a stopped robot waits before its next stretch is reserved for it"),
@@ -111,11 +118,15 @@ std::string markdown_row(const KeySpec& spec) {
       break;
     }
     case ValueType::kInt:
-      allowed = std::to_string(static_cast<long long>(spec.min)) + " .. " +
-                std::to_string(static_cast<long long>(spec.max));
+      allowed =
+          std::to_string(static_cast<long long>(spec.min)) + " .. " + std::to_string(static_cast<long long>(spec.max));
       break;
-    case ValueType::kBool: allowed = "true, false"; break;
-    case ValueType::kString: allowed = "text"; break;
+    case ValueType::kBool:
+      allowed = "true, false";
+      break;
+    case ValueType::kString:
+      allowed = "text";
+      break;
     case ValueType::kChoice:
       for (std::size_t i = 0; i < spec.choices.size(); ++i) allowed += (i ? ", " : "") + spec.choices[i];
       break;

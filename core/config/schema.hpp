@@ -27,8 +27,7 @@ const std::vector<KeySpec>& schema();
 const KeySpec* find_key(const std::string& key);
 
 /// The header of the Markdown table of keys: key, default, unit, allowed, meaning.
-inline constexpr const char* kMarkdownHeader =
-    "| key | default | unit | allowed | meaning |\n|---|---|---|---|---|\n";
+inline constexpr const char* kMarkdownHeader = "| key | default | unit | allowed | meaning |\n|---|---|---|---|---|\n";
 
 /// One key as a row of that table.
 std::string markdown_row(const KeySpec& spec);

@@ -52,18 +52,39 @@ Relative paths: `server.db_path` is relative to the state folder: `$FLEET_STATE_
 
 ## Fleets
 
-Beside the keys, the file declares the fleets under `fleets:`, each with an `id`, a
-`robot_type`, a `footprint` (`length` and `width` in metres) and its `robots`, each with an
-`id` unique across fleets and a `home`, the id of a home pose in the site file:
+Beside the keys, the file declares the fleets under `fleets:`. A fleet has an `id`, a
+`robot_type` (the software that drives it: `forklift`), an optional vehicle `profile` and its
+`robots`, each with an `id` unique across fleets and a `home`, the id of a home pose in the
+site file. The profile is the vehicle's factsheet; every key left out keeps the robot type's own
+vehicle:
+
+| Key | Meaning |
+|---|---|
+| `footprint` | `{length, width}` in metres (a rectangle centred on the body origin) or a list of `[x, y]` corners in the body frame; a simple polygon around the origin |
+| `kinematics` | `omni`, `differential`, or `{type: tricycle, wheelbase: M, max_steering_angle: RAD}` |
+| `max_speed`, `max_acceleration`, `max_yaw_rate` | what the vehicle can do (m/s, m/s^2, rad/s); the agent drives at `min(agent.max_speed, max_speed)` |
+| `load` | `{type: pallet\|box\|none, max_mass: KG, lift_height: M}`: what it carries and how high it reaches |
+| `actions` | the VDA 5050 actions it performs at a place, a subset of its robot type's (`forklift`: `pick`, `drop`, `finePositioning`) |
 
 ```yaml
 fleets:
   - id: forklifts
     robot_type: forklift
-    footprint: {length: 0.25, width: 0.16}
+    profile:
+      footprint: {length: 0.25, width: 0.16}
+      kinematics: omni
+      max_speed: 0.3
+      load: {type: pallet, max_mass: 1.0, lift_height: 0.0}
+      actions: [pick, drop, finePositioning]
     robots:
       - {id: fl1, home: H1}
 ```
+
+An unknown robot type, a footprint that is not a simple polygon or an action the robot type
+cannot perform stops the program naming the file, the line and the key. `fleetctl fleets`
+prints every fleet; `fleetctl fleets --json` and `GET /api/fleets` give them as VDA 5050
+factsheets (`typeSpecification`, `physicalParameters`, `protocolFeatures.agvActions`,
+`agvGeometry.envelopes2d`, `loadSpecification`).
 )";
 
 }  // namespace

@@ -1,10 +1,10 @@
 #pragma once
 
 #include <map>
-
-#include "common/errors.hpp"
 #include <stdexcept>
 #include <string>
+
+#include "common/errors.hpp"
 
 namespace fleet::config {
 

@@ -235,6 +235,23 @@
       .map(([bx, by]) => [x + c * bx - s * by, y + s * bx + c * by]);
   }
 
+  // The robot's true footprint polygon (body frame, from its fleet's vehicle profile) at a pose;
+  // the length x width rectangle when the site does not know the robot.
+  function bodyCorners(id, x, y, yaw, length, width) {
+    const spec = site.robots.find((r) => r.id === id);
+    if (!spec || !spec.poly) return footprintCorners(x, y, yaw, length, width);
+    const c = Math.cos(yaw), s = Math.sin(yaw);
+    return spec.poly.map(([bx, by]) => [x + c * bx - s * by, y + s * bx + c * by]);
+  }
+
+  // Each fleet's outline colour, in the order the site lists the fleets.
+  const FLEET_COLOURS = ['#1d232a', '#d1495b', '#00798c', '#edae49', '#66a182'];
+  function fleetColourOf(id) {
+    const spec = site.robots.find((r) => r.id === id);
+    const index = spec && site.fleets ? site.fleets.findIndex((f) => f.id === spec.fleet) : 0;
+    return FLEET_COLOURS[Math.max(index, 0) % FLEET_COLOURS.length];
+  }
+
   function colourOf(r) {
     if (r.health === 'lost') return LOST_COLOUR;
     return STATE_COLOURS[r.state] || '#5b7083';
@@ -322,7 +339,7 @@
     const colour = colourOf(r);
     if (toggles.truth && r.truth) {
       const [tx, ty, tyaw] = r.truth;
-      polyPath(ctx, footprintCorners(tx, ty, tyaw, length, width));
+      polyPath(ctx, bodyCorners(id, tx, ty, tyaw, length, width));
       ctx.setLineDash([3, 2]);
       ctx.strokeStyle = '#222';
       ctx.lineWidth = 1.2;
@@ -330,11 +347,11 @@
       ctx.setLineDash([]);
     }
     ctx.globalAlpha = lost ? 0.55 : 1;
-    polyPath(ctx, footprintCorners(r.x, r.y, r.yaw, length, width));
+    polyPath(ctx, bodyCorners(id, r.x, r.y, r.yaw, length, width));
     ctx.fillStyle = colour;
     ctx.fill();
-    ctx.lineWidth = r.health === 'stale' ? 2 : 1;
-    ctx.strokeStyle = r.health === 'stale' ? '#c77c02' : '#1d232a';
+    ctx.lineWidth = r.health === 'stale' || (site.fleets && site.fleets.length > 1) ? 2 : 1;
+    ctx.strokeStyle = r.health === 'stale' ? '#c77c02' : fleetColourOf(id);
     if (r.health === 'stale') ctx.setLineDash([3, 2]);
     ctx.stroke();
     ctx.setLineDash([]);

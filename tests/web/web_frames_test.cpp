@@ -136,3 +136,24 @@ TEST(WebFrames, PosesAreRoundedToShortDecimals) {
   EXPECT_EQ(f["robots"]["r0"]["x"].dump(), "0.7");
   EXPECT_EQ(f["robots"]["r0"]["cov"][0].dump(), "1.23e-05");
 }
+
+TEST(WebFrames, FleetsAreVda5050Factsheets) {
+  const auto config = fleet::config::parse_fleet_config(R"(
+fleets:
+  - id: small
+    robot_type: forklift
+    robots: [{id: s1, home: H1}]
+  - id: tall
+    robot_type: forklift
+    profile: {footprint: [[0.8, -0.45], [0.8, 0.45], [-0.8, 0.45], [-0.8, -0.45]], load: {lift_height: 4.5}, actions: [pick, drop]}
+    robots: [{id: t1, home: H2}, {id: t2, home: H3}]
+)",
+                                                        "t");
+  const auto j = fleet::server::fleets_json(config);
+  ASSERT_EQ(j["fleets"].size(), 2u);
+  EXPECT_EQ(j["fleets"][1]["fleet"], "tall");
+  EXPECT_DOUBLE_EQ(j["fleets"][1]["physicalParameters"]["length"].get<double>(), 1.6);
+  EXPECT_DOUBLE_EQ(j["fleets"][1]["loadSpecification"]["loadSets"][0]["maxLoadhandlingHeight"].get<double>(), 4.5);
+  EXPECT_EQ(j["fleets"][1]["protocolFeatures"]["agvActions"].size(), 2u);
+  EXPECT_EQ(j["fleets"][1]["robots"].size(), 2u);
+}

@@ -14,7 +14,7 @@ const char* kFleets = R"(
 fleets:
   - id: forklifts
     robot_type: forklift
-    footprint: {length: 0.25, width: 0.16}
+    profile: {footprint: {length: 0.25, width: 0.16}}
     robots:
       - {id: fl1, home: H1}
       - {id: fl2, home: H2}
@@ -65,7 +65,7 @@ TEST(FleetConfig, DuplicateRobotIdsAreRefused) {
 fleets:
   - id: a
     robot_type: forklift
-    footprint: {length: 0.25, width: 0.16}
+    profile: {footprint: {length: 0.25, width: 0.16}}
     robots: [{id: fl1, home: H1}, {id: fl1, home: H2}]
 )");
   EXPECT_NE(msg.find("duplicate robot id 'fl1'"), std::string::npos) << msg;

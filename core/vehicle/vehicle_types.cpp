@@ -1,0 +1,66 @@
+#include "vehicle/vehicle_types.hpp"
+
+#include <algorithm>
+
+namespace fleet::vehicle {
+
+namespace {
+
+RobotType forklift() {
+  RobotType t;
+  t.name = "forklift";
+  t.description = "mecanum forklift with UWB, gyro and a marker camera on the forks [Forklift thesis]";
+  // pick and drop a pallet; finePositioning is the marker-camera search that centres the forks.
+  t.possible_actions = {"pick", "drop", "finePositioning"};
+  VehicleProfile& p = t.defaults;
+  p.footprint = rectangle(0.25, 0.16);  // about 25 x 16 cm [Forklift thesis, section 3]
+  p.kinematics = Kinematics::kOmni;
+  p.max_speed = 0.3;
+  p.max_acceleration = 0.5;
+  p.max_yaw_rate = 1.5;
+  p.load = {"pallet", 1.0, 0.0};
+  p.actions = t.possible_actions;
+  return t;
+}
+
+}  // namespace
+
+const std::vector<RobotType>& robot_types() {
+  static const std::vector<RobotType> types{forklift()};
+  return types;
+}
+
+const RobotType* find_robot_type(std::string_view name) {
+  for (const RobotType& t : robot_types()) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+std::string robot_type_names() {
+  std::string out;
+  for (const RobotType& t : robot_types()) out += (out.empty() ? "" : ", ") + t.name;
+  return out;
+}
+
+std::vector<std::string> known_actions() {
+  std::vector<std::string> out;
+  for (const RobotType& t : robot_types()) {
+    for (const std::string& a : t.possible_actions) {
+      if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
+    }
+  }
+  // VDA 5050 names the next robot types bring: orders may already name them (and are refused
+  // as no fleet's action until a fleet offers them).
+  for (const char* a : {"pickItem", "dropItem", "dock"}) {
+    if (std::find(out.begin(), out.end(), a) == out.end()) out.emplace_back(a);
+  }
+  return out;
+}
+
+bool is_known_action(std::string_view action) {
+  const auto all = known_actions();
+  return std::find(all.begin(), all.end(), action) != all.end();
+}
+
+}  // namespace fleet::vehicle

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vehicle/profile.hpp"
+
+namespace fleet::vehicle {
+
+/// A robot type: software in the agent that drives one kind of vehicle. Its profile defaults come
+/// from the vehicle its source document describes; a fleet's profile overrides any of them.
+struct RobotType {
+  std::string name;
+  std::string description;
+  /// Every action the software can carry out; a fleet's profile offers a subset.
+  std::vector<std::string> possible_actions;
+  VehicleProfile defaults;
+};
+
+/// The robot types the agent can build, in a stable order.
+const std::vector<RobotType>& robot_types();
+const RobotType* find_robot_type(std::string_view name);
+/// "forklift, ..." for messages.
+std::string robot_type_names();
+
+/// Actions every order may use whatever the fleet: none today (a `move` order has no action).
+bool is_known_action(std::string_view action);
+/// Every action name some robot type can perform, for messages and checks.
+std::vector<std::string> known_actions();
+
+}  // namespace fleet::vehicle
