@@ -152,10 +152,22 @@ void FleetAgent::handle_orders() {
       return;
     }
     std::string why;
-    const task::TaskOrder task_order{std::to_string(assignment.order_id), assignment.pick_area, assignment.pick_pose,
-                                     assignment.drop_area, assignment.drop_pose};
-    if (order_) {
+    const auto kind = orders::parse_kind(assignment.kind.empty() ? "transport" : assignment.kind);
+    if (!kind) {
+      why = "unknown order kind '" + assignment.kind + "'";
+    }
+    const task::TaskOrder task_order{std::to_string(assignment.order_id),
+                                     assignment.pick_area,
+                                     assignment.pick_pose,
+                                     assignment.drop_area,
+                                     assignment.drop_pose,
+                                     kind.value_or(orders::OrderKind::kTransport)};
+    if (!why.empty()) {
+      // the kind is not one this robot type knows
+    } else if (order_) {
       why = "busy with order " + std::to_string(order_->assignment.order_id);
+    } else if (kind == orders::OrderKind::kPick) {
+      why = "a forklift performs no pickItem";
     } else if (paused_) {
       why = "paused by the operator";
     } else if (forklift_.submit(task_order, &why)) {
@@ -293,8 +305,12 @@ void FleetAgent::handle_events() {
         break;
       case K::kDone:
         if (!order_) break;
-        log_->info("order {} done: pallet {} placed at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
-                   e.pallet_id, order_->assignment.drop_area, e.pallet_pose.x, e.pallet_pose.y, e.pallet_pose.yaw);
+        if (e.pallet_id < 0) {
+          log_->info("order {} done: parked at {}", order_->assignment.order_id, order_->assignment.drop_area);
+        } else {
+          log_->info("order {} done: pallet {} placed at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
+                     e.pallet_id, order_->assignment.drop_area, e.pallet_pose.x, e.pallet_pose.y, e.pallet_pose.yaw);
+        }
         finish_order("DONE", "", e.pallet_id, e.pallet_pose);
         break;
       case K::kAreaEmpty:

@@ -35,9 +35,11 @@ std::vector<CommandSpec> make_table() {
        "add",
        "",
        false,
-       {value("--from", "AREA", true), value("--to", "AREA", true), value("--priority", "P"), value("--robot", "R"),
-        value("--fleet", "F"), on_off("--wait")},
-       "create a transport order, print its id; --wait follows it to its end\n"
+       {choice("--kind", {"transport", "move", "pick"}, "K"), value("--from", "AREA"), value("--to", "PLACE", true),
+        value("--priority", "P"), value("--robot", "R"), value("--fleet", "F"), on_off("--wait")},
+       "create an order, print its id: a transport --from AREA --to AREA (the default\n"
+       "kind), a move --to PARKING (go there and stay); only fleets that can do its\n"
+       "actions take it (exit 2 when none can); --wait follows it to its end\n"
        "(exit 0 DONE, 1 FAILED or CANCELLED)"},
       {Group::kServer,
        "order",

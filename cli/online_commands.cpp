@@ -14,6 +14,7 @@
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "config/fleet_config.hpp"
+#include "map/site.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "orders/order.hpp"
@@ -26,10 +27,13 @@ namespace {
 int order_add(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out,
               std::ostream& err) {
   model::OrderRequest request;
+  request.kind = args.value("kind").value_or("");
+  const bool move = request.kind == "move";
   const auto from = args.value("from");
   const auto to = args.value("to");
-  if (!from || !to) throw ArgError("order add needs --from AREA and --to AREA");
-  request.pick_area = *from;
+  if (move && !to) throw ArgError("order add --kind move needs --to PLACE (a parking place)");
+  if (!move && (!from || !to)) throw ArgError("order add needs --from AREA and --to AREA");
+  request.pick_area = from.value_or("");
   request.drop_area = *to;
   const long priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority).value_or(0);
   request.priority = static_cast<int>(priority);
@@ -41,12 +45,18 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   FleetClient client(connection.domain);
   const model::ServerInfo info = require_server(client, connection);
   // The check the server and the web API make too; a name it refuses is bad input (exit 2).
-  orders::KnownNames names{info.loading_areas, info.robots, {}};
-  for (const auto& fleet : config::load_fleet_config(command.config_file).fleets) names.fleets.push_back(fleet.id);
-  const std::map<std::string, std::string> flag_of{
-      {"from", "--from"}, {"to", "--to"}, {"robot", "--robot"}, {"fleet", "--fleet"}, {"priority", "--priority"}};
+  // The fleets and their abilities from the configuration, the place heights from the site the
+  // server serves, the place names from the server itself.
+  const auto site = map::load_site(known_site_path(command.source_dir, info.site));
+  orders::KnownNames names = orders::known_names(config::load_fleet_config(command.config_file), site);
+  names.areas = info.loading_areas;
+  names.homes = info.homes;
+  names.robots = info.robots;
+  const std::map<std::string, std::string> flag_of{{"kind", "--kind"},   {"from", "--from"},
+                                                   {"to", "--to"},       {"robot", "--robot"},
+                                                   {"fleet", "--fleet"}, {"priority", "--priority"}};
   if (const auto problem = orders::check_order_request(
-          {request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority}, names)) {
+          {request.kind, request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority}, names)) {
     throw ArgError(flag_of.at(problem->field) + ": " + problem->message);
   }
 

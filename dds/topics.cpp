@@ -89,19 +89,21 @@ int take_samples(dds_entity_t reader, const std::function<void(Model&&, const Sa
 
 fleet_msg_ServerInfo to_wire(const model::ServerInfo& v, Scratch& s) {
   return {borrow(v.server_id), borrow(v.site), s.string_seq(v.loading_areas), s.string_seq(v.robots),
-          s.string_seq(v.obstacles), s.string_seq(v.maps), v.time_scale, v.started_unix_ms};
+          s.string_seq(v.obstacles), s.string_seq(v.maps), v.time_scale, v.started_unix_ms, s.string_seq(v.homes)};
 }
 model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
   return {text(w.server_id),      text(w.site),        strings_of(w.loading_areas), strings_of(w.robots),
-          strings_of(w.obstacles), strings_of(w.maps), w.time_scale,                w.started_unix_ms};
+          strings_of(w.obstacles), strings_of(w.maps), w.time_scale,                w.started_unix_ms,
+          strings_of(w.homes)};
 }
 
 fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
   return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id), borrow(v.robot_id),
-          v.priority};
+          v.priority,           borrow(v.kind)};
 }
 model::OrderRequest from_wire(const fleet_msg_OrderRequest& w) {
-  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id), text(w.robot_id), w.priority};
+  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id), text(w.robot_id), w.priority,
+          text(w.kind)};
 }
 
 fleet_msg_Command to_wire(const model::Command& v, Scratch&) {
@@ -120,11 +122,11 @@ model::RequestReply from_wire(const fleet_msg_RequestReply& w) {
 
 fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
   return {v.order_id,           borrow(v.robot_id),        borrow(v.pick_area), wire_pose(v.pick_pose),
-          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled};
+          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled, borrow(v.kind)};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
   return {w.order_id,          text(w.robot_id),         text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled};
+          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled, text(w.kind)};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {
@@ -155,12 +157,13 @@ fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
   return {v.order_id,      borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
           borrow(v.robot_id), borrow(v.state),   borrow(v.phase),     borrow(v.reason),    v.priority,
           v.created_sim,   v.updated_sim,
-          {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false}};
+          {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false},
+          borrow(v.kind)};
 }
 model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
   model::OrderInfo v{w.order_id,       text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
                      text(w.robot_id), text(w.state),      text(w.phase),     text(w.reason),    w.priority,
-                     w.created_sim,    w.updated_sim,      {}};
+                     w.created_sim,    w.updated_sim,      {},                text(w.kind)};
   for (uint32_t i = 0; i < w.history._length; ++i) {
     const auto& e = w.history._buffer[i];
     v.history.push_back({e.sim_time, text(e.state), text(e.phase), text(e.robot_id), text(e.reason), e.robot_x, e.robot_y});

@@ -43,7 +43,8 @@ model::OrderInfo info_of(const Order& o) {
           o.priority,
           o.created_sim,
           o.updated_sim,
-          std::move(history)};
+          std::move(history),
+          std::string(orders::to_string(o.kind))};
 }
 
 /// Searching or picking: the robot stands at the pick area, the pallet perhaps on its way up.
@@ -98,6 +99,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   log_->info("maps of site '{}': {}", options_.site.name, model::join(options_.maps));
   started_wall_ = SimClock::wall_now();
   restore_pallets();
+  for (const auto& [fleet, robot] : options_.config.all_robots()) parked_at_[robot->id] = robot->home;
   restore_orders();
   publish_site_state();
   publish_server_info();
@@ -151,7 +153,11 @@ void FleetServer::restore_orders() {
   const auto stored = store_.load_all();
   book_ = orders::OrderBook(store_.next_id());
   long open = 0;
-  for (const Order& order : stored) {
+  for (Order order : stored) {
+    fill_steps(order);
+    if (order.kind == orders::OrderKind::kMove && order.status == OrderStatus::kDone) {
+      parked_at_[order.robot_id] = order.drop_area;
+    }
     book_.restore(order);
     if (orders::is_final(order.status)) {
       order_info_writer_.write(info_of(order));
@@ -177,6 +183,7 @@ void FleetServer::publish_server_info() {
   info.server_id = "fleet-server";
   info.site = options_.site.name;
   info.loading_areas = options_.site.area_ids();
+  for (const auto& home : options_.site.homes) info.homes.push_back(home.id);
   for (const auto& [fleet, robot] : options_.config.all_robots()) info.robots.push_back(robot->id);
   for (const auto& o : options_.site.static_obstacles) info.obstacles.push_back(o.id);
   info.maps = options_.maps;
@@ -310,11 +317,26 @@ std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) co
 }
 
 orders::KnownNames FleetServer::known_names() const {
-  orders::KnownNames names;
-  names.areas = options_.site.area_ids();
-  for (const auto& [fleet, robot] : options_.config.all_robots()) names.robots.push_back(robot->id);
-  for (const auto& fleet : options_.config.fleets) names.fleets.push_back(fleet.id);
-  return names;
+  return orders::known_names(options_.config, options_.site);
+}
+
+void FleetServer::fill_steps(Order& order) const {
+  const auto names = known_names();
+  order.steps = orders::steps_of({std::string(orders::to_string(order.kind)), order.pick_area, order.drop_area, "",
+                                  "", order.priority},
+                                 names);
+}
+
+std::string FleetServer::validate_parking(const std::string& place, const std::string& robot_id) const {
+  for (const auto& [robot, parked] : parked_at_) {
+    if (parked == place && robot != robot_id) return "parking place '" + place + "' is " + robot + "'s";
+  }
+  for (const auto& [id, o] : book_.all()) {
+    if (!orders::is_final(o.status) && o.kind == orders::OrderKind::kMove && o.drop_area == place) {
+      return "parking place '" + place + "' is promised to order " + std::to_string(id) + ", which goes there";
+    }
+  }
+  return "";
 }
 
 int FleetServer::expected_pallets(const std::string& area) const {
@@ -367,24 +389,26 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
     log_->warn("order request {} refused: {}", request.request_id, error);
     return model::RequestReply{request.request_id, false, 0, error};
   };
-  if (const auto problem = orders::check_order_request(
-          {request.pick_area, request.drop_area, request.robot_id, request.fleet_id, request.priority},
-          known_names())) {
+  const orders::OrderRequestFields fields{request.kind,     request.pick_area, request.drop_area,
+                                          request.robot_id, request.fleet_id,  request.priority};
+  if (const auto problem = orders::check_order_request(fields, known_names())) {
     return refuse(problem->field + ": " + problem->message);
   }
+  const orders::OrderKind kind = orders::kind_of(fields);
   if (!request.robot_id.empty()) {
     // An order for a robot that never reported would wait for it for good, unseen.
     if (const auto why = not_seen(request.robot_id)) return refuse(*why);
   }
-  if (const std::string error = validate_areas(request.pick_area, request.drop_area); !error.empty()) {
-    return refuse(error);
-  }
+  const std::string error = kind == orders::OrderKind::kMove ? validate_parking(request.drop_area, request.robot_id)
+                                                              : validate_areas(request.pick_area, request.drop_area);
+  if (!error.empty()) return refuse(error);
   if (options_.config.settings.get_bool("server.reject_when_busy")) {
     const bool any_free =
         std::any_of(robots_.begin(), robots_.end(), [&](const auto& entry) { return robot_is_free(entry.second); });
     if (!any_free) return refuse("no robot is free (server.reject_when_busy is on)");
   }
   Order draft;
+  draft.kind = kind;
   draft.request_id = request.request_id;
   draft.pick_area = request.pick_area;
   draft.drop_area = request.drop_area;
@@ -392,8 +416,10 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
   draft.robot_id = request.robot_id;
   draft.robot_requested = !request.robot_id.empty();
   draft.priority = request.priority;
+  fill_steps(draft);
   const Order& order = book_.create(std::move(draft), clock_.now());
-  log_->info("order {} created: {} -> {} (request {})", order.id, order.pick_area, order.drop_area, order.request_id);
+  log_->info("order {} created: {} {} -> {} (request {})", order.id, orders::to_string(order.kind), order.pick_area,
+             order.drop_area, order.request_id);
   publish_order(order);  // stored before the requester hears of it
   return {request.request_id, true, order.id, ""};
 }
@@ -649,6 +675,12 @@ void FleetServer::handle_order_reports() {
       result = book_.requeue(id, now, "rejected by " + report.robot_id + ": " + report.reason);
       // Its published state may lag its real one: do not offer it another order at once.
       rejected_at_wall_[report.robot_id] = SimClock::wall_now();
+    } else if (report.status == "DONE" && order->kind == orders::OrderKind::kMove) {
+      result = book_.transition(id, OrderStatus::kDone, now);
+      if (result == TransitionResult::kApplied) {
+        parked_at_[report.robot_id] = order->drop_area;
+        log_->info("order {} done: {} parks at {}", id, report.robot_id, order->drop_area);
+      }
     } else if (report.status == "DONE") {
       result = book_.transition(id, OrderStatus::kDone, now);
       if (result == TransitionResult::kApplied) {
@@ -1030,12 +1062,18 @@ void FleetServer::dispatch() {
   // one chained behind another (A->B, then B->C) waits in the queue for the first to finish.
   std::vector<const Order*> queue;
   for (const Order* o : book_.queue()) {
-    if (pallet_at_.at(o->pick_area) && !pallet_at_.at(o->drop_area)) queue.push_back(o);
+    if (o->kind != orders::OrderKind::kTransport || (pallet_at_.at(o->pick_area) && !pallet_at_.at(o->drop_area))) {
+      queue.push_back(o);
+    }
   }
   if (queue.empty()) return;
   std::vector<orders::FreeRobot> free;
+  const auto names = known_names();
   for (const auto& [id, robot] : robots_) {
-    if (robot_is_free(robot)) free.push_back({robot.id, robot.fleet_id});
+    if (!robot_is_free(robot)) continue;
+    const auto ability = std::find_if(names.abilities.begin(), names.abilities.end(),
+                                      [&](const orders::FleetAbility& a) { return a.fleet_id == robot.fleet_id; });
+    if (ability != names.abilities.end()) free.push_back({robot.id, robot.fleet_id, *ability});
   }
   if (free.empty()) return;
   const auto cost = [&](const std::string& robot_id, const std::string& area_id) {
@@ -1051,13 +1089,16 @@ void FleetServer::dispatch() {
   }
 }
 
-double FleetServer::travel_cost(const std::string& robot_id, const std::string& area_id) {
+double FleetServer::travel_cost(const std::string& robot_id, const std::string& place_id) {
   constexpr double kApproach = 0.30;  // the forklift picks standing this far out from the pallet
-  const auto* area = options_.site.find_area(area_id);
+  const auto* area = options_.site.find_area(place_id);
+  const auto* home = options_.site.find_home(place_id);
   const auto robot = robots_.find(robot_id);
-  if (!area || robot == robots_.end()) return std::numeric_limits<double>::infinity();
-  const geometry::Pose2 approach{area->pose.x + kApproach * std::cos(area->pose.yaw),
-                                 area->pose.y + kApproach * std::sin(area->pose.yaw), area->pose.yaw};
+  if ((!area && !home) || robot == robots_.end()) return std::numeric_limits<double>::infinity();
+  const geometry::Pose2 approach =
+      area ? geometry::Pose2{area->pose.x + kApproach * std::cos(area->pose.yaw),
+                             area->pose.y + kApproach * std::sin(area->pose.yaw), area->pose.yaw}
+           : home->pose;
   const planning::RoadPlan plan = travel_.plan(robot->second.last.pose, approach);
   if (plan.status != planning::PlanStatus::kFound) return std::numeric_limits<double>::infinity();
   return geometry::distance(robot->second.last.pose.position(), plan.points.front()) + plan.length;
@@ -1083,6 +1124,10 @@ void FleetServer::send_assignment(const Order& order) {
   msg.drop_area = order.drop_area;
   if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
   if (const auto* drop = options_.site.find_area(order.drop_area)) msg.drop_pose = drop->pose;
+  if (const auto* parking = options_.site.find_home(order.drop_area); parking && order.kind == orders::OrderKind::kMove) {
+    msg.drop_pose = parking->pose;
+  }
+  msg.kind = std::string(orders::to_string(order.kind));
   msg.update_id = order.update_id;
   order_writer_.write(msg);
   awaiting_ack_since_[order.id] = SimClock::wall_now();

@@ -96,6 +96,11 @@ class FleetServer {
   model::RequestReply execute(const model::Command& command);
   /// Why a pick/drop pair cannot be ordered now, or empty.
   std::string validate_areas(const std::string& pick, const std::string& drop) const;
+  /// Why a move to `place` cannot be placed now (another robot parks there, or an open move goes
+  /// there), or empty.
+  std::string validate_parking(const std::string& place, const std::string& robot_id) const;
+  /// The order's VDA 5050 steps with the site's place heights.
+  void fill_steps(orders::Order& order) const;
   /// The loading areas, robots and fleets an order request may name.
   orders::KnownNames known_names() const;
   /// Whether `robot_id` has reported to this server (a lost robot too).
@@ -145,6 +150,7 @@ class FleetServer {
   std::map<std::string, RobotEntry> robots_;
   std::map<std::string, model::RobotPath> paths_;
   std::map<std::string, bool> pallet_at_;              ///< loading area -> holds a pallet (from pallets_)
+  std::map<std::string, std::string> parked_at_;      ///< robot -> the parking place it goes home to
   std::map<int, model::PalletTruth> pallets_;          ///< simulation truth of every pallet
   std::map<std::string, bool> obstacle_enabled_;       ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent

@@ -47,6 +47,13 @@ CREATE TABLE IF NOT EXISTS pallets (
 );
 )";
 
+/// Schema changes since the first release, applied in order to a database whose user_version is
+/// below their number; a database written before any of them (version 0) keeps every order.
+constexpr const char* kMigrations[] = {
+    // 1: orders have a kind (transport, move, pick); every earlier order was a transport.
+    "ALTER TABLE orders ADD COLUMN kind TEXT NOT NULL DEFAULT 'transport';",
+};
+
 std::string text_column(sqlite3_stmt* stmt, int column) {
   const auto* t = sqlite3_column_text(stmt, column);
   return t ? reinterpret_cast<const char*>(t) : "";
@@ -69,13 +76,14 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=NORMAL");
   exec(kSchema);
+  migrate();
   auto prepare = [&](const char* sql, sqlite3_stmt** stmt) {
     if (sqlite3_prepare_v2(db_, sql, -1, stmt, nullptr) != SQLITE_OK) {
       throw StoreError(path_ + ": " + sqlite3_errmsg(db_));
     }
   };
   prepare(
-      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16) "
+      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17) "
       "ON CONFLICT(id) DO UPDATE SET robot_id=?6, status=?9, phase=?10, reason=?11, update_id=?12, "
       "updated_sim=?14, assigned_sim=?15, finished_sim=?16",
       &upsert_);
@@ -90,6 +98,30 @@ OrderStore::~OrderStore() {
   sqlite3_finalize(insert_event_);
   sqlite3_finalize(upsert_pallet_);
   sqlite3_close(db_);
+}
+
+int OrderStore::schema_version() const {
+  sqlite3_stmt* stmt = nullptr;
+  sqlite3_prepare_v2(db_, "PRAGMA user_version", -1, &stmt, nullptr);
+  const int version = sqlite3_step(stmt) == SQLITE_ROW ? sqlite3_column_int(stmt, 0) : 0;
+  sqlite3_finalize(stmt);
+  return version;
+}
+
+void OrderStore::migrate() {
+  const int latest = static_cast<int>(std::size(kMigrations));
+  for (int version = schema_version(); version < latest; ++version) {
+    exec("BEGIN IMMEDIATE");
+    try {
+      exec(kMigrations[version]);
+      exec(("PRAGMA user_version=" + std::to_string(version + 1)).c_str());
+      exec("COMMIT");
+    } catch (const StoreError& e) {
+      sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+      throw StoreError(std::string(e.what()) + " (while migrating the order database to schema version " +
+                       std::to_string(version + 1) + ")");
+    }
+  }
 }
 
 void OrderStore::exec(const char* sql) const {
@@ -125,6 +157,7 @@ void OrderStore::save(const orders::Order& o) {
     sqlite3_bind_double(upsert_, 14, o.updated_sim);
     sqlite3_bind_double(upsert_, 15, o.assigned_sim);
     sqlite3_bind_double(upsert_, 16, o.finished_sim);
+    sqlite3_bind_text(upsert_, 17, std::string(orders::to_string(o.kind)).c_str(), -1, SQLITE_TRANSIENT);
     step(upsert_);
 
     sqlite3_bind_int64(count_events_, 1, o.id);
@@ -157,7 +190,7 @@ std::vector<orders::Order> OrderStore::load_all() const {
   sqlite3_stmt* stmt = nullptr;
   sqlite3_prepare_v2(db_,
                      "SELECT id, request_id, pick_area, drop_area, fleet_id, robot_id, robot_requested, priority, "
-                     "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim "
+                     "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind "
                      "FROM orders ORDER BY id",
                      -1, &stmt, nullptr);
   while (sqlite3_step(stmt) == SQLITE_ROW) {
@@ -182,6 +215,11 @@ std::vector<orders::Order> OrderStore::load_all() const {
     o.updated_sim = sqlite3_column_double(stmt, 13);
     o.assigned_sim = sqlite3_column_double(stmt, 14);
     o.finished_sim = sqlite3_column_double(stmt, 15);
+    const auto kind = orders::parse_kind(text_column(stmt, 16));
+    if (!kind) {
+      throw StoreError(path_ + ": order " + std::to_string(o.id) + " has unknown kind '" + text_column(stmt, 16) + "'");
+    }
+    o.kind = *kind;
     out.push_back(std::move(o));
   }
   sqlite3_finalize(stmt);

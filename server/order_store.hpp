@@ -45,9 +45,12 @@ class OrderStore {
   std::vector<model::PalletTruth> load_pallets() const;
 
   const std::string& path() const { return path_; }
+  /// The database's schema version (PRAGMA user_version) after the migrations on opening.
+  int schema_version() const;
 
  private:
   void exec(const char* sql) const;
+  void migrate();
   std::string path_;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* upsert_ = nullptr;

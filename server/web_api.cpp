@@ -115,8 +115,11 @@ void WebServer::api_routes() {
   route("POST", "/api/orders", [=, this](const Request& req, Response& res) {
     if (!authorized(req, res)) return;
     const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"from", "to", "robot", "fleet", "priority"}, res)) return;
-    const auto from = string_field(*body, "from", true, res);
+    if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority"}, res)) return;
+    const auto kind = string_field(*body, "kind", false, res);
+    if (!kind) return;
+    // A move has no pick area.
+    const auto from = string_field(*body, "from", *kind != "move", res);
     if (!from) return;
     const auto to = string_field(*body, "to", true, res);
     if (!to) return;
@@ -129,15 +132,13 @@ void WebServer::api_routes() {
       if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
       priority = it->get<long>();
     }
-    orders::KnownNames names;
-    names.areas = site_.site_map->site.area_ids();
-    names.robots = robot_ids();
-    for (const auto& f : site_.config->fleets) names.fleets.push_back(f.id);
-    if (const auto problem = orders::check_order_request({*from, *to, *robot, *fleet, priority}, names)) {
+    const orders::KnownNames names = orders::known_names(*site_.config, site_.site_map->site);
+    if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, names)) {
       return send_error(res, 400, problem->field, problem->message);
     }
     model::OrderRequest request;
     request.request_id = next_request_id();
+    request.kind = *kind;
     request.pick_area = *from;
     request.drop_area = *to;
     request.robot_id = *robot;

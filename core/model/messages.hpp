@@ -21,6 +21,7 @@ struct ServerInfo {
   std::vector<std::string> maps;
   double time_scale = 1.0;
   std::int64_t started_unix_ms = 0;
+  std::vector<std::string> homes;  ///< parking places, where a move order may go too
 };
 
 struct OrderRequest {
@@ -30,6 +31,7 @@ struct OrderRequest {
   std::string fleet_id;  ///< empty: the server chooses
   std::string robot_id;  ///< empty: the server chooses
   int priority = 0;
+  std::string kind;  ///< orders::OrderKind name; empty: transport
 };
 
 struct Command {
@@ -57,6 +59,7 @@ struct OrderAssignment {
   geometry::Pose2 drop_pose;
   std::uint32_t update_id = 0;
   bool cancelled = false;
+  std::string kind;  ///< orders::OrderKind name; a move drives to drop_area / drop_pose and stays
 };
 
 /// An agent's report on its order.
@@ -105,6 +108,7 @@ struct OrderInfo {
   double created_sim = 0.0;
   double updated_sim = 0.0;
   std::vector<OrderEvent> history;  ///< oldest first, at most kMaxOrderHistory
+  std::string kind;                 ///< orders::OrderKind name
 };
 
 inline constexpr std::size_t kMaxOrderHistory = 64;

@@ -34,7 +34,7 @@ bool robot_id_less(const std::string& a, const std::string& b) {
 bool eligible(const Order& order, const FreeRobot& robot) {
   if (order.robot_requested && order.robot_id != robot.id) return false;
   if (!order.fleet_id.empty() && order.fleet_id != robot.fleet_id) return false;
-  return true;
+  return !incapability(robot.ability, order.steps).has_value();
 }
 
 namespace {
@@ -52,7 +52,7 @@ class AscendingIdPolicy final : public DispatchPolicy {
     std::vector<Assignment> out;
     for (const Order* order : queue) {
       for (auto it = robots.begin(); it != robots.end(); ++it) {
-        if (eligible(*order, *it) && std::isfinite(cost(it->id, order->pick_area))) {
+        if (eligible(*order, *it) && std::isfinite(cost(it->id, order->first_place()))) {
           out.push_back({order->id, it->id});
           robots.erase(it);
           break;
@@ -75,7 +75,7 @@ class NearestPolicy final : public DispatchPolicy {
       double best_cost = std::numeric_limits<double>::infinity();
       for (auto it = robots.begin(); it != robots.end(); ++it) {
         if (!eligible(*order, *it)) continue;
-        const double c = cost(it->id, order->pick_area);
+        const double c = cost(it->id, order->first_place());
         if (c < best_cost) {
           best_cost = c;
           best = it;
@@ -97,13 +97,21 @@ class OptimalPolicy final : public DispatchPolicy {
   std::vector<Assignment> assign(const std::vector<const Order*>& queue, std::vector<FreeRobot> robots,
                                  const TravelCost& cost) const override {
     sort_robots(robots);
-    std::vector<const Order*> head(queue.begin(), queue.begin() + std::min(queue.size(), robots.size()));
+    // The first orders some free robot can take, as many as there are robots: an order no free
+    // robot's fleet can do must not hold a slot another order could use.
+    std::vector<const Order*> head;
+    for (const Order* order : queue) {
+      if (head.size() == robots.size()) break;
+      if (std::any_of(robots.begin(), robots.end(), [&](const FreeRobot& r) { return eligible(*order, r); })) {
+        head.push_back(order);
+      }
+    }
     if (head.empty()) return {};
     std::vector<std::vector<double>> matrix(head.size(), std::vector<double>(robots.size(), kForbidden));
     for (std::size_t i = 0; i < head.size(); ++i) {
       for (std::size_t j = 0; j < robots.size(); ++j) {
         if (!eligible(*head[i], robots[j])) continue;
-        const double c = cost(robots[j].id, head[i]->pick_area);
+        const double c = cost(robots[j].id, head[i]->first_place());
         if (std::isfinite(c)) matrix[i][j] = c;
       }
     }

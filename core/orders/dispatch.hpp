@@ -11,8 +11,11 @@
 namespace fleet::orders {
 
 struct FreeRobot {
+  FreeRobot(std::string robot_id, std::string fleet, FleetAbility fleet_ability = {})
+      : id(std::move(robot_id)), fleet_id(std::move(fleet)), ability(std::move(fleet_ability)) {}
   std::string id;
   std::string fleet_id;
+  FleetAbility ability;  ///< what its fleet can do; orders it cannot do are not offered to it
 };
 
 struct Assignment {
@@ -20,8 +23,8 @@ struct Assignment {
   std::string robot_id;
 };
 
-/// Travel cost from a robot's position to an area's pick pose (road-graph metres); +inf when the
-/// robot cannot get there.
+/// Travel cost from a robot's position to the first place of an order (road-graph metres, on the
+/// robot's fleet's lanes); +inf when the robot cannot get there.
 using TravelCost = std::function<double(const std::string& robot_id, const std::string& area_id)>;
 
 /// Matches queued orders with free robots. One small interface; policies chosen by name in
@@ -41,7 +44,8 @@ std::unique_ptr<DispatchPolicy> make_dispatch_policy(std::string_view name);
 /// Natural order of robot ids, so that fl2 comes before fl10.
 bool robot_id_less(const std::string& a, const std::string& b);
 
-/// Whether `robot` may take `order` (a requested robot or fleet restricts it).
+/// Whether `robot` may take `order`: its fleet can perform every step's actions (at their
+/// heights), and a requested robot or fleet, if any, is it.
 bool eligible(const Order& order, const FreeRobot& robot);
 
 }  // namespace fleet::orders

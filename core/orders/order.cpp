@@ -6,7 +6,8 @@ namespace fleet::orders {
 
 namespace {
 constexpr std::array<std::string_view, 6> kStatusNames{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
-constexpr std::array<std::string_view, 6> kPhaseNames{"", "TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"};
+constexpr std::array<std::string_view, 7> kPhaseNames{"",        "TO_PICK",  "SEARCHING", "PICKING",
+                                                     "TO_DROP", "DROPPING", "MOVING"};
 }  // namespace
 
 std::string_view to_string(OrderStatus status) {
@@ -26,6 +27,10 @@ std::optional<OrderPhase> parse_phase(std::string_view text) {
   for (std::size_t i = 1; i < kPhaseNames.size(); ++i)
     if (kPhaseNames[i] == text) return static_cast<OrderPhase>(i);
   return std::nullopt;
+}
+
+std::size_t step_index(OrderPhase phase) {
+  return phase == OrderPhase::kToDrop || phase == OrderPhase::kDropping ? 1 : 0;
 }
 
 bool is_final(OrderStatus status) {

@@ -6,13 +6,21 @@
 #include <string_view>
 #include <vector>
 
+#include "orders/order_kind.hpp"
+
 namespace fleet::orders {
 
 /// Lifecycle of a transport order (openTCS-like; VDA 5050 order/state semantics).
 enum class OrderStatus { kQueued, kAssigned, kActive, kDone, kFailed, kCancelled };
 
-/// What an active order's robot is doing [Forklift thesis, section 6.4].
-enum class OrderPhase { kNone, kToPick, kSearching, kPicking, kToDrop, kDropping };
+/// What an active order's robot is doing: the step it executes and the action in it
+/// [Forklift thesis, section 6.4]. A transport's first step is TO_PICK (driving there), SEARCHING
+/// (finePositioning) and PICKING (pick); its second TO_DROP and DROPPING (drop). A move's one step
+/// is MOVING.
+enum class OrderPhase { kNone, kToPick, kSearching, kPicking, kToDrop, kDropping, kMoving };
+
+/// The index in the order's steps of the step `phase` belongs to (0 for kNone).
+std::size_t step_index(OrderPhase phase);
 
 std::string_view to_string(OrderStatus status);
 std::string_view to_string(OrderPhase phase);
@@ -41,8 +49,12 @@ struct OrderEvent {
 struct Order {
   std::int64_t id = 0;
   std::string request_id;
-  std::string pick_area;
-  std::string drop_area;
+  OrderKind kind = OrderKind::kTransport;
+  std::string pick_area;  ///< where a transport picks its load; empty for a move
+  std::string drop_area;  ///< where a transport drops its load; where a move goes
+  /// The VDA 5050 nodes with their actions, from kind and places (order_steps); filled by whoever
+  /// creates or loads the order, since place heights come from the site.
+  std::vector<OrderStep> steps;
   std::string fleet_id;  ///< requested fleet, empty for any
   std::string robot_id;  ///< requested robot before assignment; the robot after it
   bool robot_requested = false;
@@ -56,6 +68,9 @@ struct Order {
   double assigned_sim = 0.0;
   double finished_sim = 0.0;
   std::vector<OrderEvent> history;  ///< every transition, oldest first
+
+  /// The place the robot drives to first: the pick area, or a move's destination.
+  const std::string& first_place() const { return kind == OrderKind::kMove ? drop_area : pick_area; }
 };
 
 }  // namespace fleet::orders

@@ -581,11 +581,16 @@ void Forklift::collect_reports() {
         events_.push_back({ForkliftEvent::Kind::kFailed, r.order_id, r.detail, -1, {}});
         break;
       case K::kHomeReached:
+      case K::kArrived:
         path_.clear();
         path_cum_.clear();
         road_points_.clear();  // parked beside the road: it holds no road any more
         road_cum_.clear();
-        events_.push_back({ForkliftEvent::Kind::kHome, "", "", -1, {}});
+        if (r.kind == K::kArrived) {
+          events_.push_back({ForkliftEvent::Kind::kDone, r.order_id, r.area_id, -1, {}});
+        } else {
+          events_.push_back({ForkliftEvent::Kind::kHome, "", "", -1, {}});
+        }
         break;
       case K::kAccepted:
       case K::kPicked:

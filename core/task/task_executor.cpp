@@ -14,6 +14,8 @@ const char* to_string(PlanPurpose p) {
       return "to_drop";
     case PlanPurpose::kHome:
       return "home";
+    case PlanPurpose::kToPlace:
+      return "to_place";
   }
   return "unknown";
 }
@@ -34,6 +36,8 @@ const char* to_string(TaskReport::Kind k) {
       return "failed";
     case TaskReport::Kind::kHomeReached:
       return "home_reached";
+    case TaskReport::Kind::kArrived:
+      return "arrived";
   }
   return "unknown";
 }
@@ -52,7 +56,8 @@ bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
     return false;
   }
   order_ = order;
-  const Transition tr = fire(Event::kOrder);
+  const Transition tr = fire(order.kind == orders::OrderKind::kMove ? Event::kMoveOrder : Event::kOrder);
+  if (!tr.accepted) order_.reset();
   if (!tr.accepted && why) *why = tr.reason;
   return tr.accepted;
 }
@@ -66,6 +71,8 @@ Pose2 TaskExecutor::goal_for(PlanPurpose purpose) const {
       return control::PalletSearch::search_pose(order_->drop_area, params_.search.standoff);
     case PlanPurpose::kHome:
       return home_;
+    case PlanPurpose::kToPlace:
+      return order_->drop_area;
   }
   return home_;
 }
@@ -119,6 +126,19 @@ void TaskExecutor::apply(const Transition& tr) {
       request_plan(PlanPurpose::kToPick);
       // Taken while waiting for traffic on the way home: wait on until the road is granted.
       if (blocked_) fire(Event::kBlocked);
+      break;
+    case Effect::kPlanToPlace:
+      waiting_for_plan_ = false;
+      report(TaskReport::Kind::kAccepted, order_->drop_area_id);
+      request_plan(PlanPurpose::kToPlace);
+      if (blocked_) fire(Event::kBlocked);
+      break;
+    case Effect::kFinishMove:
+      // Parked at the place, which is home from now on: later orders end here.
+      follower_.clear();
+      home_ = order_->drop_area;
+      report(TaskReport::Kind::kArrived, order_->drop_area_id);
+      order_.reset();
       break;
     case Effect::kStartSearch:
       follower_.clear();
@@ -206,8 +226,8 @@ void TaskExecutor::path_received(std::uint64_t request_id, std::vector<Pose2> pa
     // turns towards the area itself, and the way home ends in the home heading.
     const auto& a = path[path.size() - 2];
     auto& b = path.back();
-    if (active_purpose_ == PlanPurpose::kHome) {
-      b.yaw = home_.yaw;
+    if (active_purpose_ == PlanPurpose::kHome || active_purpose_ == PlanPurpose::kToPlace) {
+      b.yaw = goal_for(active_purpose_).yaw;
     } else if (geometry::distance(a.position(), b.position()) > 1e-6) {
       b.yaw = std::atan2(b.y - a.y, b.x - a.x);
     }

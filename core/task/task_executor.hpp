@@ -16,17 +16,19 @@
 
 namespace fleet::task {
 
-/// A transport order as the forklift sees it: where to pick, where to drop (loading-area poses,
-/// yaw pointing from the pallet towards the approach road).
+/// An order as the forklift sees it. A transport: where to pick, where to drop (loading-area
+/// poses, yaw pointing from the pallet towards the approach road). A move: the parking place in
+/// drop_area_id / drop_area (the pose the robot parks at).
 struct TaskOrder {
   std::string order_id;
   std::string pick_area_id;
   geometry::Pose2 pick_area;
   std::string drop_area_id;
   geometry::Pose2 drop_area;
+  orders::OrderKind kind = orders::OrderKind::kTransport;
 };
 
-enum class PlanPurpose { kToPick, kToDrop, kHome };
+enum class PlanPurpose { kToPick, kToDrop, kHome, kToPlace };
 const char* to_string(PlanPurpose p);
 
 /// A request for the planner. Answer with TaskExecutor::path_received or plan_failed quoting `id`;
@@ -39,7 +41,7 @@ struct PlanRequest {
 
 /// Something the agent publishes (OrderState, pallet inventory).
 struct TaskReport {
-  enum class Kind { kAccepted, kPicked, kAreaEmpty, kDropped, kCancelled, kFailed, kHomeReached };
+  enum class Kind { kAccepted, kPicked, kAreaEmpty, kDropped, kCancelled, kFailed, kHomeReached, kArrived };
   Kind kind = Kind::kAccepted;
   std::string order_id;
   std::string area_id;  ///< the area concerned (picked from, empty, dropped on)
@@ -91,7 +93,8 @@ class TaskExecutor {
  public:
   TaskExecutor(ExecutorParams params, geometry::Pose2 home);
 
-  /// Accepts the order in IDLE or GO_HOME; otherwise returns false and says why.
+  /// Accepts the order in IDLE or GO_HOME; otherwise returns false and says why. A transport
+  /// order picks and drops; a move order drives to its place, which becomes the robot's home.
   bool submit(const TaskOrder& order, std::string* why = nullptr);
   void path_received(std::uint64_t request_id, std::vector<geometry::Pose2> path);
   void plan_failed(std::uint64_t request_id);

@@ -22,6 +22,11 @@ constexpr std::array kTable = {
     // Waiting for traffic on the way home is still on the way home: the server offers orders to
     // robots going home, and one that stopped for a moment would reject them.
     TransitionRow{S::kWaiting, kOnly, P::kNone, E::kOrder, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    // A move order: to the place, where the robot stays (it becomes its home).
+    TransitionRow{S::kIdle, kAny, P::kNone, E::kMoveOrder, S::kTrackPath, P::kMoving, F::kPlanToPlace},
+    TransitionRow{S::kGoHome, kAny, P::kNone, E::kMoveOrder, S::kTrackPath, P::kMoving, F::kPlanToPlace},
+    TransitionRow{S::kWaiting, kOnly, P::kNone, E::kMoveOrder, S::kTrackPath, P::kMoving, F::kPlanToPlace},
+    TransitionRow{S::kTrackPath, kOnly, P::kMoving, E::kPathEnded, S::kIdle, P::kNone, F::kFinishMove},
     // The order's stages.
     TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kPathEnded, S::kSearchPallet, P::kSearching, F::kStartSearch},
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kPalletFound, S::kPickPallet, P::kPicking, F::kStartPick},
@@ -52,6 +57,8 @@ constexpr std::array kTable = {
     TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
     TransitionRow{S::kWaiting, kOnly, P::kToPick, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
+    TransitionRow{S::kTrackPath, kOnly, P::kMoving, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
+    TransitionRow{S::kWaiting, kOnly, P::kMoving, E::kCancel, S::kGoHome, P::kNone, F::kCancelOrder},
     // Errors.
     TransitionRow{S::kError, kAny, P::kNone, E::kReset, S::kIdle, P::kNone, F::kClear},
 };
@@ -90,6 +97,8 @@ const char* to_string(Event e) {
   switch (e) {
     case E::kOrder:
       return "order";
+    case E::kMoveOrder:
+      return "move_order";
     case E::kPathEnded:
       return "path_ended";
     case E::kPalletFound:
@@ -132,6 +141,10 @@ const char* to_string(Effect e) {
       return "none";
     case F::kPlanToPick:
       return "plan_to_pick";
+    case F::kPlanToPlace:
+      return "plan_to_place";
+    case F::kFinishMove:
+      return "finish_move";
     case F::kStartSearch:
       return "start_search";
     case F::kStartPick:

@@ -17,6 +17,7 @@ enum class State { kIdle, kTrackPath, kSearchPallet, kPickPallet, kDropPallet, k
 /// Inputs that can move the machine. The agent (or the TaskExecutor on its behalf) raises them.
 enum class Event {
   kOrder,        ///< a transport order arrived
+  kMoveOrder,    ///< a move order arrived: drive to a parking place and stay there
   kPathEnded,    ///< the follower reached the end of the planner's path
   kPalletFound,  ///< the search confirmed the marker
   kAreaEmpty,    ///< the search swept without seeing the marker
@@ -39,6 +40,8 @@ enum class Event {
 enum class Effect {
   kNone,
   kPlanToPick,   ///< accept the order, request a plan to the pick area, follow it
+  kPlanToPlace,  ///< accept a move order, request a plan to its place, follow it
+  kFinishMove,   ///< report the move done; the place becomes the robot's home: stop and wait
   kStartSearch,  ///< start the pallet search at the pick area
   kStartPick,    ///< start visual-servoing pick on the found marker
   kPlanToDrop,   ///< report the pallet picked, request a plan to the drop area

@@ -73,3 +73,52 @@ TEST(OrderStore, UnwritablePathNamesTheFile) {
     EXPECT_NE(std::string(e.what()).find("/proc/fleet-no-such-dir"), std::string::npos) << e.what();
   }
 }
+
+// A database as the server wrote it before orders had kinds: its exact schema and rows, written
+// with SQLite directly.
+TEST(OrderStore, DatabaseWrittenBeforeOrderKindsKeepsEveryOrder) {
+  const std::string path = fresh_db("schema0");
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    const char* old = R"(
+CREATE TABLE orders (id INTEGER PRIMARY KEY, request_id TEXT NOT NULL, pick_area TEXT NOT NULL,
+  drop_area TEXT NOT NULL, fleet_id TEXT NOT NULL, robot_id TEXT NOT NULL, robot_requested INTEGER NOT NULL,
+  priority INTEGER NOT NULL, status TEXT NOT NULL, phase TEXT NOT NULL, reason TEXT NOT NULL,
+  update_id INTEGER NOT NULL, created_sim REAL NOT NULL, updated_sim REAL NOT NULL, assigned_sim REAL NOT NULL,
+  finished_sim REAL NOT NULL);
+CREATE TABLE order_events (order_id INTEGER NOT NULL, seq INTEGER NOT NULL, sim_time REAL NOT NULL,
+  status TEXT NOT NULL, phase TEXT NOT NULL, robot_id TEXT NOT NULL, reason TEXT NOT NULL, robot_x REAL NOT NULL,
+  robot_y REAL NOT NULL, PRIMARY KEY (order_id, seq));
+INSERT INTO orders VALUES (1,'r1','A1','A2','','fl1',0,0,'DONE','','',3,1.0,9.0,2.0,9.0);
+INSERT INTO orders VALUES (2,'r2','A3','A4','','fl2',0,5,'ACTIVE','TO_DROP','',2,3.0,4.0,3.5,0.0);
+INSERT INTO orders VALUES (3,'r3','A5','A6','','',0,0,'QUEUED','','',0,5.0,5.0,0.0,0.0);
+INSERT INTO order_events VALUES (2,0,3.0,'QUEUED','','','',0,0);
+INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
+)";
+    ASSERT_EQ(sqlite3_exec(db, old, nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  server::OrderStore store(path);
+  EXPECT_EQ(store.schema_version(), 1);
+  const auto loaded = store.load_all();
+  ASSERT_EQ(loaded.size(), 3u);
+  for (const auto& o : loaded) EXPECT_EQ(o.kind, orders::OrderKind::kTransport) << o.id;
+  EXPECT_EQ(loaded[1].pick_area, "A3");
+  EXPECT_EQ(loaded[1].status, orders::OrderStatus::kActive);
+  EXPECT_EQ(loaded[1].phase, orders::OrderPhase::kToDrop);
+  EXPECT_EQ(loaded[1].history.size(), 2u);
+  EXPECT_EQ(store.next_id(), 4);
+
+  // New orders of any kind are stored beside the old ones, and the migration runs once.
+  orders::Order move = order_between("", "H3", 0);
+  move.id = 4;
+  move.kind = orders::OrderKind::kMove;
+  store.save(move);
+  server::OrderStore reopened(path);
+  EXPECT_EQ(reopened.schema_version(), 1);
+  const auto again = reopened.load_all();
+  ASSERT_EQ(again.size(), 4u);
+  EXPECT_EQ(again[3].kind, orders::OrderKind::kMove);
+  EXPECT_EQ(again[3].drop_area, "H3");
+}

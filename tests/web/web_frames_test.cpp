@@ -30,7 +30,11 @@ RobotView robot(const std::string& id, double x, double y) {
 LiveSnapshot snapshot(int robots) {
   LiveSnapshot s;
   s.sim_time = 100.0;
-  for (int i = 0; i < robots; ++i) s.robots.push_back(robot("r" + std::to_string(i), 0.1 * i, 0.2));
+  for (int i = 0; i < robots; ++i) {
+    std::string id = "r";
+    id += std::to_string(i);  // not "r" + to_string: GCC 12 at -O3 warns falsely (-Wrestrict) on it
+    s.robots.push_back(robot(id, 0.1 * i, 0.2));
+  }
   s.obstacle_enabled = {{"O1", false}, {"O2", true}};
   s.pallet_at = {{"A1", true}, {"A2", false}};
   fleet::model::OrderInfo order;

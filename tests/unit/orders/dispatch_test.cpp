@@ -133,3 +133,71 @@ TEST(Hungarian, ForbiddenEntriesAreNeverChosen) {
   EXPECT_EQ(match[0], 1);
   EXPECT_EQ(match[1], -1);
 }
+
+namespace {
+// Two fleets: floor forklifts (pick, drop at 0 m) and reach trucks (pick, drop up to 4.5 m).
+const FleetAbility kForklifts{"forklifts", {"pick", "drop"}, 0.0};
+const FleetAbility kReachTrucks{"reach_trucks", {"pick", "drop"}, 4.5};
+
+Order transport(std::int64_t id, const std::string& from, double from_height) {
+  Order o;
+  o.id = id;
+  o.pick_area = from;
+  o.drop_area = "E1";
+  o.steps = order_steps(OrderKind::kTransport, from, "E1", from_height, 0.0);
+  return o;
+}
+}  // namespace
+
+TEST(Dispatch, EveryPolicyMatchesOnlyCompatiblePairs) {
+  // The high order first in the queue; the forklift is the nearer robot for both.
+  const std::vector<Order> orders{transport(1, "R_HIGH", 3.5), transport(2, "A1", 0.0)};
+  const auto cost = [](const std::string& robot, const std::string&) { return robot == "fk1" ? 1.0 : 9.0; };
+  for (const char* name : {"ascending-id", "nearest", "optimal"}) {
+    const auto out = make_dispatch_policy(name)->assign(
+        pointers(orders), {{"fk1", "forklifts", kForklifts}, {"rt1", "reach_trucks", kReachTrucks}}, cost);
+    ASSERT_EQ(out.size(), 2u) << name;
+    std::map<std::int64_t, std::string> by_order;
+    for (const auto& a : out) by_order[a.order_id] = a.robot_id;
+    EXPECT_EQ(by_order[1], "rt1") << name;  // only the reach truck lifts that high
+    EXPECT_EQ(by_order[2], "fk1") << name;
+  }
+}
+
+TEST(Dispatch, AnOrderNoFreeRobotCanDoHoldsNoSlotOfTheOptimalPolicy) {
+  // One free robot, a forklift; the head of the queue is an item pick no forklift performs.
+  Order pick;
+  pick.id = 1;
+  pick.kind = OrderKind::kPick;
+  pick.pick_area = "B1";
+  pick.drop_area = "P1";
+  pick.steps = order_steps(OrderKind::kPick, "B1", "P1");
+  const std::vector<Order> orders{pick, transport(2, "A1", 0.0)};
+  const auto out = make_dispatch_policy("optimal")->assign(
+      pointers(orders), {{"fk1", "forklifts", kForklifts}}, [](const std::string&, const std::string&) { return 1.0; });
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].order_id, 2);
+}
+
+TEST(OrderKinds, StepsAreVda5050NodesWithActions) {
+  const auto transport_steps = order_steps(OrderKind::kTransport, "A1", "A2");
+  ASSERT_EQ(transport_steps.size(), 2u);
+  EXPECT_EQ(transport_steps[0].actions, std::vector<std::string>{"pick"});
+  EXPECT_EQ(transport_steps[1].place, "A2");
+  const auto move_steps = order_steps(OrderKind::kMove, "", "H3");
+  ASSERT_EQ(move_steps.size(), 1u);
+  EXPECT_TRUE(move_steps[0].actions.empty());
+  EXPECT_EQ(parse_kind("pick"), OrderKind::kPick);
+  EXPECT_FALSE(parse_kind("dance").has_value());
+}
+
+TEST(OrderKinds, WhyNoFleetNamesTheActionAndEveryFleet) {
+  const auto why = why_no_fleet({kForklifts, kReachTrucks}, order_steps(OrderKind::kPick, "B1", "P1"));
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("forklifts cannot 'pickItem'"), std::string::npos) << *why;
+  EXPECT_NE(why->find("reach_trucks cannot 'pickItem'"), std::string::npos) << *why;
+  const auto high = why_no_fleet({kForklifts}, order_steps(OrderKind::kTransport, "R9", "E1", 3.5, 0.0));
+  ASSERT_TRUE(high.has_value());
+  EXPECT_NE(high->find("lifts to 0.00 m, the load at R9 stands at 3.50 m"), std::string::npos) << *high;
+  EXPECT_FALSE(why_no_fleet({kForklifts, kReachTrucks}, order_steps(OrderKind::kTransport, "R9", "E1", 3.5, 0.0)));
+}
