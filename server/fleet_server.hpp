@@ -13,8 +13,10 @@
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
+#include "orders/area_ledger.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
+#include "orders/order_recovery.hpp"
 #include "orders/order_request_check.hpp"
 #include "planning/road_planner.hpp"
 #include "server/order_store.hpp"
@@ -46,6 +48,9 @@ struct RobotEntry {
   bool stalled = false;  ///< missed its RobotState deadline (DDS) and not heard from since
 };
 
+/// An order as OrderInfo, with its whole history.
+model::OrderInfo info_of(const orders::Order& order);
+
 /// The command centre and message router [Forklift thesis, chapter 3]: takes orders, dispatches them,
 /// tracks robots, owns the site state (obstacles, pallets) and routes poses as FleetView.
 class FleetServer {
@@ -74,7 +79,20 @@ class FleetServer {
   void handle_robot_states();
   void handle_robot_paths();
   void handle_order_reports();
+  /// A current report on an open order (orders::ReportVerdict::kApply): the lifecycle and the
+  /// loads it moves.
+  void apply_report(const orders::Order& order, const model::OrderReport& report);
+  void load_put_down(const orders::Order& order, const model::OrderReport& report);
+  void load_lifted(const orders::Order& order, const model::OrderReport& report);
+  /// The robot found the pick area empty: it is marked free unless a pallet stands there by the record.
+  void pick_found_empty(const orders::Order& order, const model::OrderReport& report);
   void check_robot_health();
+  /// Gives up on orders whose lost robot did not come back in time (server.lost_with_pallet_wait_s).
+  void check_orders_waiting_for_lost_robots(double now_wall);
+  /// Counts robots of restored orders lost when they have not reported since the restart.
+  void check_restored_orders();
+  /// Unregisters replies their requester has had time to read.
+  void forget_old_replies();
   void check_acknowledgements();
   void create_auto_orders();
   void dispatch();
@@ -87,32 +105,28 @@ class FleetServer {
   /// Tells `robot_id` to drop `order` (VDA 5050 style: with the order's update id, so a late
   /// duplicate of an older assignment cannot undo it).
   void withdraw(const orders::Order& order, const std::string& robot_id);
-  /// A report from a robot the order was taken from, with the order's pallet on its forks: the
-  /// order goes back to it (see handle_order_reports). False when the report is just stale.
+  /// Hands the order back to the robot that reported it with its pallet lifted
+  /// (orders::ReportVerdict::kHandBack). False when the book refuses: the report is then stale.
   bool hand_back(const orders::Order& order, const model::OrderReport& report);
   void reply(const model::RequestReply& answer);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
   model::RequestReply execute(const model::Command& command);
-  /// Why a pick/drop pair cannot be ordered now, or empty.
-  std::string validate_areas(const std::string& pick, const std::string& drop) const;
+  /// The loading areas, robots and fleets an order request may name.
+  orders::KnownNames known_names() const;
   /// Why a move to `place` cannot be placed now (another robot parks there, or an open move goes
   /// there), or empty.
   std::string validate_parking(const std::string& place, const std::string& robot_id) const;
   /// The order's VDA 5050 steps with the site's place heights.
   void fill_steps(orders::Order& order) const;
-  /// The loading areas, robots and fleets an order request may name.
-  orders::KnownNames known_names() const;
   /// Whether `robot_id` has reported to this server (a lost robot too).
   bool registered(const std::string& robot_id) const;
   /// Why a command or order naming `robot_id` is refused when that robot never reported to this
   /// server; nothing when it has.
   std::optional<std::string> not_seen(const std::string& robot_id) const;
-  /// Pallets at `area` once every open order is done (1: one stands there, 0: free).
-  int expected_pallets(const std::string& area) const;
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
   /// when there is no way.
-  double travel_cost(const std::string& robot_id, const std::string& area_id);
+  double travel_cost(const std::string& robot_id, const std::string& place_id);
   bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
   /// The robot's footprint at its last reported pose.
@@ -126,18 +140,16 @@ class FleetServer {
 
   void restore_orders();
   void restore_pallets();
-  /// Records a pallet's new truth: stored, published, and reflected in the area inventory.
-  void update_pallet(model::PalletTruth pallet);
-  /// The pallet standing on `area_id`, if any.
-  const model::PalletTruth* pallet_on(const std::string& area_id) const;
-  const model::PalletTruth* pallet_carried_by(const std::string& robot_id) const;
+  /// Records a load's new truth: in the ledger, stored, and published as PalletTruth.
+  void record_load(orders::Load load);
   /// Back to the queue, taken from `robot_id` (told to drop it), with `reason` in its history.
   void requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason);
   void return_pallet_of(const std::string& robot_id, const std::string& preferred_area);
   /// The lost robot of a waiting order came back restarted, or did not come back in time: the
   /// order is re-queued when the robot had not lifted the pallet (pallet truth), else failed and
   /// the pallet put back.
-  void give_up_on_lost_robot(std::int64_t order_id, const std::string& why, const std::string& failure);
+  void give_up_on_lost_robot(std::int64_t order_id, orders::Recovery decision, const std::string& why,
+                             const std::string& failure);
 
   ServerOptions options_;
   Logger log_;
@@ -149,9 +161,8 @@ class FleetServer {
   orders::OrderBook book_;
   std::map<std::string, RobotEntry> robots_;
   std::map<std::string, model::RobotPath> paths_;
-  std::map<std::string, bool> pallet_at_;              ///< loading area -> holds a pallet (from pallets_)
+  orders::AreaLedger ledger_;                          ///< what stands where: the pallets' simulation truth
   std::map<std::string, std::string> parked_at_;      ///< robot -> the parking place it goes home to
-  std::map<int, model::PalletTruth> pallets_;          ///< simulation truth of every pallet
   std::map<std::string, bool> obstacle_enabled_;       ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
   /// Orders whose robot was lost with the pallet on its forks -> wall time it was lost. The pallet

@@ -1,0 +1,74 @@
+#include "orders/transport_areas.hpp"
+
+#include <set>
+#include <vector>
+
+namespace fleet::orders {
+
+namespace {
+template <typename UsesPlace>
+const Order* open_order(const OrderBook& book, UsesPlace&& uses_place) {
+  for (const auto& [id, o] : book.all()) {
+    if (!is_final(o.status) && uses_place(o)) return &o;
+  }
+  return nullptr;
+}
+}  // namespace
+
+int expected_loads(const AreaLedger& ledger, const OrderBook& book, const std::string& place_id) {
+  int balance = ledger.holds_load(place_id) ? 1 : 0;
+  for (const auto& [id, o] : book.all()) {
+    if (is_final(o.status)) continue;
+    if (o.pick_area == place_id) --balance;
+    if (o.drop_area == place_id) ++balance;
+  }
+  return balance;
+}
+
+std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, const std::string& pick,
+                              const std::string& drop) {
+  if (expected_loads(ledger, book, pick) <= 0) {
+    if (const Order* taker = open_order(book, [&](const Order& o) { return o.pick_area == pick; })) {
+      return "the pallet on loading area '" + pick + "' is promised to order " + std::to_string(taker->id) +
+             ", which picks it up";
+    }
+    return "loading area '" + pick + "' holds no pallet to pick";
+  }
+  if (expected_loads(ledger, book, drop) > 0) {
+    if (const Order* bringer = open_order(book, [&](const Order& o) { return o.drop_area == drop; })) {
+      return "loading area '" + drop + "' is promised to order " + std::to_string(bringer->id) +
+             ", which drops its pallet there";
+    }
+    return "loading area '" + drop + "' holds a pallet";
+  }
+  return "";
+}
+
+bool ready_to_dispatch(const AreaLedger& ledger, const Order& order) {
+  return ledger.holds_load(order.pick_area) && !ledger.holds_load(order.drop_area);
+}
+
+std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, const OrderBook& book,
+                                                     std::mt19937_64& rng) {
+  constexpr int kTries = 16;
+  std::set<std::string> promised;
+  for (const auto& [id, o] : book.all()) {
+    if (is_final(o.status)) continue;
+    promised.insert(o.pick_area);
+    promised.insert(o.drop_area);
+  }
+  std::vector<std::string> picks, drops;
+  for (const auto& place : ledger.places()) {
+    if (promised.contains(place.id)) continue;
+    (ledger.holds_load(place.id) ? picks : drops).push_back(place.id);
+  }
+  if (picks.empty() || drops.empty()) return std::nullopt;
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    const std::string& pick = picks[rng() % picks.size()];
+    const std::string& drop = drops[rng() % drops.size()];
+    if (why_not_transport(ledger, book, pick, drop).empty()) return TransportChoice{pick, drop};
+  }
+  return std::nullopt;
+}
+
+}  // namespace fleet::orders

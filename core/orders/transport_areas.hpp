@@ -1,0 +1,39 @@
+#pragma once
+// Which places a transport may use, counted with the ledger and every open order: an order picks
+// a load that will be there and drops where there will be room.
+
+#include <optional>
+#include <random>
+#include <string>
+
+#include "orders/area_ledger.hpp"
+#include "orders/order_book.hpp"
+
+namespace fleet::orders {
+
+/// Loads at `place_id` once every open order is done: one standing there now, minus open orders
+/// taking one away, plus open orders bringing one (1: one stands there, 0: free).
+int expected_loads(const AreaLedger& ledger, const OrderBook& book, const std::string& place_id);
+
+/// Why a transport from `pick` to `drop` cannot be ordered now, or empty. The names are checked
+/// already (check_order_request); a refusal says what is true now: a load there, or an open
+/// order's promise.
+std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, const std::string& pick,
+                              const std::string& drop);
+
+/// A queued order goes out only when its load stands at the pick place and the drop place is
+/// free: one chained behind another (A->B, then B->C) waits for the first to finish.
+bool ready_to_dispatch(const AreaLedger& ledger, const Order& order);
+
+struct TransportChoice {
+  std::string pick;
+  std::string drop;
+};
+
+/// An automatic transport [Forklift thesis, section 3]: from a load standing on a place now to a
+/// place free now, neither promised to an open order, so it never waits on another. Drawn at
+/// random with `rng` (a few tries); nothing when no pair is possible.
+std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, const OrderBook& book,
+                                                     std::mt19937_64& rng);
+
+}  // namespace fleet::orders

@@ -1,0 +1,259 @@
+// What the server does when robots are lost, come back, restart or do not acknowledge: it asks
+// orders::order_recovery for the decision and carries it out.
+#include <cmath>
+
+#include "monitor/robot_health.hpp"
+#include "orders/order_recovery.hpp"
+#include "server/fleet_server.hpp"
+
+namespace fleet::server {
+
+using orders::Order;
+using orders::OrderStatus;
+using orders::Recovery;
+using orders::TransitionResult;
+
+void FleetServer::handle_robot_states() {
+  robot_state_reader_.take([&](model::RobotState&& state, const dds::SampleInfo& info) {
+    if (!info.valid_data) {
+      // DDS liveliness: the robot's writer is gone (its participant's 1 s lease expired or it
+      // left). Only the key is valid in such a sample.
+      auto it = robots_.find(state.robot_id);
+      if (!info.alive && it != robots_.end() && it->second.registered && !it->second.lost) {
+        robot_lost(it->second, "DDS liveliness lost");
+      }
+      return;
+    }
+    if (!std::isfinite(state.pose.x) || !std::isfinite(state.pose.y) || !std::isfinite(state.pose.yaw)) {
+      log_->warn("robot {}: ignoring RobotState with a non-finite pose ({}, {}, {})", state.robot_id, state.pose.x,
+                 state.pose.y, state.pose.yaw);
+      return;
+    }
+    const auto known = options_.config.find_robot(state.robot_id);
+    if (!known) {
+      log_->warn("ignoring RobotState of robot '{}', which is not in {}", state.robot_id, options_.config.source);
+      return;
+    }
+    RobotEntry& robot = robots_[state.robot_id];
+    if (!robot.registered || robot.lost) {
+      log_->info("robot {} ({}) {} at ({:.2f}, {:.2f}), state {}", state.robot_id, known->first->id,
+                 robot.lost ? "is back" : "registered", state.pose.x, state.pose.y, state.task_state);
+      // A robot that comes back may still report an order the server has moved on from:
+      // tell it so (the latched Order carries the cancellation).
+      if (state.order_id != 0) {
+        const Order* order = book_.find(state.order_id);
+        if (order && orders::when_robot_reappears({.order_final = orders::is_final(order->status),
+                                                   .order_is_robots = order->robot_id == state.robot_id}) ==
+                         Recovery::kWithdraw) {
+          withdraw(*order, state.robot_id);
+        }
+      }
+    }
+    if (robot.lost) resume_or_fail_waiting_orders(state);
+    robot.id = state.robot_id;
+    robot.fleet_id = known->first->id;
+    robot.registered = true;
+    robot.lost = false;
+    if (robot.stalled) log_->info("robot {} publishes again after a missed deadline", state.robot_id);
+    robot.stalled = false;
+    robot.last_seen_wall = SimClock::wall_now();
+    robot.last = std::move(state);
+    if (traffic_) traffic_->set_body(robot.id, body_of(robot));
+  });
+}
+
+void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
+  robot.lost = true;
+  log_->warn("robot {} lost: {}", robot.id, why);
+  // Where its body was last seen stays blocked: a dead robot is still in the way.
+  if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
+  if (const Order* order = book_.open_order_of(robot.id)) {
+    const std::int64_t id = order->id;
+    if (orders::when_robot_lost({order->phase, robot.last.carrying_pallet}) == Recovery::kWait) {
+      awaiting_lost_robot_.emplace(id, SimClock::wall_now());
+      log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
+                 robot.last.carrying_pallet ? "with the pallet on its forks" : "at the pick area",
+                 options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
+      return;
+    }
+    requeue_taken_from(id, robot.id, "robot " + robot.id + " lost");
+  }
+}
+
+void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason) {
+  if (book_.requeue(order_id, clock_.now(), reason) != TransitionResult::kApplied) return;
+  log_->warn("order {} re-queued: {}", order_id, reason);
+  awaiting_ack_since_.erase(order_id);
+  publish_order(*book_.find(order_id));
+  withdraw(*book_.find(order_id), robot_id);
+}
+
+bool FleetServer::hand_back(const Order& order, const model::OrderReport& report) {
+  const std::int64_t id = order.id;
+  const std::string holder = order.robot_id;
+  const double now = clock_.now();
+  if (order.status != OrderStatus::kQueued) {
+    if (book_.requeue(id, now, "handed back to " + report.robot_id + ", which has the pallet") !=
+        TransitionResult::kApplied) {
+      return false;
+    }
+    withdraw(*book_.find(id), holder);
+  }
+  if (book_.assign(id, report.robot_id, now) != TransitionResult::kApplied) return false;
+  const Order& handed = *book_.find(id);
+  log_->warn("order {} handed back to {}: it lifted the pallet at {} before the order's withdrawal reached it{}", id,
+             report.robot_id, handed.pick_area, holder.empty() ? "" : " (taken from " + holder + ")");
+  awaiting_lost_robot_.erase(id);
+  resends_[id] = 0;
+  publish_order(handed);
+  send_assignment(handed);
+  return true;
+}
+
+void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {
+  if (book_.transition(order_id, OrderStatus::kFailed, clock_.now(), reason) != TransitionResult::kApplied) return;
+  log_->warn("order {} failed: {}", order_id, reason);
+  awaiting_ack_since_.erase(order_id);
+  publish_order(*book_.find(order_id));
+}
+
+void FleetServer::give_up_on_lost_robot(std::int64_t order_id, Recovery decision, const std::string& why,
+                                        const std::string& failure) {
+  const Order* order = book_.find(order_id);
+  if (!order) return;
+  const std::string robot_id = order->robot_id;
+  if (decision == Recovery::kRequeue) {
+    // Lost at the pick area before the lift: the pallet still stands there.
+    requeue_taken_from(order_id, robot_id, why + " before lifting the pallet");
+    return;
+  }
+  const std::string pick_area = order->pick_area;
+  fail_with_pallet(order_id, failure);
+  return_pallet_of(robot_id, pick_area);
+}
+
+void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
+  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
+    const Order* order = book_.find(it->first);
+    if (!order || order->robot_id != state.robot_id) {
+      ++it;
+      continue;
+    }
+    const std::int64_t id = it->first;
+    it = awaiting_lost_robot_.erase(it);
+    const auto decision = orders::when_robot_back({.order_open = !orders::is_final(order->status),
+                                                   .reports_this_order = state.order_id == id,
+                                                   .robot_carries_load = ledger_.carried_by(state.robot_id) != nullptr,
+                                                   .reports_carrying = state.carrying_pallet,
+                                                   .phase = order->phase});
+    if (decision.action == Recovery::kForget) continue;
+    if (decision.action == Recovery::kKeep) {
+      log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
+                 state.carrying_pallet                 ? "pallet on its forks"
+                 : orders::at_pick_place(order->phase) ? "still at the pick area"
+                                                       : "pallet put down at the drop area");
+      continue;
+    }
+    give_up_on_lost_robot(id, decision.action, "robot " + state.robot_id + " came back restarted",
+                          "robot " + state.robot_id + " came back without the order's pallet (restarted)");
+    if (decision.withdraw) withdraw(*book_.find(id), state.robot_id);
+  }
+}
+
+void FleetServer::check_robot_health() {
+  const double now = SimClock::wall_now();
+  const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");
+  // DDS deadline on RobotState (0.5 s, dds::qos::robot_state): the robot is stalled — frozen,
+  // or its link is — before its lease runs out and it is lost.
+  while (const auto missed = robot_state_reader_.deadline_missed()) {
+    auto it = robots_.find(missed->robot_id);
+    if (it != robots_.end() && it->second.registered && !it->second.lost && !it->second.stalled) {
+      it->second.stalled = true;
+      log_->warn("robot {} stalled: no RobotState within its 0.5 s DDS deadline", it->first);
+    }
+  }
+  for (auto& [id, robot] : robots_) {
+    if (robot.registered && !robot.lost && monitor::silent_too_long(now - robot.last_seen_wall, lost_after)) {
+      robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");
+    }
+  }
+  check_orders_waiting_for_lost_robots(now);
+  if (now - started_wall_ > orders::restart_grace_s(lost_after)) check_restored_orders();
+}
+
+void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {
+  const double pallet_wait = options_.config.settings.get_double("server.lost_with_pallet_wait_s");
+  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
+    const Order* order = book_.find(it->first);
+    const auto decision =
+        orders::when_waiting({.order_open = order && !orders::is_final(order->status),
+                              .waited_s = now_wall - it->second,
+                              .wait_limit_s = pallet_wait,
+                              .robot_carries_load = order && ledger_.carried_by(order->robot_id) != nullptr});
+    if (decision == Recovery::kWait) {
+      ++it;
+      continue;
+    }
+    const std::int64_t id = it->first;
+    it = awaiting_lost_robot_.erase(it);
+    if (decision == Recovery::kForget) continue;
+    const std::string robot_id = order->robot_id;
+    const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
+    give_up_on_lost_robot(id, decision, "robot " + robot_id + " lost for " + waited,
+                          "robot " + robot_id + " lost with the pallet for " + waited);
+  }
+}
+
+void FleetServer::check_restored_orders() {
+  // Orders restored from the database whose robot has not shown up since the restart: after a
+  // grace period the robot counts as lost, with the load on board when the order was past the lift.
+  for (const auto& [order_id, order] : book_.all()) {
+    if (orders::is_final(order.status) || order.status == OrderStatus::kQueued) continue;
+    if (robots_.contains(order.robot_id)) continue;
+    RobotEntry& ghost = robots_[order.robot_id];
+    ghost.id = order.robot_id;
+    ghost.registered = false;
+    ghost.last.carrying_pallet = orders::restored_robot_carried_load(order.phase);
+    robot_lost(ghost, "not seen since the server restarted");
+    break;  // book_ changed; the next pass handles the rest
+  }
+}
+
+void FleetServer::check_acknowledgements() {
+  const double now = SimClock::wall_now();
+  const double timeout = options_.config.settings.get_double("server.order_ack_timeout_s");
+  const long limit = options_.config.settings.get_int("server.order_resend_limit");
+  for (auto it = awaiting_ack_since_.begin(); it != awaiting_ack_since_.end();) {
+    const std::int64_t id = it->first;
+    const Order* order = book_.find(id);
+    const auto sent_again = resends_.find(id);
+    const auto decision =
+        orders::when_unacknowledged({.still_assigned = order && order->status == OrderStatus::kAssigned,
+                                     .waited_s = now - it->second,
+                                     .timeout_s = timeout,
+                                     .resends = sent_again == resends_.end() ? 0 : sent_again->second,
+                                     .resend_limit = limit});
+    if (decision == Recovery::kWait) {
+      ++it;
+    } else if (decision == Recovery::kForget) {
+      it = awaiting_ack_since_.erase(it);
+    } else if (decision == Recovery::kResend) {
+      ++resends_[id];
+      log_->warn("order {} not acknowledged by {} within {} s; re-sending ({}/{})", id, order->robot_id, timeout,
+                 resends_[id], limit);
+      send_assignment(*order);
+      it->second = now;
+      ++it;
+    } else {
+      const std::string robot = order->robot_id;
+      book_.requeue(id, clock_.now(), "not acknowledged by " + robot);
+      log_->warn("order {} re-queued: never acknowledged by {}", id, robot);
+      publish_order(*book_.find(id));
+      withdraw(*book_.find(id), robot);
+      resends_.erase(id);
+      it = awaiting_ack_since_.erase(it);
+    }
+  }
+}
+
+}  // namespace fleet::server

@@ -1,0 +1,98 @@
+#include "orders/transport_areas.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+using namespace fleet::orders;
+
+namespace {
+struct Site {
+  AreaLedger ledger{{{"A1", {}}, {"A2", {}}, {"A3", {}}, {"A4", {}}}};
+  OrderBook book;
+
+  Site() {
+    ledger.record({1, "pallet", {}, "A1", ""});
+    ledger.record({2, "pallet", {}, "A2", ""});
+  }
+  const Order& order(const std::string& pick, const std::string& drop) {
+    Order draft;
+    draft.pick_area = pick;
+    draft.drop_area = drop;
+    return book.create(std::move(draft), 0.0);
+  }
+};
+}  // namespace
+
+TEST(TransportAreas, ExpectedLoadsCountOpenOrders) {
+  Site site;
+  EXPECT_EQ(expected_loads(site.ledger, site.book, "A1"), 1);
+  EXPECT_EQ(expected_loads(site.ledger, site.book, "A3"), 0);
+  const Order& o = site.order("A1", "A3");
+  EXPECT_EQ(expected_loads(site.ledger, site.book, "A1"), 0);
+  EXPECT_EQ(expected_loads(site.ledger, site.book, "A3"), 1);
+  site.book.transition(o.id, OrderStatus::kCancelled, 1.0);
+  EXPECT_EQ(expected_loads(site.ledger, site.book, "A1"), 1);
+}
+
+TEST(TransportAreas, RefusesAPickWithoutALoadAndADropThatHoldsOne) {
+  Site site;
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A1", "A3"), "");
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A3", "A4"), "loading area 'A3' holds no pallet to pick");
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A1", "A2"), "loading area 'A2' holds a pallet");
+}
+
+TEST(TransportAreas, RefusalsNameTheOrderThatHoldsThePromise) {
+  Site site;
+  const Order& first = site.order("A1", "A3");
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A1", "A4"),
+            "the pallet on loading area 'A1' is promised to order " + std::to_string(first.id) + ", which picks it up");
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A2", "A3"),
+            "loading area 'A3' is promised to order " + std::to_string(first.id) + ", which drops its pallet there");
+  // Chained behind it: A3 will hold the pallet.
+  EXPECT_EQ(why_not_transport(site.ledger, site.book, "A3", "A4"), "");
+}
+
+TEST(TransportAreas, AChainedOrderIsNotReadyUntilItsLoadArrives) {
+  Site site;
+  const Order& first = site.order("A1", "A3");
+  const Order& second = site.order("A3", "A4");
+  EXPECT_TRUE(ready_to_dispatch(site.ledger, first));
+  EXPECT_FALSE(ready_to_dispatch(site.ledger, second));
+  site.ledger.record({1, "pallet", {}, "A3", ""});
+  EXPECT_TRUE(ready_to_dispatch(site.ledger, second));
+  EXPECT_FALSE(ready_to_dispatch(site.ledger, site.order("A2", "A3")));
+}
+
+TEST(TransportAreas, AnAutomaticTransportUsesNoPromisedPlace) {
+  Site site;
+  site.order("A1", "A3");
+  std::set<std::string> picks, drops;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    std::mt19937_64 rng(seed);
+    const auto choice = choose_auto_transport(site.ledger, site.book, rng);
+    ASSERT_TRUE(choice.has_value());
+    picks.insert(choice->pick);
+    drops.insert(choice->drop);
+  }
+  EXPECT_EQ(picks, std::set<std::string>{"A2"});
+  EXPECT_EQ(drops, std::set<std::string>{"A4"});
+}
+
+TEST(TransportAreas, NoAutomaticTransportWithoutAFreePlace) {
+  Site site;
+  site.ledger.record({3, "pallet", {}, "A3", ""});
+  site.ledger.record({4, "pallet", {}, "A4", ""});
+  std::mt19937_64 rng(1);
+  EXPECT_FALSE(choose_auto_transport(site.ledger, site.book, rng).has_value());
+}
+
+TEST(TransportAreas, AnAutomaticTransportIsReproducibleFromItsSeed) {
+  Site site;
+  std::mt19937_64 a(42), b(42);
+  const auto first = choose_auto_transport(site.ledger, site.book, a);
+  const auto second = choose_auto_transport(site.ledger, site.book, b);
+  ASSERT_TRUE(first && second);
+  EXPECT_EQ(first->pick, second->pick);
+  EXPECT_EQ(first->drop, second->drop);
+}
