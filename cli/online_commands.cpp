@@ -142,11 +142,12 @@ int order_list(Args& args, const CommandArgs& command, const Connection& connect
     out << rows.dump() << "\n";
     return kExitOk;
   }
-  out << std::left << std::setw(7) << "ORDER" << std::setw(6) << "FROM" << std::setw(6) << "TO" << std::setw(7)
-      << "ROBOT" << std::setw(11) << "STATE" << std::setw(11) << "PHASE"
+  out << std::left << std::setw(7) << "ORDER" << std::setw(10) << "KIND" << std::setw(6) << "FROM" << std::setw(6)
+      << "TO" << std::setw(7) << "ROBOT" << std::setw(11) << "STATE" << std::setw(11) << "PHASE"
       << "REASON\n";
   for (const auto& r : rows) {
-    out << std::left << std::setw(7) << r["order_id"].get<long>() << std::setw(6) << r["pick_area"].get<std::string>()
+    out << std::left << std::setw(7) << r["order_id"].get<long>() << std::setw(10) << r["kind"].get<std::string>()
+        << std::setw(6) << r["pick_area"].get<std::string>()
         << std::setw(6) << r["drop_area"].get<std::string>() << std::setw(7) << r["robot_id"].get<std::string>()
         << std::setw(11) << r["state"].get<std::string>() << std::setw(11) << r["phase"].get<std::string>()
         << r["reason"].get<std::string>() << "\n";

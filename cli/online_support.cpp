@@ -5,6 +5,7 @@
 
 #include "common/args.hpp"
 #include "model/names.hpp"
+#include "orders/order_kind.hpp"
 
 namespace fleet::cli {
 
@@ -57,7 +58,14 @@ nlohmann::json order_json(const model::OrderInfo& o) {
                        {"robot_x", e.robot_x},
                        {"robot_y", e.robot_y}});
   }
-  return {{"order_id", o.order_id},       {"pick_area", o.pick_area}, {"drop_area", o.drop_area},
+  // The order's VDA 5050 nodes with their actions.
+  nlohmann::json steps = nlohmann::json::array();
+  const auto kind = orders::parse_kind(o.kind.empty() ? "transport" : o.kind);
+  for (const auto& step : orders::order_steps(kind.value_or(orders::OrderKind::kTransport), o.pick_area, o.drop_area)) {
+    steps.push_back({{"place", step.place}, {"actions", step.actions}});
+  }
+  return {{"order_id", o.order_id},       {"kind", o.kind},           {"steps", steps},
+          {"pick_area", o.pick_area},     {"drop_area", o.drop_area},
           {"robot_id", o.robot_id},       {"state", o.state},         {"phase", o.phase},
           {"reason", o.reason},           {"priority", o.priority},   {"created_sim", o.created_sim},
           {"updated_sim", o.updated_sim}, {"history", history}};

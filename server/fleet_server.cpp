@@ -298,8 +298,11 @@ void FleetServer::fill_steps(Order& order) const {
 }
 
 std::string FleetServer::validate_parking(const std::string& place, const std::string& robot_id) const {
+  // A robot that has not reported stands nowhere yet: its configured home is free to park at.
   for (const auto& [robot, parked] : parked_at_) {
-    if (parked == place && robot != robot_id) return "parking place '" + place + "' is " + robot + "'s";
+    if (parked == place && robot != robot_id && registered(robot)) {
+      return "parking place '" + place + "' is " + robot + "'s";
+    }
   }
   for (const auto& [id, o] : book_.all()) {
     if (!orders::is_final(o.status) && o.kind == orders::OrderKind::kMove && o.drop_area == place) {

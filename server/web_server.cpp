@@ -95,6 +95,7 @@ json robot_json(const RobotView& view) {
 
 json order_json(const model::OrderInfo& o) {
   return json{{"id", o.order_id},
+              {"kind", o.kind},
               {"from", o.pick_area},
               {"to", o.drop_area},
               {"fleet", o.fleet_id},

@@ -477,7 +477,7 @@
       const age = open ? g.sim_time - o.created : o.updated - o.created;
       const reason = o.reason && !open ? `<span class="detail">${esc(o.reason)}</span>` : '';
       return `<tr class="${open ? '' : 'ended'}" data-order="${o.id}">` +
-        `<td>${o.id}</td><td>${esc(o.from)}</td><td>${esc(o.to)}</td><td>${esc(o.robot)}</td>` +
+        `<td>${o.id}</td><td>${esc(o.kind === "move" ? "move" : o.from)}</td><td>${esc(o.to)}</td><td>${esc(o.robot)}</td>` +
         `<td class="state-${esc(o.state)}">${esc(o.state)}${reason}</td><td>${esc(o.phase)}</td><td>${fmtAge(age)}</td>` +
         `<td>${open ? `<button class="small" data-action="cancel" data-order="${o.id}">cancel</button>` : ''}</td></tr>`;
     }).join('');

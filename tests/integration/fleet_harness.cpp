@@ -99,7 +99,7 @@ FleetHarness::~FleetHarness() {
 }
 
 std::vector<std::string> FleetHarness::common_args() const {
-  return {"--config", std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml", "--domain", std::to_string(domain_),
+  return {"--config", config_path_, "--domain", std::to_string(domain_),
           "--site", site_, "--time-scale", std::to_string(time_scale_)};
 }
 
@@ -122,8 +122,7 @@ void FleetHarness::start_agent(const std::string& robot_id, const std::vector<st
 }
 
 CommandResult FleetHarness::fleetctl(std::vector<std::string> args, double timeout_s) const {
-  std::vector<std::string> argv{bin("fleetctl"), "--domain", std::to_string(domain_), "--config",
-                                std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml"};
+  std::vector<std::string> argv{bin("fleetctl"), "--domain", std::to_string(domain_), "--config", config_path_};
   argv.insert(argv.end(), args.begin(), args.end());
   return run_command(argv, timeout_s);
 }

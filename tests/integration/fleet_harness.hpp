@@ -24,6 +24,8 @@ class FleetHarness {
   FleetHarness(int domain, double time_scale, std::string site = "table_a");
   ~FleetHarness();
 
+  /// The configuration file every process of the harness reads (default: config/fleet.yaml).
+  void use_config(std::string path) { config_path_ = std::move(path); }
   void start_server(const std::vector<std::string>& extra = {});
   void start_agent(const std::string& robot_id, const std::vector<std::string>& extra = {});
 
@@ -38,6 +40,7 @@ class FleetHarness {
   int domain() const { return domain_; }
 
  private:
+  std::string config_path_ = std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml";
   std::vector<std::string> common_args() const;
   int domain_;
   double time_scale_;

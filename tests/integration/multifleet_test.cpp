@@ -1,0 +1,98 @@
+// Two fleets of different vehicles under one server: typed orders and dispatch by capability over
+// real processes and DDS (domains 93-94).
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "fleet_harness.hpp"
+
+using namespace fleet::testing;
+using nlohmann::json;
+
+namespace {
+
+/// forklifts (fl1) pick and drop; movers (fa1, first by id) only drive: a transport must go to
+/// fl1 although every policy would prefer fa1 otherwise.
+std::string two_fleet_config(int domain) {
+  const std::string path = ::testing::TempDir() + "/fleet-two-fleets-" + std::to_string(domain) + ".yaml";
+  std::ofstream(path) << R"(site: table_a
+fleets:
+  - id: forklifts
+    robot_type: forklift
+    robots: [{id: fl1, home: H1}]
+  - id: movers
+    robot_type: forklift
+    profile:
+      footprint: [[0.12, -0.07], [0.12, 0.07], [-0.10, 0.07], [-0.12, 0.0], [-0.10, -0.07]]
+      actions: []
+    robots: [{id: fa1, home: H2}]
+)";
+  return path;
+}
+
+json last_json_line(const std::string& text) {
+  const auto end = text.find_last_not_of('\n');
+  const auto start = text.rfind('\n', end);
+  const std::size_t from = start == std::string::npos ? 0 : start + 1;
+  return json::parse(text.substr(from, end - from + 1));
+}
+
+}  // namespace
+
+TEST(MultiFleet, OrdersGoToFleetsThatCanDoThemAndOthersAreBadInput) {
+  FleetHarness fleet(93, 10.0);
+  fleet.use_config(two_fleet_config(93));
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  fleet.start_agent("fa1");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1", "fa1"}));
+
+  const auto fleets = fleet.fleetctl({"--json", "fleets"}, 30);
+  ASSERT_EQ(fleets.exit_code, 0) << fleets.err;
+  const json sheets = last_json_line(fleets.out)["fleets"];
+  ASSERT_EQ(sheets.size(), 2u);
+  EXPECT_EQ(sheets[1]["agvGeometry"]["envelopes2d"][0]["polyPoints"].size(), 5u);
+  EXPECT_TRUE(sheets[1]["protocolFeatures"]["agvActions"].empty());
+
+  // No fleet on the site performs pickItem: bad input, nothing stored.
+  const auto pick = fleet.fleetctl({"order", "add", "--kind", "pick", "--from", "A1", "--to", "A2"}, 30);
+  EXPECT_EQ(pick.exit_code, 2) << pick.err;
+  EXPECT_NE(pick.err.find("forklifts cannot 'pickItem'"), std::string::npos) << pick.err;
+  EXPECT_NE(pick.err.find("movers cannot 'pickItem'"), std::string::npos) << pick.err;
+  const auto pinned = fleet.fleetctl({"order", "add", "--from", "A1", "--to", "A2", "--fleet", "movers"}, 30);
+  EXPECT_EQ(pinned.exit_code, 2) << pinned.err;
+  EXPECT_NE(pinned.err.find("movers cannot 'pick'"), std::string::npos) << pinned.err;
+  const auto none = fleet.fleetctl({"--json", "order", "list"}, 30);
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_TRUE(last_json_line(none.out).empty()) << none.out;
+
+  // A transport goes to the only fleet that picks and drops.
+  const auto transport = fleet.fleetctl({"--json", "order", "add", "--from", "A1", "--to", "A2", "--wait"}, 240);
+  ASSERT_EQ(transport.exit_code, 0) << transport.err;
+  const json done = last_json_line(transport.out);
+  EXPECT_EQ(done["robot_id"], "fl1") << transport.out;
+  EXPECT_EQ(done["kind"], "transport");
+
+  // A move: the mover drives to a free parking place and stays there.
+  const auto move = fleet.fleetctl({"--json", "order", "add", "--kind", "move", "--to", "H7", "--wait"}, 240);
+  ASSERT_EQ(move.exit_code, 0) << move.err;
+  const json moved = last_json_line(move.out);
+  EXPECT_EQ(moved["kind"], "move");
+  EXPECT_EQ(moved["steps"][0]["place"], "H7");
+  const std::string mover = moved["robot_id"];
+  const auto robots = fleet.fleetctl({"--json", "robots"}, 30);
+  ASSERT_EQ(robots.exit_code, 0) << robots.err;
+  bool parked = false;
+  for (const auto& r : last_json_line(robots.out)) {
+    // H7 of table_a stands at (1.88, 2.18).
+    if (r["robot_id"] == mover) parked = std::hypot(r["x"].get<double>() - 1.88, r["y"].get<double>() - 2.18) < 0.1;
+  }
+  EXPECT_TRUE(parked) << robots.out;
+  // Its place is taken now; a move there is refused by the fleet (exit 1), not bad input.
+  const auto taken = fleet.fleetctl({"order", "add", "--kind", "move", "--to", "H7"}, 30);
+  EXPECT_EQ(taken.exit_code, 1) << taken.err;
+  EXPECT_NE(taken.err.find("parking place 'H7' is " + mover + "'s"), std::string::npos) << taken.err;
+}
