@@ -112,63 +112,81 @@ const Home* Site::find_home(const std::string& id) const {
   return nullptr;
 }
 
+bool LoadingArea::offers(const std::string& action) const {
+  return std::find(actions.begin(), actions.end(), action) != actions.end();
+}
+
 std::vector<std::string> Site::area_ids() const {
   std::vector<std::string> ids;
   for (const auto& a : loading_areas) ids.push_back(a.id);
   return ids;
 }
 
-Site parse_site(const std::string& yaml_text, const std::string& path) {
-  const Reader r(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw MapError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  }
-  if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
-  r.allow_keys(root, "",
-               {"name", "opendrive", "bounds", "road_width", "graph_spacing", "loading_areas", "static_obstacles",
-                "uwb_anchors", "homes", "racks"});
+namespace {
 
-  Site site;
-  site.file = path;
-  site.name = std::filesystem::path(path).stem().string();
-  if (root["name"]) site.name = r.text(root, "name", "");
-  if (root["opendrive"]) {
-    const std::filesystem::path xodr(r.text(root, "opendrive", ""));
-    site.opendrive_file = (xodr.is_absolute() ? xodr : std::filesystem::path(path).parent_path() / xodr).string();
+geometry::Polygon polygon_of(const Reader& r, const YAML::Node& entry, const std::string& key, const std::string& what,
+                             const geometry::Bounds& bounds) {
+  const YAML::Node poly = entry["polygon"];
+  if (!poly || !poly.IsSequence() || poly.size() < 3) {
+    r.fail(entry, key + ".polygon", "must be a list of at least 3 [x, y] points");
   }
+  geometry::Polygon polygon;
+  for (std::size_t j = 0; j < poly.size(); ++j) {
+    const std::string pkey = key + ".polygon[" + std::to_string(j) + "]";
+    if (!poly[j].IsSequence() || poly[j].size() != 2) r.fail(poly[j], pkey, "must be [x, y]");
+    const geometry::Vec2 p{r.number_value(poly[j][0], pkey), r.number_value(poly[j][1], pkey)};
+    if (!bounds.contains(p)) r.fail(poly[j], pkey, what + " lies outside the bounds");
+    polygon.push_back(p);
+  }
+  return polygon;
+}
 
-  const YAML::Node bounds = root["bounds"];
-  if (!bounds) throw MapError(path + ": key 'bounds' is missing");
-  r.allow_keys(bounds, "bounds", {"min_x", "min_y", "max_x", "max_y"});
-  site.bounds = {r.number(bounds, "min_x", "bounds"), r.number(bounds, "min_y", "bounds"),
-                 r.number(bounds, "max_x", "bounds"), r.number(bounds, "max_y", "bounds")};
-  if (!(site.bounds.max_x > site.bounds.min_x) || !(site.bounds.max_y > site.bounds.min_y)) {
-    r.fail(bounds, "bounds", "max must be greater than min");
+std::vector<std::string> actions_of(const Reader& r, const YAML::Node& entry, const std::string& key) {
+  const YAML::Node node = entry["actions"];
+  if (!node) return LoadingArea{}.actions;
+  const std::string akey = key + ".actions";
+  if (!node.IsSequence() || node.size() == 0) r.fail(node, akey, "must be a list of at least one action");
+  const auto& known = place_action_names();
+  std::string valid;
+  for (const auto& name : known) valid += (valid.empty() ? "" : ", ") + name;
+  std::vector<std::string> actions;
+  for (std::size_t j = 0; j < node.size(); ++j) {
+    const std::string name = node[j].IsScalar() ? node[j].Scalar() : std::string();
+    const std::string jkey = akey + "[" + std::to_string(j) + "]";
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      r.fail(node[j], jkey, "unknown action '" + name + "' (valid: " + valid + ")");
+    }
+    if (std::find(actions.begin(), actions.end(), name) != actions.end()) {
+      r.fail(node[j], jkey, "action '" + name + "' is named twice");
+    }
+    actions.push_back(name);
   }
-  if (root["road_width"]) {
-    site.road_width = r.number_value(root["road_width"], "road_width");
-    if (!(site.road_width > 0.0)) r.fail(root["road_width"], "road_width", "must be positive");
-  }
-  if (root["graph_spacing"]) {
-    site.graph_spacing = r.number_value(root["graph_spacing"], "graph_spacing");
-    if (!(site.graph_spacing > 0.0)) r.fail(root["graph_spacing"], "graph_spacing", "must be positive");
-  }
+  return actions;
+}
 
-  std::set<std::string> area_ids;
+void read_loading_areas(const Reader& r, const YAML::Node& root, Site& site) {
+  std::set<std::string> ids;
   const YAML::Node areas = r.list(root, "loading_areas");
   for (std::size_t i = 0; i < areas.size(); ++i) {
     const std::string key = "loading_areas[" + std::to_string(i) + "]";
-    r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet"});
+    r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet", "actions", "height"});
     LoadingArea area{r.text(areas[i], "id", key), pose_of(r, areas[i], key), r.boolean(areas[i], "pallet", key, false)};
-    unique_id(r, area_ids, area.id, areas[i], key);
+    unique_id(r, ids, area.id, areas[i], key);
     if (!site.bounds.contains(area.pose.position()))
       r.fail(areas[i], key, "loading area '" + area.id + "' lies outside the bounds");
+    area.actions = actions_of(r, areas[i], key);
+    if (areas[i]["height"]) {
+      area.height = r.number_value(areas[i]["height"], key + ".height");
+      if (area.height < 0.0) {
+        r.fail(areas[i]["height"], key + ".height",
+               "'" + areas[i]["height"].Scalar() + "' is below the floor (must be >= 0)");
+      }
+    }
     site.loading_areas.push_back(std::move(area));
   }
+}
 
+void read_obstacles_and_racks(const Reader& r, const YAML::Node& root, Site& site) {
   std::set<std::string> obstacle_ids;
   const YAML::Node obstacles = r.list(root, "static_obstacles");
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
@@ -178,20 +196,9 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
     obstacle.id = r.text(obstacles[i], "id", key);
     unique_id(r, obstacle_ids, obstacle.id, obstacles[i], key);
     obstacle.enabled_at_start = r.boolean(obstacles[i], "enabled", key, false);
-    const YAML::Node poly = obstacles[i]["polygon"];
-    if (!poly || !poly.IsSequence() || poly.size() < 3) {
-      r.fail(obstacles[i], key + ".polygon", "must be a list of at least 3 [x, y] points");
-    }
-    for (std::size_t j = 0; j < poly.size(); ++j) {
-      const std::string pkey = key + ".polygon[" + std::to_string(j) + "]";
-      if (!poly[j].IsSequence() || poly[j].size() != 2) r.fail(poly[j], pkey, "must be [x, y]");
-      const geometry::Vec2 p{r.number_value(poly[j][0], pkey), r.number_value(poly[j][1], pkey)};
-      if (!site.bounds.contains(p)) r.fail(poly[j], pkey, "obstacle '" + obstacle.id + "' lies outside the bounds");
-      obstacle.polygon.push_back(p);
-    }
+    obstacle.polygon = polygon_of(r, obstacles[i], key, "obstacle '" + obstacle.id + "'", site.bounds);
     site.static_obstacles.push_back(std::move(obstacle));
   }
-
   std::set<std::string> rack_ids;
   const YAML::Node racks = r.list(root, "racks");
   for (std::size_t i = 0; i < racks.size(); ++i) {
@@ -200,20 +207,12 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
     Rack rack;
     rack.id = r.text(racks[i], "id", key);
     unique_id(r, rack_ids, rack.id, racks[i], key);
-    const YAML::Node poly = racks[i]["polygon"];
-    if (!poly || !poly.IsSequence() || poly.size() < 3) {
-      r.fail(racks[i], key + ".polygon", "must be a list of at least 3 [x, y] points");
-    }
-    for (std::size_t j = 0; j < poly.size(); ++j) {
-      const std::string pkey = key + ".polygon[" + std::to_string(j) + "]";
-      if (!poly[j].IsSequence() || poly[j].size() != 2) r.fail(poly[j], pkey, "must be [x, y]");
-      const geometry::Vec2 p{r.number_value(poly[j][0], pkey), r.number_value(poly[j][1], pkey)};
-      if (!site.bounds.contains(p)) r.fail(poly[j], pkey, "rack '" + rack.id + "' lies outside the bounds");
-      rack.polygon.push_back(p);
-    }
+    rack.polygon = polygon_of(r, racks[i], key, "rack '" + rack.id + "'", site.bounds);
     site.racks.push_back(std::move(rack));
   }
+}
 
+void read_anchors_homes_markers(const Reader& r, const YAML::Node& root, Site& site) {
   std::set<std::string> anchor_ids;
   const YAML::Node anchors = r.list(root, "uwb_anchors");
   for (std::size_t i = 0; i < anchors.size(); ++i) {
@@ -236,6 +235,74 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
       r.fail(homes[i], key, "home '" + home.id + "' lies outside the bounds");
     site.homes.push_back(std::move(home));
   }
+
+  std::set<std::string> marker_ids;
+  const YAML::Node markers = r.list(root, "markers");
+  for (std::size_t i = 0; i < markers.size(); ++i) {
+    const std::string key = "markers[" + std::to_string(i) + "]";
+    r.allow_keys(markers[i], key, {"id", "x", "y", "z", "yaw"});
+    const YAML::Node id = markers[i]["id"];
+    if (!id) throw MapError(r.at(markers[i]) + ": key '" + key + ".id' is missing");
+    int code = -1;
+    try {
+      code = id.as<int>();
+    } catch (const YAML::Exception&) {
+      r.fail(id, key + ".id", "'" + id.Scalar() + "' is not a whole number");
+    }
+    if (code < 0) r.fail(id, key + ".id", "'" + id.Scalar() + "' is negative");
+    unique_id(r, marker_ids, std::to_string(code), markers[i], key);
+    Marker marker{code, pose_of(r, markers[i], key), 0.0};
+    if (markers[i]["z"]) marker.z = r.number_value(markers[i]["z"], key + ".z");
+    if (!site.bounds.contains(marker.pose.position()))
+      r.fail(markers[i], key, "marker " + std::to_string(code) + " lies outside the bounds");
+    site.markers.push_back(marker);
+  }
+}
+
+}  // namespace
+
+Site parse_site(const std::string& yaml_text, const std::string& path) {
+  const Reader r(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw MapError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
+  r.allow_keys(root, "",
+               {"name", "opendrive", "bounds", "road_width", "graph_spacing", "approach_distance", "loading_areas",
+                "static_obstacles", "uwb_anchors", "homes", "racks", "markers"});
+
+  Site site;
+  site.file = path;
+  site.name = std::filesystem::path(path).stem().string();
+  if (root["name"]) site.name = r.text(root, "name", "");
+  if (root["opendrive"]) {
+    const std::filesystem::path xodr(r.text(root, "opendrive", ""));
+    site.opendrive_file = (xodr.is_absolute() ? xodr : std::filesystem::path(path).parent_path() / xodr).string();
+  }
+
+  const YAML::Node bounds = root["bounds"];
+  if (!bounds) throw MapError(path + ": key 'bounds' is missing");
+  r.allow_keys(bounds, "bounds", {"min_x", "min_y", "max_x", "max_y"});
+  site.bounds = {r.number(bounds, "min_x", "bounds"), r.number(bounds, "min_y", "bounds"),
+                 r.number(bounds, "max_x", "bounds"), r.number(bounds, "max_y", "bounds")};
+  if (!(site.bounds.max_x > site.bounds.min_x) || !(site.bounds.max_y > site.bounds.min_y)) {
+    r.fail(bounds, "bounds", "max must be greater than min");
+  }
+  const auto positive = [&](const char* key, double& value) {
+    if (!root[key]) return;
+    value = r.number_value(root[key], key);
+    if (!(value > 0.0)) r.fail(root[key], key, "must be positive");
+  };
+  positive("road_width", site.road_width);
+  positive("graph_spacing", site.graph_spacing);
+  positive("approach_distance", site.approach_distance);
+
+  read_loading_areas(r, root, site);
+  read_obstacles_and_racks(r, root, site);
+  read_anchors_homes_markers(r, root, site);
   return site;
 }
 
@@ -279,6 +346,9 @@ std::string revision_mismatch(const Site& site, const Site& candidate) {
     const LoadingArea* other = candidate.find_area(area.id);
     if (!other) return who + "loading area " + area.id + " is missing";
     if (!same_pose(area.pose, other->pose)) return who + "loading area " + area.id + " stands elsewhere";
+    if (std::abs(area.height - other->height) > kTolerance || area.actions != other->actions) {
+      return who + "loading area " + area.id + " holds its load at another height or offers other actions";
+    }
   }
   if (site.homes.size() != candidate.homes.size()) return who + "it has other homes";
   for (const auto& home : site.homes) {

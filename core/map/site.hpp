@@ -15,6 +15,13 @@ class MapError : public InputError {
   using InputError::InputError;
 };
 
+/// The actions a place may offer, by their VDA 5050 names: `pick` and `drop` a load (a pallet),
+/// `pickItem` and `dropItem` for an arm that takes single items (boxes) from or onto a load there.
+inline const std::vector<std::string>& place_action_names() {
+  static const std::vector<std::string> names{"pick", "drop", "pickItem", "dropItem"};
+  return names;
+}
+
 /// Where a pallet stands and which way it faces ("location and direction of the loading area and
 /// their ids" [Forklift thesis, section 3]). `pose.yaw` points from the pallet towards the side a forklift
 /// approaches from, so a forklift picks facing `yaw + pi`.
@@ -22,6 +29,21 @@ struct LoadingArea {
   std::string id;
   geometry::Pose2 pose;
   bool pallet_at_start = false;
+  /// What a vehicle may do here (place_action_names); a site file that names none offers pick and drop.
+  std::vector<std::string> actions{"pick", "drop"};
+  /// Height of the load above the floor, metres: 0 on the floor, more on a rack level or platform;
+  /// only a vehicle that lifts that high handles it.
+  double height = 0.0;
+
+  bool offers(const std::string& action) const;
+};
+
+/// An AR marker at a known pose, for localisation by markers [Picker thesis, section 4.2.9]: on
+/// posts every 10 m in open areas and on rack pillars every 3.5 m.
+struct Marker {
+  int id = 0;            ///< the code printed on the marker, unique on the site
+  geometry::Pose2 pose;  ///< yaw: the direction the marker faces
+  double z = 0.0;        ///< height of its centre above the floor, metres
 };
 
 /// A designated static obstacle the user switches on and off [Forklift thesis, section 3].
@@ -58,11 +80,15 @@ struct Site {
   geometry::Bounds bounds;      ///< the area, metres
   double road_width = 0.30;     ///< metres
   double graph_spacing = 0.10;  ///< road-graph sample spacing, metres
+  /// A place's centre to where a vehicle stands on the road to handle its load, metres: 0.30 for
+  /// the tables' forklifts, about a pallet and half a vehicle on a real-scale site.
+  double approach_distance = 0.30;
   std::vector<LoadingArea> loading_areas;
   std::vector<StaticObstacle> static_obstacles;
   std::vector<UwbAnchor> uwb_anchors;
   std::vector<Home> homes;
   std::vector<Rack> racks;
+  std::vector<Marker> markers;
 
   const LoadingArea* find_area(const std::string& id) const;
   const StaticObstacle* find_obstacle(const std::string& id) const;
@@ -71,7 +97,8 @@ struct Site {
 };
 
 /// Reads and validates a site file. Throws MapError naming the file, line and key for unknown
-/// keys, missing or non-numeric values, duplicate ids and obstacles outside the area.
+/// keys, missing or non-numeric values, duplicate ids, obstacles outside the area, unknown
+/// actions and negative heights.
 Site load_site(const std::string& path);
 
 /// The same from YAML text; `path` names it in messages and resolves the .xodr.

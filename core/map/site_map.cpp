@@ -69,8 +69,8 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   const std::vector<int> home_lines = entry_lines(map.site.file, "homes");
 
   const double home_reach = 0.5 * map.site.road_width + options.home_slack;
-  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y,
-                         double reach) {
+  const double approach = options.approach_distance > 0.0 ? options.approach_distance : map.site.approach_distance;
+  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y, double reach) {
     PlaceReach p;
     p.id = id;
     p.key = key;
@@ -90,8 +90,8 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   for (std::size_t i = 0; i < map.site.loading_areas.size(); ++i) {
     const LoadingArea& a = map.site.loading_areas[i];
     // The forklift stands on the road side of the pallet, facing it (yaw points to the road).
-    const double ax = a.pose.x + options.approach_distance * std::cos(a.pose.yaw);
-    const double ay = a.pose.y + options.approach_distance * std::sin(a.pose.yaw);
+    const double ax = a.pose.x + approach * std::cos(a.pose.yaw);
+    const double ay = a.pose.y + approach * std::sin(a.pose.yaw);
     PlaceReach p = place(a.id, "loading_areas[" + std::to_string(i) + "]", i < area_lines.size() ? area_lines[i] : 0,
                          ax, ay, area_reach);
     if (p.problem.empty()) {
@@ -154,7 +154,8 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
       }
     }
   }
-  if (map.site.loading_areas.empty()) report.problems.push_back(map.site.file + ": key 'loading_areas': the site has none");
+  if (map.site.loading_areas.empty())
+    report.problems.push_back(map.site.file + ": key 'loading_areas': the site has none");
   return report;
 }
 

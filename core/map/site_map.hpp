@@ -17,10 +17,11 @@ struct SiteMap {
   RoadGraphBuild graph;  ///< graph.graph is the RoadGraph planners search
 };
 
-/// How a loading area or home is judged reachable. The forklift (0.25 x 0.16 m) picks standing on
-/// the road centre line facing the pallet, about `approach_distance` from it.
+/// How a loading area or home is judged reachable. A vehicle handles a load standing on the road
+/// centre line facing it, about `approach_distance` from it (0.30 m for the tables' 0.25 x 0.16 m
+/// forklifts).
 struct ReachOptions {
-  double approach_distance = 0.30;  ///< pallet centre to forklift centre, metres
+  double approach_distance = 0.0;  ///< pallet centre to vehicle centre, metres; <= 0: the site's
   /// A graph point must lie within road_width / 2 + slack of the approach position (or of a home).
   double slack = 0.15;
   /// A home may lie within road_width / 2 + home_slack of a graph point: parked forklifts stand

@@ -50,11 +50,20 @@ std::string escape(const std::string& s) {
   std::string out;
   for (const char c : s) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -201,10 +210,21 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << "\" fill=\"#40a040\" fill-opacity=\"0.25\" stroke=\"#207020\" stroke-width=\"1.5\"/>\n";
     const double c = std::cos(h.pose.yaw), s = std::sin(h.pose.yaw);
     svg << "<line x1=\"" << num(cv.X(h.pose.x)) << "\" y1=\"" << num(cv.Y(h.pose.y)) << "\" x2=\""
-        << num(cv.X(h.pose.x + 0.5 * o.robot_length * c)) << "\" y2=\"" << num(cv.Y(h.pose.y + 0.5 * o.robot_length * s))
-        << "\" stroke=\"#207020\" stroke-width=\"2\"/>\n";
+        << num(cv.X(h.pose.x + 0.5 * o.robot_length * c)) << "\" y2=\""
+        << num(cv.Y(h.pose.y + 0.5 * o.robot_length * s)) << "\" stroke=\"#207020\" stroke-width=\"2\"/>\n";
     svg << "<text x=\"" << num(cv.X(h.pose.x)) << "\" y=\"" << num(cv.Y(h.pose.y) + font * 0.35)
         << "\" text-anchor=\"middle\" fill=\"#104010\">" << escape(h.id) << "</text>\n";
+  }
+  svg << "</g>\n";
+
+  // AR markers: a small square with a tick the way the marker faces; the id shows on hover.
+  svg << "<g id=\"markers\" fill=\"#000\" stroke=\"#000\">\n";
+  for (const Marker& m : site.markers) {
+    const double x = cv.X(m.pose.x), y = cv.Y(m.pose.y);
+    svg << "<rect x=\"" << num(x - 3) << "\" y=\"" << num(y - 3) << "\" width=\"6\" height=\"6\"><title>marker " << m.id
+        << " z=" << num(m.z) << "</title></rect>\n";
+    svg << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x + 8 * std::cos(m.pose.yaw))
+        << "\" y2=\"" << num(y - 8 * std::sin(m.pose.yaw)) << "\" stroke-width=\"1.5\"/>\n";
   }
   svg << "</g>\n";
 
@@ -256,9 +276,8 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
   svg << "<text x=\"" << num(o.margin) << "\" y=\"" << num(cv.height() + 16.0) << "\" font-size=\"14\" fill=\"#333\">"
       << escape(site.name) << ": " << num(site.bounds.max_x - site.bounds.min_x) << " m x "
       << num(site.bounds.max_y - site.bounds.min_y) << " m, " << map.network.roads.size() << " roads, "
-      << graph.points.size() << " graph points, " << graph.edge_count() << " edges, "
-      << site.loading_areas.size() << " loading areas, " << site.static_obstacles.size() << " obstacles, "
-      << site.homes.size() << " homes</text>\n";
+      << graph.points.size() << " graph points, " << graph.edge_count() << " edges, " << site.loading_areas.size()
+      << " loading areas, " << site.static_obstacles.size() << " obstacles, " << site.homes.size() << " homes</text>\n";
   svg << "</svg>\n";
   return svg.str();
 }

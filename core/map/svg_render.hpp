@@ -28,7 +28,8 @@ struct RenderOptions {
 
 /// An SVG picture a person checks a map with: lanes at their width, the reference lines, graph
 /// edges and points, racks, loading areas (pallet, facing arrow, id), static obstacles (solid
-/// when enabled at start, dashed when not), UWB anchors and home poses; robots' tracks on top.
+/// when enabled at start, dashed when not), AR markers, UWB anchors and home poses; robots' tracks
+/// on top.
 std::string render_svg(const SiteMap& map, const RenderOptions& options = {});
 
 }  // namespace fleet::map

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the shipped site maps: maps/{table_a,table_b,warehouse}.{xodr,yaml}.
+"""Writes the shipped site maps: maps/{table_a,table_b,warehouse,plant}.{xodr,yaml}.
 
 A map is drawn as straight road segments between nodes. Every road is one lane of the site's
 road width, with its lane centre on the reference line (laneOffset = half the width), driven both
@@ -7,12 +7,16 @@ ways. Where two segments meet, a corner road (quarter arc or straight piece) lin
 three or four meet, a junction holds one connecting road for every pair of arms. Turn radius is
 half the road width, so a junction covers exactly the crossing of the two strips.
 
+The plant, a real-scale site with two-lane roads, is drawn by plant.py.
+
 Usage: maps/tools/make_maps.py [OUTPUT_DIR]   (default: the maps/ folder beside this script)
 """
 
 import math
 import os
 import sys
+
+from plant import plant
 
 
 def fmt(v):
@@ -318,7 +322,7 @@ aisle centres and three cross aisles; for scale and planner benchmarks."""
 
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse):
+    for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse, plant):
         net, yaml_text = make()
         with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
             f.write(net.xodr())

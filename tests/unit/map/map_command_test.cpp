@@ -36,7 +36,7 @@ CommandRun run(std::vector<std::string> args, bool json = false) {
 }  // namespace
 
 TEST(MapCommand, CheckShippedMapsExitsZero) {
-  for (const char* name : {"table_a", "table_b", "warehouse"}) {
+  for (const char* name : {"table_a", "table_b", "warehouse", "plant"}) {
     const CommandRun r = run({"check", std::string(FLEET_SOURCE_DIR "/maps/") + name + ".yaml"});
     EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
     EXPECT_NE(r.out.find("usable: yes"), std::string::npos) << r.out;
@@ -44,7 +44,7 @@ TEST(MapCommand, CheckShippedMapsExitsZero) {
     EXPECT_TRUE(r.err.empty()) << r.err;
   }
   // By name, all at once, with --json.
-  const CommandRun all = run({"check", "table_a", "table_b", "warehouse"}, true);
+  const CommandRun all = run({"check", "table_a", "table_b", "warehouse", "plant"}, true);
   EXPECT_EQ(all.code, kExitOk) << all.err;
   EXPECT_NE(all.out.find("\"usable\":true"), std::string::npos);
   EXPECT_EQ(all.out.find("\"usable\":false"), std::string::npos);

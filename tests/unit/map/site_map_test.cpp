@@ -20,7 +20,7 @@ using namespace fleet::map;
 
 namespace {
 
-const char* const kShipped[] = {"table_a", "table_b", "warehouse"};
+const char* const kShipped[] = {"table_a", "table_b", "warehouse", "plant"};
 
 std::string shipped(const std::string& name) {
   return FLEET_SOURCE_DIR "/maps/" + name + ".yaml";
@@ -102,8 +102,9 @@ TEST(SiteMap, EveryDesignatedObstacleCutsARoad) {
 
 TEST(SiteMap, ParkedForkliftsAndPalletsStayOffTheRoads) {
   // A forklift at home and a pallet must not stand on any lane: every footprint corner and the
-  // centre lie at least half a road width from every lane centre segment.
-  for (const char* name : kShipped) {
+  // centre lie at least half a road width from every lane centre segment. The plant parks its
+  // vehicles at the ends of stalls of their own (PlantMap tests).
+  for (const char* name : {"table_a", "table_b", "warehouse"}) {
     const SiteMap map = load_site_map(shipped(name));
     const double half = 0.5 * map.site.road_width;
     for (const Home& h : map.site.homes) {

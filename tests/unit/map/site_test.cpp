@@ -45,6 +45,65 @@ TEST(Site, ObstacleOutsideTheAreaIsRefused) {
   EXPECT_NE(msg.find("obstacle 'O1' lies outside the bounds"), std::string::npos) << msg;
 }
 
+TEST(Site, PlacesOfferPickAndDropOnTheFloorUnlessTheySayOtherwise) {
+  const Site site = parse_site(kBounds +
+                                   "loading_areas:\n"
+                                   "  - {id: A1, x: 1, y: 1, yaw: 0}\n"
+                                   "  - {id: A2, x: 2, y: 1, yaw: 0, actions: [pickItem, dropItem], height: 4.4}\n",
+                               "maps/good.yaml");
+  ASSERT_EQ(site.loading_areas.size(), 2u);
+  EXPECT_EQ(site.loading_areas[0].actions, (std::vector<std::string>{"pick", "drop"}));
+  EXPECT_EQ(site.loading_areas[0].height, 0.0);
+  EXPECT_TRUE(site.loading_areas[0].offers("drop"));
+  EXPECT_EQ(site.loading_areas[1].actions, (std::vector<std::string>{"pickItem", "dropItem"}));
+  EXPECT_FALSE(site.loading_areas[1].offers("pick"));
+  EXPECT_DOUBLE_EQ(site.loading_areas[1].height, 4.4);
+  EXPECT_DOUBLE_EQ(site.approach_distance, 0.30);
+  EXPECT_TRUE(site.markers.empty());
+}
+
+TEST(Site, UnknownActionsAndLoadsBelowTheFloorAreNamed) {
+  const std::string unknown =
+      message_of(kBounds + "loading_areas:\n  - {id: A1, x: 1, y: 1, yaw: 0, actions: [pick, fly]}\n");
+  EXPECT_NE(unknown.find("maps/bad.yaml:3: key 'loading_areas[0].actions[1]': unknown action 'fly'"), std::string::npos)
+      << unknown;
+  EXPECT_NE(unknown.find("valid: pick, drop, pickItem, dropItem"), std::string::npos) << unknown;
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n  - {id: A1, x: 1, y: 1, yaw: 0, actions: []}\n")
+                .find("key 'loading_areas[0].actions': must be a list of at least one action"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n  - {id: A1, x: 1, y: 1, yaw: 0, actions: [pick, pick]}\n")
+                .find("action 'pick' is named twice"),
+            std::string::npos);
+  const std::string below = message_of(kBounds + "loading_areas:\n  - {id: A1, x: 1, y: 1, yaw: 0, height: -0.3}\n");
+  EXPECT_NE(below.find("key 'loading_areas[0].height': '-0.3' is below the floor"), std::string::npos) << below;
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n  - {id: A1, x: 1, y: 1, yaw: 0, height: high}\n")
+                .find("'high' is not a number"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "approach_distance: 0\n").find("key 'approach_distance': must be positive"),
+            std::string::npos);
+}
+
+TEST(Site, MarkersHaveWholeNumberIdsOncePoseAndHeight) {
+  const Site site = parse_site(kBounds +
+                                   "markers:\n  - {id: 7, x: 1, y: 2, z: 1.5, yaw: 3.14}\n"
+                                   "  - {id: 8, x: 2, y: 2, yaw: 0}\n",
+                               "maps/good.yaml");
+  ASSERT_EQ(site.markers.size(), 2u);
+  EXPECT_EQ(site.markers[0].id, 7);
+  EXPECT_DOUBLE_EQ(site.markers[0].pose.y, 2.0);
+  EXPECT_DOUBLE_EQ(site.markers[0].z, 1.5);
+  EXPECT_DOUBLE_EQ(site.markers[1].z, 0.0);
+  EXPECT_NE(message_of(kBounds + "markers:\n  - {id: 7, x: 1, y: 1, yaw: 0}\n  - {id: 7, x: 2, y: 1, yaw: 0}\n")
+                .find("key 'markers[1].id': duplicate id '7'"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "markers:\n  - {id: M1, x: 1, y: 1, yaw: 0}\n").find("'M1' is not a whole number"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "markers:\n  - {id: 1, x: 9, y: 1, yaw: 0}\n").find("marker 1 lies outside"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "markers:\n  - {id: 1, x: 1, y: 1}\n").find("key 'markers[0].yaw' is missing"),
+            std::string::npos);
+}
+
 namespace fleet::map {
 namespace {
 
@@ -59,6 +118,9 @@ TEST(SiteRevision, TableAWithARoadClosedIsARevisionTableBIsNot) {
   Site moved = closed;
   moved.homes[3].pose.x += 0.01;
   EXPECT_NE(revision_mismatch(a, moved).find("home H4"), std::string::npos) << revision_mismatch(a, moved);
+  Site raised = closed;
+  raised.loading_areas[0].height = 2.2;
+  EXPECT_NE(revision_mismatch(a, raised).find("loading area A1 holds its load at another height"), std::string::npos);
 }
 
 }  // namespace

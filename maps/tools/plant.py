@@ -1,0 +1,243 @@
+"""The plant: a real-scale site, 60 m x 30 m, for several fleets at once (docs/maps.md).
+
+South to north:
+- packing stations on two narrow spurs and a high-bay rack facing the south cross aisle;
+- the south cross aisle (3.5 m, two lanes, keep right);
+- west: the finished-goods corridor, 2.98 m with two lanes of 1.49 m [Stacker thesis, section
+  4.1.2], EPAL pallets behind a raised limiter on its north side (they stand 0.30 m up [Stacker
+  thesis, section 4.1.3]) and packaging pallets on the floor on its south side;
+  east: the rack section, three rack rows with two 3.0 m aisles of two lanes, pillars every
+  3.5 m with AR markers [Picker thesis, section 4.2.9.3], a pallet on the floor and one at height
+  in every bay;
+- the north cross aisle;
+- expedition (part of it on a narrow spur), the waiting area and sixteen parking stalls.
+
+Widths decide who goes where: a vehicle fits a lane when its width plus the plant's 0.10 m
+margin is at most the lane's width. The narrow spurs (0.95 m) take a 0.8 m forklift, not a
+0.9 m reach truck; every other road (1.1 m and more) takes both. The high rack places are for
+the reach trucks by their lift height, and the wide roads reach all of them.
+"""
+
+import math
+
+from lane_network import LaneNetwork, ONE, TWO, fmt
+
+N, E, S, W = math.pi / 2, 0.0, -math.pi / 2, math.pi
+
+WIDTH, HEIGHT = 60.0, 30.0
+AISLE_LANE = 1.75     # cross aisles: 3.5 m, two lanes
+CORRIDOR_LANE = 1.49  # the finished-goods corridor: 2.98 m, two lanes
+RACK_LANE = 1.5       # rack aisles: 3.0 m between rack faces, two lanes
+NARROW_LANE = 0.95    # single-lane spurs only a 0.8 m vehicle fits
+STALL_LANE = 1.1      # the parking street and stalls: a 0.9 m reach truck fits
+
+SOUTH_Y, NORTH_Y = 7.0, 24.0               # cross aisle centres
+WEST_X, MID_X, EAST_X = 2.5, 30.0, 57.5    # north-south aisle centres
+CORRIDOR_Y, RACK_AISLE_Y = 17.1, 11.7      # the corridor continues as the upper rack aisle
+PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 37.0
+STREET_Y, STALL_END_Y = 26.9, 29.1
+STALLS = [38.6 + 1.2 * k for k in range(16)]
+
+PALLET_LENGTH, PALLET_WIDTH = 1.2, 0.8     # EPAL; forks enter along the length
+CLEARANCE = 0.10                           # pallet to lane edge
+LIMITER = (18.6, 18.75)                    # the corridor's raised limiter, y from / to
+RACK_X0, BAY, BAYS = 33.5, 3.5, 6          # rack rows: x from, pillar pitch, bays
+RACK_ROWS = {"R1": (9.0, 10.2), "R2": (13.2, 15.6), "R3": (18.6, 19.8), "R4": (3.9, 5.1)}
+HIGH_LEVELS = (2.2, 4.4)                   # load heights of the upper rack levels, metres
+
+
+def network():
+    net = LaneNetwork("plant")
+    for name, x, y in [("sw", WEST_X, SOUTH_Y), ("sm", MID_X, SOUTH_Y), ("se", EAST_X, SOUTH_Y),
+                       ("nw", WEST_X, NORTH_Y), ("nm", MID_X, NORTH_Y), ("ne", EAST_X, NORTH_Y),
+                       ("corridor_w", WEST_X, CORRIDOR_Y), ("corridor_e", MID_X, CORRIDOR_Y),
+                       ("rack_w", MID_X, RACK_AISLE_Y), ("rack_e", EAST_X, RACK_AISLE_Y),
+                       ("upper_e", EAST_X, CORRIDOR_Y),
+                       ("expedition", EXPEDITION_SPUR_X, NORTH_Y), ("expedition_end", EXPEDITION_SPUR_X, 29.5),
+                       ("parking", PARKING_X, NORTH_Y), ("street_w", PARKING_X, STREET_Y)]:
+        net.node(name, x, y)
+    for k, x in enumerate(PACKING_XS):
+        net.node(f"packing{k + 1}", x, SOUTH_Y)
+        net.node(f"packing{k + 1}_end", x, 2.3)
+    for k, x in enumerate(STALLS):
+        net.node(f"street{k + 1}", x, STREET_Y)
+        net.node(f"stall{k + 1}", x, STALL_END_Y)
+
+    def aisle(nodes, name):
+        for k in range(len(nodes) - 1):
+            net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
+
+    aisle(["sw", "packing1", "packing2", "sm", "se"], "south cross aisle")
+    aisle(["nw", "expedition", "nm", "parking", "ne"], "north cross aisle")
+    aisle(["sw", "corridor_w", "nw"], "west aisle")
+    aisle(["sm", "rack_w", "corridor_e", "nm"], "middle aisle")
+    aisle(["se", "rack_e", "upper_e", "ne"], "east aisle")
+    net.edge("corridor_w", "corridor_e", "finished-goods corridor", TWO, CORRIDOR_LANE)
+    net.edge("corridor_e", "upper_e", "rack aisle 2", TWO, RACK_LANE)
+    net.edge("rack_w", "rack_e", "rack aisle 1", TWO, RACK_LANE)
+    for k in range(len(PACKING_XS)):
+        net.edge(f"packing{k + 1}", f"packing{k + 1}_end", f"packing spur {k + 1}", ONE, NARROW_LANE)
+    net.edge("expedition", "expedition_end", "expedition spur", ONE, NARROW_LANE)
+    net.edge("parking", "street_w", "parking access", ONE, STALL_LANE)
+    street = ["street_w"] + [f"street{k + 1}" for k in range(len(STALLS))]
+    for k in range(len(street) - 1):
+        net.edge(street[k], street[k + 1], f"parking street {k + 1}", ONE, STALL_LANE)
+    for k in range(len(STALLS)):
+        net.edge(f"street{k + 1}", f"stall{k + 1}", f"stall {k + 1}", ONE, STALL_LANE)
+    net.build()
+    return net
+
+
+def beside(lane_edge, side, clearance=CLEARANCE):
+    """Centre of a pallet standing `clearance` beyond a lane edge, its length across the lane."""
+    return lane_edge + side * (clearance + PALLET_LENGTH / 2)
+
+
+def place(kind, x, y, yaw, pallet, actions=None, height=0.0):
+    return {"kind": kind, "x": x, "y": y, "yaw": yaw, "pallet": pallet, "actions": actions, "height": height}
+
+
+def corridor_and_open_places():
+    places = []
+    corridor_north_edge = CORRIDOR_Y + CORRIDOR_LANE
+    corridor_south_edge = CORRIDOR_Y - CORRIDOR_LANE
+    # Finished goods: behind the limiter, standing 0.30 m up on it; stackers only pick them.
+    for k in range(16):
+        places.append(place("FG", 5.8 + 1.3 * k, LIMITER[1] + PALLET_LENGTH / 2, S, k % 2 == 0, ["pick"], 0.3))
+    # Packaging pallets on the floor across the corridor.
+    for k in range(10):
+        places.append(place("PK", 6.0 + 2.0 * k, beside(corridor_south_edge, -1, 0.05), N, k % 3 == 0))
+    assert LIMITER[0] >= corridor_north_edge
+    north_edge = NORTH_Y + AISLE_LANE
+    for k in range(11):
+        places.append(place("EX", 6.0 + 1.2 * k, beside(north_edge, 1), S, k % 2 == 1))
+    # Expedition on the narrow spur: forklift-only.
+    for k, y in enumerate((26.8, 28.0, 29.2)):
+        for side, yaw in ((-1, E), (1, W)):
+            x = beside(EXPEDITION_SPUR_X + side * NARROW_LANE / 2, side)
+            places.append(place("EN", x, y, yaw, (k + side) % 2 == 0))
+    for k in range(6):
+        places.append(place("WA", 24.6 + 1.2 * k, beside(north_edge, 1), S, False))
+    # Packing stations: pickers drop boxes on the packing pallets, a pallet fleet takes them away.
+    for x0 in PACKING_XS:
+        for y in (4.1, 2.7):
+            for side, yaw in ((-1, E), (1, W)):
+                x = beside(x0 + side * NARROW_LANE / 2, side)
+                places.append(place("PS", x, y, yaw, True, ["pick", "drop", "dropItem"]))
+    return places
+
+
+def rack_faces():
+    """(rack row, face y, direction from the face into the aisle) for every face on an aisle."""
+    return [("R1", RACK_ROWS["R1"][1], 1), ("R2", RACK_ROWS["R2"][0], -1), ("R2", RACK_ROWS["R2"][1], 1),
+            ("R3", RACK_ROWS["R3"][0], -1), ("R4", RACK_ROWS["R4"][1], 1)]
+
+
+def rack_places():
+    """Every bay has three pallet slots between its pillars; the middle rows show a pallet on the
+    floor (boxes for the pickers) and one at height, the high-bay row R4 two at height."""
+    places = []
+    for row, face_y, into_aisle in rack_faces():
+        y = face_y - into_aisle * PALLET_LENGTH / 2
+        yaw = N if into_aisle > 0 else S
+        for bay in range(BAYS):
+            centre = RACK_X0 + BAY * (bay + 0.5)
+            if row == "R4":
+                places.append(place("RH", centre - 1.05, y, yaw, bay % 2 == 0, None, HIGH_LEVELS[0]))
+                places.append(place("RH", centre + 1.05, y, yaw, bay % 2 == 1, None, HIGH_LEVELS[1]))
+                continue
+            level = HIGH_LEVELS[0] if into_aisle > 0 else HIGH_LEVELS[1]
+            places.append(place("RB", centre - 1.05, y, yaw, True, ["pick", "drop", "pickItem"]))
+            places.append(place("RH", centre + 1.05, y, yaw, bay % 2 == 0, None, level))
+    return places
+
+
+def racks():
+    """Rack rows, their front pillars every 3.5 m, and the corridor's limiter."""
+    out = [("L1", (5.0, LIMITER[0], 27.0, LIMITER[1]))]
+    for row, (y0, y1) in RACK_ROWS.items():
+        out.append((row, (RACK_X0, y0, RACK_X0 + BAY * BAYS, y1)))
+    for row, face_y, into_aisle in rack_faces():
+        for j in range(BAYS + 1):
+            x = RACK_X0 + BAY * j
+            ys = sorted((face_y, face_y - into_aisle * 0.12))
+            out.append((f"{row}-{'N' if into_aisle > 0 else 'S'}{j + 1}", (x - 0.06, ys[0], x + 0.06, ys[1])))
+    return out
+
+
+def markers():
+    """AR markers: every 10 m along the open aisles and the corridor, on every front pillar in
+    the racks [Picker thesis, section 4.2.9.3]. Ids are the codes printed on them."""
+    out = []
+    for x in (5.0, 15.0, 25.0, 35.0, 45.0, 55.0):
+        out.append((x, NORTH_Y - AISLE_LANE - 0.05, N, 2.0))
+        out.append((x, SOUTH_Y + AISLE_LANE + 0.05, S, 2.0))
+    for x in (10.0, 20.0):
+        out.append((x, LIMITER[0] + 0.05, S, 0.3))
+    for y in (10.0, 20.0):
+        out.append((0.05, y, E, 2.0))
+        out.append((WIDTH - 0.05, y, W, 2.0))
+    numbered = [(k + 1,) + m for k, m in enumerate(out)]
+    for k, (row, face_y, into_aisle) in enumerate(rack_faces()):
+        for j in range(BAYS + 1):
+            numbered.append((100 + 10 * k + j, RACK_X0 + BAY * j, face_y, N if into_aisle > 0 else S, 1.0))
+    return numbered
+
+
+def site_yaml(places, rack_list, marker_list):
+    lines = [
+        "# The plant: 60 m x 30 m at real scale, for several fleets at once; see docs/maps.md.",
+        "# Finished-goods corridor 2.98 m with two lanes of 1.49 m [Stacker thesis, section 4.1.2], cross",
+        "# aisles 3.5 m and rack aisles 3.0 m with two lanes each (keep right), narrow single-lane spurs",
+        "# 0.95 m, rack pillars every 3.5 m with markers [Picker thesis, section 4.2.9.3].",
+        "# Places: yaw points from the load towards the road it is handled from. Written by",
+        "# maps/tools/make_maps.py.",
+        "name: plant",
+        "opendrive: plant.xodr",
+        f"bounds: {{min_x: 0, min_y: 0, max_x: {fmt(WIDTH)}, max_y: {fmt(HEIGHT)}}}",
+        f"road_width: {fmt(CORRIDOR_LANE)}",
+        "graph_spacing: 0.5",
+        "approach_distance: 1.2",
+        "loading_areas:",
+    ]
+    counts = {}
+    for p in places:
+        counts[p["kind"]] = counts.get(p["kind"], 0) + 1
+        extra = ""
+        if p["actions"]:
+            extra += f", actions: [{', '.join(p['actions'])}]"
+        if p["height"]:
+            extra += f", height: {fmt(p['height'])}"
+        lines.append(f"  - {{id: {p['kind']}{counts[p['kind']]}, x: {fmt(p['x'])}, y: {fmt(p['y'])}, "
+                     f"yaw: {fmt(p['yaw'])}, pallet: {'true' if p['pallet'] else 'false'}{extra}}}")
+    # Designated obstacles, off at start: each closes a cross aisle between two junctions.
+    lines.append("static_obstacles:")
+    for name, (x0, y0, x1, y1) in (("O1", (11.5, 5.6, 12.5, 8.4)), ("O2", (44.5, 22.6, 45.5, 25.4))):
+        lines.append(f"  - {{id: {name}, enabled: false, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "
+                     f"[{fmt(x1)}, {fmt(y1)}], [{fmt(x0)}, {fmt(y1)}]]}}")
+    lines.append("uwb_anchors:")
+    # UWB anchors under the roof on a 20 m x 15 m grid: round the walls and two over the middle.
+    anchors = [(0, 0), (20, 0), (40, 0), (60, 0), (60, 15), (60, 30), (40, 30), (20, 30), (0, 30), (0, 15),
+               (20, 15), (40, 15)]
+    for k, (x, y) in enumerate(anchors):
+        lines.append(f"  - {{id: U{k + 1}, x: {fmt(x)}, y: {fmt(y)}, z: 4}}")
+    # Stalls: the forklifts' in the west half of the row, the reach trucks' in the east half,
+    # parked facing the street at the stall's end.
+    lines.append("homes:")
+    for k, x in enumerate(STALLS):
+        home = f"PF{k + 1}" if k < 8 else f"PR{k - 7}"
+        lines.append(f"  - {{id: {home}, x: {fmt(x)}, y: {fmt(STALL_END_Y)}, yaw: {fmt(S)}}}")
+    lines.append("racks:")
+    for name, (x0, y0, x1, y1) in rack_list:
+        lines.append(f"  - {{id: {name}, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "
+                     f"[{fmt(x1)}, {fmt(y1)}], [{fmt(x0)}, {fmt(y1)}]]}}")
+    lines.append("markers:")
+    for marker_id, x, y, yaw, z in marker_list:
+        lines.append(f"  - {{id: {marker_id}, x: {fmt(x)}, y: {fmt(y)}, z: {fmt(z)}, yaw: {fmt(yaw)}}}")
+    return "\n".join(lines) + "\n"
+
+
+def plant():
+    net = network()
+    places = corridor_and_open_places() + rack_places()
+    return net, site_yaml(places, racks(), markers())
