@@ -20,12 +20,13 @@ std::uint64_t robot_stream(const std::string& robot_id) {
   return h % 1000003 * 16;
 }
 
-/// The graph the robot plans on: the traffic manager's one-way graph under traffic, else none
-/// (the site's own).
-std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const map::SiteMap& site) {
+/// The graph the robot plans on: under traffic, the traffic manager's graph for its fleet's
+/// vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).
+std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                                      const map::SiteMap& site) {
   if (!config.settings.get_bool("traffic.enabled")) return nullptr;
-  return std::make_shared<const map::RoadGraph>(
-      traffic::planning_graph(site.graph.graph, traffic::configuration_from(config)));
+  return std::make_shared<const map::RoadGraph>(traffic::planning_graph(
+      site.graph.graph, traffic::configuration_from(config), traffic::vehicle_type_of(config, fleet.id)));
 }
 
 robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
@@ -36,7 +37,7 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
   c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
   c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
   c.traffic = config.settings.get_bool("traffic.enabled");
-  c.route_graph = route_graph_for(config, site);
+  c.route_graph = route_graph_for(config, fleet, site);
   return c;
 }
 }  // namespace
@@ -245,7 +246,7 @@ void FleetAgent::switch_map(const std::string& map_id) {
     log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
     return;
   }
-  forklift_.set_site(next, route_graph_for(options_.config, *next));
+  forklift_.set_site(next, route_graph_for(options_.config, *fleet_, *next));
   log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id,
              next->graph.graph.points.size());
   map_id_ = map_id;

@@ -56,6 +56,9 @@ int TrafficControl::number_of(const std::string& robot_id) {
   const int number = static_cast<int>(numbers_.size()) + 1;
   numbers_[robot_id] = number;
   names_[number] = robot_id;
+  // Its fleet's vehicle type: which places conflict with its body, which lanes it fits.
+  const auto& types = manager_.configuration().robot_vehicle_types;
+  if (const auto type = types.find(robot_id); type != types.end()) manager_.set_robot_type(number, type->second);
   return number;
 }
 

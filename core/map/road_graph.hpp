@@ -14,6 +14,9 @@ struct GraphPoint {
   std::string road_id;
   int lane_id = 0;
   double s = 0.0;  ///< position along the road's reference line, metres
+  /// Width of the lane at this point, metres: the OpenDRIVE lane width, else the site's
+  /// `road_width`; 0 when unknown (a graph built in code), which every vehicle fits.
+  double lane_width = 0.0;
 };
 
 /// The road graph planners search: directed edges between points, consecutive along a lane and

@@ -80,7 +80,9 @@ class Builder {
             const double s = i == n ? s1 : s0 + (s1 - s0) * i / n;
             const RefPoint p = lane_center(road, si, lane.id, s);
             const int id = static_cast<int>(out_.graph.points.size());
-            out_.graph.points.push_back({id, p.x, p.y, road.id, lane.id, s});
+            const double width = lane_width_at(road, si, lane.id, s);
+            out_.graph.points.push_back(
+                {id, p.x, p.y, road.id, lane.id, s, width > 0.0 ? width : options_.default_lane_width});
             out_.graph.successors.emplace_back();
             gl.points.push_back(id);
           }

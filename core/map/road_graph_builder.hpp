@@ -16,6 +16,8 @@ struct GraphOptions {
   /// exactly one drivable lane in every section is driven both ways whatever its side; when
   /// false, lanes follow the traffic rule (RHT: right lanes along s, left lanes against it).
   bool single_lane_roads_both_ways = true;
+  /// Lane width, metres, of points whose lane has no <width> record; the site file's road_width.
+  double default_lane_width = 0.0;
 };
 
 /// Which way traffic may move along a lane, relative to increasing s.

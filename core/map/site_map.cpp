@@ -47,6 +47,7 @@ SiteMap load_site_map_unchecked(const std::string& path, const GraphOptions& gra
   map.network = load_opendrive(map.site.opendrive_file);
   GraphOptions options = graph_options;
   options.spacing = map.site.graph_spacing;
+  if (!(options.default_lane_width > 0.0)) options.default_lane_width = map.site.road_width;
   map.graph = build_road_graph_detailed(map.network, options);
   return map;
 }

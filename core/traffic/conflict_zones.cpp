@@ -30,6 +30,22 @@ geometry::Polygon convex_hull(std::vector<Vec2> points) {
   return hull;
 }
 
+geometry::Polygon rectangle_footprint(const geometry::Footprint& footprint) {
+  const double hl = footprint.length / 2.0;
+  const double hw = footprint.width / 2.0;
+  return {{hl, hw}, {-hl, hw}, {-hl, -hw}, {hl, -hw}};
+}
+
+double footprint_width(const geometry::Polygon& footprint) {
+  if (footprint.empty()) return 0.0;
+  double lo = footprint.front().y, hi = footprint.front().y;
+  for (const Vec2& v : footprint) {
+    lo = std::min(lo, v.y);
+    hi = std::max(hi, v.y);
+  }
+  return hi - lo;
+}
+
 namespace {
 
 int find_root(std::vector<int>& parent, int i) {
@@ -40,21 +56,73 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
+// A convex counter-clockwise polygon with every edge moved out by `grow` (mitred corners): a
+// rectangle grows by `grow` on every side, as geometry::footprint_polygon grows it.
+Polygon grown(const Polygon& convex, double grow) {
+  const std::size_t n = convex.size();
+  std::vector<Vec2> normal(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 e = convex[(i + 1) % n] - convex[i];
+    const double length = geometry::norm(e);
+    normal[i] = {e.y / length, -e.x / length};
+  }
+  Polygon out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a = normal[(i + n - 1) % n];
+    const Vec2 b = normal[i];
+    out[i] = convex[i] + (grow / (1.0 + geometry::dot(a, b))) * (a + b);
+  }
+  return out;
+}
+
+Polygon placed(const Polygon& body, const geometry::Pose2& pose) {
+  Polygon out;
+  out.reserve(body.size());
+  for (const Vec2& v : body) out.push_back(geometry::body_to_map(pose, v));
+  return out;
+}
+
+bool regions_overlap(const std::vector<Polygon>& a, const std::vector<Polygon>& b) {
+  for (const Polygon& ra : a) {
+    for (const Polygon& rb : b) {
+      if (geometry::convex_polygons_overlap(ra, rb)) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& params) : params_(params) {
-  if (!(params.margin >= 0.0) || !(params.footprint.length > 0.0) || !(params.footprint.width > 0.0)) {
-    throw std::invalid_argument("traffic ResourceParams: footprint length and width must be > 0 and margin >= 0 (margin=" +
-                                std::to_string(params.margin) + ")");
+  if (!(params.margin >= 0.0)) {
+    throw std::invalid_argument("traffic ResourceParams: margin must be >= 0 (margin=" + std::to_string(params.margin) +
+                                ")");
+  }
+  types_ = params.vehicle_types;
+  if (types_.empty()) {
+    if (!(params.footprint.length > 0.0) || !(params.footprint.width > 0.0)) {
+      throw std::invalid_argument("traffic ResourceParams: footprint length and width must be > 0 (length=" +
+                                  std::to_string(params.footprint.length) +
+                                  ", width=" + std::to_string(params.footprint.width) + ")");
+    }
+    types_.push_back({"default", rectangle_footprint(params.footprint)});
+  }
+  for (const VehicleType& type : types_) {
+    if (convex_hull(type.footprint).size() < 3) {
+      throw std::invalid_argument("traffic vehicle type '" + type.name +
+                                  "': the footprint needs three corners not on one line");
+    }
   }
   const std::size_t n = graph.points.size();
-  if (graph.successors.size() != n) throw std::invalid_argument("traffic ConflictZones: successors size differs from points size");
+  if (graph.successors.size() != n)
+    throw std::invalid_argument("traffic ConflictZones: successors size differs from points size");
 
   // Undirected point adjacency.
   std::vector<std::vector<int>> adjacent(n);
   for (std::size_t i = 0; i < n; ++i) {
     for (int j : graph.successors[i]) {
-      if (j < 0 || static_cast<std::size_t>(j) >= n) throw std::invalid_argument("traffic ConflictZones: edge to unknown point");
+      if (j < 0 || static_cast<std::size_t>(j) >= n)
+        throw std::invalid_argument("traffic ConflictZones: edge to unknown point");
       adjacent[i].push_back(j);
       adjacent[static_cast<std::size_t>(j)].push_back(static_cast<int>(i));
     }
@@ -63,10 +131,43 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
     std::sort(a.begin(), a.end());
     a.erase(std::unique(a.begin(), a.end()), a.end());
   }
-  auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
+  std::vector<std::vector<int>> members;
+  build_places(graph, members);
 
+  // Place adjacency.
+  const std::size_t places = members.size();
+  neighbours_.assign(places, {});
+  for (std::size_t p = 0; p < places; ++p) {
+    for (int i : members[p]) {
+      for (int j : adjacent[static_cast<std::size_t>(i)]) {
+        const int q = place_of_[static_cast<std::size_t>(j)];
+        if (static_cast<std::size_t>(q) != p) neighbours_[p].push_back(q);
+      }
+    }
+    std::sort(neighbours_[p].begin(), neighbours_[p].end());
+    neighbours_[p].erase(std::unique(neighbours_[p].begin(), neighbours_[p].end()), neighbours_[p].end());
+  }
+
+  const std::size_t types = types_.size();
+  region_.assign(types, {});
+  reach_.assign(types, {});
+  for (std::size_t t = 0; t < types; ++t) build_regions(graph, adjacent, members, t);
+  conflicts_.assign(types * types, {});
+  for (std::size_t a = 0; a < types; ++a) {
+    for (std::size_t b = a; b < types; ++b) build_conflicts(a, b);
+  }
+  branch_.assign(places, 0);
+  for (std::size_t p = 0; p < places; ++p) branch_[p] = neighbours_[p].size() >= 3 ? 1 : 0;
+  build_stoppable();
+  build_corridors();
+  build_opposite_lanes(graph, members);
+}
+
+void ConflictZones::build_places(const map::RoadGraph& graph, std::vector<std::vector<int>>& members) {
   // Places: points joined by (near) zero-length edges or lying on top of each other. A sweep along
   // x finds coincident points that no edge joins.
+  const std::size_t n = graph.points.size();
+  auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto unite = [&](int a, int b) {
@@ -76,8 +177,10 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
   };
   std::vector<int> by_x(n);
   std::iota(by_x.begin(), by_x.end(), 0);
-  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return graph.points[static_cast<std::size_t>(a)].x < graph.points[static_cast<std::size_t>(b)].x; });
-  const double eps = params.coincident_distance;
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) {
+    return graph.points[static_cast<std::size_t>(a)].x < graph.points[static_cast<std::size_t>(b)].x;
+  });
+  const double eps = params_.coincident_distance;
   for (std::size_t a = 0; a < n; ++a) {
     const auto ia = static_cast<std::size_t>(by_x[a]);
     for (std::size_t b = a + 1; b < n; ++b) {
@@ -87,7 +190,6 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
     }
   }
   place_of_.assign(n, -1);
-  std::vector<std::vector<int>> members;
   for (std::size_t i = 0; i < n; ++i) {
     const auto root = static_cast<std::size_t>(find_root(parent, static_cast<int>(i)));
     if (place_of_[root] < 0) {
@@ -98,147 +200,110 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
     place_of_[i] = place_of_[root];
     members[static_cast<std::size_t>(place_of_[i])].push_back(static_cast<int>(i));
   }
-  const std::size_t places = members.size();
+}
 
-  // Place adjacency and regions.
-  neighbours_.assign(places, {});
-  region_.assign(places, {});
-  std::vector<double> reach(places, 0.0);
-  const double grow = params.margin / 2.0;
+void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
+                                  const std::vector<std::vector<int>>& members, std::size_t type) {
+  const std::size_t places = members.size();
+  const Polygon body = grown(convex_hull(types_[type].footprint), params_.margin / 2.0);
+  auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
+  auto& region = region_[type];
+  auto& reach = reach_[type];
+  region.assign(places, {});
+  reach.assign(places, 0.0);
   for (std::size_t p = 0; p < places; ++p) {
-    std::vector<double> headings;
     for (int i : members[p]) {
       for (int j : adjacent[static_cast<std::size_t>(i)]) {
-        const int q = place_of_[static_cast<std::size_t>(j)];
-        if (static_cast<std::size_t>(q) == p) continue;
-        neighbours_[p].push_back(q);
+        if (static_cast<std::size_t>(place_of_[static_cast<std::size_t>(j)]) == p) continue;
         const Vec2 a = pos(static_cast<std::size_t>(i));
         const Vec2 b = pos(static_cast<std::size_t>(j));
         const double heading = std::atan2(b.y - a.y, b.x - a.x);
         const Vec2 mid = 0.5 * (a + b);
-        Polygon corners = geometry::footprint_polygon({a.x, a.y, heading}, params.footprint, grow);
-        const Polygon far = geometry::footprint_polygon({mid.x, mid.y, heading}, params.footprint, grow);
+        Polygon corners = placed(body, {a.x, a.y, heading});
+        const Polygon far = placed(body, {mid.x, mid.y, heading});
         corners.insert(corners.end(), far.begin(), far.end());
-        region_[p].push_back(convex_hull(std::move(corners)));
-        headings.push_back(heading);
+        region[p].push_back(convex_hull(std::move(corners)));
       }
     }
-    if (region_[p].empty()) {
+    if (region[p].empty()) {
       // An isolated place: the robot may stand there at any heading.
       const Vec2 a = position_[p];
-      for (double heading : {0.0, std::acos(0.0)}) {
-        region_[p].push_back(geometry::footprint_polygon({a.x, a.y, heading}, params.footprint, grow));
-      }
+      for (double heading : {0.0, std::acos(0.0)}) region[p].push_back(placed(body, {a.x, a.y, heading}));
     }
-    std::sort(neighbours_[p].begin(), neighbours_[p].end());
-    neighbours_[p].erase(std::unique(neighbours_[p].begin(), neighbours_[p].end()), neighbours_[p].end());
-    for (const Polygon& poly : region_[p]) {
+    for (const Polygon& poly : region[p]) {
       for (const Vec2& v : poly) reach[p] = std::max(reach[p], geometry::distance(v, position_[p]));
     }
   }
+}
 
-  // Conflicts: a sweep along x bounds the candidate pairs by the largest region reach.
-  conflicts_.assign(places, {});
-  const double max_reach = places == 0 ? 0.0 : *std::max_element(reach.begin(), reach.end());
+void ConflictZones::build_conflicts(std::size_t type_a, std::size_t type_b) {
+  // (type_a at p, type_b at q) and its mirror (type_b at p, type_a at q). A sweep along x bounds
+  // the candidate pairs by the largest region reach of either type.
+  const std::size_t places = position_.size();
+  auto& ab = conflicts_[pair_index(static_cast<int>(type_a), static_cast<int>(type_b))];
+  auto& ba = conflicts_[pair_index(static_cast<int>(type_b), static_cast<int>(type_a))];
+  const bool same = type_a == type_b;
+  ab.assign(places, {});
+  if (!same) ba.assign(places, {});
+  const auto& reach_a = reach_[type_a];
+  const auto& reach_b = reach_[type_b];
+  const auto& region_a = region_[type_a];
+  const auto& region_b = region_[type_b];
+  double max_reach = 0.0;
+  for (std::size_t p = 0; p < places; ++p) max_reach = std::max({max_reach, reach_a[p], reach_b[p]});
   std::vector<int> order(places);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return position_[static_cast<std::size_t>(a)].x < position_[static_cast<std::size_t>(b)].x; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return position_[static_cast<std::size_t>(a)].x < position_[static_cast<std::size_t>(b)].x;
+  });
   for (std::size_t a = 0; a < places; ++a) {
     const auto pa = static_cast<std::size_t>(order[a]);
-    conflicts_[pa].push_back(static_cast<int>(pa));
+    ab[pa].push_back(static_cast<int>(pa));
+    if (!same) ba[pa].push_back(static_cast<int>(pa));
+    const double reach_pa = std::max(reach_a[pa], reach_b[pa]);
     for (std::size_t b = a + 1; b < places; ++b) {
       const auto pb = static_cast<std::size_t>(order[b]);
-      if (position_[pb].x - position_[pa].x > reach[pa] + max_reach) break;
-      if (geometry::distance(position_[pa], position_[pb]) > reach[pa] + reach[pb]) continue;
-      bool overlap = false;
-      for (const Polygon& ra : region_[pa]) {
-        for (const Polygon& rb : region_[pb]) {
-          if (geometry::convex_polygons_overlap(ra, rb)) {
-            overlap = true;
-            break;
-          }
-        }
-        if (overlap) break;
+      if (position_[pb].x - position_[pa].x > reach_pa + max_reach) break;
+      const double d = geometry::distance(position_[pa], position_[pb]);
+      if (d <= reach_a[pa] + reach_b[pb] && regions_overlap(region_a[pa], region_b[pb])) {
+        ab[pa].push_back(static_cast<int>(pb));
+        (same ? ab : ba)[pb].push_back(static_cast<int>(pa));
       }
-      if (overlap) {
-        conflicts_[pa].push_back(static_cast<int>(pb));
-        conflicts_[pb].push_back(static_cast<int>(pa));
+      if (!same && d <= reach_b[pa] + reach_a[pb] && regions_overlap(region_b[pa], region_a[pb])) {
+        ba[pa].push_back(static_cast<int>(pb));
+        ab[pb].push_back(static_cast<int>(pa));
       }
     }
   }
-  for (auto& c : conflicts_) std::sort(c.begin(), c.end());
-
-  // Branches and stoppable places.
-  branch_.assign(places, 0);
-  for (std::size_t p = 0; p < places; ++p) branch_[p] = neighbours_[p].size() >= 3 ? 1 : 0;
-  stoppable_.assign(places, 1);
-  for (std::size_t p = 0; p < places; ++p) {
-    for (int q : conflicts_[p]) {
-      if (branch_[static_cast<std::size_t>(q)]) {
-        stoppable_[p] = 0;
-        break;
-      }
-    }
-  }
-
-  // Corridors: chains of non-branch places, indexed from one end (or anywhere on a loop).
-  corridor_.assign(places, -1);
-  corridor_index_.assign(places, -1);
-  auto chain_neighbours = [&](std::size_t p) {
-    std::vector<int> out;
-    for (int q : neighbours_[p]) {
-      if (!branch_[static_cast<std::size_t>(q)]) out.push_back(q);
-    }
-    return out;
-  };
-  for (std::size_t start = 0; start < places; ++start) {
-    if (branch_[start] || corridor_[start] >= 0) continue;
-    // Walk to one end of the chain (or once round a loop).
-    std::size_t end = start;
-    std::size_t previous = places;
-    bool loop = false;
-    while (true) {
-      std::size_t step = places;
-      for (int q : chain_neighbours(end)) {
-        if (static_cast<std::size_t>(q) != previous) {
-          step = static_cast<std::size_t>(q);
-          break;
-        }
-      }
-      if (step == places) break;
-      if (step == start) {
-        loop = true;
-        break;
-      }
-      previous = end;
-      end = step;
-    }
-    if (loop) end = start;
-    const int id = static_cast<int>(corridor_size_.size());
-    int index = 0;
-    std::size_t at = end;
-    previous = places;
-    while (true) {
-      corridor_[at] = id;
-      corridor_index_[at] = index++;
-      std::size_t step = places;
-      for (int q : chain_neighbours(at)) {
-        if (static_cast<std::size_t>(q) != previous && corridor_[static_cast<std::size_t>(q)] < 0) {
-          step = static_cast<std::size_t>(q);
-          break;
-        }
-      }
-      if (step == places) break;
-      previous = at;
-      at = step;
-    }
-    corridor_size_.push_back(index);
-    corridor_loop_.push_back(loop ? 1 : 0);
+  for (auto& c : ab) std::sort(c.begin(), c.end());
+  if (!same) {
+    for (auto& c : ba) std::sort(c.begin(), c.end());
   }
 }
 
-bool ConflictZones::conflict(int place_a, int place_b) const {
-  const auto& c = conflicts_[static_cast<std::size_t>(place_a)];
+void ConflictZones::build_stoppable() {
+  // Stoppable for T: T's region touches no branch place's region of any type.
+  const std::size_t places = position_.size();
+  const std::size_t types = types_.size();
+  stoppable_.assign(types, std::vector<std::uint8_t>(places, 1));
+  stoppable_all_.assign(places, 1);
+  for (std::size_t t = 0; t < types; ++t) {
+    for (std::size_t p = 0; p < places; ++p) {
+      for (std::size_t u = 0; u < types && stoppable_[t][p]; ++u) {
+        for (int q : conflicts(static_cast<int>(t), static_cast<int>(p), static_cast<int>(u))) {
+          if (branch_[static_cast<std::size_t>(q)]) {
+            stoppable_[t][p] = 0;
+            break;
+          }
+        }
+      }
+      if (!stoppable_[t][p]) stoppable_all_[p] = 0;
+    }
+  }
+}
+
+bool ConflictZones::conflict(int type_a, int place_a, int type_b, int place_b) const {
+  const auto& c = conflicts(type_a, place_a, type_b);
   return std::binary_search(c.begin(), c.end(), place_b);
 }
 

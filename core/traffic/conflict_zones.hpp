@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "geometry/polygon.hpp"
@@ -9,15 +10,41 @@
 
 namespace fleet::traffic {
 
+/// A kind of vehicle as traffic sees it: a name and its footprint in the body frame (metres, any
+/// simple polygon; the places are sized by its convex hull, as a region is a hull anyway).
+struct VehicleType {
+  std::string name;
+  geometry::Polygon footprint;
+};
+
+/// The rectangle `footprint` centred on the body origin, counter-clockwise, in the body frame.
+geometry::Polygon rectangle_footprint(const geometry::Footprint& footprint);
+/// Extent of a body-frame footprint across the body's x axis (its width), metres.
+double footprint_width(const geometry::Polygon& footprint);
+
 /// How the shared resources of a road graph are sized. Fixed per ConflictZones instance.
 struct ResourceParams {
-  geometry::Footprint footprint;  ///< the largest robot that drives the graph
+  geometry::Footprint footprint;  ///< the one vehicle type when `vehicle_types` is empty
+  /// The vehicle types that drive the graph, indexed by type number; empty: one type, `footprint`.
+  std::vector<VehicleType> vehicle_types;
   /// Minimum gap kept between two robots' footprints, metres. Each resource's region is grown by
   /// half of it, so two robots holding non-conflicting resources stay at least this far apart.
   double margin = 0.03;
   /// Points closer than this are one physical place (the zero-length hand-over edges between
   /// roads), metres.
   double coincident_distance = 1e-6;
+};
+
+/// Where a stretch of one lane lies in conflict with the opposite lane of the same road (OpenDRIVE
+/// lanes of opposite sign), for a pair of vehicle types: corridor indices [lo, hi] of this lane,
+/// [other_lo, other_hi] of the other lane's corridor. `sign` is +1 when both corridors' indices
+/// grow the same way in space, -1 when they grow against each other, 0 when the stretch is a
+/// single place on either side.
+struct OppositeLane {
+  int corridor = 0;
+  int sign = 0;
+  int lo = 0, hi = 0;
+  int other_lo = 0, other_hi = 0;
 };
 
 /// The resources robots reserve, derived once from a RoadGraph.
@@ -32,10 +59,16 @@ struct ResourceParams {
 /// places therefore keeps robots `margin` apart, at junctions (where the regions of all arms
 /// overlap) and between nearby parallel roads alike.
 ///
+/// **Vehicle types.** Places are shared by every type; a place's region depends on who stands
+/// there: type T's footprint swept as above. A conflict is a pair (type A at place p, type B at
+/// place q) whose regions overlap, precomputed for every pair of types. The one-type accessors
+/// (`conflicts(place)`, `region(place)`, ...) are those of type 0.
+///
 /// Two derived facts drive the traffic rules:
-/// - a *branch* place has three or more neighbouring places (a junction arm end); a place whose
-///   region overlaps a branch place's is not *stoppable*: a robot waiting there would block the
-///   junction, so grants never end there (except at the end of a route);
+/// - a *branch* place has three or more neighbouring places (a junction arm end); a place is not
+///   *stoppable* for type T when T's region there overlaps a branch place's region of any type:
+///   a robot waiting there would block the junction to some vehicle, so grants never end there
+///   (except at the end of a route). `stoppable(place)` holds when it is stoppable for every type;
 /// - *corridors* are the maximal chains of non-branch places (single-lane road stretches between
 ///   junctions, including corners). Each place knows its corridor and its index along it, so the
 ///   manager can tell the direction a robot drives a corridor and keep opposite directions apart.
@@ -44,12 +77,24 @@ class ConflictZones {
   ConflictZones(const map::RoadGraph& graph, const ResourceParams& params = {});
 
   std::size_t point_count() const { return place_of_.size(); }
-  std::size_t place_count() const { return conflicts_.size(); }
+  std::size_t place_count() const { return position_.size(); }
+  std::size_t type_count() const { return types_.size(); }
+  const std::vector<VehicleType>& vehicle_types() const { return types_; }
   int place_of(int point) const { return place_of_[static_cast<std::size_t>(point)]; }
-  /// Places whose regions overlap `place`'s, sorted, including `place` itself.
-  const std::vector<int>& conflicts(int place) const { return conflicts_[static_cast<std::size_t>(place)]; }
-  bool conflict(int place_a, int place_b) const;
-  bool stoppable(int place) const { return stoppable_[static_cast<std::size_t>(place)] != 0; }
+  /// Places whose regions overlap `place`'s, sorted, including `place` itself (type 0 with itself).
+  const std::vector<int>& conflicts(int place) const { return conflicts(0, place, 0); }
+  /// Places q such that `other_type` at q conflicts with `type` at `place`, sorted, including
+  /// `place` itself (two vehicles cannot stand on one point).
+  const std::vector<int>& conflicts(int type, int place, int other_type) const {
+    return conflicts_[pair_index(type, other_type)][static_cast<std::size_t>(place)];
+  }
+  bool conflict(int place_a, int place_b) const { return conflict(0, place_a, 0, place_b); }
+  bool conflict(int type_a, int place_a, int type_b, int place_b) const;
+  /// Stoppable for every vehicle type.
+  bool stoppable(int place) const { return stoppable_all_[static_cast<std::size_t>(place)] != 0; }
+  bool stoppable(int type, int place) const {
+    return stoppable_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] != 0;
+  }
   bool branch(int place) const { return branch_[static_cast<std::size_t>(place)] != 0; }
   /// Corridor of a non-branch place, -1 for a branch place.
   int corridor(int place) const { return corridor_[static_cast<std::size_t>(place)]; }
@@ -59,21 +104,47 @@ class ConflictZones {
   /// +1 or -1 for a step from place a to its neighbour b inside one corridor, 0 otherwise.
   int corridor_direction(int place_a, int place_b) const;
   geometry::Vec2 position(int place) const { return position_[static_cast<std::size_t>(place)]; }
-  /// The region polygons of a place (for drawing and tests).
-  const std::vector<geometry::Polygon>& region(int place) const { return region_[static_cast<std::size_t>(place)]; }
+  /// The region polygons of a place (for drawing and tests), of type 0 or of `type`.
+  const std::vector<geometry::Polygon>& region(int place) const { return region(0, place); }
+  const std::vector<geometry::Polygon>& region(int type, int place) const {
+    return region_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+  }
+  /// The opposite lanes of `corridor` whose places conflict with it for `type` on `corridor` and
+  /// `other_type` on the opposite lane (two lanes of one road: see OppositeLane).
+  /// Whether any pair of lanes of one road conflicts (opposite_lanes is empty everywhere if not).
+  bool has_opposite_lanes() const { return has_opposite_lanes_; }
+  const std::vector<OppositeLane>& opposite_lanes(int type, int corridor, int other_type) const {
+    return opposite_[pair_index(type, other_type)][static_cast<std::size_t>(corridor)];
+  }
   /// Undirected neighbour places.
   const std::vector<int>& neighbours(int place) const { return neighbours_[static_cast<std::size_t>(place)]; }
   const ResourceParams& params() const { return params_; }
 
  private:
+  std::size_t pair_index(int type, int other_type) const {
+    return static_cast<std::size_t>(type) * types_.size() + static_cast<std::size_t>(other_type);
+  }
+  void build_places(const map::RoadGraph& graph, std::vector<std::vector<int>>& members);
+  void build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
+                     const std::vector<std::vector<int>>& members, std::size_t type);
+  void build_conflicts(std::size_t type_a, std::size_t type_b);
+  void build_stoppable();
+  void build_corridors();
+  void build_opposite_lanes(const map::RoadGraph& graph, const std::vector<std::vector<int>>& members);
+
   ResourceParams params_;
+  std::vector<VehicleType> types_;
   std::vector<int> place_of_;
   std::vector<geometry::Vec2> position_;
   std::vector<std::vector<int>> neighbours_;
-  std::vector<std::vector<geometry::Polygon>> region_;
-  std::vector<std::vector<int>> conflicts_;
+  std::vector<std::vector<std::vector<geometry::Polygon>>> region_;  ///< by type, by place
+  std::vector<std::vector<double>> reach_;                           ///< by type, by place
+  std::vector<std::vector<std::vector<int>>> conflicts_;             ///< by pair of types, by place
+  std::vector<std::vector<std::vector<OppositeLane>>> opposite_;     ///< by pair of types, by corridor
   std::vector<std::uint8_t> branch_;
-  std::vector<std::uint8_t> stoppable_;
+  std::vector<std::vector<std::uint8_t>> stoppable_;  ///< by type
+  std::vector<std::uint8_t> stoppable_all_;
+  bool has_opposite_lanes_ = false;
   std::vector<int> corridor_;
   std::vector<int> corridor_index_;
   std::vector<int> corridor_size_;

@@ -37,9 +37,25 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
     }
     return -1;
   };
+  // Lanes the graph already drives one way (the two lanes of a two-way road, keep right) keep
+  // the direction their edges give: orienting them again could only close them.
+  std::vector<int> given(corridors, 0);  // +1 / -1: every edge inside runs that way; 2: both ways
+  for (std::size_t i = 0; i < graph.points.size(); ++i) {
+    const int pa = zones.place_of(static_cast<int>(i));
+    for (int j : graph.successors[i]) {
+      const int d = zones.corridor_direction(pa, zones.place_of(j));
+      if (d == 0) continue;
+      int& g = given[static_cast<std::size_t>(zones.corridor(pa))];
+      g = g == 0 || g == d ? d : 2;
+    }
+  }
+  const auto directed_by_graph = [&](int c) {
+    return given[static_cast<std::size_t>(c)] == 1 || given[static_cast<std::size_t>(c)] == -1;
+  };
   std::vector<JunctionEdge> edges;
   for (std::size_t c = 0; c < corridors; ++c) {
     if (size[c] < 2 || all_in_junction[c] || zones.corridor_is_loop(static_cast<int>(c))) continue;
+    if (directed_by_graph(static_cast<int>(c))) continue;
     const int a = branch_next_to(low_end[c], -1);
     const int b = branch_next_to(high_end[c], -1);
     if (a < 0 || b < 0 || a == b) continue;  // dead ends and tiny loops stay two-way
@@ -52,8 +68,9 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
     adjacency[static_cast<std::size_t>(edges[e].b)].push_back({edges[e].a, static_cast<int>(e)});
   }
   for (std::size_t c = 0; c < corridors; ++c) {
-    if (size[c] == 0) continue;
-    const bool oriented = std::any_of(edges.begin(), edges.end(), [&](const JunctionEdge& e) { return e.corridor == static_cast<int>(c); });
+    if (size[c] == 0 || directed_by_graph(static_cast<int>(c))) continue;
+    const bool oriented = std::any_of(edges.begin(), edges.end(),
+                                      [&](const JunctionEdge& e) { return e.corridor == static_cast<int>(c); });
     if (oriented) continue;
     // A two-way corridor joins every branch place it touches.
     std::vector<int> touching;
@@ -119,29 +136,41 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
       // +1 along the corridor index means from the low end (next to a) to the high end (next to b).
       plan.corridor_direction[static_cast<std::size_t>(edges[e].corridor)] = edge_dir[e];
     }
+    // Only the corridors oriented here filter edges; lanes directed by the graph stay as given.
+    const std::vector<int> oriented = plan.corridor_direction;
+    for (std::size_t c = 0; c < corridors; ++c) {
+      if (directed_by_graph(static_cast<int>(c))) plan.corridor_direction[c] = given[c];
+    }
     plan.graph = graph;
     for (std::size_t i = 0; i < graph.points.size(); ++i) {
       const int pa = zones.place_of(static_cast<int>(i));
       auto& next = plan.graph.successors[i];
-      next.erase(std::remove_if(next.begin(), next.end(), [&](int j) {
-        const int pb = zones.place_of(j);
-        if (pa == pb) return false;
-        const int ca = zones.corridor(pa), cb = zones.corridor(pb);
-        if (ca >= 0 && ca == cb) {
-          const int o = plan.corridor_direction[static_cast<std::size_t>(ca)];
-          return o != 0 && zones.corridor_direction(pa, pb) != o;
-        }
-        // Entering a one-way corridor: only at its upstream end. Leaving: only at its downstream end.
-        if (cb >= 0 && ca != cb) {
-          const int o = plan.corridor_direction[static_cast<std::size_t>(cb)];
-          if (o != 0 && pb != (o > 0 ? low_end[static_cast<std::size_t>(cb)] : high_end[static_cast<std::size_t>(cb)])) return true;
-        }
-        if (ca >= 0 && ca != cb) {
-          const int o = plan.corridor_direction[static_cast<std::size_t>(ca)];
-          if (o != 0 && pa != (o > 0 ? high_end[static_cast<std::size_t>(ca)] : low_end[static_cast<std::size_t>(ca)])) return true;
-        }
-        return false;
-      }), next.end());
+      next.erase(std::remove_if(next.begin(), next.end(),
+                                [&](int j) {
+                                  const int pb = zones.place_of(j);
+                                  if (pa == pb) return false;
+                                  const int ca = zones.corridor(pa), cb = zones.corridor(pb);
+                                  if (ca >= 0 && ca == cb) {
+                                    const int o = oriented[static_cast<std::size_t>(ca)];
+                                    return o != 0 && zones.corridor_direction(pa, pb) != o;
+                                  }
+                                  // Entering a one-way corridor: only at its upstream end. Leaving: only at its
+                                  // downstream end.
+                                  if (cb >= 0 && ca != cb) {
+                                    const int o = oriented[static_cast<std::size_t>(cb)];
+                                    if (o != 0 && pb != (o > 0 ? low_end[static_cast<std::size_t>(cb)]
+                                                               : high_end[static_cast<std::size_t>(cb)]))
+                                      return true;
+                                  }
+                                  if (ca >= 0 && ca != cb) {
+                                    const int o = oriented[static_cast<std::size_t>(ca)];
+                                    if (o != 0 && pa != (o > 0 ? high_end[static_cast<std::size_t>(ca)]
+                                                               : low_end[static_cast<std::size_t>(ca)]))
+                                      return true;
+                                  }
+                                  return false;
+                                }),
+                 next.end());
     }
     return plan;
   };
@@ -156,6 +185,9 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
   OneWayPlan none;
   none.graph = graph;
   none.corridor_direction.assign(corridors, 0);
+  for (std::size_t c = 0; c < corridors; ++c) {
+    if (directed_by_graph(static_cast<int>(c))) none.corridor_direction[c] = given[c];
+  }
   return none;
 }
 

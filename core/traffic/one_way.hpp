@@ -15,10 +15,13 @@ namespace fleet::traffic {
 /// connecting corridors inside junction zones stay two-way, so no turn is lost.
 ///
 /// Robots that plan on the one-way graph never meet head-on in a one-way corridor; head-on
-/// meetings, the costliest case on single-lane roads, are left to the dead ends.
+/// meetings, the costliest case on single-lane roads, are left to the dead ends. Lanes the graph
+/// already drives one way only (the two lanes of a two-way road, keep right) are not oriented
+/// again: they keep their direction and their edges, and link the parts of the site they join.
 struct OneWayPlan {
-  map::RoadGraph graph;             ///< the input graph without the edges against a corridor's direction
-  std::vector<int> corridor_direction;  ///< per corridor: +1 / -1 along corridor_index, 0 two-way
+  map::RoadGraph graph;                 ///< the input graph without the edges against a corridor's direction
+  std::vector<int> corridor_direction;  ///< per corridor: +1 / -1 along corridor_index, 0 two-way (lanes directed by
+                                        ///< the graph: their direction)
 };
 
 OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones);

@@ -6,32 +6,14 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "traffic/traffic_manager_detail.hpp"
+
 namespace fleet::traffic {
 
+using detail::kInfinity;
+using detail::sort_unique;
+
 namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Seconds a robot sent a re-route or a siding gets to act on it before a wait cycle may pick it
-// again: the robots around it still see it where it stood until it moves.
-constexpr double kActOnInstruction = 2.0;
-
-void sort_unique(std::vector<int>& ids) {
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-}
-
-// Direction of travel through `places[index]` inside its corridor: towards the next different
-// place on the route, 0 when the route leaves the corridor there or ends. Only robots still to
-// drive along a corridor claim its direction; one standing at its goal does not.
-int direction_in(const ConflictZones& zones, const std::vector<int>& places, int index) {
-  const int p = places[static_cast<std::size_t>(index)];
-  if (zones.corridor(p) < 0) return 0;
-  const int n = static_cast<int>(places.size());
-  int j = index + 1;
-  while (j < n && places[static_cast<std::size_t>(j)] == p) ++j;
-  if (j < n) return zones.corridor_direction(p, places[static_cast<std::size_t>(j)]);
-  return 0;
-}
 
 void check_positive(double value, const char* key) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -57,7 +39,34 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
   zones_ = std::make_unique<ConflictZones>(graph_, configuration.resources);
   search_ = std::make_unique<RouteSearch>(graph_, *zones_);
   if (configuration.one_way) one_way_ = one_way_plan(graph_, *zones_);
-  route_search_ = std::make_unique<RouteSearch>(route_graph(), *zones_);
+  // One one-way plan for every type, so robots of different types agree on each corridor's
+  // direction; each type then keeps only the lanes it fits.
+  const map::RoadGraph& shared = configuration.one_way ? one_way_.graph : graph_;
+  for (const VehicleType& type : zones_->vehicle_types()) {
+    const double width = footprint_width(type.footprint);
+    auto graphs = std::make_unique<TypeGraphs>();
+    graphs->lanes = lane_graph_for(graph_, width, configuration.resources.margin);
+    graphs->route = lane_graph_for(shared, width, configuration.resources.margin);
+    graphs->search = std::make_unique<RouteSearch>(graphs->lanes, *zones_);
+    graphs->route_search = std::make_unique<RouteSearch>(graphs->route, *zones_);
+    types_.push_back(std::move(graphs));
+  }
+}
+
+bool TrafficManager::set_robot_type(int robot_id, int type) {
+  if (type < 0 || static_cast<std::size_t>(type) >= types_.size()) return false;
+  robot_types_[robot_id] = type;
+  if (auto it = robots_.find(robot_id); it != robots_.end()) it->second.type = type;
+  return true;
+}
+
+int TrafficManager::robot_type(int robot_id) const {
+  return type_of(robot_id);
+}
+
+int TrafficManager::type_of(int robot_id) const {
+  const auto it = robot_types_.find(robot_id);
+  return it == robot_types_.end() ? 0 : it->second;
 }
 
 // ---- robots and routes ----------------------------------------------------------------------------
@@ -96,10 +105,12 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   (void)now;
   const auto& points = request.points;
   if (points.empty()) return SubmitStatus::kInvalid;
+  // Its type's lanes: a route into a lane the vehicle does not fit has an edge missing there.
+  const map::RoadGraph& lanes = types_[static_cast<std::size_t>(type_of(request.robot_id))]->lanes;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (points[i] < 0 || static_cast<std::size_t>(points[i]) >= graph_.points.size()) return SubmitStatus::kInvalid;
     if (i == 0) continue;
-    const auto& next = graph_.successors[static_cast<std::size_t>(points[i - 1])];
+    const auto& next = lanes.successors[static_cast<std::size_t>(points[i - 1])];
     const bool joined = std::find(next.begin(), next.end(), points[i]) != next.end() ||
                         zones_->place_of(points[i - 1]) == zones_->place_of(points[i]);
     if (!joined) return SubmitStatus::kInvalid;
@@ -109,6 +120,7 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
     entries_.erase(request.robot_id);  // it enters
     Robot robot;
     robot.id = request.robot_id;
+    robot.type = type_of(robot.id);
     install_route(robot, points, request.version);
     robots_.emplace(request.robot_id, std::move(robot));
     return SubmitStatus::kAccepted;
@@ -150,7 +162,8 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
 }
 
-std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, std::vector<int>* touched) const {
+std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, int type,
+                                              std::vector<std::vector<int>>* touched) const {
   // Every place whose region the body touches; but when one region holds the whole body (a robot
   // standing on the road), that place alone: whatever touches the body conflicts with it anyway,
   // and the wider set would close the road to a robot standing close behind or ahead.
@@ -159,14 +172,25 @@ std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, std
   double holding_distance = kInfinity;
   geometry::Vec2 centre{};
   for (const auto& corner : body) centre = centre + (1.0 / static_cast<double>(body.size())) * corner;
-  for (std::size_t p = 0; p < zones_->place_count(); ++p) {
-    const auto& region = zones_->region(static_cast<int>(p));
-    const bool touches = std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) {
+  const auto touches = [&](int t, int p) {
+    const auto& region = zones_->region(t, p);
+    return std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) {
       return geometry::convex_polygons_distance(piece, body) <= 0.0;
     });
-    if (!touches) continue;
+  };
+  const int types = static_cast<int>(zones_->type_count());
+  if (touched) touched->assign(static_cast<std::size_t>(types), {});
+  for (std::size_t p = 0; p < zones_->place_count(); ++p) {
+    if (touched) {
+      for (int t = 0; t < types; ++t) {
+        if (t != type && touches(t, static_cast<int>(p)))
+          (*touched)[static_cast<std::size_t>(t)].push_back(static_cast<int>(p));
+      }
+    }
+    if (!touches(type, static_cast<int>(p))) continue;
+    const auto& region = zones_->region(type, static_cast<int>(p));
     under.push_back(static_cast<int>(p));
-    if (touched) touched->push_back(static_cast<int>(p));
+    if (touched) (*touched)[static_cast<std::size_t>(type)].push_back(static_cast<int>(p));
     const bool holds = std::all_of(body.begin(), body.end(), [&](const geometry::Vec2& corner) {
       return std::any_of(region.begin(), region.end(),
                          [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
@@ -194,16 +218,16 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
     while (reached < other.grant_end && other.cum[static_cast<std::size_t>(reached)] + 1e-6 < other.progress) ++reached;
     for (int k = reached + 1; k <= other.grant_end; ++k) {
       const int p = other.places[static_cast<std::size_t>(k)];
-      if (!closes(standing, p)) continue;
+      if (!closes(standing, p, other.type)) continue;
       int end = k - 1;
-      while (end > reached && !zones_->stoppable(other.places[static_cast<std::size_t>(end)])) --end;
+      while (end > reached && !zones_->stoppable(other.type, other.places[static_cast<std::size_t>(end)])) --end;
       other.grant_end = end;
       break;
     }
   }
 }
 
-void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vector<int> touched) {
+void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vector<std::vector<int>> touched) {
   int anchor = -1;
   for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
     if (zones_->place_of(static_cast<int>(point)) == under.front()) anchor = static_cast<int>(point);
@@ -220,22 +244,24 @@ void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vec
   pull_back_grants_into(robot);
 }
 
-bool TrafficManager::under_body(const Robot& robot, int place) const {
-  return std::binary_search(robot.body_reach.begin(), robot.body_reach.end(), place);
+bool TrafficManager::under_body_for(const Robot& robot, int place, int type) const {
+  if (robot.body_reach.empty()) return false;
+  const auto& reach = robot.body_reach[static_cast<std::size_t>(type)];
+  return std::binary_search(reach.begin(), reach.end(), place);
 }
 
-bool TrafficManager::closes(const Robot& holder, int place) const {
-  if (under_body(holder, place)) return true;
+bool TrafficManager::closes(const Robot& holder, int place, int type) const {
+  if (under_body_for(holder, place, type)) return true;
   const std::vector<int> held = held_places(holder.id);
   return std::any_of(held.begin(), held.end(),
-                     [&](int q) { return !under_body(holder, q) && zones_->conflict(place, q); });
+                     [&](int q) { return !under_body(holder, q) && zones_->conflict(holder.type, q, type, place); });
 }
 
 bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, double now) {
   auto it = robots_.find(robot_id);
   if (it == robots_.end()) return false;
-  std::vector<int> touched;
-  const std::vector<int> under = places_under(body, &touched);
+  std::vector<std::vector<int>> touched;
+  const std::vector<int> under = places_under(body, it->second.type, &touched);
   if (under.empty()) return remove_robot(robot_id, now);
   stand(it->second, under, std::move(touched));
   it->second.lost = true;
@@ -245,8 +271,8 @@ bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, d
 bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, double now) {
   auto it = robots_.find(robot_id);
   if (it != robots_.end() && !it->second.frozen) return false;
-  std::vector<int> touched;
-  const std::vector<int> under = places_under(body, &touched);
+  std::vector<std::vector<int>> touched;
+  const std::vector<int> under = places_under(body, type_of(robot_id), &touched);
   if (under.empty()) {
     if (it != robots_.end()) remove_robot(robot_id, now);
     return false;
@@ -254,6 +280,7 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
   if (it == robots_.end()) {
     Robot robot;
     robot.id = robot_id;
+    robot.type = type_of(robot_id);
     it = robots_.emplace(robot_id, std::move(robot)).first;
   } else if (held_places(robot_id) == under && it->second.body_reach == touched) {
     it->second.lost = false;  // heard from again, standing where it was lost
@@ -361,8 +388,8 @@ std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, d
         (mine->second.since < claim.since || (mine->second.since == claim.since && robot_id < id))) {
       continue;
     }
-    if (!zones_->conflict(place, claim.place)) continue;
-    if (self != robots_.end() && closes(self->second, claim.place)) continue;
+    if (!zones_->conflict(type_of(robot_id), place, type_of(id), claim.place)) continue;
+    if (self != robots_.end() && closes(self->second, claim.place, type_of(id))) continue;
     out.push_back(id);
   }
   return out;
@@ -375,8 +402,9 @@ std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) co
 
 std::vector<int> TrafficManager::holders_of(int place, int robot_id) const {
   std::vector<int> out;
+  const int type = type_of(robot_id);
   for (const auto& [id, robot] : robots_) {
-    if (id != robot_id && closes(robot, place)) out.push_back(id);
+    if (id != robot_id && closes(robot, place, type)) out.push_back(id);
   }
   return out;
 }
@@ -394,11 +422,12 @@ std::uint64_t TrafficManager::version(int robot_id) const {
 
 std::string TrafficManager::check_invariant() const {
   // Conflicts are symmetric: checking each robot's places against the regions of the robots
-  // before it finds every conflicting pair in robots x places x conflict-set size. A body the
-  // robot stands with (body_reach) closes the places it touches; two such bodies may stand
-  // close, which no grant made.
-  std::vector<int> conflicting(zones_->place_count(), -1), held_by(zones_->place_count(), -1),
-      body_of(zones_->place_count(), -1);
+  // before it finds every conflicting pair in robots x places x conflict-set size x types. A body
+  // the robot stands with (body_reach) closes the places it touches; two such bodies may stand
+  // close, which no grant made. The tables are by typed(type of the robot checked, place).
+  const std::size_t cells = zones_->place_count() * zones_->type_count();
+  const int types = static_cast<int>(zones_->type_count());
+  std::vector<int> conflicting(cells, -1), held_by(cells, -1), body_of(cells, -1);
   auto report = [](int id, int p, int other) {
     std::ostringstream out;
     out << "robot " << id << " holds place " << p << ", which conflicts with a place robot " << other << " holds";
@@ -408,509 +437,27 @@ std::string TrafficManager::check_invariant() const {
     const std::vector<int> held = held_places(id);
     for (int p : held) {
       if (under_body(robot, p)) continue;
-      const auto sp = static_cast<std::size_t>(p);
-      if (conflicting[sp] >= 0) return report(id, p, conflicting[sp]);
-      if (body_of[sp] >= 0) return report(id, p, body_of[sp]);
+      const std::size_t at = typed(robot.type, p);
+      if (conflicting[at] >= 0) return report(id, p, conflicting[at]);
+      if (body_of[at] >= 0) return report(id, p, body_of[at]);
     }
-    for (int p : robot.body_reach) {
-      if (held_by[static_cast<std::size_t>(p)] >= 0) return report(id, p, held_by[static_cast<std::size_t>(p)]);
+    for (int u = 0; u < types && !robot.body_reach.empty(); ++u) {
+      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) {
+        if (held_by[typed(u, p)] >= 0) return report(id, p, held_by[typed(u, p)]);
+      }
     }
     for (int p : held) {
       if (under_body(robot, p)) continue;
-      held_by[static_cast<std::size_t>(p)] = id;
-      for (int q : zones_->conflicts(p)) conflicting[static_cast<std::size_t>(q)] = id;
+      held_by[typed(robot.type, p)] = id;
+      for (int u = 0; u < types; ++u) {
+        for (int q : zones_->conflicts(robot.type, p, u)) conflicting[typed(u, q)] = id;
+      }
     }
-    for (int p : robot.body_reach) body_of[static_cast<std::size_t>(p)] = id;
+    for (int u = 0; u < types && !robot.body_reach.empty(); ++u) {
+      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) body_of[typed(u, p)] = id;
+    }
   }
   return {};
-}
-
-// ---- occupancy --------------------------------------------------------------------------------------
-
-int TrafficManager::direction_at(const Robot& robot, int index) const {
-  return direction_in(*zones_, robot.places, index);
-}
-
-int TrafficManager::next_stretch_end(const Robot& robot) const {
-  const int last = static_cast<int>(robot.route.size()) - 1;
-  int j = robot.grant_end;
-  if (j >= last) return last;
-  ++j;
-  while (j < last && !zones_->stoppable(robot.places[static_cast<std::size_t>(j)])) ++j;
-  return j;
-}
-
-void TrafficManager::mark(const Robot& robot, int slot, int index) {
-  const std::uint64_t bit = std::uint64_t{1} << (slot % 64);
-  const std::size_t word = static_cast<std::size_t>(slot / 64);
-  const int p = robot.places[static_cast<std::size_t>(index)];
-  if (under_body(robot, p)) {
-    occupancy_[static_cast<std::size_t>(p) * words_ + word] |= bit;
-  } else {
-    for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + word] |= bit;
-  }
-  const int d = direction_at(robot, index);
-  const int c = zones_->corridor(p);
-  if (d != 0) {
-    add_span(c, slot, d, zones_->corridor_index(p), false);
-  } else if (c >= 0 && index + 1 == static_cast<int>(robot.route.size()) && !robot.in_siding) {
-    // Standing at the end of its route, it leaves the way the corridor lets it: either way in a
-    // two-way corridor, so nobody drives up to it head-on; only on along a one-way corridor, so
-    // robots behind it queue up to it instead of waiting outside while it works at a loading area.
-    // (A robot in a siding stands off the others' routes and leaves only once they have passed.)
-    const int leaves = configuration_.one_way ? one_way_.corridor_direction[static_cast<std::size_t>(c)] : 0;
-    add_span(c, slot, leaves, zones_->corridor_index(p), false);
-  }
-}
-
-void TrafficManager::add_span(int corridor, int slot, int direction, int index, bool reserved) {
-  auto& spans = spans_[static_cast<std::size_t>(corridor)];
-  for (auto& span : spans) {
-    if (span.slot == slot && span.direction == direction && span.reserved == reserved) {
-      span.lo = std::min(span.lo, index);
-      span.hi = std::max(span.hi, index);
-      return;
-    }
-  }
-  spans.push_back({slot, direction, index, index, reserved});
-}
-
-void TrafficManager::rebuild_occupancy() {
-  words_ = std::max<std::size_t>(1, (slots_.size() + 63) / 64);
-  occupancy_.assign(zones_->place_count() * words_, 0);
-  spans_.resize(zones_->corridor_count());
-  for (auto& spans : spans_) spans.clear();
-  for (std::size_t s = 0; s < slots_.size(); ++s) {
-    const Robot& robot = *slots_[s];
-    const std::uint64_t bit = std::uint64_t{1} << (s % 64);
-    for (int k = robot.first_held; k <= robot.grant_end; ++k) mark(robot, static_cast<int>(s), k);
-    for (int p : robot.trail) {
-      if (under_body(robot, p)) continue;
-      for (int q : zones_->conflicts(p)) occupancy_[static_cast<std::size_t>(q) * words_ + s / 64] |= bit;
-    }
-    for (int p : robot.body_reach) occupancy_[static_cast<std::size_t>(p) * words_ + s / 64] |= bit;
-  }
-  // Entry claims of robots waiting beside the roads longer than priority_wait.
-  entry_closed_.assign(zones_->place_count(), 0);
-  for (const auto& [id, claim] : entries_) {
-    if (!claim_active(id, claim, now_)) continue;
-    for (int q : zones_->conflicts(claim.place)) entry_closed_[static_cast<std::size_t>(q)] = 1;
-  }
-  // Reservations of robots waiting longer than priority_wait: the places of the stretch they wait
-  // for, and its corridor direction, against robots that would newly enter them.
-  claim_place_.assign(zones_->place_count(), -1);
-  std::vector<int> claimants;
-  for (std::size_t s = 0; s < slots_.size(); ++s) {
-    const Robot& robot = *slots_[s];
-    if (robot.wait_since >= 0.0 && robot.blocked && now_ - robot.wait_since >= configuration_.priority_wait) {
-      claimants.push_back(static_cast<int>(s));
-    }
-  }
-  std::sort(claimants.begin(), claimants.end(), [&](int a, int b) {
-    return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
-  });
-  for (int s : claimants) {
-    const Robot& robot = *slots_[static_cast<std::size_t>(s)];
-    const int end = next_stretch_end(robot);
-    for (int j = robot.grant_end + 1; j <= end; ++j) {
-      const int p = robot.places[static_cast<std::size_t>(j)];
-      for (int q : zones_->conflicts(p)) {
-        if (claim_place_[static_cast<std::size_t>(q)] < 0) claim_place_[static_cast<std::size_t>(q)] = s;
-      }
-      const int d = direction_at(robot, j);
-      if (d != 0) add_span(zones_->corridor(p), s, d, zones_->corridor_index(p), true);
-    }
-  }
-}
-
-bool TrafficManager::entry_closes(const std::vector<int>& places, int index) const {
-  // Closed to robots coming from outside the claim's places; one inside may drive on and out.
-  const auto closed = [&](int k) {
-    return entry_closed_[static_cast<std::size_t>(places[static_cast<std::size_t>(k)])] != 0;
-  };
-  return closed(index) && (index == 0 || !closed(index - 1));
-}
-
-bool TrafficManager::higher_priority(const Robot& a, const Robot& b) const {
-  const double wa = a.wait_since >= 0.0 ? a.wait_since : kInfinity;
-  const double wb = b.wait_since >= 0.0 ? b.wait_since : kInfinity;
-  if (wa != wb) return wa < wb;
-  return a.id < b.id;
-}
-
-// Robots that keep robot `slot` out of `places[index]`: holders of conflicting places, robots in
-// the same corridor driving the other way, and reservations of older waiting robots.
-bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, int index,
-                                    std::vector<int>& blockers) const {
-  const std::size_t before = blockers.size();
-  const int p = places[static_cast<std::size_t>(index)];
-  const auto own_word = static_cast<std::size_t>(slot / 64);
-  const std::uint64_t own_bit = std::uint64_t{1} << (slot % 64);
-  auto collect = [&](const std::uint64_t* words) {
-    for (std::size_t w = 0; w < words_; ++w) {
-      std::uint64_t bits = words[w];
-      if (w == own_word) bits &= ~own_bit;
-      while (bits != 0) {
-        const int b = __builtin_ctzll(bits);
-        bits &= bits - 1;
-        blockers.push_back(static_cast<int>(w * 64) + b);
-      }
-    }
-  };
-  collect(&occupancy_[static_cast<std::size_t>(p) * words_]);
-  auto claimed_by = [&](int w) {
-    if (w < 0 || w == slot) return;
-    const Robot& claimant = *slots_[static_cast<std::size_t>(w)];
-    const Robot& self = *slots_[static_cast<std::size_t>(slot)];
-    // The robots a claimant waits for must stay free to move out of its way.
-    if (std::find(claimant.blocked_by.begin(), claimant.blocked_by.end(), self.id) != claimant.blocked_by.end()) return;
-    if (higher_priority(self, claimant)) return;
-    blockers.push_back(w);
-  };
-  // The claimant of an entry is off the graph: it blocks without being a robot to wait for
-  // (extend notes it in kept_out_by).
-  if (entry_closes(places, index)) return false;
-  // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
-  const int claimant = claim_place_[static_cast<std::size_t>(p)];
-  if (claimant >= 0 &&
-      (index == 0 || claim_place_[static_cast<std::size_t>(places[static_cast<std::size_t>(index - 1)])] != claimant)) {
-    claimed_by(claimant);
-  }
-  // Head-on: someone in this corridor driving the other way, ahead of this place (robots driving
-  // apart do not meet). Around a loop corridor everyone is ahead.
-  const int d = direction_in(*zones_, places, index);
-  if (d != 0) {
-    const int c = zones_->corridor(p);
-    const int at = zones_->corridor_index(p);
-    const bool loop = zones_->corridor_is_loop(c);
-    int before_index = index - 1;
-    while (before_index >= 0 && places[static_cast<std::size_t>(before_index)] == p) --before_index;
-    // Only a robot entering the corridor respects reservations: one inside must be free to leave.
-    const bool entering = before_index < 0 || zones_->corridor(places[static_cast<std::size_t>(before_index)]) != c;
-    for (const CorridorSpan& span : spans_[static_cast<std::size_t>(c)]) {
-      if (span.slot == slot || (span.direction != -d && span.direction != 0)) continue;
-      const bool ahead = loop || (d > 0 ? span.hi >= at : span.lo <= at);
-      if (!ahead) continue;
-      if (span.reserved) {
-        if (entering) claimed_by(span.slot);
-      } else {
-        blockers.push_back(span.slot);
-      }
-    }
-  }
-  return blockers.size() == before;
-}
-
-void TrafficManager::extend(Robot& robot, int slot) {
-  const int last = static_cast<int>(robot.route.size()) - 1;
-  robot.blocked = false;
-  robot.blocked_by.clear();
-  robot.kept_out_by.clear();
-  if (robot.frozen) return;
-  const double target = robot.progress + configuration_.lookahead;
-  std::vector<int> blockers;
-  while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {
-    int j = robot.grant_end + 1;
-    bool free = true;
-    for (;; ++j) {
-      if (!place_free_for(slot, robot.places, j, blockers)) {
-        free = false;
-        break;
-      }
-      if (j == last || zones_->stoppable(robot.places[static_cast<std::size_t>(j)])) break;
-    }
-    if (!free) {
-      robot.blocked = true;
-      sort_unique(blockers);
-      for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
-      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
-      if (entry_closes(robot.places, j)) {
-        const int p = robot.places[static_cast<std::size_t>(j)];
-        for (const auto& [id, claim] : entries_) {
-          if (claim_active(id, claim, now_) && zones_->conflict(p, claim.place)) robot.kept_out_by.push_back(id);
-        }
-      }
-      break;
-    }
-    for (int k = robot.grant_end + 1; k <= j; ++k) mark(robot, slot, k);
-    robot.grant_end = j;
-  }
-}
-
-bool TrafficManager::stopped_at_grant_end(const Robot& robot) const {
-  return robot.progress >= robot.cum[static_cast<std::size_t>(robot.grant_end)] - configuration_.stop_tolerance;
-}
-
-int TrafficManager::anchor_index(const Robot& robot) const {
-  if (stopped_at_grant_end(robot)) return robot.grant_end;
-  int k = robot.grant_end;
-  const double behind = robot.progress + configuration_.stop_tolerance;
-  while (k > robot.first_held && robot.cum[static_cast<std::size_t>(k)] > behind) --k;
-  return k;
-}
-
-// ---- re-routes and sidings -------------------------------------------------------------------------
-
-std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int>& others, bool with_next_stretch,
-                                                           double window) const {
-  std::vector<std::uint8_t> mask(zones_->place_count(), 0);
-  auto add = [&](int p) {
-    for (int q : zones_->conflicts(p)) mask[static_cast<std::size_t>(q)] = 1;
-  };
-  for (int id : others) {
-    auto it = robots_.find(id);
-    if (it == robots_.end()) continue;
-    const Robot& o = it->second;
-    for (int p : o.trail) add(p);
-    int end = o.grant_end;
-    if (with_next_stretch) end = std::max(end, next_stretch_end(o));
-    for (int k = o.first_held; k <= end; ++k) add(o.places[static_cast<std::size_t>(k)]);
-    for (int k = o.first_held;
-         k < static_cast<int>(o.route.size()) && o.cum[static_cast<std::size_t>(k)] <= o.progress + window; ++k) {
-      add(o.places[static_cast<std::size_t>(k)]);
-    }
-  }
-  return mask;
-}
-
-bool TrafficManager::first_stretch_free(const std::vector<int>& points, int slot) const {
-  std::vector<int> places(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) places[i] = zones_->place_of(points[i]);
-  const int last = static_cast<int>(places.size()) - 1;
-  std::vector<int> blockers;
-  for (int j = 1; j <= last; ++j) {
-    if (!place_free_for(slot, places, j, blockers)) return false;
-    if (zones_->stoppable(places[static_cast<std::size_t>(j)])) break;
-  }
-  return true;
-}
-
-int TrafficManager::slot_of(int robot_id) const {
-  for (std::size_t s = 0; s < slots_.size(); ++s) {
-    if (slots_[s]->id == robot_id) return static_cast<int>(s);
-  }
-  return -1;
-}
-
-void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now) {
-  std::vector<int> held = held_places(robot.id);
-  const int start = zones_->place_of(points.front());
-  held.erase(std::remove(held.begin(), held.end(), start), held.end());
-  install_route(robot, std::move(points), robot.version + 1);
-  robot.trail = std::move(held);
-  robot.pending = instruction;
-  robot.last_reroute = now;
-}
-
-bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
-                             TrafficEvent::Kind kind, bool against_one_way) {
-  const int slot = slot_of(robot.id);
-  const int from = anchor_index(robot);
-  const int anchor = robot.route[static_cast<std::size_t>(from)];
-  const int goal = robot.route.back();
-  const auto blocked = places_of_others(others, true, 0.0);
-  std::vector<int> path = (against_one_way ? search_ : route_search_)->shortest(anchor, goal, &blocked);
-  if (path.size() < 2) return false;
-  // Only a different way helps, and only one the robot can start on now.
-  std::vector<int> remaining(robot.route.begin() + from, robot.route.end());
-  if (path == remaining) return false;
-  if (!first_stretch_free(path, slot)) return false;
-  replace_route(robot, std::move(path), Instruction::kReroute, now);
-  out.events.push_back({kind, now, robot.id, others});
-  return true;
-}
-
-bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
-                                    bool clear_of_self) {
-  const int slot = slot_of(robot.id);
-  const int anchor = robot.route[static_cast<std::size_t>(anchor_index(robot))];
-  std::vector<std::uint8_t> here(zones_->place_count(), 0);
-  if (clear_of_self) {
-    for (int p : held_places(robot.id)) {
-      for (int q : zones_->conflicts(p)) here[static_cast<std::size_t>(q)] = 1;
-    }
-  }
-  // The robot may drive through nothing another robot holds ...
-  std::vector<int> everyone;
-  for (const auto& [id, o] : robots_) {
-    if (id != robot.id) everyone.push_back(id);
-  }
-  const auto through = places_of_others(everyone, false, 0.0);
-  // ... and must end off the others' remaining routes, or it would stand in their way again; when
-  // no such place is reachable, off their next `siding_window` metres (they pass it before it
-  // matters).
-  std::vector<int> path;
-  for (double window : {kInfinity, configuration_.siding_window}) {
-    auto avoid = places_of_others(others, true, window);
-    for (std::size_t p = 0; p < avoid.size(); ++p) {
-      avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p] | here[p]);
-    }
-    path = search_->nearest(
-        anchor, [&](int place) { return zones_->stoppable(place) && avoid[static_cast<std::size_t>(place)] == 0; },
-        &through);
-    if (path.size() >= 2) break;
-  }
-  if (path.size() < 2) return false;
-  if (!first_stretch_free(path, slot)) return false;
-  const int goal = robot.in_siding ? robot.resume_goal : robot.route.back();
-  replace_route(robot, std::move(path), Instruction::kSiding, now);
-  robot.in_siding = true;
-  robot.resume_goal = goal;
-  robot.yield_to = others;
-  robot.siding_arrival = -1.0;
-  out.events.push_back({TrafficEvent::Kind::kSidingSent, now, robot.id, others});
-  return true;
-}
-
-void TrafficManager::try_resume(Robot& robot, double now, UpdateResult& out) {
-  const int last = static_cast<int>(robot.route.size()) - 1;
-  if (!robot.in_siding || robot.grant_end != last || !robot.stopped) return;
-  if (robot.siding_arrival < 0.0) robot.siding_arrival = now;
-  std::vector<int> path = route_search_->shortest(robot.route.back(), robot.resume_goal, nullptr);
-  if (path.empty()) path = search_->shortest(robot.route.back(), robot.resume_goal, nullptr);
-  if (path.size() < 2) {
-    // At the goal already, or the goal is unreachable: nothing to resume.
-    if (path.size() == 1) robot.in_siding = false;
-    return;
-  }
-  std::vector<int> alive;
-  for (int id : robot.yield_to) {
-    if (robots_.count(id) != 0) alive.push_back(id);
-  }
-  const auto theirs = places_of_others(alive, true, configuration_.siding_window);
-  bool clear = true;
-  double travelled = 0.0;
-  for (std::size_t i = 1; i < path.size() && travelled <= configuration_.siding_window; ++i) {
-    travelled += search_->edge_length(path[i - 1], path[i]);
-    if (theirs[static_cast<std::size_t>(zones_->place_of(path[i]))]) {
-      clear = false;
-      break;
-    }
-  }
-  if (!clear && now - robot.siding_arrival < configuration_.yield_timeout) return;
-  replace_route(robot, std::move(path), Instruction::kReroute, now);
-  robot.in_siding = false;
-  out.events.push_back({TrafficEvent::Kind::kResumed, now, robot.id, robot.yield_to});
-  robot.yield_to.clear();
-}
-
-// Tarjan's strongly connected components over the wait-for graph of stopped, waiting robots.
-void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
-  const std::size_t n = slots_.size();
-  std::vector<std::vector<int>> edges(n);
-  for (std::size_t s = 0; s < n; ++s) {
-    const Robot& r = *slots_[s];
-    if (r.wait_since < 0.0) continue;
-    for (int id : r.blocked_by) {
-      const int t = slot_of(id);
-      if (t >= 0 && slots_[static_cast<std::size_t>(t)]->wait_since >= 0.0) edges[s].push_back(t);
-    }
-  }
-  std::vector<int> index(n, -1), low(n, 0), stack;
-  std::vector<std::uint8_t> on_stack(n, 0);
-  std::vector<std::vector<int>> components;
-  int counter = 0;
-  std::function<void(int)> connect = [&](int v) {
-    const auto sv = static_cast<std::size_t>(v);
-    index[sv] = low[sv] = counter++;
-    stack.push_back(v);
-    on_stack[sv] = 1;
-    for (int w : edges[sv]) {
-      const auto sw = static_cast<std::size_t>(w);
-      if (index[sw] < 0) {
-        connect(w);
-        low[sv] = std::min(low[sv], low[sw]);
-      } else if (on_stack[sw]) {
-        low[sv] = std::min(low[sv], index[sw]);
-      }
-    }
-    if (low[sv] == index[sv]) {
-      std::vector<int> component;
-      int w = -1;
-      do {
-        w = stack.back();
-        stack.pop_back();
-        on_stack[static_cast<std::size_t>(w)] = 0;
-        component.push_back(w);
-      } while (w != v);
-      if (component.size() >= 2) components.push_back(std::move(component));
-    }
-  };
-  for (std::size_t s = 0; s < n; ++s) {
-    if (index[s] < 0 && slots_[s]->wait_since >= 0.0) connect(static_cast<int>(s));
-  }
-  for (auto& component : components) {
-    // A member whose body stops another member's safety check is in the way itself: it yields
-    // first (re-routing the stopped one would not move the body it stands behind). Then lowest
-    // priority first.
-    const auto stops_a_member = [&](const Robot& r) {
-      return std::any_of(component.begin(), component.end(), [&](int m) {
-        const auto& stopped_for = slots_[static_cast<std::size_t>(m)]->stopped_for;
-        return std::binary_search(stopped_for.begin(), stopped_for.end(), r.id);
-      });
-    };
-    std::vector<std::uint8_t> in_the_way(n, 0);
-    for (int s : component) {
-      in_the_way[static_cast<std::size_t>(s)] = stops_a_member(*slots_[static_cast<std::size_t>(s)]) ? 1 : 0;
-    }
-    std::sort(component.begin(), component.end(), [&](int a, int b) {
-      if (in_the_way[static_cast<std::size_t>(a)] != in_the_way[static_cast<std::size_t>(b)]) {
-        return in_the_way[static_cast<std::size_t>(a)] > in_the_way[static_cast<std::size_t>(b)];
-      }
-      return higher_priority(*slots_[static_cast<std::size_t>(b)], *slots_[static_cast<std::size_t>(a)]);
-    });
-    std::vector<int> ids;
-    for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
-    // The members a robot waits for, and the members waiting for it.
-    const auto waiting = [&](const Robot& waiter, int for_id) {
-      return std::find(waiter.blocked_by.begin(), waiter.blocked_by.end(), for_id) != waiter.blocked_by.end();
-    };
-    const auto blockers_of = [&](const Robot& victim) {
-      std::vector<int> blockers;
-      for (int id : ids) {
-        if (id != victim.id && waiting(victim, id)) blockers.push_back(id);
-      }
-      return blockers;
-    };
-    // One instruction at a time: a member sent a new route that has not reached it yet may break
-    // the cycle by what it does; and a robot just sent one is not picked again until it could act
-    // on it (it may stand where it did for a moment, and a body it stopped may still be reported).
-    const bool instructed =
-        std::any_of(ids.begin(), ids.end(), [&](int id) { return robots_.at(id).pending != Instruction::kNone; });
-    if (instructed) continue;
-    bool resolved = false;
-    for (int s : component) {
-      Robot& victim = *slots_[static_cast<std::size_t>(s)];
-      if (now - victim.last_reroute < kActOnInstruction) continue;
-      // A member already yielding to it on a siding makes way for it: sending it off as well
-      // would only swap who yields, again and again.
-      const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
-        const Robot& other = robots_.at(id);
-        return other.in_siding &&
-               std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
-      });
-      if (yielded_to) continue;
-      // It goes round the robots it waits for, or out of the way of the robots waiting for it.
-      std::vector<int> waiters;
-      for (int id : ids) {
-        if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
-      }
-      if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
-          send_to_siding(victim, waiters, now, out, in_the_way[static_cast<std::size_t>(s)] != 0)) {
-        resolved = true;
-        break;
-      }
-    }
-    // Last resort: a way round against a one-way corridor. Robots standing where the one-way
-    // plan does not expect them (a map switch changed the corridors' directions) can face each
-    // other with no way out along the plan; driving against it is safe, as nobody enters a
-    // corridor towards a robot driving in it (place_free_for).
-    for (std::size_t k = 0; !resolved && configuration_.one_way && k < component.size(); ++k) {
-      Robot& victim = *slots_[static_cast<std::size_t>(component[k])];
-      resolved = reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved, true);
-    }
-    if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
-  }
 }
 
 // ---- the cycle -------------------------------------------------------------------------------------

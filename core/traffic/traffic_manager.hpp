@@ -11,6 +11,7 @@
 #include "traffic/conflict_zones.hpp"
 #include "traffic/one_way.hpp"
 #include "traffic/route_search.hpp"
+#include "traffic/vehicle_lanes.hpp"
 
 namespace fleet::traffic {
 
@@ -34,6 +35,9 @@ struct TrafficConfiguration {
   /// Metres of the other robots' routes (ahead of them) a siding must keep clear of, and of the
   /// yielding robot's way back that must be clear of them before it resumes.
   double siding_window = 3.0;
+  /// Vehicle type of each robot by name (its fleet's, configuration_from); robots not listed are
+  /// type 0. The manager knows robots by number: the server tells it (set_robot_type).
+  std::map<std::string, int> robot_vehicle_types;
   /// Give corridors between junctions one driving direction (see OneWayPlan) and plan re-routes
   /// on that graph; robots should then plan on `route_graph()` too. Off: every road both ways.
   bool one_way = true;
@@ -166,6 +170,15 @@ struct UpdateResult {
 /// among them): grants of others into them are then pulled back to before the first such place
 /// not yet reached, and grants never add such a conflict, so it only clears.
 ///
+/// **Vehicle types.** Every robot is of one of the zones' vehicle types (`set_robot_type`, type 0
+/// until told). Wherever the manager checks a place against another robot's — grants, occupancy,
+/// standing bodies, entry claims, reservations, sidings — it uses the conflicts of that pair of
+/// types, so a small robot may pass where a big one may not. A robot is routed and re-routed only
+/// on its type's lanes (`route_graph(type)`: the lanes its footprint fits, lane_graph_for). On the
+/// two lanes of one road, a robot does not enter the stretch of its lane in conflict with the
+/// opposite lane while a robot in conflict with it drives the other way there (OppositeLane):
+/// robots whose regions stay clear of each other pass, the others take the stretch in turn.
+///
 /// Deterministic: no clocks, no randomness; time is passed in. Not thread-safe.
 class TrafficManager {
  public:
@@ -176,7 +189,12 @@ class TrafficManager {
   /// be a place the robot holds; the places it held behind that point stay held until it has
   /// driven past the first edge's midpoint. A standing robot's new route pulls back others'
   /// grants into what it holds, as hold_body does.
+  /// kInvalid also when the route enters a lane the robot's vehicle type does not fit.
   SubmitStatus submit_route(const RouteRequest& request, double now);
+  /// The robot's vehicle type (index into zones().vehicle_types()); kept across removals, so it
+  /// may be told before the robot enters. False (and nothing changes) for an unknown type.
+  bool set_robot_type(int robot_id, int type);
+  int robot_type(int robot_id) const;
   /// Progress on the current route version; other versions are ignored. Clamped to the grant.
   void report_progress(const ProgressReport& report, double now);
   /// Frees everything the robot holds (parked off the graph); the next update reports it.
@@ -201,10 +219,13 @@ class TrafficManager {
 
   // ---- introspection (tests, web view) ---------------------------------------------------------
   const ConflictZones& zones() const { return *zones_; }
-  /// Route search on the graph robots should plan on (`route_graph()`).
-  RouteSearch& search() { return *route_search_; }
-  /// The graph robots should plan on: the one-way graph when configured, else the input graph.
-  const map::RoadGraph& route_graph() const { return configuration_.one_way ? one_way_.graph : graph_; }
+  /// Route search on the graph robots of `type` should plan on (`route_graph(type)`).
+  RouteSearch& search(int type = 0) { return *types_[static_cast<std::size_t>(type)]->route_search; }
+  /// The graph robots of `type` should plan on: the one-way graph when configured, else the input
+  /// graph, with only the lanes the type fits (lane_graph_for).
+  const map::RoadGraph& route_graph(int type = 0) const { return types_[static_cast<std::size_t>(type)]->route; }
+  /// The input graph with only the lanes the type fits, both ways where the input drives both.
+  const map::RoadGraph& lane_graph(int type) const { return types_[static_cast<std::size_t>(type)]->lanes; }
   /// Direction of each corridor under the one-way plan (+1 / -1 along corridor_index, 0 both ways).
   const std::vector<int>& corridor_directions() const { return one_way_.corridor_direction; }
   const TrafficConfiguration& configuration() const { return configuration_; }
@@ -244,6 +265,7 @@ class TrafficManager {
  private:
   struct Robot {
     int id = 0;
+    int type = 0;  ///< vehicle type
     std::uint64_t version = 0;
     std::vector<int> route;
     std::vector<int> places;
@@ -269,18 +291,28 @@ class TrafficManager {
     bool frozen = false;  ///< holds where it stands, granted nothing more (freeze_robot, hold_body)
     bool lost = false;    ///< frozen by freeze_robot and not heard from since
     /// While it holds where its body stands (standing, or not yet past the first edge of the
-    /// route it sent from there): the places whose regions touch that body, sorted. A held place
-    /// among them closes only itself, not the places in conflict with it: another robot may drive
-    /// wherever its footprint stays clear of the body (the body is not a place's whole region).
-    std::vector<int> body_reach;
+    /// route it sent from there): by vehicle type, the places whose regions of that type touch
+    /// that body, sorted. A held place among its own type's closes only itself, not the places in
+    /// conflict with it: another robot may drive wherever its footprint stays clear of the body
+    /// (the body is not a place's whole region). Empty when it holds no body.
+    std::vector<std::vector<int>> body_reach;
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint64_t version);
-  std::vector<int> places_under(const geometry::Polygon& body, std::vector<int>* touched = nullptr) const;
-  void stand(Robot& robot, const std::vector<int>& under, std::vector<int> touched);
-  bool under_body(const Robot& robot, int place) const;
-  /// Whether `holder` keeps other robots out of `place`.
-  bool closes(const Robot& holder, int place) const;
+  /// The places a body of `type` holds (see the class comment) and, by type, the places it touches.
+  std::vector<int> places_under(const geometry::Polygon& body, int type,
+                                std::vector<std::vector<int>>* touched = nullptr) const;
+  void stand(Robot& robot, const std::vector<int>& under, std::vector<std::vector<int>> touched);
+  /// Whether `place` is among those the robot's body touches, in its own type's regions.
+  bool under_body(const Robot& robot, int place) const { return under_body_for(robot, place, robot.type); }
+  bool under_body_for(const Robot& robot, int place, int type) const;
+  /// Whether `holder` keeps robots of vehicle type `type` out of `place`.
+  bool closes(const Robot& holder, int place, int type) const;
+  int type_of(int robot_id) const;
+  /// Index of (vehicle type, place) in the typed per-place tables.
+  std::size_t typed(int type, int place) const {
+    return static_cast<std::size_t>(type) * zones_->place_count() + static_cast<std::size_t>(place);
+  }
   /// Robots other than `robot_id` that keep others out of `place` (holders_in_conflict by place).
   std::vector<int> holders_of(int place, int robot_id) const;
   void pull_back_grants_into(const Robot& standing);
@@ -291,6 +323,10 @@ class TrafficManager {
   void rebuild_occupancy();
   void mark(const Robot& robot, int slot, int index);
   bool place_free_for(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const;
+  /// The opposite-lane rule of place_free_for: robots driving towards `places[index]` in the
+  /// stretch of the opposite lane in conflict with it, when the robot would enter that stretch.
+  void opposite_lane_blockers(int slot, const std::vector<int>& places, int index, int direction,
+                              std::vector<int>& blockers) const;
   void extend(Robot& robot, int slot);
   bool stopped_at_grant_end(const Robot& robot) const;
   /// Where a re-route or siding of the robot starts: the end of its grant when it stands there,
@@ -304,8 +340,9 @@ class TrafficManager {
                       bool clear_of_self = false);
   void try_resume(Robot& robot, double now, UpdateResult& out);
   void resolve_cycles(double now, UpdateResult& out);
-  std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch,
-                                             double window) const;
+  /// Places robots of vehicle type `type` may not enter beside `others` (by place).
+  std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch, double window,
+                                             int type) const;
   bool first_stretch_free(const std::vector<int>& points, int slot) const;
   int slot_of(int robot_id) const;
   bool higher_priority(const Robot& a, const Robot& b) const;
@@ -313,13 +350,21 @@ class TrafficManager {
   TrafficConfiguration configuration_;
   map::RoadGraph graph_;
   std::unique_ptr<ConflictZones> zones_;
-  std::unique_ptr<RouteSearch> search_;  ///< on the full graph: sidings may back up
+  std::unique_ptr<RouteSearch> search_;  ///< on the full graph: edge lengths
   OneWayPlan one_way_;
-  std::unique_ptr<RouteSearch> route_search_;  ///< on route_graph(): re-routes and returns
-  std::map<int, Robot> robots_;                ///< ordered by id: deterministic iteration
-  std::vector<Robot*> slots_;                  ///< robots by slot (position in id order), rebuilt each update
-  double now_ = 0.0;                           ///< time of the update in progress
-  std::vector<TrafficEvent> removed_;          ///< removals since the last update, reported by it
+  /// The graphs and searches of one vehicle type: only the lanes it fits.
+  struct TypeGraphs {
+    map::RoadGraph lanes;                       ///< the full graph: sidings may back up
+    map::RoadGraph route;                       ///< route_graph(type)
+    std::unique_ptr<RouteSearch> search;        ///< on `lanes`
+    std::unique_ptr<RouteSearch> route_search;  ///< on `route`: re-routes and returns
+  };
+  std::vector<std::unique_ptr<TypeGraphs>> types_;
+  std::map<int, int> robot_types_;     ///< set_robot_type, by robot id
+  std::map<int, Robot> robots_;        ///< ordered by id: deterministic iteration
+  std::vector<Robot*> slots_;          ///< robots by slot (position in id order), rebuilt each update
+  double now_ = 0.0;                   ///< time of the update in progress
+  std::vector<TrafficEvent> removed_;  ///< removals since the last update, reported by it
 
   /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
   struct CorridorSpan {
@@ -331,8 +376,8 @@ class TrafficManager {
   };
   void add_span(int corridor, int slot, int direction, int index, bool reserved);
 
-  // Occupancy, rebuilt each update: bit `slot` of place p is set when robot `slot` holds a place
-  // conflicting with p.
+  // Occupancy, rebuilt each update: bit `slot` of (type U, place p) is set when robot `slot` holds
+  // a place conflicting with U at p. The tables below are indexed by typed(U, p) too.
   std::size_t words_ = 1;
   std::vector<std::uint64_t> occupancy_;
   std::vector<std::vector<CorridorSpan>> spans_;  ///< by corridor
@@ -350,7 +395,7 @@ class TrafficManager {
   /// (a robot it keeps out): then holding the closure would keep them waiting on each other.
   bool claim_waits_on_itself(int robot_id, const EntryClaim& claim) const;
   /// Whether `places[index]` is closed by an entry claim to a robot coming from before it.
-  bool entry_closes(const std::vector<int>& places, int index) const;
+  bool entry_closes(const std::vector<int>& places, int index, int type) const;
   std::map<int, EntryClaim> entries_;       ///< robots waiting beside the roads, by id
   std::vector<std::uint8_t> entry_closed_;  ///< places closed by an active entry claim
 };

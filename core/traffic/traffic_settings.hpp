@@ -6,13 +6,22 @@
 
 namespace fleet::traffic {
 
-/// The traffic configuration of a run, from the `traffic.*` keys and the fleets' footprints
-/// (resources are sized by the largest robot). The server's manager and every agent build it
-/// from the same config, so agents plan on the very graph the manager grants on.
+/// The footprint of a fleet's vehicles in the body frame, for traffic: today the fleet's
+/// length x width rectangle centred on the body origin.
+geometry::Polygon footprint_polygon_of(const config::FleetSpec& fleet);
+
+/// The traffic configuration of a run, from the `traffic.*` keys and the fleets: one vehicle
+/// type per fleet, in the order of `config.fleets` (vehicle_type_of gives a fleet's index). The
+/// server's manager and every agent build it from the same config, so agents plan on the very
+/// graph the manager grants on.
 TrafficConfiguration configuration_from(const config::FleetConfig& config);
 
-/// The graph robots plan their routes on under `configuration`: the one-way graph when
-/// `one_way` is set, else `graph` itself. Deterministic: equal to TrafficManager::route_graph().
-map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration);
+/// The vehicle type index of fleet `fleet_id` under configuration_from(config); 0 when unknown.
+int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id);
+
+/// The graph robots of vehicle type `type` plan their routes on under `configuration`: the
+/// one-way graph when `one_way` is set, else `graph` itself, with only the lanes the type fits.
+/// Deterministic: equal to TrafficManager::route_graph(type).
+map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration, int type = 0);
 
 }  // namespace fleet::traffic

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "map/road_graph_builder.hpp"
 
@@ -54,10 +55,17 @@ TrafficSim::TrafficSim(const map::RoadGraph& graph, const TrafficConfiguration& 
       search_(manager_.route_graph(), manager_.zones()),
       goal_points_(goal_points),
       rng_(params.seed) {
+  for (std::size_t t = 0; t < manager_.zones().type_count(); ++t) {
+    type_search_.push_back(std::make_unique<RouteSearch>(manager_.route_graph(static_cast<int>(t)), manager_.zones()));
+  }
   bodies_.resize(start_points.size());
   for (std::size_t i = 0; i < start_points.size(); ++i) {
     Body& body = bodies_[i];
     body.id = static_cast<int>(i) + 1;
+    if (i < params_.robot_types.size() && !manager_.set_robot_type(body.id, params_.robot_types[i])) {
+      throw std::invalid_argument("traffic sim: robot " + std::to_string(body.id) + " has unknown vehicle type " +
+                                  std::to_string(params_.robot_types[i]));
+    }
     set_route(body, {start_points[i]}, 1);
     body.dwell_until = 0.0;
     if (params_.traffic) manager_.submit_route({body.id, body.version, body.route}, 0.0);
@@ -135,7 +143,7 @@ void TrafficSim::start_next_goal(Body& body) {
   }
   const int next = body.goals.front();
   body.goals.pop_front();
-  std::vector<int> path = search_.shortest(here, next);
+  std::vector<int> path = type_search_[static_cast<std::size_t>(type_of(body.id))]->shortest(here, next);
   if (path.empty()) return;  // unreachable goal: skip it
   const std::uint64_t version = std::max(body.version, manager_.version(body.id)) + 1;
   set_route(body, std::move(path), version);
@@ -208,14 +216,29 @@ void TrafficSim::advance(Body& body) {
   }
 }
 
+int TrafficSim::type_of(int robot_id) const {
+  const auto i = static_cast<std::size_t>(robot_id - 1);
+  return i < params_.robot_types.size() ? params_.robot_types[i] : 0;
+}
+
 void TrafficSim::check_collisions() {
   const std::size_t n = bodies_.size();
   const double reach = std::hypot(params_.footprint.length, params_.footprint.width);
+  const auto& types = manager_.zones().vehicle_types();
+  const auto body_of = [&](const Body& body) {
+    geometry::Polygon out;
+    for (const auto& v : types[static_cast<std::size_t>(type_of(body.id))].footprint) {
+      out.push_back(geometry::body_to_map(body.pose, v));
+    }
+    return out;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       bool overlap = false;
-      if (bodies_[i].active && bodies_[j].active &&
-          geometry::distance(bodies_[i].pose.position(), bodies_[j].pose.position()) < reach) {
+      const bool active = bodies_[i].active && bodies_[j].active;
+      if (active && !params_.robot_types.empty()) {
+        overlap = geometry::polygons_overlap(body_of(bodies_[i]), body_of(bodies_[j]));
+      } else if (active && geometry::distance(bodies_[i].pose.position(), bodies_[j].pose.position()) < reach) {
         overlap = geometry::convex_polygons_overlap(geometry::footprint_polygon(bodies_[i].pose, params_.footprint),
                                                     geometry::footprint_polygon(bodies_[j].pose, params_.footprint));
       }

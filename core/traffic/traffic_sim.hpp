@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -22,10 +23,14 @@ struct SimParams {
   double dt = 0.05;                ///< s per step; the manager updates every step
   double dwell = 2.0;              ///< s standing at a pick or drop
   double deadlock_timeout = 60.0;  ///< s without progress on a task that count as a deadlock
-  geometry::Footprint footprint;   ///< for the collision count (no margin)
-  bool traffic = true;             ///< false: drive the whole route regardless of others
-  bool random_trips = true;        ///< robots without goals get a random pick and drop
-  bool check_invariant = true;     ///< verify the manager's safety invariant every step
+  geometry::Footprint footprint;   ///< for the collision count (no margin) when robot_types is empty
+  /// Vehicle type of robot i + 1 (index into the configuration's vehicle types); robots beyond
+  /// the list are type 0. Given: each robot plans on its type's graph, and collisions are counted
+  /// between the types' footprints.
+  std::vector<int> robot_types;
+  bool traffic = true;          ///< false: drive the whole route regardless of others
+  bool random_trips = true;     ///< robots without goals get a random pick and drop
+  bool check_invariant = true;  ///< verify the manager's safety invariant every step
   std::uint64_t seed = 1;
 };
 
@@ -115,7 +120,9 @@ class TrafficSim {
   map::RoadGraph graph_;
   SimParams params_;
   TrafficManager manager_;
-  RouteSearch search_;
+  RouteSearch search_;                                     ///< edge lengths
+  std::vector<std::unique_ptr<RouteSearch>> type_search_;  ///< trips, on each type's route graph
+  int type_of(int robot_id) const;
   std::vector<int> goal_points_;
   std::vector<Body> bodies_;
   std::vector<std::uint8_t> overlapping_;  ///< pairs overlapping in the previous step

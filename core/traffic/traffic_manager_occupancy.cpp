@@ -1,0 +1,284 @@
+// The TrafficManager's occupancy tables and grants: who keeps whom out of which place.
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_manager_detail.hpp"
+
+namespace fleet::traffic {
+
+using detail::direction_in;
+using detail::kActOnInstruction;
+using detail::kInfinity;
+using detail::sort_unique;
+
+// ---- occupancy --------------------------------------------------------------------------------------
+
+int TrafficManager::direction_at(const Robot& robot, int index) const {
+  return direction_in(*zones_, robot.places, index);
+}
+
+int TrafficManager::next_stretch_end(const Robot& robot) const {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  int j = robot.grant_end;
+  if (j >= last) return last;
+  ++j;
+  while (j < last && !zones_->stoppable(robot.type, robot.places[static_cast<std::size_t>(j)])) ++j;
+  return j;
+}
+
+void TrafficManager::mark(const Robot& robot, int slot, int index) {
+  const std::uint64_t bit = std::uint64_t{1} << (slot % 64);
+  const std::size_t word = static_cast<std::size_t>(slot / 64);
+  const int p = robot.places[static_cast<std::size_t>(index)];
+  const int types = static_cast<int>(zones_->type_count());
+  for (int u = 0; u < types; ++u) {
+    if (under_body(robot, p)) {
+      occupancy_[typed(u, p) * words_ + word] |= bit;
+    } else {
+      for (int q : zones_->conflicts(robot.type, p, u)) occupancy_[typed(u, q) * words_ + word] |= bit;
+    }
+  }
+  const int d = direction_at(robot, index);
+  const int c = zones_->corridor(p);
+  if (d != 0) {
+    add_span(c, slot, d, zones_->corridor_index(p), false);
+  } else if (c >= 0 && index + 1 == static_cast<int>(robot.route.size()) && !robot.in_siding) {
+    // Standing at the end of its route, it leaves the way the corridor lets it: either way in a
+    // two-way corridor, so nobody drives up to it head-on; only on along a one-way corridor, so
+    // robots behind it queue up to it instead of waiting outside while it works at a loading area.
+    // (A robot in a siding stands off the others' routes and leaves only once they have passed.)
+    const int leaves = configuration_.one_way ? one_way_.corridor_direction[static_cast<std::size_t>(c)] : 0;
+    add_span(c, slot, leaves, zones_->corridor_index(p), false);
+  }
+}
+
+void TrafficManager::add_span(int corridor, int slot, int direction, int index, bool reserved) {
+  auto& spans = spans_[static_cast<std::size_t>(corridor)];
+  for (auto& span : spans) {
+    if (span.slot == slot && span.direction == direction && span.reserved == reserved) {
+      span.lo = std::min(span.lo, index);
+      span.hi = std::max(span.hi, index);
+      return;
+    }
+  }
+  spans.push_back({slot, direction, index, index, reserved});
+}
+
+void TrafficManager::rebuild_occupancy() {
+  const int types = static_cast<int>(zones_->type_count());
+  const std::size_t cells = zones_->place_count() * zones_->type_count();
+  words_ = std::max<std::size_t>(1, (slots_.size() + 63) / 64);
+  occupancy_.assign(cells * words_, 0);
+  spans_.resize(zones_->corridor_count());
+  for (auto& spans : spans_) spans.clear();
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const Robot& robot = *slots_[s];
+    const std::uint64_t bit = std::uint64_t{1} << (s % 64);
+    for (int k = robot.first_held; k <= robot.grant_end; ++k) mark(robot, static_cast<int>(s), k);
+    for (int u = 0; u < types; ++u) {
+      for (int p : robot.trail) {
+        if (under_body(robot, p)) continue;
+        for (int q : zones_->conflicts(robot.type, p, u)) occupancy_[typed(u, q) * words_ + s / 64] |= bit;
+      }
+      if (robot.body_reach.empty()) continue;
+      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) occupancy_[typed(u, p) * words_ + s / 64] |= bit;
+    }
+  }
+  // Entry claims of robots waiting beside the roads longer than priority_wait.
+  entry_closed_.assign(cells, 0);
+  for (const auto& [id, claim] : entries_) {
+    if (!claim_active(id, claim, now_)) continue;
+    for (int u = 0; u < types; ++u) {
+      for (int q : zones_->conflicts(type_of(id), claim.place, u)) entry_closed_[typed(u, q)] = 1;
+    }
+  }
+  // Reservations of robots waiting longer than priority_wait: the places of the stretch they wait
+  // for, and its corridor direction, against robots that would newly enter them.
+  claim_place_.assign(cells, -1);
+  std::vector<int> claimants;
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const Robot& robot = *slots_[s];
+    if (robot.wait_since >= 0.0 && robot.blocked && now_ - robot.wait_since >= configuration_.priority_wait) {
+      claimants.push_back(static_cast<int>(s));
+    }
+  }
+  std::sort(claimants.begin(), claimants.end(), [&](int a, int b) {
+    return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
+  });
+  for (int s : claimants) {
+    const Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    const int end = next_stretch_end(robot);
+    for (int j = robot.grant_end + 1; j <= end; ++j) {
+      const int p = robot.places[static_cast<std::size_t>(j)];
+      for (int u = 0; u < types; ++u) {
+        for (int q : zones_->conflicts(robot.type, p, u)) {
+          if (claim_place_[typed(u, q)] < 0) claim_place_[typed(u, q)] = s;
+        }
+      }
+      const int d = direction_at(robot, j);
+      if (d != 0) add_span(zones_->corridor(p), s, d, zones_->corridor_index(p), true);
+    }
+  }
+}
+
+bool TrafficManager::entry_closes(const std::vector<int>& places, int index, int type) const {
+  // Closed to robots coming from outside the claim's places; one inside may drive on and out.
+  const auto closed = [&](int k) { return entry_closed_[typed(type, places[static_cast<std::size_t>(k)])] != 0; };
+  return closed(index) && (index == 0 || !closed(index - 1));
+}
+
+bool TrafficManager::higher_priority(const Robot& a, const Robot& b) const {
+  const double wa = a.wait_since >= 0.0 ? a.wait_since : kInfinity;
+  const double wb = b.wait_since >= 0.0 ? b.wait_since : kInfinity;
+  if (wa != wb) return wa < wb;
+  return a.id < b.id;
+}
+
+// Robots that keep robot `slot` out of `places[index]`: holders of conflicting places, robots in
+// the same corridor driving the other way, and reservations of older waiting robots.
+bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, int index,
+                                    std::vector<int>& blockers) const {
+  const std::size_t before = blockers.size();
+  const int p = places[static_cast<std::size_t>(index)];
+  const int type = slots_[static_cast<std::size_t>(slot)]->type;
+  const auto own_word = static_cast<std::size_t>(slot / 64);
+  const std::uint64_t own_bit = std::uint64_t{1} << (slot % 64);
+  auto collect = [&](const std::uint64_t* words) {
+    for (std::size_t w = 0; w < words_; ++w) {
+      std::uint64_t bits = words[w];
+      if (w == own_word) bits &= ~own_bit;
+      while (bits != 0) {
+        const int b = __builtin_ctzll(bits);
+        bits &= bits - 1;
+        blockers.push_back(static_cast<int>(w * 64) + b);
+      }
+    }
+  };
+  collect(&occupancy_[typed(type, p) * words_]);
+  auto claimed_by = [&](int w) {
+    if (w < 0 || w == slot) return;
+    const Robot& claimant = *slots_[static_cast<std::size_t>(w)];
+    const Robot& self = *slots_[static_cast<std::size_t>(slot)];
+    // The robots a claimant waits for must stay free to move out of its way.
+    if (std::find(claimant.blocked_by.begin(), claimant.blocked_by.end(), self.id) != claimant.blocked_by.end()) return;
+    if (higher_priority(self, claimant)) return;
+    blockers.push_back(w);
+  };
+  // The claimant of an entry is off the graph: it blocks without being a robot to wait for
+  // (extend notes it in kept_out_by).
+  if (entry_closes(places, index, type)) return false;
+  // A reserved place is closed to robots coming from outside the reservation; one inside may leave.
+  const int claimant = claim_place_[typed(type, p)];
+  if (claimant >= 0 &&
+      (index == 0 || claim_place_[typed(type, places[static_cast<std::size_t>(index - 1)])] != claimant)) {
+    claimed_by(claimant);
+  }
+  // Head-on: someone in this corridor driving the other way, ahead of this place (robots driving
+  // apart do not meet). Around a loop corridor everyone is ahead.
+  const int d = direction_in(*zones_, places, index);
+  if (d != 0) {
+    const int c = zones_->corridor(p);
+    const int at = zones_->corridor_index(p);
+    const bool loop = zones_->corridor_is_loop(c);
+    int before_index = index - 1;
+    while (before_index >= 0 && places[static_cast<std::size_t>(before_index)] == p) --before_index;
+    // Only a robot entering the corridor respects reservations: one inside must be free to leave.
+    const bool entering = before_index < 0 || zones_->corridor(places[static_cast<std::size_t>(before_index)]) != c;
+    for (const CorridorSpan& span : spans_[static_cast<std::size_t>(c)]) {
+      if (span.slot == slot || (span.direction != -d && span.direction != 0)) continue;
+      const bool ahead = loop || (d > 0 ? span.hi >= at : span.lo <= at);
+      if (!ahead) continue;
+      if (span.reserved) {
+        if (entering) claimed_by(span.slot);
+      } else {
+        blockers.push_back(span.slot);
+      }
+    }
+  }
+  if (zones_->has_opposite_lanes()) opposite_lane_blockers(slot, places, index, d, blockers);
+  return blockers.size() == before;
+}
+
+void TrafficManager::opposite_lane_blockers(int slot, const std::vector<int>& places, int index, int direction,
+                                            std::vector<int>& blockers) const {
+  const int p = places[static_cast<std::size_t>(index)];
+  const int c = zones_->corridor(p);
+  if (c < 0) return;
+  const int at = zones_->corridor_index(p);
+  int before_index = index - 1;
+  while (before_index >= 0 && places[static_cast<std::size_t>(before_index)] == p) --before_index;
+  const int before = before_index < 0 ? -1 : places[static_cast<std::size_t>(before_index)];
+  const int type = slots_[static_cast<std::size_t>(slot)]->type;
+  for (int other_type = 0; other_type < static_cast<int>(zones_->type_count()); ++other_type) {
+    for (const OppositeLane& lane : zones_->opposite_lanes(type, c, other_type)) {
+      if (at < lane.lo || at > lane.hi) continue;
+      // Only a robot entering the stretch waits; one inside must be free to drive on out of it.
+      const bool inside_before = before >= 0 && zones_->corridor(before) == c &&
+                                 zones_->corridor_index(before) >= lane.lo && zones_->corridor_index(before) <= lane.hi;
+      if (inside_before) continue;
+      for (const CorridorSpan& span : spans_[static_cast<std::size_t>(lane.corridor)]) {
+        if (span.slot == slot || span.reserved || slots_[static_cast<std::size_t>(span.slot)]->type != other_type)
+          continue;
+        if (span.hi < lane.other_lo || span.lo > lane.other_hi) continue;  // not in the stretch
+        const bool towards =
+            direction == 0 || span.direction == 0 || lane.sign == 0 || span.direction * lane.sign == -direction;
+        if (towards) blockers.push_back(span.slot);
+      }
+    }
+  }
+}
+
+void TrafficManager::extend(Robot& robot, int slot) {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  robot.blocked = false;
+  robot.blocked_by.clear();
+  robot.kept_out_by.clear();
+  if (robot.frozen) return;
+  const double target = robot.progress + configuration_.lookahead;
+  std::vector<int> blockers;
+  while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {
+    int j = robot.grant_end + 1;
+    bool free = true;
+    for (;; ++j) {
+      if (!place_free_for(slot, robot.places, j, blockers)) {
+        free = false;
+        break;
+      }
+      if (j == last || zones_->stoppable(robot.type, robot.places[static_cast<std::size_t>(j)])) break;
+    }
+    if (!free) {
+      robot.blocked = true;
+      sort_unique(blockers);
+      for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
+      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
+      if (entry_closes(robot.places, j, robot.type)) {
+        const int p = robot.places[static_cast<std::size_t>(j)];
+        for (const auto& [id, claim] : entries_) {
+          if (claim_active(id, claim, now_) && zones_->conflict(robot.type, p, type_of(id), claim.place)) {
+            robot.kept_out_by.push_back(id);
+          }
+        }
+      }
+      break;
+    }
+    for (int k = robot.grant_end + 1; k <= j; ++k) mark(robot, slot, k);
+    robot.grant_end = j;
+  }
+}
+
+bool TrafficManager::stopped_at_grant_end(const Robot& robot) const {
+  return robot.progress >= robot.cum[static_cast<std::size_t>(robot.grant_end)] - configuration_.stop_tolerance;
+}
+
+int TrafficManager::anchor_index(const Robot& robot) const {
+  if (stopped_at_grant_end(robot)) return robot.grant_end;
+  int k = robot.grant_end;
+  const double behind = robot.progress + configuration_.stop_tolerance;
+  while (k > robot.first_held && robot.cum[static_cast<std::size_t>(k)] > behind) --k;
+  return k;
+}
+
+}  // namespace fleet::traffic

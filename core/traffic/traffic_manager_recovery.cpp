@@ -1,0 +1,287 @@
+// The TrafficManager's ways out of waiting: re-routes, sidings and breaking wait-for cycles.
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_manager_detail.hpp"
+
+namespace fleet::traffic {
+
+using detail::direction_in;
+using detail::kActOnInstruction;
+using detail::kInfinity;
+using detail::sort_unique;
+
+// ---- re-routes and sidings -------------------------------------------------------------------------
+
+std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int>& others, bool with_next_stretch,
+                                                           double window, int type) const {
+  std::vector<std::uint8_t> mask(zones_->place_count(), 0);
+  int holder_type = 0;
+  auto add = [&](int p) {
+    for (int q : zones_->conflicts(holder_type, p, type)) mask[static_cast<std::size_t>(q)] = 1;
+  };
+  for (int id : others) {
+    auto it = robots_.find(id);
+    if (it == robots_.end()) continue;
+    const Robot& o = it->second;
+    holder_type = o.type;
+    for (int p : o.trail) add(p);
+    int end = o.grant_end;
+    if (with_next_stretch) end = std::max(end, next_stretch_end(o));
+    for (int k = o.first_held; k <= end; ++k) add(o.places[static_cast<std::size_t>(k)]);
+    for (int k = o.first_held;
+         k < static_cast<int>(o.route.size()) && o.cum[static_cast<std::size_t>(k)] <= o.progress + window; ++k) {
+      add(o.places[static_cast<std::size_t>(k)]);
+    }
+  }
+  return mask;
+}
+
+bool TrafficManager::first_stretch_free(const std::vector<int>& points, int slot) const {
+  std::vector<int> places(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) places[i] = zones_->place_of(points[i]);
+  const int last = static_cast<int>(places.size()) - 1;
+  const int type = slots_[static_cast<std::size_t>(slot)]->type;
+  std::vector<int> blockers;
+  for (int j = 1; j <= last; ++j) {
+    if (!place_free_for(slot, places, j, blockers)) return false;
+    if (zones_->stoppable(type, places[static_cast<std::size_t>(j)])) break;
+  }
+  return true;
+}
+
+int TrafficManager::slot_of(int robot_id) const {
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    if (slots_[s]->id == robot_id) return static_cast<int>(s);
+  }
+  return -1;
+}
+
+void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now) {
+  std::vector<int> held = held_places(robot.id);
+  const int start = zones_->place_of(points.front());
+  held.erase(std::remove(held.begin(), held.end(), start), held.end());
+  install_route(robot, std::move(points), robot.version + 1);
+  robot.trail = std::move(held);
+  robot.pending = instruction;
+  robot.last_reroute = now;
+}
+
+bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
+                             TrafficEvent::Kind kind, bool against_one_way) {
+  const int slot = slot_of(robot.id);
+  const int from = anchor_index(robot);
+  const int anchor = robot.route[static_cast<std::size_t>(from)];
+  const int goal = robot.route.back();
+  const auto blocked = places_of_others(others, true, 0.0, robot.type);
+  const TypeGraphs& graphs = *types_[static_cast<std::size_t>(robot.type)];
+  std::vector<int> path = (against_one_way ? graphs.search : graphs.route_search)->shortest(anchor, goal, &blocked);
+  if (path.size() < 2) return false;
+  // Only a different way helps, and only one the robot can start on now.
+  std::vector<int> remaining(robot.route.begin() + from, robot.route.end());
+  if (path == remaining) return false;
+  if (!first_stretch_free(path, slot)) return false;
+  replace_route(robot, std::move(path), Instruction::kReroute, now);
+  out.events.push_back({kind, now, robot.id, others});
+  return true;
+}
+
+bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
+                                    bool clear_of_self) {
+  const int slot = slot_of(robot.id);
+  const int anchor = robot.route[static_cast<std::size_t>(anchor_index(robot))];
+  std::vector<std::uint8_t> here(zones_->place_count(), 0);
+  if (clear_of_self) {
+    for (int p : held_places(robot.id)) {
+      for (int q : zones_->conflicts(robot.type, p, robot.type)) here[static_cast<std::size_t>(q)] = 1;
+    }
+  }
+  // The robot may drive through nothing another robot holds ...
+  std::vector<int> everyone;
+  for (const auto& [id, o] : robots_) {
+    if (id != robot.id) everyone.push_back(id);
+  }
+  const auto through = places_of_others(everyone, false, 0.0, robot.type);
+  // ... and must end off the others' remaining routes, or it would stand in their way again; when
+  // no such place is reachable, off their next `siding_window` metres (they pass it before it
+  // matters).
+  std::vector<int> path;
+  for (double window : {kInfinity, configuration_.siding_window}) {
+    auto avoid = places_of_others(others, true, window, robot.type);
+    for (std::size_t p = 0; p < avoid.size(); ++p) {
+      avoid[p] = static_cast<std::uint8_t>(avoid[p] | through[p] | here[p]);
+    }
+    path = types_[static_cast<std::size_t>(robot.type)]->search->nearest(
+        anchor,
+        [&](int place) { return zones_->stoppable(robot.type, place) && avoid[static_cast<std::size_t>(place)] == 0; },
+        &through);
+    if (path.size() >= 2) break;
+  }
+  if (path.size() < 2) return false;
+  if (!first_stretch_free(path, slot)) return false;
+  const int goal = robot.in_siding ? robot.resume_goal : robot.route.back();
+  replace_route(robot, std::move(path), Instruction::kSiding, now);
+  robot.in_siding = true;
+  robot.resume_goal = goal;
+  robot.yield_to = others;
+  robot.siding_arrival = -1.0;
+  out.events.push_back({TrafficEvent::Kind::kSidingSent, now, robot.id, others});
+  return true;
+}
+
+void TrafficManager::try_resume(Robot& robot, double now, UpdateResult& out) {
+  const int last = static_cast<int>(robot.route.size()) - 1;
+  if (!robot.in_siding || robot.grant_end != last || !robot.stopped) return;
+  if (robot.siding_arrival < 0.0) robot.siding_arrival = now;
+  const TypeGraphs& graphs = *types_[static_cast<std::size_t>(robot.type)];
+  std::vector<int> path = graphs.route_search->shortest(robot.route.back(), robot.resume_goal, nullptr);
+  if (path.empty()) path = graphs.search->shortest(robot.route.back(), robot.resume_goal, nullptr);
+  if (path.size() < 2) {
+    // At the goal already, or the goal is unreachable: nothing to resume.
+    if (path.size() == 1) robot.in_siding = false;
+    return;
+  }
+  std::vector<int> alive;
+  for (int id : robot.yield_to) {
+    if (robots_.count(id) != 0) alive.push_back(id);
+  }
+  const auto theirs = places_of_others(alive, true, configuration_.siding_window, robot.type);
+  bool clear = true;
+  double travelled = 0.0;
+  for (std::size_t i = 1; i < path.size() && travelled <= configuration_.siding_window; ++i) {
+    travelled += search_->edge_length(path[i - 1], path[i]);
+    if (theirs[static_cast<std::size_t>(zones_->place_of(path[i]))]) {
+      clear = false;
+      break;
+    }
+  }
+  if (!clear && now - robot.siding_arrival < configuration_.yield_timeout) return;
+  replace_route(robot, std::move(path), Instruction::kReroute, now);
+  robot.in_siding = false;
+  out.events.push_back({TrafficEvent::Kind::kResumed, now, robot.id, robot.yield_to});
+  robot.yield_to.clear();
+}
+
+// Tarjan's strongly connected components over the wait-for graph of stopped, waiting robots.
+void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
+  const std::size_t n = slots_.size();
+  std::vector<std::vector<int>> edges(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const Robot& r = *slots_[s];
+    if (r.wait_since < 0.0) continue;
+    for (int id : r.blocked_by) {
+      const int t = slot_of(id);
+      if (t >= 0 && slots_[static_cast<std::size_t>(t)]->wait_since >= 0.0) edges[s].push_back(t);
+    }
+  }
+  std::vector<int> index(n, -1), low(n, 0), stack;
+  std::vector<std::uint8_t> on_stack(n, 0);
+  std::vector<std::vector<int>> components;
+  int counter = 0;
+  std::function<void(int)> connect = [&](int v) {
+    const auto sv = static_cast<std::size_t>(v);
+    index[sv] = low[sv] = counter++;
+    stack.push_back(v);
+    on_stack[sv] = 1;
+    for (int w : edges[sv]) {
+      const auto sw = static_cast<std::size_t>(w);
+      if (index[sw] < 0) {
+        connect(w);
+        low[sv] = std::min(low[sv], low[sw]);
+      } else if (on_stack[sw]) {
+        low[sv] = std::min(low[sv], index[sw]);
+      }
+    }
+    if (low[sv] == index[sv]) {
+      std::vector<int> component;
+      int w = -1;
+      do {
+        w = stack.back();
+        stack.pop_back();
+        on_stack[static_cast<std::size_t>(w)] = 0;
+        component.push_back(w);
+      } while (w != v);
+      if (component.size() >= 2) components.push_back(std::move(component));
+    }
+  };
+  for (std::size_t s = 0; s < n; ++s) {
+    if (index[s] < 0 && slots_[s]->wait_since >= 0.0) connect(static_cast<int>(s));
+  }
+  for (auto& component : components) {
+    // A member whose body stops another member's safety check is in the way itself: it yields
+    // first (re-routing the stopped one would not move the body it stands behind). Then lowest
+    // priority first.
+    const auto stops_a_member = [&](const Robot& r) {
+      return std::any_of(component.begin(), component.end(), [&](int m) {
+        const auto& stopped_for = slots_[static_cast<std::size_t>(m)]->stopped_for;
+        return std::binary_search(stopped_for.begin(), stopped_for.end(), r.id);
+      });
+    };
+    std::vector<std::uint8_t> in_the_way(n, 0);
+    for (int s : component) {
+      in_the_way[static_cast<std::size_t>(s)] = stops_a_member(*slots_[static_cast<std::size_t>(s)]) ? 1 : 0;
+    }
+    std::sort(component.begin(), component.end(), [&](int a, int b) {
+      if (in_the_way[static_cast<std::size_t>(a)] != in_the_way[static_cast<std::size_t>(b)]) {
+        return in_the_way[static_cast<std::size_t>(a)] > in_the_way[static_cast<std::size_t>(b)];
+      }
+      return higher_priority(*slots_[static_cast<std::size_t>(b)], *slots_[static_cast<std::size_t>(a)]);
+    });
+    std::vector<int> ids;
+    for (int s : component) ids.push_back(slots_[static_cast<std::size_t>(s)]->id);
+    // The members a robot waits for, and the members waiting for it.
+    const auto waiting = [&](const Robot& waiter, int for_id) {
+      return std::find(waiter.blocked_by.begin(), waiter.blocked_by.end(), for_id) != waiter.blocked_by.end();
+    };
+    const auto blockers_of = [&](const Robot& victim) {
+      std::vector<int> blockers;
+      for (int id : ids) {
+        if (id != victim.id && waiting(victim, id)) blockers.push_back(id);
+      }
+      return blockers;
+    };
+    // One instruction at a time: a member sent a new route that has not reached it yet may break
+    // the cycle by what it does; and a robot just sent one is not picked again until it could act
+    // on it (it may stand where it did for a moment, and a body it stopped may still be reported).
+    const bool instructed =
+        std::any_of(ids.begin(), ids.end(), [&](int id) { return robots_.at(id).pending != Instruction::kNone; });
+    if (instructed) continue;
+    bool resolved = false;
+    for (int s : component) {
+      Robot& victim = *slots_[static_cast<std::size_t>(s)];
+      if (now - victim.last_reroute < kActOnInstruction) continue;
+      // A member already yielding to it on a siding makes way for it: sending it off as well
+      // would only swap who yields, again and again.
+      const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
+        const Robot& other = robots_.at(id);
+        return other.in_siding &&
+               std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
+      });
+      if (yielded_to) continue;
+      // It goes round the robots it waits for, or out of the way of the robots waiting for it.
+      std::vector<int> waiters;
+      for (int id : ids) {
+        if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
+      }
+      if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
+          send_to_siding(victim, waiters, now, out, in_the_way[static_cast<std::size_t>(s)] != 0)) {
+        resolved = true;
+        break;
+      }
+    }
+    // Last resort: a way round against a one-way corridor. Robots standing where the one-way
+    // plan does not expect them (a map switch changed the corridors' directions) can face each
+    // other with no way out along the plan; driving against it is safe, as nobody enters a
+    // corridor towards a robot driving in it (place_free_for).
+    for (std::size_t k = 0; !resolved && configuration_.one_way && k < component.size(); ++k) {
+      Robot& victim = *slots_[static_cast<std::size_t>(component[k])];
+      resolved = reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved, true);
+    }
+    if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
+  }
+}
+
+}  // namespace fleet::traffic
