@@ -185,7 +185,7 @@ std::vector<CommandSpec> make_table() {
        "",
        "",
        false,
-       {},
+       {value("--site", "NAME")},
        "every fleet of the configuration with its vehicle profile; --json: VDA 5050 factsheets"},
       {Group::kOffline,
        "config",

@@ -57,7 +57,14 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
     throw ArgError("--agents " + std::to_string(options_.agents) + ": " + config_.source + " declares " +
                    std::to_string(robots.size()) + " robots; choose 1 .. " + std::to_string(robots.size()));
   }
-  for (int i = 0; i < options_.agents; ++i) robot_ids_.push_back(robots[static_cast<std::size_t>(i)].second->id);
+  // Round robin over the fleets, so that N agents bring every fleet of the site (fk1, rt1, fk2, ...).
+  for (std::size_t index = 0; static_cast<int>(robot_ids_.size()) < options_.agents; ++index) {
+    for (const auto& fleet : config_.fleets) {
+      if (index < fleet.robots.size() && static_cast<int>(robot_ids_.size()) < options_.agents) {
+        robot_ids_.push_back(fleet.robots[index].id);
+      }
+    }
+  }
   run_dir_ = state_dir() + "/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir_);
 }

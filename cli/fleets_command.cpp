@@ -25,7 +25,12 @@ std::string fixed(double value, int digits) {
 }  // namespace
 
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
-  if (!args.args.empty()) throw ArgError("fleets takes no argument, got '" + args.args.front() + "'");
+  // --site only chooses the configuration (config/sites/SITE.yaml), which main() has done.
+  Args flags(args.args);
+  flags.value("site");
+  if (const auto rest = flags.positionals(); !rest.empty()) {
+    throw ArgError("fleets takes no argument, got '" + rest.front() + "'");
+  }
   const config::FleetConfig config = config::load_fleet_config(args.config_file);
   if (args.json) {
     nlohmann::json fleets = nlohmann::json::array();

@@ -438,7 +438,7 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
       out << rows.dump() << "\n";
       return kExitOk;
     }
-    out << std::left << std::setw(8) << "ROBOT" << std::setw(11) << "FLEET" << std::setw(15) << "STATE" << std::setw(24)
+    out << std::left << std::setw(8) << "ROBOT" << std::setw(14) << "FLEET" << std::setw(15) << "STATE" << std::setw(24)
         << "POSE (x, y, yaw)" << std::setw(7) << "ORDER" << std::setw(7) << "LOC"
         << "HEALTH\n";
     for (const auto& r : rows) {
@@ -449,7 +449,7 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
         order << (r["order_id"].get<long>() ? std::to_string(r["order_id"].get<long>()) : "-");
         loc << std::fixed << std::setprecision(2) << r["localization_score"].get<double>();
       }
-      out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(11) << r.value("fleet_id", "-")
+      out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(14) << r.value("fleet_id", "-")
           << std::setw(15) << r.value("state", "-") << std::setw(24) << pose.str() << std::setw(7) << order.str()
           << std::setw(7) << loc.str() << r["health"].get<std::string>() << "\n";
     }

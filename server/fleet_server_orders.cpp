@@ -172,7 +172,11 @@ void FleetServer::create_auto_orders() {
       std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
   const long queued = static_cast<long>(book_.with_status(OrderStatus::kQueued).size());
   if (free_robots <= queued) return;
-  const auto choice = orders::choose_auto_transport(ledger_, book_, rng_);
+  const auto names = known_names();
+  const auto doable = [&](const std::string& pick, const std::string& drop) {
+    return !orders::check_order_request({"", pick, drop, "", "", 0}, names).has_value();
+  };
+  const auto choice = orders::choose_auto_transport(ledger_, book_, rng_, doable);
   if (!choice) return;
   Order draft;
   draft.request_id = "auto";

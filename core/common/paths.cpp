@@ -36,6 +36,10 @@ std::string default_config_path() {
   return project_root() + "/config/fleet.yaml";
 }
 
+std::string site_config_path(const std::string& site) {
+  return project_root() + "/config/sites/" + site + ".yaml";
+}
+
 std::string maps_dir() {
   return project_root() + "/maps";
 }

@@ -13,6 +13,8 @@ std::string project_root();
 
 /// config/fleet.yaml under the project root.
 std::string default_config_path();
+/// The configuration a site brings with its own fleets: config/sites/SITE.yaml (it may not exist).
+std::string site_config_path(const std::string& site);
 
 /// maps/ under the project root.
 std::string maps_dir();

@@ -44,6 +44,23 @@ std::optional<RequestProblem> check_places(OrderKind kind, const OrderRequestFie
   return std::nullopt;
 }
 
+/// Every step's actions must be offered by its place (a finished-goods place behind its limiter is
+/// picked from, never dropped at).
+std::optional<RequestProblem> check_place_actions(const OrderRequestFields& request, const KnownNames& names) {
+  const auto steps = steps_of(request, names);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto offered = names.place_actions.find(steps[i].place);
+    if (offered == names.place_actions.end()) continue;
+    for (const auto& action : steps[i].actions) {
+      if (std::find(offered->second.begin(), offered->second.end(), action) == offered->second.end()) {
+        return RequestProblem{i == 0 && steps.size() > 1 ? "from" : "to",
+                              steps[i].place + " offers " + model::join(offered->second) + ", not '" + action + "'"};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 /// Some fleet allowed by the request must be able to do every step.
 std::optional<RequestProblem> check_capability(const OrderRequestFields& request, const KnownNames& names) {
   if (names.abilities.empty()) return std::nullopt;
@@ -78,6 +95,10 @@ std::vector<OrderStep> steps_of(const OrderRequestFields& request, const KnownNa
 KnownNames known_names(const config::FleetConfig& config, const map::Site& site) {
   KnownNames names;
   names.areas = site.area_ids();
+  for (const auto& area : site.loading_areas) {
+    names.heights[area.id] = area.height;
+    names.place_actions[area.id] = area.actions;
+  }
   for (const auto& home : site.homes) names.homes.push_back(home.id);
   for (const auto& [fleet, robot] : config.all_robots()) {
     names.robots.push_back(robot->id);
@@ -95,6 +116,7 @@ std::optional<RequestProblem> check_order_request(const OrderRequestFields& requ
     return RequestProblem{"kind", "'" + request.kind + "' is not an order kind (" + kind_names() + ")"};
   }
   if (auto problem = check_places(kind_of(request), request, names)) return problem;
+  if (auto problem = check_place_actions(request, names)) return problem;
   if (!request.robot.empty() && !known(names.robots, request.robot)) {
     return RequestProblem{"robot", model::unknown_name_message("robot", request.robot, names.robots)};
   }

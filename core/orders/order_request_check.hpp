@@ -40,6 +40,8 @@ struct KnownNames {
   std::map<std::string, std::string> fleet_of_robot;
   std::vector<FleetAbility> abilities;    ///< one per fleet; empty: capabilities are not checked
   std::map<std::string, double> heights;  ///< load height of a place, metres; absent: 0
+  /// The actions each place offers (VDA 5050 names); a place absent here offers every action.
+  std::map<std::string, std::vector<std::string>> place_actions;
 };
 
 /// The names and abilities of a configuration on a site.

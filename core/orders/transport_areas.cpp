@@ -49,7 +49,7 @@ bool ready_to_dispatch(const AreaLedger& ledger, const Order& order) {
 }
 
 std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, const OrderBook& book,
-                                                     std::mt19937_64& rng) {
+                                                     std::mt19937_64& rng, const TransportFilter& doable) {
   constexpr int kTries = 16;
   std::set<std::string> promised;
   for (const auto& [id, o] : book.all()) {
@@ -66,7 +66,7 @@ std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, c
   for (int attempt = 0; attempt < kTries; ++attempt) {
     const std::string& pick = picks[rng() % picks.size()];
     const std::string& drop = drops[rng() % drops.size()];
-    if (why_not_transport(ledger, book, pick, drop).empty()) return TransportChoice{pick, drop};
+    if (why_not_transport(ledger, book, pick, drop).empty() && doable(pick, drop)) return TransportChoice{pick, drop};
   }
   return std::nullopt;
 }

@@ -2,6 +2,7 @@
 // Which places a transport may use, counted with the ledger and every open order: an order picks
 // a load that will be there and drops where there will be room.
 
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -32,8 +33,10 @@ struct TransportChoice {
 
 /// An automatic transport [Forklift thesis, section 3]: from a load standing on a place now to a
 /// place free now, neither promised to an open order, so it never waits on another. Drawn at
-/// random with `rng` (a few tries); nothing when no pair is possible.
+/// random with `rng` (a few tries) among the pairs `doable` accepts (the places offer pick and drop,
+/// and some fleet reaches and handles both); nothing when no pair is possible.
+using TransportFilter = std::function<bool(const std::string& pick, const std::string& drop)>;
 std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, const OrderBook& book,
-                                                     std::mt19937_64& rng);
+                                                     std::mt19937_64& rng, const TransportFilter& doable);
 
 }  // namespace fleet::orders

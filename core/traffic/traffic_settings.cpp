@@ -8,7 +8,7 @@
 namespace fleet::traffic {
 
 geometry::Polygon footprint_polygon_of(const config::FleetSpec& fleet) {
-  return rectangle_footprint(fleet.footprint);
+  return fleet.profile.footprint;
 }
 
 TrafficConfiguration configuration_from(const config::FleetConfig& config) {

@@ -7,6 +7,7 @@
 using namespace fleet::orders;
 
 namespace {
+const TransportFilter kAnyPair = [](const std::string&, const std::string&) { return true; };
 struct Site {
   AreaLedger ledger{{{"A1", {}}, {"A2", {}}, {"A3", {}}, {"A4", {}}}};
   OrderBook book;
@@ -70,7 +71,7 @@ TEST(TransportAreas, AnAutomaticTransportUsesNoPromisedPlace) {
   std::set<std::string> picks, drops;
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
     std::mt19937_64 rng(seed);
-    const auto choice = choose_auto_transport(site.ledger, site.book, rng);
+    const auto choice = choose_auto_transport(site.ledger, site.book, rng, kAnyPair);
     ASSERT_TRUE(choice.has_value());
     picks.insert(choice->pick);
     drops.insert(choice->drop);
@@ -84,15 +85,32 @@ TEST(TransportAreas, NoAutomaticTransportWithoutAFreePlace) {
   site.ledger.record({3, "pallet", {}, "A3", ""});
   site.ledger.record({4, "pallet", {}, "A4", ""});
   std::mt19937_64 rng(1);
-  EXPECT_FALSE(choose_auto_transport(site.ledger, site.book, rng).has_value());
+  EXPECT_FALSE(choose_auto_transport(site.ledger, site.book, rng, kAnyPair).has_value());
 }
 
 TEST(TransportAreas, AnAutomaticTransportIsReproducibleFromItsSeed) {
   Site site;
   std::mt19937_64 a(42), b(42);
-  const auto first = choose_auto_transport(site.ledger, site.book, a);
-  const auto second = choose_auto_transport(site.ledger, site.book, b);
+  const auto first = choose_auto_transport(site.ledger, site.book, a, kAnyPair);
+  const auto second = choose_auto_transport(site.ledger, site.book, b, kAnyPair);
   ASSERT_TRUE(first && second);
   EXPECT_EQ(first->pick, second->pick);
   EXPECT_EQ(first->drop, second->drop);
+}
+
+TEST(TransportAreas, AutomaticOrdersAreOnlyPairsTheFilterAccepts) {
+  // Only one pair is doable (a fleet that reaches one drop place): every choice is that pair.
+  Site site;
+  std::mt19937_64 rng(3);
+  int chosen = 0;
+  for (int i = 0; i < 50; ++i) {
+    const auto choice = choose_auto_transport(site.ledger, site.book, rng, [](const std::string& pick, const std::string& drop) {
+      return pick == "A1" && drop == "A3";
+    });
+    if (!choice) continue;
+    ++chosen;
+    EXPECT_EQ(choice->pick, "A1");
+    EXPECT_EQ(choice->drop, "A3");
+  }
+  EXPECT_GT(chosen, 0);
 }
