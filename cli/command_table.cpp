@@ -181,6 +181,17 @@ std::vector<CommandSpec> make_table() {
         choice("--follower", {"seed", "regulated"}), on_off("--gyro-cal"), file("--plot", "F.svg")},
        "path tracking, picks and drops on core/ alone"},
       {Group::kOffline,
+       "traffic-eval",
+       "",
+       "",
+       false,
+       {value("--site", "NAME"), value("--against", "SITE"), value("--robots", "N"), value("--duration", "S"),
+        value("--dwell", "S"), value("--seed", "S"), value("--places", "P1,P2")},
+       "the traffic manager with the fleets' vehicle types on a site, robots driven\n"
+       "kinematically (a load generator) on random trips (--places FG,EX: only between\n"
+       "places whose ids start so); --against SITE runs the same on a revision and\n"
+       "prints the ratio of trips"},
+      {Group::kOffline,
        "fleets",
        "",
        "",

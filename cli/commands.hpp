@@ -35,5 +35,6 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
 int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // plan-eval
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // ctrl-eval
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // fleets
+int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
 
 }  // namespace fleet::cli

@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
     if (name == "plan-eval") return plan_eval_command(command, out, err);
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
     if (name == "fleets") return fleets_command(command, out, err);
+    if (name == "traffic-eval") return traffic_eval_command(command, out, err);
     if (name == "config") {
       if (!command.args.empty() && command.args[0] == "keys") {
         Args keys_args(std::vector<std::string>(command.args.begin() + 1, command.args.end()));

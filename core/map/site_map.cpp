@@ -65,13 +65,17 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   report.weak_components = weak_components(graph, weak);
   report.strong_components = strong_components(graph, strong);
 
-  const double area_reach = 0.5 * map.site.road_width + options.slack;
+  // Reaches are measured from the lane a place is handled from: half its width plus a slack (the
+  // site's road_width where a lane has no width of its own).
+  const auto half_lane = [&](int point) {
+    const double width = point >= 0 ? graph.points[static_cast<std::size_t>(point)].lane_width : 0.0;
+    return 0.5 * (width > 0.0 ? width : map.site.road_width);
+  };
   const std::vector<int> area_lines = entry_lines(map.site.file, "loading_areas");
   const std::vector<int> home_lines = entry_lines(map.site.file, "homes");
 
-  const double home_reach = 0.5 * map.site.road_width + options.home_slack;
   const double approach = options.approach_distance > 0.0 ? options.approach_distance : map.site.approach_distance;
-  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y, double reach) {
+  const auto place = [&](const std::string& id, const std::string& key, int line, double x, double y, double slack) {
     PlaceReach p;
     p.id = id;
     p.key = key;
@@ -79,6 +83,7 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
     p.approach_x = x;
     p.approach_y = y;
     p.nearest_point = nearest_point(graph, x, y, &p.distance);
+    const double reach = half_lane(p.nearest_point) + slack;
     if (p.nearest_point < 0) {
       p.problem = "the road graph is empty";
     } else if (p.distance > reach) {
@@ -94,13 +99,14 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
     const double ax = a.pose.x + approach * std::cos(a.pose.yaw);
     const double ay = a.pose.y + approach * std::sin(a.pose.yaw);
     PlaceReach p = place(a.id, "loading_areas[" + std::to_string(i) + "]", i < area_lines.size() ? area_lines[i] : 0,
-                         ax, ay, area_reach);
+                         ax, ay, options.slack);
     if (p.problem.empty()) {
-      const double pallet_to_road = distance_to_graph(graph, a.pose.x, a.pose.y);
-      if (pallet_to_road < 0.5 * map.site.road_width) {
+      double pallet_to_road = 0.0;
+      const int road_point = nearest_point(graph, a.pose.x, a.pose.y, &pallet_to_road);
+      if (pallet_to_road < half_lane(road_point)) {
         p.problem = "the pallet at (" + fixed(a.pose.x) + ", " + fixed(a.pose.y) + ") stands on a road (" +
-                    fixed(pallet_to_road) + " m from a lane centre, road half-width " +
-                    fixed(0.5 * map.site.road_width) + " m)";
+                    fixed(pallet_to_road) + " m from a lane centre, lane half-width " +
+                    fixed(half_lane(road_point)) + " m)";
       }
     }
     report.areas.push_back(std::move(p));
@@ -108,7 +114,7 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   for (std::size_t i = 0; i < map.site.homes.size(); ++i) {
     const Home& h = map.site.homes[i];
     report.homes.push_back(place(h.id, "homes[" + std::to_string(i) + "]", i < home_lines.size() ? home_lines[i] : 0,
-                                 h.pose.x, h.pose.y, home_reach));
+                                 h.pose.x, h.pose.y, options.home_slack));
   }
 
   // The main component is the strong component most places attach to; a place elsewhere can be

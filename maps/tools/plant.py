@@ -46,8 +46,8 @@ RACK_ROWS = {"R1": (9.0, 10.2), "R2": (13.2, 15.6), "R3": (18.6, 19.8), "R4": (3
 HIGH_LEVELS = (2.2, 4.4)                   # load heights of the upper rack levels, metres
 
 
-def network():
-    net = LaneNetwork("plant")
+def network(name="plant", corridor_lanes=2):
+    net = LaneNetwork(name)
     for name, x, y in [("sw", WEST_X, SOUTH_Y), ("sm", MID_X, SOUTH_Y), ("se", EAST_X, SOUTH_Y),
                        ("nw", WEST_X, NORTH_Y), ("nm", MID_X, NORTH_Y), ("ne", EAST_X, NORTH_Y),
                        ("corridor_w", WEST_X, CORRIDOR_Y), ("corridor_e", MID_X, CORRIDOR_Y),
@@ -72,7 +72,11 @@ def network():
     aisle(["sw", "corridor_w", "nw"], "west aisle")
     aisle(["sm", "rack_w", "corridor_e", "nm"], "middle aisle")
     aisle(["se", "rack_e", "upper_e", "ne"], "east aisle")
-    net.edge("corridor_w", "corridor_e", "finished-goods corridor", TWO, CORRIDOR_LANE)
+    if corridor_lanes == 2:
+        net.edge("corridor_w", "corridor_e", "finished-goods corridor", TWO, CORRIDOR_LANE)
+    else:
+        # The same 2.98 m corridor as one lane driven both ways: robots meeting in it take turns.
+        net.edge("corridor_w", "corridor_e", "finished-goods corridor", ONE, 2 * CORRIDOR_LANE)
     net.edge("corridor_e", "upper_e", "rack aisle 2", TWO, RACK_LANE)
     net.edge("rack_w", "rack_e", "rack aisle 1", TWO, RACK_LANE)
     for k in range(len(PACKING_XS)):
@@ -184,16 +188,20 @@ def markers():
     return numbered
 
 
-def site_yaml(places, rack_list, marker_list):
+def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2):
+    header = ("# The plant: 60 m x 30 m at real scale, for several fleets at once; see docs/maps.md."
+              if corridor_lanes == 2 else
+              "# A revision of the plant with the finished-goods corridor as one two-way lane, to measure what\n"
+              "# its two lanes are worth (docs/traffic.md); everything else as in plant.yaml.")
     lines = [
-        "# The plant: 60 m x 30 m at real scale, for several fleets at once; see docs/maps.md.",
+        header,
         "# Finished-goods corridor 2.98 m with two lanes of 1.49 m [Stacker thesis, section 4.1.2], cross",
         "# aisles 3.5 m and rack aisles 3.0 m with two lanes each (keep right), narrow single-lane spurs",
         "# 0.95 m, rack pillars every 3.5 m with markers [Picker thesis, section 4.2.9.3].",
         "# Places: yaw points from the load towards the road it is handled from. Written by",
         "# maps/tools/make_maps.py.",
-        "name: plant",
-        "opendrive: plant.xodr",
+        f"name: {name}",
+        f"opendrive: {name}.xodr",
         f"bounds: {{min_x: 0, min_y: 0, max_x: {fmt(WIDTH)}, max_y: {fmt(HEIGHT)}}}",
         f"road_width: {fmt(CORRIDOR_LANE)}",
         "graph_spacing: 0.5",
@@ -237,7 +245,7 @@ def site_yaml(places, rack_list, marker_list):
     return "\n".join(lines) + "\n"
 
 
-def plant():
-    net = network()
+def plant(name="plant", corridor_lanes=2):
+    net = network(name, corridor_lanes)
     places = corridor_and_open_places() + rack_places()
-    return net, site_yaml(places, racks(), markers())
+    return net, site_yaml(places, racks(), markers(), name, corridor_lanes)

@@ -1,0 +1,119 @@
+// fleetctl traffic-eval: the traffic manager on a site with the configuration's fleets, robots
+// driven kinematically by the core simulator (a load generator, not the agents), and the same run
+// on a revision of the site for comparison.
+
+#include <algorithm>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "common/args.hpp"
+#include "common/paths.hpp"
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "model/names.hpp"
+#include "traffic/traffic_settings.hpp"
+#include "traffic/traffic_sim.hpp"
+
+namespace fleet::cli {
+
+namespace {
+
+struct EvalSpec {
+  int robots = 8;
+  double duration_s = 1800.0;
+  double dwell_s = 10.0;
+  std::uint64_t seed = 1;
+  std::vector<std::string> place_prefixes;  ///< trips only between places whose ids start so; empty: all
+};
+
+nlohmann::json run_site(const std::string& site_name, const config::FleetConfig& config, const EvalSpec& spec) {
+  map::SiteMap site = map::load_site_map(map::site_path(maps_dir(), site_name));
+  if (!spec.place_prefixes.empty()) {
+    std::erase_if(site.site.loading_areas, [&](const map::LoadingArea& area) {
+      return std::none_of(spec.place_prefixes.begin(), spec.place_prefixes.end(),
+                          [&](const std::string& prefix) { return area.id.starts_with(prefix); });
+    });
+    if (site.site.loading_areas.size() < 2) {
+      throw ArgError("--places: fewer than two places of " + site_name + " start with " +
+                     model::join(spec.place_prefixes));
+    }
+  }
+  traffic::TrafficConfiguration configuration = traffic::configuration_from(config);
+  const traffic::ConflictZones zones(site.graph.graph, configuration.resources);
+  const auto scenario = traffic::site_scenario(site, zones, spec.robots, site.site.approach_distance);
+  traffic::SimParams params;
+  params.seed = spec.seed;
+  params.dwell = spec.dwell_s;
+  params.check_invariant = false;
+  // Robots take their fleets in turn, as `fleetctl demo` starts them; all drive at the slowest
+  // fleet's top speed so that the sites, not the vehicles, make the difference.
+  params.speed = 1e9;
+  for (std::size_t f = 0; f < config.fleets.size(); ++f) {
+    params.speed = std::min(params.speed, config.fleets[f].profile.max_speed);
+  }
+  for (int i = 0; i < spec.robots; ++i) params.robot_types.push_back(i % static_cast<int>(config.fleets.size()));
+  params.footprint = config.fleets.front().footprint;
+  traffic::TrafficSim sim(site.graph.graph, configuration, params, scenario.goal_points, scenario.start_points);
+  const traffic::SimReport& r = sim.run_until(spec.duration_s);
+  return {{"site", site_name},
+          {"trips", r.trips},
+          {"mean_trip_s", r.mean_trip_s},
+          {"collisions", r.collisions},
+          {"deadlocks", r.deadlocks},
+          {"max_wait_s", r.max_wait_s},
+          {"reroutes", r.reroutes},
+          {"sidings", r.sidings}};
+}
+
+}  // namespace
+
+int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
+  Args flags(args.args);
+  const config::FleetConfig config = config::load_fleet_config(args.config_file);
+  const std::string site = flags.value("site").value_or(config.settings.get_string("site"));
+  const auto against = flags.value("against");
+  EvalSpec spec;
+  spec.robots = static_cast<int>(flags.integer("robots", 1, 200).value_or(spec.robots));
+  spec.duration_s = flags.number("duration", 1.0, 1e6).value_or(spec.duration_s);
+  spec.dwell_s = flags.number("dwell", 0.0, 600.0).value_or(spec.dwell_s);
+  spec.seed = flags.u64("seed").value_or(spec.seed);
+  if (const auto places = flags.value("places")) {
+    std::string rest = *places;
+    for (std::size_t comma; (comma = rest.find(',')) != std::string::npos; rest.erase(0, comma + 1)) {
+      if (comma > 0) spec.place_prefixes.push_back(rest.substr(0, comma));
+    }
+    if (!rest.empty()) spec.place_prefixes.push_back(rest);
+  }
+  if (const auto rest = flags.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+  for (const auto& name : against ? std::vector<std::string>{site, *against} : std::vector<std::string>{site}) {
+    if (!std::filesystem::exists(map::site_path(maps_dir(), name))) {
+      throw ArgError(model::unknown_name_message("site", name, map::site_names(maps_dir())));
+    }
+  }
+  nlohmann::json runs = nlohmann::json::array({run_site(site, config, spec)});
+  if (against) runs.push_back(run_site(*against, config, spec));
+  nlohmann::json doc{{"config", config.source}, {"robots", spec.robots},   {"duration_s", spec.duration_s},
+                     {"seed", spec.seed},       {"dwell_s", spec.dwell_s},
+                     {"places", spec.place_prefixes}, {"runs", runs}};
+  if (against) {
+    const double b = runs[1]["trips"].get<double>();
+    doc["trips_ratio"] = b > 0.0 ? runs[0]["trips"].get<double>() / b : 0.0;
+  }
+  if (args.json) {
+    out << doc.dump() << "\n";
+    return kExitOk;
+  }
+  out << "traffic-eval: " << spec.robots << " robots of " << config.source << ", " << spec.duration_s
+      << " s sim, seed " << spec.seed << " (kinematic robots under the real traffic manager)\n";
+  for (const auto& r : runs) {
+    out << "  " << std::left << std::setw(18) << r["site"].get<std::string>() << r["trips"].get<long>() << " trips, "
+        << r["collisions"].get<long>() << " collisions, " << r["deadlocks"].get<long>() << " deadlocks, longest wait "
+        << std::fixed << std::setprecision(1) << r["max_wait_s"].get<double>() << " s, " << r["reroutes"].get<long>()
+        << " re-routes\n";
+  }
+  if (against) out << "  trips ratio " << site << " / " << *against << ": " << std::setprecision(2) << doc["trips_ratio"].get<double>() << "\n";
+  return kExitOk;
+}
+
+}  // namespace fleet::cli

@@ -1,0 +1,66 @@
+// fleetctl fleets and traffic-eval through the entry points fleetctl calls.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.hpp"
+#include "common/args.hpp"
+
+using namespace fleet::cli;
+
+namespace {
+
+struct CommandRun {
+  int code = -1;
+  std::string out;
+};
+
+template <typename Command>
+CommandRun run(Command command, std::vector<std::string> args, const std::string& config) {
+  CommandArgs a;
+  a.args = std::move(args);
+  a.json = true;
+  a.config_file = std::string(FLEET_SOURCE_DIR) + "/config/" + config;
+  a.source_dir = FLEET_SOURCE_DIR;
+  std::ostringstream out, err;
+  CommandRun r;
+  r.code = command(a, out, err);
+  r.out = out.str();
+  return r;
+}
+
+}  // namespace
+
+TEST(FleetsCommand, ThePlantHasTwoFleetsOfDifferentVehicles) {
+  const auto r = run(fleets_command, {}, "sites/plant.yaml");
+  ASSERT_EQ(r.code, 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["fleets"].size(), 2u);
+  EXPECT_EQ(doc["fleets"][0]["fleet"], "forklifts");
+  EXPECT_EQ(doc["fleets"][1]["fleet"], "reach_trucks");
+  EXPECT_LT(doc["fleets"][0]["physicalParameters"]["width"].get<double>(),
+            doc["fleets"][1]["physicalParameters"]["width"].get<double>());
+  EXPECT_GT(doc["fleets"][1]["loadSpecification"]["loadSets"][0]["maxLoadhandlingHeight"].get<double>(), 4.4);
+}
+
+TEST(TrafficEval, ComparesTheSameTripsOnTwoSitesWithoutCollisions) {
+  const auto r = run(traffic_eval_command,
+                     {"--site", "plant", "--against", "plant_one_lane", "--robots", "4", "--duration", "300"},
+                     "sites/plant.yaml");
+  ASSERT_EQ(r.code, 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["runs"].size(), 2u);
+  for (const auto& run : doc["runs"]) {
+    EXPECT_EQ(run["collisions"], 0) << run;
+    EXPECT_GT(run["trips"].get<int>(), 0) << run;
+  }
+  EXPECT_GT(doc["trips_ratio"].get<double>(), 0.0);
+}
+
+TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
+  EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plantt"}, "sites/plant.yaml"),
+               fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);
+}
