@@ -150,7 +150,11 @@ bool FleetRun::poll() {
                  d.detected - d.since, d.pose.x, d.pose.y);
       write_tracks("deadlock-" + std::to_string(progress_.deadlocks().size()) + "-" + d.robot_id, 90.0, truth.sim_time);
     }
-    for (const auto& c : collisions_.update(truth.robot_id, truth.pose, truth.footprint, truth.sim_time)) {
+    // The true shape is the robot's fleet's footprint polygon; SimTruth carries only its extent.
+    const auto robot = config_.find_robot(truth.robot_id);
+    const geometry::Polygon body = robot ? robot->first->profile.footprint
+                                         : geometry::footprint_polygon({0.0, 0.0, 0.0}, truth.footprint);
+    for (const auto& c : collisions_.update(truth.robot_id, truth.pose, body, truth.sim_time)) {
       log_->warn(
           "collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}, yaw {:.2f}) and {} at ({:.3f}, {:.3f}, yaw {:.2f})",
           c.sim_time - start_sim_, c.robot_a, c.pose_a.x, c.pose_a.y, c.pose_a.yaw, c.robot_b, c.pose_b.x, c.pose_b.y,
@@ -203,6 +207,22 @@ double FleetRun::wall_seconds() const {
 
 double FleetRun::sim_seconds() const {
   return wall_seconds() * options_.time_scale;
+}
+
+std::string fleet_counts(const std::map<std::string, long>& counts) {
+  std::string out;
+  for (const auto& [fleet, count] : counts) out += (out.empty() ? "" : ", ") + fleet + " " + std::to_string(count);
+  return out;
+}
+
+std::map<std::string, long> FleetRun::done_by_fleet() const {
+  std::map<std::string, long> done;
+  for (const auto& fleet : config_.fleets) done[fleet.id] = 0;
+  for (const auto& [id, order] : orders_) {
+    if (order.state != "DONE") continue;
+    if (const auto robot = config_.find_robot(order.robot_id)) ++done[robot->first->id];
+  }
+  return done;
 }
 
 monitor::OrderTally FleetRun::tally() const {
@@ -291,6 +311,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"orders_cancelled", t.cancelled},
                          {"orders_open", t.open},
                          {"orders_lost", t.lost},
+                         {"orders_done_by_fleet", run.done_by_fleet()},
                          {"collisions", run.collisions().size()},
                          {"stalls", stalls.size()},
                          {"stalled", stalls},
@@ -308,6 +329,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     out << "Fleet demo summary (" << summary["sim_seconds"] << " s sim, " << summary["wall_seconds"] << " s wall)\n"
         << "  orders: " << t.created << " created, " << t.done << " done, " << t.failed << " failed, " << t.cancelled
         << " cancelled, " << t.open << " open, " << t.lost << " lost\n"
+        << "  done per fleet: " << fleet_counts(run.done_by_fleet()) << "\n"
         << "  collisions: " << run.collisions().size() << "\n"
         << "  stalls (an open order without progress for 60 s sim): " << stalls.size() << "\n"
         << "  processes that ended on their own: " << (run.crashes().empty() ? "none" : model::join(run.crashes()))

@@ -58,6 +58,9 @@ class FleetRun {
   /// Robots with an order that made no progress for 60 sim seconds (see ProgressMonitor).
   const monitor::ProgressMonitor& progress() const { return progress_; }
   const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
+  /// Orders done in the run per fleet of the robot that did them, every fleet of the
+  /// configuration listed (0 when none).
+  std::map<std::string, long> done_by_fleet() const;
   /// The robot was frozen or down by an injected fault: its progress watch starts again, so the
   /// time it was gone does not count as time without progress.
   void forget_progress(const std::string& robot_id) { progress_.forget(robot_id); }
@@ -100,6 +103,9 @@ class FleetRun {
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;
 };
+
+/// "forklifts 12, reach_trucks 9", for the summaries.
+std::string fleet_counts(const std::map<std::string, long>& counts);
 
 /// `fleetctl soak` (soak_command.cpp).
 int soak_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);

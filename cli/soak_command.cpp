@@ -446,6 +446,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"orders_failed", tally.failed},
                          {"orders_open", tally.open},
                          {"orders_lost", tally.lost},
+                         {"orders_done_by_fleet", run.done_by_fleet()},
                          {"orders_duplicated", duplicated},
                          {"collisions", run.collisions().size()},
                          {"deadlocks", run.progress().deadlocks().size()},
@@ -491,6 +492,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << " s wall, traffic " << traffic << ")\n"
         << "  orders: " << tally.created << " created, " << tally.done << " done, " << tally.failed << " failed, "
         << tally.open << " open, " << tally.lost << " lost, " << duplicated << " done twice\n"
+        << "  done per fleet: " << fleet_counts(run.done_by_fleet()) << "\n"
         << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
         << " s sim; longest wait " << summary["max_wait_s"] << " s\n"
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"

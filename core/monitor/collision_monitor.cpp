@@ -4,17 +4,35 @@
 
 namespace fleet::monitor {
 
+namespace {
+
+geometry::Polygon placed(const geometry::Polygon& body, const geometry::Pose2& pose) {
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  geometry::Polygon out;
+  out.reserve(body.size());
+  for (const auto& p : body) out.push_back({pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y});
+  return out;
+}
+
+}  // namespace
+
 std::vector<Collision> CollisionMonitor::update(const std::string& robot_id, const geometry::Pose2& pose,
                                                 const geometry::Footprint& footprint, double sim_time) {
+  // The rectangle in the body frame: the footprint polygon at the origin.
+  return update(robot_id, pose, geometry::footprint_polygon({0.0, 0.0, 0.0}, footprint), sim_time);
+}
+
+std::vector<Collision> CollisionMonitor::update(const std::string& robot_id, const geometry::Pose2& pose,
+                                                const geometry::Polygon& body, double sim_time) {
   std::vector<Collision> started;
   if (!geometry::is_finite(pose)) return started;
-  truths_[robot_id] = {pose, footprint, sim_time};
-  const geometry::Polygon mine = geometry::footprint_polygon(pose, footprint);
+  truths_[robot_id] = {pose, body, sim_time};
+  const geometry::Polygon mine = placed(body, pose);
   for (const auto& [other_id, other] : truths_) {
     if (other_id == robot_id || std::abs(other.sim_time - sim_time) > max_skew_) continue;
     const auto key = robot_id < other_id ? std::make_pair(robot_id, other_id) : std::make_pair(other_id, robot_id);
-    const bool overlap =
-        geometry::convex_polygons_overlap(mine, geometry::footprint_polygon(other.pose, other.footprint));
+    // Footprints of vehicle profiles may be concave: the general test.
+    const bool overlap = geometry::polygons_overlap(mine, placed(other.body, other.pose));
     if (overlap && in_contact_.insert(key).second) {
       Collision c{sim_time, robot_id, other_id, pose, other.pose};
       collisions_.push_back(c);

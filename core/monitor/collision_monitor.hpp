@@ -28,6 +28,9 @@ class CollisionMonitor {
   /// Records a robot's true pose; returns the collisions this update starts.
   std::vector<Collision> update(const std::string& robot_id, const geometry::Pose2& pose,
                                 const geometry::Footprint& footprint, double sim_time);
+  /// The same for a footprint polygon in the body frame (a vehicle profile's).
+  std::vector<Collision> update(const std::string& robot_id, const geometry::Pose2& pose,
+                                const geometry::Polygon& body, double sim_time);
 
   /// Forgets a robot (its process ended).
   void remove(const std::string& robot_id);
@@ -37,7 +40,7 @@ class CollisionMonitor {
  private:
   struct Truth {
     geometry::Pose2 pose;
-    geometry::Footprint footprint;
+    geometry::Polygon body;  ///< body frame
     double sim_time = 0.0;
   };
   double max_skew_;

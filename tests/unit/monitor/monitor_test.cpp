@@ -149,3 +149,15 @@ TEST(TrackRecorder, WhatItWritesReadsBackAndABadRowIsNamedWithItsLine) {
   std::istringstream short_row("fl1,1.0,0.5\n");
   EXPECT_THROW(read_tracks_csv(short_row, "tracks.csv"), std::runtime_error);
 }
+
+TEST(CollisionMonitor, PolygonFootprintsCollideOnlyWhereTheirShapesMeet) {
+  // A body with its rear corners cut (a reach truck's chamfers): a small robot standing in the cut
+  // is inside the rectangle extent but touches nothing.
+  const fleet::geometry::Polygon chamfered{{0.8, -0.45}, {0.8, 0.45}, {-0.6, 0.45}, {-0.8, 0.25}, {-0.8, -0.25},
+                                           {-0.6, -0.45}};
+  const fleet::geometry::Polygon small{{0.05, -0.05}, {0.05, 0.05}, {-0.05, 0.05}, {-0.05, -0.05}};
+  fleet::monitor::CollisionMonitor monitor;
+  monitor.update("rt1", {0.0, 0.0, 0.0}, chamfered, 1.0);
+  EXPECT_TRUE(monitor.update("s1", {-0.79, 0.42, 0.0}, small, 1.0).empty());
+  EXPECT_EQ(monitor.update("s1", {-0.5, 0.42, 0.0}, small, 1.02).size(), 1u);
+}
