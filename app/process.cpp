@@ -27,7 +27,7 @@ std::optional<config::FleetConfig> read_config(Args& args, const char* help, std
     out << help;
     return std::nullopt;
   }
-  const std::string config_path = args.value("config").value_or(default_config_path());
+  const std::string config_path = config_path_for(args.value("config"), args.peek("site"));
   config::FleetConfig config = config::load_fleet_config(config_path);
   config::apply_common_flags(args, config);
   return config;

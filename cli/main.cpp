@@ -56,17 +56,8 @@ int main(int argc, char** argv) {
     Args args(argc, argv);
     CommandArgs command;
     command.json = args.flag("json");
-    const auto config_flag = args.value("config");
-    command.config_file = config_flag.value_or(default_config_path());
     // A site with fleets of its own (config/sites/SITE.yaml) brings them when no --config is given.
-    if (!config_flag) {
-      const auto& rest = args.remaining();
-      for (std::size_t i = 0; i + 1 < rest.size(); ++i) {
-        if (rest[i] == "--site" && std::filesystem::exists(site_config_path(rest[i + 1]))) {
-          command.config_file = site_config_path(rest[i + 1]);
-        }
-      }
-    }
+    command.config_file = config_path_for(args.value("config"), args.peek("site"));
     command.source_dir = project_root();
     const auto domain_flag = args.integer("domain", 0, 232);
     const auto timeout_flag = args.number("timeout", 0.1, 1e6);

@@ -14,11 +14,12 @@
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "config/fleet_config.hpp"
-#include "map/site.hpp"
+#include "map/site_map.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "orders/order.hpp"
 #include "orders/order_request_check.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::cli {
 
@@ -47,8 +48,13 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   // The check the server and the web API make too; a name it refuses is bad input (exit 2).
   // The fleets and their abilities from the configuration, the place heights from the site the
   // server serves, the place names from the server itself.
-  const auto site = map::load_site(known_site_path(command.source_dir, info.site));
-  orders::KnownNames names = orders::known_names(config::load_fleet_config(command.config_file), site);
+  const auto site = map::load_site_map(known_site_path(command.source_dir, info.site));
+  const auto config = config::load_fleet_config(command.config_file);
+  orders::KnownNames names = orders::known_names(config, site.site);
+  for (auto& ability : names.abilities) {
+    ability.out_of_reach =
+        traffic::places_out_of_reach(site, traffic::fleet_graph(site.graph.graph, config, ability.fleet_id));
+  }
   names.areas = info.loading_areas;
   names.homes = info.homes;
   names.robots = info.robots;

@@ -55,7 +55,6 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
     : options_(std::move(options)),
       log_(std::move(log)),
       store_(options_.db_path),
-      travel_(options_.site_map->graph.graph),
       clock_(options_.time_scale),
       rng_(options_.seed),
       policy_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
@@ -94,6 +93,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   started_wall_ = SimClock::wall_now();
   restore_pallets();
   for (const auto& [fleet, robot] : options_.config.all_robots()) parked_at_[robot->id] = robot->home;
+  build_fleet_graphs(*options_.site_map);
   restore_orders();
   publish_site_state();
   publish_server_info();
@@ -201,7 +201,7 @@ std::string FleetServer::switch_map(const std::string& map_id) {
   const std::string previous = options_.site.name;
   options_.site_map = next;
   options_.site = next->site;
-  travel_ = planning::RoadPlanner(next->graph.graph);
+  build_fleet_graphs(*next);
   if (traffic_) {
     // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
     traffic_.reset();
@@ -287,7 +287,21 @@ std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) co
 }
 
 orders::KnownNames FleetServer::known_names() const {
-  return orders::known_names(options_.config, options_.site);
+  orders::KnownNames names = orders::known_names(options_.config, options_.site);
+  for (auto& ability : names.abilities) {
+    if (const auto it = out_of_reach_.find(ability.fleet_id); it != out_of_reach_.end()) ability.out_of_reach = it->second;
+  }
+  return names;
+}
+
+void FleetServer::build_fleet_graphs(const map::SiteMap& site) {
+  travel_.clear();
+  out_of_reach_.clear();
+  for (const auto& fleet : options_.config.fleets) {
+    const map::RoadGraph graph = traffic::fleet_graph(site.graph.graph, options_.config, fleet.id);
+    travel_.emplace(fleet.id, planning::RoadPlanner(graph));
+    out_of_reach_[fleet.id] = traffic::places_out_of_reach(site, graph);
+  }
 }
 
 void FleetServer::fill_steps(Order& order) const {

@@ -154,7 +154,10 @@ class FleetServer {
   ServerOptions options_;
   Logger log_;
   OrderStore store_;
-  planning::RoadPlanner travel_;  ///< road-graph travel cost for dispatch
+  /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
+  std::map<std::string, planning::RoadPlanner> travel_;
+  std::map<std::string, std::vector<std::string>> out_of_reach_;  ///< fleet -> places it cannot reach
+  void build_fleet_graphs(const map::SiteMap& site);
   SimClock clock_;
   std::mt19937_64 rng_;
   std::unique_ptr<orders::DispatchPolicy> policy_;

@@ -227,7 +227,9 @@ double FleetServer::travel_cost(const std::string& robot_id, const std::string& 
       area ? geometry::Pose2{area->pose.x + kApproach * std::cos(area->pose.yaw),
                              area->pose.y + kApproach * std::sin(area->pose.yaw), area->pose.yaw}
            : home->pose;
-  const planning::RoadPlan plan = travel_.plan(robot->second.last.pose, approach);
+  const auto planner = travel_.find(robot->second.fleet_id);
+  if (planner == travel_.end()) return std::numeric_limits<double>::infinity();
+  const planning::RoadPlan plan = planner->second.plan(robot->second.last.pose, approach);
   if (plan.status != planning::PlanStatus::kFound) return std::numeric_limits<double>::infinity();
   return geometry::distance(robot->second.last.pose.position(), plan.points.front()) + plan.length;
 }

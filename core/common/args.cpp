@@ -26,6 +26,15 @@ std::optional<std::string> Args::value(const std::string& name) {
   return std::nullopt;
 }
 
+std::optional<std::string> Args::peek(const std::string& name) const {
+  const std::string flag_name = "--" + name;
+  for (std::size_t i = 0; i < args_.size(); ++i) {
+    if (args_[i] == flag_name && i + 1 < args_.size()) return args_[i + 1];
+    if (args_[i].rfind(flag_name + "=", 0) == 0) return args_[i].substr(flag_name.size() + 1);
+  }
+  return std::nullopt;
+}
+
 bool Args::flag(const std::string& name) {
   for (std::size_t i = 0; i < args_.size(); ++i) {
     if (args_[i] == "--" + name) {

@@ -43,6 +43,8 @@ class Args {
 
   /// The value of --name, removed from the list; nothing when absent; ArgError when the value is missing.
   std::optional<std::string> value(const std::string& name);
+  /// The value of --name, left in the list; nothing when absent or without a value.
+  std::optional<std::string> peek(const std::string& name) const;
   /// Whether --name is present (removed from the list).
   bool flag(const std::string& name);
 

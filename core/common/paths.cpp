@@ -40,6 +40,12 @@ std::string site_config_path(const std::string& site) {
   return project_root() + "/config/sites/" + site + ".yaml";
 }
 
+std::string config_path_for(const std::optional<std::string>& config_flag, const std::optional<std::string>& site_flag) {
+  if (config_flag) return *config_flag;
+  if (site_flag && std::filesystem::exists(site_config_path(*site_flag))) return site_config_path(*site_flag);
+  return default_config_path();
+}
+
 std::string maps_dir() {
   return project_root() + "/maps";
 }

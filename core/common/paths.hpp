@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace fleet {
@@ -15,6 +16,9 @@ std::string project_root();
 std::string default_config_path();
 /// The configuration a site brings with its own fleets: config/sites/SITE.yaml (it may not exist).
 std::string site_config_path(const std::string& site);
+/// The configuration a program reads: `config_flag` when given; else the one the site of
+/// `site_flag` brings, when it has one; else default_config_path().
+std::string config_path_for(const std::optional<std::string>& config_flag, const std::optional<std::string>& site_flag);
 
 /// maps/ under the project root.
 std::string maps_dir();

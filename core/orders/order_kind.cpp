@@ -48,6 +48,9 @@ std::vector<OrderStep> order_steps(OrderKind kind, const std::string& from, cons
 
 std::optional<std::string> incapability(const FleetAbility& fleet, const std::vector<OrderStep>& steps) {
   for (const OrderStep& step : steps) {
+    if (std::find(fleet.out_of_reach.begin(), fleet.out_of_reach.end(), step.place) != fleet.out_of_reach.end()) {
+      return "does not reach " + step.place + " on the lanes its vehicles fit";
+    }
     for (const std::string& action : step.actions) {
       if (std::find(fleet.actions.begin(), fleet.actions.end(), action) == fleet.actions.end()) {
         return "cannot '" + action + "'";

@@ -37,6 +37,8 @@ struct FleetAbility {
   std::string fleet_id;
   std::vector<std::string> actions;
   double lift_height = 0.0;  ///< highest load it reaches, metres
+  /// Places its vehicles cannot reach on the lanes they fit (traffic::places_out_of_reach).
+  std::vector<std::string> out_of_reach;
 };
 
 /// Empty when `fleet` can perform every step; else the first thing it cannot do

@@ -106,7 +106,7 @@ KnownNames known_names(const config::FleetConfig& config, const map::Site& site)
   }
   for (const auto& fleet : config.fleets) {
     names.fleets.push_back(fleet.id);
-    names.abilities.push_back({fleet.id, fleet.profile.actions, fleet.profile.load.lift_height});
+    names.abilities.push_back({fleet.id, fleet.profile.actions, fleet.profile.load.lift_height, {}});
   }
   return names;
 }
@@ -116,7 +116,6 @@ std::optional<RequestProblem> check_order_request(const OrderRequestFields& requ
     return RequestProblem{"kind", "'" + request.kind + "' is not an order kind (" + kind_names() + ")"};
   }
   if (auto problem = check_places(kind_of(request), request, names)) return problem;
-  if (auto problem = check_place_actions(request, names)) return problem;
   if (!request.robot.empty() && !known(names.robots, request.robot)) {
     return RequestProblem{"robot", model::unknown_name_message("robot", request.robot, names.robots)};
   }
@@ -127,7 +126,9 @@ std::optional<RequestProblem> check_order_request(const OrderRequestFields& requ
     return RequestProblem{"priority", std::to_string(request.priority) + " is outside " + std::to_string(kMinPriority) +
                                           " .. " + std::to_string(kMaxPriority)};
   }
-  return check_capability(request, names);
+  // What no fleet can do is named first; then what the places do not offer.
+  if (auto problem = check_capability(request, names)) return problem;
+  return check_place_actions(request, names);
 }
 
 }  // namespace fleet::orders

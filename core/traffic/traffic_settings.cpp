@@ -1,6 +1,8 @@
 #include "traffic/traffic_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "traffic/one_way.hpp"
 #include "traffic/vehicle_lanes.hpp"
@@ -45,6 +47,44 @@ map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfigur
   const double width = footprint_width(vehicle.footprint);
   if (!configuration.one_way) return lane_graph_for(graph, width, configuration.resources.margin);
   return lane_graph_for(one_way_plan(graph, zones).graph, width, configuration.resources.margin);
+}
+
+map::RoadGraph fleet_graph(const map::RoadGraph& graph, const config::FleetConfig& config, const std::string& fleet_id) {
+  const TrafficConfiguration configuration = configuration_from(config);
+  const int type = vehicle_type_of(config, fleet_id);
+  if (config.settings.get_bool("traffic.enabled")) return planning_graph(graph, configuration, type);
+  const auto& fleet = config.fleets.at(static_cast<std::size_t>(type));
+  return lane_graph_for(graph, fleet.profile.extent().width, configuration.resources.margin);
+}
+
+std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph) {
+  std::vector<char> has_way_in(fleet_graph.points.size(), 0);
+  for (const auto& successors : fleet_graph.successors) {
+    for (int next : successors) has_way_in[static_cast<std::size_t>(next)] = 1;
+  }
+  const auto nearest = [&](double x, double y) {
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (const auto& p : fleet_graph.points) {
+      const double d = std::hypot(p.x - x, p.y - y);
+      if (d < best_d) {
+        best_d = d;
+        best = p.id;
+      }
+    }
+    return best;
+  };
+  std::vector<std::string> out;
+  const double approach = site.site.approach_distance;
+  for (const auto& area : site.site.loading_areas) {
+    const int p = nearest(area.pose.x + approach * std::cos(area.pose.yaw), area.pose.y + approach * std::sin(area.pose.yaw));
+    if (p < 0 || !has_way_in[static_cast<std::size_t>(p)]) out.push_back(area.id);
+  }
+  for (const auto& home : site.site.homes) {
+    const int p = nearest(home.pose.x, home.pose.y);
+    if (p < 0 || !has_way_in[static_cast<std::size_t>(p)]) out.push_back(home.id);
+  }
+  return out;
 }
 
 }  // namespace fleet::traffic

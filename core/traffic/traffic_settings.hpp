@@ -2,6 +2,7 @@
 
 #include "config/fleet_config.hpp"
 #include "map/road_graph.hpp"
+#include "map/site_map.hpp"
 #include "traffic/traffic_manager.hpp"
 
 namespace fleet::traffic {
@@ -23,5 +24,13 @@ int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_
 /// one-way graph when `one_way` is set, else `graph` itself, with only the lanes the type fits.
 /// Deterministic: equal to TrafficManager::route_graph(type).
 map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration, int type = 0);
+
+/// The graph a fleet's robots plan on: its vehicle type's planning graph under traffic control,
+/// else the site's graph with only the lanes its vehicle fits.
+map::RoadGraph fleet_graph(const map::RoadGraph& graph, const config::FleetConfig& config, const std::string& fleet_id);
+
+/// The places (loading areas and homes) of `site` a fleet's robots cannot reach on `fleet_graph`:
+/// the graph point in front of the place (where the vehicle handles it) has no way in.
+std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph);
 
 }  // namespace fleet::traffic

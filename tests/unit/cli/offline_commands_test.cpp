@@ -7,6 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "common/args.hpp"
+#include "common/paths.hpp"
 
 using namespace fleet::cli;
 
@@ -63,4 +64,15 @@ TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plantt"}, "sites/plant.yaml"),
                fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);
+}
+
+TEST(SiteConfig, ASiteWithFleetsOfItsOwnBringsThemUnlessAConfigIsGiven) {
+  EXPECT_TRUE(fleet::config_path_for(std::nullopt, "plant").ends_with("/config/sites/plant.yaml"));
+  EXPECT_EQ(fleet::config_path_for(std::nullopt, "table_a"), fleet::default_config_path());
+  EXPECT_EQ(fleet::config_path_for(std::nullopt, std::nullopt), fleet::default_config_path());
+  EXPECT_EQ(fleet::config_path_for(std::string("mine.yaml"), "plant"), "mine.yaml");
+  fleet::Args args(std::vector<std::string>{"demo", "--site=plant", "--agents", "2"});
+  EXPECT_EQ(args.peek("site"), "plant");
+  EXPECT_EQ(args.peek("agents"), "2");
+  EXPECT_EQ(args.remaining().size(), 4u);  // peeking takes nothing away
 }

@@ -136,8 +136,9 @@ TEST(Hungarian, ForbiddenEntriesAreNeverChosen) {
 
 namespace {
 // Two fleets: floor forklifts (pick, drop at 0 m) and reach trucks (pick, drop up to 4.5 m).
-const FleetAbility kForklifts{"forklifts", {"pick", "drop"}, 0.0};
-const FleetAbility kReachTrucks{"reach_trucks", {"pick", "drop"}, 4.5};
+// The reach trucks do not fit the narrow spur to EN1.
+const FleetAbility kForklifts{"forklifts", {"pick", "drop"}, 0.0, {}};
+const FleetAbility kReachTrucks{"reach_trucks", {"pick", "drop"}, 4.5, {"EN1"}};
 
 Order transport(std::int64_t id, const std::string& from, double from_height) {
   Order o;
@@ -150,9 +151,10 @@ Order transport(std::int64_t id, const std::string& from, double from_height) {
 }  // namespace
 
 TEST(Dispatch, EveryPolicyMatchesOnlyCompatiblePairs) {
-  // The high order first in the queue; the forklift is the nearer robot for both.
-  const std::vector<Order> orders{transport(1, "R_HIGH", 3.5), transport(2, "A1", 0.0)};
-  const auto cost = [](const std::string& robot, const std::string&) { return robot == "fk1" ? 1.0 : 9.0; };
+  // The high order first in the queue.
+  const std::vector<Order> orders{transport(1, "R_HIGH", 3.5), transport(2, "EN1", 0.0)};
+  // The reach truck is the nearer robot for both.
+  const auto cost = [](const std::string& robot, const std::string&) { return robot == "rt1" ? 1.0 : 9.0; };
   for (const char* name : {"ascending-id", "nearest", "optimal"}) {
     const auto out = make_dispatch_policy(name)->assign(
         pointers(orders), {{"fk1", "forklifts", kForklifts}, {"rt1", "reach_trucks", kReachTrucks}}, cost);
@@ -160,7 +162,7 @@ TEST(Dispatch, EveryPolicyMatchesOnlyCompatiblePairs) {
     std::map<std::int64_t, std::string> by_order;
     for (const auto& a : out) by_order[a.order_id] = a.robot_id;
     EXPECT_EQ(by_order[1], "rt1") << name;  // only the reach truck lifts that high
-    EXPECT_EQ(by_order[2], "fk1") << name;
+    EXPECT_EQ(by_order[2], "fk1") << name;  // only the forklift reaches EN1
   }
 }
 

@@ -1,0 +1,72 @@
+// Orders on the plant with its two fleets: the checks fleetctl, the web API and the server make,
+// with the places each fleet reaches on the lanes its vehicle fits.
+
+#include <gtest/gtest.h>
+
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "orders/order_request_check.hpp"
+#include "traffic/traffic_settings.hpp"
+
+using namespace fleet;
+
+namespace {
+
+struct Plant {
+  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  orders::KnownNames names;
+
+  Plant() {
+    names = orders::known_names(config, site.site);
+    for (auto& ability : names.abilities) {
+      ability.out_of_reach = traffic::places_out_of_reach(site, traffic::fleet_graph(site.graph.graph, config, ability.fleet_id));
+    }
+  }
+  std::optional<orders::RequestProblem> check(const std::string& from, const std::string& to, const std::string& fleet) {
+    return orders::check_order_request({"", from, to, "", fleet, 0}, names);
+  }
+};
+
+}  // namespace
+
+TEST(PlantCapability, AHighRackPlaceIsForTheReachTrucksOnly) {
+  Plant plant;
+  EXPECT_FALSE(plant.check("RH1", "EX1", "").has_value());
+  EXPECT_FALSE(plant.check("RH1", "EX1", "reach_trucks").has_value());
+  const auto forklifts = plant.check("RH1", "EX1", "forklifts");
+  ASSERT_TRUE(forklifts.has_value());
+  EXPECT_EQ(forklifts->field, "fleet");
+  EXPECT_NE(forklifts->message.find("forklifts lifts to 0.50 m, the load at RH1 stands at 2.20 m"), std::string::npos)
+      << forklifts->message;
+}
+
+TEST(PlantCapability, APlaceOnlyTheNarrowRoadsReachIsForTheForkliftsOnly) {
+  Plant plant;
+  const auto& reach = plant.names.abilities[1];
+  ASSERT_EQ(reach.fleet_id, "reach_trucks");
+  EXPECT_NE(std::find(reach.out_of_reach.begin(), reach.out_of_reach.end(), "EN1"), reach.out_of_reach.end());
+  EXPECT_TRUE(plant.names.abilities[0].out_of_reach.empty());
+  EXPECT_FALSE(plant.check("EX1", "EN1", "").has_value());
+  const auto trucks = plant.check("EX1", "EN1", "reach_trucks");
+  ASSERT_TRUE(trucks.has_value());
+  EXPECT_NE(trucks->message.find("does not reach EN1 on the lanes its vehicles fit"), std::string::npos)
+      << trucks->message;
+}
+
+TEST(PlantCapability, AFinishedGoodsPlaceBehindItsLimiterIsNeverADropPlace) {
+  Plant plant;
+  const auto drop = plant.check("EX1", "FG1", "");
+  ASSERT_TRUE(drop.has_value());
+  EXPECT_EQ(drop->field, "to");
+  EXPECT_NE(drop->message.find("FG1 offers pick, not 'drop'"), std::string::npos) << drop->message;
+}
+
+TEST(PlantCapability, AnActionNoFleetHasIsRefusedNamingEveryFleet) {
+  Plant plant;
+  const auto pick = orders::check_order_request({"pick", "RB1", "PS1", "", "", 0}, plant.names);
+  ASSERT_TRUE(pick.has_value());
+  EXPECT_EQ(pick->field, "kind");
+  EXPECT_NE(pick->message.find("forklifts cannot 'pickItem'"), std::string::npos) << pick->message;
+  EXPECT_NE(pick->message.find("reach_trucks cannot 'pickItem'"), std::string::npos) << pick->message;
+}
