@@ -489,8 +489,17 @@
     parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
     parts.push(`<span><span class="dot" data-colour="${LOCAL_PLAN}"></span>local plan (next ${LOCAL_PLAN_LENGTH} m)</span>`);
     parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting)</span>`);
+    // With several fleets each robot is outlined in its fleet's colour.
+    if (site && site.fleets && site.fleets.length > 1) {
+      site.fleets.forEach((f, i) => parts.push(
+        `<span><span class="dot ring" data-ring="${FLEET_COLOURS[i % FLEET_COLOURS.length]}"></span>fleet ${esc(f.id)} (${esc(f.type)})</span>`));
+    }
     el('legend').innerHTML = parts.join('');
-    for (const dot of el('legend').querySelectorAll('.dot')) dot.style.background = dot.dataset.colour;
+    for (const ring of el('legend').querySelectorAll('.ring')) {
+      ring.style.background = 'transparent';
+      ring.style.border = `2px solid ${ring.dataset.ring}`;
+    }
+    for (const dot of el('legend').querySelectorAll('.dot:not(.ring)')) dot.style.background = dot.dataset.colour;
   }
 
   // ---- API ----
