@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "common/process_memory.hpp"
@@ -10,6 +11,7 @@
 #include "monitor/order_accounting.hpp"
 #include "monitor/robot_health.hpp"
 #include "orders/order_request_check.hpp"
+#include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::server {
@@ -407,9 +409,15 @@ std::string FleetServer::robot_under(const map::StaticObstacle& obstacle) const 
 }
 
 geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {
-  geometry::Footprint footprint;
-  if (const auto spec = options_.config.find_robot(robot.id)) footprint = spec->first->footprint;
-  return geometry::footprint_polygon(robot.last.pose, footprint);
+  const auto spec = options_.config.find_robot(robot.id);
+  if (!spec) return geometry::footprint_polygon(robot.last.pose, geometry::Footprint{});
+  // The fleet's footprint polygon where the robot stands; its convex hull, since the traffic
+  // manager's regions are convex (a hull covers every concave body).
+  const auto& pose = robot.last.pose;
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  std::vector<geometry::Vec2> corners;
+  for (const auto& p : spec->first->profile.footprint) corners.push_back({pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y});
+  return traffic::convex_hull(std::move(corners));
 }
 
 void FleetServer::publish_fleet_view() {
