@@ -5,6 +5,7 @@
 
 #include "common/args.hpp"
 #include "model/names.hpp"
+#include "orders/order.hpp"
 #include "orders/order_kind.hpp"
 
 namespace fleet::cli {
@@ -64,7 +65,11 @@ nlohmann::json order_json(const model::OrderInfo& o) {
   for (const auto& step : orders::order_steps(kind.value_or(orders::OrderKind::kTransport), o.pick_area, o.drop_area)) {
     steps.push_back({{"place", step.place}, {"actions", step.actions}});
   }
+  // The step being executed, from the phase the robot reports (null before it starts).
+  const auto phase = orders::parse_phase(o.phase);
+  const nlohmann::json step = phase ? nlohmann::json(orders::step_index(*phase)) : nlohmann::json();
   return {{"order_id", o.order_id},       {"kind", o.kind},           {"steps", steps},
+          {"step", step},
           {"pick_area", o.pick_area},     {"drop_area", o.drop_area},
           {"robot_id", o.robot_id},       {"state", o.state},         {"phase", o.phase},
           {"reason", o.reason},           {"priority", o.priority},   {"created_sim", o.created_sim},

@@ -82,6 +82,7 @@ TEST(MultiFleet, OrdersGoToFleetsThatCanDoThemAndOthersAreBadInput) {
   const json moved = last_json_line(move.out);
   EXPECT_EQ(moved["kind"], "move");
   EXPECT_EQ(moved["steps"][0]["place"], "H7");
+  EXPECT_TRUE(moved["step"].is_null());  // done: in no phase, so in no step
   const std::string mover = moved["robot_id"];
   const auto robots = fleet.fleetctl({"--json", "robots"}, 30);
   ASSERT_EQ(robots.exit_code, 0) << robots.err;
