@@ -31,8 +31,13 @@ std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig&
 
 robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
                                       const map::SiteMap& site) {
-  robot::ForkliftConfig c = robot::ForkliftConfig::defaults();
+  // Sizes, tolerances, gaps and manoeuvre speeds follow the fleet's vehicle (see docs/control.md).
+  robot::ForkliftConfig c = robot::ForkliftConfig::for_vehicle(fleet.profile);
   c.sim.forklift.footprint = fleet.footprint;
+  // A neighbour not heard from lately may have driven at the top speed of any fleet on the site.
+  for (const auto& other : config.fleets) {
+    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
+  }
   // The software's speed setting, within what the fleet's vehicle can do.
   c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
   c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);

@@ -14,18 +14,12 @@ using geometry::Vec2;
 namespace {
 
 constexpr double kDynamicUpdatePeriod = 0.1;  // sim seconds between dynamic-grid rebuilds (10 Hz)
-constexpr double kLookahead = 1.0;            // metres of path checked [Forklift thesis, section 5.3]
 constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
 constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
-constexpr double kTemporarySize = 0.3;        // side of a temporary obstacle box, metres
-// Lidar returns within this range feed the safety stop: the footprint's reach plus what the
-// stop's 0.4 s horizon can cover at top speed, with room to spare.
-constexpr double kSafetyScanRange = 0.6;  // metres
 // A safety stop for another robot's body is reported to the traffic manager once it lasted this
-// long (sim seconds) with this robot within kStopMoved of where it began: following a robot that
+// long (sim seconds) with this robot within stop_moved of where it began: following a robot that
 // stops briefly is no wait worth a re-route. A stop lapses after kStopGap without the check stopping.
 constexpr double kReportStopAfter = 3.0;
-constexpr double kStopMoved = 0.05;
 constexpr double kStopGap = 1.0;
 
 planning::StaticGrid make_static_grid(const ForkliftConfig& c, const map::SiteMap& site) {
@@ -38,12 +32,6 @@ geometry::Polygon box_around(Vec2 c, double side) {
 }
 
 }  // namespace
-
-ForkliftConfig ForkliftConfig::defaults() {
-  ForkliftConfig c;
-  c.task.follower = control::FollowerParams::regulated();
-  return c;
-}
 
 Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
                    std::uint64_t seed, std::uint64_t stream)
@@ -58,7 +46,7 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
           }(),
           seed * 7919 + stream),
       pallets_([&] {
-        perception::PalletWorldParams wp;
+        perception::PalletWorldParams wp = config.pallet_world;
         wp.carry_x = config.task.geometry.carry_x;
         wp.marker_offset = config.task.geometry.marker_offset;
         return wp;
@@ -74,8 +62,10 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         d.safety_margin = config.neighbour_margin;
         d.stale_after = config.stale_after;
         d.max_speed = config.neighbour_max_speed;
+        d.max_reach = config.neighbour_max_reach;
         return d;
       }()),
+      lidar_(config.lidar),
       octomap_([&] {
         planning::OctoMapConfiguration o;
         o.resolution = config.grid_resolution;
@@ -190,7 +180,8 @@ std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
   // a few centimetres to a dozen of our antenna blocks a range; treating its 2D outline as a wall
   // to every anchor would shadow most of the table.
   const Vec2 tag = sim_.estimate().position();
-  const double reach = 0.15;  // metres: (0.15 - 0.10) / (1.0 - 0.10) x 3 m, rounded up
+  // metres: (0.15 - 0.10) / (1.0 - 0.10) x 3 m, rounded up, on the table; it scales with the robot.
+  const double reach = config_.uwb_shadow_reach;
   for (const auto& n : neighbours_) {
     const auto polygon = geometry::footprint_polygon(n.pose, n.footprint);
     double nearest = std::numeric_limits<double>::infinity();
@@ -267,8 +258,8 @@ double Forklift::clearance_ahead() const {
   // layer: the other robots from FleetView (grown by their speed x data age, or the stale rule)
   // and what the lidar sees [Forklift thesis, section 5.3]. The footprint itself is swept, not a point
   // against grown obstacles, because an obstacle beside the path meets the front corner first.
-  constexpr double kSample = 0.03;  // metres between swept poses
-  constexpr double kMargin = 0.01;  // metres around our footprint
+  const double kSample = config_.clearance_sample;
+  const double kMargin = config_.clearance_margin;
   if (path_.size() < 2) return std::numeric_limits<double>::infinity();
   const auto& layer = dynamic_.dynamic_layer();
   if (layer.size() == 0) return std::numeric_limits<double>::infinity();
@@ -294,12 +285,12 @@ double Forklift::clearance_ahead() const {
   // its gap.
   const std::vector<int> touched = footprint_cells(layer, sim_.estimate(), footprint(), kMargin);
   double travelled = 0.0;
-  for (std::size_t i = segment + 1; i < path_.size() && travelled < kLookahead; ++i) {
+  for (std::size_t i = segment + 1; i < path_.size() && travelled < config_.clearance_lookahead; ++i) {
     const Vec2 next = path_[i];
     const double len = geometry::distance(prev, next);
     if (len < 1e-9) continue;
     const double heading = std::atan2(next.y - prev.y, next.x - prev.x);
-    for (double s = kSample; s <= len && travelled + s <= kLookahead; s += kSample) {
+    for (double s = kSample; s <= len && travelled + s <= config_.clearance_lookahead; s += kSample) {
       const Vec2 p = prev + (s / len) * (next - prev);
       if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin, touched)) {
         return std::max(0.0, travelled + s - kSample);
@@ -330,7 +321,7 @@ void Forklift::step() {
     near_returns_.clear();
     for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
       const double r = scan.ranges[i];
-      if (!(r < kSafetyScanRange)) continue;
+      if (!(r < config_.safety_scan_range)) continue;
       const double a = scan.pose.yaw + scan.angle_min + static_cast<double>(i) * scan.angle_increment;
       near_returns_.push_back({scan.pose.x + r * std::cos(a), scan.pose.y + r * std::sin(a)});
     }
@@ -409,9 +400,10 @@ void Forklift::step() {
   // graph; a temporary obstacle there could cut the only way in a corridor's direction.
   if (blocked && !config_.traffic && t - blocked_since_ > kDetourAfter) {
     const Pose2 here = sim_.estimate();
-    const Vec2 ahead{here.x + (clearance + kTemporarySize / 2) * std::cos(here.yaw),
-                     here.y + (clearance + kTemporarySize / 2) * std::sin(here.yaw)};
-    static_grid_.add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, kTemporarySize));
+    const double size = config_.temporary_size;
+    const Vec2 ahead{here.x + (clearance + size / 2) * std::cos(here.yaw),
+                     here.y + (clearance + size / 2) * std::sin(here.yaw)};
+    static_grid_.add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, size));
     blocked_since_ = t;
     blocked_by_neighbour_ = false;
     if (!held_by_traffic_) executor_.set_blocked(false);
@@ -457,8 +449,8 @@ control::BodyTwist Forklift::safe(const control::BodyTwist& cmd) const {
   // Refused close beside a body (a turn on the spot would swing a corner into it): the mecanum
   // base steps straight away from the nearest lidar return, slowly, when that step is safe, so
   // the robot makes room for the turn instead of standing there for good.
-  constexpr double kEscapeWithin = 0.10;  // metres: only this close to a body
-  constexpr double kEscapeSpeed = 0.03;   // m/s
+  const double kEscapeWithin = config_.escape_within;  // metres: only this close to a body
+  const double kEscapeSpeed = config_.escape_speed;    // m/s
   const Pose2 now = sim_.estimate();
   const Vec2* nearest = nullptr;
   double nearest_gap = kEscapeWithin;
@@ -710,7 +702,7 @@ double Forklift::traffic_room() {
   if (whole_route && !in_siding_) return std::numeric_limits<double>::infinity();
   double allowed = road_start_ + permit_.granted_distance;
   // On a siding, stop just short of its end: the follower would take the end for the goal.
-  if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - 0.03);
+  if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - config_.siding_end_margin);
   return allowed - path_s_;
 }
 
@@ -723,14 +715,15 @@ void Forklift::set_traffic_grant(const TrafficPermit& permit) {
   if (!pending_route_) permit_ = permit;
 }
 
-bool Forklift::SafetyStop::current(double t, Vec2 here) const {
-  return !robot_id.empty() && t - last_seen <= kStopGap && geometry::distance(here, where) <= kStopMoved;
+bool Forklift::SafetyStop::current(double t, Vec2 here, double moved) const {
+  return !robot_id.empty() && t - last_seen <= kStopGap && geometry::distance(here, where) <= moved;
 }
 
 void Forklift::note_safety_stop(double t, const std::string& nearest) {
   if (nearest.empty()) return;
   const Vec2 here = sim_.estimate().position();
-  if (nearest != safety_stop_.robot_id || !safety_stop_.current(t, here)) safety_stop_ = {nearest, t, here, t};
+  if (nearest != safety_stop_.robot_id || !safety_stop_.current(t, here, config_.stop_moved))
+    safety_stop_ = {nearest, t, here, t};
   safety_stop_.last_seen = t;
 }
 
@@ -740,7 +733,7 @@ TrafficRoute Forklift::traffic_route() const {
   r.points = road_points_;
   if (!road_points_.empty()) r.progress = std::clamp(path_s_ - road_start_, 0.0, road_cum_.back());
   const double t = sim_.time();
-  if (!road_points_.empty() && safety_stop_.current(t, sim_.estimate().position()) &&
+  if (!road_points_.empty() && safety_stop_.current(t, sim_.estimate().position(), config_.stop_moved) &&
       t - safety_stop_.since >= kReportStopAfter) {
     r.stopped_for.push_back(safety_stop_.robot_id);
   }

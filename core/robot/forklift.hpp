@@ -20,6 +20,7 @@
 #include "planning/static_grid.hpp"
 #include "robot/simulated_forklift.hpp"
 #include "task/task_executor.hpp"
+#include "vehicle/profile.hpp"
 
 namespace fleet::robot {
 
@@ -57,7 +58,35 @@ struct ForkliftConfig {
   /// Null: the site's road graph.
   std::shared_ptr<const map::RoadGraph> route_graph;
 
+  /// The pallets' lift tolerances (simulation truth); carry_x and marker_offset come from
+  /// task.geometry, so forks and pallets agree.
+  perception::PalletWorldParams pallet_world;
+  planning::LidarConfiguration lidar;
+  // Distances of the local planner and the safety stop; they follow the vehicle's size
+  // (for_vehicle).
+  double clearance_lookahead = 1.0;  ///< metres of path checked [Forklift thesis, section 5.3]
+  double clearance_sample = 0.03;    ///< metres between the footprint poses swept along the path
+  double clearance_margin = 0.01;    ///< metres around our footprint in that sweep
+  double temporary_size = 0.3;       ///< side of a temporary obstacle box, metres
+  /// Lidar returns within this range feed the safety stop: the footprint's reach plus what the
+  /// stop's 0.4 s horizon can cover at top speed, with room to spare.
+  double safety_scan_range = 0.6;  ///< metres
+  double escape_within = 0.10;     ///< metres: a refused robot this close to a body steps away
+  double escape_speed = 0.03;      ///< m/s of that step
+  /// A safety stop is the same stop while the robot stays within this of where it began.
+  double stop_moved = 0.05;          ///< metres
+  double neighbour_max_reach = 3.0;  ///< metres: caps a stale neighbour's disc
+  double uwb_shadow_reach = 0.15;    ///< metres from the tag within which a robot shadows anchors
+  double siding_end_margin = 0.03;   ///< metres short of a siding's end the robot stops
+
   static ForkliftConfig defaults();
+  /// The defaults made for a vehicle of this profile: every length follows the footprint's length
+  /// (or width, for the wheel track), every manoeuvre speed the profile's top speed, the
+  /// accelerations its acceleration, the obstacle slow-down its braking distance. For the forklift
+  /// type's own profile (the thesis's 25 x 16 cm robot, vehicle::find_robot_type("forklift"))
+  /// every factor is exactly 1 and this is defaults(). The follower's v_max and omega_max stay the
+  /// software's setting (the agent sets them).
+  static ForkliftConfig for_vehicle(const vehicle::VehicleProfile& profile);
 };
 
 /// Another robot as this one knows it (from FleetView).
@@ -246,8 +275,9 @@ class Forklift {
     double since = 0.0;
     geometry::Vec2 where;
     double last_seen = -1.0;
-    /// Still the same stop at time `t` with this robot at `here`: seen lately, not moved away.
-    bool current(double t, geometry::Vec2 here) const;
+    /// Still the same stop at time `t` with this robot at `here`: seen lately, not moved more
+    /// than `moved` away.
+    bool current(double t, geometry::Vec2 here, double moved) const;
   };
   SafetyStop safety_stop_;
   void note_safety_stop(double t, const std::string& nearest);

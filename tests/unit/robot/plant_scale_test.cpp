@@ -1,0 +1,183 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "robot/forklift.hpp"
+#include "sim/mecanum.hpp"
+#include "vehicle/vehicle_types.hpp"
+
+using namespace fleet;
+using robot::ForkliftConfig;
+using robot::ForkliftEvent;
+
+namespace {
+
+vehicle::VehicleProfile plant_forklift() {
+  // config/sites/plant.yaml, fleet `forklifts`.
+  vehicle::VehicleProfile p;
+  p.footprint = vehicle::rectangle(1.2, 0.8);
+  p.max_speed = 1.2;
+  p.max_acceleration = 0.5;
+  p.max_yaw_rate = 1.0;
+  return p;
+}
+
+/// Every value for_vehicle() sets, in one list, so two configurations compare field by field.
+std::vector<double> scaled_values(const ForkliftConfig& c) {
+  const auto& f = c.task.follower;
+  const auto& a = c.task.search.approach;
+  const auto& m = c.sim.forklift.mecanum;
+  const auto& e = c.sim.ekf;
+  return {c.sim.forklift.footprint.length,
+          c.sim.forklift.footprint.width,
+          m.wheel_radius,
+          m.half_wheelbase,
+          m.half_track,
+          m.max_wheel_speed,
+          c.sim.uwb.antenna_offset.x,
+          e.antenna_offset.x,
+          e.heading_init_distance,
+          e.commanded_velocity_std[0],
+          e.commanded_velocity_std[1],
+          e.encoder_velocity_std[0],
+          e.encoder_velocity_std[1],
+          f.v_max,
+          f.omega_max,
+          f.lookahead,
+          f.goal_tolerance,
+          f.regulate_min_radius,
+          f.obstacle_stop_distance,
+          f.obstacle_slow_distance,
+          f.regulated_min_speed,
+          f.max_linear_accel,
+          f.max_angular_accel,
+          a.v_max,
+          a.lookahead,
+          a.goal_tolerance,
+          c.task.geometry.camera_x,
+          c.task.geometry.carry_x,
+          c.task.geometry.marker_offset,
+          c.task.search.standoff,
+          c.task.search.match_radius,
+          c.task.pick.v_minx,
+          c.task.pick.v_miny,
+          c.task.pick.drive_in_speed,
+          c.task.pick.d_min,
+          c.task.pick.d_tol,
+          c.task.pick.timeout,
+          c.task.place.lateral_tol,
+          c.task.place.longitudinal_tol,
+          c.task.place.vx_limit,
+          c.task.place.vy_limit,
+          c.task.place.v_floor,
+          c.task.place.back_out_distance,
+          c.task.place.back_out_speed,
+          c.task.place.timeout,
+          c.task.arrival_tolerance,
+          c.camera.range_min,
+          c.camera.range_max,
+          c.camera.sigma_d,
+          c.pallet_world.lift_lateral_tol,
+          c.pallet_world.lift_depth_tol,
+          c.grid_resolution,
+          c.lidar.max_range,
+          c.lidar.min_range,
+          c.safety_gap,
+          c.stop_distance,
+          c.neighbour_margin,
+          c.neighbour_max_speed,
+          c.neighbour_max_reach,
+          c.robot_height,
+          c.anchor_shadow_margin,
+          c.clearance_lookahead,
+          c.clearance_sample,
+          c.clearance_margin,
+          c.temporary_size,
+          c.safety_scan_range,
+          c.escape_within,
+          c.escape_speed,
+          c.stop_moved,
+          c.uwb_shadow_reach,
+          c.siding_end_margin};
+}
+
+}  // namespace
+
+TEST(ForkliftForVehicle, TheTableProfileGivesExactlyTheDefaults) {
+  const auto& table = vehicle::find_robot_type("forklift")->defaults;
+  const auto mine = scaled_values(ForkliftConfig::for_vehicle(table));
+  const auto defaults = scaled_values(ForkliftConfig::defaults());
+  ASSERT_EQ(mine.size(), defaults.size());
+  for (std::size_t i = 0; i < mine.size(); ++i) EXPECT_EQ(mine[i], defaults[i]) << "value " << i;
+  EXPECT_TRUE(ForkliftConfig::for_vehicle(table).task.follower.smooth_lookahead);  // still the regulated follower
+}
+
+TEST(ForkliftForVehicle, ARealForkliftGetsItsSizeSpeedAndBrakingDistance) {
+  const auto c = ForkliftConfig::for_vehicle(plant_forklift());
+  // The camera sits at the front edge, the pallet seats ahead of it, as on the table.
+  EXPECT_NEAR(c.task.geometry.camera_x, 0.48 * 1.2, 1e-12);
+  EXPECT_GT(c.task.geometry.carried_marker_distance(), 0.0);
+  EXPECT_LT(c.task.geometry.camera_x, 0.6);
+  // The simulated body can reach the profile's top speed (the table body tops out at 0.3 m/s).
+  const sim::MecanumKinematics body(c.sim.forklift.mecanum);
+  EXPECT_NEAR(body.limits().max_linear, 1.2, 1e-9);
+  EXPECT_GT(body.limits().max_angular, 1.0);
+  // Lengths scale by 1.2 / 0.25.
+  EXPECT_NEAR(c.task.follower.lookahead, 0.10 * 4.8, 1e-12);
+  EXPECT_NEAR(c.safety_gap, 0.03 * 4.8, 1e-12);
+  EXPECT_NEAR(c.grid_resolution, 0.02 * 4.8, 1e-12);
+  // Slowing starts far enough to stop from 1.2 m/s at 80 % of 0.5 m/s^2, and the path is checked
+  // that far ahead.
+  const double braking = 1.2 * 1.2 / (2.0 * 0.8 * 0.5);
+  EXPECT_NEAR(c.task.follower.obstacle_slow_distance, c.task.follower.obstacle_stop_distance + braking, 1e-12);
+  EXPECT_GE(c.clearance_lookahead, c.task.follower.obstacle_slow_distance);
+  // Manoeuvres run at most 4x the table's speeds (1.2 / 0.3), never above the vehicle's.
+  EXPECT_NEAR(c.task.pick.v_minx, 0.03 * 4.0, 1e-12);
+  EXPECT_LE(c.task.place.vx_limit, 1.2);
+}
+
+TEST(ForkliftForVehicle, AWiderPolygonScalesItsTrackByItsWidth) {
+  vehicle::VehicleProfile reach = plant_forklift();
+  reach.footprint = {{0.8, -0.45}, {0.8, 0.45}, {-0.6, 0.45}, {-0.8, 0.3}, {-0.8, -0.3}, {-0.6, -0.45}};
+  reach.max_speed = 0.8;
+  const auto c = ForkliftConfig::for_vehicle(reach);
+  EXPECT_NEAR(c.sim.forklift.footprint.length, 1.6, 1e-12);
+  EXPECT_NEAR(c.sim.forklift.footprint.width, 0.9, 1e-12);
+  EXPECT_NEAR(c.sim.forklift.mecanum.half_track, 0.06 * 0.9 / 0.16, 1e-12);
+  EXPECT_NEAR(sim::MecanumKinematics(c.sim.forklift.mecanum).limits().max_linear, 0.8, 1e-9);
+}
+
+TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
+  // Built from the table's defaults, this forklift could not drive faster than 0.3 m/s while its
+  // filter believed the commanded 1.2 m/s, and its 10 cm lookahead sat inside the estimate's
+  // error: it turned on the spot on open road.
+  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  ForkliftConfig c = ForkliftConfig::for_vehicle(plant_forklift());
+  c.task.follower.v_max = 1.2;
+  c.task.follower.omega_max = 1.0;
+  const auto home = site->site.find_home("PF2")->pose;
+  robot::Forklift f(c, site, home, 1, 1);
+  std::map<int, geometry::Pose2> pallets;
+  int id = 1;
+  for (const auto& area : site->site.loading_areas) {
+    if (area.pallet_at_start) pallets[id++] = area.pose;
+  }
+  f.set_standing_pallets(pallets);
+  const auto& from = site->site.find_area("FG5")->pose;
+  const auto& to = site->site.find_area("EX7")->pose;
+  ASSERT_TRUE(f.submit({"1", "FG5", from, "EX7", to}, nullptr));
+  bool done = false;
+  while (!done && f.time() < 240.0) {
+    f.step();
+    for (const auto& e : f.take_events()) {
+      ASSERT_NE(e.kind, ForkliftEvent::Kind::kFailed) << e.text;
+      ASSERT_NE(e.kind, ForkliftEvent::Kind::kAreaEmpty) << e.text;
+      if (e.kind == ForkliftEvent::Kind::kDone) {
+        done = true;
+        EXPECT_LT(geometry::distance(e.pallet_pose.position(), to.position()), 0.15);
+      }
+    }
+  }
+  EXPECT_TRUE(done) << "state " << f.task_state() << " (" << f.detail() << ") at " << f.truth().x << ", "
+                    << f.truth().y;
+}
