@@ -25,6 +25,7 @@ struct EvalSpec {
   double dwell_s = 10.0;
   std::uint64_t seed = 1;
   std::vector<std::string> place_prefixes;  ///< trips only between places whose ids start so; empty: all
+  bool verbose = false;                     ///< list every deadlock: who stalled where, waiting on whom
 };
 
 nlohmann::json run_site(const std::string& site_name, const config::FleetConfig& config, const EvalSpec& spec) {
@@ -63,7 +64,8 @@ nlohmann::json run_site(const std::string& site_name, const config::FleetConfig&
           {"deadlocks", r.deadlocks},
           {"max_wait_s", r.max_wait_s},
           {"reroutes", r.reroutes},
-          {"sidings", r.sidings}};
+          {"sidings", r.sidings},
+          {"stalls", spec.verbose ? nlohmann::json(r.stall_notes) : nlohmann::json::array()}};
 }
 
 }  // namespace
@@ -78,6 +80,7 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
   spec.duration_s = flags.number("duration", 1.0, 1e6).value_or(spec.duration_s);
   spec.dwell_s = flags.number("dwell", 0.0, 600.0).value_or(spec.dwell_s);
   spec.seed = flags.u64("seed").value_or(spec.seed);
+  spec.verbose = flags.flag("verbose");
   if (const auto places = flags.value("places")) {
     std::string rest = *places;
     for (std::size_t comma; (comma = rest.find(',')) != std::string::npos; rest.erase(0, comma + 1)) {
@@ -93,9 +96,13 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
   }
   nlohmann::json runs = nlohmann::json::array({run_site(site, config, spec)});
   if (against) runs.push_back(run_site(*against, config, spec));
-  nlohmann::json doc{{"config", config.source}, {"robots", spec.robots},   {"duration_s", spec.duration_s},
-                     {"seed", spec.seed},       {"dwell_s", spec.dwell_s},
-                     {"places", spec.place_prefixes}, {"runs", runs}};
+  nlohmann::json doc{{"config", config.source},
+                     {"robots", spec.robots},
+                     {"duration_s", spec.duration_s},
+                     {"seed", spec.seed},
+                     {"dwell_s", spec.dwell_s},
+                     {"places", spec.place_prefixes},
+                     {"runs", runs}};
   if (against) {
     const double b = runs[1]["trips"].get<double>();
     doc["trips_ratio"] = b > 0.0 ? runs[0]["trips"].get<double>() / b : 0.0;
@@ -104,15 +111,18 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
     out << doc.dump() << "\n";
     return kExitOk;
   }
-  out << "traffic-eval: " << spec.robots << " robots of " << config.source << ", " << spec.duration_s
-      << " s sim, seed " << spec.seed << " (kinematic robots under the real traffic manager)\n";
+  out << "traffic-eval: " << spec.robots << " robots of " << config.source << ", " << spec.duration_s << " s sim, seed "
+      << spec.seed << " (kinematic robots under the real traffic manager)\n";
   for (const auto& r : runs) {
     out << "  " << std::left << std::setw(18) << r["site"].get<std::string>() << r["trips"].get<long>() << " trips, "
         << r["collisions"].get<long>() << " collisions, " << r["deadlocks"].get<long>() << " deadlocks, longest wait "
         << std::fixed << std::setprecision(1) << r["max_wait_s"].get<double>() << " s, " << r["reroutes"].get<long>()
         << " re-routes\n";
+    for (const auto& note : r["stalls"]) out << "    " << note.get<std::string>() << "\n";
   }
-  if (against) out << "  trips ratio " << site << " / " << *against << ": " << std::setprecision(2) << doc["trips_ratio"].get<double>() << "\n";
+  if (against)
+    out << "  trips ratio " << site << " / " << *against << ": " << std::setprecision(2)
+        << doc["trips_ratio"].get<double>() << "\n";
   return kExitOk;
 }
 

@@ -158,8 +158,25 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
   }
   branch_.assign(places, 0);
   for (std::size_t p = 0; p < places; ++p) branch_[p] = neighbours_[p].size() >= 3 ? 1 : 0;
-  build_stoppable();
   build_corridors();
+  // Directed place adjacency: which branch places every way through passes one corridor.
+  std::vector<std::vector<int>> successors(places), predecessors(places);
+  for (std::size_t i = 0; i < graph.points.size(); ++i) {
+    const int a = place_of_[i];
+    for (int j : graph.successors[i]) {
+      const int b = place_of_[static_cast<std::size_t>(j)];
+      if (a == b) continue;
+      successors[static_cast<std::size_t>(a)].push_back(b);
+      predecessors[static_cast<std::size_t>(b)].push_back(a);
+    }
+  }
+  for (auto* list : {&successors, &predecessors}) {
+    for (auto& l : *list) {
+      std::sort(l.begin(), l.end());
+      l.erase(std::unique(l.begin(), l.end()), l.end());
+    }
+  }
+  build_stoppable(successors, predecessors);
   build_opposite_lanes(graph, members);
 }
 
@@ -281,22 +298,43 @@ void ConflictZones::build_conflicts(std::size_t type_a, std::size_t type_b) {
   }
 }
 
-void ConflictZones::build_stoppable() {
-  // Stoppable for T: T's region touches no branch place's region of any type.
+void ConflictZones::build_stoppable(const std::vector<std::vector<int>>& successors,
+                                    const std::vector<std::vector<int>>& predecessors) {
+  // Stoppable for T: T's region touches no branch place's region of any type. Or every place it
+  // touches lies on the robot's own lane, or on a way that only that lane leads into or out of (a
+  // lane's split into the connectors of a junction, or the connectors merging into it): whoever
+  // needs such a place drives along the waiting robot's lane and would queue behind or ahead of it
+  // anyway, so nobody crossing the junction by another way is kept out. Without this, a one-way
+  // link between two junctions closer than about two vehicle lengths has no stoppable place, and
+  // both junctions with the link become one stretch that a robot holds all at once.
   const std::size_t places = position_.size();
   const std::size_t types = types_.size();
+  constexpr int kChain = 64;  // longer than any junction connector, in places
+  const auto only_via = [&](int place, int corridor, const std::vector<std::vector<int>>& links) {
+    for (int at = place, step = 0; step < kChain; ++step) {
+      if (corridor_[static_cast<std::size_t>(at)] == corridor) return true;
+      const auto& next = links[static_cast<std::size_t>(at)];
+      if (next.size() != 1) return false;
+      at = next.front();
+    }
+    return false;
+  };
+  const auto own_lane = [&](int place, int corridor) {
+    return only_via(place, corridor, predecessors) || only_via(place, corridor, successors);
+  };
   stoppable_.assign(types, std::vector<std::uint8_t>(places, 1));
   stoppable_all_.assign(places, 1);
   for (std::size_t t = 0; t < types; ++t) {
     for (std::size_t p = 0; p < places; ++p) {
-      for (std::size_t u = 0; u < types && stoppable_[t][p]; ++u) {
+      bool touches_branch = false;
+      bool own_lane_only = corridor_[p] >= 0 && !corridor_loop_[static_cast<std::size_t>(corridor_[p])];
+      for (std::size_t u = 0; u < types; ++u) {
         for (int q : conflicts(static_cast<int>(t), static_cast<int>(p), static_cast<int>(u))) {
-          if (branch_[static_cast<std::size_t>(q)]) {
-            stoppable_[t][p] = 0;
-            break;
-          }
+          touches_branch = touches_branch || branch_[static_cast<std::size_t>(q)];
+          if (own_lane_only && !own_lane(q, corridor_[p])) own_lane_only = false;
         }
       }
+      stoppable_[t][p] = !touches_branch || own_lane_only ? 1 : 0;
       if (!stoppable_[t][p]) stoppable_all_[p] = 0;
     }
   }

@@ -32,7 +32,7 @@ struct ResourceParams {
   double margin = 0.03;
   /// Points closer than this are one physical place (the zero-length hand-over edges between
   /// roads), metres.
-  double coincident_distance = 1e-6;
+  double coincident_distance = 1e-4;
 };
 
 /// Where a stretch of one lane lies in conflict with the opposite lane of the same road (OpenDRIVE
@@ -128,7 +128,8 @@ class ConflictZones {
   void build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
                      const std::vector<std::vector<int>>& members, std::size_t type);
   void build_conflicts(std::size_t type_a, std::size_t type_b);
-  void build_stoppable();
+  void build_stoppable(const std::vector<std::vector<int>>& successors,
+                       const std::vector<std::vector<int>>& predecessors);
   void build_corridors();
   void build_opposite_lanes(const map::RoadGraph& graph, const std::vector<std::vector<int>>& members);
 

@@ -213,7 +213,52 @@ void TrafficSim::advance(Body& body) {
     std::size_t at = body.segment;
     if (at + 1 < body.route.size() && body.cum[at + 1] - body.distance < body.distance - body.cum[at]) ++at;
     report_.stalled_at.push_back(body.route[at]);
+    report_.stall_notes.push_back(stall_note(body));
   }
+}
+
+std::string TrafficSim::describe(const Body& body) const {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(2);
+  out << "robot " << body.id << " (type " << type_of(body.id) << ") at (" << body.pose.x << ", " << body.pose.y << ")";
+  if (body.dwell_until >= 0.0) out << " dwelling";
+  if (body.goal >= 0) {
+    const auto& g = graph_.points[static_cast<std::size_t>(body.goal)];
+    out << " to point " << body.goal << " (" << g.x << ", " << g.y << ")";
+  } else {
+    out << " without a goal";
+  }
+  out << ", driven " << body.distance << " of " << body.cum.back() << " m";
+  return out.str();
+}
+
+std::string TrafficSim::stall_note(const Body& body) const {
+  // Down the line of who waits for whom, each robot once: a jam is read from its whole chain.
+  std::ostringstream out;
+  out << "t=" << time_ << " s:";
+  std::vector<int> seen;
+  std::vector<std::pair<int, int>> todo{{body.id, 0}};
+  while (!todo.empty()) {
+    const auto [id, depth] = todo.back();
+    todo.pop_back();
+    const Body* b = find(id);
+    if (!b) continue;
+    out << "\n      " << std::string(static_cast<std::size_t>(2 * depth), ' ') << describe(*b);
+    if (std::find(seen.begin(), seen.end(), id) != seen.end()) {
+      out << " (above)";
+      continue;
+    }
+    seen.push_back(id);
+    for (const Grant& grant : last_update_.grants) {
+      if (grant.robot_id != id) continue;
+      out << ", granted " << grant.granted_distance << " m";
+      if (grant.status == GrantStatus::kWaiting) out << ", waits " << grant.waited_s << " s";
+      if (!grant.blocked_by.empty()) out << " for";
+      for (auto it = grant.blocked_by.rbegin(); it != grant.blocked_by.rend(); ++it) todo.push_back({*it, depth + 1});
+    }
+  }
+  return out.str();
 }
 
 int TrafficSim::type_of(int robot_id) const {

@@ -50,6 +50,9 @@ struct SimReport {
   std::size_t sidings = 0;
   std::size_t unresolved_cycles = 0;  ///< update cycles in which a wait-for cycle had no way out
   std::string first_collision;        ///< time, robots and positions of the first collision
+  /// Per deadlock, who stalled where and what it waited for (the manager's last grant), to read a
+  /// jam back without a debugger (`fleetctl traffic-eval --verbose`).
+  std::vector<std::string> stall_notes;
 };
 
 /// Where robots work and start on a site.
@@ -114,6 +117,8 @@ class TrafficSim {
   void start_next_goal(Body& body);
   void advance(Body& body);
   void check_collisions();
+  std::string describe(const Body& body) const;
+  std::string stall_note(const Body& body) const;
   Body* find(int robot_id);
   const Body* find(int robot_id) const;
 

@@ -1,7 +1,8 @@
 #pragma once
 
-// Small road graphs built in code, every edge driven both ways.
+// Small road graphs built in code, every edge driven both ways unless built one way.
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -34,6 +35,23 @@ class GraphBuilder {
     };
     add(a, b);
     add(b, a);
+  }
+  /// An edge driven from a to b only.
+  void arc(int a, int b) {
+    auto& s = graph_.successors[static_cast<std::size_t>(a)];
+    if (std::find(s.begin(), s.end(), b) == s.end()) s.push_back(b);
+  }
+  /// A lane from (x0, y0) to (x1, y1) driven that way only, sampled every `spacing`.
+  std::vector<int> one_way_road(double x0, double y0, double x1, double y1, double spacing = 0.1) {
+    const double length = std::hypot(x1 - x0, y1 - y0);
+    const int steps = std::max(1, static_cast<int>(std::lround(length / spacing)));
+    std::vector<int> ids;
+    for (int k = 0; k <= steps; ++k) {
+      const double t = static_cast<double>(k) / steps;
+      ids.push_back(point(x0 + t * (x1 - x0), y0 + t * (y1 - y0)));
+      if (k > 0) arc(ids[ids.size() - 2], ids.back());
+    }
+    return ids;
   }
   /// A straight road from (x0, y0) to (x1, y1) sampled every `spacing`; returns its point ids.
   std::vector<int> road(double x0, double y0, double x1, double y1, double spacing = 0.1) {
