@@ -186,11 +186,11 @@ std::vector<CommandSpec> make_table() {
        "",
        false,
        {value("--site", "NAME"), value("--against", "SITE"), value("--robots", "N"), value("--duration", "S"),
-        value("--dwell", "S"), value("--seed", "S"), value("--places", "P1,P2")},
+        value("--dwell", "S"), value("--seed", "S"), value("--places", "P1,P2"), on_off("--verbose")},
        "the traffic manager with the fleets' vehicle types on a site, robots driven\n"
        "kinematically (a load generator) on random trips (--places FG,EX: only between\n"
        "places whose ids start so); --against SITE runs the same on a revision and\n"
-       "prints the ratio of trips"},
+       "prints the ratio of trips; --verbose lists each stall with its chain of waits"},
       {Group::kOffline,
        "fleets",
        "",
