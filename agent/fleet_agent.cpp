@@ -5,7 +5,6 @@
 
 #include "common/paths.hpp"
 #include "common/process_memory.hpp"
-#include "traffic/traffic_settings.hpp"
 
 namespace fleet::agent {
 
@@ -20,31 +19,6 @@ std::uint64_t robot_stream(const std::string& robot_id) {
   return h % 1000003 * 16;
 }
 
-/// The graph the robot plans on: under traffic, the traffic manager's graph for its fleet's
-/// vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).
-std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const config::FleetSpec& fleet,
-                                                      const map::SiteMap& site) {
-  if (!config.settings.get_bool("traffic.enabled")) return nullptr;
-  return std::make_shared<const map::RoadGraph>(traffic::planning_graph(
-      site.graph.graph, traffic::configuration_from(config), traffic::vehicle_type_of(config, fleet.id)));
-}
-
-robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
-                                      const map::SiteMap& site) {
-  // Sizes, tolerances, gaps and manoeuvre speeds follow the fleet's vehicle (see docs/control.md).
-  robot::ForkliftConfig c = robot::ForkliftConfig::for_vehicle(fleet.profile);
-  c.sim.forklift.footprint = fleet.footprint;
-  // A neighbour not heard from lately may have driven at the top speed of any fleet on the site.
-  for (const auto& other : config.fleets) {
-    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
-  }
-  // The software's speed setting, within what the fleet's vehicle can do.
-  c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
-  c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
-  c.traffic = config.settings.get_bool("traffic.enabled");
-  c.route_graph = route_graph_for(config, fleet, site);
-  return c;
-}
 }  // namespace
 
 FleetAgent::FleetAgent(AgentOptions options, Logger log)
@@ -52,9 +26,10 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       log_(std::move(log)),
       clock_(options_.time_scale),
       fleet_(options_.config.find_robot(options_.robot_id)->first),
-      forklift_(forklift_config(options_.config, *fleet_, *options_.site), options_.site,
-                options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
-                options_.seed, robot_stream(options_.robot_id)),
+      robot_(robot::make_robot(
+          *fleet_, options_.config, options_.site,
+          options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
+          options_.seed, robot_stream(options_.robot_id))),
       participant_(options_.domain),
       state_writer_(participant_, dds::qos::robot_state()),
       truth_writer_(participant_, dds::qos::live_state()),
@@ -83,19 +58,18 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
                               control_reader_.handle(), pallet_reader_.handle(), grant_reader_.handle()}) {
     waitset_.attach(reader);
   }
-  const auto& home = forklift_.truth();
-  log_->info("forklift of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->id, home.x,
-             home.y, home.yaw, options_.site->site.name, options_.domain);
+  const auto& home = robot_->truth();
+  log_->info("{} of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->robot_type,
+             fleet_->id, home.x, home.y, home.yaw, options_.site->site.name, options_.domain);
 }
 
 std::optional<model::OrderReport> FleetAgent::report(const std::string& status, const std::string& reason,
                                                      int pallet_id, const geometry::Pose2& pallet_pose) {
   if (!order_) return std::nullopt;
   const auto& a = order_->assignment;
-  const int pallet = pallet_id >= 0 ? pallet_id : forklift_.carried_pallet();
-  const model::OrderReport message{
-      a.order_id, options_.robot_id, status, reason, a.update_id, clock_.now(), forklift_.carried_pallet() >= 0,
-      pallet,     pallet_pose};
+  const int pallet = pallet_id >= 0 ? pallet_id : robot_->carried_load();
+  const model::OrderReport message{a.order_id,   options_.robot_id,           status, reason,     a.update_id,
+                                   clock_.now(), robot_->carried_load() >= 0, pallet, pallet_pose};
   report_writer_.write(message);
   return message;
 }
@@ -136,7 +110,7 @@ void FleetAgent::handle_orders() {
     if (assignment.cancelled) {
       // A withdrawal older than the assignment we run is a late duplicate.
       if (is_current && assignment.update_id >= order_->assignment.update_id) {
-        if (forklift_.withdraw()) {
+        if (robot_->withdraw()) {
           log_->warn("order {} withdrawn by the server", assignment.order_id);
           order_.reset();
         } else {
@@ -172,11 +146,11 @@ void FleetAgent::handle_orders() {
       // the kind is not one this robot type knows
     } else if (order_) {
       why = "busy with order " + std::to_string(order_->assignment.order_id);
-    } else if (kind == orders::OrderKind::kPick) {
-      why = "a forklift performs no pickItem";
+    } else if (const std::string refused = robot_->refusal(*kind); !refused.empty()) {
+      why = refused;
     } else if (paused_) {
       why = "paused by the operator";
-    } else if (forklift_.submit(task_order, &why)) {
+    } else if (robot_->submit(task_order, &why)) {
       order_ = CurrentOrder{assignment, ""};
       log_->info("order {} accepted: {} -> {}", assignment.order_id, assignment.pick_area, assignment.drop_area);
       report("ACCEPTED");
@@ -189,7 +163,7 @@ void FleetAgent::handle_orders() {
                           why,
                           assignment.update_id,
                           clock_.now(),
-                          forklift_.carried_pallet() >= 0,
+                          robot_->carried_load() >= 0,
                           -1,
                           {}});
   });
@@ -203,7 +177,7 @@ void FleetAgent::handle_site_inputs() {
   control_reader_.take_data([&](model::RobotControl&& control) {
     if (control.robot_id != options_.robot_id || control.paused == paused_) return;
     paused_ = control.paused;
-    forklift_.set_paused(paused_);
+    robot_->set_paused(paused_);
     log_->info("{} by the operator", paused_ ? "paused" : "resumed");
   });
   obstacle_reader_.take_data([&](model::StaticObstacleState&& obstacle) {
@@ -216,7 +190,7 @@ void FleetAgent::handle_site_inputs() {
       log_->info("static obstacle {} {}", obstacle.obstacle_id, obstacle.enabled ? "enabled" : "disabled");
     }
     obstacles_[obstacle.obstacle_id] = obstacle.enabled;
-    if (forklift_.set_obstacle(obstacle.obstacle_id, obstacle.enabled)) {
+    if (robot_->set_obstacle(obstacle.obstacle_id, obstacle.enabled)) {
       log_->info("replanning {} after obstacle {} was {}",
                  order_ ? "order " + std::to_string(order_->assignment.order_id) : "the way home", obstacle.obstacle_id,
                  obstacle.enabled ? "enabled" : "disabled");
@@ -232,7 +206,7 @@ void FleetAgent::handle_site_inputs() {
     for (const auto& [id, p] : pallets_) {
       if (p.carried_by.empty()) standing[id] = p.pose;
     }
-    forklift_.set_standing_pallets(standing);
+    robot_->set_standing_loads(standing);
     log_->debug("{} pallets standing, {} known", standing.size(), pallets_.size());
   }
 }
@@ -247,11 +221,11 @@ void FleetAgent::switch_map(const std::string& map_id) {
     log_->error("map '{}' assigned but cannot be loaded, staying on '{}': {}", map_id, map_id_, e.what());
     return;
   }
-  if (const std::string why = map::revision_mismatch(forklift_.site().site, next->site); !why.empty()) {
+  if (const std::string why = map::revision_mismatch(robot_->site().site, next->site); !why.empty()) {
     log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
     return;
   }
-  forklift_.set_site(next, route_graph_for(options_.config, *fleet_, *next));
+  robot_->set_site(next, robot::route_graph_for(options_.config, *fleet_, *next));
   log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id,
              next->graph.graph.points.size());
   map_id_ = map_id;
@@ -259,7 +233,7 @@ void FleetAgent::switch_map(const std::string& map_id) {
   for (const auto& [key, enabled] : obstacle_cache_) {
     if (key.first != map_id_) continue;
     obstacles_[key.second] = enabled;
-    forklift_.set_obstacle(key.second, enabled);
+    robot_->set_obstacle(key.second, enabled);
   }
 }
 
@@ -273,7 +247,7 @@ void FleetAgent::handle_fleet_view(double now_sim) {
   if (truths_changed) {
     std::vector<geometry::Polygon> footprints;
     for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
-    forklift_.set_true_neighbours(std::move(footprints));
+    robot_->set_true_neighbours(std::move(footprints));
   }
   std::optional<model::FleetView> latest;
   fleet_view_reader_.take_data([&](model::FleetView&& view) {
@@ -293,12 +267,12 @@ void FleetAgent::handle_fleet_view(double now_sim) {
   // Robots missing from this view stay where last listed (a collision after a server restart in
   // the 2-hour soak: the first views of the new server lacked robots not heard from yet).
   neighbours_.update(listed, now_sim);
-  forklift_.set_neighbours(neighbours_.current());
+  robot_->set_neighbours(neighbours_.current());
 }
 
 void FleetAgent::handle_events() {
-  for (const auto& e : forklift_.take_events()) {
-    using K = robot::ForkliftEvent::Kind;
+  for (const auto& e : robot_->take_events()) {
+    using K = robot::RobotEvent::Kind;
     switch (e.kind) {
       case K::kPhase:
         if (!order_) break;
@@ -307,17 +281,17 @@ void FleetAgent::handle_events() {
         report(e.text);
         break;
       case K::kLifted:
-        log_->info("pallet {} on the forks", e.pallet_id);
+        log_->info("load {} taken up", e.load_id);
         break;
       case K::kDone:
         if (!order_) break;
-        if (e.pallet_id < 0) {
+        if (e.load_id < 0) {
           log_->info("order {} done: parked at {}", order_->assignment.order_id, order_->assignment.drop_area);
         } else {
-          log_->info("order {} done: pallet {} placed at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
-                     e.pallet_id, order_->assignment.drop_area, e.pallet_pose.x, e.pallet_pose.y, e.pallet_pose.yaw);
+          log_->info("order {} done: load {} put down at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,
+                     e.load_id, order_->assignment.drop_area, e.load_pose.x, e.load_pose.y, e.load_pose.yaw);
         }
-        finish_order("DONE", "", e.pallet_id, e.pallet_pose);
+        finish_order("DONE", "", e.load_id, e.load_pose);
         break;
       case K::kAreaEmpty:
       case K::kFailed:
@@ -339,15 +313,15 @@ void FleetAgent::publish_state(double now_sim) {
   state.robot_id = options_.robot_id;
   state.fleet_id = fleet_->id;
   state.map_id = map_id_;
-  state.pose = forklift_.estimate();
-  state.covariance = forklift_.covariance();
-  state.localization_score = forklift_.localization_score();
-  state.speed = forklift_.command().vx;
-  state.yaw_rate = forklift_.command().omega;
-  state.task_state = forklift_.task_state();
-  state.detail = forklift_.detail();
+  state.pose = robot_->estimate();
+  state.covariance = robot_->covariance();
+  state.localization_score = robot_->localization_score();
+  state.speed = robot_->command().vx;
+  state.yaw_rate = robot_->command().omega;
+  state.task_state = robot_->task_state();
+  state.detail = robot_->detail();
   state.order_id = order_ ? order_->assignment.order_id : 0;
-  state.carrying_pallet = forklift_.carried_pallet() >= 0;
+  state.carrying_pallet = robot_->carried_load() >= 0;
   state.sim_time = now_sim;
   if (pose_delay_s_ > 0.0) {
     // A slow network: the state is stamped now and arrives late.
@@ -357,14 +331,14 @@ void FleetAgent::publish_state(double now_sim) {
   } else {
     state_writer_.write(state);
   }
-  truth_writer_.write({options_.robot_id, forklift_.truth(), forklift_.footprint(), state.carrying_pallet, now_sim});
+  truth_writer_.write({options_.robot_id, robot_->truth(), robot_->footprint(), state.carrying_pallet, now_sim});
   if (state.task_state != last_state_) {
     log_->info("state {}{}", state.task_state, state.detail.empty() ? "" : " (" + state.detail + ")");
     last_state_ = state.task_state;
   }
-  if (forklift_.path().size() != last_path_size_) {
-    path_writer_.write({options_.robot_id, forklift_.path(), now_sim});
-    last_path_size_ = forklift_.path().size();
+  if (robot_->path().size() != last_path_size_) {
+    path_writer_.write({options_.robot_id, robot_->path(), now_sim});
+    last_path_size_ = robot_->path().size();
   }
 }
 
@@ -380,7 +354,7 @@ void FleetAgent::flush_delayed_states() {
 
 void FleetAgent::publish_traffic(double now_sim) {
   if (!traffic_) return;
-  robot::TrafficRoute route = forklift_.traffic_route();
+  robot::TrafficRoute route = robot_->traffic_route();
   // A new route goes out at once; progress at the state rate (the caller's), and a route left
   // (parked off the road) once.
   const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size();
@@ -404,16 +378,16 @@ void FleetAgent::handle_traffic() {
       permit.route = std::move(grant.route);
       permit.siding = grant.instruction == "SIDING";
     }
-    forklift_.set_traffic_grant(permit);
+    robot_->set_traffic_grant(permit);
   });
 }
 
 void FleetAgent::run(const std::atomic<bool>& stop) {
-  const double step = forklift_.step_period();
+  const double step = robot_->step_period();
   const double publish_period_wall =
       std::max(1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
-  // The forklift keeps its own sim time from zero; `offset` maps it onto the shared clock.
-  double offset = clock_.now() - forklift_.time();
+  // The robot keeps its own sim time from zero; `offset` maps it onto the shared clock.
+  double offset = clock_.now() - robot_->time();
   double last_publish_wall = 0.0;
   double target = clock_.now();
   publish_state(target);
@@ -426,14 +400,14 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     handle_fleet_view(target);
     // Advance in fixed control steps to the clock. After a long gap (the process was stopped)
     // the body does not replay the missed time: it was frozen with its software.
-    double behind = target - (forklift_.time() + offset);
+    double behind = target - (robot_->time() + offset);
     if (behind > 1.0) {
       offset += behind - step;
       behind = step;
     }
     handle_traffic();
     for (; behind >= step; behind -= step) {
-      forklift_.step();
+      robot_->step();
       handle_events();
     }
     const double now_wall = SimClock::wall_now();
@@ -441,7 +415,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       publish_state(target);
       publish_traffic(target);
       last_publish_wall = now_wall;
-    } else if (traffic_ && forklift_.route_version() != last_traffic_.version) {
+    } else if (traffic_ && robot_->route_version() != last_traffic_.version) {
       publish_traffic(target);
     }
     flush_delayed_states();

@@ -13,8 +13,9 @@
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
-#include "robot/forklift.hpp"
 #include "robot/neighbour_memory.hpp"
+#include "robot/robot.hpp"
+#include "robot/robot_factory.hpp"
 
 namespace fleet::agent {
 
@@ -27,9 +28,9 @@ struct AgentOptions {
   std::uint64_t seed = 1;
 };
 
-/// One robot process: a robot::Forklift (simulated body and sensors, and the robot's own
-/// software) wired to the server over DDS. Everything the forklift learns arrives here as a
-/// message; everything it does leaves as one.
+/// One robot process: a robot::Robot of its fleet's robot type (simulated body and sensors, and
+/// the robot's own software, built by robot::make_robot) wired to the server over DDS. Everything
+/// the robot learns arrives here as a message; everything it does leaves as one.
 class FleetAgent {
  public:
   FleetAgent(AgentOptions options, Logger log);
@@ -63,7 +64,7 @@ class FleetAgent {
   Logger log_;
   SimClock clock_;
   const config::FleetSpec* fleet_ = nullptr;
-  robot::Forklift forklift_;
+  std::unique_ptr<robot::Robot> robot_;
   std::string map_id_;
   std::optional<CurrentOrder> order_;
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "robot/forklift.hpp"
+#include "robot/robot.hpp"
 
 namespace fleet::robot {
 

@@ -10,7 +10,7 @@
 #include "traffic/one_way.hpp"
 
 using namespace fleet;
-using robot::ForkliftEvent;
+using robot::RobotEvent;
 
 namespace {
 
@@ -34,8 +34,8 @@ task::TaskOrder order_between(const map::Site& site, const std::string& from, co
 }
 
 /// Steps until an event of `kind` or the sim-time limit; collects every event.
-std::vector<ForkliftEvent> run_until(robot::Forklift& f, ForkliftEvent::Kind kind, double limit_s) {
-  std::vector<ForkliftEvent> all;
+std::vector<RobotEvent> run_until(robot::Forklift& f, RobotEvent::Kind kind, double limit_s) {
+  std::vector<RobotEvent> all;
   const double end = f.time() + limit_s;
   while (f.time() < end) {
     f.step();
@@ -66,7 +66,7 @@ robot::ForkliftConfig under_traffic(const map::SiteMap& site) {
   return config;
 }
 
-bool has(const std::vector<ForkliftEvent>& events, ForkliftEvent::Kind kind, const std::string& text = "") {
+bool has(const std::vector<RobotEvent>& events, RobotEvent::Kind kind, const std::string& text = "") {
   for (const auto& e : events) {
     if (e.kind == kind && (text.empty() || e.text == text)) return true;
   }
@@ -79,47 +79,47 @@ TEST(Forklift, CarriesARealPalletFromPickToDropAndGoesHome) {
   const auto site = table_a();
   const auto home = site->site.find_home("H1")->pose;
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, home, 1, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   std::string why;
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), &why)) << why;
 
-  const auto events = run_until(f, ForkliftEvent::Kind::kDone, 300.0);
-  ASSERT_TRUE(has(events, ForkliftEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
+  const auto events = run_until(f, RobotEvent::Kind::kDone, 300.0);
+  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
   for (const char* phase : {"TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"}) {
-    EXPECT_TRUE(has(events, ForkliftEvent::Kind::kPhase, phase)) << phase;
+    EXPECT_TRUE(has(events, RobotEvent::Kind::kPhase, phase)) << phase;
   }
-  EXPECT_TRUE(has(events, ForkliftEvent::Kind::kLifted));
-  const ForkliftEvent done = events.back();
-  EXPECT_EQ(done.pallet_id, 1);  // the pallet that stood on A1
+  EXPECT_TRUE(has(events, RobotEvent::Kind::kLifted));
+  const RobotEvent done = events.back();
+  EXPECT_EQ(done.load_id, 1);  // the pallet that stood on A1
   const auto& a2 = site->site.find_area("A2")->pose;
-  EXPECT_LT(geometry::distance(done.pallet_pose.position(), a2.position()), 0.03);
-  EXPECT_EQ(f.carried_pallet(), -1);
+  EXPECT_LT(geometry::distance(done.load_pose.position(), a2.position()), 0.03);
+  EXPECT_EQ(f.carried_load(), -1);
 
-  const auto back = run_until(f, ForkliftEvent::Kind::kHome, 200.0);
-  ASSERT_TRUE(has(back, ForkliftEvent::Kind::kHome));
+  const auto back = run_until(f, RobotEvent::Kind::kHome, 200.0);
+  ASSERT_TRUE(has(back, RobotEvent::Kind::kHome));
   EXPECT_LT(geometry::distance(f.truth().position(), home.position()), 0.05);
 }
 
 TEST(Forklift, WithdrawnWithThePalletLiftedItCarriesTheOrderOnToTheDrop) {
   const auto site = table_a();
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 1, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
-  ASSERT_TRUE(has(run_until(f, ForkliftEvent::Kind::kLifted, 300.0), ForkliftEvent::Kind::kLifted)) << f.task_state();
+  ASSERT_TRUE(has(run_until(f, RobotEvent::Kind::kLifted, 300.0), RobotEvent::Kind::kLifted)) << f.task_state();
   // The order cannot be cancelled now [Forklift thesis, section 6.4]; stopping would leave the robot in the lane.
   EXPECT_FALSE(f.withdraw());
-  const auto events = run_until(f, ForkliftEvent::Kind::kDone, 300.0);
-  ASSERT_TRUE(has(events, ForkliftEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
-  EXPECT_EQ(f.carried_pallet(), -1);
+  const auto events = run_until(f, RobotEvent::Kind::kDone, 300.0);
+  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
+  EXPECT_EQ(f.carried_load(), -1);
 }
 
 TEST(Forklift, AnEmptyAreaFailsTheOrderAndTheRobotGoesHome) {
   const auto site = table_a();
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 2, 1);
-  f.set_standing_pallets({});  // no pallet anywhere
+  f.set_standing_loads({});  // no pallet anywhere
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
-  const auto events = run_until(f, ForkliftEvent::Kind::kAreaEmpty, 200.0);
-  EXPECT_TRUE(has(events, ForkliftEvent::Kind::kAreaEmpty)) << f.task_state();
+  const auto events = run_until(f, RobotEvent::Kind::kAreaEmpty, 200.0);
+  EXPECT_TRUE(has(events, RobotEvent::Kind::kAreaEmpty)) << f.task_state();
   EXPECT_EQ(f.task_state(), "GO_HOME");
 }
 
@@ -127,7 +127,7 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   const auto site = table_a();
   const auto home = site->site.find_home("H1")->pose;
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, home, 3, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   // Drive until a path exists, then put a robot on it 0.6 m ahead.
   for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
@@ -153,7 +153,7 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   const auto site = table_a();
   const robot::ForkliftConfig config = under_traffic(*site);
   robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
   const robot::TrafficRoute route = f.traffic_route();
@@ -201,7 +201,7 @@ struct SidingOnTheWayHome {
 
   /// Drives until the robot waits at the siding's end (3 cm short of its last point).
   void yield_on_siding() {
-    f.set_standing_pallets(pallets_of(site->site));
+    f.set_standing_loads(pallets_of(site->site));
     ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
     while (f.time() < 20.0) step();
     ASSERT_TRUE(f.withdraw()) << "on its way to the pick, the order can be withdrawn";
@@ -231,7 +231,7 @@ struct SidingOnTheWayHome {
     while (f.time() < end) {
       step();
       for (const auto& e : f.take_events()) {
-        if (e.kind == ForkliftEvent::Kind::kHome) return true;
+        if (e.kind == RobotEvent::Kind::kHome) return true;
       }
     }
     return false;
@@ -280,7 +280,7 @@ TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
   const auto site = table_a();
   const robot::ForkliftConfig config = under_traffic(*site);
   robot::Forklift f(config, site, site->site.find_home("H4")->pose, 5, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   f.set_obstacle("O4", true);
   ASSERT_TRUE(f.submit(order_between(site->site, "A4", "A1"), nullptr));
   for (int i = 0; i < 400 && f.path().size() < 2; ++i) f.step();
@@ -303,7 +303,7 @@ TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
   int failures = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H2")->pose, seed, 1);
-    f.set_standing_pallets(pallets_of(site->site));
+    f.set_standing_loads(pallets_of(site->site));
     f.set_neighbours({{"fl1", site->site.find_home("H1")->pose, {0.25, 0.16}, 0.0, 0.0}});
     ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
     double worst = 0.0;
@@ -313,8 +313,8 @@ TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
       f.step();
       worst = std::max(worst, geometry::distance(f.truth().position(), f.estimate().position()));
       for (const auto& e : f.take_events()) {
-        done = done || e.kind == ForkliftEvent::Kind::kDone;
-        empty = empty || e.kind == ForkliftEvent::Kind::kAreaEmpty;
+        done = done || e.kind == RobotEvent::Kind::kDone;
+        empty = empty || e.kind == RobotEvent::Kind::kAreaEmpty;
       }
     }
     if (!done) ++failures;
@@ -329,7 +329,7 @@ TEST(Forklift, TheLidarAloneStopsItForARobotMissingFromFleetView) {
   // OctoMap and the dynamic grid: the forklift stops short of it.
   const auto site = table_a();
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 4, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
   for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
   ASSERT_GE(f.path().size(), 4u);
@@ -351,7 +351,7 @@ TEST(Forklift, BackingOutOfADropItStopsForARobotOnlyItsLidarSees) {
   // 3 cm inside the other body.
   const auto site = table_a();
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H2")->pose, 3, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
   for (int i = 0; i < 70 * 300 && !(f.task_state() == "DROP_PALLET" && f.truth().y < 0.33); ++i) f.step();
   ASSERT_EQ(f.task_state(), "DROP_PALLET");
@@ -381,7 +381,7 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
     for (const auto& [from, to] :
          std::vector<std::pair<std::string, std::string>>{{"A1", "A2"}, {"A3", "A8"}, {"A5", "A2"}, {"A7", "A4"}}) {
       robot::Forklift f(config, site, site->site.find_home(start)->pose, 7, 1);
-      f.set_standing_pallets({{1, site->site.find_area(from)->pose}});
+      f.set_standing_loads({{1, site->site.find_area(from)->pose}});
       ASSERT_TRUE(f.submit(order_between(site->site, from, to), nullptr));
       std::uint64_t granted = 0;
       bool home = false;
@@ -392,7 +392,7 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
           granted = r.version;
         }
         f.step();
-        for (const auto& e : f.take_events()) home = home || e.kind == ForkliftEvent::Kind::kHome;
+        for (const auto& e : f.take_events()) home = home || e.kind == RobotEvent::Kind::kHome;
         const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
         for (const auto& h : site->site.homes) {
           if (h.id == start) continue;
@@ -419,7 +419,7 @@ TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
   const geometry::Pose2 parked = site->site.find_home("H5")->pose;
   const auto parked_body = geometry::footprint_polygon(parked, {0.25, 0.16});
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, close_by, 8, 1);
-  f.set_standing_pallets(pallets_of(site->site));
+  f.set_standing_loads(pallets_of(site->site));
   f.set_neighbours({{"fl5", parked, {0.25, 0.16}, 0.0, 0.0}});
   f.set_true_neighbours({parked_body});
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
@@ -438,7 +438,7 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
   // behind it. Turning round to touch that point would sweep the robot's body into the one that
   // stopped it, and a robot sent to a siding this way would never get there (sent again every 3 s).
   SidingOnTheWayHome g;
-  g.f.set_standing_pallets(pallets_of(g.site->site));
+  g.f.set_standing_loads(pallets_of(g.site->site));
   ASSERT_TRUE(g.f.submit(order_between(g.site->site, "A3", "A2"), nullptr));
   while (g.f.time() < 20.0) g.step();
   const robot::TrafficRoute own = g.f.traffic_route();

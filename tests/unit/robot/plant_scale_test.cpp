@@ -8,7 +8,7 @@
 
 using namespace fleet;
 using robot::ForkliftConfig;
-using robot::ForkliftEvent;
+using robot::RobotEvent;
 
 namespace {
 
@@ -162,7 +162,7 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
   for (const auto& area : site->site.loading_areas) {
     if (area.pallet_at_start) pallets[id++] = area.pose;
   }
-  f.set_standing_pallets(pallets);
+  f.set_standing_loads(pallets);
   const auto& from = site->site.find_area("FG5")->pose;
   const auto& to = site->site.find_area("EX7")->pose;
   ASSERT_TRUE(f.submit({"1", "FG5", from, "EX7", to}, nullptr));
@@ -170,11 +170,11 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
   while (!done && f.time() < 240.0) {
     f.step();
     for (const auto& e : f.take_events()) {
-      ASSERT_NE(e.kind, ForkliftEvent::Kind::kFailed) << e.text;
-      ASSERT_NE(e.kind, ForkliftEvent::Kind::kAreaEmpty) << e.text;
-      if (e.kind == ForkliftEvent::Kind::kDone) {
+      ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
+      ASSERT_NE(e.kind, RobotEvent::Kind::kAreaEmpty) << e.text;
+      if (e.kind == RobotEvent::Kind::kDone) {
         done = true;
-        EXPECT_LT(geometry::distance(e.pallet_pose.position(), to.position()), 0.15);
+        EXPECT_LT(geometry::distance(e.load_pose.position(), to.position()), 0.15);
       }
     }
   }

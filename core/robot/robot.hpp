@@ -1,0 +1,133 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/twist.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/pose.hpp"
+#include "map/site_map.hpp"
+#include "orders/order_kind.hpp"
+#include "task/task_executor.hpp"
+
+namespace fleet::robot {
+
+/// Another robot as this one knows it (from FleetView).
+struct Neighbour {
+  std::string robot_id;
+  geometry::Pose2 pose;
+  geometry::Footprint footprint;
+  double speed = 0.0;
+  double age = 0.0;  ///< sim seconds since the pose was measured
+};
+
+/// The road part of the route being driven, for the traffic manager (see model::TrafficRequest).
+struct TrafficRoute {
+  std::uint64_t version = 0;
+  std::vector<int> points;  ///< graph point ids; empty while off the roads
+  double progress = 0.0;    ///< metres driven from the first point
+  /// The robot whose body the safety check has kept this one standing for, once the stop has
+  /// lasted 3 s sim on this route (safety_stop.cpp, kReportStopAfter): the traffic manager then
+  /// sees who waits for whom even where the grants alone show no cycle.
+  std::vector<std::string> stopped_for;
+};
+
+/// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).
+struct TrafficPermit {
+  std::uint64_t version = 0;
+  int granted_index = 0;
+  double granted_distance = 0.0;
+  std::vector<std::string> blocked_by;
+  /// Non-empty: drive this route (of `version`) instead; `siding` when it leads to a siding to
+  /// wait on rather than towards the goal.
+  std::vector<int> route;
+  bool siding = false;
+};
+
+/// What happened during a step, for the agent to report. The same for every robot type: the
+/// load is whatever the type carries (a pallet for a forklift).
+struct RobotEvent {
+  enum class Kind {
+    kPhase,      ///< the order's phase changed: `text` is TO_PICK, SEARCHING, PICKING, TO_DROP, DROPPING
+    kLifted,     ///< a load was taken up: `load_id`
+    kDone,       ///< the order's goal reached; a load put down there: `load_id`, `load_pose` (truth)
+    kAreaEmpty,  ///< no load at the pick place: the order fails, the robot goes home
+    kFailed,     ///< the order failed: `text` says why
+    kHome,       ///< home reached, idle
+    kState,      ///< the task state changed: `text` is its name
+  };
+  Kind kind = Kind::kState;
+  std::string order_id;
+  std::string text;
+  int load_id = -1;
+  geometry::Pose2 load_pose;
+};
+
+/// One robot of any type, as the agent drives it: its simulated body and sensors and its own
+/// software. No I/O: the agent feeds it what arrives over DDS and publishes what it reports.
+/// robot::make_robot (robot_factory.hpp) builds the one a fleet's `robot_type` names.
+class Robot {
+ public:
+  virtual ~Robot() = default;
+
+  // --- inputs ---------------------------------------------------------------------------------
+  /// Why this type cannot perform orders of `kind` at all; empty when it can.
+  virtual std::string refusal(orders::OrderKind kind) const = 0;
+  /// An order; false with the reason when the robot cannot take it now.
+  virtual bool submit(const task::TaskOrder& order, std::string* why) = 0;
+  /// The server took the order away: drop it and go home. False, with the order left running,
+  /// when the robot cannot stop it now (a load half taken up).
+  virtual bool withdraw() = 0;
+  virtual void set_paused(bool paused) = 0;
+  /// A designated static obstacle switched on or off. True when the robot is driving and asked
+  /// for a new plan on the changed grid.
+  virtual bool set_obstacle(const std::string& id, bool enabled) = 0;
+  /// Where the loads really stand (simulation truth, owned by the server), by id; loads carried
+  /// by other robots are left out.
+  virtual void set_standing_loads(const std::map<int, geometry::Pose2>& standing) = 0;
+  virtual void set_neighbours(std::vector<Neighbour> neighbours) = 0;
+  /// Simulation truth of the other robots' footprints: what the onboard sensors see.
+  virtual void set_true_neighbours(std::vector<geometry::Polygon> footprints) = 0;
+  /// The server switched this robot to a revision of its site's map (see map::revision_mismatch);
+  /// `route_graph` is the graph to plan on, null for the site's own.
+  virtual void set_site(std::shared_ptr<const map::SiteMap> site,
+                        std::shared_ptr<const map::RoadGraph> route_graph) = 0;
+  virtual const map::SiteMap& site() const = 0;
+  /// The traffic manager's latest grant for this robot (traffic on only).
+  virtual void set_traffic_grant(const TrafficPermit& permit) = 0;
+
+  /// One control step of step_period() sim seconds.
+  virtual void step() = 0;
+  virtual double step_period() const = 0;
+
+  // --- outputs --------------------------------------------------------------------------------
+  virtual std::vector<RobotEvent> take_events() = 0;
+  virtual double time() const = 0;
+  virtual const geometry::Pose2& truth() const = 0;
+  virtual geometry::Pose2 estimate() const = 0;
+  virtual std::array<double, 9> covariance() const = 0;
+  virtual double localization_score() const = 0;
+  virtual const control::BodyTwist& command() const = 0;
+  virtual std::string task_state() const = 0;
+  /// Why the robot waits or failed, empty otherwise.
+  virtual const std::string& detail() const = 0;
+  virtual std::optional<std::string> order_id() const = 0;
+  /// The id of the load it carries, -1 when none.
+  virtual int carried_load() const = 0;
+  /// The path being followed (for RobotPath and the web view).
+  virtual const std::vector<geometry::Vec2>& path() const = 0;
+  virtual const geometry::Footprint& footprint() const = 0;
+  /// The route to report to the traffic manager, with the progress along it.
+  virtual TrafficRoute traffic_route() const = 0;
+  /// Its version alone: changes with every new route (no copy of the route).
+  virtual std::uint64_t route_version() const = 0;
+  /// Whether the robot stands at the end of what traffic granted it.
+  virtual bool held_by_traffic() const = 0;
+};
+
+}  // namespace fleet::robot

@@ -1,0 +1,51 @@
+#include "robot/robot_factory.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "robot/forklift.hpp"
+#include "traffic/traffic_settings.hpp"
+#include "vehicle/vehicle_types.hpp"
+
+namespace fleet::robot {
+
+std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                                      const map::SiteMap& site) {
+  if (!config.settings.get_bool("traffic.enabled")) return nullptr;
+  return std::make_shared<const map::RoadGraph>(traffic::planning_graph(
+      site.graph.graph, traffic::configuration_from(config), traffic::vehicle_type_of(config, fleet.id)));
+}
+
+namespace {
+
+robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                      const map::SiteMap& site) {
+  // Sizes, tolerances, gaps and manoeuvre speeds follow the fleet's vehicle (see docs/control.md).
+  robot::ForkliftConfig c = robot::ForkliftConfig::for_vehicle(fleet.profile);
+  c.sim.forklift.footprint = fleet.footprint;
+  // A neighbour not heard from lately may have driven at the top speed of any fleet on the site.
+  for (const auto& other : config.fleets) {
+    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
+  }
+  // The software's speed setting, within what the fleet's vehicle can do.
+  c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+  c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
+  c.traffic = config.settings.get_bool("traffic.enabled");
+  c.route_graph = route_graph_for(config, fleet, site);
+  return c;
+}
+
+}  // namespace
+
+std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
+                                  std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
+                                  std::uint64_t seed, std::uint64_t stream) {
+  // One branch per robot type the agent can drive; its software lives in its own file here.
+  if (fleet.robot_type == "forklift") {
+    return std::make_unique<Forklift>(forklift_config(config, fleet, *site), site, home, seed, stream);
+  }
+  throw std::invalid_argument("fleet '" + fleet.id + "': unknown robot type '" + fleet.robot_type +
+                              "' (known: " + vehicle::robot_type_names() + ")");
+}
+
+}  // namespace fleet::robot

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "robot/robot.hpp"
+
+namespace fleet::robot {
+
+/// The robot of `fleet`'s robot type, at `home` on `site`, configured from the fleet's profile
+/// and `config`'s settings; `seed` and `stream` pick its noise. Throws std::invalid_argument
+/// naming the type and the known ones (vehicle::robot_types()) when the agent cannot build it.
+std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
+                                  std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
+                                  std::uint64_t seed, std::uint64_t stream);
+
+/// The graph a robot of `fleet` plans on: under traffic, the traffic manager's graph for its
+/// fleet's vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).
+std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                                      const map::SiteMap& site);
+
+}  // namespace fleet::robot

@@ -1,0 +1,183 @@
+#include "robot/traffic_follower.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fleet::robot {
+
+using geometry::Vec2;
+
+namespace {
+std::vector<double> cumulative_lengths(const std::vector<Vec2>& points) {
+  std::vector<double> cum(points.size(), 0.0);
+  for (std::size_t i = 1; i < points.size(); ++i) cum[i] = cum[i - 1] + geometry::distance(points[i - 1], points[i]);
+  return cum;
+}
+}  // namespace
+
+std::uint64_t first_route_version(std::chrono::system_clock::time_point now) {
+  const auto unix_s = std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count();
+  return static_cast<std::uint64_t>(std::max<std::int64_t>(0, unix_s - 1'700'000'000)) * 16;
+}
+
+std::uint64_t next_own_route_version(std::uint64_t current) {
+  return (current + 2) & ~std::uint64_t{1};
+}
+
+TrafficFollower::TrafficFollower(TrafficFollowerParams params)
+    : TrafficFollower(params, first_route_version(std::chrono::system_clock::now())) {}
+
+TrafficFollower::TrafficFollower(TrafficFollowerParams params, std::uint64_t first_version)
+    : params_(params), version_(first_version) {}
+
+void TrafficFollower::adopt_plan(const planning::Route& route) {
+  path_ = route.points;
+  path_cum_ = cumulative_lengths(path_);
+  path_s_ = 0.0;
+  in_siding_ = false;
+  siding_held_since_ = -1.0;
+  road_points_ = route.road.point_ids;
+  road_cum_ = cumulative_lengths(route.road.points);
+  road_start_ = 0.0;
+  goal_leg_.clear();
+  goal_point_ = road_points_.empty() ? -1 : road_points_.back();
+  if (road_points_.empty()) return;
+  // The road part starts where the path first reaches the first road point; the rest of the path
+  // after the last road point is the leg off the road to the goal, kept for re-routes.
+  const Vec2 first = route.road.points.front();
+  std::size_t first_index = 0;
+  while (first_index + 1 < path_.size() && geometry::distance(path_[first_index], first) > 1e-9) ++first_index;
+  road_start_ = path_cum_[first_index];
+  // Found by its position, not counted from the first: the path holds each point once, the road
+  // plan repeats the points where its edges join.
+  const Vec2 last = route.road.points.back();
+  std::size_t last_index = path_.size() - 1;
+  while (last_index > first_index && geometry::distance(path_[last_index], last) > 1e-9) --last_index;
+  goal_leg_.assign(path_.begin() + static_cast<std::ptrdiff_t>(last_index) + 1, path_.end());
+  version_ = next_own_route_version(version_);
+}
+
+void TrafficFollower::adopt_route(const TrafficPermit& permit, const map::RoadGraph& graph, Vec2 here) {
+  // Compared with the own plan's last point, not the route being driven: coming back from a
+  // siding, that route is the siding's, and the robot still has to leave the road at the goal.
+  const bool to_goal = !permit.siding && goal_point_ >= 0 && permit.route.back() == goal_point_;
+  std::vector<Vec2> road;
+  for (int id : permit.route)
+    road.push_back({graph.points[static_cast<std::size_t>(id)].x, graph.points[static_cast<std::size_t>(id)].y});
+  // A route handed over while the robot stood short of its grant starts at the route point at or
+  // behind it: the path joins the route at the first point ahead, so the robot does not turn
+  // round (sweeping its body into whoever stopped it) to touch a point it has passed. A route that
+  // leads back the way the robot came still starts at its first point.
+  std::size_t first = 0;
+  while (first + 1 < road.size()) {
+    const Vec2 ab = road[first + 1] - road[first];
+    const double len2 = geometry::dot(ab, ab);
+    const double along = len2 > 0.0 ? geometry::dot(here - road[first], ab) / len2 : 1.0;
+    if (along <= 0.0) break;
+    ++first;
+    if (along < 1.0) break;
+  }
+  road_cum_ = cumulative_lengths(road);
+  path_.assign(1, here);
+  path_.insert(path_.end(), road.begin() + static_cast<std::ptrdiff_t>(first), road.end());
+  // Where road point `first` sits on the path, less its distance along the road: progress along
+  // the road is then path position - road_start_, as for a path through every road point.
+  road_start_ = geometry::distance(here, road[first]) - road_cum_[first];
+  if (to_goal) path_.insert(path_.end(), goal_leg_.begin(), goal_leg_.end());
+  path_cum_ = cumulative_lengths(path_);
+  path_s_ = 0.0;
+  road_points_ = permit.route;
+  version_ = permit.version;
+  in_siding_ = permit.siding;
+  siding_held_since_ = -1.0;
+}
+
+void TrafficFollower::leave_road() {
+  path_.clear();
+  path_cum_.clear();
+  road_points_.clear();  // parked beside the road: it holds no road any more
+  road_cum_.clear();
+}
+
+void TrafficFollower::forget_route() {
+  road_points_.clear();
+  road_cum_.clear();
+  pending_route_.reset();
+  permit_ = {};
+}
+
+bool TrafficFollower::grant(const TrafficPermit& permit) {
+  if (!params_.traffic) return false;
+  bool replan = false;
+  if (!permit.route.empty() && permit.version > version_ && !pending_route_) {
+    pending_route_ = permit;
+    replan = true;
+  }
+  if (!pending_route_) permit_ = permit;
+  return replan;
+}
+
+std::optional<TrafficPermit> TrafficFollower::take_route() {
+  std::optional<TrafficPermit> out = std::move(pending_route_);
+  pending_route_.reset();
+  return out;
+}
+
+double TrafficFollower::path_position(Vec2 here) const {
+  // The projection onto the path near where the robot was last found: a path may pass close to
+  // itself, and progress must not jump.
+  if (path_.size() < 2) return 0.0;
+  double best_d = std::numeric_limits<double>::infinity();
+  double best_s = path_s_;
+  for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
+    if (path_cum_[i + 1] < path_s_ - 0.05) continue;
+    if (path_cum_[i] > path_s_ + 0.30) break;
+    const Vec2 a = path_[i];
+    const Vec2 ab = path_[i + 1] - a;
+    const double len2 = geometry::dot(ab, ab);
+    const double u = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
+    const double d = geometry::distance(here, a + u * ab);
+    if (d < best_d) {
+      best_d = d;
+      best_s = path_cum_[i] + u * std::sqrt(len2);
+    }
+  }
+  return best_s;
+}
+
+double TrafficFollower::room(Vec2 here) {
+  if (!params_.traffic || road_points_.empty() || path_.size() < 2) return std::numeric_limits<double>::infinity();
+  path_s_ = path_position(here);
+  if (permit_.version != version_ || permit_.granted_index < 0) {
+    // No grant for this route yet: stand still, not even turning on the spot; beside a lane a
+    // turn sweeps the footprint into it. The manager admits the robot once its entry is free.
+    return -path_s_ - 1e-9;
+  }
+  const bool whole_route = permit_.granted_index + 1 >= static_cast<int>(road_points_.size());
+  if (whole_route && !in_siding_) return std::numeric_limits<double>::infinity();
+  double allowed = road_start_ + permit_.granted_distance;
+  // On a siding, stop just short of its end: the follower would take the end for the goal.
+  if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - params_.siding_end_margin);
+  return allowed - path_s_;
+}
+
+bool TrafficFollower::siding_timed_out(double t, bool held) {
+  // Counted from the first hold on this siding, not reset when a hold flickers at its end.
+  if (in_siding_ && held && siding_held_since_ < 0.0) siding_held_since_ = t;
+  if (in_siding_ && siding_held_since_ >= 0.0 && t - siding_held_since_ > params_.siding_timeout && !pending_route_) {
+    in_siding_ = false;
+    return true;
+  }
+  return false;
+}
+
+TrafficRoute TrafficFollower::route() const {
+  TrafficRoute r;
+  r.version = version_;
+  r.points = road_points_;
+  if (!road_points_.empty()) r.progress = std::clamp(path_s_ - road_start_, 0.0, road_cum_.back());
+  return r;
+}
+
+}  // namespace fleet::robot
