@@ -34,9 +34,9 @@ STALL_LANE = 1.1      # the parking street and stalls: a 0.9 m reach truck fits
 SOUTH_Y, NORTH_Y = 7.0, 24.0               # cross aisle centres
 WEST_X, MID_X, EAST_X = 2.5, 30.0, 57.5    # north-south aisle centres
 CORRIDOR_Y, RACK_AISLE_Y = 17.1, 11.7      # the corridor continues as the upper rack aisle
-PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 37.0
+PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 36.4
 STREET_Y, STALL_END_Y = 26.9, 29.1
-STALLS = [38.6 + 1.2 * k for k in range(16)]
+STALLS = [38.0 + 1.2 * k for k in range(16)]
 
 PALLET_LENGTH, PALLET_WIDTH = 1.2, 0.8     # EPAL; forks enter along the length
 CLEARANCE = 0.10                           # pallet to lane edge
@@ -54,7 +54,8 @@ def network(name="plant", corridor_lanes=2):
                        ("rack_w", MID_X, RACK_AISLE_Y), ("rack_e", EAST_X, RACK_AISLE_Y),
                        ("upper_e", EAST_X, CORRIDOR_Y),
                        ("expedition", EXPEDITION_SPUR_X, NORTH_Y), ("expedition_end", EXPEDITION_SPUR_X, 29.5),
-                       ("parking", PARKING_X, NORTH_Y), ("street_w", PARKING_X, STREET_Y)]:
+                       ("parking", PARKING_X, NORTH_Y), ("street_w", PARKING_X, STREET_Y),
+                       ("street_e", EAST_X, STREET_Y)]:
         net.node(name, x, y)
     for k, x in enumerate(PACKING_XS):
         net.node(f"packing{k + 1}", x, SOUTH_Y)
@@ -82,10 +83,16 @@ def network(name="plant", corridor_lanes=2):
     for k in range(len(PACKING_XS)):
         net.edge(f"packing{k + 1}", f"packing{k + 1}_end", f"packing spur {k + 1}", ONE, NARROW_LANE)
     net.edge("expedition", "expedition_end", "expedition spur", ONE, NARROW_LANE)
+    # Two dead-end parking streets, one per half of the stall row: the forklifts' stalls are
+    # reached from the west, the reach trucks' from the north-east corner, so that a fleet
+    # leaving its stalls at once queues behind its own robots only.
+    half = len(STALLS) // 2
     net.edge("parking", "street_w", "parking access", ONE, STALL_LANE)
-    street = ["street_w"] + [f"street{k + 1}" for k in range(len(STALLS))]
-    for k in range(len(street) - 1):
-        net.edge(street[k], street[k + 1], f"parking street {k + 1}", ONE, STALL_LANE)
+    west = ["street_w"] + [f"street{k + 1}" for k in range(half)]
+    east = ["ne", "street_e"] + [f"street{k + 1}" for k in reversed(range(half, len(STALLS)))]
+    for name, street in (("west", west), ("east", east)):
+        for k in range(len(street) - 1):
+            net.edge(street[k], street[k + 1], f"parking street {name} {k + 1}", ONE, STALL_LANE)
     for k in range(len(STALLS)):
         net.edge(f"street{k + 1}", f"stall{k + 1}", f"stall {k + 1}", ONE, STALL_LANE)
     net.build()
