@@ -65,6 +65,7 @@ nlohmann::json run_site(const std::string& site_name, const config::FleetConfig&
           {"max_wait_s", r.max_wait_s},
           {"reroutes", r.reroutes},
           {"sidings", r.sidings},
+          {"first_collision", r.first_collision},
           {"stalls", spec.verbose ? nlohmann::json(r.stall_notes) : nlohmann::json::array()}};
 }
 

@@ -67,6 +67,13 @@ TrafficSim::TrafficSim(const map::RoadGraph& graph, const TrafficConfiguration& 
                                   std::to_string(params_.robot_types[i]));
     }
     set_route(body, {start_points[i]}, 1);
+    // A robot stands along its lane, not across it: beside a parked neighbour a body turned
+    // across the lane would overlap it.
+    if (const auto& next = graph_.successors[static_cast<std::size_t>(start_points[i])]; !next.empty()) {
+      const auto& a = graph_.points[static_cast<std::size_t>(start_points[i])];
+      const auto& b = graph_.points[static_cast<std::size_t>(next.front())];
+      body.pose.yaw = std::atan2(b.y - a.y, b.x - a.x);
+    }
     body.dwell_until = 0.0;
     if (params_.traffic) manager_.submit_route({body.id, body.version, body.route}, 0.0);
   }

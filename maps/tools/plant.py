@@ -37,6 +37,7 @@ CORRIDOR_Y, RACK_AISLE_Y = 17.1, 11.7      # the corridor continues as the upper
 PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 36.4
 STREET_Y, STALL_END_Y = 26.9, 29.1
 STALLS = [38.0 + 1.2 * k for k in range(16)]
+EAST_MOUTH = 12                            # the reach trucks' street meets its access at stall 13
 
 PALLET_LENGTH, PALLET_WIDTH = 1.2, 0.8     # EPAL; forks enter along the length
 CLEARANCE = 0.10                           # pallet to lane edge
@@ -55,7 +56,7 @@ def network(name="plant", corridor_lanes=2):
                        ("upper_e", EAST_X, CORRIDOR_Y),
                        ("expedition", EXPEDITION_SPUR_X, NORTH_Y), ("expedition_end", EXPEDITION_SPUR_X, 29.5),
                        ("parking", PARKING_X, NORTH_Y), ("street_w", PARKING_X, STREET_Y),
-                       ("street_e", EAST_X, STREET_Y)]:
+                       ("parking_e", STALLS[EAST_MOUTH], NORTH_Y)]:
         net.node(name, x, y)
     for k, x in enumerate(PACKING_XS):
         net.node(f"packing{k + 1}", x, SOUTH_Y)
@@ -69,7 +70,7 @@ def network(name="plant", corridor_lanes=2):
             net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
 
     aisle(["sw", "packing1", "packing2", "sm", "se"], "south cross aisle")
-    aisle(["nw", "expedition", "nm", "parking", "ne"], "north cross aisle")
+    aisle(["nw", "expedition", "nm", "parking", "parking_e", "ne"], "north cross aisle")
     aisle(["sw", "corridor_w", "nw"], "west aisle")
     aisle(["sm", "rack_w", "corridor_e", "nm"], "middle aisle")
     aisle(["se", "rack_e", "upper_e", "ne"], "east aisle")
@@ -83,13 +84,14 @@ def network(name="plant", corridor_lanes=2):
     for k in range(len(PACKING_XS)):
         net.edge(f"packing{k + 1}", f"packing{k + 1}_end", f"packing spur {k + 1}", ONE, NARROW_LANE)
     net.edge("expedition", "expedition_end", "expedition spur", ONE, NARROW_LANE)
-    # Two dead-end parking streets, one per half of the stall row: the forklifts' stalls are
-    # reached from the west, the reach trucks' from the north-east corner, so that a fleet
-    # leaving its stalls at once queues behind its own robots only.
+    # Two dead-end parking streets, one per half of the stall row, each with its own way to the
+    # north cross aisle: the forklifts' at the west end, the reach trucks' in the middle of
+    # theirs, so that a fleet leaving its stalls at once queues behind its own robots only.
     half = len(STALLS) // 2
-    net.edge("parking", "street_w", "parking access", ONE, STALL_LANE)
+    net.edge("parking", "street_w", "parking access west", ONE, STALL_LANE)
+    net.edge("parking_e", f"street{EAST_MOUTH + 1}", "parking access east", ONE, STALL_LANE)
     west = ["street_w"] + [f"street{k + 1}" for k in range(half)]
-    east = ["ne", "street_e"] + [f"street{k + 1}" for k in reversed(range(half, len(STALLS)))]
+    east = [f"street{k + 1}" for k in range(half, len(STALLS))]
     for name, street in (("west", west), ("east", east)):
         for k in range(len(street) - 1):
             net.edge(street[k], street[k + 1], f"parking street {name} {k + 1}", ONE, STALL_LANE)
@@ -237,10 +239,12 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2):
     for k, (x, y) in enumerate(anchors):
         lines.append(f"  - {{id: U{k + 1}, x: {fmt(x)}, y: {fmt(y)}, z: 4}}")
     # Stalls: the forklifts' in the west half of the row, the reach trucks' in the east half,
-    # parked facing the street at the stall's end.
+    # parked facing the street at the stall's end. Each fleet's stalls are numbered from its
+    # street's mouth, so the first robots of a fleet park nearest the way out.
     lines.append("homes:")
+    east = sorted(range(8, 16), key=lambda k: (abs(k - EAST_MOUTH), k))
     for k, x in enumerate(STALLS):
-        home = f"PF{k + 1}" if k < 8 else f"PR{k - 7}"
+        home = f"PF{k + 1}" if k < 8 else f"PR{east.index(k) + 1}"
         lines.append(f"  - {{id: {home}, x: {fmt(x)}, y: {fmt(STALL_END_Y)}, yaw: {fmt(S)}}}")
     lines.append("racks:")
     for name, (x0, y0, x1, y1) in rack_list:
