@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "map/road_graph_builder.hpp"
 #include "traffic/one_way.hpp"
 #include "traffic/vehicle_lanes.hpp"
 
@@ -62,18 +63,7 @@ std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map
   for (const auto& successors : fleet_graph.successors) {
     for (int next : successors) has_way_in[static_cast<std::size_t>(next)] = 1;
   }
-  const auto nearest = [&](double x, double y) {
-    int best = -1;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (const auto& p : fleet_graph.points) {
-      const double d = std::hypot(p.x - x, p.y - y);
-      if (d < best_d) {
-        best_d = d;
-        best = p.id;
-      }
-    }
-    return best;
-  };
+  const auto nearest = [&](double x, double y) { return map::nearest_point(fleet_graph, x, y); };
   std::vector<std::string> out;
   const double approach = site.site.approach_distance;
   for (const auto& area : site.site.loading_areas) {

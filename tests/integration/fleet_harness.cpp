@@ -98,6 +98,13 @@ FleetHarness::~FleetHarness() {
   }
 }
 
+nlohmann::json last_json_line(const std::string& text) {
+  const auto end = text.find_last_not_of('\n');
+  const auto start = text.rfind('\n', end);
+  const std::size_t from = start == std::string::npos ? 0 : start + 1;
+  return nlohmann::json::parse(text.substr(from, end - from + 1));
+}
+
 std::vector<std::string> FleetHarness::common_args() const {
   return {"--config", config_path_, "--domain", std::to_string(domain_),
           "--site", site_, "--time-scale", std::to_string(time_scale_)};

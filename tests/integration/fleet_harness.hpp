@@ -1,5 +1,6 @@
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@ struct CommandResult {
   std::string out;  ///< stdout
   std::string err;  ///< stderr
 };
+
+/// The last line of a command's output as JSON (what `--json` ends with).
+nlohmann::json last_json_line(const std::string& text);
 
 /// Runs a command to its end (with a wall-clock limit), capturing stdout and stderr.
 CommandResult run_command(const std::vector<std::string>& argv, double timeout_s = 120.0);

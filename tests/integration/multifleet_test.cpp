@@ -33,12 +33,6 @@ fleets:
   return path;
 }
 
-json last_json_line(const std::string& text) {
-  const auto end = text.find_last_not_of('\n');
-  const auto start = text.rfind('\n', end);
-  const std::size_t from = start == std::string::npos ? 0 : start + 1;
-  return json::parse(text.substr(from, end - from + 1));
-}
 
 }  // namespace
 

@@ -17,13 +17,6 @@ using nlohmann::json;
 
 namespace {
 
-json last_json_line(const std::string& text) {
-  const auto end = text.find_last_not_of('\n');
-  const auto start = text.rfind('\n', end);
-  return json::parse(
-      text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1));
-}
-
 /// Processes whose command line mentions this DDS domain.
 int fleet_processes_on_domain(int domain) {
   const auto r =
