@@ -51,10 +51,8 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   const auto site = map::load_site_map(known_site_path(command.source_dir, info.site));
   const auto config = config::load_fleet_config(command.config_file);
   orders::KnownNames names = orders::known_names(config, site.site);
-  for (auto& ability : names.abilities) {
-    ability.out_of_reach =
-        traffic::places_out_of_reach(site, traffic::fleet_graph(site.graph.graph, config, ability.fleet_id));
-  }
+  const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
+  for (auto& ability : names.abilities) ability.out_of_reach = traffic::places_out_of_reach(site, graphs.at(ability.fleet_id));
   names.areas = info.loading_areas;
   names.homes = info.homes;
   names.robots = info.robots;

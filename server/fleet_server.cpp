@@ -288,26 +288,25 @@ std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) co
          " has reported to this server" + (seen.empty() ? std::string() : " (seen: " + model::join(seen) + ")");
 }
 
-orders::KnownNames FleetServer::known_names() const {
-  orders::KnownNames names = orders::known_names(options_.config, options_.site);
-  for (auto& ability : names.abilities) {
-    if (const auto it = out_of_reach_.find(ability.fleet_id); it != out_of_reach_.end()) ability.out_of_reach = it->second;
-  }
-  return names;
+const orders::KnownNames& FleetServer::known_names() const {
+  return known_names_;
 }
 
 void FleetServer::build_fleet_graphs(const map::SiteMap& site) {
+  // What orders may name and what each fleet can do change only with the site: computed here
+  // once, not for every request and dispatch cycle.
   travel_.clear();
-  out_of_reach_.clear();
-  for (const auto& fleet : options_.config.fleets) {
-    const map::RoadGraph graph = traffic::fleet_graph(site.graph.graph, options_.config, fleet.id);
-    travel_.emplace(fleet.id, planning::RoadPlanner(graph));
-    out_of_reach_[fleet.id] = traffic::places_out_of_reach(site, graph);
+  known_names_ = orders::known_names(options_.config, site.site);
+  const auto graphs = traffic::fleet_graphs(site.graph.graph, options_.config);
+  for (auto& ability : known_names_.abilities) {
+    const map::RoadGraph& graph = graphs.at(ability.fleet_id);
+    travel_.emplace(ability.fleet_id, planning::RoadPlanner(graph));
+    ability.out_of_reach = traffic::places_out_of_reach(site, graph);
   }
 }
 
 void FleetServer::fill_steps(Order& order) const {
-  const auto names = known_names();
+  const auto& names = known_names();
   order.steps = orders::steps_of({std::string(orders::to_string(order.kind)), order.pick_area, order.drop_area, "",
                                   "", order.priority},
                                  names);

@@ -113,7 +113,7 @@ class FleetServer {
   model::RequestReply execute(const model::OrderRequest& request);
   model::RequestReply execute(const model::Command& command);
   /// The loading areas, robots and fleets an order request may name.
-  orders::KnownNames known_names() const;
+  const orders::KnownNames& known_names() const;
   /// Why a move to `place` cannot be placed now (another robot parks there, or an open move goes
   /// there), or empty.
   std::string validate_parking(const std::string& place, const std::string& robot_id) const;
@@ -156,7 +156,9 @@ class FleetServer {
   OrderStore store_;
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
   std::map<std::string, planning::RoadPlanner> travel_;
-  std::map<std::string, std::vector<std::string>> out_of_reach_;  ///< fleet -> places it cannot reach
+  /// What orders may name on the site served, with each fleet's abilities and the places it
+  /// cannot reach (build_fleet_graphs).
+  orders::KnownNames known_names_;
   void build_fleet_graphs(const map::SiteMap& site);
   SimClock clock_;
   std::mt19937_64 rng_;

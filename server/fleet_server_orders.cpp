@@ -172,7 +172,7 @@ void FleetServer::create_auto_orders() {
       std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) { return robot_is_free(e.second); });
   const long queued = static_cast<long>(book_.with_status(OrderStatus::kQueued).size());
   if (free_robots <= queued) return;
-  const auto names = known_names();
+  const auto& names = known_names();
   const auto doable = [&](const std::string& pick, const std::string& drop) {
     return !orders::check_order_request({"", pick, drop, "", "", 0}, names).has_value();
   };
@@ -196,7 +196,7 @@ void FleetServer::dispatch() {
   }
   if (queue.empty()) return;
   std::vector<orders::FreeRobot> free;
-  const auto names = known_names();
+  const auto& names = known_names();
   for (const auto& [id, robot] : robots_) {
     if (!robot_is_free(robot)) continue;
     const auto ability = std::find_if(names.abilities.begin(), names.abilities.end(),

@@ -50,12 +50,16 @@ map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfigur
   return lane_graph_for(one_way_plan(graph, zones).graph, width, configuration.resources.margin);
 }
 
-map::RoadGraph fleet_graph(const map::RoadGraph& graph, const config::FleetConfig& config, const std::string& fleet_id) {
+std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, const config::FleetConfig& config) {
   const TrafficConfiguration configuration = configuration_from(config);
-  const int type = vehicle_type_of(config, fleet_id);
-  if (config.settings.get_bool("traffic.enabled")) return planning_graph(graph, configuration, type);
-  const auto& fleet = config.fleets.at(static_cast<std::size_t>(type));
-  return lane_graph_for(graph, fleet.profile.extent().width, configuration.resources.margin);
+  const bool one_way = config.settings.get_bool("traffic.enabled") && configuration.one_way;
+  const map::RoadGraph base = one_way ? one_way_plan(graph, ConflictZones(graph, configuration.resources)).graph : graph;
+  std::map<std::string, map::RoadGraph> graphs;
+  for (const auto& fleet : config.fleets) {
+    graphs.emplace(fleet.id, lane_graph_for(base, footprint_width(footprint_polygon_of(fleet)),
+                                            configuration.resources.margin));
+  }
+  return graphs;
 }
 
 std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph) {

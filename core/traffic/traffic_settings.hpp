@@ -1,5 +1,8 @@
 #pragma once
 
+#include <map>
+#include <string>
+
 #include "config/fleet_config.hpp"
 #include "map/road_graph.hpp"
 #include "map/site_map.hpp"
@@ -25,9 +28,10 @@ int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_
 /// Deterministic: equal to TrafficManager::route_graph(type).
 map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration, int type = 0);
 
-/// The graph a fleet's robots plan on: its vehicle type's planning graph under traffic control,
-/// else the site's graph with only the lanes its vehicle fits.
-map::RoadGraph fleet_graph(const map::RoadGraph& graph, const config::FleetConfig& config, const std::string& fleet_id);
+/// The graph each fleet's robots plan on, by fleet id: its vehicle type's planning graph under
+/// traffic control (equal to planning_graph for its type), else the site's graph with only the
+/// lanes its vehicle fits. The conflict zones and the one-way plan are computed once for all.
+std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, const config::FleetConfig& config);
 
 /// The places (loading areas and homes) of `site` a fleet's robots cannot reach on `fleet_graph`:
 /// the graph point in front of the place (where the vehicle handles it) has no way in.

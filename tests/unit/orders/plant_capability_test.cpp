@@ -19,9 +19,8 @@ struct Plant {
 
   Plant() {
     names = orders::known_names(config, site.site);
-    for (auto& ability : names.abilities) {
-      ability.out_of_reach = traffic::places_out_of_reach(site, traffic::fleet_graph(site.graph.graph, config, ability.fleet_id));
-    }
+    const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
+    for (auto& ability : names.abilities) ability.out_of_reach = traffic::places_out_of_reach(site, graphs.at(ability.fleet_id));
   }
   std::optional<orders::RequestProblem> check(const std::string& from, const std::string& to, const std::string& fleet) {
     return orders::check_order_request({"", from, to, "", fleet, 0}, names);
