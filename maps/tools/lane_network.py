@@ -27,6 +27,20 @@ def fmt(v):
 TWO, ONE = "two", "one"
 
 
+def corner(network, node, da, db, r):
+    """The connecting road of a junction from the arm leaving along `da` to the one leaving along
+    `db`, `r` from the node: its start heading, length and curvature (a quarter circle or a
+    straight). Other angles stop the generator naming the node."""
+    h1 = math.atan2(-da[1], -da[0])
+    h2 = math.atan2(db[1], db[0])
+    turn = math.atan2(math.sin(h2 - h1), math.cos(h2 - h1))
+    if abs(abs(turn) - math.pi / 2) < 1e-9:
+        return h1, r * math.pi / 2, turn / (r * math.pi / 2)
+    if abs(turn) < 1e-9:
+        return h1, 2 * r, 0.0
+    raise SystemExit(f"{network}: node {node} meets at an angle the generator does not draw")
+
+
 class LaneNetwork:
     def __init__(self, name):
         self.name = name
@@ -94,15 +108,7 @@ class LaneNetwork:
         (ia, da, ea), (ib, db, eb) = a, b
         ra, rb = edge_road[ia], edge_road[ib]
         px, py = self.nodes[node]
-        h1 = math.atan2(-da[1], -da[0])
-        h2 = math.atan2(db[1], db[0])
-        turn = math.atan2(math.sin(h2 - h1), math.cos(h2 - h1))
-        if abs(abs(turn) - math.pi / 2) < 1e-9:
-            length, curvature = t * math.pi / 2, turn / (t * math.pi / 2)
-        elif abs(turn) < 1e-9:
-            length, curvature = 2 * t, 0.0
-        else:
-            raise SystemExit(f"{self.name}: node {node} meets at an angle the generator does not draw")
+        h1, length, curvature = corner(self.name, node, da, db, t)
         kind = TWO if TWO in (ra["kind"], rb["kind"]) else ONE
         road = {"id": road_id, "name": f"{node} {ra['name']} / {rb['name']}", "junction": junction["id"],
                 "x": px + t * da[0], "y": py + t * da[1], "hdg": h1, "length": length, "curvature": curvature,

@@ -16,6 +16,7 @@ import math
 import os
 import sys
 
+from lane_network import corner
 from plant import plant
 
 
@@ -77,15 +78,7 @@ class Network:
             for a, b in pairs:
                 ia, da, ea = a
                 ib, db, eb = b
-                h1 = math.atan2(-da[1], -da[0])
-                h2 = math.atan2(db[1], db[0])
-                turn = math.atan2(math.sin(h2 - h1), math.cos(h2 - h1))
-                if abs(abs(turn) - math.pi / 2) < 1e-9:
-                    length, curvature = r * math.pi / 2, turn / (r * math.pi / 2)
-                elif abs(turn) < 1e-9:
-                    length, curvature = 2 * r, 0.0
-                else:
-                    raise SystemExit(f"{self.name}: node {n} meets at an angle the generator does not draw")
+                h1, length, curvature = corner(self.name, n, da, db, r)
                 road = {
                     "id": str(next_id), "name": f"{n} {edge_road[ia]['name']} / {edge_road[ib]['name']}",
                     "junction": junction["id"] if junction else "-1",
