@@ -412,10 +412,8 @@ geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {
   if (!spec) return geometry::footprint_polygon(robot.last.pose, geometry::Footprint{});
   // The fleet's footprint polygon where the robot stands; its convex hull, since the traffic
   // manager's regions are convex (a hull covers every concave body).
-  const auto& pose = robot.last.pose;
-  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
   std::vector<geometry::Vec2> corners;
-  for (const auto& p : spec->first->profile.footprint) corners.push_back({pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y});
+  for (const auto& p : spec->first->profile.footprint) corners.push_back(geometry::body_to_map(robot.last.pose, p));
   return traffic::convex_hull(std::move(corners));
 }
 

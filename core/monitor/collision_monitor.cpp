@@ -7,10 +7,9 @@ namespace fleet::monitor {
 namespace {
 
 geometry::Polygon placed(const geometry::Polygon& body, const geometry::Pose2& pose) {
-  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
   geometry::Polygon out;
   out.reserve(body.size());
-  for (const auto& p : body) out.push_back({pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y});
+  for (const auto& p : body) out.push_back(geometry::body_to_map(pose, p));
   return out;
 }
 
