@@ -272,12 +272,13 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
   if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
   r.allow_keys(root, "",
                {"name", "opendrive", "bounds", "road_width", "graph_spacing", "approach_distance", "loading_areas",
-                "static_obstacles", "uwb_anchors", "homes", "racks", "markers"});
+                "static_obstacles", "uwb_anchors", "homes", "racks", "markers", "variant_of"});
 
   Site site;
   site.file = path;
   site.name = std::filesystem::path(path).stem().string();
   if (root["name"]) site.name = r.text(root, "name", "");
+  if (root["variant_of"]) site.variant_of = r.text(root, "variant_of", "");
   if (root["opendrive"]) {
     const std::filesystem::path xodr(r.text(root, "opendrive", ""));
     site.opendrive_file = (xodr.is_absolute() ? xodr : std::filesystem::path(path).parent_path() / xodr).string();
@@ -379,7 +380,7 @@ std::vector<std::string> site_revisions(const Site& site) {
   for (const auto& file : files) {
     try {
       const Site candidate = load_site(file.string());
-      if (revision_mismatch(site, candidate).empty()) names.push_back(candidate.name);
+      if (candidate.variant_of.empty() && revision_mismatch(site, candidate).empty()) names.push_back(candidate.name);
     } catch (const std::exception&) {
       // Not a site file, or a broken one: `fleetctl map check` names what is wrong with it.
     }

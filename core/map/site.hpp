@@ -89,6 +89,9 @@ struct Site {
   std::vector<Home> homes;
   std::vector<Rack> racks;
   std::vector<Marker> markers;
+  /// Non-empty: this file is a design variant of the named site, kept to compare designs
+  /// (`fleetctl traffic-eval --against`), not a state of the site robots are switched to.
+  std::string variant_of;
 
   const LoadingArea* find_area(const std::string& id) const;
   const StaticObstacle* find_obstacle(const std::string& id) const;
@@ -110,7 +113,8 @@ Site parse_site(const std::string& yaml_text, const std::string& path);
 std::string revision_mismatch(const Site& site, const Site& candidate);
 
 /// `site` itself and every revision of it among the site files in its folder, by name: the maps a
-/// server of `site` can switch its robots to. Files that do not load are left out.
+/// server of `site` can switch its robots to. Files that do not load and design variants
+/// (`variant_of`) are left out.
 std::vector<std::string> site_revisions(const Site& site);
 
 /// maps/<name>.yaml under `maps_dir`.

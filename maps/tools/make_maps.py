@@ -316,7 +316,7 @@ aisle centres and three cross aisles; for scale and planner benchmarks."""
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
     for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse, plant,
-                 lambda: plant("plant_one_lane", 1)):
+                 lambda: plant("plant_one_lane", 1), lambda: plant("plant_middle_closed", 2, ("middle aisle 2",))):
         net, yaml_text = make()
         with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
             f.write(net.xodr())

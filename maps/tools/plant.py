@@ -47,7 +47,7 @@ RACK_ROWS = {"R1": (9.0, 10.2), "R2": (13.2, 15.6), "R3": (18.6, 19.8), "R4": (3
 HIGH_LEVELS = (2.2, 4.4)                   # load heights of the upper rack levels, metres
 
 
-def network(name="plant", corridor_lanes=2):
+def network(name="plant", corridor_lanes=2, closed=()):
     net = LaneNetwork(name)
     for name, x, y in [("sw", WEST_X, SOUTH_Y), ("sm", MID_X, SOUTH_Y), ("se", EAST_X, SOUTH_Y),
                        ("nw", WEST_X, NORTH_Y), ("nm", MID_X, NORTH_Y), ("ne", EAST_X, NORTH_Y),
@@ -67,7 +67,8 @@ def network(name="plant", corridor_lanes=2):
 
     def aisle(nodes, name):
         for k in range(len(nodes) - 1):
-            net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
+            if f"{name} {k + 1}" not in closed:
+                net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
 
     aisle(["sw", "packing1", "packing2", "sm", "se"], "south cross aisle")
     aisle(["nw", "expedition", "nm", "parking", "parking_e", "ne"], "north cross aisle")
@@ -197,11 +198,15 @@ def markers():
     return numbered
 
 
-def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2):
-    header = ("# The plant: 60 m x 30 m at real scale, for several fleets at once; see docs/maps.md."
-              if corridor_lanes == 2 else
-              "# A revision of the plant with the finished-goods corridor as one two-way lane, to measure what\n"
-              "# its two lanes are worth (docs/traffic.md); everything else as in plant.yaml.")
+def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2, closed=()):
+    if corridor_lanes != 2:
+        header = ("# A design variant of the plant with the finished-goods corridor as one two-way lane, to measure\n"
+                  "# what its two lanes are worth (docs/traffic.md); everything else as in plant.yaml.")
+    elif closed:
+        header = (f"# The plant with {', '.join(closed)} closed: the same places, homes and anchors, fewer roads.\n"
+                  "# A revision of plant: the server can switch its robots to it at runtime.")
+    else:
+        header = "# The plant: 60 m x 30 m at real scale, for several fleets at once; see docs/maps.md."
     lines = [
         header,
         "# Finished-goods corridor 2.98 m with two lanes of 1.49 m [Stacker thesis, section 4.1.2], cross",
@@ -210,6 +215,7 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2):
         "# Places: yaw points from the load towards the road it is handled from. Written by",
         "# maps/tools/make_maps.py.",
         f"name: {name}",
+        *(["variant_of: plant"] if corridor_lanes != 2 else []),
         f"opendrive: {name}.xodr",
         f"bounds: {{min_x: 0, min_y: 0, max_x: {fmt(WIDTH)}, max_y: {fmt(HEIGHT)}}}",
         f"road_width: {fmt(CORRIDOR_LANE)}",
@@ -256,7 +262,7 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2):
     return "\n".join(lines) + "\n"
 
 
-def plant(name="plant", corridor_lanes=2):
-    net = network(name, corridor_lanes)
+def plant(name="plant", corridor_lanes=2, closed=()):
+    net = network(name, corridor_lanes, closed)
     places = corridor_and_open_places() + rack_places()
-    return net, site_yaml(places, racks(), markers(), name, corridor_lanes)
+    return net, site_yaml(places, racks(), markers(), name, corridor_lanes, closed)

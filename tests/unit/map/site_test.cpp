@@ -123,5 +123,17 @@ TEST(SiteRevision, TableAWithARoadClosedIsARevisionTableBIsNot) {
   EXPECT_NE(revision_mismatch(a, raised).find("loading area A1 holds its load at another height"), std::string::npos);
 }
 
+// The plant's switchable maps are its closures; the one-lane corridor is another design of it,
+// measured against it, which no server switches its robots to.
+TEST(SiteRevision, ADesignVariantIsNeverARevision) {
+  const Site plant = load_site(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  const Site one_lane = load_site(FLEET_SOURCE_DIR "/maps/plant_one_lane.yaml");
+  EXPECT_EQ(one_lane.variant_of, "plant");
+  EXPECT_EQ(revision_mismatch(plant, one_lane), "");  // the same places: comparable run for run
+  EXPECT_EQ(site_revisions(plant), (std::vector<std::string>{"plant", "plant_middle_closed"}));
+  EXPECT_EQ(site_revisions(load_site(FLEET_SOURCE_DIR "/maps/table_a.yaml")),
+            (std::vector<std::string>{"table_a", "table_a_north_closed"}));
+}
+
 }  // namespace
 }  // namespace fleet::map
