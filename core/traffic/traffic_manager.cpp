@@ -326,6 +326,27 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   return held;
 }
 
+std::size_t TrafficManager::entry_index(int robot_id, const std::vector<int>& points, double progress) const {
+  std::vector<double> cum(points.size(), 0.0);
+  for (std::size_t k = 1; k < points.size(); ++k) cum[k] = cum[k - 1] + search_->edge_length(points[k - 1], points[k]);
+  std::size_t skip = 0;
+  while (skip + 1 < points.size() && cum[skip + 1] <= progress) ++skip;
+  const double offset = cum[skip];
+  const std::vector<int> held = held_places(robot_id);
+  const auto holds = [&](std::size_t k) {
+    return std::binary_search(held.begin(), held.end(), zones_->place_of(points[k]));
+  };
+  if (held.empty() || holds(skip)) return skip;
+  double reach = 0.0;
+  for (const auto& corner : zones_->vehicle_types()[static_cast<std::size_t>(type_of(robot_id))].footprint) {
+    reach = std::max(reach, std::hypot(corner.x, corner.y));
+  }
+  for (std::size_t k = skip + 1; k < points.size() && cum[k] <= offset + reach; ++k) {
+    if (holds(k)) return k;
+  }
+  return skip;
+}
+
 void TrafficManager::claim_entry(int robot_id, int point, double now) {
   if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return;
   const int place = zones_->place_of(point);

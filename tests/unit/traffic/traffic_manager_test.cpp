@@ -735,5 +735,88 @@ TEST(TrafficManager, RobotsStandingOneBodyApartAfterARestartDriveOnOneAfterTheOt
   }
 }
 
+// A robot lost on the east ring of table_a while a robot follows it: the follower drives up to
+// the lost robot's body; when the lost robot is heard from again, it re-enters from where it
+// stands (the points behind it cut off) and drives on ahead, and the follower after it.
+TEST(TrafficManager, ARobotBackFromBeingLostDrivesOnAheadOfTheRobotThatCameUpBehindIt) {
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto& g = site.graph.graph;
+  for (double lost_at : {0.6, 0.9, 1.2, 1.5, 1.8, 2.1}) {
+    TrafficManager m(g);
+    const auto& rg = m.route_graph();
+    const auto r1 = m.search().shortest(map::nearest_point(rg, 1.6, 2.55), map::nearest_point(rg, 0.79, 0.45));
+    const auto r2 = m.search().shortest(map::nearest_point(rg, 0.61, 2.55), map::nearest_point(rg, 2.21, 0.45));
+    ASSERT_GT(r1.size(), 2u);
+    ASSERT_GT(r2.size(), 2u);
+    ASSERT_EQ(m.submit_route({1, 1, r1}, 0.0), SubmitStatus::kAccepted);
+    ASSERT_EQ(m.submit_route({2, 1, r2}, 0.0), SubmitStatus::kAccepted);
+    const auto pose_along = [&](const std::vector<int>& route, double s) {
+      double at = 0.0;
+      for (std::size_t k = 1; k < route.size(); ++k) {
+        const auto& a = rg.points[static_cast<std::size_t>(route[k - 1])];
+        const auto& b = rg.points[static_cast<std::size_t>(route[k])];
+        const double len = std::hypot(b.x - a.x, b.y - a.y);
+        if (at + len >= s || k + 1 == route.size()) {
+          const double u = len > 0.0 ? std::clamp((s - at) / len, 0.0, 1.0) : 0.0;
+          return geometry::Pose2{a.x + u * (b.x - a.x), a.y + u * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
+        }
+        at += len;
+      }
+      return geometry::Pose2{};
+    };
+    double t = 0.0, d1 = 0.0, d2 = 0.0;
+    constexpr double kStep = 0.05, kSpeed = 0.5;
+    // Both drive until robot 1 is lost_at metres along.
+    while (d1 < lost_at && t < 30.0) {
+      const auto r = m.update(t);
+      if (const Grant* g1 = grant_of(r, 1)) d1 = std::min(g1->granted_distance, d1 + kSpeed * kStep);
+      if (const Grant* g2 = grant_of(r, 2)) d2 = std::min(g2->granted_distance, d2 + kSpeed * kStep);
+      m.report_progress({1, 1, d1, {}}, t);
+      m.report_progress({2, 1, d2, {}}, t);
+      t += kStep;
+    }
+    ASSERT_GE(d1, lost_at);
+    const geometry::Pose2 lost_pose = pose_along(r1, d1);
+    ASSERT_TRUE(m.freeze_robot(1, geometry::footprint_polygon(lost_pose, geometry::Footprint{}), t));
+    for (int i = 0; i < 40; ++i, t += kStep) {  // away 2 s: robot 2 drives up to its body
+      const auto r = m.update(t);
+      ASSERT_EQ(m.check_invariant(), "");
+      if (const Grant* g2 = grant_of(r, 2)) d2 = std::min(g2->granted_distance, d2 + kSpeed * kStep);
+      m.report_progress({2, 1, d2, {}}, t);
+    }
+    // Back: its route from where it stands, as fleet-server enters a returning robot.
+    const std::size_t skip = m.entry_index(1, r1, d1);
+    double offset = 0.0;
+    for (std::size_t k = 1; k <= skip; ++k) offset += m.search().edge_length(r1[k - 1], r1[k]);
+    const std::vector<int> rest(r1.begin() + static_cast<std::ptrdiff_t>(skip), r1.end());
+    // fleet-server lets it in where its body holds the route's first place, else once no one
+    // holds a place in conflict with that point (TrafficControl).
+    bool entered = false;
+    const auto try_enter = [&] {
+      const auto held = m.held_places(1);
+      if (!std::binary_search(held.begin(), held.end(), m.zones().place_of(rest.front()))) {
+        if (!m.holders_in_conflict(rest.front(), 1).empty()) return;
+        m.remove_robot(1, t);
+      }
+      entered = m.submit_route({1, 1, rest}, t) == SubmitStatus::kAccepted;
+    };
+    double e1 = std::max(d1 - offset, 0.0);
+    const double back_at = e1, d2_back = d2;
+    for (int i = 0; i < 600; ++i, t += kStep) {
+      if (!entered) try_enter();
+      const auto r = m.update(t);
+      ASSERT_EQ(m.check_invariant(), "");
+      const Grant* g1 = entered ? grant_of(r, 1) : nullptr;
+      if (g1 != nullptr) e1 = std::min(g1->granted_distance, e1 + kSpeed * kStep);
+      if (const Grant* g2 = grant_of(r, 2)) d2 = std::max(d2, std::min(g2->granted_distance, d2 + kSpeed * kStep));
+      if (entered) m.report_progress({1, 1, e1, {}}, t);
+      m.report_progress({2, 1, d2, {}}, t);
+    }
+    EXPECT_TRUE(entered) << "lost at " << lost_at;
+    EXPECT_GT(e1, back_at + 1.0) << "lost at " << lost_at;
+    EXPECT_GT(d2, d2_back + 1.0) << "lost at " << lost_at;
+  }
+}
+
 }  // namespace
 }  // namespace fleet::traffic
