@@ -139,8 +139,8 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       const bool already_there = standing && (stands_at(request.robot_id, id, route.points.front()) ||
                                               (skip > 0 && holds(id, route.points.front())));
       if (!already_there) {
-        auto holders = manager_.holders_in_conflict(route.points.front(), id);
-        if (holders.empty()) holders = manager_.earlier_entry_claims(route.points.front(), id, now_sim);
+        const auto entry = manager_.entry_for(route.points.front(), id, now_sim);
+        const auto& holders = entry.blockers;
         if (!holders.empty()) {
           manager_.claim_entry(id, route.points.front(), now_sim);
           model::TrafficGrant wait;
@@ -154,7 +154,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
           publish(std::move(wait), now_wall);
           return;
         }
-        manager_.remove_robot(id, now_sim);
+        if (!entry.as_standing) manager_.remove_robot(id, now_sim);
       }
       const auto result = manager_.submit_route(route, now_sim);
       if (result != traffic::SubmitStatus::kAccepted) {

@@ -416,6 +416,29 @@ std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, d
   return out;
 }
 
+TrafficManager::Entry TrafficManager::entry_for(int point, int robot_id, double now) const {
+  Entry entry;
+  entry.blockers = holders_in_conflict(point, robot_id);
+  const auto self = robots_.find(robot_id);
+  if (!entry.blockers.empty() && self != robots_.end() && self->second.frozen) {
+    const std::vector<int> held = held_places(robot_id);
+    if (std::binary_search(held.begin(), held.end(), zones_->place_of(point))) {
+      const auto waits_for_it = [&](int id) {
+        const Robot& holder = robots_.at(id);
+        return !holder.frozen && holder.wait_since >= 0.0 &&
+               std::binary_search(holder.blocked_by.begin(), holder.blocked_by.end(), robot_id);
+      };
+      if (std::all_of(entry.blockers.begin(), entry.blockers.end(), waits_for_it)) {
+        entry.blockers.clear();
+        entry.as_standing = true;
+        return entry;
+      }
+    }
+  }
+  if (entry.blockers.empty()) entry.blockers = earlier_entry_claims(point, robot_id, now);
+  return entry;
+}
+
 std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
   if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return {};
   return holders_of(zones_->place_of(point), robot_id);

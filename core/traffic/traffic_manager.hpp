@@ -263,6 +263,18 @@ class TrafficManager {
   /// a robot leaving a loading area does not slip in ahead of one that has waited at its home. A
   /// claim whose entry this robot's body stands in the way of is left out (that one must go first).
   std::vector<int> earlier_entry_claims(int point, int robot_id, double now) const;
+  /// How a robot beside the roads may enter at `point` now.
+  struct Entry {
+    std::vector<int> blockers;  ///< sorted; it waits while any is left
+    /// It enters keeping the places under its body (as a robot standing on its route's first
+    /// point): the robots in conflict with its entry all wait for its body.
+    bool as_standing = false;
+  };
+  /// The robots that keep `robot_id` out: holders of places in conflict with the entry
+  /// (holders_in_conflict), else older entry claims (earlier_entry_claims). Holders that wait for
+  /// its body do not count when its body holds the entry's place: their grants end short of it
+  /// and they go nowhere until it has moved, so waiting for them would be waiting for good.
+  Entry entry_for(int point, int robot_id, double now) const;
   /// The robot's current route and version (empty for unknown ids).
   const std::vector<int>& route(int robot_id) const;
   std::uint64_t version(int robot_id) const;
