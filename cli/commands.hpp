@@ -35,6 +35,7 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
 int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // plan-eval
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // ctrl-eval
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // fleets
+int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // dock-eval
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
 
 }  // namespace fleet::cli
