@@ -64,7 +64,7 @@ ObstacleField obstacle_field(std::span<const Sector> sectors, const AttractorPar
     if (!(s.clearance <= params.sensor_range)) continue;
     field.min_clearance = std::min(field.min_clearance, s.clearance);
     const double lambda = params.beta1 * std::exp(-s.clearance / params.beta2);  // [eq. 3.6]
-    // [eq. 3.7]: the seed's L + d_i is the distance from the reference point to the obstacle.
+    // [eq. 3.7]: the thesis's L + d_i is the distance from the reference point to the obstacle.
     const double sigma = std::atan(std::tan(half_sector) + params.robot_half_width / (s.reach + s.clearance));
     const double offset = -s.bearing;  // phi - psi_i, with psi_i = phi + theta_i
     const double gauss = std::exp(-offset * offset / (2.0 * sigma * sigma));
@@ -112,7 +112,7 @@ AttractorOutput AttractorNavigator::update(const geometry::Pose2& pose, const At
                                 params_.max_heading_rate);  // [eq. 3.11]
 
   // Speed [eq. 3.12-3.17]. With nothing in range d_min is the sensor range; v_obs is capped at v_des so that
-  // obstacles can only slow the stacker down (the seed leaves v_obs open when no obstacle is seen).
+  // obstacles can only slow the stacker down (the thesis leaves v_obs open when no obstacle is seen).
   out.potential = field.potential;
   out.alpha = speed_threshold(field.potential, params_.c);
   out.min_clearance = field.min_clearance;

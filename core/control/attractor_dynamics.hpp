@@ -10,7 +10,7 @@
 
 namespace fleet::control {
 
-/// Gains of the attractor dynamics [Stacker thesis, eq. 3.3-3.18]. The seed gives none of them; these respect the
+/// Gains of the attractor dynamics [Stacker thesis, eq. 3.3-3.18]. The thesis gives none of them; these respect the
 /// ordering of eq. 3.18 (lambda_tar << c_v_tar, lambda_obs << c_v_obs, lambda_tar << lambda_obs) with
 /// lambda_obs <= beta1.
 struct AttractorParams {

@@ -24,7 +24,7 @@ constexpr std::array kTable = {
     DockingTransition{P::kFinalApproach, E::kThresholdAligned, P::kFinalAlign},
     DockingTransition{P::kFinalAlign, E::kAligned, P::kForkIn},
     DockingTransition{P::kForkIn, E::kForksIn, P::kDone},
-    // Beyond the seed: out along the pallet axis and in again when the fork tips miss the pockets.
+    // Beyond the thesis: out along the pallet axis and in again when the fork tips miss the pockets.
     DockingTransition{P::kFinalApproach, E::kThresholdMisaligned, P::kRealign},
     DockingTransition{P::kRealign, E::kRealigned, P::kFinalApproach},
     DockingTransition{P::kFinalApproach, E::kGiveUp, P::kFailed},
@@ -154,7 +154,7 @@ geometry::Pose2 DockingLaw::pallet_estimate() const {
 }
 
 void DockingLaw::correct_prior_heading(const geometry::Pose2& detection) {
-  // Beyond the seed: the pallets of a row stand square to its limiter, so a detection's yaw, any pallet's, measures
+  // Beyond the thesis: the pallets of a row stand square to its limiter, so a detection's yaw, any pallet's, measures
   // how far the frame the law steers in is turned against the map the logistics position is given in (the pose
   // sensor's heading error when docking started). The logistics position is turned by the mean of these offsets
   // about where the stacker started. A large offset is not a heading error but a pallet standing askew.
@@ -181,9 +181,9 @@ void DockingLaw::accept_detection(const geometry::Pose2& detection) {
   const double gate = detections_ == 0 ? params_.detection_gate : params_.outlier_gate;
   if (geometry::distance(detection.position(), expected.position()) > gate) return;
   if (detections_ > 0 && std::abs(geometry::angle_diff(detection.yaw, expected.yaw)) > 0.2) return;
-  // The pallet stands still in the frame the law steers in (the seed's exact pose [Stacker thesis, section 8.1], or
+  // The pallet stands still in the frame the law steers in (the thesis's exact pose [Stacker thesis, section 8.1], or
   // odometry anchored once by an imperfect pose sensor), so the running mean of the detections in that frame is the
-  // estimate; it averages the detector's noise down (the seed calls its yaw poor).
+  // estimate; it averages the detector's noise down (the thesis calls its yaw poor).
   ++detections_;
   sum_x_ += detection.x;
   sum_y_ += detection.y;
@@ -297,7 +297,7 @@ sim::TricycleCommand DockingLaw::to_target1(const DockingInput& in, DockingOutpu
 
 sim::TricycleCommand DockingLaw::reverse_to_target2(const DockingInput& in, DockingOutput& out) {
   const double distance = geometry::distance(in.vehicle.position(), out.target2);
-  // Beyond the seed: v_des falls with the distance so that the 0.05 m arrival is met without overshoot.
+  // Beyond the thesis: v_des falls with the distance so that the 0.05 m arrival is met without overshoot.
   const double v_des = std::clamp(params_.arrival_gain * distance, params_.min_arrival_speed, params_.reverse_speed);
   const AttractorOutput nav = navigator_.update(in.vehicle, {out.target2, -1, v_des}, in.obstacles, in.dt);
   if (distance < params_.target2_tolerance) fire(E::kTarget2Reached, out);
@@ -342,15 +342,15 @@ sim::TricycleCommand DockingLaw::final_approach(const DockingInput& in, DockingO
   }
   // [eq. 6.3] e = sigma - theta. theta: bearing of the pallet midpoint in the rear camera's image (positive to the
   // image's right). sigma: the bearing it would have if the rear pointed at the pallet axis `lookahead` ahead, so
-  // that the lateral offset decays along the way instead of the stacker arriving at the midpoint askew (the seed
-  // aims at the midpoint itself, sigma fixed). The seed's |theta| loses the side; the sign is kept here.
+  // that the lateral offset decays along the way instead of the stacker arriving at the midpoint askew (the thesis
+  // aims at the midpoint itself, sigma fixed). The thesis's |theta| loses the side; the sign is kept here.
   const Vec2 midpoint = geometry::map_to_body(in.vehicle, a.face);
   const double theta = std::atan2(midpoint.y, -midpoint.x);
   const double psi_wanted = std::atan(a.l / params_.lookahead);
   const double sigma = theta + geometry::angle_diff(psi_wanted, a.psi);
   const double e = sigma - theta;
   out.final_error = e;
-  // [eq. 6.5] theta_steer = -K2 e at the seed's constant -0.25 m/s, slowing for the last metres (beyond the seed).
+  // [eq. 6.5] theta_steer = -K2 e at the thesis's constant -0.25 m/s, slowing for the last metres (beyond the thesis).
   const double steer = std::clamp(-params_.k2 * e, -params_.max_final_steer, params_.max_final_steer);
   const double speed = ramped_speed(a.s - params_.threshold_standoff, params_.final_slow_distance, params_.final_speed,
                                     params_.final_slow_speed);

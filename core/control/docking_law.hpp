@@ -23,7 +23,7 @@ struct PalletGeometry {
 
 /// Docking phases: the two-target approach [Stacker thesis, sections 6.3.1-6.3.2], the pivot about the rear axle
 /// [section 5.2], the final law beyond (kFinalApproach) and inside (kFinalAlign) its threshold distance
-/// [section 6.3.3], then the forks go in. kRealign is beyond the seed: when the fork tips arrive at the threshold
+/// [section 6.3.3], then the forks go in. kRealign is beyond the thesis: when the fork tips arrive at the threshold
 /// off the pocket centres, the stacker drives out along the pallet axis and reverses in again.
 enum class DockingPhase {
   kToTarget1,
@@ -66,7 +66,7 @@ std::span<const DockingTransition> docking_transition_table();
 /// The phase `event` leads to from `from`, or nothing when the event does not apply there.
 std::optional<DockingPhase> next_docking_phase(DockingPhase from, DockingEvent event);
 
-/// Settings of one docking law instance. The seed gives the stand-offs, the switching distances and the final
+/// Settings of one docking law instance. The thesis gives the stand-offs, the switching distances and the final
 /// speed; everything marked "chosen" it leaves open.
 struct DockingParams {
   PalletGeometry pallet;
@@ -81,13 +81,13 @@ struct DockingParams {
   double target2_tolerance = 0.05;        ///< m
   double approach_speed = 0.5;            ///< v_des forwards to target 1, m/s (chosen)
   double reverse_speed = 0.3;             ///< v_des backwards to target 2, m/s (chosen)
-  double arrival_gain = 0.8;              ///< v_des <= gain * distance near a target, 1/s (chosen, beyond the seed)
+  double arrival_gain = 0.8;              ///< v_des <= gain * distance near a target, 1/s (chosen, beyond the thesis)
   double min_arrival_speed = 0.04;        ///< m/s (chosen)
 
   // Pivot [section 5.2]: theta_steer = +-pi/2.
   double pivot_gain = 1.2;               ///< yaw rate per rad of orientation error, 1/s (chosen)
   double max_pivot_wheel_speed = 0.35;   ///< m/s (chosen)
-  double pivot_tolerance = 0.0175;       ///< rad (1 deg; the seed's threshold is not given)
+  double pivot_tolerance = 0.0175;       ///< rad (1 deg; the thesis's threshold is not given)
   double steer_settle_tolerance = 0.05;  ///< the wheel waits for the steering this close before rolling, rad
 
   // Final law [eq. 6.3-6.5, section 6.3.3].
@@ -96,15 +96,15 @@ struct DockingParams {
   double final_slow_distance = 0.15;  ///< m (chosen)
   double k1 = 1.5;                    ///< eq. 6.4, m/s per rad (chosen)
   double k2 = 16.0;                   ///< eq. 6.5, rad per rad (chosen: critically damps the lateral error)
-  double lookahead = 0.3;             ///< sigma aims the rear at the pallet axis this far ahead, m (beyond the seed)
+  double lookahead = 0.3;             ///< sigma aims the rear at the pallet axis this far ahead, m (beyond the thesis)
   double max_final_steer = 1.1;       ///< |theta_steer| while reversing in, rad (chosen)
   double threshold_standoff = 0.25;   ///< rear axle from the pallet face at the threshold, m (chosen)
-  double align_tolerance = 0.0026;    ///< rad (0.15 deg; the seed stops at 1.0 deg)
+  double align_tolerance = 0.0026;    ///< rad (0.15 deg; the thesis stops at 1.0 deg)
   int align_confirmations = 3;        ///< consecutive periods below the tolerance
-  double lateral_tolerance = 0.010;   ///< fork tips off the pocket centres at the threshold, m (beyond the seed)
-  double entry_yaw_tolerance = 0.05;  ///< rad, at the threshold (beyond the seed)
+  double lateral_tolerance = 0.010;   ///< fork tips off the pocket centres at the threshold, m (beyond the thesis)
+  double entry_yaw_tolerance = 0.05;  ///< rad, at the threshold (beyond the thesis)
 
-  // Realignment (beyond the seed).
+  // Realignment (beyond the thesis).
   double realign_standoff = 1.2;  ///< rear axle from the face; the front stays 0.18 m inside a 2.98 m corridor, m
   double realign_speed = 0.2;     ///< m/s
   int max_realignments = 3;
@@ -116,11 +116,11 @@ struct DockingParams {
   double max_fork_in_steer = 0.2;  ///< rad
 
   // Pallet estimate.
-  /// Beyond the seed: the largest heading error of the law's frame that detections' yaws correct the logistics
+  /// Beyond the thesis: the largest heading error of the law's frame that detections' yaws correct the logistics
   /// position for; a larger offset is a pallet standing askew, rad.
   double max_heading_correction = 0.1;
   int heading_samples = 5;      ///< detections averaged for the heading before the first is accepted
-  double detection_gate = 0.7;  ///< first detection within this of the expected pallet (the seed's docking area), m
+  double detection_gate = 0.7;  ///< first detection within this of the expected pallet (the thesis's docking area), m
   double outlier_gate = 0.15;   ///< later detections within this of the running mean, m
   double time_limit = 240.0;    ///< s
 };
@@ -150,7 +150,7 @@ struct DockingOutput {
 /// The stacker's docking law. One instance per docking; not thread-safe.
 class DockingLaw {
  public:
-  /// `pallet_prior` is the pallet pose the job gave (the seed's logistics position); `start` picks the side of
+  /// `pallet_prior` is the pallet pose the job gave (the thesis's logistics position); `start` picks the side of
   /// target 1. Throws std::invalid_argument for a non-finite prior or start.
   DockingLaw(const DockingParams& params, const geometry::Pose2& pallet_prior, const geometry::Pose2& start,
              std::uint64_t seed = 0);

@@ -19,7 +19,7 @@ namespace fleet::control {
 using PalletDetector = std::function<std::optional<geometry::Pose2>(const geometry::Pose2& vehicle,
                                                                     const geometry::Pose2& expected, double time)>;
 
-/// A stand-in for the seed's ToF and RealSense pallet detection [Stacker thesis, sections 5.4, 6.2]: it sees the
+/// A stand-in for the thesis's ToF and RealSense pallet detection [Stacker thesis, sections 5.4, 6.2]: it sees the
 /// pallets of a row within a range of the rear axle and returns the one nearest the expected pose if it lies in
 /// the region of interest, with Gaussian noise. Neighbours in the row make a large logistics error dock at the
 /// wrong pallet, as in [section 7.2.3].
@@ -37,8 +37,8 @@ struct SimulatedDetectorParams {
 PalletDetector make_simulated_detector(const geometry::Pose2& pallet, const SimulatedDetectorParams& params,
                                        std::uint64_t seed);
 
-/// The pose sensor that stands in for the seed's GPS and compass [Stacker thesis, section 8.1]:
-/// the true pose plus a Gaussian error of these standard deviations. Zero gives the seed's exact
+/// The pose sensor that stands in for the thesis's GPS and compass [Stacker thesis, section 8.1]:
+/// the true pose plus a Gaussian error of these standard deviations. Zero gives the thesis's exact
 /// pose.
 struct PoseSensorNoise {
   double position_sigma = 0.0;  ///< m, per axis
@@ -56,7 +56,7 @@ struct DockingRunParams {
   DockingParams law;
   sim::TricycleParams vehicle;
   SimulatedDetectorParams detector;
-  /// Logistics error of the pallet position along the row (the seed's y error [section 7.2.3]), m. The law starts
+  /// Logistics error of the pallet position along the row (the thesis's y error [section 7.2.3]), m. The law starts
   /// from the pallet shifted by this much to the left of its entry axis.
   double prior_error = 0.0;
   /// The law works in the odometry frame anchored where the pose sensor puts the vehicle when

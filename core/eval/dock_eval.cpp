@@ -19,7 +19,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The finished-goods row: pallets on the 0.30 m limiter [Stacker thesis, section 4.1.3], entry
-// faces on the limiter's edge (y = 0). The seed gives no pitch. Its tolerance of logistics errors
+// faces on the limiter's edge (y = 0). The thesis gives no pitch. Its tolerance of logistics errors
 // up to 0.66 m before docking at the neighbour [section 7.2.3] implies at least 1.32 m with its
 // exact pose; the pose sensor's 3 cm can add up to 9 cm (3 sigma) to where the pallet is looked
 // for, hence 1.50 m (0.70 m between pallets).
@@ -71,7 +71,7 @@ class CameraDetector {
   CameraDetector(const sim::TricycleGeometry& geometry, const geometry::Pose2& pallet, double rate_hz,
                  std::uint64_t seed)
       : cameras_(geometry, seed), scene_(row_scene(pallet, kRowPitch)), period_(1.0 / rate_hz) {
-    area_.lateral_half = 0.5 * kRowPitch;  // the seed's errors up to 0.66 m and the pose sensor's
+    area_.lateral_half = 0.5 * kRowPitch;  // the thesis's errors up to 0.66 m and the pose sensor's
     area_.depth_half = 0.35;
   }
 
@@ -178,7 +178,7 @@ DockSummary summarize(const std::vector<DockRun>& runs) {
 
 /// The sweeps of [Stacker thesis, Tables 7.1 and 7.2] with each camera's own preset mount (the
 /// sweep moves the pallet in front of the camera, not the vehicle). The row leaves 0.5 m between
-/// pallets, as the seed's single pallet had room round it.
+/// pallets, as the thesis's single pallet had room round it.
 std::vector<DockSweep> run_sweeps(std::uint64_t seed) {
   std::vector<DockSweep> out;
   const auto sweep_with = [&](sim::DepthCamera& camera) {
@@ -214,7 +214,7 @@ std::vector<DockSweep> run_sweeps(std::uint64_t seed) {
 
 std::vector<DockStart> dock_starts() {
   // Nominal [Stacker thesis, section 7.2.1]: driving along the corridor at 0 deg close to the
-  // limiter, or at -180 deg on the far side. Off-nominal [section 7.2.2]: the seed's (x, y, phi)
+  // limiter, or at -180 deg on the far side. Off-nominal [section 7.2.2]: the thesis's (x, y, phi)
   // has x across the corridor and y along it, with x up to 3.40 m in a 2.98 m corridor; the
   // mapping along = y, across = x - 0.78, heading = -phi is the one offset and sense that keeps
   // all four bodies inside the corridor, each heading towards the pallet.
@@ -222,10 +222,10 @@ std::vector<DockStart> dock_starts() {
                                 {"nominal far side", {15.6, 2.235, std::numbers::pi}}};
   const struct {
     double x, y, phi_deg;
-  } seed_starts[] = {{3.30, 10.00, 39.73}, {2.33, 9.99, 39.73}, {3.40, 13.23, 129.70}, {2.44, 13.29, 214.73}};
-  for (const auto& s : seed_starts) {
+  } thesis_starts[] = {{3.30, 10.00, 39.73}, {2.33, 9.99, 39.73}, {3.40, 13.23, 129.70}, {2.44, 13.29, 214.73}};
+  for (const auto& s : thesis_starts) {
     char name[64];
-    std::snprintf(name, sizeof name, "seed (%.2f, %.2f, %.2f deg)", s.x, s.y, s.phi_deg);
+    std::snprintf(name, sizeof name, "thesis (%.2f, %.2f, %.2f deg)", s.x, s.y, s.phi_deg);
     starts.push_back({name, {s.y, s.x - 0.78, geometry::normalize_angle(-s.phi_deg * kDeg)}});
   }
   return starts;

@@ -18,7 +18,7 @@ namespace fleet::eval {
 /// y = 0 with the pallet row behind it (y < 0), the corridor 2.98 m wide [Stacker thesis,
 /// section 4.1.2]. The target pallet's centre is at (11.6, -0.6), its entry face towards +y.
 struct DockEvalParams {
-  int runs = 54;  ///< the seed's 6 starts x 9 pallet errors, repeated or cut to this many
+  int runs = 54;  ///< the thesis's 6 starts x 9 pallet errors, repeated or cut to this many
   std::uint64_t seed = 1;
   /// The pose sensor standing in for GPS and compass: a few centimetres and about a degree.
   control::PoseSensorNoise pose_noise{0.03, 1.0 * 3.14159265358979323846 / 180.0};
@@ -66,7 +66,7 @@ struct DockSummary {
   double tolerated_prior_error = 0.0;  ///< the largest |logistics error| at which every run succeeded, m
 };
 
-/// A detection-range sweep beside the seed's figure.
+/// A detection-range sweep beside the thesis's figure.
 struct DockSweep {
   std::string name;  ///< e.g. "realsense distance at 0 deg"
   std::string unit;  ///< "m" or "deg"

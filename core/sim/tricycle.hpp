@@ -13,19 +13,19 @@ namespace fleet::sim {
 /// theta_steer = +-pi/2 [Stacker thesis, section 5.2]), x towards the drive wheel, y to the left. The forks point
 /// backwards (-x): the stacker docks in reverse.
 ///
-/// The seed gives neither the wheelbase nor the wheel radius. The values below fit the truck: a 1.15 m fork
+/// The thesis gives neither the wheelbase nor the wheel radius. The values below fit the truck: a 1.15 m fork
 /// (a common length for EPAL work) behind a 0.55 m chassis makes the 1.700 m; the load wheels sit 0.10 m short of
 /// the fork tips, so the rear axle is 0.10 m ahead of them; the drive wheel sits under the chassis 0.30 m behind
 /// the front, hence L = 1.30 m.
 struct TricycleGeometry {
   double length = 1.700;        ///< overall, fork tips to front bumper, metres
   double width = 0.748;         ///< chassis width, metres
-  double wheelbase = 1.30;      ///< L: rear axle to drive wheel, metres (not in the seed; see above)
+  double wheelbase = 1.30;      ///< L: rear axle to drive wheel, metres (not in the thesis; see above)
   double rear_overhang = 0.10;  ///< fork tips behind the rear axle, metres
   double fork_length = 1.15;    ///< fork tips to the chassis back face, metres
   double fork_width = 0.17;     ///< one fork, metres
   double fork_spacing = 0.38;   ///< fork centre to fork centre, metres (EPAL pocket centres are 0.3725 m apart)
-  double wheel_radius = 0.115;  ///< drive wheel, metres [Stacker thesis, eq. 5.1] (not in the seed)
+  double wheel_radius = 0.115;  ///< drive wheel, metres [Stacker thesis, eq. 5.1] (not in the thesis)
 
   double front_x() const { return length - rear_overhang; }
   double fork_tip_x() const { return -rear_overhang; }
@@ -34,7 +34,7 @@ struct TricycleGeometry {
 };
 
 /// Actuator limits. The drive and the steering answer a held command with a first-order lag, bounded by an
-/// acceleration and a steering-rate limit. The seed gives none of these; the values are those of a typical
+/// acceleration and a steering-rate limit. The thesis gives none of these; the values are those of a typical
 /// electric pallet stacker (10 km/h top speed [Stacker thesis, section 4.2.3]).
 struct TricycleParams {
   TricycleGeometry geometry;
@@ -72,7 +72,7 @@ struct TricycleRates {
 TricycleRates forward_kinematics(const TricycleCommand& wheel, double wheelbase);
 
 /// Inverse kinematics [Stacker thesis, eq. 5.12, 5.16, 5.17] for a signed speed v of the rear-axle midpoint:
-/// theta_steer = atan(phi' L / v), v_steer = sign(v) sqrt(v^2 + phi'^2 L^2). The seed writes the unsigned form;
+/// theta_steer = atan(phi' L / v), v_steer = sign(v) sqrt(v^2 + phi'^2 L^2). The thesis writes the unsigned form;
 /// keeping the sign of v in the atan is what makes reversing turn the right way. v = 0 with phi' != 0 is the pivot
 /// about the rear axle, theta = +-pi/2, taken as the limit v -> 0+ (theta = sign(phi') pi/2, v_steer = |phi'| L).
 TricycleCommand inverse_kinematics(const TricycleRates& rates, double wheelbase);

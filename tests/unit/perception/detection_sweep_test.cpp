@@ -23,7 +23,7 @@ perception::SweepSetup setup_for(sim::DepthCamera& camera) {
   return setup;
 }
 
-// Every point of the seed's successful interval must succeed: 11 evenly spaced cases.
+// Every point of the thesis's successful interval must succeed: 11 evenly spaced cases.
 SweepAxis across(double first, double last) {
   return {first, last + 1e-9, (last - first) / 10.0};
 }

@@ -28,11 +28,11 @@ constexpr double kDeg = kPi / 180.0;
 constexpr double kCorridorWidth = 2.98;
 const Pose2 kPallet{11.6, -0.6, kPi / 2.0};
 
-/// The seed's off-nominal starts [section 7.2.2] are (x, y, phi) in a frame whose y runs along the corridor (the
+/// The thesis's off-nominal starts [section 7.2.2] are (x, y, phi) in a frame whose y runs along the corridor (the
 /// starts at y = 10.0 are left of the pallet, those at 13.2 right of it) and whose x reaches 3.40 m, beyond the
-/// 2.98 m width. Mapped here: along = y_seed; across = x_seed - 0.78; heading = -phi_seed. That offset and that
+/// 2.98 m width. Mapped here: along = y_thesis; across = x_thesis - 0.78; heading = -phi_thesis. That offset and that
 /// sense are the ones that put all four stackers wholly inside the corridor, each heading towards the pallet.
-Pose2 from_seed(double x, double y, double phi_deg) {
+Pose2 from_thesis(double x, double y, double phi_deg) {
   return {y, x - 0.78, -phi_deg * kDeg};
 }
 
@@ -51,10 +51,10 @@ std::vector<Scenario> scenarios() {
     out.push_back({"near_lane", near_lane, e});
     out.push_back({"far_lane", far_lane, e});
   }
-  out.push_back({"seed_3.30_10.00_39.73", from_seed(3.30, 10.00, 39.73), 0.0});
-  out.push_back({"seed_2.33_9.99_39.73", from_seed(2.33, 9.99, 39.73), 0.0});
-  out.push_back({"seed_3.40_13.23_129.70", from_seed(3.40, 13.23, 129.70), 0.0});
-  out.push_back({"seed_2.44_13.29_214.73", from_seed(2.44, 13.29, 214.73), 0.0});
+  out.push_back({"thesis_3.30_10.00_39.73", from_thesis(3.30, 10.00, 39.73), 0.0});
+  out.push_back({"thesis_2.33_9.99_39.73", from_thesis(2.33, 9.99, 39.73), 0.0});
+  out.push_back({"thesis_3.40_13.23_129.70", from_thesis(3.40, 13.23, 129.70), 0.0});
+  out.push_back({"thesis_2.44_13.29_214.73", from_thesis(2.44, 13.29, 214.73), 0.0});
   return out;
 }
 
