@@ -122,10 +122,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // lost and came back) enters where it is: the points behind it are cut off, and its
       // progress and grants are shifted by what was cut (trims_).
       traffic::RouteRequest route{id, request.version, request.points};
-      const std::size_t skip = manager_.entry_index(id, request.points, request.progress);
-      double offset = 0.0;
-      for (std::size_t k = 1; k <= skip; ++k)
-        offset += manager_.search().edge_length(request.points[k - 1], request.points[k]);
+      const auto [skip, offset] = manager_.entry_point(id, request.points, request.progress);
       route.points.erase(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(skip));
       if (skip > 0) {
         trims_[request.robot_id] = {request.version, static_cast<int>(skip), offset};
@@ -137,7 +134,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // the road (granted_index -1), keeping what its body stands on.
       // Part-way along its route it stands on the road: its body holding the entry's place is enough.
       const bool already_there = standing && (stands_at(request.robot_id, id, route.points.front()) ||
-                                              (skip > 0 && holds(id, route.points.front())));
+                                              (skip > 0 && manager_.holds_place_of(id, route.points.front())));
       if (!already_there) {
         const auto entry = manager_.entry_for(route.points.front(), id, now_sim);
         const auto& holders = entry.blockers;
@@ -196,15 +193,10 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
   status_.erase(robot_id);
 }
 
-bool TrafficControl::holds(int id, int point) const {
-  const auto held = manager_.held_places(id);
-  return std::binary_search(held.begin(), held.end(), manager_.zones().place_of(point));
-}
-
 bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) const {
   // Its body holds the point's place, and it stands on the point, not merely beside its region.
   constexpr double kOnPointM = 0.15;
-  if (!holds(id, point)) return false;
+  if (!manager_.holds_place_of(id, point)) return false;
   auto body = bodies_.find(robot_id);
   if (body == bodies_.end() || body->second.empty()) return false;
   geometry::Vec2 centre{0.0, 0.0};

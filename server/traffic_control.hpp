@@ -51,8 +51,6 @@ class TrafficControl {
   bool stand_where_it_is(const std::string& robot_id, int id, double now_sim);
   /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
   bool stands_at(const std::string& robot_id, int id, int point) const;
-  /// The robot holds the place of graph point `point`.
-  bool holds(int id, int point) const;
   void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;

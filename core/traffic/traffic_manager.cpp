@@ -326,25 +326,30 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   return held;
 }
 
-std::size_t TrafficManager::entry_index(int robot_id, const std::vector<int>& points, double progress) const {
+bool TrafficManager::holds_place_of(int robot_id, int point) const {
+  const std::vector<int> held = held_places(robot_id);
+  return std::binary_search(held.begin(), held.end(), zones_->place_of(point));
+}
+
+TrafficManager::EntryPoint TrafficManager::entry_point(int robot_id, const std::vector<int>& points,
+                                                       double progress) const {
   std::vector<double> cum(points.size(), 0.0);
   for (std::size_t k = 1; k < points.size(); ++k) cum[k] = cum[k - 1] + search_->edge_length(points[k - 1], points[k]);
   std::size_t skip = 0;
   while (skip + 1 < points.size() && cum[skip + 1] <= progress) ++skip;
-  const double offset = cum[skip];
   const std::vector<int> held = held_places(robot_id);
   const auto holds = [&](std::size_t k) {
     return std::binary_search(held.begin(), held.end(), zones_->place_of(points[k]));
   };
-  if (held.empty() || holds(skip)) return skip;
+  if (held.empty() || holds(skip)) return {skip, cum[skip]};
   double reach = 0.0;
   for (const auto& corner : zones_->vehicle_types()[static_cast<std::size_t>(type_of(robot_id))].footprint) {
     reach = std::max(reach, std::hypot(corner.x, corner.y));
   }
-  for (std::size_t k = skip + 1; k < points.size() && cum[k] <= offset + reach; ++k) {
-    if (holds(k)) return k;
+  for (std::size_t k = skip + 1; k < points.size() && cum[k] <= cum[skip] + reach; ++k) {
+    if (holds(k)) return {k, cum[k]};
   }
-  return skip;
+  return {skip, cum[skip]};
 }
 
 void TrafficManager::claim_entry(int robot_id, int point, double now) {
@@ -421,8 +426,7 @@ TrafficManager::Entry TrafficManager::entry_for(int point, int robot_id, double 
   entry.blockers = holders_in_conflict(point, robot_id);
   const auto self = robots_.find(robot_id);
   if (!entry.blockers.empty() && self != robots_.end() && self->second.frozen) {
-    const std::vector<int> held = held_places(robot_id);
-    if (std::binary_search(held.begin(), held.end(), zones_->place_of(point))) {
+    if (holds_place_of(robot_id, point)) {
       const auto waits_for_it = [&](int id) {
         const Robot& holder = robots_.at(id);
         return !holder.frozen && holder.wait_since >= 0.0 &&

@@ -237,13 +237,19 @@ class TrafficManager {
   }
   /// Places the robot holds now, sorted.
   std::vector<int> held_places(int robot_id) const;
-  /// Where a robot `progress` metres along `points` (its route) enters the roads: the index of
-  /// the last point at or behind `progress`, the points behind it cut off. A robot whose body
+  /// Where a robot `progress` metres along `points` (its route) enters the roads: the last point
+  /// at or behind `progress`, the points behind it cut off. A robot whose body
   /// holds places (lost and heard from again, or found standing after a restart) enters instead
   /// at the first point ahead, within its footprint's reach, whose place it holds: a robot that
   /// drove up behind it while it was away holds the place behind its centre, and waiting to enter
   /// there would be waiting for a robot that waits for its body.
-  std::size_t entry_index(int robot_id, const std::vector<int>& points, double progress) const;
+  struct EntryPoint {
+    std::size_t index = 0;  ///< of the point it enters at; the points before it are cut off
+    double offset = 0.0;    ///< metres along `points` to that point
+  };
+  EntryPoint entry_point(int robot_id, const std::vector<int>& points, double progress) const;
+  /// The robot holds the place of graph point `point`.
+  bool holds_place_of(int robot_id, int point) const;
   /// Robots (other than `robot_id`) holding a place that conflicts with the place of graph point
   /// `point`, sorted: a robot may enter the graph there only when this is empty.
   std::vector<int> holders_in_conflict(int point, int robot_id) const;

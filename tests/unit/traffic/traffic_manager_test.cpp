@@ -785,16 +785,13 @@ TEST(TrafficManager, ARobotBackFromBeingLostDrivesOnAheadOfTheRobotThatCameUpBeh
       m.report_progress({2, 1, d2, {}}, t);
     }
     // Back: its route from where it stands, as fleet-server enters a returning robot.
-    const std::size_t skip = m.entry_index(1, r1, d1);
-    double offset = 0.0;
-    for (std::size_t k = 1; k <= skip; ++k) offset += m.search().edge_length(r1[k - 1], r1[k]);
+    const auto [skip, offset] = m.entry_point(1, r1, d1);
     const std::vector<int> rest(r1.begin() + static_cast<std::ptrdiff_t>(skip), r1.end());
     // fleet-server lets it in where its body holds the route's first place, else once no one
     // holds a place in conflict with that point (TrafficControl).
     bool entered = false;
     const auto try_enter = [&] {
-      const auto held = m.held_places(1);
-      if (!std::binary_search(held.begin(), held.end(), m.zones().place_of(rest.front()))) {
+      if (!m.holds_place_of(1, rest.front())) {
         if (!m.holders_in_conflict(rest.front(), 1).empty()) return;
         m.remove_robot(1, t);
       }
