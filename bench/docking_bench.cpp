@@ -69,7 +69,7 @@ void BM_DetectPalletRealSense(benchmark::State& state) {
   fleet::sim::DepthCamera camera(fleet::sim::realsense_r200(), 1);
   const auto image = camera.render(scene, kRearView);
   fleet::perception::PalletExpectation expected;
-  expected.pallet = fleet::perception::map_pose_to_body(kRearView, kPallet);
+  expected.pallet = fleet::geometry::map_pose_to_body(kRearView, kPallet);
   expected.base_height = 0.30;
   for (auto _ : state) {
     const auto d = fleet::perception::detect_pallet(image, camera.model(), expected);

@@ -18,9 +18,7 @@ geometry::Vec2 row_direction(const geometry::Pose2& pallet) {
 /// vehicle's estimate.
 geometry::Pose2 reframe(const geometry::Pose2& from_vehicle, const geometry::Pose2& to_vehicle,
                         const geometry::Pose2& pose) {
-  const geometry::Vec2 rel = geometry::map_to_body(from_vehicle, pose.position());
-  const geometry::Vec2 out = geometry::body_to_map(to_vehicle, rel);
-  return {out.x, out.y, geometry::normalize_angle(pose.yaw - from_vehicle.yaw + to_vehicle.yaw)};
+  return geometry::body_pose_to_map(to_vehicle, geometry::map_pose_to_body(from_vehicle, pose));
 }
 
 /// What the pose sensor reads for a vehicle at `truth`.
@@ -35,14 +33,13 @@ geometry::Pose2 pose_sensor_reading(const geometry::Pose2& truth, const PoseSens
 /// odometry's error.
 geometry::Pose2 odometry_step(const geometry::Pose2& estimate, const geometry::Pose2& before,
                               const geometry::Pose2& after, const OdometryNoise& noise, std::mt19937_64& rng) {
-  const geometry::Vec2 moved = geometry::map_to_body(before, after.position());
-  const double length = std::hypot(moved.x, moved.y);
+  geometry::Pose2 seen = geometry::map_pose_to_body(before, after);
+  const double length = std::hypot(seen.x, seen.y);
   std::normal_distribution<double> unit(0.0, 1.0);
-  const geometry::Vec2 seen{moved.x + noise.distance_fraction * length * unit(rng),
-                            moved.y + noise.distance_fraction * length * unit(rng)};
-  const double turned = geometry::angle_diff(after.yaw, before.yaw) + noise.yaw_per_metre * length * unit(rng);
-  const geometry::Vec2 at = geometry::body_to_map(estimate, seen);
-  return {at.x, at.y, geometry::normalize_angle(estimate.yaw + turned)};
+  seen.x += noise.distance_fraction * length * unit(rng);
+  seen.y += noise.distance_fraction * length * unit(rng);
+  seen.yaw += noise.yaw_per_metre * length * unit(rng);
+  return geometry::body_pose_to_map(estimate, seen);
 }
 
 }  // namespace

@@ -46,20 +46,24 @@ sim::DepthScene row_scene(const geometry::Pose2& row, double pitch, std::optiona
 /// The presets place them on a body whose origin is the vehicle's centre; the ToF goes on the
 /// pan-tilt unit at the front (0.70 m ahead of the centre), the RealSense at the chassis back
 /// face where the forks begin, looking backwards between them.
+sim::DepthCameraParams stacker_tof(const sim::TricycleGeometry& g) {
+  sim::DepthCameraParams p = sim::sick_3vistor_t(std::numbers::pi / 2);
+  p.model.mount.x += 0.5 * (g.front_x() + g.fork_tip_x());
+  return p;
+}
+
+sim::DepthCameraParams stacker_rear_camera(const sim::TricycleGeometry& g) {
+  sim::DepthCameraParams p = sim::realsense_r200();
+  p.model.mount.x = g.chassis_back_x();
+  return p;
+}
+
 struct StackerCameras {
   sim::DepthCamera tof;
   sim::DepthCamera rear;
 
   StackerCameras(const sim::TricycleGeometry& g, std::uint64_t seed)
-      : tof(sim::sick_3vistor_t(std::numbers::pi / 2), seed), rear(sim::realsense_r200(), seed + 1) {
-    const double centre = 0.5 * (g.front_x() + g.fork_tip_x());
-    auto tof_params = tof.params();
-    tof_params.model.mount.x += centre;
-    tof = sim::DepthCamera(tof_params, seed);
-    auto rear_params = rear.params();
-    rear_params.model.mount.x = g.chassis_back_x();
-    rear = sim::DepthCamera(rear_params, seed + 1);
-  }
+      : tof(stacker_tof(g), seed), rear(stacker_rear_camera(g), seed + 1) {}
 };
 
 /// The camera-based pallet detector of one docking run: each call at the detection rate renders
@@ -79,7 +83,7 @@ class CameraDetector {
     if (t + 1e-9 < next_) return std::nullopt;
     next_ = t + period_;
     const auto started = std::chrono::steady_clock::now();
-    const geometry::Pose2 in_body = perception::map_pose_to_body(vehicle, expected);
+    const geometry::Pose2 in_body = geometry::map_pose_to_body(vehicle, expected);
     const geometry::Vec2 face{in_body.x + 0.6 * std::cos(in_body.yaw), in_body.y + 0.6 * std::sin(in_body.yaw)};
     sim::DepthCamera& camera = pick_camera(face);
     perception::PalletExpectation e;
@@ -89,7 +93,7 @@ class CameraDetector {
     // Tracking re-centres the region on the last detection [Stacker thesis, section 6.2.1], while it is the pallet
     // the law expects: once the law has moved its expectation elsewhere, the search starts there afresh.
     if (last_ && geometry::distance(last_->position(), expected.position()) > kTrackRadius) last_.reset();
-    if (last_) e.roi_centre = perception::map_pose_to_body(vehicle, *last_);
+    if (last_) e.roi_centre = geometry::map_pose_to_body(vehicle, *last_);
     const perception::DepthImage image = camera.render(scene_, vehicle);
     const perception::Detection d = perception::detect_pallet(image, camera.model(), e);
     times_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count());
@@ -99,7 +103,7 @@ class CameraDetector {
       return std::nullopt;
     }
     ++found_;
-    last_ = perception::body_pose_to_map(vehicle, d.pallet_pose());
+    last_ = geometry::body_pose_to_map(vehicle, d.pallet_pose());
     return last_;
   }
 

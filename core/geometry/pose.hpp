@@ -16,10 +16,18 @@ struct Vec2 {
   friend bool operator==(Vec2 a, Vec2 b) = default;
 };
 
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
-inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
+inline double dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+inline double norm(Vec2 a) {
+  return std::hypot(a.x, a.y);
+}
+inline double distance(Vec2 a, Vec2 b) {
+  return norm(a - b);
+}
 
 /// Wraps an angle to [-pi, pi).
 inline double normalize_angle(double a) {
@@ -30,7 +38,9 @@ inline double normalize_angle(double a) {
 }
 
 /// Signed smallest difference a - b, in [-pi, pi).
-inline double angle_diff(double a, double b) { return normalize_angle(a - b); }
+inline double angle_diff(double a, double b) {
+  return normalize_angle(a - b);
+}
 
 /// A planar pose in the map frame: x right, y up, yaw counter-clockwise from +x (REP-103).
 struct Pose2 {
@@ -55,6 +65,18 @@ inline Vec2 map_to_body(const Pose2& pose, Vec2 map) {
   const double s = std::sin(pose.yaw);
   const Vec2 d = map - pose.position();
   return {c * d.x + s * d.y, -s * d.x + c * d.y};
+}
+
+/// A pose given in the body frame of `pose` (a pallet the robot sees, say) in the map frame.
+inline Pose2 body_pose_to_map(const Pose2& pose, const Pose2& body) {
+  const Vec2 p = body_to_map(pose, body.position());
+  return {p.x, p.y, normalize_angle(pose.yaw + body.yaw)};
+}
+
+/// A map-frame pose in the body frame of `pose`.
+inline Pose2 map_pose_to_body(const Pose2& pose, const Pose2& map) {
+  const Vec2 p = map_to_body(pose, map.position());
+  return {p.x, p.y, angle_diff(map.yaw, pose.yaw)};
 }
 
 inline bool is_finite(const Pose2& p) {

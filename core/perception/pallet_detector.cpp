@@ -493,16 +493,6 @@ Detection detect_pallet(const DepthImage& image, const DepthCameraModel& camera,
   return result;
 }
 
-geometry::Pose2 body_pose_to_map(const geometry::Pose2& robot, const geometry::Pose2& in_body) {
-  const Vec2 p = geometry::body_to_map(robot, in_body.position());
-  return {p.x, p.y, geometry::normalize_angle(robot.yaw + in_body.yaw)};
-}
-
-geometry::Pose2 map_pose_to_body(const geometry::Pose2& robot, const geometry::Pose2& in_map) {
-  const Vec2 p = geometry::map_to_body(robot, in_map.position());
-  return {p.x, p.y, geometry::angle_diff(in_map.yaw, robot.yaw)};
-}
-
 PalletTracker::PalletTracker(DepthCameraModel camera, PalletDetectorParams params, int max_misses)
     : camera_(camera), params_(params), max_misses_(max_misses) {}
 
@@ -516,13 +506,13 @@ void PalletTracker::set_target(const geometry::Pose2& pallet_in_map, double base
 
 Detection PalletTracker::update(const DepthImage& image, const geometry::Pose2& robot_in_map) {
   PalletExpectation expected;
-  expected.pallet = map_pose_to_body(robot_in_map, target_);
+  expected.pallet = geometry::map_pose_to_body(robot_in_map, target_);
   expected.base_height = base_height_;
   expected.area = area_;
-  if (last_in_map_) expected.roi_centre = map_pose_to_body(robot_in_map, *last_in_map_);
+  if (last_in_map_) expected.roi_centre = geometry::map_pose_to_body(robot_in_map, *last_in_map_);
   Detection d = detect_pallet(image, camera_, expected, params_);
   if (d.found) {
-    last_in_map_ = body_pose_to_map(robot_in_map, d.pallet_pose(params_.pallet.length));
+    last_in_map_ = geometry::body_pose_to_map(robot_in_map, d.pallet_pose(params_.pallet.length));
     misses_ = 0;
   } else if (++misses_ >= max_misses_) {
     last_in_map_.reset();

@@ -87,11 +87,6 @@ struct Detection {
 Detection detect_pallet(const DepthImage& image, const DepthCameraModel& camera, const PalletExpectation& expected,
                         const PalletDetectorParams& params = {});
 
-/// A robot-frame pose in the map frame, given the robot's pose.
-geometry::Pose2 body_pose_to_map(const geometry::Pose2& robot, const geometry::Pose2& in_body);
-/// A map-frame pose in the robot frame.
-geometry::Pose2 map_pose_to_body(const geometry::Pose2& robot, const geometry::Pose2& in_map);
-
 /// Follows one pallet from frame to frame: each frame's region of interest is centred on the
 /// last detection [Stacker thesis, section 6.2.1], while the docking area stays on the target.
 /// Loses the track after `max_misses` frames in a row without a detection.

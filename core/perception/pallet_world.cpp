@@ -115,7 +115,7 @@ ForkEvent PalletWorld::update(int robot, const Pose2& robot_truth, bool fork_up)
       if (std::abs(rel.x - params_.carry_x) <= params_.lift_depth_tol && std::abs(rel.y) <= params_.lift_lateral_tol &&
           std::abs(dyaw) <= params_.lift_yaw_tol) {
         p.carried = true;
-        p.offset = {rel.x, rel.y, geometry::angle_diff(p.pose.yaw, robot_truth.yaw)};
+        p.offset = geometry::map_pose_to_body(robot_truth, p.pose);
         f.carrying = best_i;
         ev.kind = ForkEvent::Kind::kLifted;
         ev.pallet_id = p.id;
@@ -132,8 +132,7 @@ ForkEvent PalletWorld::update(int robot, const Pose2& robot_truth, bool fork_up)
   f.up = fork_up;
   if (f.carrying >= 0) {
     SimPallet& p = pallets_[static_cast<std::size_t>(f.carrying)];
-    const Vec2 c = geometry::body_to_map(robot_truth, {p.offset.x, p.offset.y});
-    p.pose = {c.x, c.y, geometry::normalize_angle(robot_truth.yaw + p.offset.yaw)};
+    p.pose = geometry::body_pose_to_map(robot_truth, p.offset);
   }
   return ev;
 }

@@ -156,7 +156,7 @@ TEST(PalletTracker, FollowsThePalletWhileTheRobotDrivesAlongTheRow) {
     const Detection d = tracker.update(camera.render(scene, robot), robot);
     if (!d.found) continue;
     ++found;
-    const Pose2 seen = perception::body_pose_to_map(robot, d.pallet_pose());
+    const Pose2 seen = geometry::body_pose_to_map(robot, d.pallet_pose());
     EXPECT_LT(geometry::distance(seen.position(), truth.position()), 0.03) << x;
   }
   EXPECT_GE(found, 6);
