@@ -52,7 +52,10 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   const auto config = config::load_fleet_config(command.config_file);
   orders::KnownNames names = orders::known_names(config, site.site);
   const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
-  for (auto& ability : names.abilities) ability.out_of_reach = traffic::places_out_of_reach(site, graphs.at(ability.fleet_id));
+  for (auto& ability : names.abilities) {
+    ability.out_of_reach =
+        traffic::fleet_places_out_of_reach(site, graphs.at(ability.fleet_id), config, ability.fleet_id);
+  }
   names.areas = info.loading_areas;
   names.homes = info.homes;
   names.robots = info.robots;
@@ -151,10 +154,9 @@ int order_list(Args& args, const CommandArgs& command, const Connection& connect
       << "REASON\n";
   for (const auto& r : rows) {
     out << std::left << std::setw(7) << r["order_id"].get<long>() << std::setw(10) << r["kind"].get<std::string>()
-        << std::setw(6) << r["pick_area"].get<std::string>()
-        << std::setw(6) << r["drop_area"].get<std::string>() << std::setw(7) << r["robot_id"].get<std::string>()
-        << std::setw(11) << r["state"].get<std::string>() << std::setw(11) << r["phase"].get<std::string>()
-        << r["reason"].get<std::string>() << "\n";
+        << std::setw(6) << r["pick_area"].get<std::string>() << std::setw(6) << r["drop_area"].get<std::string>()
+        << std::setw(7) << r["robot_id"].get<std::string>() << std::setw(11) << r["state"].get<std::string>()
+        << std::setw(11) << r["phase"].get<std::string>() << r["reason"].get<std::string>() << "\n";
   }
   return kExitOk;
 }

@@ -301,15 +301,14 @@ void FleetServer::build_fleet_graphs(const map::SiteMap& site) {
   for (auto& ability : known_names_.abilities) {
     const map::RoadGraph& graph = graphs.at(ability.fleet_id);
     travel_.emplace(ability.fleet_id, planning::RoadPlanner(graph));
-    ability.out_of_reach = traffic::places_out_of_reach(site, graph);
+    ability.out_of_reach = traffic::fleet_places_out_of_reach(site, graph, options_.config, ability.fleet_id);
   }
 }
 
 void FleetServer::fill_steps(Order& order) const {
   const auto& names = known_names();
-  order.steps = orders::steps_of({std::string(orders::to_string(order.kind)), order.pick_area, order.drop_area, "",
-                                  "", order.priority},
-                                 names);
+  order.steps = orders::steps_of(
+      {std::string(orders::to_string(order.kind)), order.pick_area, order.drop_area, "", "", order.priority}, names);
 }
 
 std::string FleetServer::validate_parking(const std::string& place, const std::string& robot_id) const {

@@ -160,7 +160,9 @@ bool FleetServer::robot_is_free(const RobotEntry& robot) const {
       r != rejected_at_wall_.end() && SimClock::wall_now() - r->second < kRejectionBackoffWall) {
     return false;
   }
-  if (robot.last.task_state != "IDLE" && robot.last.task_state != "GO_HOME") return false;
+  // On its way home or parking there (a stacker reversing into its bay) a robot takes new work.
+  const auto& state = robot.last.task_state;
+  if (state != "IDLE" && state != "GO_HOME" && state != "PARKING") return false;
   if (robot.last.carrying_pallet) return false;
   return book_.open_order_of(robot.id) == nullptr;
 }
@@ -254,7 +256,8 @@ void FleetServer::send_assignment(const Order& order) {
   msg.drop_area = order.drop_area;
   if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
   if (const auto* drop = options_.site.find_area(order.drop_area)) msg.drop_pose = drop->pose;
-  if (const auto* parking = options_.site.find_home(order.drop_area); parking && order.kind == orders::OrderKind::kMove) {
+  if (const auto* parking = options_.site.find_home(order.drop_area);
+      parking && order.kind == orders::OrderKind::kMove) {
     msg.drop_pose = parking->pose;
   }
   msg.kind = std::string(orders::to_string(order.kind));

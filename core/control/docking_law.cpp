@@ -321,7 +321,7 @@ sim::TricycleCommand DockingLaw::pivot(const DockingInput& in, DockingOutput& ou
 sim::TricycleCommand DockingLaw::final_approach(const DockingInput& in, DockingOutput& out) {
   const AxisFrame a = axis_frame(in.vehicle);
   if (a.s <= params_.threshold_standoff) {
-    if (detections_ == 0) {
+    if (detections_ == 0 && !params_.place_on_prior) {
       // Never seen where logistics put it: fork nothing in blind [section 6.3].
       failure_ = "pallet not found: no detection inside the expected docking area";
       fire(E::kGiveUp, out);

@@ -123,6 +123,9 @@ struct DockingParams {
   double detection_gate = 0.7;  ///< first detection within this of the expected pallet (the thesis's docking area), m
   double outlier_gate = 0.15;   ///< later detections within this of the running mean, m
   double time_limit = 240.0;    ///< s
+  /// Putting a carried pallet down (beyond the thesis, which only picks): the prior is the place
+  /// it goes to, there is nothing to detect, and the law docks the carried pallet onto the prior.
+  bool place_on_prior = false;
 };
 
 /// What the law reads each control period.

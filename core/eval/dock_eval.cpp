@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "perception/pallet_detector.hpp"
+#include "perception/stacker_cameras.hpp"
 #include "sim/depth_camera.hpp"
 #include "sim/tricycle.hpp"
 
@@ -26,8 +27,6 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kRowBase = 0.30;
 constexpr double kRowPitch = 1.50;
 const geometry::Pose2 kPallet{11.6, -0.6, std::numbers::pi / 2};
-// A tracked pallet further than this from where the law expects it is not the one it expects, m.
-constexpr double kTrackRadius = 0.3;
 
 /// The row centred on `row` (a pallet's place), two neighbours each side; the middle pallet
 /// stands at `target` when given (turned or shifted on its place), else on its place.
@@ -41,103 +40,6 @@ sim::DepthScene row_scene(const geometry::Pose2& row, double pitch, std::optiona
   }
   return scene;
 }
-
-/// The stacker's two depth cameras with their mounts in the frame of the rear-axle midpoint.
-/// The presets place them on a body whose origin is the vehicle's centre; the ToF goes on the
-/// pan-tilt unit at the front (0.70 m ahead of the centre), the RealSense at the chassis back
-/// face where the forks begin, looking backwards between them.
-sim::DepthCameraParams stacker_tof(const sim::TricycleGeometry& g) {
-  sim::DepthCameraParams p = sim::sick_3vistor_t(std::numbers::pi / 2);
-  p.model.mount.x += 0.5 * (g.front_x() + g.fork_tip_x());
-  return p;
-}
-
-sim::DepthCameraParams stacker_rear_camera(const sim::TricycleGeometry& g) {
-  sim::DepthCameraParams p = sim::realsense_r200();
-  p.model.mount.x = g.chassis_back_x();
-  return p;
-}
-
-struct StackerCameras {
-  sim::DepthCamera tof;
-  sim::DepthCamera rear;
-
-  StackerCameras(const sim::TricycleGeometry& g, std::uint64_t seed)
-      : tof(stacker_tof(g), seed), rear(stacker_rear_camera(g), seed + 1) {}
-};
-
-/// The camera-based pallet detector of one docking run: each call at the detection rate renders
-/// the camera that faces the expected pallet (the RealSense when the pallet is behind, else the
-/// ToF panned towards it [Stacker thesis, section 6.3]) and searches the frame [sections 5.4,
-/// 6.2]; in between it reports nothing.
-class CameraDetector {
- public:
-  CameraDetector(const sim::TricycleGeometry& geometry, const geometry::Pose2& pallet, double rate_hz,
-                 std::uint64_t seed)
-      : cameras_(geometry, seed), scene_(row_scene(pallet, kRowPitch)), period_(1.0 / rate_hz) {
-    area_.lateral_half = 0.5 * kRowPitch;  // the thesis's errors up to 0.66 m and the pose sensor's
-    area_.depth_half = 0.35;
-  }
-
-  std::optional<geometry::Pose2> operator()(const geometry::Pose2& vehicle, const geometry::Pose2& expected, double t) {
-    if (t + 1e-9 < next_) return std::nullopt;
-    next_ = t + period_;
-    const auto started = std::chrono::steady_clock::now();
-    const geometry::Pose2 in_body = geometry::map_pose_to_body(vehicle, expected);
-    const geometry::Vec2 face{in_body.x + 0.6 * std::cos(in_body.yaw), in_body.y + 0.6 * std::sin(in_body.yaw)};
-    sim::DepthCamera& camera = pick_camera(face);
-    perception::PalletExpectation e;
-    e.pallet = in_body;
-    e.base_height = kRowBase;
-    e.area = area_;
-    // Tracking re-centres the region on the last detection [Stacker thesis, section 6.2.1], while it is the pallet
-    // the law expects: once the law has moved its expectation elsewhere, the search starts there afresh.
-    if (last_ && geometry::distance(last_->position(), expected.position()) > kTrackRadius) last_.reset();
-    if (last_) e.roi_centre = geometry::map_pose_to_body(vehicle, *last_);
-    const perception::DepthImage image = camera.render(scene_, vehicle);
-    const perception::Detection d = perception::detect_pallet(image, camera.model(), e);
-    times_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count());
-    ++frames_;
-    if (!d.found) {
-      last_reason_ = (&camera == &cameras_.rear ? "rear camera: " : "ToF camera: ") + d.reason;
-      return std::nullopt;
-    }
-    ++found_;
-    last_ = geometry::body_pose_to_map(vehicle, d.pallet_pose());
-    return last_;
-  }
-
-  int frames() const { return frames_; }
-  int found() const { return found_; }
-  const std::string& last_reason() const { return last_reason_; }
-  const std::vector<double>& times_ms() const { return times_ms_; }
-
- private:
-  sim::DepthCamera& pick_camera(geometry::Vec2 face) {
-    const auto& rear = cameras_.rear.model();
-    const geometry::Vec2 from_rear{face.x - rear.mount.x, face.y - rear.mount.y};
-    const double off_axis = std::abs(geometry::angle_diff(std::atan2(from_rear.y, from_rear.x), rear.mount.pan));
-    const double range = std::hypot(from_rear.x, from_rear.y);
-    if (off_axis < 0.5 * rear.hfov - 10.0 * kDeg && range > rear.min_range + 0.2 && range < rear.max_range - 0.5) {
-      return cameras_.rear;
-    }
-    const auto& tof = cameras_.tof.model();
-    const double bearing = std::atan2(face.y - tof.mount.y, face.x - tof.mount.x);
-    cameras_.tof.set_pan_tilt(std::clamp(bearing, -std::numbers::pi / 2, std::numbers::pi / 2), tof.mount.tilt);
-    return cameras_.tof;
-  }
-
-  StackerCameras cameras_;
-  sim::DepthScene scene_;
-  perception::DockingArea area_;
-  double period_;
-  double next_ = 0.0;
-  std::optional<geometry::Pose2> last_;
-  int frames_ = 0;
-  int found_ = 0;
-  std::string last_reason_;
-  std::vector<double> times_ms_;
-};
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -255,7 +157,11 @@ DockRun run_dock_case(const DockStart& start, double prior_error, const DockEval
   p.law.detection_gate = 0.5 * kRowPitch;
   const geometry::Vec2 row{-std::sin(kPallet.yaw), std::cos(kPallet.yaw)};
   const geometry::Vec2 prior = kPallet.position() + prior_error * row;
-  auto detector = std::make_shared<CameraDetector>(p.vehicle.geometry, kPallet, params.detection_rate_hz, seed);
+  perception::StackerDetectorParams dp;
+  dp.rate_hz = params.detection_rate_hz;
+  dp.area.lateral_half = 0.5 * kRowPitch;
+  auto detector = std::make_shared<perception::StackerCameraDetector>(
+      p.vehicle.geometry, perception::PalletRow{row_scene(kPallet, kRowPitch), kRowBase}, dp, seed);
   run.result = control::simulate_docking(
       start.pose, kPallet, {prior.x, prior.y, kPallet.yaw}, p,
       [detector](const geometry::Pose2& v, const geometry::Pose2& e, double t) { return (*detector)(v, e, t); });

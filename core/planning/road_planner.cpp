@@ -53,6 +53,7 @@ RoadPlanner::RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfigura
     }
     offsets_[i + 1] = static_cast<std::uint32_t>(targets_.size());
   }
+  mark_main_component();
   blocked_.assign(n, 0);
   stamp_.assign(n, 0);
   closed_.assign(n, 0);
@@ -70,10 +71,73 @@ void RoadPlanner::clear_obstacles() {
   std::fill(blocked_.begin(), blocked_.end(), 0);
 }
 
-int RoadPlanner::nearest_point(Vec2 p) const {
+void RoadPlanner::mark_main_component() {
+  // Kosaraju's two passes, iterative: finishing order on the graph, then components on the
+  // reversed graph in reverse finishing order.
+  const std::size_t n = xs_.size();
+  std::vector<std::uint32_t> rev_offsets(n + 1, 0);
+  for (int t : targets_) ++rev_offsets[static_cast<std::size_t>(t) + 1];
+  for (std::size_t i = 0; i < n; ++i) rev_offsets[i + 1] += rev_offsets[i];
+  std::vector<int> rev_targets(targets_.size());
+  std::vector<std::uint32_t> fill(rev_offsets.begin(), rev_offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::uint32_t e = offsets_[i]; e < offsets_[i + 1]; ++e)
+      rev_targets[fill[targets_[e]]++] = static_cast<int>(i);
+  }
+  std::vector<int> order;
+  order.reserve(n);
+  std::vector<std::uint8_t> visited(n, 0);
+  std::vector<std::pair<int, std::uint32_t>> stack;
+  for (std::size_t root = 0; root < n; ++root) {
+    if (visited[root]) continue;
+    visited[root] = 1;
+    stack.push_back({static_cast<int>(root), offsets_[root]});
+    while (!stack.empty()) {
+      auto& [u, next] = stack.back();
+      if (next < offsets_[u + 1]) {
+        const int v = targets_[next++];
+        if (!visited[v]) {
+          visited[v] = 1;
+          stack.push_back({v, offsets_[v]});
+        }
+      } else {
+        order.push_back(u);
+        stack.pop_back();
+      }
+    }
+  }
+  std::vector<int> component(n, -1);
+  std::vector<std::size_t> sizes;
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    if (component[*it] >= 0) continue;
+    const int id = static_cast<int>(sizes.size());
+    sizes.push_back(0);
+    std::vector<int> todo{*it};
+    component[*it] = id;
+    while (!todo.empty()) {
+      const int u = todo.back();
+      todo.pop_back();
+      ++sizes.back();
+      for (std::uint32_t e = rev_offsets[u]; e < rev_offsets[u + 1]; ++e) {
+        const int v = rev_targets[e];
+        if (component[v] < 0) {
+          component[v] = id;
+          todo.push_back(v);
+        }
+      }
+    }
+  }
+  main_component_.assign(n, 0);
+  if (sizes.empty()) return;
+  const int main = static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  for (std::size_t i = 0; i < n; ++i) main_component_[i] = component[i] == main ? 1 : 0;
+}
+
+int RoadPlanner::nearest_point(Vec2 p, PointUse use) const {
   int best = -1;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < xs_.size(); ++i) {
+    if (use == PointUse::kRoute && !main_component_[i]) continue;
     const double dx = xs_[i] - p.x;
     const double dy = ys_[i] - p.y;
     const double d2 = dx * dx + dy * dy;
@@ -87,8 +151,8 @@ int RoadPlanner::nearest_point(Vec2 p) const {
 
 RoadPlan RoadPlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
   // [Forklift thesis, Fig. 5.6]: the states nearest the poses; C(x_S) is the distance to the start state.
-  const int s = nearest_point(start.position());
-  const int g = nearest_point(goal.position());
+  const int s = nearest_point(start.position(), PointUse::kRoute);
+  const int g = nearest_point(goal.position(), PointUse::kRoute);
   if (s < 0 || g < 0) {
     RoadPlan empty;
     empty.status = PlanStatus::kInvalidStart;

@@ -41,8 +41,12 @@ class RoadPlanner {
   void clear_obstacles();
   bool blocked(int point) const { return blocked_[static_cast<std::size_t>(point)] != 0; }
 
-  /// Graph point nearest `p` by Euclidean distance (Fig. 5.6); -1 for an empty graph.
-  int nearest_point(geometry::Vec2 p) const;
+  /// kRoute: only points of the graph's main strongly connected component, from which every
+  /// other can be reached (what is left of a lane the vehicle does not fit, cut out of its
+  /// graph, is no place to start or end a route).
+  enum class PointUse { kAny, kRoute };
+  /// Graph point nearest `p` by Euclidean distance (Fig. 5.6); -1 when there is none.
+  int nearest_point(geometry::Vec2 p, PointUse use = PointUse::kAny) const;
 
   /// Start and goal states are the graph points nearest the poses; the start's cost-to-come is
   /// its distance from the start pose. When the cheapest route crosses a blocked point, the plan
@@ -55,6 +59,7 @@ class RoadPlanner {
   const RoadPlannerConfiguration& configuration() const { return configuration_; }
 
  private:
+  void mark_main_component();
   struct HeapItem {
     double f;
     double g;
@@ -68,6 +73,7 @@ class RoadPlanner {
   std::vector<double> edge_length_;
   std::vector<double> edge_angle_;  ///< atan2(dy, dx) of each edge, the heading it assigns
   std::vector<std::uint8_t> blocked_;
+  std::vector<std::uint8_t> main_component_;  ///< 1 for points of the largest strong component
 
   // Search state, reused; `stamp_` tells which entries belong to the current query.
   std::vector<std::uint32_t> stamp_;

@@ -1,9 +1,8 @@
 #include "planning/route_planner.hpp"
 
 #include <algorithm>
-#include <cmath>
-
 #include <chrono>
+#include <cmath>
 
 namespace fleet::planning {
 
@@ -45,8 +44,8 @@ RoutePlanner::RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlan
 Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
   Route route;
   const Deadline deadline(options);
-  const int s = road_.nearest_point(start.position());
-  const int g = road_.nearest_point(goal.position());
+  const int s = road_.nearest_point(start.position(), RoadPlanner::PointUse::kRoute);
+  const int g = road_.nearest_point(goal.position(), RoadPlanner::PointUse::kRoute);
   if (s < 0 || g < 0) {
     route.status = PlanStatus::kInvalidStart;
     return route;

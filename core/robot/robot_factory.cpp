@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "robot/forklift.hpp"
+#include "robot/stacker.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "vehicle/vehicle_types.hpp"
 
@@ -35,6 +36,21 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
   return c;
 }
 
+robot::StackerConfig stacker_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                    const map::SiteMap& site) {
+  robot::StackerConfig c = robot::StackerConfig::for_vehicle(fleet.profile);
+  c.pursuit.max_speed = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+  for (const auto& other : config.fleets) {
+    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
+  }
+  c.traffic = config.settings.get_bool("traffic.enabled");
+  // Only the lanes a stacker fits, traffic or not: its bays are no lanes to drive along, and a
+  // stacker cannot turn where its body does not fit.
+  c.route_graph = std::make_shared<const map::RoadGraph>(traffic::planning_graph(
+      site.graph.graph, traffic::configuration_from(config), traffic::vehicle_type_of(config, fleet.id)));
+  return c;
+}
+
 }  // namespace
 
 std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
@@ -43,6 +59,9 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
   // One branch per robot type the agent can drive; its software lives in its own file here.
   if (fleet.robot_type == "forklift") {
     return std::make_unique<Forklift>(forklift_config(config, fleet, *site), site, home, seed, stream);
+  }
+  if (fleet.robot_type == "stacker") {
+    return std::make_unique<Stacker>(stacker_config(config, fleet, *site), site, home, seed, stream);
   }
   throw std::invalid_argument("fleet '" + fleet.id + "': unknown robot type '" + fleet.robot_type +
                               "' (known: " + vehicle::robot_type_names() + ")");

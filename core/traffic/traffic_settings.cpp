@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "map/road_graph_builder.hpp"
 #include "traffic/one_way.hpp"
 #include "traffic/vehicle_lanes.hpp"
+#include "vehicle/vehicle_types.hpp"
 
 namespace fleet::traffic {
 
@@ -53,16 +55,48 @@ map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfigur
 std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, const config::FleetConfig& config) {
   const TrafficConfiguration configuration = configuration_from(config);
   const bool one_way = config.settings.get_bool("traffic.enabled") && configuration.one_way;
-  const map::RoadGraph base = one_way ? one_way_plan(graph, ConflictZones(graph, configuration.resources)).graph : graph;
+  const map::RoadGraph base =
+      one_way ? one_way_plan(graph, ConflictZones(graph, configuration.resources)).graph : graph;
   std::map<std::string, map::RoadGraph> graphs;
   for (const auto& fleet : config.fleets) {
-    graphs.emplace(fleet.id, lane_graph_for(base, footprint_width(footprint_polygon_of(fleet)),
-                                            configuration.resources.margin));
+    graphs.emplace(fleet.id,
+                   lane_graph_for(base, footprint_width(footprint_polygon_of(fleet)), configuration.resources.margin));
   }
   return graphs;
 }
 
-std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph) {
+namespace {
+
+/// Every lane of the site graph's road at point `p`, added up: the lanes' widths at the points of
+/// the same road nearest `p` along it, one per lane.
+double road_width_at(const map::RoadGraph& graph, int p) {
+  const map::GraphPoint& at = graph.points[static_cast<std::size_t>(p)];
+  std::map<int, std::pair<double, double>> lanes;  // lane id -> (|ds|, width)
+  for (const map::GraphPoint& q : graph.points) {
+    if (q.road_id != at.road_id) continue;
+    const double ds = std::abs(q.s - at.s);
+    auto [it, added] = lanes.try_emplace(q.lane_id, ds, q.lane_width);
+    if (!added && ds < it->second.first) it->second = {ds, q.lane_width};
+  }
+  double width = 0.0;
+  for (const auto& [lane, near] : lanes) width += near.second;
+  return width;
+}
+
+}  // namespace
+
+std::vector<std::string> fleet_places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph,
+                                                   const config::FleetConfig& config, const std::string& fleet_id) {
+  double handling = 0.0;
+  for (const auto& fleet : config.fleets) {
+    if (fleet.id != fleet_id) continue;
+    if (const auto* type = vehicle::find_robot_type(fleet.robot_type)) handling = type->handling_road_width;
+  }
+  return places_out_of_reach(site, fleet_graph, handling);
+}
+
+std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph,
+                                             double handling_road_width) {
   std::vector<char> has_way_in(fleet_graph.points.size(), 0);
   for (const auto& successors : fleet_graph.successors) {
     for (int next : successors) has_way_in[static_cast<std::size_t>(next)] = 1;
@@ -71,8 +105,12 @@ std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map
   std::vector<std::string> out;
   const double approach = site.site.approach_distance;
   for (const auto& area : site.site.loading_areas) {
-    const int p = nearest(area.pose.x + approach * std::cos(area.pose.yaw), area.pose.y + approach * std::sin(area.pose.yaw));
-    if (p < 0 || !has_way_in[static_cast<std::size_t>(p)]) out.push_back(area.id);
+    const int p =
+        nearest(area.pose.x + approach * std::cos(area.pose.yaw), area.pose.y + approach * std::sin(area.pose.yaw));
+    if (p < 0 || !has_way_in[static_cast<std::size_t>(p)] ||
+        (handling_road_width > 0.0 && road_width_at(site.graph.graph, p) < handling_road_width - 1e-9)) {
+      out.push_back(area.id);
+    }
   }
   for (const auto& home : site.site.homes) {
     const int p = nearest(home.pose.x, home.pose.y);

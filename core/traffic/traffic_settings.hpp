@@ -35,6 +35,12 @@ std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, 
 
 /// The places (loading areas and homes) of `site` a fleet's robots cannot reach on `fleet_graph`:
 /// the graph point in front of the place (where the vehicle handles it) has no way in.
-std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph);
+/// With `handling_road_width` > 0 also the loading areas whose road in front is narrower (every
+/// lane of that road at that point, added up): the robot type turns there to handle the load.
+std::vector<std::string> places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph,
+                                             double handling_road_width = 0.0);
+/// places_out_of_reach for fleet `fleet_id` of `config`, with its robot type's handling road width.
+std::vector<std::string> fleet_places_out_of_reach(const map::SiteMap& site, const map::RoadGraph& fleet_graph,
+                                                   const config::FleetConfig& config, const std::string& fleet_id);
 
 }  // namespace fleet::traffic

@@ -17,6 +17,9 @@ struct RobotType {
   /// Every action the software can carry out; a fleet's profile offers a subset.
   std::vector<std::string> possible_actions;
   VehicleProfile defaults;
+  /// A place is handled only from a road at least this wide in front of it, metres (a stacker
+  /// turns about its rear axle there to reverse in); 0: any road the vehicle fits.
+  double handling_road_width = 0.0;
 };
 
 /// The robot types the agent can build, in a stable order.

@@ -30,6 +30,7 @@ CORRIDOR_LANE = 1.49  # the finished-goods corridor: 2.98 m, two lanes
 RACK_LANE = 1.5       # rack aisles: 3.0 m between rack faces, two lanes
 NARROW_LANE = 0.95    # single-lane spurs only a 0.8 m vehicle fits
 STALL_LANE = 1.1      # the parking street and stalls: a 0.9 m reach truck fits
+BAY_LANE = 0.8        # stacker bays: marked on the floor, narrower than any vehicle plus its margin
 
 SOUTH_Y, NORTH_Y = 7.0, 24.0               # cross aisle centres
 WEST_X, MID_X, EAST_X = 2.5, 30.0, 57.5    # north-south aisle centres
@@ -37,6 +38,7 @@ CORRIDOR_Y, RACK_AISLE_Y = 17.1, 11.7      # the corridor continues as the upper
 PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 36.4
 STREET_Y, STALL_END_Y = 26.9, 29.1
 STALLS = [38.0 + 1.2 * k for k in range(16)]
+STACKER_BAYS, STACKER_BAY_END_Y = (6.5, 10.5, 14.5, 25.0), 21.4
 EAST_MOUTH = 12                            # the reach trucks' street meets its access at stall 13
 
 PALLET_LENGTH, PALLET_WIDTH = 1.2, 0.8     # EPAL; forks enter along the length
@@ -61,6 +63,9 @@ def network(name="plant", corridor_lanes=2, closed=()):
     for k, x in enumerate(PACKING_XS):
         net.node(f"packing{k + 1}", x, SOUTH_Y)
         net.node(f"packing{k + 1}_end", x, 2.3)
+    for k, x in enumerate(STACKER_BAYS):
+        net.node(f"stacker{k + 1}", x, NORTH_Y)
+        net.node(f"stacker{k + 1}_end", x, STACKER_BAY_END_Y)
     for k, x in enumerate(STALLS):
         net.node(f"street{k + 1}", x, STREET_Y)
         net.node(f"stall{k + 1}", x, STALL_END_Y)
@@ -71,7 +76,9 @@ def network(name="plant", corridor_lanes=2, closed=()):
                 net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
 
     aisle(["sw", "packing1", "packing2", "sm", "se"], "south cross aisle")
-    aisle(["nw", "expedition", "nm", "parking", "parking_e", "ne"], "north cross aisle")
+    bays = [(x, f"stacker{k + 1}") for k, x in enumerate(STACKER_BAYS)]
+    west_of_middle = sorted(bays + [(EXPEDITION_SPUR_X, "expedition")])
+    aisle(["nw", *[n for _, n in west_of_middle], "nm", "parking", "parking_e", "ne"], "north cross aisle")
     aisle(["sw", "corridor_w", "nw"], "west aisle")
     aisle(["sm", "rack_w", "corridor_e", "nm"], "middle aisle")
     aisle(["se", "rack_e", "upper_e", "ne"], "east aisle")
@@ -85,6 +92,10 @@ def network(name="plant", corridor_lanes=2, closed=()):
     for k in range(len(PACKING_XS)):
         net.edge(f"packing{k + 1}", f"packing{k + 1}_end", f"packing spur {k + 1}", ONE, NARROW_LANE)
     net.edge("expedition", "expedition_end", "expedition spur", ONE, NARROW_LANE)
+    # Stacker bays behind the finished-goods row: a stacker reverses in from the aisle as it docks
+    # to a pallet and drives out forwards. No vehicle fits a bay as a lane, so no route uses one.
+    for k in range(len(STACKER_BAYS)):
+        net.edge(f"stacker{k + 1}", f"stacker{k + 1}_end", f"stacker bay {k + 1}", ONE, BAY_LANE)
     # Two dead-end parking streets, one per half of the stall row, each with its own way to the
     # north cross aisle: the forklifts' at the west end, the reach trucks' in the middle of
     # theirs, so that a fleet leaving its stalls at once queues behind its own robots only.
@@ -252,6 +263,9 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2, cl
     for k, x in enumerate(STALLS):
         home = f"PF{k + 1}" if k < 8 else f"PR{east.index(k) + 1}"
         lines.append(f"  - {{id: {home}, x: {fmt(x)}, y: {fmt(STALL_END_Y)}, yaw: {fmt(S)}}}")
+    # Stackers park in their bays facing the aisle, the fork tips 0.6 m clear of the pallets.
+    for k, x in enumerate(STACKER_BAYS):
+        lines.append(f"  - {{id: PT{k + 1}, x: {fmt(x)}, y: {fmt(STACKER_BAY_END_Y)}, yaw: {fmt(N)}}}")
     lines.append("racks:")
     for name, (x0, y0, x1, y1) in rack_list:
         lines.append(f"  - {{id: {name}, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "

@@ -34,11 +34,13 @@ CommandRun run(Command command, std::vector<std::string> args, const std::string
 
 }  // namespace
 
-TEST(FleetsCommand, ThePlantHasTwoFleetsOfDifferentVehicles) {
+TEST(FleetsCommand, ThePlantHasThreeFleetsOfDifferentVehicles) {
   const auto r = run(fleets_command, {}, "sites/plant.yaml");
   ASSERT_EQ(r.code, 0);
   const auto doc = nlohmann::json::parse(r.out);
-  ASSERT_EQ(doc["fleets"].size(), 2u);
+  ASSERT_EQ(doc["fleets"].size(), 3u);
+  EXPECT_EQ(doc["fleets"][2]["fleet"], "stackers");
+  EXPECT_EQ(doc["fleets"][2]["typeSpecification"]["agvKinematic"], "THREEWHEEL") << doc["fleets"][2];
   EXPECT_EQ(doc["fleets"][0]["fleet"], "forklifts");
   EXPECT_EQ(doc["fleets"][1]["fleet"], "reach_trucks");
   EXPECT_LT(doc["fleets"][0]["physicalParameters"]["width"].get<double>(),
@@ -47,9 +49,9 @@ TEST(FleetsCommand, ThePlantHasTwoFleetsOfDifferentVehicles) {
 }
 
 TEST(TrafficEval, ComparesTheSameTripsOnTwoSitesWithoutCollisions) {
-  const auto r = run(traffic_eval_command,
-                     {"--site", "plant", "--against", "plant_one_lane", "--robots", "4", "--duration", "300"},
-                     "sites/plant.yaml");
+  const auto r =
+      run(traffic_eval_command,
+          {"--site", "plant", "--against", "plant_one_lane", "--robots", "4", "--duration", "300"}, "sites/plant.yaml");
   ASSERT_EQ(r.code, 0);
   const auto doc = nlohmann::json::parse(r.out);
   ASSERT_EQ(doc["runs"].size(), 2u);

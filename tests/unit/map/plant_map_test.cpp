@@ -8,6 +8,7 @@
 #include <deque>
 #include <functional>
 #include <numbers>
+#include <set>
 #include <string>
 
 #include "geometry/polygon.hpp"
@@ -25,7 +26,8 @@ constexpr double kFitMargin = 0.10;  // the plant's margin: a vehicle fits when 
 constexpr double kForkliftWidth = 0.8;
 constexpr double kReachTruckWidth = 0.9;
 const Footprint kPallet{1.2, 0.8};      // EPAL, forks along the length
-const Footprint kReachTruck{1.6, 0.9};  // the largest vehicle that parks at a home
+const Footprint kReachTruck{1.6, 0.9};  // the largest vehicle that parks at a home stall
+const Footprint kStacker{1.7, 0.748};   // parks in its own bay
 
 const SiteMap& plant() {
   static const SiteMap map = load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
@@ -161,6 +163,8 @@ TEST(Plant, NarrowLanesTakeAForkliftButNotAReachTruck) {
   const std::vector<double> widths = lane_widths(map);
   std::size_t narrow = 0;
   for (const double w : widths) {
+    // Every lane takes a forklift but the stacker bays, which no vehicle drives along.
+    if (std::abs(w - 0.8) < 1e-3) continue;
     EXPECT_GE(w, kForkliftWidth + kFitMargin - 1e-9) << "every lane takes a forklift";
     if (w < kReachTruckWidth + kFitMargin) ++narrow;
   }
@@ -184,6 +188,7 @@ TEST(Plant, ForkliftsReachEveryPlaceReachTrucksEveryHighPlaceButNotTheNarrowOnes
   const SiteReport report = check_site_map(map);
   int forklift_homes = 0, reach_truck_homes = 0, narrow_only = 0, high = 0;
   for (const PlaceReach& home : report.homes) {
+    if (starts_with(home.id, "PT")) continue;  // a stacker's bay (stacker_test.cpp drives them)
     const bool forklift = starts_with(home.id, "PF");
     ASSERT_TRUE(forklift || starts_with(home.id, "PR")) << home.id;
     (forklift ? forklift_homes : reach_truck_homes)++;
@@ -245,11 +250,20 @@ TEST(Plant, PalletsStandBesideTheLanesAndHomesInTheirOwnStalls) {
     EXPECT_GE(clearance_to_lanes(map, pallet, [](const GraphPoint&) { return true; }), -1e-3) << a.id;
   }
   const RoadGraph& g = map.graph.graph;
+  std::set<std::string> junction_roads;
+  for (const Road& r : map.network.roads) {
+    if (r.in_junction()) junction_roads.insert(r.id);
+  }
   for (const Home& h : map.site.homes) {
-    // A home is at the end of its stall, a dead-end lane of its own: clear of every other lane.
+    // A home is at the end of its stall, a dead-end lane of its own: clear of every other lane. A
+    // stacker's bay is as deep as the stacker: its front meets the aisle's edge.
     const std::string stall = g.points[static_cast<std::size_t>(nearest_point(g, h.pose.x, h.pose.y))].road_id;
-    const Polygon body = footprint_polygon(h.pose, kReachTruck);
-    EXPECT_GT(clearance_to_lanes(map, body, [&](const GraphPoint& p) { return p.road_id != stall; }), 0.0) << h.id;
+    const bool bay = starts_with(h.id, "PT");
+    const Polygon body = footprint_polygon(h.pose, bay ? kStacker : kReachTruck);
+    const double clearance = clearance_to_lanes(map, body, [&](const GraphPoint& p) {
+      return p.road_id != stall && !(bay && junction_roads.contains(p.road_id));
+    });
+    EXPECT_GT(clearance, bay ? -1e-6 : 0.0) << h.id;
     EXPECT_TRUE(map.site.bounds.contains(body[0]) && map.site.bounds.contains(body[2])) << h.id;
     for (const Home& other : map.site.homes) {
       if (other.id == h.id) continue;

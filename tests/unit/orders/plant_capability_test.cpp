@@ -1,7 +1,9 @@
-// Orders on the plant with its two fleets: the checks fleetctl, the web API and the server make,
+// Orders on the plant with its three fleets: the checks fleetctl, the web API and the server make,
 // with the places each fleet reaches on the lanes its vehicle fits.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
@@ -20,9 +22,13 @@ struct Plant {
   Plant() {
     names = orders::known_names(config, site.site);
     const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
-    for (auto& ability : names.abilities) ability.out_of_reach = traffic::places_out_of_reach(site, graphs.at(ability.fleet_id));
+    for (auto& ability : names.abilities) {
+      ability.out_of_reach =
+          traffic::fleet_places_out_of_reach(site, graphs.at(ability.fleet_id), config, ability.fleet_id);
+    }
   }
-  std::optional<orders::RequestProblem> check(const std::string& from, const std::string& to, const std::string& fleet) {
+  std::optional<orders::RequestProblem> check(const std::string& from, const std::string& to,
+                                              const std::string& fleet) {
     return orders::check_order_request({"", from, to, "", fleet, 0}, names);
   }
 };
@@ -45,7 +51,9 @@ TEST(PlantCapability, APlaceOnlyTheNarrowRoadsReachIsForTheForkliftsOnly) {
   const auto& reach = plant.names.abilities[1];
   ASSERT_EQ(reach.fleet_id, "reach_trucks");
   EXPECT_NE(std::find(reach.out_of_reach.begin(), reach.out_of_reach.end(), "EN1"), reach.out_of_reach.end());
-  EXPECT_TRUE(plant.names.abilities[0].out_of_reach.empty());
+  // The forklifts reach every place but the stackers' bays (PT1-PT4), which no lane leads into:
+  // a stacker reverses in from the aisle.
+  for (const auto& place : plant.names.abilities[0].out_of_reach) EXPECT_TRUE(place.starts_with("PT")) << place;
   EXPECT_FALSE(plant.check("EX1", "EN1", "").has_value());
   const auto trucks = plant.check("EX1", "EN1", "reach_trucks");
   ASSERT_TRUE(trucks.has_value());
@@ -68,4 +76,21 @@ TEST(PlantCapability, AnActionNoFleetHasIsRefusedNamingEveryFleet) {
   EXPECT_EQ(pick->field, "kind");
   EXPECT_NE(pick->message.find("forklifts cannot 'pickItem'"), std::string::npos) << pick->message;
   EXPECT_NE(pick->message.find("reach_trucks cannot 'pickItem'"), std::string::npos) << pick->message;
+}
+
+TEST(PlantCapability, AStackerDocksOnlyWhereTheRoadInFrontLeavesItRoomToTurn) {
+  Plant plant;
+  const auto& stackers = plant.names.abilities[2];
+  ASSERT_EQ(stackers.fleet_id, "stackers");
+  const auto out = [&](const std::string& place) {
+    return std::find(stackers.out_of_reach.begin(), stackers.out_of_reach.end(), place) != stackers.out_of_reach.end();
+  };
+  // The narrow spurs: the expedition spur's EN places and the packing stations.
+  for (const char* place : {"EN1", "EN6", "PS1", "PS8"}) EXPECT_TRUE(out(place)) << place;
+  // The corridor (2.98 m), the cross aisles (3.5 m) and the rack aisles (3.0 m).
+  for (const char* place : {"FG1", "FG16", "PK1", "EX1", "EX11", "WA1", "RB1"}) EXPECT_FALSE(out(place)) << place;
+  EXPECT_FALSE(plant.check("FG1", "EX2", "stackers").has_value());
+  const auto spur = plant.check("FG1", "EN1", "stackers");
+  ASSERT_TRUE(spur.has_value());
+  EXPECT_NE(spur->message.find("stackers does not reach EN1"), std::string::npos) << spur->message;
 }

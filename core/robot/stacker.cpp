@@ -1,0 +1,380 @@
+#include "robot/stacker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace fleet::robot {
+
+using geometry::Pose2;
+using geometry::Vec2;
+
+namespace {
+
+Vec2 heading_of(double yaw) {
+  return {std::cos(yaw), std::sin(yaw)};
+}
+
+/// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
+double centre_offset(const sim::TricycleGeometry& g) {
+  return 0.5 * (g.front_x() + g.fork_tip_x());
+}
+
+planning::StaticGrid make_static_grid(const StackerConfig& c, const map::SiteMap& site) {
+  return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
+}
+
+}  // namespace
+
+StackerConfig StackerConfig::for_vehicle(const vehicle::VehicleProfile& profile) {
+  StackerConfig c;
+  c.pursuit.max_speed = profile.max_speed;
+  c.pursuit.acceleration = std::min(profile.max_acceleration, c.body.max_wheel_acceleration);
+  if (profile.wheelbase > 0.0) c.body.geometry.wheelbase = profile.wheelbase;
+  // +-pi/2 is the pivot [Stacker thesis, section 5.2]; a profile's rounded 1.5708 means it.
+  if (profile.max_steering_angle > 0.0) {
+    c.body.max_steer_angle = std::min(profile.max_steering_angle, std::numbers::pi / 2);
+  }
+  return c;
+}
+
+Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
+                 std::uint64_t seed, std::uint64_t stream)
+    : config_(config),
+      site_(std::move(site)),
+      home_(home),
+      footprint_{config.body.geometry.length, config.body.geometry.width},
+      body_(config.body,
+            [&] {
+              const Vec2 rear = home.position() - centre_offset(config.body.geometry) * heading_of(home.yaw);
+              return Pose2{rear.x, rear.y, home.yaw};
+            }()),
+      rng_(seed * 0x9e3779b97f4a7c15ULL + stream),
+      static_grid_(make_static_grid(config, *site_)),
+      road_(config.route_graph ? *config.route_graph : site_->graph.graph),
+      routes_(road_, grid_astar_),
+      grid_revision_(std::numeric_limits<std::uint64_t>::max()),
+      lidar_(config.lidar),
+      follower_({.traffic = config.traffic, .siding_timeout = config.siding_timeout}),
+      safety_({.safety_gap = config.safety_gap,
+               .stale_after = config.stale_after,
+               .neighbour_max_speed = config.neighbour_max_speed,
+               .scan_range = config.safety_scan_range,
+               .escape_within = 0.0,
+               .escape_speed = 0.0},
+              footprint_) {
+  for (const auto& o : site_->site.static_obstacles) {
+    obstacles_[o.id] = o.enabled_at_start;
+    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
+  }
+  estimate_ = body_.pose();
+  update_centre();
+}
+
+void Stacker::update_centre() {
+  truth_centre_ = geometry::body_pose_to_map(body_.pose(), {centre_offset(config_.body.geometry), 0.0, 0.0});
+}
+
+Pose2 Stacker::estimate() const {
+  return geometry::body_pose_to_map(estimate_, {centre_offset(config_.body.geometry), 0.0, 0.0});
+}
+
+std::array<double, 9> Stacker::covariance() const {
+  const double p = config_.pose_noise.position_sigma * config_.pose_noise.position_sigma;
+  const double y = config_.pose_noise.yaw_sigma * config_.pose_noise.yaw_sigma;
+  return {p, 0, 0, 0, p, 0, 0, 0, y};
+}
+
+std::optional<std::string> Stacker::order_id() const {
+  if (order_) return order_->order_id;
+  return std::nullopt;
+}
+
+std::string Stacker::refusal(orders::OrderKind kind) const {
+  return kind == orders::OrderKind::kPick ? "a stacker performs no pickItem" : "";
+}
+
+bool Stacker::submit(const task::TaskOrder& order, std::string* why) {
+  const auto refuse = [&](std::string text) {
+    if (why) *why = std::move(text);
+    return false;
+  };
+  if (order_) return refuse("busy with order " + order_->order_id);
+  if (carried_ >= 0) return refuse("carries pallet " + std::to_string(carried_));
+  if (const std::string no = refusal(order.kind); !no.empty()) return refuse(no);
+  const StackerEvent event = order.kind == orders::OrderKind::kMove ? StackerEvent::kMove : StackerEvent::kTransport;
+  if (!next_stacker_state(state_, event)) return refuse(std::string("busy: ") + to_string(state_));
+  order_ = order;
+  fire(event);
+  return true;
+}
+
+bool Stacker::withdraw() {
+  if (!order_) return true;
+  if (!next_stacker_state(state_, StackerEvent::kCancel)) return false;
+  order_.reset();
+  fire(StackerEvent::kCancel);
+  return true;
+}
+
+bool Stacker::set_obstacle(const std::string& id, bool enabled) {
+  auto it = obstacles_.find(id);
+  if (it == obstacles_.end() || it->second == enabled) return false;
+  it->second = enabled;
+  static_grid_.set_obstacle_enabled(id, enabled);
+  if (!drives_route(state_)) return false;
+  need_route_ = true;
+  return true;
+}
+
+void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
+  site_ = std::move(site);
+  config_.route_graph = std::move(route_graph);
+  static_grid_ = make_static_grid(config_, *site_);
+  obstacles_.clear();
+  for (const auto& o : site_->site.static_obstacles) {
+    obstacles_[o.id] = o.enabled_at_start;
+    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
+  }
+  // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
+  road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
+  grid_revision_ = std::numeric_limits<std::uint64_t>::max();
+  follower_.forget_route();
+  if (drives_route(state_)) need_route_ = true;
+}
+
+void Stacker::set_traffic_grant(const TrafficPermit& permit) {
+  if (follower_.grant(permit) && drives_route(state_)) need_route_ = true;
+}
+
+TrafficRoute Stacker::traffic_route() const {
+  TrafficRoute r = follower_.route();
+  if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
+  return r;
+}
+
+bool Stacker::fire(StackerEvent event) {
+  const auto next = next_stacker_state(state_, event);
+  if (!next) return false;
+  enter(*next);
+  return true;
+}
+
+void Stacker::enter(StackerState state) {
+  const StackerState from = state_;
+  const bool moving = order_ && order_->kind == orders::OrderKind::kMove;
+  const auto phase_of = [&](StackerState s) {
+    return moving && s == StackerState::kParking ? orders::OrderPhase::kMoving : stacker_phase(s);
+  };
+  const orders::OrderPhase from_phase = phase_of(from);
+  state_ = state;
+  law_.reset();
+  detector_.reset();
+  held_by_traffic_ = false;
+  blocked_ = false;
+  if (drives_route(state)) {
+    need_route_ = true;
+    next_route_try_ = time_;
+  }
+  if (state == StackerState::kDocking || state == StackerState::kPlacing || state == StackerState::kParking) {
+    if (state != from) dock_attempts_ = 0;
+    start_docking();
+  }
+  if (state == StackerState::kLifting || state == StackerState::kLowering) forks_done_at_ = time_ + config_.lift_time;
+  if (state != from) reports_.state_changed(order_id().value_or(""), to_string(state), false);
+  if (phase_of(state) != from_phase && order_) reports_.phase_changed(order_->order_id, phase_of(state));
+}
+
+bool Stacker::plan_route() {
+  if (static_grid_.revision() != grid_revision_) {
+    auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
+    road_.set_obstacles(*grid);
+    grid_astar_.set_grid(grid);
+    grid_revision_ = static_grid_.revision();
+  }
+  if (auto permit = follower_.take_route()) {
+    // The traffic manager re-routed this robot (a way round, a siding, or back from one).
+    follower_.adopt_route(*permit, site_->graph.graph, estimate().position());
+    safety_.clear();
+    reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
+    return true;
+  }
+  const Pose2 prior = dock_prior();
+  const Vec2 goal = approach_of(prior);
+  // From the body's centre (the pose the traffic manager knows) to where the rear axle starts the
+  // docking; the rear axle then follows the path from its projection onto it.
+  planning::Route route =
+      routes_.plan(estimate(), {goal.x, goal.y, geometry::normalize_angle(prior.yaw + std::numbers::pi / 2)});
+  if (route.status != planning::PlanStatus::kFound || route.points.size() < 2) {
+    follower_.drop_path();
+    reports_.set_detail(route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle"
+                                                                              : "no route");
+    return false;
+  }
+  follower_.adopt_plan(route);
+  safety_.clear();
+  return true;
+}
+
+double Stacker::clearance_ahead() const {
+  // How far the stacker can drive along its path before its footprint meets another robot's
+  // published one (grown by the margin and by how far a stale one may have moved since).
+  const std::vector<Vec2>& path = follower_.path();
+  if (path.size() < 2 || neighbours_.empty()) return std::numeric_limits<double>::infinity();
+  const double c = centre_offset(config_.body.geometry);
+  const geometry::Polygon here = geometry::footprint_polygon(estimate(), footprint_);
+  std::vector<geometry::Polygon> others;
+  for (const auto& n : neighbours_) {
+    double grow = config_.clearance_margin;
+    if (n.age > config_.stale_after) grow += std::min(n.age * config_.neighbour_max_speed, 3.0);
+    geometry::Polygon p = geometry::footprint_polygon(n.pose, n.footprint, grow);
+    // Already touching where it stands: the safety stop judges that one.
+    if (!geometry::convex_polygons_overlap(p, here)) others.push_back(std::move(p));
+  }
+  if (others.empty()) return std::numeric_limits<double>::infinity();
+  // From the rear axle's projection onto the path.
+  std::size_t segment = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const double d = geometry::point_segment_distance(estimate_.position(), path[i], path[i + 1]);
+    if (d < best) {
+      best = d;
+      segment = i;
+    }
+  }
+  double travelled = 0.0;
+  Vec2 prev = estimate_.position();
+  for (std::size_t i = segment + 1; i < path.size() && travelled < config_.clearance_lookahead; ++i) {
+    const double len = geometry::distance(prev, path[i]);
+    if (len < 1e-9) continue;
+    const double yaw = std::atan2(path[i].y - prev.y, path[i].x - prev.x);
+    for (double s = config_.clearance_sample; s <= len; s += config_.clearance_sample) {
+      const Vec2 rear = prev + (s / len) * (path[i] - prev);
+      const Vec2 centre = rear + c * heading_of(yaw);
+      const geometry::Polygon swept = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_);
+      for (const auto& o : others) {
+        if (geometry::convex_polygons_overlap(swept, o)) return std::max(0.0, travelled + s - config_.clearance_sample);
+      }
+      if (travelled + s >= config_.clearance_lookahead) break;
+    }
+    travelled += len;
+    prev = path[i];
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+void Stacker::drive() {
+  if (need_route_ && time_ >= next_route_try_) {
+    if (plan_route()) {
+      need_route_ = false;
+    } else {
+      next_route_try_ = time_ + 1.0;
+    }
+  }
+  if (follower_.path().size() < 2) {
+    apply({0.0, body_.state().theta_steer});
+    return;
+  }
+  // Measured at the centre, ahead of the rear axle: the body stops short of the grant's end.
+  const double room = follower_.room(estimate().position());
+  const double clearance = clearance_ahead();
+  const bool held = room <= 0.0;
+  const bool blocked = clearance <= 0.05;
+  if (held != held_by_traffic_ || blocked != blocked_) {
+    held_by_traffic_ = held;
+    blocked_ = blocked;
+  }
+  if (follower_.siding_timed_out(time_, held)) need_route_ = true;
+  if (blocked) {
+    const std::string ahead = safety_.robot_within(estimate(), neighbours_, 1.0);
+    reports_.stopped_ahead(ahead);
+    safety_.note(time_, estimate().position(), ahead);
+  } else if (held) {
+    reports_.held_by_traffic(follower_.blocked_by());
+  } else {
+    reports_.driving_on();
+  }
+  const control::TricyclePursuitOutput out =
+      control::pursue(estimate_, follower_.path(), std::min(room, clearance), body_.state().theta_steer,
+                      config_.pursuit, config_.body.geometry.wheelbase);
+  if (out.arrived) {
+    follower_.leave_road();
+    apply({0.0, body_.state().theta_steer});
+    fire(StackerEvent::kRouteEnded);
+    return;
+  }
+  apply(out.command);
+}
+
+void Stacker::update_sensors() {
+  if (time_ >= next_pose_reading_) {
+    next_pose_reading_ = time_ + 1.0 / config_.pose_rate_hz;
+    // While docking the law's frame must not jump: odometry alone, as in the thesis's runs.
+    if (!law_) {
+      std::normal_distribution<double> unit(0.0, 1.0);
+      const Pose2& t = body_.pose();
+      const double g = config_.pose_blend;
+      estimate_.x += g * (t.x + config_.pose_noise.position_sigma * unit(rng_) - estimate_.x);
+      estimate_.y += g * (t.y + config_.pose_noise.position_sigma * unit(rng_) - estimate_.y);
+      estimate_.yaw = geometry::normalize_angle(
+          estimate_.yaw + g * geometry::angle_diff(t.yaw + config_.pose_noise.yaw_sigma * unit(rng_), estimate_.yaw));
+    }
+  }
+  if (time_ >= next_scan_) {
+    next_scan_ = time_ + 0.1;  // the S300s' 10 Hz is plenty for the stop's horizon
+    std::vector<geometry::Polygon> seen = true_neighbours_;
+    for (const auto& o : site_->site.static_obstacles) {
+      if (obstacles_.at(o.id)) seen.push_back(o.polygon);
+    }
+    planning::LidarScan scan = lidar_.scan(truth_centre_, seen);
+    scan.pose = estimate();
+    safety_.take_scan(scan);
+  }
+}
+
+void Stacker::apply(const sim::TricycleCommand& wanted) {
+  sim::TricycleCommand command = wanted;
+  const sim::TricycleRates rates = sim::forward_kinematics(command, config_.body.geometry.wheelbase);
+  const double c = centre_offset(config_.body.geometry);
+  const control::BodyTwist twist{rates.v, rates.yaw_rate * c, rates.yaw_rate};
+  if (!(twist == control::BodyTwist{}) && safety_.moves_too_close(twist, estimate(), neighbours_)) {
+    // The last line of defence: stand, the wheel kept where it points.
+    command = {0.0, body_.state().theta_steer};
+    const std::string ahead = safety_.robot_within(estimate(), neighbours_, 1.0);
+    safety_.note(time_, estimate().position(), ahead);
+    reports_.stopped_ahead(ahead);
+  }
+  if (paused_) command = {0.0, body_.state().theta_steer};
+  const sim::TricycleRates done = sim::forward_kinematics(command, config_.body.geometry.wheelbase);
+  twist_ = {done.v, done.yaw_rate * c, done.yaw_rate};
+  const Pose2 before = body_.pose();
+  body_.step(command, step_period());
+  // Odometry: the wheel encoder and the steering angle sensor, each step's motion with an error
+  // proportional to its length.
+  Pose2 seen = geometry::map_pose_to_body(before, body_.pose());
+  const double length = std::hypot(seen.x, seen.y);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  seen.x += config_.odometry.distance_fraction * length * unit(rng_);
+  seen.y += config_.odometry.distance_fraction * length * unit(rng_);
+  seen.yaw += config_.odometry.yaw_per_metre * length * unit(rng_);
+  estimate_ = geometry::body_pose_to_map(estimate_, seen);
+  update_centre();
+}
+
+void Stacker::step() {
+  update_sensors();
+  if (drives_route(state_)) {
+    drive();
+  } else if (law_) {
+    dock();
+  } else if (state_ == StackerState::kLifting || state_ == StackerState::kLowering) {
+    apply({0.0, body_.state().theta_steer});
+    handle_forks();
+  } else {
+    apply({0.0, body_.state().theta_steer});
+  }
+  time_ += step_period();
+}
+
+}  // namespace fleet::robot

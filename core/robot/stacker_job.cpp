@@ -1,0 +1,124 @@
+#include "robot/stacker_job.hpp"
+
+#include <array>
+
+namespace fleet::robot {
+
+namespace {
+
+using S = StackerState;
+using E = StackerEvent;
+
+constexpr std::array kTable{
+    StackerTransition{S::kIdle, E::kTransport, S::kToPick},
+    StackerTransition{S::kIdle, E::kMove, S::kToPlace},
+    StackerTransition{S::kToHome, E::kTransport, S::kToPick},
+    StackerTransition{S::kToHome, E::kMove, S::kToPlace},
+    StackerTransition{S::kParking, E::kTransport, S::kToPick},
+    StackerTransition{S::kParking, E::kMove, S::kToPlace},
+    StackerTransition{S::kToPick, E::kRouteEnded, S::kDocking},
+    StackerTransition{S::kToPick, E::kCancel, S::kToHome},
+    StackerTransition{S::kDocking, E::kDocked, S::kLifting},
+    StackerTransition{S::kDocking, E::kDockFailed, S::kToHome},
+    StackerTransition{S::kDocking, E::kCancel, S::kToHome},
+    StackerTransition{S::kLifting, E::kForksUp, S::kToDrop},
+    StackerTransition{S::kToDrop, E::kRouteEnded, S::kPlacing},
+    StackerTransition{S::kPlacing, E::kDocked, S::kLowering},
+    StackerTransition{S::kPlacing, E::kDockFailed, S::kPlacing},
+    StackerTransition{S::kLowering, E::kForksDown, S::kToHome},
+    StackerTransition{S::kToPlace, E::kRouteEnded, S::kParking},
+    StackerTransition{S::kToPlace, E::kCancel, S::kToHome},
+    StackerTransition{S::kToHome, E::kRouteEnded, S::kParking},
+    StackerTransition{S::kParking, E::kDocked, S::kIdle},
+    StackerTransition{S::kParking, E::kDockFailed, S::kParking},
+    StackerTransition{S::kParking, E::kCancel, S::kToHome},
+};
+
+}  // namespace
+
+const char* to_string(StackerState state) {
+  switch (state) {
+    case S::kIdle:
+      return "IDLE";
+    case S::kToPick:
+      return "TO_PICK";
+    case S::kDocking:
+      return "DOCKING";
+    case S::kLifting:
+      return "LIFTING";
+    case S::kToDrop:
+      return "TO_DROP";
+    case S::kPlacing:
+      return "PLACING";
+    case S::kLowering:
+      return "LOWERING";
+    case S::kToPlace:
+      return "TO_PLACE";
+    case S::kToHome:
+      return "GO_HOME";
+    case S::kParking:
+      return "PARKING";
+  }
+  return "?";
+}
+
+const char* to_string(StackerEvent event) {
+  switch (event) {
+    case E::kTransport:
+      return "transport";
+    case E::kMove:
+      return "move";
+    case E::kRouteEnded:
+      return "route ended";
+    case E::kDocked:
+      return "docked";
+    case E::kDockFailed:
+      return "dock failed";
+    case E::kForksUp:
+      return "forks up";
+    case E::kForksDown:
+      return "forks down";
+    case E::kCancel:
+      return "cancel";
+  }
+  return "?";
+}
+
+std::span<const StackerTransition> stacker_transition_table() {
+  return kTable;
+}
+
+std::optional<StackerState> next_stacker_state(StackerState from, StackerEvent event) {
+  for (const auto& t : kTable) {
+    if (t.from == from && t.event == event) return t.to;
+  }
+  return std::nullopt;
+}
+
+orders::OrderPhase stacker_phase(StackerState state) {
+  switch (state) {
+    case S::kToPick:
+      return orders::OrderPhase::kToPick;
+    case S::kDocking:
+    case S::kLifting:
+      return orders::OrderPhase::kPicking;
+    case S::kToDrop:
+      return orders::OrderPhase::kToDrop;
+    case S::kPlacing:
+    case S::kLowering:
+      return orders::OrderPhase::kDropping;
+    case S::kToPlace:
+      return orders::OrderPhase::kMoving;
+    case S::kIdle:
+    case S::kToHome:
+    case S::kParking:
+      return orders::OrderPhase::kNone;
+  }
+  return orders::OrderPhase::kNone;
+}
+
+bool drives_route(StackerState state) {
+  return state == S::kToPick || state == S::kToDrop || state == S::kToPlace || state == S::kToHome;
+}
+
+}  // namespace fleet::robot

@@ -1,0 +1,191 @@
+#include "robot/stacker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "robot/robot_factory.hpp"
+#include "robot/stacker_job.hpp"
+#include "vehicle/vehicle_types.hpp"
+
+using namespace fleet;
+using robot::RobotEvent;
+using robot::Stacker;
+using robot::StackerEvent;
+using robot::StackerState;
+
+namespace {
+
+constexpr StackerState kStates[] = {StackerState::kIdle,     StackerState::kToPick,  StackerState::kDocking,
+                                    StackerState::kLifting,  StackerState::kToDrop,  StackerState::kPlacing,
+                                    StackerState::kLowering, StackerState::kToPlace, StackerState::kToHome,
+                                    StackerState::kParking};
+constexpr StackerEvent kEvents[] = {StackerEvent::kTransport, StackerEvent::kMove,       StackerEvent::kRouteEnded,
+                                    StackerEvent::kDocked,    StackerEvent::kDockFailed, StackerEvent::kForksUp,
+                                    StackerEvent::kForksDown, StackerEvent::kCancel};
+
+TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEvent) {
+  std::set<std::pair<int, int>> rows;
+  for (const auto& t : robot::stacker_transition_table()) {
+    EXPECT_TRUE(rows.insert({static_cast<int>(t.from), static_cast<int>(t.event)}).second)
+        << to_string(t.from) << " on " << to_string(t.event) << " listed twice";
+    EXPECT_EQ(robot::next_stacker_state(t.from, t.event), t.to);
+  }
+  for (StackerState s : kStates) {
+    for (StackerEvent e : kEvents) {
+      if (!rows.contains({static_cast<int>(s), static_cast<int>(e)})) {
+        EXPECT_FALSE(robot::next_stacker_state(s, e)) << to_string(s) << " on " << to_string(e);
+      }
+    }
+  }
+}
+
+TEST(StackerJob, APalletOnTheForksIsNeverCancelledNorLeftAtAFailedPlacing) {
+  for (StackerState s :
+       {StackerState::kLifting, StackerState::kToDrop, StackerState::kPlacing, StackerState::kLowering}) {
+    EXPECT_FALSE(robot::next_stacker_state(s, StackerEvent::kCancel)) << to_string(s);
+  }
+  EXPECT_EQ(robot::next_stacker_state(StackerState::kPlacing, StackerEvent::kDockFailed), StackerState::kPlacing);
+  EXPECT_EQ(robot::next_stacker_state(StackerState::kDocking, StackerEvent::kDockFailed), StackerState::kToHome);
+}
+
+TEST(StackerJob, WalksATransportFromItsBayBackToItsBay) {
+  StackerState s = StackerState::kIdle;
+  const std::pair<StackerEvent, StackerState> walk[] = {
+      {StackerEvent::kTransport, StackerState::kToPick},   {StackerEvent::kRouteEnded, StackerState::kDocking},
+      {StackerEvent::kDocked, StackerState::kLifting},     {StackerEvent::kForksUp, StackerState::kToDrop},
+      {StackerEvent::kRouteEnded, StackerState::kPlacing}, {StackerEvent::kDocked, StackerState::kLowering},
+      {StackerEvent::kForksDown, StackerState::kToHome},   {StackerEvent::kRouteEnded, StackerState::kParking},
+      {StackerEvent::kDocked, StackerState::kIdle}};
+  for (const auto& [event, to] : walk) {
+    const auto next = robot::next_stacker_state(s, event);
+    ASSERT_TRUE(next) << to_string(s) << " on " << to_string(event);
+    EXPECT_EQ(*next, to);
+    s = *next;
+  }
+  EXPECT_EQ(robot::stacker_phase(StackerState::kDocking), orders::OrderPhase::kPicking);
+  EXPECT_EQ(robot::stacker_phase(StackerState::kPlacing), orders::OrderPhase::kDropping);
+}
+
+struct PlantStacker {
+  std::shared_ptr<const map::SiteMap> site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  std::map<int, geometry::Pose2> loads;
+  std::map<std::string, int> load_at;
+
+  PlantStacker() {
+    int id = 1;
+    for (const auto& area : site->site.loading_areas) {
+      if (!area.pallet_at_start) continue;
+      loads[id] = area.pose;
+      load_at[area.id] = id++;
+    }
+  }
+
+  /// The stacker of config/sites/plant.yaml's `stackers` fleet, as the agent builds it; no
+  /// traffic manager grants here, so traffic control is off (the plant's lanes stay one-way).
+  std::unique_ptr<Stacker> make(const std::string& home_id) const {
+    config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+    config.settings.set("traffic.enabled", "false", "stacker_test");
+    const auto* fleet =
+        &*std::find_if(config.fleets.begin(), config.fleets.end(), [](const auto& f) { return f.id == "stackers"; });
+    std::unique_ptr<robot::Robot> made =
+        robot::make_robot(*fleet, config, site, site->site.find_home(home_id)->pose, 3, 1);
+    auto* stacker = dynamic_cast<Stacker*>(made.get());
+    if (stacker == nullptr) throw std::logic_error("the stackers fleet does not build a Stacker");
+    made.release();
+    return std::unique_ptr<Stacker>(stacker);
+  }
+
+  task::TaskOrder transport(const std::string& from, const std::string& to) const {
+    task::TaskOrder o;
+    o.order_id = "7";
+    o.pick_area_id = from;
+    o.pick_area = site->site.find_area(from)->pose;
+    o.drop_area_id = to;
+    o.drop_area = site->site.find_area(to)->pose;
+    return o;
+  }
+};
+
+TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2");
+  const int pallet = plant.load_at.at("FG5");
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX3"), &why)) << why;
+  std::vector<RobotEvent> events;
+  bool home = false;
+  std::set<std::string> states;
+  for (int i = 0; i < 20 * 900 && !home; ++i) {
+    stacker->step();
+    states.insert(stacker->task_state());
+    for (auto& e : stacker->take_events()) {
+      if (e.kind == RobotEvent::Kind::kFailed) FAIL() << "failed: " << e.text << " in " << stacker->task_state();
+      if (e.kind == RobotEvent::Kind::kLifted) plant.loads.erase(e.load_id);
+      if (e.kind == RobotEvent::Kind::kDone) plant.loads[e.load_id] = e.load_pose;
+      home = home || e.kind == RobotEvent::Kind::kHome;
+      if (e.kind != RobotEvent::Kind::kState && e.kind != RobotEvent::Kind::kPhase) events.push_back(e);
+    }
+    stacker->set_standing_loads(plant.loads);
+  }
+  ASSERT_TRUE(home) << "not home after 900 s; state " << stacker->task_state() << ", detail '" << stacker->detail()
+                    << "', rear axle at (" << stacker->rear_axle().x << ", " << stacker->rear_axle().y << ")";
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].kind, RobotEvent::Kind::kLifted);
+  EXPECT_EQ(events[0].load_id, pallet);
+  EXPECT_EQ(events[1].kind, RobotEvent::Kind::kDone);
+  EXPECT_EQ(events[1].load_id, pallet);
+  // The pallet stands on its expedition place: within the docking's own accuracy of it.
+  const geometry::Pose2 ex3 = plant.site->site.find_area("EX3")->pose;
+  EXPECT_LT(geometry::distance(events[1].load_pose.position(), ex3.position()), 0.05);
+  EXPECT_LT(std::abs(geometry::angle_diff(events[1].load_pose.yaw, ex3.yaw)), 0.02);
+  // Back in its bay, facing the aisle.
+  const geometry::Pose2 bay = plant.site->site.find_home("PT2")->pose;
+  EXPECT_LT(geometry::distance(stacker->truth().position(), bay.position()), 0.05);
+  EXPECT_LT(std::abs(geometry::angle_diff(stacker->truth().yaw, bay.yaw)), 0.02);
+  for (const char* s : {"TO_PICK", "DOCKING", "LIFTING", "TO_DROP", "PLACING", "LOWERING", "GO_HOME", "PARKING"}) {
+    EXPECT_TRUE(states.contains(s)) << s;
+  }
+}
+
+TEST(Stacker, APalletNotWhereLogisticsSaysFailsTheOrderWithWhatTheCamerasSaw) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2");
+  plant.loads.erase(plant.load_at.at("FG5"));  // the ledger says FG5; nothing stands there
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX3"), &why)) << why;
+  std::string failure;
+  for (int i = 0; i < 20 * 600 && failure.empty(); ++i) {
+    stacker->step();
+    for (auto& e : stacker->take_events()) {
+      if (e.kind == RobotEvent::Kind::kFailed) failure = e.text;
+      EXPECT_NE(e.kind, RobotEvent::Kind::kLifted);
+    }
+  }
+  EXPECT_NE(failure.find("docking at FG5: pallet not found"), std::string::npos) << failure;
+  EXPECT_NE(failure.find("frames, last:"), std::string::npos) << failure;
+  EXPECT_EQ(stacker->task_state(), "GO_HOME");
+  EXPECT_EQ(stacker->carried_load(), -1);
+}
+
+TEST(Stacker, RefusesPickItemAndASecondOrder) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT1");
+  EXPECT_FALSE(stacker->refusal(orders::OrderKind::kPick).empty());
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG1", "EX1"), &why));
+  EXPECT_FALSE(stacker->submit(plant.transport("FG3", "EX5"), &why));
+  EXPECT_NE(why.find("busy with order 7"), std::string::npos) << why;
+}
+
+}  // namespace
