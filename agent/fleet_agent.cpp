@@ -357,10 +357,16 @@ void FleetAgent::publish_traffic(double now_sim) {
   robot::TrafficRoute route = robot_->traffic_route();
   // A new route goes out at once; progress at the state rate (the caller's), and a route left
   // (parked off the road) once.
-  const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size();
+  // A work area goes out at the state rate too, until the server has answered and after.
+  const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size() ||
+                       route.work_area.empty() != last_traffic_.work_area.empty();
   if (!changed && now_sim == last_traffic_sim_) return;
-  if (!changed && route.points.empty() && last_traffic_.points.empty() && last_traffic_sim_ >= 0.0) return;
-  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim});
+  if (!changed && route.points.empty() && route.work_area.empty() && last_traffic_.points.empty() &&
+      last_traffic_sim_ >= 0.0) {
+    return;
+  }
+  traffic_writer_.write(
+      {options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim, route.work_area});
   last_traffic_ = std::move(route);
   last_traffic_sim_ = now_sim;
 }
@@ -374,6 +380,8 @@ void FleetAgent::handle_traffic() {
     permit.granted_index = grant.granted_index;
     permit.granted_distance = grant.granted_distance;
     permit.blocked_by = std::move(grant.blocked_by);
+    if (grant.status == "AREA_CLEAR") permit.area = robot::TrafficPermit::Area::kClear;
+    if (grant.status == "AREA_WAITING") permit.area = robot::TrafficPermit::Area::kWaiting;
     if (!grant.instruction.empty()) {
       permit.route = std::move(grant.route);
       permit.siding = grant.instruction == "SIDING";

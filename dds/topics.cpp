@@ -10,7 +10,9 @@ namespace {
 
 // --- to the wire: C structs borrow from the model value for the duration of one write ---------
 
-char* borrow(const std::string& s) { return const_cast<char*>(s.c_str()); }
+char* borrow(const std::string& s) {
+  return const_cast<char*>(s.c_str());
+}
 
 /// Owns the arrays a wire struct points into while it is written.
 struct Scratch {
@@ -38,12 +40,18 @@ dds_sequence_long int_seq(Scratch& s, const std::vector<int>& items) {
   return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
 }
 
-fleet_msg_Pose2D wire_pose(const geometry::Pose2& p) { return {p.x, p.y, p.yaw}; }
+fleet_msg_Pose2D wire_pose(const geometry::Pose2& p) {
+  return {p.x, p.y, p.yaw};
+}
 
 // --- from the wire ---------------------------------------------------------------------------
 
-std::string text(const char* s) { return s ? std::string(s) : std::string(); }
-geometry::Pose2 model_pose(const fleet_msg_Pose2D& p) { return {p.x, p.y, p.yaw}; }
+std::string text(const char* s) {
+  return s ? std::string(s) : std::string();
+}
+geometry::Pose2 model_pose(const fleet_msg_Pose2D& p) {
+  return {p.x, p.y, p.yaw};
+}
 
 std::vector<std::string> strings_of(const dds_sequence_string& seq) {
   std::vector<std::string> out;
@@ -73,8 +81,7 @@ int take_samples(dds_entity_t reader, const std::function<void(Model&&, const Sa
     const int n = dds_take(reader, samples, infos, kBatch, kBatch);
     if (n <= 0) break;
     for (int i = 0; i < n; ++i) {
-      const SampleInfo info{infos[i].valid_data, infos[i].instance_state == DDS_IST_ALIVE,
-                            infos[i].source_timestamp};
+      const SampleInfo info{infos[i].valid_data, infos[i].instance_state == DDS_IST_ALIVE, infos[i].source_timestamp};
       // Invalid samples carry only the key fields; the conversion tolerates empty strings.
       fn(from_wire(*static_cast<const Wire*>(samples[i])), info);
     }
@@ -88,22 +95,28 @@ int take_samples(dds_entity_t reader, const std::function<void(Model&&, const Sa
 // --- per-type conversions ----------------------------------------------------------------------
 
 fleet_msg_ServerInfo to_wire(const model::ServerInfo& v, Scratch& s) {
-  return {borrow(v.server_id), borrow(v.site), s.string_seq(v.loading_areas), s.string_seq(v.robots),
-          s.string_seq(v.obstacles), s.string_seq(v.maps), v.time_scale, v.started_unix_ms, s.string_seq(v.homes)};
+  return {borrow(v.server_id),
+          borrow(v.site),
+          s.string_seq(v.loading_areas),
+          s.string_seq(v.robots),
+          s.string_seq(v.obstacles),
+          s.string_seq(v.maps),
+          v.time_scale,
+          v.started_unix_ms,
+          s.string_seq(v.homes)};
 }
 model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
-  return {text(w.server_id),      text(w.site),        strings_of(w.loading_areas), strings_of(w.robots),
-          strings_of(w.obstacles), strings_of(w.maps), w.time_scale,                w.started_unix_ms,
-          strings_of(w.homes)};
+  return {text(w.server_id),  text(w.site), strings_of(w.loading_areas), strings_of(w.robots), strings_of(w.obstacles),
+          strings_of(w.maps), w.time_scale, w.started_unix_ms,           strings_of(w.homes)};
 }
 
 fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
-  return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id), borrow(v.robot_id),
-          v.priority,           borrow(v.kind)};
+  return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
+          borrow(v.robot_id),   v.priority,          borrow(v.kind)};
 }
 model::OrderRequest from_wire(const fleet_msg_OrderRequest& w) {
-  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id), text(w.robot_id), w.priority,
-          text(w.kind)};
+  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
+          text(w.robot_id),   w.priority,        text(w.kind)};
 }
 
 fleet_msg_Command to_wire(const model::Command& v, Scratch&) {
@@ -121,21 +134,23 @@ model::RequestReply from_wire(const fleet_msg_RequestReply& w) {
 }
 
 fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
-  return {v.order_id,           borrow(v.robot_id),        borrow(v.pick_area), wire_pose(v.pick_pose),
-          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled, borrow(v.kind)};
+  return {v.order_id,          borrow(v.robot_id),     borrow(v.pick_area), wire_pose(v.pick_pose),
+          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled,
+          borrow(v.kind)};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
-  return {w.order_id,          text(w.robot_id),         text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled, text(w.kind)};
+  return {w.order_id,        text(w.robot_id),        text(w.pick_area), model_pose(w.pick_pose),
+          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled,
+          text(w.kind)};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {
-  return {v.order_id, borrow(v.robot_id), borrow(v.status), borrow(v.reason), v.update_id, v.sim_time,
-          v.carrying_pallet, v.pallet_id, wire_pose(v.pallet_pose)};
+  return {v.order_id, borrow(v.robot_id), borrow(v.status), borrow(v.reason),        v.update_id,
+          v.sim_time, v.carrying_pallet,  v.pallet_id,      wire_pose(v.pallet_pose)};
 }
 model::OrderReport from_wire(const fleet_msg_OrderState& w) {
-  return {w.order_id, text(w.robot_id), text(w.status), text(w.reason), w.update_id, w.sim_time, w.carrying_pallet,
-          w.pallet_id, model_pose(w.pallet_pose)};
+  return {w.order_id, text(w.robot_id),  text(w.status), text(w.reason),           w.update_id,
+          w.sim_time, w.carrying_pallet, w.pallet_id,    model_pose(w.pallet_pose)};
 }
 
 fleet_msg_PalletTruth to_wire(const model::PalletTruth& v, Scratch&) {
@@ -151,22 +166,43 @@ fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
   const std::size_t first = v.history.size() > model::kMaxOrderHistory ? v.history.size() - model::kMaxOrderHistory : 0;
   for (std::size_t i = first; i < v.history.size(); ++i) {
     const auto& e = v.history[i];
-    events.push_back({e.sim_time, borrow(e.state), borrow(e.phase), borrow(e.robot_id), borrow(e.reason), e.robot_x,
-                      e.robot_y});
+    events.push_back(
+        {e.sim_time, borrow(e.state), borrow(e.phase), borrow(e.robot_id), borrow(e.reason), e.robot_x, e.robot_y});
   }
-  return {v.order_id,      borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
-          borrow(v.robot_id), borrow(v.state),   borrow(v.phase),     borrow(v.reason),    v.priority,
-          v.created_sim,   v.updated_sim,
+  return {v.order_id,
+          borrow(v.request_id),
+          borrow(v.pick_area),
+          borrow(v.drop_area),
+          borrow(v.fleet_id),
+          borrow(v.robot_id),
+          borrow(v.state),
+          borrow(v.phase),
+          borrow(v.reason),
+          v.priority,
+          v.created_sim,
+          v.updated_sim,
           {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false},
           borrow(v.kind)};
 }
 model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
-  model::OrderInfo v{w.order_id,       text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
-                     text(w.robot_id), text(w.state),      text(w.phase),     text(w.reason),    w.priority,
-                     w.created_sim,    w.updated_sim,      {},                text(w.kind)};
+  model::OrderInfo v{w.order_id,
+                     text(w.request_id),
+                     text(w.pick_area),
+                     text(w.drop_area),
+                     text(w.fleet_id),
+                     text(w.robot_id),
+                     text(w.state),
+                     text(w.phase),
+                     text(w.reason),
+                     w.priority,
+                     w.created_sim,
+                     w.updated_sim,
+                     {},
+                     text(w.kind)};
   for (uint32_t i = 0; i < w.history._length; ++i) {
     const auto& e = w.history._buffer[i];
-    v.history.push_back({e.sim_time, text(e.state), text(e.phase), text(e.robot_id), text(e.reason), e.robot_x, e.robot_y});
+    v.history.push_back(
+        {e.sim_time, text(e.state), text(e.phase), text(e.robot_id), text(e.reason), e.robot_x, e.robot_y});
   }
   return v;
 }
@@ -209,15 +245,23 @@ model::RobotState from_wire(const fleet_msg_RobotState& w) {
 fleet_msg_RobotPath to_wire(const model::RobotPath& v, Scratch& s) {
   return {borrow(v.robot_id), s.point_seq(v.points), v.sim_time};
 }
-model::RobotPath from_wire(const fleet_msg_RobotPath& w) { return {text(w.robot_id), points_of(w.points), w.sim_time}; }
+model::RobotPath from_wire(const fleet_msg_RobotPath& w) {
+  return {text(w.robot_id), points_of(w.points), w.sim_time};
+}
 
 fleet_msg_MapAssignment to_wire(const model::MapAssignment& v, Scratch&) {
   return {borrow(v.robot_id), borrow(v.map_id)};
 }
-model::MapAssignment from_wire(const fleet_msg_MapAssignment& w) { return {text(w.robot_id), text(w.map_id)}; }
+model::MapAssignment from_wire(const fleet_msg_MapAssignment& w) {
+  return {text(w.robot_id), text(w.map_id)};
+}
 
-fleet_msg_RobotControl to_wire(const model::RobotControl& v, Scratch&) { return {borrow(v.robot_id), v.paused}; }
-model::RobotControl from_wire(const fleet_msg_RobotControl& w) { return {text(w.robot_id), w.paused}; }
+fleet_msg_RobotControl to_wire(const model::RobotControl& v, Scratch&) {
+  return {borrow(v.robot_id), v.paused};
+}
+model::RobotControl from_wire(const fleet_msg_RobotControl& w) {
+  return {text(w.robot_id), w.paused};
+}
 
 fleet_msg_StaticObstacle to_wire(const model::StaticObstacleState& v, Scratch& s) {
   return {borrow(v.obstacle_id), borrow(v.map_id), v.enabled, s.point_seq(v.polygon)};
@@ -229,18 +273,25 @@ model::StaticObstacleState from_wire(const fleet_msg_StaticObstacle& w) {
 fleet_msg_FleetView to_wire(const model::FleetView& v, Scratch& s) {
   auto& robots = s.snapshots.emplace_back();
   for (const auto& r : v.robots) {
-    robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length,
-                      r.footprint.width, r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
+    robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length, r.footprint.width,
+                      r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
   }
-  return {borrow(v.map_id), v.sim_time,
+  return {borrow(v.map_id),
+          v.sim_time,
           {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false}};
 }
 model::FleetView from_wire(const fleet_msg_FleetView& w) {
   model::FleetView v{text(w.map_id), w.sim_time, {}};
   for (uint32_t i = 0; i < w.robots._length; ++i) {
     const auto& r = w.robots._buffer[i];
-    v.robots.push_back({text(r.robot_id), text(r.fleet_id), model_pose(r.pose), {r.length, r.width}, r.speed,
-                        text(r.task_state), r.sim_time, points_of(r.path)});
+    v.robots.push_back({text(r.robot_id),
+                        text(r.fleet_id),
+                        model_pose(r.pose),
+                        {r.length, r.width},
+                        r.speed,
+                        text(r.task_state),
+                        r.sim_time,
+                        points_of(r.path)});
   }
   return v;
 }
@@ -253,54 +304,65 @@ model::SimTruth from_wire(const fleet_msg_SimTruth& w) {
 }
 
 fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
-  return {borrow(v.robot_id), v.version, int_seq(s, v.points), v.progress, s.string_seq(v.stopped_for), v.sim_time};
+  return {borrow(v.robot_id),          v.version,  int_seq(s, v.points),    v.progress,
+          s.string_seq(v.stopped_for), v.sim_time, s.point_seq(v.work_area)};
 }
 model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
-  return {text(w.robot_id), w.version, ints_of(w.points), w.progress, strings_of(w.stopped_for), w.sim_time};
+  return {text(w.robot_id),          w.version,  ints_of(w.points),     w.progress,
+          strings_of(w.stopped_for), w.sim_time, points_of(w.work_area)};
 }
 
 fleet_msg_TrafficGrant to_wire(const model::TrafficGrant& v, Scratch& s) {
-  return {borrow(v.robot_id),      v.version,    v.granted_index,        v.granted_distance,
-          borrow(v.status),        v.waited_s,   s.string_seq(v.blocked_by), borrow(v.instruction),
-          int_seq(s, v.route),     v.sim_time};
+  return {borrow(v.robot_id),
+          v.version,
+          v.granted_index,
+          v.granted_distance,
+          borrow(v.status),
+          v.waited_s,
+          s.string_seq(v.blocked_by),
+          borrow(v.instruction),
+          int_seq(s, v.route),
+          v.sim_time};
 }
 model::TrafficGrant from_wire(const fleet_msg_TrafficGrant& w) {
-  return {text(w.robot_id),        w.version,  w.granted_index,        w.granted_distance,
-          text(w.status),          w.waited_s, strings_of(w.blocked_by), text(w.instruction),
-          ints_of(w.route),        w.sim_time};
+  return {text(w.robot_id), w.version,  w.granted_index,          w.granted_distance,
+          text(w.status),   w.waited_s, strings_of(w.blocked_by), text(w.instruction),
+          ints_of(w.route), w.sim_time};
 }
 
 }  // namespace
 
-#define FLEET_DDS_TOPIC_IMPL(Type, Wire, TopicName)                                                       \
-  const char* const TopicTraits<model::Type>::name = TopicName;                                           \
-  const dds_topic_descriptor_t* TopicTraits<model::Type>::descriptor() { return &Wire##_desc; }           \
-  dds_return_t TopicTraits<model::Type>::write(dds_entity_t writer, const model::Type& value) {           \
-    Scratch scratch;                                                                                      \
-    const Wire wire = to_wire(value, scratch);                                                            \
-    return dds_write(writer, &wire);                                                                      \
-  }                                                                                                       \
-  dds_return_t TopicTraits<model::Type>::unregister(dds_entity_t writer, const model::Type& value) {      \
-    Scratch scratch;                                                                                      \
-    const Wire wire = to_wire(value, scratch);                                                            \
-    return dds_unregister_instance(writer, &wire);                                                        \
-  }                                                                                                       \
-  dds_return_t TopicTraits<model::Type>::dispose(dds_entity_t writer, const model::Type& value) {         \
-    Scratch scratch;                                                                                      \
-    const Wire wire = to_wire(value, scratch);                                                            \
-    return dds_dispose(writer, &wire);                                                                    \
-  }                                                                                                       \
-  int TopicTraits<model::Type>::take(dds_entity_t reader,                                                 \
-                                     const std::function<void(model::Type&&, const SampleInfo&)>& fn) {   \
-    return take_samples<Wire, model::Type>(reader, fn, [](const Wire& w) { return from_wire(w); });       \
-  }                                                                                                       \
-  dds_return_t TopicTraits<model::Type>::key_of(dds_entity_t entity, dds_instance_handle_t instance,      \
-                                                model::Type& out) {                                       \
-    Wire wire{};                                                                                          \
-    const dds_return_t rc = dds_instance_get_key(entity, instance, &wire);                                \
-    if (rc >= 0) out = from_wire(wire);                                                                   \
-    dds_sample_free(&wire, &Wire##_desc, DDS_FREE_CONTENTS);                                              \
-    return rc;                                                                                            \
+#define FLEET_DDS_TOPIC_IMPL(Type, Wire, TopicName)                                                     \
+  const char* const TopicTraits<model::Type>::name = TopicName;                                         \
+  const dds_topic_descriptor_t* TopicTraits<model::Type>::descriptor() {                                \
+    return &Wire##_desc;                                                                                \
+  }                                                                                                     \
+  dds_return_t TopicTraits<model::Type>::write(dds_entity_t writer, const model::Type& value) {         \
+    Scratch scratch;                                                                                    \
+    const Wire wire = to_wire(value, scratch);                                                          \
+    return dds_write(writer, &wire);                                                                    \
+  }                                                                                                     \
+  dds_return_t TopicTraits<model::Type>::unregister(dds_entity_t writer, const model::Type& value) {    \
+    Scratch scratch;                                                                                    \
+    const Wire wire = to_wire(value, scratch);                                                          \
+    return dds_unregister_instance(writer, &wire);                                                      \
+  }                                                                                                     \
+  dds_return_t TopicTraits<model::Type>::dispose(dds_entity_t writer, const model::Type& value) {       \
+    Scratch scratch;                                                                                    \
+    const Wire wire = to_wire(value, scratch);                                                          \
+    return dds_dispose(writer, &wire);                                                                  \
+  }                                                                                                     \
+  int TopicTraits<model::Type>::take(dds_entity_t reader,                                               \
+                                     const std::function<void(model::Type&&, const SampleInfo&)>& fn) { \
+    return take_samples<Wire, model::Type>(reader, fn, [](const Wire& w) { return from_wire(w); });     \
+  }                                                                                                     \
+  dds_return_t TopicTraits<model::Type>::key_of(dds_entity_t entity, dds_instance_handle_t instance,    \
+                                                model::Type& out) {                                     \
+    Wire wire{};                                                                                        \
+    const dds_return_t rc = dds_instance_get_key(entity, instance, &wire);                              \
+    if (rc >= 0) out = from_wire(wire);                                                                 \
+    dds_sample_free(&wire, &Wire##_desc, DDS_FREE_CONTENTS);                                            \
+    return rc;                                                                                          \
   }
 
 FLEET_DDS_TOPIC_IMPL(ServerInfo, fleet_msg_ServerInfo, "fleet/ServerInfo")

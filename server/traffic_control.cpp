@@ -90,6 +90,11 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // of the lanes, it holds nothing.
       manager_.drop_entry(id);
       status_.erase(request.robot_id);
+      if (!request.work_area.empty()) {
+        work_beside_roads(request, id, now_sim, now_wall);
+        return;
+      }
+      working_.erase(request.robot_id);
       const bool was_on_roads = manager_.has_robot(id);
       if (stand_where_it_is(request.robot_id, id, now_sim)) {
         log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
@@ -99,6 +104,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       }
       return;
     }
+    working_.erase(request.robot_id);
     bool standing = manager_.frozen(id);
     bool enter = !manager_.has_robot(id) || standing;
     if (!enter && request.version > manager_.version(id)) {
@@ -191,6 +197,7 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
                manager_.held_places(it->second).size());
   }
   status_.erase(robot_id);
+  working_.erase(robot_id);
 }
 
 bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) const {
@@ -206,6 +213,36 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
   }
   const auto& at = manager_.route_graph().points[static_cast<std::size_t>(point)];
   return geometry::distance(centre, {at.x, at.y}) <= kOnPointM;
+}
+
+void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int id, double now_sim, double now_wall) {
+  // A manoeuvre beside the roads sweeps more than the body: it starts once no other robot holds a
+  // place the swept area touches, and the area stays held until it ends, so nobody is granted
+  // into it meanwhile. Two manoeuvres whose areas touch take turns.
+  const auto body = bodies_.find(request.robot_id);
+  std::vector<geometry::Vec2> corners = request.work_area;
+  if (body != bodies_.end()) corners.insert(corners.end(), body->second.begin(), body->second.end());
+  const geometry::Polygon area = traffic::convex_hull(std::move(corners));
+  model::TrafficGrant answer;
+  answer.robot_id = request.robot_id;
+  answer.version = request.version;
+  answer.sim_time = now_sim;
+  if (!working_.contains(request.robot_id)) {
+    const std::vector<int> blockers = manager_.holders_in_area(id, area);
+    if (!blockers.empty()) {
+      if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
+      answer.status = "AREA_WAITING";
+      for (int b : blockers) answer.blocked_by.push_back(names_[b]);
+      publish(std::move(answer), now_wall);
+      return;
+    }
+    working_.insert(request.robot_id);
+    log_->debug("traffic: {} manoeuvres beside the roads", request.robot_id);
+  }
+  if (manager_.has_robot(id) && !manager_.frozen(id)) manager_.remove_robot(id, now_sim);
+  hold_body(request.robot_id, id, area, now_sim);
+  answer.status = "AREA_CLEAR";
+  publish(std::move(answer), now_wall);
 }
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {

@@ -51,6 +51,9 @@ class TrafficControl {
   bool stand_where_it_is(const std::string& robot_id, int id, double now_sim);
   /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
   bool stands_at(const std::string& robot_id, int id, int point) const;
+  /// A robot off the roads with a work area (model::TrafficRequest::work_area): holds the area
+  /// once it is clear and answers AREA_CLEAR, else holds the body and answers AREA_WAITING.
+  void work_beside_roads(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
   void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;
@@ -58,6 +61,7 @@ class TrafficControl {
   std::map<std::string, int> numbers_;  ///< robot id -> the manager's integer id
   std::map<int, std::string> names_;
   std::map<std::string, model::TrafficGrant> sent_;
+  std::set<std::string> working_;  ///< robots holding their work area
   std::map<std::string, double> sent_wall_;
   std::map<std::string, TrafficStatus> status_;
   struct Trim {

@@ -207,6 +207,12 @@ DockingLaw::AxisFrame DockingLaw::axis_frame(const geometry::Pose2& vehicle) con
   return a;
 }
 
+std::array<Vec2, 2> DockingLaw::targets() const {
+  const AxisFrame a = axis_frame(start_);
+  const Vec2 target2 = a.face + params_.target2_standoff * a.axis;  // [eq. 6.1-6.2]
+  return {target2 + side_ * params_.target1_offset * a.normal + params_.target1_extra_standoff * a.axis, target2};
+}
+
 void DockingLaw::fire(DockingEvent event, DockingOutput& out) {
   const std::optional<DockingPhase> next = next_docking_phase(phase_, event);
   if (!next) return;
@@ -245,10 +251,10 @@ DockingOutput DockingLaw::update(const DockingInput& in) {
 
   const geometry::Pose2 pallet = pallet_estimate();
   const AxisFrame a = axis_frame(in.vehicle);
-  const Vec2 target2 = a.face + params_.target2_standoff * a.axis;  // [eq. 6.1-6.2]
   out.pallet_estimate = pallet;
+  const auto [target1, target2] = targets();
+  out.target1 = target1;
   out.target2 = target2;
-  out.target1 = target2 + side_ * params_.target1_offset * a.normal + params_.target1_extra_standoff * a.axis;
   out.lateral_error = a.tip_lateral;
   out.yaw_error = a.psi;
 

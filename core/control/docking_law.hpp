@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -163,6 +164,9 @@ class DockingLaw {
   DockingPhase phase() const { return phase_; }
   /// The pallet pose the law steers by: the mean of the accepted detections, or the prior before the first.
   geometry::Pose2 pallet_estimate() const;
+  /// Where the rear axle is steered to before the final approach: targets 1 and 2 [eq. 6.1-6.2],
+  /// from the current pallet estimate.
+  std::array<geometry::Vec2, 2> targets() const;
   int realignments() const { return realignments_; }
   int accepted_detections() const { return detections_; }
   const DockingParams& params() const { return params_; }

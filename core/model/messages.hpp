@@ -188,6 +188,10 @@ struct TrafficRequest {
   /// traffic::ProgressReport::stopped_for).
   std::vector<std::string> stopped_for;
   double sim_time = 0.0;
+  /// Off the roads (`points` empty): the area a manoeuvre beside the roads sweeps (docking in
+  /// reverse, parking), as points whose convex hull it is, map frame; empty when it only stands. The server answers
+  /// AREA_CLEAR once no other robot holds a place it touches, and holds it for the robot from then on.
+  geometry::Polygon work_area;
 };
 
 /// The server's traffic grant for one robot (see traffic::Grant).
@@ -196,7 +200,7 @@ struct TrafficGrant {
   std::uint64_t version = 0;
   int granted_index = 0;
   double granted_distance = 0.0;
-  std::string status;  ///< MOVING, WAITING, ARRIVED
+  std::string status;  ///< MOVING, WAITING, ARRIVED; AREA_CLEAR, AREA_WAITING (TrafficRequest::work_area)
   double waited_s = 0.0;
   std::vector<std::string> blocked_by;
   std::string instruction;  ///< empty, REROUTE or SIDING

@@ -35,6 +35,8 @@ struct TrafficRoute {
   /// lasted 3 s sim on this route (safety_stop.cpp, kReportStopAfter): the traffic manager then
   /// sees who waits for whom even where the grants alone show no cycle.
   std::vector<std::string> stopped_for;
+  /// Off the roads: the area the manoeuvre about to start or under way sweeps (model::TrafficRequest).
+  geometry::Polygon work_area;
 };
 
 /// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).
@@ -47,6 +49,9 @@ struct TrafficPermit {
   /// wait on rather than towards the goal.
   std::vector<int> route;
   bool siding = false;
+  /// The answer to a work area (TrafficRoute::work_area) rather than a grant along a route.
+  enum class Area { kNone, kClear, kWaiting };
+  Area area = Area::kNone;
 };
 
 /// What happened during a step, for the agent to report. The same for every robot type: the

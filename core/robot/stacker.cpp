@@ -145,12 +145,20 @@ void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr
 }
 
 void Stacker::set_traffic_grant(const TrafficPermit& permit) {
+  if (permit.area != TrafficPermit::Area::kNone) {
+    if (law_ && !work_area_.empty()) {
+      area_clear_ = permit.area == TrafficPermit::Area::kClear;
+      if (!area_clear_) reports_.held_by_traffic(permit.blocked_by);
+    }
+    return;
+  }
   if (follower_.grant(permit) && drives_route(state_)) need_route_ = true;
 }
 
 TrafficRoute Stacker::traffic_route() const {
   TrafficRoute r = follower_.route();
   if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
+  if (!follower_.on_road() && law_) r.work_area = work_area_;
   return r;
 }
 

@@ -130,6 +130,10 @@ class Stacker : public Robot {
   void dock();
   void handle_forks();
   void start_docking();
+  /// The corners of the footprints the docking manoeuvre sweeps: where it stands, target 1, the
+  /// pivot at target 2, the realignment stand-off and the docked pose, grown by the safety gap
+  /// (TrafficRoute::work_area).
+  std::vector<geometry::Vec2> manoeuvre_area() const;
   double clearance_ahead() const;
   void update_sensors();
   void apply(const sim::TricycleCommand& command);
@@ -169,6 +173,8 @@ class Stacker : public Robot {
   std::optional<control::DockingLaw> law_;
   std::optional<perception::StackerCameraDetector> detector_;
   int dock_attempts_ = 0;
+  std::vector<geometry::Vec2> work_area_;  ///< while docking: what the manoeuvre sweeps
+  bool area_clear_ = false;                ///< traffic holds work_area_ for it (or traffic is off)
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

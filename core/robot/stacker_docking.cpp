@@ -91,9 +91,44 @@ void Stacker::start_docking() {
     detector_.emplace(config_.body.geometry, pallet_row(prior, height), dp, rng_());
   }
   reports_.set_detail("");
+  work_area_ = manoeuvre_area();
+  // Without traffic control nobody holds the area for it: it goes at once.
+  area_clear_ = !config_.traffic;
+}
+
+std::vector<Vec2> Stacker::manoeuvre_area() const {
+  const sim::TricycleGeometry& g = config_.body.geometry;
+  const double c = 0.5 * (g.front_x() + g.fork_tip_x());  // the centre ahead of the rear axle
+  std::vector<Vec2> corners;
+  const auto add = [&](Vec2 rear, double yaw) {
+    const Vec2 centre = rear + c * heading_of(yaw);
+    const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
+    corners.insert(corners.end(), body.begin(), body.end());
+  };
+  const Pose2 here = estimate_;
+  add(here.position(), here.yaw);
+  const auto [target1, target2] = law_->targets();
+  add(target1, here.yaw);
+  // The pivot about the rear axle at target 2, from the heading along the row to the docked one.
+  const Pose2 prior = dock_prior();
+  const double turn = geometry::angle_diff(prior.yaw, here.yaw);
+  constexpr int kPivotSamples = 8;
+  for (int i = 0; i <= kPivotSamples; ++i) add(target2, here.yaw + turn * i / kPivotSamples);
+  // Realigning, it drives out along the axis to the realignment stand-off; docked, it stands in
+  // the place.
+  const control::DockingParams& d = config_.docking;
+  const Vec2 face = prior.position() + 0.5 * d.pallet.depth * heading_of(prior.yaw);
+  add(face + d.realign_standoff * heading_of(prior.yaw), prior.yaw);
+  add(prior.position() - carried_offset(d, g) * heading_of(prior.yaw), prior.yaw);
+  return corners;
 }
 
 void Stacker::dock() {
+  if (!area_clear_) {
+    // Standing at the end of its route until traffic holds the manoeuvre's area for it.
+    apply({0.0, body_.state().theta_steer});
+    return;
+  }
   control::DockingInput in;
   in.vehicle = estimate_;
   in.steer_angle = body_.state().theta_steer;

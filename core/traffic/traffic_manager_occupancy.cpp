@@ -281,4 +281,21 @@ int TrafficManager::anchor_index(const Robot& robot) const {
   return k;
 }
 
+std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::Polygon& area) const {
+  // A robot's held place conflicts with the area when its region, of that robot's type, touches it.
+  std::vector<std::vector<int>> touched;
+  places_under(area, type_of(robot_id), &touched);
+  std::vector<int> out;
+  for (const auto& [id, robot] : robots_) {
+    if (id == robot_id) continue;
+    const auto& near = touched[static_cast<std::size_t>(robot.type)];
+    const std::vector<int> held = held_places(id);
+    if (std::any_of(held.begin(), held.end(),
+                    [&](int place) { return std::binary_search(near.begin(), near.end(), place); })) {
+      out.push_back(id);
+    }
+  }
+  return out;
+}
+
 }  // namespace fleet::traffic

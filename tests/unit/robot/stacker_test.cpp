@@ -89,11 +89,11 @@ struct PlantStacker {
     }
   }
 
-  /// The stacker of config/sites/plant.yaml's `stackers` fleet, as the agent builds it; no
-  /// traffic manager grants here, so traffic control is off (the plant's lanes stay one-way).
-  std::unique_ptr<Stacker> make(const std::string& home_id) const {
+  /// The stacker of config/sites/plant.yaml's `stackers` fleet, as the agent builds it. Without
+  /// `traffic` no traffic manager grants here, so traffic control is off (the lanes stay one-way).
+  std::unique_ptr<Stacker> make(const std::string& home_id, bool traffic = false) const {
     config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
-    config.settings.set("traffic.enabled", "false", "stacker_test");
+    config.settings.set("traffic.enabled", traffic ? "true" : "false", "stacker_test");
     const auto* fleet =
         &*std::find_if(config.fleets.begin(), config.fleets.end(), [](const auto& f) { return f.id == "stackers"; });
     std::unique_ptr<robot::Robot> made =
@@ -155,6 +155,57 @@ TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) 
   for (const char* s : {"TO_PICK", "DOCKING", "LIFTING", "TO_DROP", "PLACING", "LOWERING", "GO_HOME", "PARKING"}) {
     EXPECT_TRUE(states.contains(s)) << s;
   }
+}
+
+TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2", true);
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX3"), &why)) << why;
+  // The road is free: every route is granted whole. The area is answered "wait" for 30 s.
+  const auto grant_all = [&] {
+    const robot::TrafficRoute route = stacker->traffic_route();
+    if (route.points.size() < 2) return;
+    robot::TrafficPermit permit;
+    permit.version = route.version;
+    permit.granted_index = static_cast<int>(route.points.size()) - 1;
+    permit.granted_distance = 1e6;
+    stacker->set_traffic_grant(permit);
+  };
+  int step = 0;
+  for (; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
+    grant_all();
+    stacker->step();
+  }
+  ASSERT_EQ(stacker->task_state(), "DOCKING");
+  const std::vector<geometry::Vec2> area = stacker->traffic_route().work_area;
+  ASSERT_FALSE(area.empty());
+  // It reaches over the pallet's place and round the stacker where it stands.
+  const auto covers = [&](geometry::Vec2 p) {
+    const auto [xs, xe] = std::minmax_element(area.begin(), area.end(), [](auto a, auto b) { return a.x < b.x; });
+    const auto [ys, ye] = std::minmax_element(area.begin(), area.end(), [](auto a, auto b) { return a.y < b.y; });
+    return p.x > xs->x && p.x < xe->x && p.y > ys->y && p.y < ye->y;
+  };
+  EXPECT_TRUE(covers(plant.site->site.find_area("FG5")->pose.position()));
+  EXPECT_TRUE(covers(stacker->truth().position()));
+  robot::TrafficPermit hold;
+  hold.area = robot::TrafficPermit::Area::kWaiting;
+  hold.blocked_by = {"fk1"};
+  geometry::Pose2 stood;
+  for (int i = 0; i < 20 * 30; ++i) {
+    if (i == 20 * 2) stood = stacker->truth();  // stopped from the route's last metres by then
+    stacker->set_traffic_grant(hold);
+    stacker->step();
+  }
+  EXPECT_LT(geometry::distance(stacker->truth().position(), stood.position()), 1e-3) << "it moved into the area";
+  EXPECT_EQ(stacker->task_state(), "DOCKING");
+  robot::TrafficPermit clear;
+  clear.area = robot::TrafficPermit::Area::kClear;
+  stacker->set_traffic_grant(clear);
+  for (int i = 0; i < 20 * 120 && stacker->task_state() == "DOCKING"; ++i) stacker->step();
+  EXPECT_EQ(stacker->task_state(), "LIFTING") << stacker->detail();
+  EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << "the area is let go once docked";
 }
 
 TEST(Stacker, APalletNotWhereLogisticsSaysFailsTheOrderWithWhatTheCamerasSaw) {

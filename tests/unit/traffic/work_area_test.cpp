@@ -1,0 +1,79 @@
+// A manoeuvre beside the roads (a stacker docking in reverse) sweeps more than its body: it
+// starts only once no other robot holds a place its area touches, and while it holds the area
+// nobody is granted into it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "test_graphs.hpp"
+#include "traffic/traffic_manager.hpp"
+
+namespace fleet::traffic {
+namespace {
+
+using testing::GraphBuilder;
+using testing::point_at;
+
+const Grant* grant_of(const UpdateResult& r, int id) {
+  for (const auto& g : r.grants) {
+    if (g.robot_id == id) return &g;
+  }
+  return nullptr;
+}
+
+// A 10 m road along y = 0; the area a robot docking at a place beside it, around x = 6, sweeps.
+const geometry::Polygon kArea{{5.0, -1.5}, {7.5, -1.5}, {7.5, 0.6}, {5.0, 0.6}};
+
+TEST(WorkArea, IsHeldByWhoeverHoldsAPlaceItTouches) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 10.0, 0.0);
+  TrafficManager m(b.graph());
+  // Robot 1 drives along the road towards the area; robot 2 stands clear of it.
+  const std::vector<int> toward(road.begin(), road.begin() + (point_at(b.graph(), 6.5, 0.0) - road.front()) + 1);
+  ASSERT_EQ(m.submit_route({1, 1, toward}, 0.0), SubmitStatus::kAccepted);
+  m.update(0.0);
+  EXPECT_TRUE(m.holders_in_area(3, kArea).empty()) << "robot 1 holds only the road behind the area so far";
+  double progress = 0.0;
+  bool entered = false;
+  for (double t = 0.1; t < 60.0 && !entered; t += 0.1) {
+    const Grant* g = grant_of(m.update(t), 1);
+    ASSERT_NE(g, nullptr);
+    progress = std::min(progress + 0.1, g->granted_distance);
+    m.report_progress({1, 1, progress, {}}, t);
+    entered = !m.holders_in_area(3, kArea).empty();
+  }
+  ASSERT_TRUE(entered) << "robot 1 never reached the area";
+  EXPECT_EQ(m.holders_in_area(3, kArea), std::vector<int>{1});
+  EXPECT_TRUE(m.holders_in_area(1, kArea).empty()) << "a robot never waits for itself";
+}
+
+TEST(WorkArea, OnceHeldNobodyIsGrantedIntoIt) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 10.0, 0.0);
+  TrafficManager m(b.graph());
+  ASSERT_TRUE(m.holders_in_area(3, kArea).empty());
+  ASSERT_TRUE(m.hold_body(3, kArea, 0.0));
+  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+  double progress = 0.0;
+  for (double t = 0.1; t < 60.0; t += 0.1) {
+    const Grant* g = grant_of(m.update(t), 1);
+    ASSERT_NE(g, nullptr);
+    progress = std::min(progress + 0.1, g->granted_distance);
+    m.report_progress({1, 1, progress, {}}, t);
+  }
+  EXPECT_LT(progress, 5.0) << "robot 1 was granted into the held area";
+  EXPECT_EQ(m.holders_in_area(1, kArea), std::vector<int>{3});
+  EXPECT_EQ(m.check_invariant(), "");
+  // The manoeuvre done, the robot stands clear of the road: robot 1 drives through.
+  ASSERT_TRUE(m.remove_robot(3, 60.0));
+  for (double t = 60.1; t < 120.0; t += 0.1) {
+    const Grant* g = grant_of(m.update(t), 1);
+    ASSERT_NE(g, nullptr);
+    progress = std::min(progress + 0.1, g->granted_distance);
+    m.report_progress({1, 1, progress, {}}, t);
+  }
+  EXPECT_GT(progress, 9.5);
+}
+
+}  // namespace
+}  // namespace fleet::traffic
