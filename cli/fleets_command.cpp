@@ -54,7 +54,7 @@ int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& /*e
     out << "  kinematics  " << vehicle::to_string(p.kinematics);
     if (p.kinematics == vehicle::Kinematics::kTricycle) {
       out << ", wheelbase " << fixed(p.wheelbase, 2) << " m, steering up to " << fixed(p.max_steering_angle, 2)
-          << " rad";
+          << " rad, rear axle at x = " << fixed(p.rear_axle_x, 2) << " m";
     }
     out << "\n  limits      " << fixed(p.max_speed, 2) << " m/s, " << fixed(p.max_acceleration, 2) << " m/s^2, "
         << fixed(p.max_yaw_rate, 2) << " rad/s\n";

@@ -228,7 +228,11 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   answer.version = request.version;
   answer.sim_time = now_sim;
   if (!working_.contains(request.robot_id)) {
-    const std::vector<int> blockers = manager_.holders_in_area(id, area);
+    std::map<int, geometry::Polygon> bodies;
+    for (const auto& [name, polygon] : bodies_) {
+      if (const auto number = numbers_.find(name); number != numbers_.end()) bodies[number->second] = polygon;
+    }
+    const std::vector<int> blockers = manager_.holders_in_area(id, area, bodies);
     if (!blockers.empty()) {
       if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
       answer.status = "AREA_WAITING";

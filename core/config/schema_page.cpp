@@ -61,7 +61,7 @@ vehicle:
 | Key | Meaning |
 |---|---|
 | `footprint` | `{length, width}` in metres (a rectangle centred on the body origin) or a list of `[x, y]` corners in the body frame; a simple polygon around the origin |
-| `kinematics` | `omni`, `differential`, or `{type: tricycle, wheelbase: M, max_steering_angle: RAD}` |
+| `kinematics` | `omni`, `differential`, or `{type: tricycle, wheelbase: M, max_steering_angle: RAD, rear_axle_x: M}`; `rear_axle_x` is the body-frame x of the rear-axle midpoint, the point a tricycle steers along its route (traffic reserves room for the body swinging out of curves ahead of it) |
 | `max_speed`, `max_acceleration`, `max_yaw_rate` | what the vehicle can do (m/s, m/s^2, rad/s); the agent drives at `min(agent.max_speed, max_speed)` |
 | `load` | `{type: pallet\|box\|none, max_mass: KG, lift_height: M}`: what it carries and how high it reaches |
 | `actions` | the VDA 5050 actions it performs at a place, a subset of its robot type's (`forklift`: `pick`, `drop`, `finePositioning`) |

@@ -62,12 +62,14 @@ void parse_kinematics(const YAML::Node& node, vehicle::VehicleProfile& profile, 
   }
   profile.kinematics = *kinematics;
   if (node.IsMap()) {
-    yaml::check_keys(node, {"type", "wheelbase", "max_steering_angle"}, key, source);
+    yaml::check_keys(node, {"type", "wheelbase", "max_steering_angle", "rear_axle_x"}, key, source);
     if (node["wheelbase"]) profile.wheelbase = yaml::positive_number(node["wheelbase"], key + ".wheelbase", source);
     if (node["max_steering_angle"]) {
       profile.max_steering_angle =
           yaml::positive_number(node["max_steering_angle"], key + ".max_steering_angle", source);
     }
+    if (node["rear_axle_x"])
+      profile.rear_axle_x = yaml::finite_number(node["rear_axle_x"], key + ".rear_axle_x", source);
   }
 }
 

@@ -10,21 +10,22 @@ std::string where(const std::string& source, const YAML::Node& node) {
   return source + ":" + std::to_string(node.Mark().line + 1);
 }
 
-namespace {
-
-double number(const YAML::Node& node, const std::string& key, const std::string& source) {
+double finite_number(const YAML::Node& node, const std::string& key, const std::string& source) {
   if (!node || !node.IsScalar()) throw ConfigError(source + ": key '" + key + "' is missing");
+  double v = 0.0;
   try {
-    return node.as<double>();
+    v = node.as<double>();
   } catch (const YAML::Exception&) {
     throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' is not a number");
   }
+  if (!std::isfinite(v)) {
+    throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' is not a finite number");
+  }
+  return v;
 }
 
-}  // namespace
-
 double positive_number(const YAML::Node& node, const std::string& key, const std::string& source) {
-  const double v = number(node, key, source);
+  const double v = finite_number(node, key, source);
   if (!(v > 0.0) || !std::isfinite(v)) {
     throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must be positive");
   }
@@ -32,7 +33,7 @@ double positive_number(const YAML::Node& node, const std::string& key, const std
 }
 
 double non_negative_number(const YAML::Node& node, const std::string& key, const std::string& source) {
-  const double v = number(node, key, source);
+  const double v = finite_number(node, key, source);
   if (!(v >= 0.0) || !std::isfinite(v)) {
     throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must not be negative");
   }

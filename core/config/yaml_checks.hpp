@@ -10,6 +10,9 @@ namespace fleet::config::yaml {
 /// "file:line" of a node, for messages.
 std::string where(const std::string& source, const YAML::Node& node);
 
+/// A finite number at `node`; ConfigError naming `key` otherwise.
+double finite_number(const YAML::Node& node, const std::string& key, const std::string& source);
+
 /// A positive finite number at `node`; ConfigError naming `key` otherwise.
 double positive_number(const YAML::Node& node, const std::string& key, const std::string& source);
 

@@ -58,9 +58,9 @@ TricyclePursuitOutput pursue(const geometry::Pose2& rear, const std::vector<geom
     return out;
   }
   const Projection here = project(path, rear.position());
-  out.remaining = here.remaining;
-  const double to_end = geometry::distance(rear.position(), path.back());
-  if (here.remaining <= params.arrive_tolerance || to_end <= params.arrive_tolerance) {
+  out.remaining = here.remaining - params.stop_short;
+  const double to_end = geometry::distance(rear.position(), path.back()) - params.stop_short;
+  if (out.remaining <= params.arrive_tolerance || to_end <= params.arrive_tolerance) {
     out.arrived = true;
     return out;
   }
@@ -79,7 +79,7 @@ TricyclePursuitOutput pursue(const geometry::Pose2& rear, const std::vector<geom
   const double curvature = 2.0 * local.y / std::max(distance * distance, 1e-6);
   double v = params.max_speed;
   v = std::min(v, std::sqrt(params.lateral_acceleration / std::max(std::abs(curvature), 1e-6)));
-  const double stop_within = std::min(here.remaining - 0.5 * params.arrive_tolerance, room);
+  const double stop_within = std::min(out.remaining - 0.5 * params.arrive_tolerance, room);
   v = std::min(v, std::sqrt(2.0 * params.acceleration * std::max(stop_within, 0.0)));
   if (stop_within > 0.0) v = std::max(v, std::min(params.creep_speed, stop_within));
   if (stop_within <= 0.0) return out;

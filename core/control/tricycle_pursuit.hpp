@@ -20,6 +20,9 @@ struct TricyclePursuitParams {
   double pivot_above = 1.4;           ///< |bearing| of the lookahead point beyond which it pivots first, rad
   double pivot_yaw_rate = 0.4;        ///< rad/s while pivoting
   double creep_speed = 0.05;          ///< m/s: the least speed while room is left
+  /// The rear axle stops this far short of the path's end, m: with the body's centre this far
+  /// ahead of it, the centre stands on the end (where traffic placed the robot).
+  double stop_short = 0.0;
 };
 
 struct TricyclePursuitOutput {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -144,6 +145,27 @@ int RoadPlanner::nearest_point(Vec2 p, PointUse use) const {
     if (d2 < best_d2) {
       best_d2 = d2;
       best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+int RoadPlanner::nearest_point_along(Vec2 p, double heading, double tolerance) const {
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < xs_.size(); ++i) {
+    if (!main_component_[i]) continue;
+    const double dx = xs_[i] - p.x;
+    const double dy = ys_[i] - p.y;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 >= best_d2) continue;
+    for (std::uint32_t e = offsets_[i]; e < offsets_[i + 1]; ++e) {
+      const double off = std::abs(geometry::angle_diff(edge_angle_[e], heading));
+      if (std::min(off, std::numbers::pi - off) <= tolerance) {
+        best_d2 = d2;
+        best = static_cast<int>(i);
+        break;
+      }
     }
   }
   return best;

@@ -47,6 +47,10 @@ class RoadPlanner {
   enum class PointUse { kAny, kRoute };
   /// Graph point nearest `p` by Euclidean distance (Fig. 5.6); -1 when there is none.
   int nearest_point(geometry::Vec2 p, PointUse use = PointUse::kAny) const;
+  /// The nearest route point (kRoute) with an edge leaving it within `tolerance` of `heading` or
+  /// of its opposite: a point on a lane along that axis, not on a junction's connecting road
+  /// across it; -1 when there is none.
+  int nearest_point_along(geometry::Vec2 p, double heading, double tolerance) const;
 
   /// Start and goal states are the graph points nearest the poses; the start's cost-to-come is
   /// its distance from the start pose. When the cheapest route crosses a blocked point, the plan
@@ -56,6 +60,7 @@ class RoadPlanner {
   RoadPlan plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options = {});
 
   std::size_t point_count() const { return xs_.size(); }
+  geometry::Vec2 point(int i) const { return {xs_[static_cast<std::size_t>(i)], ys_[static_cast<std::size_t>(i)]}; }
   const RoadPlannerConfiguration& configuration() const { return configuration_; }
 
  private:

@@ -45,12 +45,15 @@ Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& go
   Route route;
   const Deadline deadline(options);
   const int s = road_.nearest_point(start.position(), RoadPlanner::PointUse::kRoute);
-  const int g = road_.nearest_point(goal.position(), RoadPlanner::PointUse::kRoute);
+  const bool on_road = std::isfinite(configuration_.goal_heading_tolerance);
+  const int g = on_road ? road_.nearest_point_along(goal.position(), goal.yaw, configuration_.goal_heading_tolerance)
+                        : road_.nearest_point(goal.position(), RoadPlanner::PointUse::kRoute);
   if (s < 0 || g < 0) {
     route.status = PlanStatus::kInvalidStart;
     return route;
   }
-  route.road = road_.plan(start, goal, remaining(options, deadline));
+  route.road =
+      road_.plan_between(s, g, geometry::distance(start.position(), road_.point(s)), remaining(options, deadline));
   if (route.road.status != PlanStatus::kFound && route.road.status != PlanStatus::kBlockedPartial) {
     route.status = route.road.status;
     return route;
@@ -68,7 +71,7 @@ Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& go
   }
   append(route.points, route.road.points);
   route.status = route.road.status;
-  if (route.road.status == PlanStatus::kFound &&
+  if (route.road.status == PlanStatus::kFound && !on_road &&
       geometry::distance(goal.position(), route.road.points.back()) > configuration_.on_graph_tolerance) {
     route.from_road = grid_.plan(route.road.points.back(), goal.position(), remaining(options, deadline));
     if (route.from_road.status != PlanStatus::kFound) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "geometry/pose.hpp"
@@ -12,6 +13,11 @@ namespace fleet::planning {
 struct RoutePlannerConfiguration {
   /// A pose this close to its nearest graph point is on the road: no grid leg is planned.
   double on_graph_tolerance = 0.05;
+  /// Finite: the route ends on the road, at the nearest point of a lane along the goal's heading
+  /// (either way) within this, rad, with no grid leg to the goal pose: a vehicle that cannot
+  /// move sideways (a tricycle) starts its manoeuvre there, never from across a junction's
+  /// connecting road.
+  double goal_heading_tolerance = std::numeric_limits<double>::infinity();
 };
 
 struct Route {

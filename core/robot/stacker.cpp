@@ -17,6 +17,9 @@ Vec2 heading_of(double yaw) {
 }
 
 /// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
+// How far a lane's heading may differ from the pallet row's for a docking run to start on it, rad.
+constexpr double kLaneAlongRow = 0.35;
+
 double centre_offset(const sim::TricycleGeometry& g) {
   return 0.5 * (g.front_x() + g.fork_tip_x());
 }
@@ -32,6 +35,11 @@ StackerConfig StackerConfig::for_vehicle(const vehicle::VehicleProfile& profile)
   c.pursuit.max_speed = profile.max_speed;
   c.pursuit.acceleration = std::min(profile.max_acceleration, c.body.max_wheel_acceleration);
   if (profile.wheelbase > 0.0) c.body.geometry.wheelbase = profile.wheelbase;
+  // The fork tips are the footprint's back end: the rear axle stands that far ahead of them.
+  const geometry::Footprint extent = profile.extent();
+  if (profile.rear_axle_x < 0.0 && profile.rear_axle_x > -extent.length / 2.0) {
+    c.body.geometry.rear_overhang = profile.rear_axle_x + extent.length / 2.0;
+  }
   // +-pi/2 is the pivot [Stacker thesis, section 5.2]; a profile's rounded 1.5708 means it.
   if (profile.max_steering_angle > 0.0) {
     c.body.max_steer_angle = std::min(profile.max_steering_angle, std::numbers::pi / 2);
@@ -53,7 +61,9 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
       rng_(seed * 0x9e3779b97f4a7c15ULL + stream),
       static_grid_(make_static_grid(config, *site_)),
       road_(config.route_graph ? *config.route_graph : site_->graph.graph),
-      routes_(road_, grid_astar_),
+      // A tricycle cannot step sideways onto its docking run: its route ends on the lane along
+      // the pallet row, the run starts from there.
+      routes_(road_, grid_astar_, {.goal_heading_tolerance = kLaneAlongRow}),
       grid_revision_(std::numeric_limits<std::uint64_t>::max()),
       lidar_(config.lidar),
       follower_({.traffic = config.traffic, .siding_timeout = config.siding_timeout}),
@@ -70,6 +80,8 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
   }
   estimate_ = body_.pose();
   update_centre();
+  // The centre, where traffic places the robot, comes to stand on its route's end.
+  config_.pursuit.stop_short = centre_offset(config_.body.geometry);
 }
 
 void Stacker::update_centre() {

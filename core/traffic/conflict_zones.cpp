@@ -223,6 +223,7 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
                                   const std::vector<std::vector<int>>& members, std::size_t type) {
   const std::size_t places = members.size();
   const Polygon body = grown(convex_hull(types_[type].footprint), params_.margin / 2.0);
+  const double tracking_x = types_[type].tracking_x;
   auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
   auto& region = region_[type];
   auto& reach = reach_[type];
@@ -247,10 +248,71 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
       const Vec2 a = position_[p];
       for (double heading : {0.0, std::acos(0.0)}) region[p].push_back(placed(body, {a.x, a.y, heading}));
     }
+  }
+  if (tracking_x != 0.0) add_tracked_bodies(graph, adjacent, body, -tracking_x, type);
+  for (std::size_t p = 0; p < places; ++p) {
     for (const Polygon& poly : region[p]) {
       for (const Vec2& v : poly) reach[p] = std::max(reach[p], geometry::distance(v, position_[p]));
     }
   }
+}
+
+void ConflictZones::add_tracked_bodies(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
+                                       const Polygon& body, double lead, std::size_t type) {
+  // A body steered by a point `lead` metres behind its centre (a tricycle's rear axle) has that
+  // point on the route and its centre `lead` ahead along the heading there. On a straight road
+  // that is the centred body a little further on; in a curve the centre leaves the route on the
+  // outside and the front swings wide. Each such body is added to the place of the route point
+  // nearest its centre, searched forward along the road, where the robot's progress puts it.
+  constexpr double kOnRoute = 0.05;  // metres
+  auto pos = [&](int i) {
+    const auto& point = graph.points[static_cast<std::size_t>(i)];
+    return Vec2{point.x, point.y};
+  };
+  auto& region = region_[type];
+  const std::size_t n = graph.points.size();
+  std::vector<std::pair<int, Polygon>> tracked;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a = pos(static_cast<int>(i));
+    for (int j : adjacent[i]) {
+      const Vec2 b = pos(j);
+      const double heading = std::atan2(b.y - a.y, b.x - a.x);
+      const Vec2 centre = a + lead * Vec2{std::cos(heading), std::sin(heading)};
+      // Forward from a through b, never turning back by more than a right angle, up to twice
+      // the lead along the road.
+      int nearest = j;
+      double best = geometry::distance(centre, b);
+      // How far the centre is off the road: on it, the regions of the edge's two ends cover the
+      // body already.
+      double off_road = geometry::point_segment_distance(centre, a, b);
+      struct Step {
+        int from, at;
+        double travelled;
+      };
+      std::vector<Step> open{{static_cast<int>(i), j, geometry::distance(a, b)}};
+      while (!open.empty()) {
+        const Step s = open.back();
+        open.pop_back();
+        const Vec2 from = pos(s.from), at = pos(s.at);
+        for (int k : adjacent[static_cast<std::size_t>(s.at)]) {
+          if (k == s.from) continue;
+          const Vec2 next = pos(k);
+          if ((at.x - from.x) * (next.x - at.x) + (at.y - from.y) * (next.y - at.y) <= 0.0) continue;
+          const double travelled = s.travelled + geometry::distance(at, next);
+          if (travelled > 2.0 * lead) continue;
+          off_road = std::min(off_road, geometry::point_segment_distance(centre, at, next));
+          if (const double d = geometry::distance(centre, next); d < best) {
+            best = d;
+            nearest = k;
+          }
+          open.push_back({s.at, k, travelled});
+        }
+      }
+      if (off_road < kOnRoute) continue;
+      tracked.emplace_back(place_of_[static_cast<std::size_t>(nearest)], placed(body, {centre.x, centre.y, heading}));
+    }
+  }
+  for (auto& [place, polygon] : tracked) region[static_cast<std::size_t>(place)].push_back(std::move(polygon));
 }
 
 void ConflictZones::build_conflicts(std::size_t type_a, std::size_t type_b) {

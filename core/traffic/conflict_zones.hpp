@@ -15,6 +15,10 @@ namespace fleet::traffic {
 struct VehicleType {
   std::string name;
   geometry::Polygon footprint;
+  /// Body-frame x of the point that follows the route (a tricycle's rear axle; 0 for a body that
+  /// keeps its centre on the route). Ahead of a point behind the centre, the body swings out of
+  /// a curve: a place reserves the body with its centre there and with this point there.
+  double tracking_x = 0.0;
 };
 
 /// The rectangle `footprint` centred on the body origin, counter-clockwise, in the body frame.
@@ -62,7 +66,11 @@ struct OppositeLane {
 /// **Vehicle types.** Places are shared by every type; a place's region depends on who stands
 /// there: type T's footprint swept as above. A conflict is a pair (type A at place p, type B at
 /// place q) whose regions overlap, precomputed for every pair of types. The one-type accessors
-/// (`conflicts(place)`, `region(place)`, ...) are those of type 0.
+/// (`conflicts(place)`, `region(place)`, ...) are those of type 0. A type steered by a point
+/// behind its centre (`tracking_x`, a tricycle's rear axle) has that point on the route: in a
+/// curve its centre leaves the route on the outside and its front swings wide. That body, placed
+/// with the tracking point on each route point, joins the region of the place nearest its centre
+/// forward along the road, where the robot's progress puts it.
 ///
 /// Two derived facts drive the traffic rules:
 /// - a *branch* place has three or more neighbouring places (a junction arm end); a place is not
@@ -127,6 +135,8 @@ class ConflictZones {
   void build_places(const map::RoadGraph& graph, std::vector<std::vector<int>>& members);
   void build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
                      const std::vector<std::vector<int>>& members, std::size_t type);
+  void add_tracked_bodies(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
+                          const geometry::Polygon& body, double lead, std::size_t type);
   void build_conflicts(std::size_t type_a, std::size_t type_b);
   void build_stoppable(const std::vector<std::vector<int>>& successors,
                        const std::vector<std::vector<int>>& predecessors);

@@ -253,10 +253,13 @@ class TrafficManager {
   /// Robots (other than `robot_id`) holding a place that conflicts with the place of graph point
   /// `point`, sorted: a robot may enter the graph there only when this is empty.
   std::vector<int> holders_in_conflict(int point, int robot_id) const;
-  /// Robots (other than `robot_id`) holding a place whose region touches `area`, sorted: a robot
-  /// beside the roads starts a manoeuvre that sweeps `area` (docking in reverse, parking) only
-  /// when this is empty, and then holds the area (hold_body) until the manoeuvre ends.
-  std::vector<int> holders_in_area(int robot_id, const geometry::Polygon& area) const;
+  /// Robots (other than `robot_id`) holding a place whose region touches `area`, or whose body in
+  /// `bodies` (convex, where each robot stands) overlaps it, sorted: a robot parked beside the
+  /// roads holds no place, yet a manoeuvre must not sweep it. A robot beside the roads starts a
+  /// manoeuvre that sweeps `area` (docking in reverse, parking) only when this is empty, and then
+  /// holds the area (hold_body) until the manoeuvre ends.
+  std::vector<int> holders_in_area(int robot_id, const geometry::Polygon& area,
+                                   const std::map<int, geometry::Polygon>& bodies = {}) const;
   /// A robot beside the roads waits to enter at `point` (see holders_in_conflict). Once it has
   /// waited `priority_wait`, the places in conflict with its entry close to robots from outside
   /// them (those inside drive on and out), so a busy road cannot keep it out for ever. The claim

@@ -281,7 +281,8 @@ int TrafficManager::anchor_index(const Robot& robot) const {
   return k;
 }
 
-std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::Polygon& area) const {
+std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::Polygon& area,
+                                                 const std::map<int, geometry::Polygon>& bodies) const {
   // A robot's held place conflicts with the area when its region, of that robot's type, touches it.
   std::vector<std::vector<int>> touched;
   places_under(area, type_of(robot_id), &touched);
@@ -295,6 +296,11 @@ std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::P
       out.push_back(id);
     }
   }
+  for (const auto& [id, body] : bodies) {
+    if (id != robot_id && geometry::convex_polygons_overlap(body, area)) out.push_back(id);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

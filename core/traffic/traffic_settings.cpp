@@ -24,7 +24,9 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
     c.resources.footprint.length = std::max(c.resources.footprint.length, fleet.footprint.length);
     c.resources.footprint.width = std::max(c.resources.footprint.width, fleet.footprint.width);
     const int type = static_cast<int>(c.resources.vehicle_types.size());
-    c.resources.vehicle_types.push_back({fleet.id, footprint_polygon_of(fleet)});
+    const bool tricycle = fleet.profile.kinematics == vehicle::Kinematics::kTricycle;
+    c.resources.vehicle_types.push_back(
+        {fleet.id, footprint_polygon_of(fleet), tricycle ? fleet.profile.rear_axle_x : 0.0});
     for (const auto& robot : fleet.robots) c.robot_vehicle_types[robot.id] = type;
   }
   const auto& s = config.settings;

@@ -77,6 +77,9 @@ std::optional<ProfileError> profile_error(const VehicleProfile& profile) {
     if (!(profile.max_steering_angle > 0.0 && profile.max_steering_angle <= M_PI / 2 + 1e-4)) {
       return ProfileError{"kinematics.max_steering_angle", "a tricycle steers within (0, pi/2] rad"};
     }
+    if (!(profile.rear_axle_x > b.min_x && profile.rear_axle_x < b.max_x)) {
+      return ProfileError{"kinematics.rear_axle_x", "the rear axle must lie within the footprint's length"};
+    }
   }
   if (!(profile.max_speed > 0.0)) return ProfileError{"max_speed", "must be positive"};
   if (!(profile.max_acceleration > 0.0)) return ProfileError{"max_acceleration", "must be positive"};

@@ -29,9 +29,12 @@ struct VehicleProfile {
   Kinematics kinematics = Kinematics::kOmni;
   double wheelbase = 0.0;           ///< metres, tricycle only
   double max_steering_angle = 0.0;  ///< rad, tricycle only
-  double max_speed = 0.0;           ///< m/s
-  double max_acceleration = 0.0;    ///< m/s^2
-  double max_yaw_rate = 0.0;        ///< rad/s
+  /// Body-frame x of the rear-axle midpoint, metres, tricycle only: the point that follows the
+  /// route, so the body ahead of it swings out of a curve by more than its centre would.
+  double rear_axle_x = 0.0;
+  double max_speed = 0.0;         ///< m/s
+  double max_acceleration = 0.0;  ///< m/s^2
+  double max_yaw_rate = 0.0;      ///< rad/s
   LoadHandling load;
   /// The actions the vehicle performs at a place, by their VDA 5050 names (pick, drop, ...).
   std::vector<std::string> actions;

@@ -36,6 +36,9 @@ RobotType stacker() {
   p.kinematics = Kinematics::kTricycle;
   p.wheelbase = 1.30;
   p.max_steering_angle = 1.5707963267948966;
+  // The rear axle sits 0.10 m ahead of the fork tips (sim::TricycleGeometry): 0.75 m behind the
+  // footprint's centre.
+  p.rear_axle_x = -0.75;
   p.max_speed = 1.2;
   p.max_acceleration = 0.5;
   p.max_yaw_rate = 0.6;

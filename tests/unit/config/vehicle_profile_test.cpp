@@ -88,6 +88,17 @@ TEST(VehicleProfile, TricycleNeedsAWheelbaseAndKinematicsMustBeKnown) {
             std::string::npos);
 }
 
+TEST(VehicleProfile, TricycleRearAxleLiesWithinTheFootprint) {
+  const auto stacker = parse_fleet_config(fleet_with("stacker", ""), "t");
+  EXPECT_DOUBLE_EQ(stacker.fleets[0].profile.rear_axle_x, -0.75);
+  const std::string outside = message_of(fleet_with(
+      "stacker", "      kinematics: {type: tricycle, wheelbase: 1.3, max_steering_angle: 1.5, rear_axle_x: -2}\n"));
+  EXPECT_NE(outside.find("kinematics.rear_axle_x"), std::string::npos) << outside;
+  const std::string word = message_of(fleet_with(
+      "stacker", "      kinematics: {type: tricycle, wheelbase: 1.3, max_steering_angle: 1.5, rear_axle_x: back}\n"));
+  EXPECT_NE(word.find("rear_axle_x': 'back' is not a number"), std::string::npos) << word;
+}
+
 TEST(VehicleProfile, FootprintBesideTheProfileSaysWhereItBelongs) {
   const std::string msg = message_of(
       "fleets:\n  - id: f\n    robot_type: forklift\n    footprint: {length: 1, width: 1}\n    robots: [{id: r, "

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "test_graphs.hpp"
 #include "traffic/traffic_manager.hpp"
@@ -45,6 +46,18 @@ TEST(WorkArea, IsHeldByWhoeverHoldsAPlaceItTouches) {
   ASSERT_TRUE(entered) << "robot 1 never reached the area";
   EXPECT_EQ(m.holders_in_area(3, kArea), std::vector<int>{1});
   EXPECT_TRUE(m.holders_in_area(1, kArea).empty()) << "a robot never waits for itself";
+}
+
+TEST(WorkArea, IsHeldByARobotParkedBesideTheRoadsWhoseBodyItSweeps) {
+  GraphBuilder b;
+  b.road(0.0, 0.0, 10.0, 0.0);
+  const TrafficManager m(b.graph());
+  // Robot 4 parked in a bay beside the road at x = 6 holds no place; robot 5 parked at x = 9.
+  const std::map<int, geometry::Polygon> bodies{{4, {{5.8, -1.4}, {6.2, -1.4}, {6.2, -0.9}, {5.8, -0.9}}},
+                                                {5, {{8.8, -1.4}, {9.2, -1.4}, {9.2, -0.9}, {8.8, -0.9}}},
+                                                {3, {{5.5, -0.5}, {6.5, -0.5}, {6.5, 0.5}, {5.5, 0.5}}}};
+  EXPECT_TRUE(m.holders_in_area(3, kArea).empty()) << "nobody holds a place there";
+  EXPECT_EQ(m.holders_in_area(3, kArea, bodies), std::vector<int>{4}) << "nor is its own body in its way";
 }
 
 TEST(WorkArea, OnceHeldNobodyIsGrantedIntoIt) {
