@@ -219,6 +219,9 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   // A manoeuvre beside the roads sweeps more than the body: it starts once no other robot holds a
   // place the swept area touches, and the area stays held until it ends, so nobody is granted
   // into it meanwhile. Two manoeuvres whose areas touch take turns.
+  // The area it sweeps must be clear; the body it stands with is held with it, but robots queued
+  // up behind that body (waiting for it) do not keep it from starting.
+  const geometry::Polygon swept = traffic::convex_hull(request.work_area);
   const auto body = bodies_.find(request.robot_id);
   std::vector<geometry::Vec2> corners = request.work_area;
   if (body != bodies_.end()) corners.insert(corners.end(), body->second.begin(), body->second.end());
@@ -232,7 +235,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
     for (const auto& [name, polygon] : bodies_) {
       if (const auto number = numbers_.find(name); number != numbers_.end()) bodies[number->second] = polygon;
     }
-    const std::vector<int> blockers = manager_.holders_in_area(id, area, bodies);
+    const std::vector<int> blockers = manager_.holders_in_area(id, swept, bodies);
     if (!blockers.empty()) {
       if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
       answer.status = "AREA_WAITING";

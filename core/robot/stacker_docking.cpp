@@ -105,8 +105,9 @@ std::vector<Vec2> Stacker::manoeuvre_area() const {
     const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
     corners.insert(corners.end(), body.begin(), body.end());
   };
+  // Not where it stands: its body holds that already, and the robots queued up behind it touch it.
+  // The run starts with the rear axle short of target 2 and never backs past it.
   const Pose2 here = estimate_;
-  add(here.position(), here.yaw);
   const auto [target1, target2] = law_->targets();
   add(target1, here.yaw);
   // The pivot about the rear axle at target 2, from the heading along the row to the docked one.

@@ -158,10 +158,23 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
     }
   };
   collect(&occupancy_[typed(type, p) * words_]);
+  // Where its own body already stands, a robot drives on past holders that wait for it: the
+  // conflict is one of where the two stand (a forklift backing out of a place onto the lane just
+  // ahead of a robot granted up to its old spot), and they stay put while it moves away.
+  const Robot& self = *slots_[static_cast<std::size_t>(slot)];
+  if (under_body_for(self, p, type)) {
+    const auto waits_for_self = [&](int w) {
+      const Robot& other = *slots_[static_cast<std::size_t>(w)];
+      return other.wait_since >= 0.0 &&
+             std::find(other.blocked_by.begin(), other.blocked_by.end(), self.id) != other.blocked_by.end();
+    };
+    blockers.erase(
+        std::remove_if(blockers.begin() + static_cast<std::ptrdiff_t>(before), blockers.end(), waits_for_self),
+        blockers.end());
+  }
   auto claimed_by = [&](int w) {
     if (w < 0 || w == slot) return;
     const Robot& claimant = *slots_[static_cast<std::size_t>(w)];
-    const Robot& self = *slots_[static_cast<std::size_t>(slot)];
     // The robots a claimant waits for must stay free to move out of its way.
     if (std::find(claimant.blocked_by.begin(), claimant.blocked_by.end(), self.id) != claimant.blocked_by.end()) return;
     if (higher_priority(self, claimant)) return;

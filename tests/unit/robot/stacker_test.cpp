@@ -181,14 +181,17 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   ASSERT_EQ(stacker->task_state(), "DOCKING");
   const std::vector<geometry::Vec2> area = stacker->traffic_route().work_area;
   ASSERT_FALSE(area.empty());
-  // It reaches over the pallet's place and round the stacker where it stands.
+  // It reaches over the pallet's place, and not behind the stacker where it stands: the robots
+  // queued up there do not keep it from starting, and the run never backs towards them.
   const auto covers = [&](geometry::Vec2 p) {
     const auto [xs, xe] = std::minmax_element(area.begin(), area.end(), [](auto a, auto b) { return a.x < b.x; });
     const auto [ys, ye] = std::minmax_element(area.begin(), area.end(), [](auto a, auto b) { return a.y < b.y; });
     return p.x > xs->x && p.x < xe->x && p.y > ys->y && p.y < ye->y;
   };
   EXPECT_TRUE(covers(plant.site->site.find_area("FG5")->pose.position()));
-  EXPECT_TRUE(covers(stacker->truth().position()));
+  const geometry::Pose2 start = stacker->truth();
+  const geometry::Vec2 behind = start.position() - 1.2 * geometry::Vec2{std::cos(start.yaw), std::sin(start.yaw)};
+  EXPECT_FALSE(covers(behind)) << "the area reaches behind the stacker's fork tips";
   robot::TrafficPermit hold;
   hold.area = robot::TrafficPermit::Area::kWaiting;
   hold.blocked_by = {"fk1"};
@@ -203,8 +206,14 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   robot::TrafficPermit clear;
   clear.area = robot::TrafficPermit::Area::kClear;
   stacker->set_traffic_grant(clear);
-  for (int i = 0; i < 20 * 120 && stacker->task_state() == "DOCKING"; ++i) stacker->step();
+  double back = 0.0;  // how far the centre came back along the lane from where it stood
+  for (int i = 0; i < 20 * 120 && stacker->task_state() == "DOCKING"; ++i) {
+    stacker->step();
+    const geometry::Vec2 d = stacker->truth().position() - stood.position();
+    back = std::max(back, -(d.x * std::cos(stood.yaw) + d.y * std::sin(stood.yaw)));
+  }
   EXPECT_EQ(stacker->task_state(), "LIFTING") << stacker->detail();
+  EXPECT_LT(back, 0.1) << "the docking run backed towards the robots behind";
   EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << "the area is let go once docked";
 }
 
