@@ -247,8 +247,8 @@ double Forklift::clearance_ahead() const {
   // layer: the other robots from FleetView (grown by their speed x data age, or the stale rule)
   // and what the lidar sees [Forklift thesis, section 5.3]. The footprint itself is swept, not a point
   // against grown obstacles, because an obstacle beside the path meets the front corner first.
-  const double kSample = config_.clearance_sample;  // metres between swept poses
-  const double kMargin = config_.clearance_margin;  // metres around our footprint
+  const double kSample = config_.clearance_sample;        // metres between swept poses
+  const double kMargin = config_.clearance_margin;        // metres around our footprint
   const double kLookahead = config_.clearance_lookahead;  // metres of path checked [Forklift thesis, section 5.3]
   const std::vector<Vec2>& path = follower_.path();
   if (path.size() < 2) return std::numeric_limits<double>::infinity();
@@ -346,7 +346,9 @@ double Forklift::follow_traffic(double t, double clearance) {
   if (follower_.siding_timed_out(t, held)) executor_.replan();
   if (blocked) {
     const Pose2 here = sim_.estimate();
-    const std::string ahead = safety_.robot_within(here, neighbours_, 0.5);
+    // The robot whose cells stopped it: they are grown by its speed and data age (a standing one
+    // that reports seldom is grown most), so its body may be a metre off when the sweep meets them.
+    const std::string ahead = safety_.robot_within(here, neighbours_, 1.0);
     reports_.stopped_ahead(ahead);
     safety_.note(t, here.position(), ahead);
   } else if (held) {

@@ -178,6 +178,27 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
 }
 
+TEST(Forklift, AStopForAStaleRobotsGrownCellsNamesThatRobot) {
+  const auto site = table_a();
+  const robot::ForkliftConfig config = under_traffic(*site);
+  robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
+  f.set_standing_loads(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+  for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
+  const robot::TrafficRoute route = f.traffic_route();
+  ASSERT_GE(route.points.size(), 4u) << f.detail();
+  f.set_traffic_grant({route.version, static_cast<int>(route.points.size()) - 1, 100.0, {}, {}, false});
+  // A robot standing 2 m ahead that has not reported for 3 s: its cells are grown by how far
+  // it may have moved meanwhile, and the sweep meets them with its body well over 0.5 m away.
+  const geometry::Vec2 ahead = point_along(f.path(), 2.0);
+  f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 3.0}});
+  for (int i = 0; i < 70 * 30 && !f.detail().ends_with(" ahead"); ++i) f.step();
+  EXPECT_EQ(f.detail(), "robot fl9 ahead");
+  const double stopped_at = f.time();
+  while (f.time() < stopped_at + 3.5) f.step();
+  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+}
+
 /// A forklift from H1 under traffic whose every route is granted whole as soon as it reports
 /// it: it sets out for A3, is called home, and is sent by the "manager" to yield on a siding,
 /// the first half of its way home. Construct, then call yield_on_siding().
