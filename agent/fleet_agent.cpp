@@ -335,7 +335,10 @@ void FleetAgent::publish_state(double now_sim) {
   if (state.task_state != last_state_) {
     log_->info("state {}{}", state.task_state, state.detail.empty() ? "" : " (" + state.detail + ")");
     last_state_ = state.task_state;
+  } else if (state.detail != last_detail_ && !state.detail.empty()) {
+    log_->debug("state {} ({})", state.task_state, state.detail);
   }
+  last_detail_ = state.detail;
   if (robot_->path().size() != last_path_size_) {
     path_writer_.write({options_.robot_id, robot_->path(), now_sim});
     last_path_size_ = robot_->path().size();

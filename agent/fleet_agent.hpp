@@ -78,6 +78,7 @@ class FleetAgent {
   std::deque<model::OrderReport> finished_reports_;
   bool paused_ = false;
   std::string last_state_;
+  std::string last_detail_;
   std::size_t last_path_size_ = 0;
   bool traffic_ = false;
   robot::TrafficRoute last_traffic_;

@@ -173,8 +173,9 @@ class Stacker : public Robot {
   std::optional<control::DockingLaw> law_;
   std::optional<perception::StackerCameraDetector> detector_;
   int dock_attempts_ = 0;
-  std::vector<geometry::Vec2> work_area_;  ///< while docking: what the manoeuvre sweeps
-  bool area_clear_ = false;                ///< traffic holds work_area_ for it (or traffic is off)
+  std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
+  std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
+  bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

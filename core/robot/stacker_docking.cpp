@@ -91,6 +91,7 @@ void Stacker::start_docking() {
     detector_.emplace(config_.body.geometry, pallet_row(prior, height), dp, rng_());
   }
   reports_.set_detail("");
+  shown_phase_.reset();
   work_area_ = manoeuvre_area();
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
@@ -141,6 +142,11 @@ void Stacker::dock() {
     if (seen) in.pallet_detection = reframe(body_.pose(), estimate_, *seen);
   }
   const control::DockingOutput out = law_->update(in);
+  if (out.phase != shown_phase_) {
+    // Where a docking stands, for the operator and the agent's log.
+    shown_phase_ = out.phase;
+    reports_.set_detail(std::string("docking: ") + control::to_string(out.phase));
+  }
   if (out.phase == control::DockingPhase::kDone) {
     apply({0.0, body_.state().theta_steer});
     if (state_ == StackerState::kParking && order_) {

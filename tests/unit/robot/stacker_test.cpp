@@ -207,13 +207,19 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   clear.area = robot::TrafficPermit::Area::kClear;
   stacker->set_traffic_grant(clear);
   double back = 0.0;  // how far the centre came back along the lane from where it stood
+  std::set<std::string> details;
   for (int i = 0; i < 20 * 120 && stacker->task_state() == "DOCKING"; ++i) {
     stacker->step();
+    details.insert(stacker->detail());
     const geometry::Vec2 d = stacker->truth().position() - stood.position();
     back = std::max(back, -(d.x * std::cos(stood.yaw) + d.y * std::sin(stood.yaw)));
   }
   EXPECT_EQ(stacker->task_state(), "LIFTING") << stacker->detail();
   EXPECT_LT(back, 0.1) << "the docking run backed towards the robots behind";
+  // Its detail tells where the docking stands.
+  for (const char* phase : {"docking: to_target1", "docking: pivot", "docking: fork_in"}) {
+    EXPECT_TRUE(details.contains(phase)) << phase;
+  }
   EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << "the area is let go once docked";
 }
 
