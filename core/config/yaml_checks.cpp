@@ -26,7 +26,7 @@ double finite_number(const YAML::Node& node, const std::string& key, const std::
 
 double positive_number(const YAML::Node& node, const std::string& key, const std::string& source) {
   const double v = finite_number(node, key, source);
-  if (!(v > 0.0) || !std::isfinite(v)) {
+  if (!(v > 0.0)) {
     throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must be positive");
   }
   return v;
@@ -34,7 +34,7 @@ double positive_number(const YAML::Node& node, const std::string& key, const std
 
 double non_negative_number(const YAML::Node& node, const std::string& key, const std::string& source) {
   const double v = finite_number(node, key, source);
-  if (!(v >= 0.0) || !std::isfinite(v)) {
+  if (!(v >= 0.0)) {
     throw ConfigError(where(source, node) + ": key '" + key + "': '" + node.Scalar() + "' must not be negative");
   }
   return v;

@@ -149,17 +149,25 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   }
 }
 
-TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
-  const auto site = table_a();
-  const robot::ForkliftConfig config = under_traffic(*site);
-  robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
-  f.set_standing_loads(pallets_of(site->site));
-  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+namespace {
+
+/// Sets `f` out from H1 for A3 under traffic and grants its whole route at once: only the
+/// safety check can stop it.
+void set_out_with_the_whole_route_granted(robot::Forklift& f, const map::SiteMap& site) {
+  f.set_standing_loads(pallets_of(site.site));
+  ASSERT_TRUE(f.submit(order_between(site.site, "A3", "A2"), nullptr));
   for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
   const robot::TrafficRoute route = f.traffic_route();
   ASSERT_GE(route.points.size(), 4u) << f.detail();
-  // The whole route granted: only the safety check can stop it.
   f.set_traffic_grant({route.version, static_cast<int>(route.points.size()) - 1, 100.0, {}, {}, false});
+}
+
+}  // namespace
+
+TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
+  const auto site = table_a();
+  robot::Forklift f(under_traffic(*site), site, site->site.find_home("H1")->pose, 3, 1);
+  ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
   const geometry::Vec2 ahead = point_along(f.path(), 0.6);
   f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
   for (int i = 0; i < 70 * 30 && !f.detail().ends_with("fl9 ahead"); ++i) f.step();
@@ -180,14 +188,8 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
 
 TEST(Forklift, AStopForAStaleRobotsGrownCellsNamesThatRobot) {
   const auto site = table_a();
-  const robot::ForkliftConfig config = under_traffic(*site);
-  robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
-  f.set_standing_loads(pallets_of(site->site));
-  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
-  for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
-  const robot::TrafficRoute route = f.traffic_route();
-  ASSERT_GE(route.points.size(), 4u) << f.detail();
-  f.set_traffic_grant({route.version, static_cast<int>(route.points.size()) - 1, 100.0, {}, {}, false});
+  robot::Forklift f(under_traffic(*site), site, site->site.find_home("H1")->pose, 3, 1);
+  ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
   // A robot standing 2 m ahead that has not reported for 3 s: its cells are grown by how far
   // it may have moved meanwhile, and the sweep meets them with its body well over 0.5 m away.
   const geometry::Vec2 ahead = point_along(f.path(), 2.0);

@@ -8,18 +8,14 @@
 #include "config/fleet_config.hpp"
 #include "geometry/polygon.hpp"
 #include "map/site_map.hpp"
+#include "test_grants.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::traffic {
 namespace {
 
-const Grant* grant_of(const UpdateResult& r, int id) {
-  for (const auto& g : r.grants) {
-    if (g.robot_id == id) return &g;
-  }
-  return nullptr;
-}
+using testing::grant_of;
 
 geometry::Polygon placed(const geometry::Polygon& footprint, const geometry::Pose2& at) {
   geometry::Polygon out;

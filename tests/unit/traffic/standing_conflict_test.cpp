@@ -4,21 +4,16 @@
 #include <gtest/gtest.h>
 
 #include "geometry/polygon.hpp"
+#include "test_grants.hpp"
 #include "test_graphs.hpp"
 #include "traffic/traffic_manager.hpp"
 
 namespace fleet::traffic {
 namespace {
 
+using testing::grant_of;
 using testing::GraphBuilder;
 using testing::point_at;
-
-const Grant* grant_of(const UpdateResult& r, int id) {
-  for (const auto& g : r.grants) {
-    if (g.robot_id == id) return &g;
-  }
-  return nullptr;
-}
 
 TEST(StandingConflict, TheRobotAheadDrivesAwayFromTheOneWaitingForIt) {
   GraphBuilder b;

@@ -5,12 +5,14 @@
 #include <algorithm>
 
 #include "map/site_map.hpp"
+#include "test_grants.hpp"
 #include "test_graphs.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace fleet::traffic {
 namespace {
 
+using testing::grant_of;
 using testing::GraphBuilder;
 using testing::point_at;
 
@@ -19,13 +21,6 @@ SimParams scripted() {
   p.random_trips = false;
   p.dwell = 0.5;
   return p;
-}
-
-const Grant* grant_of(const UpdateResult& r, int id) {
-  for (const auto& g : r.grants) {
-    if (g.robot_id == id) return &g;
-  }
-  return nullptr;
 }
 
 // Steps until every robot is idle or `limit` seconds passed; checks safety on the way.

@@ -6,21 +6,16 @@
 #include <algorithm>
 #include <map>
 
+#include "test_grants.hpp"
 #include "test_graphs.hpp"
 #include "traffic/traffic_manager.hpp"
 
 namespace fleet::traffic {
 namespace {
 
+using testing::grant_of;
 using testing::GraphBuilder;
 using testing::point_at;
-
-const Grant* grant_of(const UpdateResult& r, int id) {
-  for (const auto& g : r.grants) {
-    if (g.robot_id == id) return &g;
-  }
-  return nullptr;
-}
 
 // A 10 m road along y = 0; the area a robot docking at a place beside it, around x = 6, sweeps.
 const geometry::Polygon kArea{{5.0, -1.5}, {7.5, -1.5}, {7.5, 0.6}, {5.0, 0.6}};
