@@ -254,10 +254,11 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
       Robot& victim = *slots_[static_cast<std::size_t>(s)];
       if (now - victim.last_reroute < kActOnInstruction) continue;
       // A member already yielding to it on a siding makes way for it: sending it off as well
-      // would only swap who yields, again and again.
+      // would only swap who yields, again and again. Unless that member waits for it on the way:
+      // then it makes way for nobody, and the robot it yields to is the one to move.
       const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
         const Robot& other = robots_.at(id);
-        return other.in_siding &&
+        return other.in_siding && !waiting(other, victim.id) &&
                std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
       });
       if (yielded_to) continue;

@@ -1,0 +1,90 @@
+// A robot sent to a siding to make way for another can itself come to wait for that robot (its
+// safety check stops it for the other's body before it reaches the siding). The robot it makes
+// way for is then in the way and must be the one to move, or both stand for good.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "test_grants.hpp"
+#include "test_graphs.hpp"
+#include "traffic/traffic_manager.hpp"
+
+namespace fleet::traffic {
+namespace {
+
+using testing::grant_of;
+using testing::point_at;
+
+bool has_event(const UpdateResult& r, TrafficEvent::Kind kind, int robot) {
+  return std::any_of(r.events.begin(), r.events.end(),
+                     [&](const TrafficEvent& e) { return e.kind == kind && e.robot_id == robot; });
+}
+
+TEST(SidingYield, TheRobotMadeWayForMovesWhenTheYieldingRobotWaitsForIt) {
+  // A 6 m corridor with a 0.6 m siding spur up from its middle.
+  testing::GraphBuilder b;
+  b.road(0.0, 0.0, 6.0, 0.0);
+  b.road(3.0, 0.0, 3.0, 0.6);
+  const auto& g = b.graph();
+  TrafficConfiguration c;
+  c.one_way = false;
+  TrafficManager m(g, c);
+  const int west = point_at(g, 0.0, 0.0), east = point_at(g, 6.0, 0.0);
+  std::vector<int> eastward, westward;
+  for (int k = 0; k <= 60; ++k) eastward.push_back(point_at(g, 0.1 * k, 0.0));
+  westward.assign(eastward.rbegin(), eastward.rend());
+  ASSERT_EQ(eastward.front(), west);
+  ASSERT_EQ(westward.front(), east);
+  ASSERT_EQ(m.submit_route({1, 1, eastward}, 0.0), SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({2, 1, westward}, 0.0), SubmitStatus::kAccepted);
+  // Both drive head-on into the corridor until one is sent to the siding.
+  double t = 0.0;
+  UpdateResult r;
+  int yielding = 0;
+  std::uint64_t version[3] = {0, 1, 1};
+  double driven[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 600 && yielding == 0; ++i, t += 0.05) {
+    r = m.update(t);
+    for (int id : {1, 2}) {
+      const Grant* grant = grant_of(r, id);
+      if (grant->instruction != Instruction::kNone && grant->version != version[id]) {
+        version[id] = grant->version;
+        driven[id] = 0.0;
+      }
+      if (has_event(r, TrafficEvent::Kind::kSidingSent, id)) yielding = id;
+      driven[id] = std::min(driven[id] + 0.02, grant->granted_distance);
+      m.report_progress({id, version[id], driven[id], {}}, t);
+    }
+  }
+  ASSERT_NE(yielding, 0) << "nobody was sent to the siding";
+  const int other = 3 - yielding;
+  // They met in the middle: the yielding robot turns into the spur right in front of the other,
+  // and its safety check stops it for the other's body; the other waits for its places.
+  bool other_moved_off = false;
+  bool unresolved = false;
+  for (int i = 0; i < 400 && !other_moved_off; ++i, t += 0.05) {
+    m.report_progress({yielding, version[yielding], driven[yielding], {other}}, t);
+    m.report_progress({other, version[other], driven[other], {}}, t);
+    r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    unresolved = unresolved || has_event(r, TrafficEvent::Kind::kUnresolvedDeadlock, other) ||
+                 has_event(r, TrafficEvent::Kind::kUnresolvedDeadlock, yielding);
+    const Grant* sent = grant_of(r, other);
+    other_moved_off = sent->instruction != Instruction::kNone;
+    if (other_moved_off) {
+      // It backs away from the spur, the way it came.
+      ASSERT_GE(sent->route.size(), 2u);
+      const double from = g.points[static_cast<std::size_t>(sent->route.front())].x;
+      const double to = g.points[static_cast<std::size_t>(sent->route.back())].x;
+      EXPECT_GT(std::abs(to - 3.0), std::abs(from - 3.0));
+    }
+    if (grant_of(r, yielding)->instruction != Instruction::kNone) version[yielding] = grant_of(r, yielding)->version;
+  }
+  EXPECT_TRUE(other_moved_off) << "robot " << other << ", which robot " << yielding
+                               << " waits for on its way to the siding, was never sent off"
+                               << (unresolved ? " (unresolved deadlock)" : "");
+}
+
+}  // namespace
+}  // namespace fleet::traffic
