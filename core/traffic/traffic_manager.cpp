@@ -138,11 +138,9 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
-  if (was_standing) {
-    pull_back_grants_into(robot);
-  } else {
-    robot.body_reach.clear();
-  }
+  // The reach of the body it stood with stays until it has driven off (release_passed): a robot
+  // sending a new route before it moved still stands there, and keeps the right of way under it.
+  if (was_standing) pull_back_grants_into(robot);
   return SubmitStatus::kAccepted;
 }
 
