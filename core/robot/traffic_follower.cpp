@@ -156,6 +156,7 @@ double TrafficFollower::room(Vec2 here) {
   }
   const bool whole_route = permit_.granted_index + 1 >= static_cast<int>(road_points_.size());
   if (whole_route && !in_siding_) return std::numeric_limits<double>::infinity();
+  if (params_.wait_off_road_for_room && permit_.granted_index == 0 && path_s_ < road_start_) return -path_s_ - 1e-9;
   double allowed = road_start_ + permit_.granted_distance;
   // On a siding, stop just short of its end: the follower would take the end for the goal.
   if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - params_.siding_end_margin);

@@ -32,6 +32,10 @@ struct TrafficFollowerParams {
   /// Sim seconds a robot stands held on a siding before it plans its own way on and asks for it.
   double siding_timeout = 30.0;
   double siding_end_margin = 0.03;  ///< metres short of a siding's end the robot stops
+  /// Off the road (at a dock, in a bay), stand until the grant reaches past the road's first
+  /// point. A body that turns onto the lane from across it (a stacker leaving a dock) would stand
+  /// at that point across the lane's edge, in the way of robots passing beside, while it waits.
+  bool wait_off_road_for_room = false;
 };
 
 /// The path a robot drives and what traffic control makes of it, for every robot type: the road

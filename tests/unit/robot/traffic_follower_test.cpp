@@ -70,6 +70,26 @@ TEST(TrafficFollower, AGrantShorterThanThePathStopsTheRobotAtTheGrant) {
   EXPECT_TRUE(std::isinf(f.room({2.0, 0.0})));
 }
 
+TEST(TrafficFollower, ARobotThatWaitsOffTheRoadForRoomStandsUntilGrantedPastTheEntry) {
+  const map::RoadGraph g = straight_road();
+  for (bool waits : {false, true}) {
+    TrafficFollower f({.traffic = true, .siding_timeout = 30.0, .wait_off_road_for_room = waits}, 100);
+    f.adopt_plan(own_plan(g, 4));
+    const TrafficRoute route = f.route();
+    // Granted the entry point only: a robot that waits stays where it is, one that does not
+    // drives the metre onto the road.
+    f.grant({route.version, 0, 0.0, {"fl2"}, {}, false});
+    if (waits) {
+      EXPECT_LE(f.room({0.0, 0.0}), 0.0);
+    } else {
+      EXPECT_NEAR(f.room({0.0, 0.0}), 1.0, 1e-9);
+    }
+    // On the road at the entry, or granted further, both drive as granted.
+    f.grant({route.version, 2, 2.0, {}, {}, false});
+    EXPECT_NEAR(f.room({0.0, 0.0}), 3.0, 1e-9) << (waits ? "waits" : "drives");
+  }
+}
+
 TEST(TrafficFollower, WithTrafficOffGrantsAreIgnoredAndTheRoomIsUnlimited) {
   const map::RoadGraph g = straight_road();
   TrafficFollower f({.traffic = false, .siding_timeout = 30.0}, 100);
