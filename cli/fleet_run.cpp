@@ -82,6 +82,7 @@ void FleetRun::start() {
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
   truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
   state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state());
+  grant_reader_ = std::make_unique<dds::Reader<model::TrafficGrant>>(*participant_, dds::qos::live_state());
 
   const std::vector<std::string> common{"--config",     options_.config_file,
                                         "--domain",     std::to_string(options_.domain),
@@ -142,6 +143,9 @@ bool FleetRun::poll() {
   });
   state_reader_->take_data(
       [&](model::RobotState&& state) { progress_.note_state(state.robot_id, state.task_state, state.sim_time); });
+  // Who waits for whom, so a robot queued behind robots that move is not taken for a deadlock.
+  grant_reader_->take_data(
+      [&](model::TrafficGrant&& grant) { progress_.note_waiting_for(grant.robot_id, std::move(grant.blocked_by)); });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
@@ -152,8 +156,8 @@ bool FleetRun::poll() {
     }
     // The true shape is the robot's fleet's footprint polygon; SimTruth carries only its extent.
     const auto robot = config_.find_robot(truth.robot_id);
-    const geometry::Polygon body = robot ? robot->first->profile.footprint
-                                         : geometry::footprint_polygon({0.0, 0.0, 0.0}, truth.footprint);
+    const geometry::Polygon body =
+        robot ? robot->first->profile.footprint : geometry::footprint_polygon({0.0, 0.0, 0.0}, truth.footprint);
     for (const auto& c : collisions_.update(truth.robot_id, truth.pose, body, truth.sim_time)) {
       log_->warn(
           "collision at t={:.2f} s sim: {} at ({:.3f}, {:.3f}, yaw {:.2f}) and {} at ({:.3f}, {:.3f}, yaw {:.2f})",

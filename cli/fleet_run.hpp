@@ -55,7 +55,8 @@ class FleetRun {
   double wall_seconds() const;
   monitor::OrderTally tally() const;
   const std::vector<monitor::Collision>& collisions() const { return collisions_.collisions(); }
-  /// Robots with an order that made no progress for 60 sim seconds (see ProgressMonitor).
+  /// Robots with an order that made no progress for 60 sim seconds, 180 queued behind robots that
+  /// move (see ProgressMonitor).
   const monitor::ProgressMonitor& progress() const { return progress_; }
   const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
   /// Orders done in the run per fleet of the robot that did them, every fleet of the
@@ -95,6 +96,7 @@ class FleetRun {
   std::unique_ptr<dds::Reader<model::OrderInfo>> order_reader_;
   std::unique_ptr<dds::Reader<model::SimTruth>> truth_reader_;
   std::unique_ptr<dds::Reader<model::RobotState>> state_reader_;
+  std::unique_ptr<dds::Reader<model::TrafficGrant>> grant_reader_;
   monitor::ProgressMonitor progress_;
   std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
   std::map<std::int64_t, model::OrderInfo> orders_;

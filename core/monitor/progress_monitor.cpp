@@ -2,16 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace fleet::monitor {
 
-ProgressMonitor::ProgressMonitor(double timeout_s, double move_threshold)
-    : timeout_s_(timeout_s), move_threshold_(move_threshold) {}
+ProgressMonitor::ProgressMonitor(double timeout_s, double move_threshold, double queue_bound_s)
+    : timeout_s_(timeout_s), move_threshold_(move_threshold), queue_bound_s_(queue_bound_s) {}
 
 bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task,
                              double t) {
   auto [it, fresh] = watches_.try_emplace(robot_id);
   Watch& w = it->second;
+  if (fresh || std::hypot(pose.x - w.moved_from.x, pose.y - w.moved_from.y) > move_threshold_) {
+    w.moved_from = pose;
+    w.moved_at = t;
+  }
   const bool moved = std::hypot(pose.x - w.anchor.x, pose.y - w.anchor.y) > move_threshold_;
   if (fresh || moved || task != w.task || task.empty()) {
     w.anchor = pose;
@@ -21,9 +26,36 @@ bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2&
     return false;
   }
   if (w.reported || t - w.since < timeout_s_) return false;
+  if (t - w.since < queue_bound_s_ && queue_moves(robot_id, t)) return false;
   w.reported = true;
   deadlocks_.push_back({robot_id, task, w.since, t, pose});
   return true;
+}
+
+void ProgressMonitor::note_waiting_for(const std::string& robot_id, std::vector<std::string> robots) {
+  if (robots.empty()) {
+    waiting_for_.erase(robot_id);
+  } else {
+    waiting_for_[robot_id] = std::move(robots);
+  }
+}
+
+bool ProgressMonitor::queue_moves(const std::string& robot_id, double t) const {
+  std::set<std::string> seen{robot_id};
+  std::vector<std::string> open{robot_id};
+  while (!open.empty()) {
+    const std::string at = std::move(open.back());
+    open.pop_back();
+    const auto waits = waiting_for_.find(at);
+    if (waits == waiting_for_.end()) continue;
+    for (const auto& other : waits->second) {
+      if (!seen.insert(other).second) continue;
+      const auto watch = watches_.find(other);
+      if (watch != watches_.end() && t - watch->second.moved_at < timeout_s_) return true;
+      open.push_back(other);
+    }
+  }
+  return false;
 }
 
 void ProgressMonitor::note_state(const std::string& robot_id, const std::string& task_state, double t) {
@@ -40,6 +72,7 @@ void ProgressMonitor::note_state(const std::string& robot_id, const std::string&
 
 void ProgressMonitor::forget(const std::string& robot_id) {
   watches_.erase(robot_id);
+  waiting_for_.erase(robot_id);
   waiting_since_.erase(robot_id);
 }
 

@@ -19,14 +19,18 @@ struct Deadlock {
 
 /// Ground-truth progress watch for demo and soak runs: a robot with an order that has
 /// neither moved `move_threshold` metres nor changed its order or phase for `timeout_s` sim
-/// seconds counts as deadlocked, once per episode. Also keeps the longest continuous WAITING.
+/// seconds counts as deadlocked, once per episode. A robot queued behind robots that move (the
+/// robots it waits for, as traffic reports them, and the ones they wait for) waits its turn: it
+/// counts only after `queue_bound_s` without progress. Also keeps the longest continuous WAITING.
 class ProgressMonitor {
  public:
-  explicit ProgressMonitor(double timeout_s = 60.0, double move_threshold = 0.02);
+  explicit ProgressMonitor(double timeout_s = 60.0, double move_threshold = 0.02, double queue_bound_s = 180.0);
 
   /// The robot's true pose at sim time `t`; `task` is its open order and phase, empty when it has
   /// none. Returns true when this update detected a new deadlock (see deadlocks()).
   bool update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task, double t);
+  /// The robots `robot_id` waits for, from its latest traffic grant; empty when none.
+  void note_waiting_for(const std::string& robot_id, std::vector<std::string> robots);
   /// The robot's reported task state, for the longest wait.
   void note_state(const std::string& robot_id, const std::string& task_state, double t);
   /// The robot left the run (killed, lost): its watch restarts when it comes back.
@@ -42,10 +46,18 @@ class ProgressMonitor {
     std::string task;
     double since = 0.0;
     bool reported = false;
+    geometry::Pose2 moved_from;  ///< where it was when it last moved, order or not
+    double moved_at = 0.0;
   };
+  /// Whether a robot that `robot_id` waits for, directly or through others, moved within the
+  /// timeout before `t`.
+  bool queue_moves(const std::string& robot_id, double t) const;
+
   double timeout_s_;
   double move_threshold_;
+  double queue_bound_s_;
   std::map<std::string, Watch> watches_;
+  std::map<std::string, std::vector<std::string>> waiting_for_;
   std::map<std::string, double> waiting_since_;
   double max_wait_s_ = 0.0;
   std::vector<Deadlock> deadlocks_;

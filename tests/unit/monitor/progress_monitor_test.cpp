@@ -33,6 +33,37 @@ TEST(ProgressMonitor, MovingOrChangingPhaseOrHavingNoOrderIsNotADeadlock) {
   EXPECT_TRUE(m.deadlocks().empty());
 }
 
+TEST(ProgressMonitor, ARobotQueuedBehindRobotsThatMoveWaitsItsTurnUpToTheQueueBound) {
+  ProgressMonitor m(60.0, 0.02, 180.0);
+  // rt4 waits for rt3, which waits for rt1, which drives away: a queue leaving one at a time.
+  m.note_waiting_for("rt4", {"rt3"});
+  m.note_waiting_for("rt3", {"rt1"});
+  for (int s = 0; s <= 100; ++s) {
+    const double t = s;
+    EXPECT_FALSE(m.update("rt1", {0.1 * s, 0.0, 0.0}, "1/TO_PICK", t));
+    EXPECT_FALSE(m.update("rt3", {5.0, 0.0, 0.0}, "3/TO_PICK", t));
+    EXPECT_FALSE(m.update("rt4", {6.0, 0.0, 0.0}, "4/TO_PICK", t)) << "at t = " << t;
+  }
+  // The same queue whose head stands still is a deadlock after the timeout, for all behind it.
+  m.note_waiting_for("rt1", {"rt4"});
+  bool rt4_reported = false;
+  for (int s = 101; s <= 170 && !rt4_reported; ++s) {
+    m.update("rt1", {10.0, 0.0, 0.0}, "1/TO_PICK", s);
+    m.update("rt3", {5.0, 0.0, 0.0}, "3/TO_PICK", s);
+    rt4_reported = m.update("rt4", {6.0, 0.0, 0.0}, "4/TO_PICK", s);
+  }
+  EXPECT_TRUE(rt4_reported);
+  // A robot queued behind one that moves for ever is reported at the queue bound.
+  ProgressMonitor q(60.0, 0.02, 180.0);
+  q.note_waiting_for("fl2", {"fl1"});
+  double reported_at = -1.0;
+  for (int s = 0; s <= 200 && reported_at < 0.0; ++s) {
+    q.update("fl1", {0.1 * (s % 2), 0.0, 0.0}, "1/TO_PICK", s);
+    if (q.update("fl2", {3.0, 0.0, 0.0}, "2/TO_PICK", s)) reported_at = s;
+  }
+  EXPECT_DOUBLE_EQ(reported_at, 180.0);
+}
+
 TEST(ProgressMonitor, ForgottenRobotRestartsItsWatch) {
   ProgressMonitor m(60.0, 0.02);
   m.update("fl1", {0, 0, 0}, "7/TO_PICK", 0.0);
