@@ -150,8 +150,10 @@ bool FleetRun::poll() {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
-      log_->warn("deadlock: {} made no progress on order {} for {:.0f} s sim at ({:.3f}, {:.3f})", d.robot_id, d.task,
-                 d.detected - d.since, d.pose.x, d.pose.y);
+      std::string waits;
+      for (const auto& other : d.waiting_for) waits += (waits.empty() ? "; it waits for " : ", ") + other;
+      log_->warn("deadlock: {} made no progress on order {} for {:.0f} s sim at ({:.3f}, {:.3f}){}", d.robot_id, d.task,
+                 d.detected - d.since, d.pose.x, d.pose.y, waits);
       write_tracks("deadlock-" + std::to_string(progress_.deadlocks().size()) + "-" + d.robot_id, 90.0, truth.sim_time);
     }
     // The true shape is the robot's fleet's footprint polygon; SimTruth carries only its extent.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace fleet::monitor {
@@ -22,13 +23,18 @@ bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2&
     w.anchor = pose;
     w.task = task;
     w.since = t;
+    w.queue_moved = t;
     w.reported = false;
     return false;
   }
-  if (w.reported || t - w.since < timeout_s_) return false;
-  if (t - w.since < queue_bound_s_ && queue_moves(robot_id, t)) return false;
+  // Queued, the moves of the robots ahead are its progress, up to the queue bound.
+  w.queue_moved = std::max(w.queue_moved, queue_moved_at(robot_id));
+  const double stalled = t - std::max(w.since, w.queue_moved);
+  if (w.reported || (stalled < timeout_s_ && t - w.since < queue_bound_s_)) return false;
   w.reported = true;
-  deadlocks_.push_back({robot_id, task, w.since, t, pose});
+  const auto waits = waiting_for_.find(robot_id);
+  deadlocks_.push_back(
+      {robot_id, task, w.since, t, pose, waits == waiting_for_.end() ? std::vector<std::string>{} : waits->second});
   return true;
 }
 
@@ -40,7 +46,8 @@ void ProgressMonitor::note_waiting_for(const std::string& robot_id, std::vector<
   }
 }
 
-bool ProgressMonitor::queue_moves(const std::string& robot_id, double t) const {
+double ProgressMonitor::queue_moved_at(const std::string& robot_id) const {
+  double latest = -std::numeric_limits<double>::infinity();
   std::set<std::string> seen{robot_id};
   std::vector<std::string> open{robot_id};
   while (!open.empty()) {
@@ -50,12 +57,13 @@ bool ProgressMonitor::queue_moves(const std::string& robot_id, double t) const {
     if (waits == waiting_for_.end()) continue;
     for (const auto& other : waits->second) {
       if (!seen.insert(other).second) continue;
-      const auto watch = watches_.find(other);
-      if (watch != watches_.end() && t - watch->second.moved_at < timeout_s_) return true;
+      if (const auto watch = watches_.find(other); watch != watches_.end()) {
+        latest = std::max(latest, watch->second.moved_at);
+      }
       open.push_back(other);
     }
   }
-  return false;
+  return latest;
 }
 
 void ProgressMonitor::note_state(const std::string& robot_id, const std::string& task_state, double t) {

@@ -11,10 +11,11 @@ namespace fleet::monitor {
 /// A robot that worked on an order without progress for the monitor's timeout.
 struct Deadlock {
   std::string robot_id;
-  std::string task;       ///< what it was working on: order id and phase
-  double since = 0.0;     ///< sim time of its last progress
-  double detected = 0.0;  ///< sim time the timeout passed
-  geometry::Pose2 pose;   ///< where it stood (truth)
+  std::string task;                      ///< what it was working on: order id and phase
+  double since = 0.0;                    ///< sim time of its last progress
+  double detected = 0.0;                 ///< sim time the timeout passed
+  geometry::Pose2 pose;                  ///< where it stood (truth)
+  std::vector<std::string> waiting_for;  ///< the robots its traffic grant said it waited for
 };
 
 /// Ground-truth progress watch for demo and soak runs: a robot with an order that has
@@ -48,10 +49,11 @@ class ProgressMonitor {
     bool reported = false;
     geometry::Pose2 moved_from;  ///< where it was when it last moved, order or not
     double moved_at = 0.0;
+    double queue_moved = 0.0;  ///< the latest move of a robot it waited for since its own progress
   };
-  /// Whether a robot that `robot_id` waits for, directly or through others, moved within the
-  /// timeout before `t`.
-  bool queue_moves(const std::string& robot_id, double t) const;
+  /// When a robot that `robot_id` waits for, directly or through others, last moved; -infinity
+  /// when it waits for nobody.
+  double queue_moved_at(const std::string& robot_id) const;
 
   double timeout_s_;
   double move_threshold_;

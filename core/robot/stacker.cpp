@@ -170,8 +170,7 @@ void Stacker::set_traffic_grant(const TrafficPermit& permit) {
 TrafficRoute Stacker::traffic_route() const {
   TrafficRoute r = follower_.route();
   if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
-  // The area from the start of a docking until the next route: the way out of the dock is in it.
-  if (!follower_.on_road() && (law_ || area_clear_)) r.work_area = work_area_;
+  if (!follower_.on_road() && law_) r.work_area = work_area_;
   return r;
 }
 
@@ -203,7 +202,6 @@ void Stacker::enter(StackerState state) {
     start_docking();
   }
   if (state == StackerState::kLifting || state == StackerState::kLowering) forks_done_at_ = time_ + config_.lift_time;
-  if (state == StackerState::kIdle) work_area_.clear();  // parked in its bay, off every lane
   if (state != from) reports_.state_changed(order_id().value_or(""), to_string(state), false);
   if (phase_of(state) != from_phase && order_) reports_.phase_changed(order_->order_id, phase_of(state));
 }
@@ -294,7 +292,6 @@ void Stacker::drive() {
       next_route_try_ = time_ + 1.0;
     }
   }
-  if (follower_.on_road()) work_area_.clear();
   if (follower_.path().size() < 2) {
     apply({0.0, body_.state().theta_steer});
     return;

@@ -174,7 +174,7 @@ class Stacker : public Robot {
   std::optional<perception::StackerCameraDetector> detector_;
   int dock_attempts_ = 0;
   std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
-  std::vector<geometry::Vec2> work_area_;             ///< what the docking manoeuvre sweeps, until the next route
+  std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
   bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
   double forks_done_at_ = 0.0;
   int carried_ = -1;

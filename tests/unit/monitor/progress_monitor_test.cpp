@@ -44,6 +44,10 @@ TEST(ProgressMonitor, ARobotQueuedBehindRobotsThatMoveWaitsItsTurnUpToTheQueueBo
     EXPECT_FALSE(m.update("rt3", {5.0, 0.0, 0.0}, "3/TO_PICK", t));
     EXPECT_FALSE(m.update("rt4", {6.0, 0.0, 0.0}, "4/TO_PICK", t)) << "at t = " << t;
   }
+  // Its turn come, it is granted and waits for nobody: the time it spent queued does not count.
+  m.note_waiting_for("rt4", {});
+  EXPECT_FALSE(m.update("rt4", {6.0, 0.0, 0.0}, "4/TO_PICK", 100.5));
+  m.note_waiting_for("rt4", {"rt3"});
   // The same queue whose head stands still is a deadlock after the timeout, for all behind it.
   m.note_waiting_for("rt1", {"rt4"});
   bool rt4_reported = false;
