@@ -19,9 +19,9 @@ namespace {
 constexpr const char* kUsage =
     "usage: fleetctl plan-eval --site NAME [--queries N] [--seed S] [--resolution M]\n"
     "                          [--optimal-budget-ms MS] [--no-ompl] [--json]\n"
-    "Runs road_astar, grid_astar, ompl_rrtconnect and ompl_bitstar on the same random start/goal\n"
-    "pairs of maps/NAME.yaml and prints per planner the median and p95 time, the success rate and\n"
-    "the mean path length relative to the shortest path any planner found for each query.\n";
+    "Runs road_astar, grid_astar, grassfire, ompl_rrtconnect and ompl_bitstar on the same random\n"
+    "start/goal pairs of maps/NAME.yaml and prints per planner the median and p95 time, the success\n"
+    "rate and the mean path length relative to the shortest path any planner found for each query.\n";
 
 }  // namespace
 

@@ -49,10 +49,11 @@ struct PlanEvalReport {
 };
 
 /// Runs every planner on the same random start/goal pairs of a site: road-graph A* on the graph,
-/// grid A* and the OMPL planners on the static grid of the same site (roads and loading areas
-/// free, enabled obstacles inflated). Start and goal are graph points of the graph's largest
-/// strongly connected component, so every query has an answer on the roads. Each planner gets
-/// one untimed warm-up query first.
+/// grid A*, the grassfire planner and the OMPL planners on the static grid of the same site (roads
+/// and loading areas free, enabled obstacles inflated). Start and goal are graph points of the
+/// graph's largest strongly connected component, so every query has an answer on the roads. Each
+/// planner gets one untimed warm-up query first, and its grid is set again after it so that no
+/// cached result of the warm-up is timed.
 PlanEvalReport run_plan_eval(const map::Site& site, const map::RoadGraph& graph,
                              const PlanEvalConfiguration& configuration);
 

@@ -33,11 +33,14 @@ TEST(PlanEval, TableARoadAStarAlwaysSucceeds) {
   c.seed = 3;
   c.include_ompl = false;
   const PlanEvalReport r = run_plan_eval(s.site, s.graph.graph, c);
-  ASSERT_EQ(r.planners.size(), 2u);
+  ASSERT_EQ(r.planners.size(), 3u);
   const PlannerStats* road = r.find("road_astar");
   const PlannerStats* grid = r.find("grid_astar");
+  const PlannerStats* grassfire = r.find("grassfire");
   ASSERT_NE(road, nullptr);
   ASSERT_NE(grid, nullptr);
+  ASSERT_NE(grassfire, nullptr);
+  EXPECT_EQ(grassfire->success, 1.0);
   EXPECT_EQ(road->success, 1.0);
   EXPECT_EQ(grid->success, 1.0);
   // Grid paths may cut corners inside the road squares, so they are never longer than the
