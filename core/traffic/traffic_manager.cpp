@@ -522,6 +522,12 @@ UpdateResult TrafficManager::update(double now) {
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
   });
+  // Robots on their way to a siding first: the robots they make way for wait for them, and
+  // granted first those would take the road to the siding, which crosses their routes.
+  std::stable_partition(order.begin(), order.end(), [&](int s) {
+    const Robot& robot = *slots_[static_cast<std::size_t>(s)];
+    return robot.in_siding && robot.siding_arrival < 0.0;
+  });
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
     extend(robot, s);
