@@ -175,15 +175,4 @@ std::array<planning::LidarScan, 2> PickerLidars::scan(const geometry::Pose2& bas
   return out;
 }
 
-sim::ForkliftParams picker_body_params() {
-  sim::ForkliftParams p;
-  p.mecanum.wheel_radius = 0.127;
-  p.mecanum.half_wheelbase = 0.235;
-  p.mecanum.half_track = 0.20;
-  p.mecanum.max_wheel_speed = 3.0 / p.mecanum.wheel_radius;  // 3 m/s top speed [section 3.1]
-  p.footprint = {0.65, 0.50};
-  p.wheel_time_constant = 0.02;
-  return p;
-}
-
 }  // namespace fleet::aisle

@@ -9,6 +9,7 @@
 #include "geometry/polygon.hpp"
 #include "planning/lidar_sim.hpp"
 #include "sim/forklift_body.hpp"
+#include "sim/summit_xls.hpp"  // the picker's base: sim::summit_xls_body_params()
 
 namespace fleet::aisle {
 
@@ -81,10 +82,5 @@ class PickerLidars {
   planning::LidarSim lidar_;
   std::vector<geometry::Vec2> beam_directions_;  ///< unit vectors of the beams in the sensor frame
 };
-
-/// The picker's mecanum base, a Robotnik Summit-XLS [Picker thesis, section 3.1]: 0.65 x 0.50 m, 3 m/s top speed,
-/// the first-order wheel response τ = 0.02 s [eq. 4.29]. The seed gives no wheel radius or wheel spacing (r, a, b of
-/// eq. 3.5-3.6); chosen: r = 0.127 m, a = 0.235 m, b = 0.20 m.
-sim::ForkliftParams picker_body_params();
 
 }  // namespace fleet::aisle
