@@ -123,6 +123,10 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       }
       if (result == traffic::SubmitStatus::kAccepted) trims_.erase(request.robot_id);
     }
+    // Leaving a dock or a bay, a robot that sweeps across the lane turning onto it (a stacker)
+    // sends the area of that way out: it enters once nobody holds or stands in it, and holds it
+    // as it enters (its route keeps those places until it is past the route's first edge).
+    if (enter && standing && !request.work_area.empty() && !way_out_clear(request, id, now_sim, now_wall)) return;
     if (enter) {
       // A robot already part-way along its route (the server restarted under it, or it was
       // lost and came back) enters where it is: the points behind it are cut off, and its
@@ -231,15 +235,13 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   answer.version = request.version;
   answer.sim_time = now_sim;
   if (!working_.contains(request.robot_id)) {
-    std::map<int, geometry::Polygon> bodies;
-    for (const auto& [name, polygon] : bodies_) {
-      if (const auto number = numbers_.find(name); number != numbers_.end()) bodies[number->second] = polygon;
-    }
-    const std::vector<int> blockers = manager_.holders_in_area(id, swept, bodies);
+    const std::vector<int> blockers = robots_in_area(id, swept);
     if (!blockers.empty()) {
       if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
       answer.status = "AREA_WAITING";
       for (int b : blockers) answer.blocked_by.push_back(names_[b]);
+      // Known as waiting for them: a robot whose way out onto the road it stands in goes first.
+      status_[request.robot_id] = {"AREA_WAITING", 0.0, answer.blocked_by, {}};
       publish(std::move(answer), now_wall);
       return;
     }
@@ -250,6 +252,46 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   hold_body(request.robot_id, id, area, now_sim);
   answer.status = "AREA_CLEAR";
   publish(std::move(answer), now_wall);
+}
+
+std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon& area) const {
+  std::map<int, geometry::Polygon> bodies;
+  for (const auto& [name, polygon] : bodies_) {
+    if (const auto number = numbers_.find(name); number != numbers_.end()) bodies[number->second] = polygon;
+  }
+  return manager_.holders_in_area(id, area, bodies);
+}
+
+bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall) {
+  const geometry::Polygon swept = traffic::convex_hull(request.work_area);
+  std::vector<std::string> blockers;
+  for (int b : robots_in_area(id, swept)) {
+    // A robot that waits for this one's body stands clear of it; if it stands in the way out,
+    // this one's own checks stop it there, and the wait cycle that makes is broken by traffic.
+    const auto waits = status_.find(names_[b]);
+    const bool waits_for_it =
+        waits != status_.end() && std::find(waits->second.blocked_by.begin(), waits->second.blocked_by.end(),
+                                            request.robot_id) != waits->second.blocked_by.end();
+    if (!waits_for_it) blockers.push_back(names_[b]);
+  }
+  if (!blockers.empty()) {
+    model::TrafficGrant wait;
+    wait.robot_id = request.robot_id;
+    wait.version = request.version;
+    wait.granted_index = -1;
+    wait.status = "WAITING";
+    wait.blocked_by = blockers;
+    wait.sim_time = now_sim;
+    status_[request.robot_id] = {"WAITING", 0.0, std::move(blockers), {}};
+    publish(std::move(wait), now_wall);
+    return false;
+  }
+  std::vector<geometry::Vec2> corners = request.work_area;
+  if (const auto body = bodies_.find(request.robot_id); body != bodies_.end()) {
+    corners.insert(corners.end(), body->second.begin(), body->second.end());
+  }
+  hold_body(request.robot_id, id, traffic::convex_hull(std::move(corners)), now_sim);
+  return true;
 }
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {
@@ -324,7 +366,8 @@ void TrafficControl::update(double now_sim, double now_wall) {
     if (manager_.frozen(g.robot_id)) {
       // Standing where it is (parked, lost, or not admitted yet): nothing to grant, its places shown.
       auto& status = status_[robot];
-      if (status.status == "WAITING") continue;  // waiting to enter: keeps who it waits for
+      // Waiting to enter or for its work area: keeps who it waits for.
+      if (status.status == "WAITING" || status.status == "AREA_WAITING") continue;
       status = {"STANDING", 0.0, {}, {}};
       for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
       continue;

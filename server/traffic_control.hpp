@@ -54,6 +54,11 @@ class TrafficControl {
   /// A robot off the roads with a work area (model::TrafficRequest::work_area): holds the area
   /// once it is clear and answers AREA_CLEAR, else holds the body and answers AREA_WAITING.
   void work_beside_roads(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
+  /// Robots holding places the area touches or standing in it (TrafficManager::holders_in_area).
+  std::vector<int> robots_in_area(int id, const geometry::Polygon& area) const;
+  /// A standing robot's way out onto the road (its request's work_area) is free: it is held for
+  /// it. Otherwise the robot is answered WAITING for those in it.
+  bool way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
   void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;

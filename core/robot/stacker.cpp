@@ -171,6 +171,7 @@ TrafficRoute Stacker::traffic_route() const {
   TrafficRoute r = follower_.route();
   if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
   if (!follower_.on_road() && law_) r.work_area = work_area_;
+  if (follower_.before_road() && !way_out_.empty()) r.work_area = way_out_;
   return r;
 }
 
@@ -216,6 +217,7 @@ bool Stacker::plan_route() {
   if (auto permit = follower_.take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, estimate().position());
+    note_way_out();
     safety_.clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
     return true;
@@ -233,8 +235,17 @@ bool Stacker::plan_route() {
     return false;
   }
   follower_.adopt_plan(route);
+  note_way_out();
   safety_.clear();
   return true;
+}
+
+void Stacker::note_way_out() {
+  // Beside the road (in a dock, in its bay) its way onto the lane sweeps across it; on the road
+  // the route's places cover the body.
+  constexpr double kBesideTheRoad = 0.3;  // metres of path before the road's first point
+  way_out_.clear();
+  if (config_.traffic && follower_.road_start() > kBesideTheRoad) way_out_ = way_out_area();
 }
 
 double Stacker::clearance_ahead() const {

@@ -134,6 +134,12 @@ class Stacker : public Robot {
   /// pivot at target 2, the realignment stand-off and the docked pose, grown by the safety gap
   /// (TrafficRoute::work_area).
   std::vector<geometry::Vec2> manoeuvre_area() const;
+  /// The corners of the footprints the way out of a dock or bay onto the road sweeps: turning
+  /// about the rear axle towards the path, then along it to 1 m past the road's start, grown by
+  /// the safety gap (TrafficRoute::work_area while on that way).
+  std::vector<geometry::Vec2> way_out_area() const;
+  /// way_out_ for the path just adopted.
+  void note_way_out();
   double clearance_ahead() const;
   void update_sensors();
   void apply(const sim::TricycleCommand& command);
@@ -176,6 +182,7 @@ class Stacker : public Robot {
   std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
   std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
   bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
+  std::vector<geometry::Vec2> way_out_;               ///< way_out_area() of the route it leaves a dock or bay by
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

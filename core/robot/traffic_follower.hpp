@@ -83,6 +83,10 @@ class TrafficFollower {
   TrafficRoute route() const;
   std::uint64_t version() const { return version_; }
   bool on_road() const { return !road_points_.empty(); }
+  /// Metres of path before the road part starts: the way from beside the road onto it.
+  double road_start() const { return road_start_; }
+  /// Still on the way onto the road, where it was last found (room()).
+  bool before_road() const { return on_road() && path_s_ < road_start_; }
   bool in_siding() const { return in_siding_; }
   /// Who holds the road ahead, as the latest grant says.
   const std::vector<std::string>& blocked_by() const { return permit_.blocked_by; }

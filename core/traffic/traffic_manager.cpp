@@ -138,9 +138,11 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
-  // The reach of the body it stood with stays until it has driven off (release_passed): a robot
-  // sending a new route before it moved still stands there, and keeps the right of way under it.
-  if (was_standing) pull_back_grants_into(robot);
+  if (was_standing) {
+    pull_back_grants_into(robot);
+  } else {
+    robot.body_reach.clear();
+  }
   return SubmitStatus::kAccepted;
 }
 
@@ -521,12 +523,6 @@ UpdateResult TrafficManager::update(double now) {
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     return higher_priority(*slots_[static_cast<std::size_t>(a)], *slots_[static_cast<std::size_t>(b)]);
-  });
-  // Robots on their way to a siding first: the robots they make way for wait for them, and
-  // granted first those would take the road to the siding, which crosses their routes.
-  std::stable_partition(order.begin(), order.end(), [&](int s) {
-    const Robot& robot = *slots_[static_cast<std::size_t>(s)];
-    return robot.in_siding && robot.siding_arrival < 0.0;
   });
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];

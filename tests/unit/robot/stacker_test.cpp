@@ -13,6 +13,7 @@
 #include "map/site_map.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker_job.hpp"
+#include "traffic/conflict_zones.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 using namespace fleet;
@@ -221,6 +222,27 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
     EXPECT_TRUE(details.contains(phase)) << phase;
   }
   EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << "the area is let go once docked";
+  // Loaded, it asks for its way out onto the road with its route: from where it stands, turning
+  // onto the lane, to past the route's first point.
+  for (int i = 0; i < 20 * 30 && stacker->traffic_route().points.empty(); ++i) stacker->step();
+  const robot::TrafficRoute out = stacker->traffic_route();
+  ASSERT_FALSE(out.points.empty()) << stacker->task_state();
+  const std::vector<geometry::Vec2> way_out = out.work_area;
+  ASSERT_FALSE(way_out.empty()) << "no way out asked for";
+  const auto in_hull = [&](geometry::Vec2 p) {
+    return geometry::convex_polygons_overlap(traffic::convex_hull(way_out),
+                                             {p, p + geometry::Vec2{1e-3, 0.0}, p + geometry::Vec2{0.0, 1e-3}});
+  };
+  EXPECT_TRUE(in_hull(stacker->estimate().position()));
+  const auto& road = plant.site->graph.graph.points;
+  const auto& first = road[static_cast<std::size_t>(out.points.front())];
+  EXPECT_TRUE(in_hull({first.x, first.y}));
+  // Granted, it drives out; on the road it asks for no area any more.
+  for (int i = 0; i < 20 * 30; ++i) {
+    grant_all();
+    stacker->step();
+  }
+  EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << stacker->task_state() << " " << stacker->detail();
 }
 
 TEST(Stacker, APalletNotWhereLogisticsSaysFailsTheOrderWithWhatTheCamerasSaw) {

@@ -58,47 +58,5 @@ TEST(StandingConflict, TheRobotAheadDrivesAwayFromTheOneWaitingForIt) {
   EXPECT_GE(driven, 3.0) << "robot 2 never drove on; it waits for " << grant_of(r, 2)->blocked_by.size() << " robots";
 }
 
-TEST(StandingConflict, ARobotThatStillStandsWhereItWasKeepsItsBodysRightOfWayOnItsNextRoute) {
-  GraphBuilder b;
-  const auto road = b.road(0.0, 0.0, 10.0, 0.0, 0.5);
-  TrafficConfiguration c;
-  c.one_way = false;
-  c.resources.footprint = {1.0, 0.6};
-  c.resources.margin = 0.1;
-  TrafficManager m(b.graph(), c);
-  // As above: robot 1 waits behind robot 2's old spot, and robot 2 stands 0.8 m behind it.
-  const std::vector<int> from_three(road.begin() + (point_at(b.graph(), 3.0, 0.0) - road.front()), road.end());
-  ASSERT_EQ(m.submit_route({2, 1, from_three}, 0.0), SubmitStatus::kAccepted);
-  double t = 0.0;
-  UpdateResult r = m.update(t);
-  m.report_progress({2, 1, 2.0, {}}, t);
-  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
-  for (int i = 0; i < 100; ++i, t += 0.1) {
-    r = m.update(t);
-    m.report_progress({1, 1, grant_of(r, 1)->granted_distance, {}}, t);
-    m.report_progress({2, 1, 2.0, {}}, t);
-  }
-  m.remove_robot(2, t);
-  ASSERT_TRUE(m.hold_body(2, geometry::footprint_polygon({4.2, 0.0, 0.0}, {1.0, 0.6}), t));
-  const int from = point_at(b.graph(), 4.0, 0.0);
-  const std::vector<int> onward(road.begin() + (from - road.front()), road.end());
-  ASSERT_EQ(m.submit_route({2, 2, onward}, t), SubmitStatus::kAccepted);
-  r = m.update(t);
-  // Before it moved, its order changes and it sends another route from the same spot (shorter,
-  // the same way): it still stands where it stood and drives away as before.
-  const std::vector<int> shorter(onward.begin(), onward.begin() + 6);
-  ASSERT_EQ(m.submit_route({2, 3, shorter}, t), SubmitStatus::kAccepted);
-  double driven = 0.0;
-  for (int i = 0; i < 200 && driven < 2.5; ++i, t += 0.1) {
-    r = m.update(t);
-    const Grant* g2 = grant_of(r, 2);
-    ASSERT_NE(g2, nullptr);
-    driven = std::min(driven + 0.1, g2->granted_distance);
-    m.report_progress({2, 3, driven, {}}, t);
-    m.report_progress({1, 1, grant_of(r, 1)->granted_distance, {}}, t);
-  }
-  EXPECT_GE(driven, 2.5) << "robot 2 never drove on; it waits for " << grant_of(r, 2)->blocked_by.size() << " robots";
-}
-
 }  // namespace
 }  // namespace fleet::traffic
