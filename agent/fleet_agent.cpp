@@ -323,6 +323,9 @@ void FleetAgent::publish_state(double now_sim) {
   state.order_id = order_ ? order_->assignment.order_id : 0;
   state.carrying_pallet = robot_->carried_load() >= 0;
   state.sim_time = now_sim;
+  robot::DockingView docking = robot_->docking_view();
+  state.docking_targets = std::move(docking.targets);
+  state.detected_pallet = docking.detected_pallet;
   if (pose_delay_s_ > 0.0) {
     // A slow network: the state is stamped now and arrives late.
     std::uniform_real_distribution<double> jitter(-pose_jitter_s_, pose_jitter_s_);

@@ -1,6 +1,8 @@
 #include "dds/topics.hpp"
 
+#include <algorithm>
 #include <deque>
+#include <optional>
 
 #include "fleet.h"
 
@@ -21,6 +23,7 @@ struct Scratch {
   std::deque<std::vector<fleet_msg_RobotSnapshot>> snapshots;
   std::deque<std::vector<fleet_msg_OrderEvent>> events;
   std::deque<std::vector<int32_t>> ints;
+  std::deque<std::vector<fleet_msg_Pose2D>> poses;
 
   dds_sequence_string string_seq(const std::vector<std::string>& items) {
     auto& buffer = strings.emplace_back();
@@ -31,6 +34,13 @@ struct Scratch {
   dds_sequence_fleet_msg_Point2D point_seq(const std::vector<geometry::Vec2>& items) {
     auto& buffer = points.emplace_back();
     for (const auto& p : items) buffer.push_back({p.x, p.y});
+    return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
+  }
+
+  /// An optional pose as a sequence of at most one.
+  dds_sequence_fleet_msg_Pose2D pose_seq(const std::optional<geometry::Pose2>& item) {
+    auto& buffer = poses.emplace_back();
+    if (item) buffer.push_back({item->x, item->y, item->yaw});
     return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
   }
 };
@@ -69,6 +79,11 @@ std::vector<geometry::Vec2> points_of(const dds_sequence_fleet_msg_Point2D& seq)
   out.reserve(seq._length);
   for (uint32_t i = 0; i < seq._length; ++i) out.push_back({seq._buffer[i].x, seq._buffer[i].y});
   return out;
+}
+
+std::optional<geometry::Pose2> pose_of(const dds_sequence_fleet_msg_Pose2D& seq) {
+  if (seq._length == 0) return std::nullopt;
+  return model_pose(seq._buffer[0]);
 }
 
 template <typename Wire, typename Model, typename FromWire>
@@ -207,7 +222,7 @@ model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
   return v;
 }
 
-fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch&) {
+fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch& s) {
   fleet_msg_RobotState w{};
   w.robot_id = borrow(v.robot_id);
   w.fleet_id = borrow(v.fleet_id);
@@ -222,6 +237,12 @@ fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch&) {
   w.order_id = v.order_id;
   w.carrying_pallet = v.carrying_pallet;
   w.sim_time = v.sim_time;
+  // The IDL bounds the targets at two: target 1 and target 2.
+  constexpr std::size_t kMaxDockingTargets = 2;
+  const std::size_t targets = std::min(v.docking_targets.size(), kMaxDockingTargets);
+  w.docking_targets =
+      s.point_seq(std::vector<geometry::Vec2>(v.docking_targets.begin(), v.docking_targets.begin() + targets));
+  w.detected_pallet = s.pose_seq(v.detected_pallet);
   return w;
 }
 model::RobotState from_wire(const fleet_msg_RobotState& w) {
@@ -239,6 +260,8 @@ model::RobotState from_wire(const fleet_msg_RobotState& w) {
   v.order_id = w.order_id;
   v.carrying_pallet = w.carrying_pallet;
   v.sim_time = w.sim_time;
+  v.docking_targets = points_of(w.docking_targets);
+  v.detected_pallet = pose_of(w.detected_pallet);
   return v;
 }
 

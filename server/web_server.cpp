@@ -63,6 +63,15 @@ json robot_json(const RobotView& view) {
     j["traffic"] = {{"status", view.traffic}, {"waiting_for", view.waiting_for}, {"reserved", std::move(reserved)}};
   }
   // Absent rather than null: a frame never holds null, so null in a diff means "removed".
+  if (!s.docking_targets.empty()) {
+    json targets = json::array();
+    for (const auto& p : s.docking_targets) targets.push_back(point(p.x, p.y));
+    j["dock_targets"] = std::move(targets);
+  }
+  if (s.detected_pallet) {
+    j["detected_pallet"] =
+        json::array({r4(s.detected_pallet->x), r4(s.detected_pallet->y), r4(s.detected_pallet->yaw)});
+  }
   if (view.truth) {
     j["truth"] = json::array({r4(view.truth->pose.x), r4(view.truth->pose.y), r4(view.truth->pose.yaw)});
     j["truth_carrying"] = view.truth->carrying_pallet;

@@ -1,7 +1,9 @@
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "server/web_json.hpp"
 #include "server/web_server.hpp"
+#include "sim/tricycle.hpp"
 #include "vehicle/factsheet.hpp"
 
 // What the page draws that never changes while the server runs (GET /api/site) and the fleets'
@@ -11,6 +13,27 @@ namespace fleet::server {
 
 using nlohmann::json;
 using namespace web_json;
+
+namespace {
+
+/// A stacker's two fork tines, body frame: the simulated stacker's (sim::TricycleGeometry) with
+/// their tips at the footprint's back end, where its software puts them
+/// (robot::StackerConfig::for_vehicle). Empty for the robot types without forks.
+json forks_json(const config::FleetSpec& fleet) {
+  json forks = json::array();
+  if (fleet.robot_type != "stacker" || fleet.profile.footprint.empty()) return forks;
+  const auto& footprint = fleet.profile.footprint;
+  const double back = std::min_element(footprint.begin(), footprint.end(), [](auto a, auto b) { return a.x < b.x; })->x;
+  const sim::TricycleGeometry geometry;
+  for (const auto& tine : sim::tricycle_forks(geometry)) {
+    json polygon = json::array();
+    for (const auto& p : tine) polygon.push_back(point(p.x - geometry.fork_tip_x() + back, p.y));
+    forks.push_back(std::move(polygon));
+  }
+  return forks;
+}
+
+}  // namespace
 
 json fleets_json(const config::FleetConfig& config) {
   json fleets = json::array();
@@ -117,12 +140,14 @@ json site_json(const WebSiteInfo& info) {
     for (const auto& [fleet, robot] : info.config->all_robots()) {
       json polygon = json::array();
       for (const auto& p : fleet->profile.footprint) polygon.push_back({p.x, p.y});
-      robots.push_back({{"id", robot->id},
-                        {"fleet", fleet->id},
-                        {"type", fleet->robot_type},
-                        {"home", robot->home},
-                        {"fp", json::array({fleet->footprint.length, fleet->footprint.width})},
-                        {"poly", std::move(polygon)}});
+      json spec = {{"id", robot->id},
+                   {"fleet", fleet->id},
+                   {"type", fleet->robot_type},
+                   {"home", robot->home},
+                   {"fp", json::array({fleet->footprint.length, fleet->footprint.width})},
+                   {"poly", std::move(polygon)}};
+      if (json forks = forks_json(*fleet); !forks.empty()) spec["forks"] = std::move(forks);
+      robots.push_back(std::move(spec));
     }
     for (const auto& fleet : info.config->fleets) fleets.push_back({{"id", fleet.id}, {"type", fleet.robot_type}});
   }

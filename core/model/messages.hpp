@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -127,6 +128,11 @@ struct RobotState {
   std::int64_t order_id = 0;
   bool carrying_pallet = false;
   double sim_time = 0.0;
+  /// While the robot docks (a stacker): where its rear axle is steered to before the final
+  /// approach, target 1 then target 2, and the pallet its cameras detect (centre and entry-axis
+  /// yaw), in the frame of `pose`. Empty otherwise.
+  std::vector<geometry::Vec2> docking_targets;
+  std::optional<geometry::Pose2> detected_pallet;
 };
 
 struct RobotPath {

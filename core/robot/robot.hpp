@@ -54,6 +54,16 @@ struct TrafficPermit {
   Area area = Area::kNone;
 };
 
+/// A docking as the robot knows it, for the web view; map frame, the frame of estimate().
+struct DockingView {
+  /// Where the rear axle is steered to before the final approach: target 1, then target 2.
+  std::vector<geometry::Vec2> targets;
+  /// The pallet the cameras detect now: its centre and entry-axis yaw.
+  std::optional<geometry::Pose2> detected_pallet;
+
+  bool empty() const { return targets.empty() && !detected_pallet; }
+};
+
 /// What happened during a step, for the agent to report. The same for every robot type: the
 /// load is whatever the type carries (a pallet for a forklift).
 struct RobotEvent {
@@ -133,6 +143,8 @@ class Robot {
   virtual std::uint64_t route_version() const = 0;
   /// Whether the robot stands at the end of what traffic granted it.
   virtual bool held_by_traffic() const = 0;
+  /// The docking under way; empty when none (and for types that do not dock).
+  virtual DockingView docking_view() const { return {}; }
 };
 
 }  // namespace fleet::robot

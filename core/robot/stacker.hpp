@@ -114,6 +114,7 @@ class Stacker : public Robot {
   TrafficRoute traffic_route() const override;
   std::uint64_t route_version() const override { return follower_.version(); }
   bool held_by_traffic() const override { return held_by_traffic_; }
+  DockingView docking_view() const override;
 
   // For tests and logs.
   StackerState state() const { return state_; }
@@ -178,6 +179,7 @@ class Stacker : public Robot {
   double next_route_try_ = 0.0;
   std::optional<control::DockingLaw> law_;
   std::optional<perception::StackerCameraDetector> detector_;
+  std::optional<geometry::Pose2> detected_pallet_;  ///< the cameras' latest find, until a frame finds nothing
   int dock_attempts_ = 0;
   std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
   std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps

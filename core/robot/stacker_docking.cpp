@@ -92,6 +92,7 @@ void Stacker::start_docking() {
   }
   reports_.set_detail("");
   shown_phase_.reset();
+  detected_pallet_.reset();
   work_area_ = manoeuvre_area();
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
@@ -125,6 +126,13 @@ std::vector<Vec2> Stacker::manoeuvre_area() const {
   return corners;
 }
 
+DockingView Stacker::docking_view() const {
+  if (!law_) return {};
+  const auto [target1, target2] = law_->targets();
+  // Placing a carried pallet or parking, the cameras look for nothing.
+  return {{target1, target2}, detector_ ? detected_pallet_ : std::nullopt};
+}
+
 void Stacker::dock() {
   if (!area_clear_) {
     // Standing at the end of its route until traffic holds the manoeuvre's area for it.
@@ -138,8 +146,11 @@ void Stacker::dock() {
   if (detector_) {
     // The cameras look where the law expects the pallet relative to the vehicle; what they find
     // is put in the law's frame by the vehicle's estimate.
+    const int frames = detector_->frames();
     const auto seen = (*detector_)(body_.pose(), reframe(estimate_, body_.pose(), law_->pallet_estimate()), time_);
     if (seen) in.pallet_detection = reframe(body_.pose(), estimate_, *seen);
+    // Between frames the cameras have not lost it: a detection lasts until a frame finds nothing.
+    if (detector_->frames() != frames) detected_pallet_ = in.pallet_detection;
   }
   const control::DockingOutput out = law_->update(in);
   if (out.phase != shown_phase_) {

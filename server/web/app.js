@@ -10,17 +10,9 @@
   // ?fps: redraw every animation frame, even without news, to measure drawing speed.
   const alwaysDraw = params.has('fps');
 
-  // Task states of the thesis's state machine (plus WAITING, PAUSED, ERROR).
-  const STATE_COLOURS = {
-    IDLE: '#5b7083', TRACK_PATH: '#2e8b57', SEARCH_PALLET: '#e07a1f', PICK_PALLET: '#d0611a',
-    DROP_PALLET: '#b5541c', GO_HOME: '#1f8a9d', WAITING: '#e0b000', PAUSED: '#8e6cc0', ERROR: '#d62828',
-  };
-  const LOST_COLOUR = '#a8b0b8';
-  const GLOBAL_PLAN = '#1f5fd6';  // the global plan in blue [Forklift thesis, Fig. 5.12]
-  const RESERVATION = 'rgba(230,120,20,0.85)';  // traffic: road places a robot holds
-  const LOCAL_PLAN = '#d62828';  // the local plan in red [Forklift thesis, Fig. 5.12]
-  const LOCAL_PLAN_LENGTH = 1.0;  // metres of path the robot checks against the dynamic grid (core/robot)
-  const PALLET = '#9a6a3a';
+  // robots.js draws the robots; the legend and the loading areas share its colours.
+  const { STATE_COLOURS, LOST_COLOUR, GLOBAL_PLAN, RESERVATION, LOCAL_PLAN, LOCAL_PLAN_LENGTH, PALLET, FLEET_COLOURS,
+    DOCKING_TARGET, DETECTED_PALLET } = globalThis.fleetRobots;
 
   const el = (id) => document.getElementById(id);
   const canvas = el('map');
@@ -80,6 +72,10 @@
     c.beginPath();
     points.forEach(([x, y], i) => (i ? c.lineTo(X(x), Y(y)) : c.moveTo(X(x), Y(y))));
   }
+
+  const robotsLayer = globalThis.fleetRobots.painter({
+    ctx, X, Y, view, toggles, site: () => site, label, polyPath, linePath, fmtAge, drawn,
+  });
 
   // Roads, graph, racks, anchors and homes never change: drawn once per size into a layer.
   function drawStatic() {
@@ -229,180 +225,6 @@
     }
   }
 
-  function footprintCorners(x, y, yaw, length, width) {
-    const c = Math.cos(yaw), s = Math.sin(yaw);
-    return [[length / 2, width / 2], [-length / 2, width / 2], [-length / 2, -width / 2], [length / 2, -width / 2]]
-      .map(([bx, by]) => [x + c * bx - s * by, y + s * bx + c * by]);
-  }
-
-  // The robot's true footprint polygon (body frame, from its fleet's vehicle profile) at a pose;
-  // the length x width rectangle when the site does not know the robot.
-  function bodyCorners(id, x, y, yaw, length, width) {
-    const spec = site.robots.find((r) => r.id === id);
-    if (!spec || !spec.poly) return footprintCorners(x, y, yaw, length, width);
-    const c = Math.cos(yaw), s = Math.sin(yaw);
-    return spec.poly.map(([bx, by]) => [x + c * bx - s * by, y + s * bx + c * by]);
-  }
-
-  // Each fleet's outline colour, in the order the site lists the fleets.
-  const FLEET_COLOURS = ['#1d232a', '#d1495b', '#00798c', '#edae49', '#66a182'];
-  function fleetColourOf(id) {
-    const spec = site.robots.find((r) => r.id === id);
-    const index = spec && site.fleets ? site.fleets.findIndex((f) => f.id === spec.fleet) : 0;
-    return FLEET_COLOURS[Math.max(index, 0) % FLEET_COLOURS.length];
-  }
-
-  function colourOf(r) {
-    if (r.health === 'lost') return LOST_COLOUR;
-    return STATE_COLOURS[r.state] || '#5b7083';
-  }
-
-  function drawPath(r) {
-    if (!r.path || r.path.length < 2) return;
-    ctx.strokeStyle = r.health === 'lost' ? 'rgba(160,168,176,0.6)' : GLOBAL_PLAN;
-    ctx.lineWidth = 2;
-    ctx.globalAlpha = 0.85;
-    linePath(ctx, r.path);
-    ctx.stroke();
-    ctx.globalAlpha = 1;
-    const [gx, gy] = r.path[r.path.length - 1];
-    ctx.fillStyle = GLOBAL_PLAN;
-    ctx.beginPath();
-    ctx.arc(X(gx), Y(gy), 3, 0, 2 * Math.PI);
-    ctx.fill();
-  }
-
-  // The local plan: the stretch of the path just ahead of the robot that it checks against the
-  // other robots and what its lidar sees (the dynamic grid [Forklift thesis, section 5.3]).
-  function drawLocalPlan(r) {
-    if (!r.path || r.path.length < 2 || r.health === 'lost') return;
-    let best = 0, bestD = Infinity;
-    for (let i = 0; i + 1 < r.path.length; i++) {
-      const [ax, ay] = r.path[i], [bx, by] = r.path[i + 1];
-      const dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
-      const t = len2 > 0 ? Math.max(0, Math.min(1, ((r.x - ax) * dx + (r.y - ay) * dy) / len2)) : 0;
-      const d = Math.hypot(ax + t * dx - r.x, ay + t * dy - r.y);
-      if (d < bestD) { bestD = d; best = i; }
-    }
-    const pts = [[r.x, r.y]];
-    let left = LOCAL_PLAN_LENGTH;
-    for (let i = best + 1; i < r.path.length && left > 0; i++) {
-      const [px, py] = pts[pts.length - 1];
-      const [nx, ny] = r.path[i];
-      const d = Math.hypot(nx - px, ny - py);
-      if (d >= left) { pts.push([px + (nx - px) * left / d, py + (ny - py) * left / d]); left = 0; } else { pts.push([nx, ny]); left -= d; }
-    }
-    if (pts.length < 2) return;
-    ctx.strokeStyle = LOCAL_PLAN;
-    ctx.lineWidth = 3;
-    linePath(ctx, pts);
-    ctx.stroke();
-  }
-
-  // Traffic reservations: the road places a robot holds, as dots along its way, hollow while it
-  // waits for them to grow.
-  function drawReservations(r) {
-    if (!r.traffic || !r.traffic.reserved || r.health === 'lost') return;
-    const waiting = r.traffic.status === 'WAITING';
-    ctx.strokeStyle = RESERVATION;
-    ctx.fillStyle = RESERVATION;
-    ctx.lineWidth = 1.5;
-    for (const [x, y] of r.traffic.reserved) {
-      ctx.beginPath();
-      ctx.arc(X(x), Y(y), Math.max(2, 0.03 * view.scale), 0, 2 * Math.PI);
-      if (waiting) ctx.stroke(); else ctx.fill();
-    }
-  }
-
-  // The 95 % ellipse of the position covariance [xx, xy, yy].
-  function drawCovariance(r) {
-    const [a, b, c] = r.cov;
-    const mean = (a + c) / 2;
-    const d = Math.sqrt(((a - c) / 2) ** 2 + b * b);
-    const l1 = Math.max(mean + d, 0), l2 = Math.max(mean - d, 0);
-    const k = 2.4477;  // sqrt(chi2(2 dof, 0.95))
-    const rx = k * Math.sqrt(l1) * view.scale, ry = k * Math.sqrt(l2) * view.scale;
-    if (rx < 0.5) return;
-    const angle = 0.5 * Math.atan2(2 * b, a - c);
-    ctx.strokeStyle = 'rgba(123,44,191,0.95)';
-    ctx.fillStyle = 'rgba(123,44,191,0.18)';
-    ctx.lineWidth = 1;
-    ctx.beginPath();
-    ctx.ellipse(X(r.x), Y(r.y), rx, Math.max(ry, 0.5), -angle, 0, 2 * Math.PI);
-    ctx.fill();
-    ctx.stroke();
-  }
-
-  function drawRobot(id, r) {
-    const [length, width] = r.fp;
-    const lost = r.health === 'lost';
-    const colour = colourOf(r);
-    if (toggles.truth && r.truth) {
-      const [tx, ty, tyaw] = r.truth;
-      polyPath(ctx, bodyCorners(id, tx, ty, tyaw, length, width));
-      ctx.setLineDash([3, 2]);
-      ctx.strokeStyle = '#222';
-      ctx.lineWidth = 1.2;
-      ctx.stroke();
-      ctx.setLineDash([]);
-    }
-    ctx.globalAlpha = lost ? 0.55 : 1;
-    polyPath(ctx, bodyCorners(id, r.x, r.y, r.yaw, length, width));
-    ctx.fillStyle = colour;
-    ctx.fill();
-    ctx.lineWidth = r.health === 'stale' || (site.fleets && site.fleets.length > 1) ? 2 : 1;
-    ctx.strokeStyle = r.health === 'stale' ? '#c77c02' : fleetColourOf(id);
-    if (r.health === 'stale') ctx.setLineDash([3, 2]);
-    ctx.stroke();
-    ctx.setLineDash([]);
-    const c = Math.cos(r.yaw), s = Math.sin(r.yaw);
-    const at = (bx, by) => [X(r.x + c * bx - s * by), Y(r.y + s * bx + c * by)];
-    if (r.carrying) {
-      // The pallet on the forks, at the front half of the body.
-      const p = site.pallet_size;
-      polyPath(ctx, footprintCorners(r.x + c * length * 0.25, r.y + s * length * 0.25, r.yaw, Math.min(p, length / 2), Math.min(p, width)));
-      ctx.fillStyle = PALLET;
-      ctx.fill();
-      ctx.strokeStyle = '#3d2b16';
-      ctx.stroke();
-    }
-    // Heading: a triangle at the front.
-    const [ax, ay] = at(length / 2 + 0.03, 0);
-    const [bx1, by1] = at(length / 2 - 0.01, width * 0.3);
-    const [bx2, by2] = at(length / 2 - 0.01, -width * 0.3);
-    ctx.fillStyle = lost ? LOST_COLOUR : '#1d232a';
-    ctx.beginPath();
-    ctx.moveTo(ax, ay);
-    ctx.lineTo(bx1, by1);
-    ctx.lineTo(bx2, by2);
-    ctx.closePath();
-    ctx.fill();
-    ctx.globalAlpha = 1;
-    // Over the body: an ellipse smaller than the robot still shows.
-    if (toggles.cov && r.cov && !lost) drawCovariance(r);
-    const px = X(r.x), py = Y(r.y);
-    drawn[id] = [px, py];
-    if (toggles.labels) {
-      const half = Math.max(length, width) * view.scale * 0.6 + 4;
-      ctx.font = 'bold 12px sans-serif';
-      ctx.fillStyle = lost ? '#6b7785' : '#10161c';
-      label(ctx, id, px + half, py - half + 6, px - half);
-      ctx.font = '11px sans-serif';
-      let note = '';
-      if (lost) note = `lost ${fmtAge(r.age)} ago`;
-      else if (r.health === 'stale') note = `stale ${fmtAge(r.age)}`;
-      else if (r.state === 'WAITING' || r.state === 'PAUSED' || r.state === 'ERROR') note = r.detail || r.state.toLowerCase();
-      if (note) {
-        const w = ctx.measureText(note).width;
-        const nx = px + half + w > view.width - 2 ? px - half - w : px + half;
-        ctx.fillStyle = 'rgba(255,255,255,0.85)';
-        ctx.fillRect(nx - 2, py - half + 9, w + 4, 14);
-        ctx.fillStyle = lost ? '#6b7785' : r.state === 'ERROR' ? '#b00' : '#7a5b00';
-        ctx.fillText(note, nx, py - half + 20);
-      }
-    }
-  }
-
   function draw() {
     if (!site) return;
     stats.draws++;
@@ -414,10 +236,12 @@
     const robots = Object.entries(frame.robots);
     // Lost robots under the live ones, paths under every body.
     robots.sort(([, a], [, b]) => (a.health === 'lost') - (b.health === 'lost'));
-    if (toggles.paths) for (const [, r] of robots) drawPath(r);
-    if (toggles.paths) for (const [, r] of robots) drawLocalPlan(r);
-    if (toggles.paths) for (const [, r] of robots) drawReservations(r);
-    for (let i = robots.length - 1; i >= 0; i--) drawRobot(robots[i][0], robots[i][1]);
+    if (toggles.paths) for (const [, r] of robots) robotsLayer.drawPath(r);
+    if (toggles.paths) for (const [, r] of robots) robotsLayer.drawLocalPlan(r);
+    if (toggles.paths) for (const [, r] of robots) robotsLayer.drawReservations(r);
+    for (let i = robots.length - 1; i >= 0; i--) robotsLayer.drawRobot(robots[i][0], robots[i][1]);
+    // Over the bodies: a stacker docking passes over its targets and forks into the pallet.
+    for (const [, r] of robots) robotsLayer.drawDocking(r);
   }
 
   // ---- tables and figures ----
@@ -461,7 +285,7 @@
       const detail = r.detail ? `<span class="detail">${esc(r.detail)}</span>` : '';
       const mapNote = r.map && r.map !== site.site ? `<span class="detail">map ${esc(r.map)}</span>` : '';
       return `<tr class="${r.health === 'lost' ? 'lost' : ''}" data-robot="${esc(id)}">` +
-        `<td><span class="dot" data-colour="${esc(colourOf(r))}"></span>${esc(id)}</td>` +
+        `<td><span class="dot" data-colour="${esc(robotsLayer.colourOf(r))}"></span>${esc(id)}</td>` +
         `<td>${esc(r.state)}${detail}${mapNote}</td>` +
         `<td class="health-${esc(r.health)}">${esc(health)}</td>` +
         `<td>${r.order ? esc(r.order) : ''}</td>` +
@@ -489,6 +313,10 @@
     parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
     parts.push(`<span><span class="dot" data-colour="${LOCAL_PLAN}"></span>local plan (next ${LOCAL_PLAN_LENGTH} m)</span>`);
     parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting)</span>`);
+    if (site && site.robots.some((r) => r.forks)) {
+      parts.push(`<span><span class="dot" data-colour="${DOCKING_TARGET}"></span>docking targets 1 and 2</span>`);
+      parts.push(`<span><span class="dot" data-colour="${DETECTED_PALLET}"></span>pallet the cameras detect (dashed)</span>`);
+    }
     // With several fleets each robot is outlined in its fleet's colour.
     if (site && site.fleets && site.fleets.length > 1) {
       site.fleets.forEach((f, i) => parts.push(

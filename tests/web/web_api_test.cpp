@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
-#include <thread>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "../integration/fleet_harness.hpp"
 
@@ -117,7 +119,7 @@ TEST_F(WebApi, ServesThePageAndItsFilesWithNothingFromElsewhere) {
   EXPECT_EQ(r->body.find("http://"), std::string::npos) << "the page must not load anything from outside";
   EXPECT_EQ(r->body.find("https://"), std::string::npos);
   EXPECT_NE(r->get_header_value("Content-Security-Policy").find("default-src 'self'"), std::string::npos);
-  for (const char* file : {"/app.js", "/style.css"}) {
+  for (const char* file : {"/app.js", "/robots.js", "/shapes.js", "/style.css"}) {
     auto f = http_->Get(file);
     ASSERT_TRUE(f) << file;
     EXPECT_EQ(f->status, 200) << file;
@@ -157,6 +159,8 @@ TEST_F(WebApi, StateListsTheRobotWithItsPoseAndHealth) {
   EXPECT_TRUE((*fl1)["y"].is_number());
   EXPECT_TRUE((*fl1)["yaw"].is_number());
   EXPECT_EQ((*fl1)["fleet"], "forklifts");
+  EXPECT_FALSE(fl1->contains("dock_targets")) << "a forklift shows no docking";
+  EXPECT_FALSE(fl1->contains("detected_pallet"));
   EXPECT_EQ(state["obstacles"].size(), 4u);
   EXPECT_EQ(state["pallets"].size(), 8u);
 }
@@ -320,4 +324,80 @@ TEST_F(WebApi, StreamStartsWithAFullFrameThenSendsDiffs) {
   EXPECT_TRUE(full["robots"].contains("fl1") || text.find("\"fl1\"", data_at + 6) != std::string::npos) << text;
   EXPECT_TRUE(full["globals"].contains("sim_time"));
   EXPECT_NE(text.find("event: diff\n"), std::string::npos) << text;
+}
+
+// A stacker on the plant: the site gives its fork tines, and while it docks its robot carries
+// the docking's two targets and the pallet its cameras detect; absent again once it is docked.
+TEST(WebApiStacker, ADockingStackerShowsItsTargetsAndTheDetectedPallet) {
+  constexpr int kStackerDomain = 192;
+  constexpr int kStackerPort = 18192;
+  FleetHarness fleet(kStackerDomain, 5.0, "plant");
+  fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  fleet.start_server({"--http-port", std::to_string(kStackerPort), "--api-token", kToken});
+  fleet.start_agent("st2");
+  httplib::Client http("127.0.0.1", kStackerPort);
+  http.set_read_timeout(10, 0);
+  const auto st2_in = [](const json& s) { return robot_in(s, "st2"); };
+  json state = wait_state(http, [&](const json& s) { return st2_in(s) && (*st2_in(s))["health"] == "alive"; });
+  ASSERT_NE(st2_in(state), nullptr) << state.dump() << fleet.log_of("fleet-server");
+  EXPECT_FALSE(st2_in(state)->contains("dock_targets")) << "parked in its bay";
+
+  // The site: the stackers' tines run from the footprint's back end (x -0.85) to the chassis.
+  const json site = parse(http.Get("/api/site"));
+  json fg5;
+  for (const auto& a : site["areas"]) {
+    if (a["id"] == "FG5") fg5 = a;
+  }
+  ASSERT_FALSE(fg5.is_null()) << "no area FG5 on the plant";
+  for (const auto& spec : site["robots"]) {
+    if (spec["type"] != "stacker") {
+      EXPECT_FALSE(spec.contains("forks")) << spec.dump();
+      continue;
+    }
+    ASSERT_EQ(spec["forks"].size(), 2u) << spec.dump();
+    for (const auto& tine : spec["forks"]) {
+      ASSERT_EQ(tine.size(), 4u) << spec.dump();
+      double back = 1e9, front = -1e9;
+      for (const auto& p : tine) {
+        back = std::min(back, p[0].get<double>());
+        front = std::max(front, p[0].get<double>());
+      }
+      EXPECT_NEAR(back, -0.85, 1e-3) << spec.dump();
+      EXPECT_NEAR(front, 0.30, 1e-3) << spec.dump();
+    }
+  }
+
+  httplib::Headers auth{{"Authorization", "Bearer " + kToken}};
+  auto r = http.Post("/api/orders", auth, R"({"from": "FG5", "to": "EX3", "robot": "st2"})", "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  state = wait_state(
+      http,
+      [&](const json& s) {
+        const json* st2 = st2_in(s);
+        return st2 && st2->contains("dock_targets") && st2->contains("detected_pallet");
+      },
+      150.0);
+  const json* st2 = st2_in(state);
+  ASSERT_TRUE(st2 && st2->contains("detected_pallet")) << state.dump() << fleet.log_of("fleet-agent-st2");
+  EXPECT_EQ((*st2)["state"], "DOCKING");
+  EXPECT_EQ((*st2)["dock_targets"].size(), 2u);
+  const json& seen = (*st2)["detected_pallet"];
+  ASSERT_EQ(seen.size(), 3u);
+  const double off =
+      std::hypot(seen[0].get<double>() - fg5["x"].get<double>(), seen[1].get<double>() - fg5["y"].get<double>());
+  EXPECT_LT(off, 0.15) << "the detected pallet is not FG5's: " << seen.dump() << " vs " << fg5.dump();
+
+  // Docked, it lifts and drives on: nothing of the docking is left.
+  state = wait_state(
+      http,
+      [&](const json& s) {
+        const json* now = st2_in(s);
+        return now && ((*now)["state"] == "LIFTING" || (*now)["state"] == "TO_DROP");
+      },
+      120.0);
+  st2 = st2_in(state);
+  ASSERT_TRUE(st2 && ((*st2)["state"] == "LIFTING" || (*st2)["state"] == "TO_DROP")) << state.dump();
+  EXPECT_FALSE(st2->contains("dock_targets")) << st2->dump();
+  EXPECT_FALSE(st2->contains("detected_pallet")) << st2->dump();
 }

@@ -74,9 +74,9 @@ TEST(WebFrames, SubMillimetreNoiseMakesNoDiff) {
 TEST(WebFrames, NewRemovedAndChangedEntitiesRoundTrip) {
   const LiveSnapshot a = snapshot(4);
   LiveSnapshot b = a;
-  b.robots.erase(b.robots.begin() + 1);           // r1 leaves
-  b.robots.push_back(robot("new", 1.0, 1.0));     // a robot joins
-  b.robots[0].truth = fleet::model::SimTruth{};   // r0 gains a true pose
+  b.robots.erase(b.robots.begin() + 1);          // r1 leaves
+  b.robots.push_back(robot("new", 1.0, 1.0));    // a robot joins
+  b.robots[0].truth = fleet::model::SimTruth{};  // r0 gains a true pose
   b.robots[0].health = "lost";
   b.obstacle_enabled["O1"] = true;
   b.obstacle_enabled.erase("O2");
@@ -120,6 +120,33 @@ TEST(WebFrames, RandomSequencesOfSnapshotsRoundTrip) {
     server = next;
     ASSERT_EQ(client, server) << "step " << i;
   }
+}
+
+TEST(WebFrames, ADockingRobotCarriesItsTargetsAndDetectedPalletUntilTheDockingEnds) {
+  const LiveSnapshot parked = snapshot(2);
+  LiveSnapshot docking = parked;
+  docking.robots[1].state.docking_targets = {{10.12345, 4.0}, {11.5, 3.5}};
+  docking.robots[1].state.detected_pallet = fleet::geometry::Pose2{11.5, 2.2, 1.570796};
+  json frame = frame_json(parked);
+  EXPECT_FALSE(frame["robots"]["r1"].contains("dock_targets")) << "absent, not empty, while it does not dock";
+  EXPECT_FALSE(frame["robots"]["r1"].contains("detected_pallet"));
+
+  const json diff = frame_diff(frame, frame_json(docking));
+  ASSERT_EQ(diff["robots"].size(), 1u) << diff.dump();
+  const json& r1 = diff["robots"]["r1"];
+  EXPECT_EQ(r1.size(), 2u) << r1.dump();
+  EXPECT_EQ(r1["dock_targets"], json::parse("[[10.123, 4.0], [11.5, 3.5]]")) << r1.dump();
+  EXPECT_EQ(r1["detected_pallet"], json::parse("[11.5, 2.2, 1.5708]")) << r1.dump();
+  frame_apply(frame, diff);
+  EXPECT_EQ(frame, frame_json(docking));
+  EXPECT_EQ(fleet::server::state_json(docking)["robots"][1]["detected_pallet"], r1["detected_pallet"]);
+
+  // Docked: both go, sent as null and removed by the client.
+  const json back = frame_diff(frame, frame_json(parked));
+  EXPECT_TRUE(back["robots"]["r1"]["dock_targets"].is_null()) << back.dump();
+  EXPECT_TRUE(back["robots"]["r1"]["detected_pallet"].is_null()) << back.dump();
+  frame_apply(frame, back);
+  EXPECT_EQ(frame, frame_json(parked));
 }
 
 TEST(WebFrames, StateListsRobotsWithIdsAndOrdersWithHistory) {

@@ -1,0 +1,97 @@
+// What crosses the wire comes back as it was written: model values through the IDL's C structs
+// (dds/topics.cpp) and Cyclone DDS, written and taken in one process on a domain of its own.
+
+#include "dds/topics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "dds/environment.hpp"
+#include "dds/qos.hpp"
+
+using namespace fleet;
+
+namespace {
+
+constexpr std::uint32_t kDomain = 194;  // no other test uses it
+
+/// `sent` written, and what a reader of the same participant takes of it.
+std::optional<model::RobotState> round_trip(const model::RobotState& sent) {
+  dds::use_fleet_dds_config();
+  dds::Participant participant(kDomain);
+  dds::Writer<model::RobotState> writer(participant, dds::qos::robot_state());
+  dds::Reader<model::RobotState> reader(participant, dds::qos::robot_state());
+  if (!writer.wait_for_readers(1, std::chrono::seconds(5)) || !writer.write(sent)) return std::nullopt;
+  std::optional<model::RobotState> taken;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!taken && std::chrono::steady_clock::now() < end) {
+    reader.take_data([&](model::RobotState&& state) { taken = std::move(state); });
+    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return taken;
+}
+
+model::RobotState docking_stacker() {
+  model::RobotState s;
+  s.robot_id = "st2";
+  s.fleet_id = "stackers";
+  s.map_id = "plant";
+  s.pose = {10.5, 4.25, 1.5};
+  s.covariance = {0.001, 0, 0, 0, 0.001, 0, 0, 0, 0.0003};
+  s.speed = -0.3;
+  s.task_state = "DOCKING";
+  s.detail = "docking: reverse_to_target2";
+  s.order_id = 42;
+  s.sim_time = 123.45;
+  s.docking_targets = {{11.0, 5.5}, {12.5, 5.0}};
+  s.detected_pallet = geometry::Pose2{12.5, 3.7, 1.5708};
+  return s;
+}
+
+}  // namespace
+
+TEST(Topics, RobotStateComesBackWithItsDockingTargetsAndDetectedPallet) {
+  const model::RobotState sent = docking_stacker();
+  const auto taken = round_trip(sent);
+  ASSERT_TRUE(taken) << "nothing came back";
+  EXPECT_EQ(taken->robot_id, "st2");
+  EXPECT_EQ(taken->task_state, "DOCKING");
+  EXPECT_EQ(taken->detail, sent.detail);
+  EXPECT_EQ(taken->order_id, 42);
+  EXPECT_DOUBLE_EQ(taken->pose.yaw, 1.5);
+  EXPECT_EQ(taken->covariance, sent.covariance);
+  ASSERT_EQ(taken->docking_targets.size(), 2u);
+  EXPECT_DOUBLE_EQ(taken->docking_targets[0].x, 11.0);
+  EXPECT_DOUBLE_EQ(taken->docking_targets[0].y, 5.5);
+  EXPECT_DOUBLE_EQ(taken->docking_targets[1].x, 12.5);
+  EXPECT_DOUBLE_EQ(taken->docking_targets[1].y, 5.0);
+  ASSERT_TRUE(taken->detected_pallet);
+  EXPECT_DOUBLE_EQ(taken->detected_pallet->x, 12.5);
+  EXPECT_DOUBLE_EQ(taken->detected_pallet->y, 3.7);
+  EXPECT_DOUBLE_EQ(taken->detected_pallet->yaw, 1.5708);
+}
+
+TEST(Topics, RobotStateWithoutADockingComesBackWithoutOne) {
+  model::RobotState sent = docking_stacker();
+  sent.task_state = "TRACK_PATH";
+  sent.docking_targets.clear();
+  sent.detected_pallet.reset();
+  const auto taken = round_trip(sent);
+  ASSERT_TRUE(taken) << "nothing came back";
+  EXPECT_EQ(taken->task_state, "TRACK_PATH");
+  EXPECT_TRUE(taken->docking_targets.empty());
+  EXPECT_FALSE(taken->detected_pallet);
+}
+
+TEST(Topics, RobotStateCarriesAtMostTheTwoTargetsTheIdlBounds) {
+  model::RobotState sent = docking_stacker();
+  sent.docking_targets.push_back({20.0, 20.0});
+  const auto taken = round_trip(sent);
+  ASSERT_TRUE(taken) << "nothing came back";
+  ASSERT_EQ(taken->docking_targets.size(), 2u);
+  EXPECT_DOUBLE_EQ(taken->docking_targets[1].x, 12.5);
+}
