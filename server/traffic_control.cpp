@@ -150,15 +150,9 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
         const auto& holders = entry.blockers;
         if (!holders.empty()) {
           manager_.claim_entry(id, route.points.front(), now_sim);
-          model::TrafficGrant wait;
-          wait.robot_id = request.robot_id;
-          wait.version = request.version;
-          wait.granted_index = -1;
-          wait.status = "WAITING";
-          for (int h : holders) wait.blocked_by.push_back(names_[h]);
-          wait.sim_time = now_sim;
-          status_[request.robot_id] = {"WAITING", 0.0, wait.blocked_by, {}};
-          publish(std::move(wait), now_wall);
+          std::vector<std::string> blockers;
+          for (int h : holders) blockers.push_back(names_[h]);
+          wait_to_enter(request, std::move(blockers), now_sim, now_wall);
           return;
         }
         if (!entry.as_standing) manager_.remove_robot(id, now_sim);
@@ -254,6 +248,19 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   publish(std::move(answer), now_wall);
 }
 
+void TrafficControl::wait_to_enter(const model::TrafficRequest& request, std::vector<std::string> blockers,
+                                   double now_sim, double now_wall) {
+  model::TrafficGrant wait;
+  wait.robot_id = request.robot_id;
+  wait.version = request.version;
+  wait.granted_index = -1;
+  wait.status = "WAITING";
+  wait.blocked_by = blockers;
+  wait.sim_time = now_sim;
+  status_[request.robot_id] = {"WAITING", 0.0, std::move(blockers), {}};
+  publish(std::move(wait), now_wall);
+}
+
 std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon& area) const {
   std::map<int, geometry::Polygon> bodies;
   for (const auto& [name, polygon] : bodies_) {
@@ -275,15 +282,7 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
     if (!waits_for_it) blockers.push_back(names_[b]);
   }
   if (!blockers.empty()) {
-    model::TrafficGrant wait;
-    wait.robot_id = request.robot_id;
-    wait.version = request.version;
-    wait.granted_index = -1;
-    wait.status = "WAITING";
-    wait.blocked_by = blockers;
-    wait.sim_time = now_sim;
-    status_[request.robot_id] = {"WAITING", 0.0, std::move(blockers), {}};
-    publish(std::move(wait), now_wall);
+    wait_to_enter(request, std::move(blockers), now_sim, now_wall);
     return false;
   }
   std::vector<geometry::Vec2> corners = request.work_area;

@@ -54,6 +54,9 @@ class TrafficControl {
   /// A robot off the roads with a work area (model::TrafficRequest::work_area): holds the area
   /// once it is clear and answers AREA_CLEAR, else holds the body and answers AREA_WAITING.
   void work_beside_roads(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
+  /// Answers a robot beside the roads that it waits to enter for `blockers` (granted_index -1).
+  void wait_to_enter(const model::TrafficRequest& request, std::vector<std::string> blockers, double now_sim,
+                     double now_wall);
   /// Robots holding places the area touches or standing in it (TrafficManager::holders_in_area).
   std::vector<int> robots_in_area(int id, const geometry::Polygon& area) const;
   /// A standing robot's way out onto the road (its request's work_area) is free: it is held for

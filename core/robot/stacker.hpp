@@ -135,6 +135,9 @@ class Stacker : public Robot {
   /// pivot at target 2, the realignment stand-off and the docked pose, grown by the safety gap
   /// (TrafficRoute::work_area).
   std::vector<geometry::Vec2> manoeuvre_area() const;
+  /// Adds the corners of the footprint with its rear axle at `rear` heading `yaw`, grown by the
+  /// safety gap: one body of a swept area.
+  void add_swept_body(std::vector<geometry::Vec2>& corners, geometry::Vec2 rear, double yaw) const;
   /// The corners of the footprints the way out of a dock or bay onto the road sweeps: turning
   /// about the rear axle towards the path, then along it to 1 m past the road's start, grown by
   /// the safety gap (TrafficRoute::work_area while on that way).

@@ -98,15 +98,18 @@ void Stacker::start_docking() {
   area_clear_ = !config_.traffic;
 }
 
-std::vector<Vec2> Stacker::manoeuvre_area() const {
+void Stacker::add_swept_body(std::vector<Vec2>& corners, Vec2 rear, double yaw) const {
   const sim::TricycleGeometry& g = config_.body.geometry;
   const double c = 0.5 * (g.front_x() + g.fork_tip_x());  // the centre ahead of the rear axle
+  const Vec2 centre = rear + c * heading_of(yaw);
+  const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
+  corners.insert(corners.end(), body.begin(), body.end());
+}
+
+std::vector<Vec2> Stacker::manoeuvre_area() const {
+  const sim::TricycleGeometry& g = config_.body.geometry;
   std::vector<Vec2> corners;
-  const auto add = [&](Vec2 rear, double yaw) {
-    const Vec2 centre = rear + c * heading_of(yaw);
-    const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
-    corners.insert(corners.end(), body.begin(), body.end());
-  };
+  const auto add = [&](Vec2 rear, double yaw) { add_swept_body(corners, rear, yaw); };
   // Not where it stands: its body holds that already, and the robots queued up behind it touch it.
   // The run starts with the rear axle short of target 2 and never backs past it.
   const Pose2 here = estimate_;

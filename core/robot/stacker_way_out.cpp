@@ -18,13 +18,7 @@ std::vector<Vec2> Stacker::way_out_area() const {
   const std::vector<Vec2>& path = follower_.path();
   std::vector<Vec2> corners;
   if (path.size() < 2) return corners;
-  const sim::TricycleGeometry& g = config_.body.geometry;
-  const double c = 0.5 * (g.front_x() + g.fork_tip_x());  // the centre ahead of the rear axle
-  const auto add = [&](Vec2 rear, double yaw) {
-    const Vec2 centre = rear + c * Vec2{std::cos(yaw), std::sin(yaw)};
-    const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
-    corners.insert(corners.end(), body.begin(), body.end());
-  };
+  const auto add = [&](Vec2 rear, double yaw) { add_swept_body(corners, rear, yaw); };
   // Where it stands, and turning about the rear axle towards the path, as the pursuit does when
   // the path leads off to the side or behind.
   const Pose2 here = estimate_;
