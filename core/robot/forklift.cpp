@@ -240,6 +240,33 @@ bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, con
   return false;
 }
 
+/// A path walked by arc length: the point `s` metres along it, clamped to its ends.
+class PathLine {
+ public:
+  explicit PathLine(std::vector<Vec2> points) : points_(std::move(points)) {
+    cumulative_.push_back(0.0);
+    for (std::size_t i = 1; i < points_.size(); ++i) {
+      cumulative_.push_back(cumulative_.back() + geometry::distance(points_[i - 1], points_[i]));
+    }
+  }
+  double length() const { return cumulative_.back(); }
+  Vec2 point_at(double s) const {
+    if (s <= 0.0) return points_.front();
+    for (std::size_t i = 1; i < points_.size(); ++i) {
+      if (s <= cumulative_[i]) {
+        const double len = cumulative_[i] - cumulative_[i - 1];
+        return len > 1e-12 ? points_[i - 1] + ((s - cumulative_[i - 1]) / len) * (points_[i] - points_[i - 1])
+                           : points_[i];
+      }
+    }
+    return points_.back();
+  }
+
+ private:
+  std::vector<Vec2> points_;
+  std::vector<double> cumulative_;
+};
+
 }  // namespace
 
 double Forklift::clearance_ahead() const {
@@ -275,14 +302,26 @@ double Forklift::clearance_ahead() const {
   // leads away; deeper cells still stop it, and the safety stop refuses any move closer than
   // its gap.
   const std::vector<int> touched = footprint_cells(layer, sim_.estimate(), footprint(), kMargin);
+  // The body is swept turned along each segment, except on the join: the short first leg from
+  // where the robot stood when it planned to its route's first point. The follower does not turn
+  // along that leg but steers for the point one lookahead further on [Forklift thesis, eq. 6.3],
+  // and so is the body swept there. Turned along a 0.25 m diagonal, a forklift leaving its
+  // parking stall swung its corner into the one parked in the next stall.
+  const double steer = config_.task.follower.lookahead;
+  const bool on_join = segment == 0 && geometry::distance(path[0], path[1]) < steer;
+  std::optional<PathLine> line;
+  if (on_join) line.emplace(std::vector<Vec2>(path.begin(), path.end()));
   double travelled = 0.0;
   for (std::size_t i = segment + 1; i < path.size() && travelled < kLookahead; ++i) {
     const Vec2 next = path[i];
     const double len = geometry::distance(prev, next);
     if (len < 1e-9) continue;
-    const double heading = std::atan2(next.y - prev.y, next.x - prev.x);
+    const double along = i == 1 ? geometry::distance(path[0], prev) : 0.0;
     for (double s = kSample; s <= len && travelled + s <= kLookahead; s += kSample) {
       const Vec2 p = prev + (s / len) * (next - prev);
+      Vec2 towards = next;
+      if (on_join && i == 1) towards = line->point_at(along + s + steer);
+      const double heading = std::atan2(towards.y - p.y, towards.x - p.x);
       if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin, touched)) {
         return std::max(0.0, travelled + s - kSample);
       }

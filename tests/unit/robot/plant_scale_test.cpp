@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
+#include "config/fleet_config.hpp"
 #include "robot/forklift.hpp"
+#include "robot/robot_factory.hpp"
 #include "sim/mecanum.hpp"
 #include "vehicle/vehicle_types.hpp"
 
@@ -180,4 +183,39 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
   }
   EXPECT_TRUE(done) << "state " << f.task_state() << " (" << f.detail() << ") at " << f.truth().x << ", "
                     << f.truth().y;
+}
+
+TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
+  // Seen in the plant soak: fk3 stood 0.15 m off its stall's centre, yawed 3 degrees, with fk4
+  // parked in the next stall. Its route starts with a short diagonal to the stall's road node;
+  // swept along that diagonal its body's corner met fk4's, so it never left.
+  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const config::FleetSpec& fleet = config.fleets.front();
+  ASSERT_EQ(fleet.id, "forklifts");
+  auto robot = robot::make_robot(fleet, config, site, {40.2455, 28.8761, -1.5152}, 1, 1);
+  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  const robot::Neighbour parked{"fk4", {41.5582, 29.0320, -1.5694}, {1.2, 0.8}, 0.0, 0.1};
+  const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
+  const auto step = [&] {
+    robot->set_neighbours({parked});
+    robot->set_true_neighbours({parked_body});
+    robot->step();
+  };
+  while (robot->time() < 1.0) step();
+  ASSERT_TRUE(robot->submit({"38", "WA2", site->site.find_area("WA2")->pose, "EX4", site->site.find_area("EX4")->pose},
+                            nullptr));
+  double closest = std::numeric_limits<double>::infinity();
+  while (robot->time() < 11.0 && robot->truth().y > 27.5) {
+    robot::TrafficPermit all_of_it;
+    all_of_it.version = robot->route_version();
+    all_of_it.granted_index = 1000;
+    all_of_it.granted_distance = 1e9;
+    robot->set_traffic_grant(all_of_it);
+    step();
+    closest = std::min(closest, geometry::convex_polygons_distance(
+                                    geometry::footprint_polygon(robot->truth(), robot->footprint()), parked_body));
+  }
+  EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
+  EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
 }
