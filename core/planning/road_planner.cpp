@@ -183,10 +183,31 @@ RoadPlan RoadPlanner::plan(const geometry::Pose2& start, const geometry::Pose2& 
   return plan_between(s, g, geometry::distance(start.position(), {xs_[s], ys_[s]}), options);
 }
 
+std::vector<std::pair<int, double>> RoadPlanner::start_states(Vec2 p, double slack) const {
+  std::vector<std::pair<int, double>> states;
+  const int nearest = nearest_point(p, PointUse::kRoute);
+  if (nearest < 0) return states;
+  const double within = slack * std::hypot(xs_[nearest] - p.x, ys_[nearest] - p.y);
+  states.emplace_back(nearest, std::hypot(xs_[nearest] - p.x, ys_[nearest] - p.y));
+  for (std::uint32_t e = offsets_[nearest]; e < offsets_[nearest + 1]; ++e) {
+    const int next = targets_[e];
+    const double d = std::hypot(xs_[next] - p.x, ys_[next] - p.y);
+    if (main_component_[next] && d <= within) states.emplace_back(next, d);
+  }
+  return states;
+}
+
 RoadPlan RoadPlanner::plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options) {
+  return plan_from({{start_point, start_cost}}, goal_point, options);
+}
+
+RoadPlan RoadPlanner::plan_from(const std::vector<std::pair<int, double>>& starts, int goal_point,
+                                const PlanOptions& options) {
   RoadPlan result;
   const int n = static_cast<int>(xs_.size());
-  if (start_point < 0 || goal_point < 0 || start_point >= n || goal_point >= n) {
+  const bool starts_valid = !starts.empty() && std::all_of(starts.begin(), starts.end(),
+                                                           [&](const auto& s) { return s.first >= 0 && s.first < n; });
+  if (!starts_valid || goal_point < 0 || goal_point >= n) {
     result.status = PlanStatus::kInvalidStart;
     return result;
   }
@@ -213,9 +234,13 @@ RoadPlan RoadPlanner::plan_between(int start_point, int goal_point, double start
   };
 
   heap_.clear();
-  touch(start_point);
-  g_[start_point] = start_cost;  // C(x_S); the start state has no heading
-  heap_.push_back({start_cost + h(start_point), start_cost, start_point});
+  for (const auto& [start_point, start_cost] : starts) {
+    touch(start_point);
+    if (start_cost >= g_[start_point]) continue;
+    g_[start_point] = start_cost;  // C(x_S); a start state has no heading
+    heap_.push_back({start_cost + h(start_point), start_cost, start_point});
+    std::push_heap(heap_.begin(), heap_.end(), [](const HeapItem& a, const HeapItem& b) { return heap_less(a, b); });
+  }
   bool found = false;
   std::size_t iterations = 0;
   while (!heap_.empty()) {

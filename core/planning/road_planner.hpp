@@ -58,6 +58,14 @@ class RoadPlanner {
   RoadPlan plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options = {});
   /// The same between graph points, with C(x_S) = `start_cost`.
   RoadPlan plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options = {});
+  /// The same from the cheapest of several start states, each with its own C(x_S).
+  RoadPlan plan_from(const std::vector<std::pair<int, double>>& starts, int goal_point,
+                     const PlanOptions& options = {});
+  /// The start states for a robot at `p`: the nearest route point and the points it leads to
+  /// that are almost as near (within `slack` times its distance), each with its distance as
+  /// C(x_S). A robot standing between two points of a lane starts on whichever leads on, not on
+  /// the one behind it.
+  std::vector<std::pair<int, double>> start_states(geometry::Vec2 p, double slack) const;
 
   std::size_t point_count() const { return xs_.size(); }
   geometry::Vec2 point(int i) const { return {xs_[static_cast<std::size_t>(i)], ys_[static_cast<std::size_t>(i)]}; }

@@ -44,7 +44,8 @@ RoutePlanner::RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlan
 Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options) {
   Route route;
   const Deadline deadline(options);
-  const int s = road_.nearest_point(start.position(), RoadPlanner::PointUse::kRoute);
+  const auto starts = road_.start_states(start.position(), configuration_.start_slack);
+  const int s = starts.empty() ? -1 : starts.front().first;
   const bool on_road = std::isfinite(configuration_.goal_heading_tolerance);
   const int g = on_road ? road_.nearest_point_along(goal.position(), goal.yaw, configuration_.goal_heading_tolerance)
                         : road_.nearest_point(goal.position(), RoadPlanner::PointUse::kRoute);
@@ -52,8 +53,7 @@ Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& go
     route.status = PlanStatus::kInvalidStart;
     return route;
   }
-  route.road =
-      road_.plan_between(s, g, geometry::distance(start.position(), road_.point(s)), remaining(options, deadline));
+  route.road = road_.plan_from(starts, g, remaining(options, deadline));
   if (route.road.status != PlanStatus::kFound && route.road.status != PlanStatus::kBlockedPartial) {
     route.status = route.road.status;
     return route;

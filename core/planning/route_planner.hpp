@@ -13,6 +13,10 @@ namespace fleet::planning {
 struct RoutePlannerConfiguration {
   /// A pose this close to its nearest graph point is on the road: no grid leg is planned.
   double on_graph_tolerance = 0.05;
+  /// The route starts from the cheapest of the nearest graph point and the points it leads to
+  /// that are at most this many times as far (RoadPlanner::start_states): between two points of
+  /// a lane, the one ahead, not a hook back to the one behind.
+  double start_slack = 1.25;
   /// Finite: the route ends on the road, at the nearest point of a lane along the goal's heading
   /// (either way) within this, rad, with no grid leg to the goal pose: a vehicle that cannot
   /// move sideways (a tricycle) starts its manoeuvre there, never from across a junction's

@@ -97,6 +97,36 @@ TEST(RoadPlanner, StartCostIsDistanceFromStartPose) {
   EXPECT_NEAR(plan.cost, 0.2 + 1.0, 1e-9);
 }
 
+TEST(RoadPlanner, BetweenTwoPointsOfALaneTheRouteStartsOnTheOneAhead) {
+  // A lane driven east with points every 0.5 m. A robot that stands a little nearer the point
+  // behind it (as a forklift backing out of a drop place onto the lane does) starts on the one
+  // ahead: a route from the one behind would turn it round towards whatever stands there.
+  map::RoadGraph g;
+  for (int i = 0; i <= 8; ++i) {
+    map::GraphPoint p;
+    p.id = i;
+    p.x = 0.5 * i;
+    g.points.push_back(p);
+    g.successors.push_back({(i + 1) % 9});  // the last point leads back to the first: one loop
+  }
+  RoadPlanner planner(g);
+  const geometry::Vec2 here{1.24, 0.15};
+  ASSERT_EQ(planner.nearest_point(here), 2);
+  const auto starts = planner.start_states(here, 1.25);
+  ASSERT_EQ(starts.size(), 2u);
+  EXPECT_EQ(starts[1].first, 3);
+  const RoadPlan plan = planner.plan_from(starts, 8);
+  ASSERT_EQ(plan.status, PlanStatus::kFound);
+  EXPECT_EQ(plan.point_ids.front(), 3);
+  // Nearer the point behind by more than the slack, it starts there.
+  EXPECT_EQ(planner.start_states({1.1, 0.15}, 1.25).size(), 1u);
+  // The point ahead is no start when the lane runs the other way.
+  for (int i = 0; i <= 8; ++i) g.successors[static_cast<std::size_t>(i)] = {(i + 8) % 9};
+  RoadPlanner westward(g);
+  const auto west_starts = westward.start_states(here, 1.25);
+  for (const auto& [point, cost] : west_starts) EXPECT_LE(g.points[static_cast<std::size_t>(point)].x, 1.0 + 1e-9);
+}
+
 TEST(RoadPlanner, UnreachableGoalIsNoPath) {
   map::RoadGraph g = lattice_graph(2, 1, 1.0, 0.1);
   map::GraphPoint lone;
