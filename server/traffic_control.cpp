@@ -340,6 +340,9 @@ void TrafficControl::update(double now_sim, double now_wall) {
       case traffic::TrafficEvent::Kind::kSidingSent:
         log_->info("traffic: {} yields on a siding to {}", robot, others);
         break;
+      case traffic::TrafficEvent::Kind::kGaveWay:
+        log_->info("traffic: {} stands for {} and gives back the road ahead of it", robot, others);
+        break;
       case traffic::TrafficEvent::Kind::kResumed:
         log_->info("traffic: {} leaves its siding", robot);
         break;

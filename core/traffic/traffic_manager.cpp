@@ -95,6 +95,7 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.blocked_by.clear();
   robot.kept_out_by.clear();
   robot.stopped_for.clear();
+  robot.giving_way_to.clear();
   // Previous holdings stay until the robot is past the first edge of the new route.
   std::size_t k = 0;
   while (k + 1 < n && robot.places[k + 1] == robot.places[0]) ++k;

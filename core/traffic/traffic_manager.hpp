@@ -98,7 +98,15 @@ struct Grant {
 };
 
 struct TrafficEvent {
-  enum class Kind { kDeadlockResolved, kRerouted, kSidingSent, kResumed, kRobotRemoved, kUnresolvedDeadlock };
+  enum class Kind {
+    kDeadlockResolved,
+    kRerouted,
+    kSidingSent,
+    kResumed,
+    kRobotRemoved,
+    kUnresolvedDeadlock,
+    kGaveWay,  ///< a robot stopped by the bodies of `others` gave back the road it held beyond itself
+  };
   Kind kind = Kind::kRerouted;
   double time = 0.0;
   int robot_id = 0;
@@ -315,6 +323,9 @@ class TrafficManager {
     std::vector<int> blocked_by;
     std::vector<int> stopped_for;  ///< robots whose bodies its safety check stops it for (ProgressReport)
     std::vector<int> kept_out_by;  ///< entrants whose active entry claim stops its grant, sorted
+    /// Robots it gave its road back to (give_way): it is granted nothing more while their bodies
+    /// still stop it. Sorted.
+    std::vector<int> giving_way_to;
     Instruction pending = Instruction::kNone;
     bool in_siding = false;
     int resume_goal = -1;
@@ -366,6 +377,7 @@ class TrafficManager {
   int anchor_index(const Robot& robot) const;
   bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind,
                bool against_one_way = false);
+  bool give_way(Robot& robot, const std::vector<int>& members, double now, UpdateResult& out);
   /// `clear_of_self`: the siding must also lie off the places in conflict with those the robot
   /// holds now, so it moves a body length at least (its body stands in another's way).
   bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,

@@ -250,6 +250,13 @@ void TrafficManager::extend(Robot& robot, int slot) {
   robot.blocked_by.clear();
   robot.kept_out_by.clear();
   if (robot.frozen) return;
+  if (!robot.giving_way_to.empty()) {
+    const bool still_stopped = std::any_of(robot.giving_way_to.begin(), robot.giving_way_to.end(), [&](int id) {
+      return std::binary_search(robot.stopped_for.begin(), robot.stopped_for.end(), id);
+    });
+    if (still_stopped) return;
+    robot.giving_way_to.clear();
+  }
   const double target = robot.progress + configuration_.lookahead;
   std::vector<int> blockers;
   while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {

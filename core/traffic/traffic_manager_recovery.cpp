@@ -165,6 +165,23 @@ void TrafficManager::try_resume(Robot& robot, double now, UpdateResult& out) {
   robot.yield_to.clear();
 }
 
+bool TrafficManager::give_way(Robot& robot, const std::vector<int>& members, double now, UpdateResult& out) {
+  if (robot.frozen || !robot.giving_way_to.empty()) return false;
+  std::vector<int> stoppers;
+  for (int id : robot.stopped_for) {
+    if (id != robot.id && std::find(members.begin(), members.end(), id) != members.end()) stoppers.push_back(id);
+  }
+  if (stoppers.empty()) return false;
+  // Where it stands: up to the point it is driving into.
+  int reached = robot.first_held;
+  while (reached < robot.grant_end && robot.cum[static_cast<std::size_t>(reached)] + 1e-6 < robot.progress) ++reached;
+  if (reached >= robot.grant_end) return false;
+  robot.grant_end = reached;
+  robot.giving_way_to = std::move(stoppers);
+  out.events.push_back({TrafficEvent::Kind::kGaveWay, now, robot.id, robot.giving_way_to});
+  return true;
+}
+
 // Tarjan's strongly connected components over the wait-for graph of stopped, waiting robots.
 void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
   const std::size_t n = slots_.size();
@@ -272,6 +289,12 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
         resolved = true;
         break;
       }
+    }
+    // A member whose safety check stops it for another member's body cannot use the road it holds
+    // beyond where it stands; when the others wait for that road, it gives it back and waits
+    // until those bodies have passed.
+    for (std::size_t k = 0; !resolved && k < component.size(); ++k) {
+      resolved = give_way(*slots_[static_cast<std::size_t>(component[k])], ids, now, out);
     }
     // Last resort: a way round against a one-way corridor. Robots standing where the one-way
     // plan does not expect them (a map switch changed the corridors' directions) can face each
