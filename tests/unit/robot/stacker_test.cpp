@@ -277,3 +277,54 @@ TEST(Stacker, RefusesPickItemAndASecondOrder) {
 }
 
 }  // namespace
+
+TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
+  // Traffic holds the hull of the asked-for area and the body the stacker stands with; other
+  // robots stop at its edge. A run that swung outside it would meet them.
+  PlantStacker plant;
+  auto stacker = plant.make("PT2", true);
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG9", "PK6"), &why)) << why;
+  std::vector<geometry::Vec2> held;
+  double outside = 0.0;
+  std::string where;
+  int areas = 0;
+  for (int i = 0; i < 20 * 600 && stacker->task_state() != "GO_HOME"; ++i) {
+    const robot::TrafficRoute route = stacker->traffic_route();
+    robot::TrafficPermit permit;
+    if (!route.work_area.empty() && route.points.size() < 2) {
+      if (held.empty()) {
+        ++areas;
+        held = route.work_area;
+        for (const auto& c : geometry::footprint_polygon(stacker->estimate(), stacker->footprint())) held.push_back(c);
+      }
+      permit.area = robot::TrafficPermit::Area::kClear;
+    } else {
+      held.clear();
+      permit.version = route.version;
+      permit.granted_index = static_cast<int>(route.points.size()) - 1;
+      permit.granted_distance = 1e6;
+    }
+    stacker->set_traffic_grant(permit);
+    stacker->step();
+    for (const auto& e : stacker->take_events()) {
+      if (e.kind == RobotEvent::Kind::kLifted) plant.loads.erase(e.load_id);
+      if (e.kind == RobotEvent::Kind::kDone) plant.loads[e.load_id] = e.load_pose;
+    }
+    stacker->set_standing_loads(plant.loads);
+    if (held.empty()) continue;
+    const geometry::Polygon hull = traffic::convex_hull(held);
+    for (const auto& c : geometry::footprint_polygon(stacker->truth(), stacker->footprint())) {
+      const double d =
+          geometry::convex_polygons_distance(hull, {c, c + geometry::Vec2{1e-4, 0.0}, c + geometry::Vec2{0.0, 1e-4}});
+      if (d > outside) {
+        outside = d;
+        where = stacker->detail();
+      }
+    }
+  }
+  ASSERT_EQ(stacker->task_state(), "GO_HOME") << stacker->detail();
+  EXPECT_EQ(areas, 2) << "the docking at the pick place and at the drop place";
+  EXPECT_LT(outside, 1e-3) << "its body left the held area by " << outside << " m (" << where << ")";
+}
