@@ -320,9 +320,12 @@ bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, doub
 
 void TrafficControl::update(double now_sim, double now_wall) {
   // Robots not heard from yet (the manager just started among them) hold what their bodies
-  // stand on, before anyone is granted more; so do lost ones (robot_lost).
+  // stand on, before anyone is granted more; so do lost ones (robot_lost). A robot working
+  // beside the roads holds the area of its manoeuvre, renewed by its requests: held as its body
+  // alone here, the area opened to others between two requests.
   for (const auto& [robot_id, body] : bodies_) {
     const int id = number_of(robot_id);
+    if (heard_.contains(robot_id) && working_.contains(robot_id)) continue;
     if (!heard_.contains(robot_id) || manager_.frozen(id)) hold_body(robot_id, id, body, now_sim);
   }
   const traffic::UpdateResult result = manager_.update(now_sim);
