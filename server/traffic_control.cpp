@@ -232,6 +232,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
     const std::vector<int> blockers = robots_in_area(id, swept);
     if (!blockers.empty()) {
       if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
+      manager_.wait_for_area(id, blockers);
       answer.status = "AREA_WAITING";
       for (int b : blockers) answer.blocked_by.push_back(names_[b]);
       // Known as waiting for them: a robot whose way out onto the road it stands in goes first.
@@ -240,6 +241,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
       return;
     }
     working_.insert(request.robot_id);
+    manager_.wait_for_area(id, {});
     log_->debug("traffic: {} manoeuvres beside the roads", request.robot_id);
   }
   if (manager_.has_robot(id) && !manager_.frozen(id)) manager_.remove_robot(id, now_sim);
@@ -272,6 +274,7 @@ std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon&
 bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall) {
   const geometry::Polygon swept = traffic::convex_hull(request.work_area);
   std::vector<std::string> blockers;
+  std::vector<int> blocker_ids;
   for (int b : robots_in_area(id, swept)) {
     // A robot that waits for this one's body stands clear of it; if it stands in the way out,
     // this one's own checks stop it there, and the wait cycle that makes is broken by traffic.
@@ -279,8 +282,12 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
     const bool waits_for_it =
         waits != status_.end() && std::find(waits->second.blocked_by.begin(), waits->second.blocked_by.end(),
                                             request.robot_id) != waits->second.blocked_by.end();
-    if (!waits_for_it) blockers.push_back(names_[b]);
+    if (!waits_for_it) {
+      blockers.push_back(names_[b]);
+      blocker_ids.push_back(b);
+    }
   }
+  manager_.wait_for_area(id, blocker_ids);
   if (!blockers.empty()) {
     wait_to_enter(request, std::move(blockers), now_sim, now_wall);
     return false;

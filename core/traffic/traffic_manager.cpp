@@ -102,10 +102,21 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.trail_release = robot.release_at[k];
 }
 
+void TrafficManager::wait_for_area(int robot_id, std::vector<int> blockers) {
+  blockers.erase(std::remove(blockers.begin(), blockers.end(), robot_id), blockers.end());
+  sort_unique(blockers);
+  if (blockers.empty()) {
+    area_waits_.erase(robot_id);
+  } else {
+    area_waits_[robot_id] = std::move(blockers);
+  }
+}
+
 SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double now) {
   (void)now;
   const auto& points = request.points;
   if (points.empty()) return SubmitStatus::kInvalid;
+  area_waits_.erase(request.robot_id);
   // Its type's lanes: a route into a lane the vehicle does not fit has an edge missing there.
   const map::RoadGraph& lanes = types_[static_cast<std::size_t>(type_of(request.robot_id))]->lanes;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -292,6 +303,7 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
 }
 
 bool TrafficManager::remove_robot(int robot_id, double now) {
+  area_waits_.erase(robot_id);
   if (robots_.erase(robot_id) == 0) return false;
   for (auto& [id, robot] : robots_) {
     robot.yield_to.erase(std::remove(robot.yield_to.begin(), robot.yield_to.end(), robot_id), robot.yield_to.end());
@@ -537,6 +549,13 @@ UpdateResult TrafficManager::update(double now) {
       robot.blocked_by.insert(robot.blocked_by.end(), robot.stopped_for.begin(), robot.stopped_for.end());
       sort_unique(robot.blocked_by);
     }
+    // Standing beside the roads until its work area is clear: it waits for those in it.
+    if (const auto area = area_waits_.find(robot.id); robot.frozen && area != area_waits_.end()) {
+      for (int id : area->second) {
+        if (robots_.count(id) != 0) robot.blocked_by.push_back(id);
+      }
+      robot.blocked = !robot.blocked_by.empty();
+    }
     const bool waiting = robot.blocked && (robot.stopped || stopped_by_body);
     if (!waiting) {
       robot.wait_since = -1.0;
@@ -549,7 +568,10 @@ UpdateResult TrafficManager::update(double now) {
   resolve_cycles(now, out);
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
-    if (robot.wait_since < 0.0 || robot.in_siding || now - robot.last_reroute < configuration_.reroute_wait) continue;
+    if (robot.wait_since < 0.0 || robot.frozen || robot.in_siding ||
+        now - robot.last_reroute < configuration_.reroute_wait) {
+      continue;
+    }
     const bool behind_lost_only =
         !robot.blocked_by.empty() && std::all_of(robot.blocked_by.begin(), robot.blocked_by.end(), [&](int id) {
           const auto it = robots_.find(id);

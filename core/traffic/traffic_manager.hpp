@@ -220,6 +220,12 @@ class TrafficManager {
   /// A standing robot that sends a route starting at a place under it enters there at once
   /// (submit_route): it is already there.
   bool hold_body(int robot_id, const geometry::Polygon& body, double now);
+  /// A robot standing beside the roads (hold_body) waits for `blockers` to leave the area it is
+  /// to work in (a stacker's docking). It counts as waiting for them, so a robot that waits in
+  /// turn for its body closes a cycle that resolve_cycles breaks by moving that robot; the
+  /// standing robot itself is never sent anywhere. Empty: it waits no more. Dropped with the
+  /// robot and when it sends a route.
+  void wait_for_area(int robot_id, std::vector<int> blockers);
 
   /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
   /// places x conflict-set size; no allocation proportional to the graph.
@@ -440,8 +446,9 @@ class TrafficManager {
   bool claim_waits_on_itself(int robot_id, const EntryClaim& claim) const;
   /// Whether `places[index]` is closed by an entry claim to a robot coming from before it.
   bool entry_closes(const std::vector<int>& places, int index, int type) const;
-  std::map<int, EntryClaim> entries_;       ///< robots waiting beside the roads, by id
-  std::vector<std::uint8_t> entry_closed_;  ///< places closed by an active entry claim
+  std::map<int, EntryClaim> entries_;           ///< robots waiting beside the roads, by id
+  std::vector<std::uint8_t> entry_closed_;      ///< places closed by an active entry claim
+  std::map<int, std::vector<int>> area_waits_;  ///< standing robots waiting for their work area, by id
 };
 
 }  // namespace fleet::traffic

@@ -269,7 +269,8 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     bool resolved = false;
     for (int s : component) {
       Robot& victim = *slots_[static_cast<std::size_t>(s)];
-      if (now - victim.last_reroute < kActOnInstruction) continue;
+      // A robot standing beside the roads is never sent anywhere (it may be docking).
+      if (victim.frozen || now - victim.last_reroute < kActOnInstruction) continue;
       // A member already yielding to it on a siding makes way for it: sending it off as well
       // would only swap who yields, again and again. Unless that member waits for it on the way:
       // then it makes way for nobody, and the robot it yields to is the one to move.
@@ -302,6 +303,7 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     // corridor towards a robot driving in it (place_free_for).
     for (std::size_t k = 0; !resolved && configuration_.one_way && k < component.size(); ++k) {
       Robot& victim = *slots_[static_cast<std::size_t>(component[k])];
+      if (victim.frozen) continue;
       resolved = reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved, true);
     }
     if (!resolved) out.events.push_back({TrafficEvent::Kind::kUnresolvedDeadlock, now, ids.front(), ids});
