@@ -187,8 +187,9 @@ std::vector<std::pair<int, double>> RoadPlanner::start_states(Vec2 p, double sla
   std::vector<std::pair<int, double>> states;
   const int nearest = nearest_point(p, PointUse::kRoute);
   if (nearest < 0) return states;
-  const double within = slack * std::hypot(xs_[nearest] - p.x, ys_[nearest] - p.y);
-  states.emplace_back(nearest, std::hypot(xs_[nearest] - p.x, ys_[nearest] - p.y));
+  const double nearest_distance = std::hypot(xs_[nearest] - p.x, ys_[nearest] - p.y);
+  const double within = slack * nearest_distance;
+  states.emplace_back(nearest, nearest_distance);
   for (std::uint32_t e = offsets_[nearest]; e < offsets_[nearest + 1]; ++e) {
     const int next = targets_[e];
     const double d = std::hypot(xs_[next] - p.x, ys_[next] - p.y);

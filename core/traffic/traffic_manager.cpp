@@ -225,9 +225,7 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
   // ahead of it and that robot waited for each other for good.
   for (auto& [id, other] : robots_) {
     if (id == standing.id || other.frozen) continue;
-    // The places it stands in: up to the one it is driving into.
-    int reached = other.first_held;
-    while (reached < other.grant_end && other.cum[static_cast<std::size_t>(reached)] + 1e-6 < other.progress) ++reached;
+    const int reached = reached_index(other);
     for (int k = reached + 1; k <= other.grant_end; ++k) {
       const int p = other.places[static_cast<std::size_t>(k)];
       if (!closes(standing, p, other.type)) continue;

@@ -381,6 +381,9 @@ class TrafficManager {
   /// Where a re-route or siding of the robot starts: the end of its grant when it stands there,
   /// else (stopped short of it by another robot's body) the route point at or behind it.
   int anchor_index(const Robot& robot) const;
+  /// The index of the point a robot is driving into (or stands at), between its first held
+  /// point and the end of its grant: the places up to it are the ones it stands in.
+  int reached_index(const Robot& robot) const;
   bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind,
                bool against_one_way = false);
   bool give_way(Robot& robot, const std::vector<int>& members, double now, UpdateResult& out);

@@ -293,6 +293,12 @@ bool TrafficManager::stopped_at_grant_end(const Robot& robot) const {
   return robot.progress >= robot.cum[static_cast<std::size_t>(robot.grant_end)] - configuration_.stop_tolerance;
 }
 
+int TrafficManager::reached_index(const Robot& robot) const {
+  int reached = robot.first_held;
+  while (reached < robot.grant_end && robot.cum[static_cast<std::size_t>(reached)] + 1e-6 < robot.progress) ++reached;
+  return reached;
+}
+
 int TrafficManager::anchor_index(const Robot& robot) const {
   if (stopped_at_grant_end(robot)) return robot.grant_end;
   int k = robot.grant_end;

@@ -172,9 +172,7 @@ bool TrafficManager::give_way(Robot& robot, const std::vector<int>& members, dou
     if (id != robot.id && std::find(members.begin(), members.end(), id) != members.end()) stoppers.push_back(id);
   }
   if (stoppers.empty()) return false;
-  // Where it stands: up to the point it is driving into.
-  int reached = robot.first_held;
-  while (reached < robot.grant_end && robot.cum[static_cast<std::size_t>(reached)] + 1e-6 < robot.progress) ++reached;
+  const int reached = reached_index(robot);
   if (reached >= robot.grant_end) return false;
   robot.grant_end = reached;
   robot.giving_way_to = std::move(stoppers);

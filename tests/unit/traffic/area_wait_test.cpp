@@ -13,12 +13,8 @@ namespace fleet::traffic {
 namespace {
 
 using testing::grant_of;
+using testing::has_event;
 using testing::point_at;
-
-bool has_event(const UpdateResult& r, TrafficEvent::Kind kind, int robot) {
-  return std::any_of(r.events.begin(), r.events.end(),
-                     [&](const TrafficEvent& e) { return e.kind == kind && e.robot_id == robot; });
-}
 
 TEST(AreaWait, ARobotWaitingForTheBodyOfOneWaitingForItsAreaIsMovedOn) {
   // A 6 m corridor with a 0.6 m siding spur up from x = 2.

@@ -13,11 +13,8 @@ namespace fleet::traffic {
 namespace {
 
 using testing::grant_of;
+using testing::has_event;
 using testing::point_at;
-
-bool has_event(const UpdateResult& r, TrafficEvent::Kind kind) {
-  return std::any_of(r.events.begin(), r.events.end(), [&](const TrafficEvent& e) { return e.kind == kind; });
-}
 
 TEST(GiveWay, ARobotStoppedByABodyGivesItsRoadToTheRobotWaitingForIt) {
   // One lane driven east from x = 0, and a one-way spur down onto it at x = 0.5: the way a

@@ -14,4 +14,12 @@ inline const Grant* grant_of(const UpdateResult& r, int id) {
   return nullptr;
 }
 
+/// Whether `r` holds an event of `kind` about `robot` (any robot when it is negative).
+inline bool has_event(const UpdateResult& r, TrafficEvent::Kind kind, int robot = -1) {
+  for (const auto& e : r.events) {
+    if (e.kind == kind && (robot < 0 || e.robot_id == robot)) return true;
+  }
+  return false;
+}
+
 }  // namespace fleet::traffic::testing
