@@ -264,9 +264,14 @@ void TrafficControl::wait_to_enter(const model::TrafficRequest& request, std::ve
 }
 
 std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon& area) const {
+  // A standing robot counts by what traffic holds for it: its body, or the area of its manoeuvre.
   std::map<int, geometry::Polygon> bodies;
   for (const auto& [name, polygon] : bodies_) {
-    if (const auto number = numbers_.find(name); number != numbers_.end()) bodies[number->second] = polygon;
+    const auto number = numbers_.find(name);
+    if (number == numbers_.end()) continue;
+    const auto held = held_bodies_.find(name);
+    const bool standing = manager_.frozen(number->second) && held != held_bodies_.end();
+    bodies[number->second] = standing ? held->second : polygon;
   }
   return manager_.holders_in_area(id, area, bodies);
 }

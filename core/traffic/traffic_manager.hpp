@@ -269,7 +269,10 @@ class TrafficManager {
   std::vector<int> holders_in_conflict(int point, int robot_id) const;
   /// Robots (other than `robot_id`) holding a place whose region touches `area`, or whose body in
   /// `bodies` (convex, where each robot stands) overlaps it, sorted: a robot parked beside the
-  /// roads holds no place, yet a manoeuvre must not sweep it. A robot beside the roads starts a
+  /// roads holds no place, yet a manoeuvre must not sweep it. A standing robot (frozen, see
+  /// hold_body) with its hold in `bodies` counts by that polygon alone: the regions of the places
+  /// under it reach up to a body length beyond it, and a parked robot would keep every manoeuvre
+  /// that passes it at that distance from starting. A robot beside the roads starts a
   /// manoeuvre that sweeps `area` (docking in reverse, parking) only when this is empty, and then
   /// holds the area (hold_body) until the manoeuvre ends.
   std::vector<int> holders_in_area(int robot_id, const geometry::Polygon& area,

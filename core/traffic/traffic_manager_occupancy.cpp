@@ -314,7 +314,7 @@ std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::P
   places_under(area, type_of(robot_id), &touched);
   std::vector<int> out;
   for (const auto& [id, robot] : robots_) {
-    if (id == robot_id) continue;
+    if (id == robot_id || (robot.frozen && bodies.contains(id))) continue;
     const auto& near = touched[static_cast<std::size_t>(robot.type)];
     const std::vector<int> held = held_places(id);
     if (std::any_of(held.begin(), held.end(),

@@ -14,6 +14,8 @@
 #include "robot/robot_factory.hpp"
 #include "robot/stacker_job.hpp"
 #include "traffic/conflict_zones.hpp"
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_settings.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 using namespace fleet;
@@ -327,4 +329,47 @@ TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
   ASSERT_EQ(stacker->task_state(), "GO_HOME") << stacker->detail();
   EXPECT_EQ(areas, 2) << "the docking at the pick place and at the drop place";
   EXPECT_LT(outside, 1e-3) << "its body left the held area by " << outside << " m (" << where << ")";
+}
+
+TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindIt) {
+  // Loaded at FG5 it drives out forwards onto the corridor's lane, its fork tips 0.7 m from the
+  // stacker parked in PT2. Traffic holds that parked body, and the way out does not reach it.
+  PlantStacker plant;
+  auto stacker = plant.make("PT1", true);
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX7"), &why)) << why;
+  for (int i = 0; i < 20 * 600 && stacker->task_state() != "TO_DROP"; ++i) {
+    const robot::TrafficRoute route = stacker->traffic_route();
+    robot::TrafficPermit permit;
+    if (!route.work_area.empty() && route.points.size() < 2) {
+      permit.area = robot::TrafficPermit::Area::kClear;
+    } else {
+      permit.version = route.version;
+      permit.granted_index = static_cast<int>(route.points.size()) - 1;
+      permit.granted_distance = 1e6;
+    }
+    stacker->set_traffic_grant(permit);
+    stacker->step();
+  }
+  ASSERT_EQ(stacker->task_state(), "TO_DROP") << stacker->detail();
+  for (int i = 0; i < 20 * 30 && stacker->traffic_route().points.empty(); ++i) stacker->step();
+  const robot::TrafficRoute out = stacker->traffic_route();
+  ASSERT_FALSE(out.work_area.empty()) << "no way out asked for";
+  const geometry::Polygon way_out = traffic::convex_hull(out.work_area);
+  const geometry::Polygon parked =
+      geometry::footprint_polygon(plant.site->site.find_home("PT2")->pose, stacker->footprint());
+  ASSERT_GT(geometry::convex_polygons_distance(way_out, parked), 0.3);
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  traffic::TrafficManager traffic(plant.site->graph.graph, traffic::configuration_from(config));
+  const int stackers = traffic::vehicle_type_of(config, "stackers");
+  traffic.set_robot_type(2, stackers);
+  traffic.set_robot_type(4, stackers);
+  ASSERT_TRUE(traffic.hold_body(2, parked, 0.0));
+  EXPECT_TRUE(traffic.holders_in_area(4, way_out, {{2, parked}}).empty()) << "held up by the parked stacker";
+  // A body standing in the way out does hold it up.
+  const geometry::Polygon in_the_way =
+      geometry::footprint_polygon({out.work_area.front().x, out.work_area.front().y, 0.0}, stacker->footprint());
+  ASSERT_TRUE(traffic.hold_body(2, in_the_way, 0.0));
+  EXPECT_EQ(traffic.holders_in_area(4, way_out, {{2, in_the_way}}), std::vector<int>{2});
 }
