@@ -196,11 +196,18 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::map<pid_t, double> mid_low_kb, end_low_kb;
   std::map<pid_t, std::string> type_of;
   std::map<pid_t, double> first_seen_s;  // wall seconds into the run
+  // An agent allocates as it first uses a part (a stacker's camera frames at its first docking):
+  // it is measured once it has finished an order, from its robot's first DONE.
+  std::map<pid_t, std::string> robot_of;
+  std::map<std::string, double> first_done_s;  // wall seconds into the run
   const double warm_up_s = std::max(10.0, 0.1 * options.duration_s);
   auto sample = [&](std::map<pid_t, Usage>& into) {
     for (const auto& child : run.processes().children()) {
       if (!child.running) continue;
       type_of[child.pid] = child.name.starts_with("fleet-server") ? "server" : "agent";
+      if (const auto space = child.name.find(' '); space != std::string::npos) {
+        robot_of[child.pid] = child.name.substr(space + 1);
+      }
       first_seen_s.emplace(child.pid, run.wall_seconds());
       if (auto u = usage_of(child.pid)) into[child.pid] = *u;
     }
@@ -230,7 +237,10 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       }
     });
     report_reader.take_data([&](model::OrderReport&& report) {
-      if (report.status == "DONE") done_by[report.order_id].insert(report.robot_id);
+      if (report.status == "DONE") {
+        done_by[report.order_id].insert(report.robot_id);
+        first_done_s.emplace(report.robot_id, run.wall_seconds());
+      }
     });
     for (auto& f : faults) {
       if (f.recovered || f.order == 0) continue;
@@ -346,6 +356,10 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       auto low_water = [&](std::map<pid_t, double>& into) {
         for (const auto& [pid, u] : now_usage) {
           if (u.rss_kb <= 0.0 || run.wall_seconds() - first_seen_s[pid] < warm_up_s) continue;
+          if (type_of[pid] == "agent") {
+            const auto done = first_done_s.find(robot_of[pid]);
+            if (done == first_done_s.end() || run.wall_seconds() - done->second < warm_up_s) continue;
+          }
           auto [it, fresh] = into.emplace(pid, u.rss_kb);
           if (!fresh) it->second = std::min(it->second, u.rss_kb);
         }

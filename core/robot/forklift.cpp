@@ -81,6 +81,9 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
                .stop_moved = config.stop_moved},
               config.sim.forklift.footprint) {
   reset_obstacles();
+  // At start, not at the first order: the planners' tables for the whole site are the bulk of
+  // the agent's memory, which then stays flat while it works.
+  hand_grid_to_planners();
   sim_.warm_up(1.0, step_period());
 }
 
@@ -100,7 +103,8 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
   // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
   road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
   two_way_road_ = planning::RoadPlanner(site_->graph.graph);
-  grid_revision_ = std::numeric_limits<std::uint64_t>::max();  // hand the new grid to the planners
+  grid_revision_ = std::numeric_limits<std::uint64_t>::max();
+  hand_grid_to_planners();
   seen_free_.clear();
   // The old map's route means nothing to the traffic manager of the new one.
   follower_.forget_route();
@@ -451,17 +455,20 @@ void Forklift::step() {
   collect_reports();
 }
 
+void Forklift::hand_grid_to_planners() {
+  // Planners cache on the grid: hand them the new one only when an obstacle changed.
+  if (static_grid_.revision() == grid_revision_) return;
+  auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
+  road_.set_obstacles(*grid);
+  if (config_.route_graph) two_way_road_.set_obstacles(*grid);
+  grid_astar_.set_grid(grid);
+  grid_revision_ = static_grid_.revision();
+}
+
 void Forklift::answer_plan_requests() {
   const auto request = executor_.take_plan_request();
   if (!request) return;
-  if (static_grid_.revision() != grid_revision_) {
-    // Planners cache on the grid: hand them the new one only when an obstacle changed.
-    auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
-    road_.set_obstacles(*grid);
-    if (config_.route_graph) two_way_road_.set_obstacles(*grid);
-    grid_astar_.set_grid(grid);
-    grid_revision_ = static_grid_.revision();
-  }
+  hand_grid_to_planners();
   if (auto permit = follower_.take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, sim_.estimate().position());

@@ -154,6 +154,8 @@ class Forklift : public Robot {
   void update_surroundings();
   /// Stops for what is in the way and holds at the end of the grant; returns the traffic room.
   double follow_traffic(double t, double clearance);
+  /// The static grid to the planners, when an obstacle changed it since they last had it.
+  void hand_grid_to_planners();
   void answer_plan_requests();
   void collect_reports();
   double clearance_ahead() const;

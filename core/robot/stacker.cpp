@@ -82,6 +82,9 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
   update_centre();
   // The centre, where traffic places the robot, comes to stand on its route's end.
   config_.pursuit.stop_short = centre_offset(config_.body.geometry);
+  // At start, not at the first order: the planners' tables for the whole site are the bulk of
+  // the agent's memory, which then stays flat while it works.
+  hand_grid_to_planners();
 }
 
 void Stacker::update_centre() {
@@ -152,6 +155,7 @@ void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr
   // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
   road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
   grid_revision_ = std::numeric_limits<std::uint64_t>::max();
+  hand_grid_to_planners();
   follower_.forget_route();
   if (drives_route(state_)) need_route_ = true;
 }
@@ -207,13 +211,17 @@ void Stacker::enter(StackerState state) {
   if (phase_of(state) != from_phase && order_) reports_.phase_changed(order_->order_id, phase_of(state));
 }
 
+void Stacker::hand_grid_to_planners() {
+  // Planners cache on the grid: hand them the new one only when an obstacle changed.
+  if (static_grid_.revision() == grid_revision_) return;
+  auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
+  road_.set_obstacles(*grid);
+  grid_astar_.set_grid(grid);
+  grid_revision_ = static_grid_.revision();
+}
+
 bool Stacker::plan_route() {
-  if (static_grid_.revision() != grid_revision_) {
-    auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
-    road_.set_obstacles(*grid);
-    grid_astar_.set_grid(grid);
-    grid_revision_ = static_grid_.revision();
-  }
+  hand_grid_to_planners();
   if (auto permit = follower_.take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, estimate().position());

@@ -127,6 +127,8 @@ class Stacker : public Robot {
   void enter(StackerState state);
   /// The route to where the current state drives; false when there is none for now.
   bool plan_route();
+  /// The static grid to the planners, when an obstacle changed it since they last had it.
+  void hand_grid_to_planners();
   void drive();
   void dock();
   void handle_forks();
