@@ -220,10 +220,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   // The area it sweeps must be clear; the body it stands with is held with it, but robots queued
   // up behind that body (waiting for it) do not keep it from starting.
   const geometry::Polygon swept = traffic::convex_hull(request.work_area);
-  const auto body = bodies_.find(request.robot_id);
-  std::vector<geometry::Vec2> corners = request.work_area;
-  if (body != bodies_.end()) corners.insert(corners.end(), body->second.begin(), body->second.end());
-  const geometry::Polygon area = traffic::convex_hull(std::move(corners));
+  const geometry::Polygon area = area_with_body(request);
   model::TrafficGrant answer;
   answer.robot_id = request.robot_id;
   answer.version = request.version;
@@ -248,6 +245,14 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   hold_body(request.robot_id, id, area, now_sim);
   answer.status = "AREA_CLEAR";
   publish(std::move(answer), now_wall);
+}
+
+geometry::Polygon TrafficControl::area_with_body(const model::TrafficRequest& request) const {
+  std::vector<geometry::Vec2> corners = request.work_area;
+  if (const auto body = bodies_.find(request.robot_id); body != bodies_.end()) {
+    corners.insert(corners.end(), body->second.begin(), body->second.end());
+  }
+  return traffic::convex_hull(std::move(corners));
 }
 
 void TrafficControl::wait_to_enter(const model::TrafficRequest& request, std::vector<std::string> blockers,
@@ -297,11 +302,7 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
     wait_to_enter(request, std::move(blockers), now_sim, now_wall);
     return false;
   }
-  std::vector<geometry::Vec2> corners = request.work_area;
-  if (const auto body = bodies_.find(request.robot_id); body != bodies_.end()) {
-    corners.insert(corners.end(), body->second.begin(), body->second.end());
-  }
-  hold_body(request.robot_id, id, traffic::convex_hull(std::move(corners)), now_sim);
+  hold_body(request.robot_id, id, area_with_body(request), now_sim);
   return true;
 }
 

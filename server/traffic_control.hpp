@@ -57,6 +57,9 @@ class TrafficControl {
   /// Answers a robot beside the roads that it waits to enter for `blockers` (granted_index -1).
   void wait_to_enter(const model::TrafficRequest& request, std::vector<std::string> blockers, double now_sim,
                      double now_wall);
+  /// What traffic holds for a manoeuvre: the hull of the request's work_area and the body the
+  /// robot stands with.
+  geometry::Polygon area_with_body(const model::TrafficRequest& request) const;
   /// Robots holding places the area touches or standing in it (TrafficManager::holders_in_area).
   std::vector<int> robots_in_area(int id, const geometry::Polygon& area) const;
   /// A standing robot's way out onto the road (its request's work_area) is free: it is held for
