@@ -77,6 +77,19 @@ TEST(StackerJob, WalksATransportFromItsBayBackToItsBay) {
   EXPECT_EQ(robot::stacker_phase(StackerState::kPlacing), orders::OrderPhase::kDropping);
 }
 
+/// A traffic manager with the road to itself: the whole route granted, an asked-for area clear.
+robot::TrafficPermit all_it_asks_for(const robot::TrafficRoute& route) {
+  robot::TrafficPermit permit;
+  if (!route.work_area.empty() && route.points.size() < 2) {
+    permit.area = robot::TrafficPermit::Area::kClear;
+  } else {
+    permit.version = route.version;
+    permit.granted_index = static_cast<int>(route.points.size()) - 1;
+    permit.granted_distance = 1e6;
+  }
+  return permit;
+}
+
 struct PlantStacker {
   std::shared_ptr<const map::SiteMap> site =
       std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
@@ -294,21 +307,16 @@ TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
   int areas = 0;
   for (int i = 0; i < 20 * 600 && stacker->task_state() != "GO_HOME"; ++i) {
     const robot::TrafficRoute route = stacker->traffic_route();
-    robot::TrafficPermit permit;
     if (!route.work_area.empty() && route.points.size() < 2) {
       if (held.empty()) {
         ++areas;
         held = route.work_area;
         for (const auto& c : geometry::footprint_polygon(stacker->estimate(), stacker->footprint())) held.push_back(c);
       }
-      permit.area = robot::TrafficPermit::Area::kClear;
     } else {
       held.clear();
-      permit.version = route.version;
-      permit.granted_index = static_cast<int>(route.points.size()) - 1;
-      permit.granted_distance = 1e6;
     }
-    stacker->set_traffic_grant(permit);
+    stacker->set_traffic_grant(all_it_asks_for(route));
     stacker->step();
     for (const auto& e : stacker->take_events()) {
       if (e.kind == RobotEvent::Kind::kLifted) plant.loads.erase(e.load_id);
@@ -340,16 +348,7 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   std::string why;
   ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX7"), &why)) << why;
   for (int i = 0; i < 20 * 600 && stacker->task_state() != "TO_DROP"; ++i) {
-    const robot::TrafficRoute route = stacker->traffic_route();
-    robot::TrafficPermit permit;
-    if (!route.work_area.empty() && route.points.size() < 2) {
-      permit.area = robot::TrafficPermit::Area::kClear;
-    } else {
-      permit.version = route.version;
-      permit.granted_index = static_cast<int>(route.points.size()) - 1;
-      permit.granted_distance = 1e6;
-    }
-    stacker->set_traffic_grant(permit);
+    stacker->set_traffic_grant(all_it_asks_for(stacker->traffic_route()));
     stacker->step();
   }
   ASSERT_EQ(stacker->task_state(), "TO_DROP") << stacker->detail();
