@@ -15,14 +15,10 @@
 #include <thread>
 
 #include "cli/client.hpp"
-#include "config/fleet_config.hpp"
 #include "dds/qos.hpp"
 #include "fleet_harness.hpp"
-#include "map/road_graph_builder.hpp"
-#include "map/site_map.hpp"
 #include "orders/order.hpp"
 #include "scripted_fleet.hpp"
-#include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
 using namespace fleet::testing;
@@ -338,19 +334,14 @@ TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManage
   // starts at another graph point, where fl2 stands: it waits to enter there. Were its first route
   // kept and granted meanwhile, others would wait on the places of a route nobody drives, and fl1
   // on them: a wait the manager's cycle detection cannot see.
-  const std::string root = FLEET_SOURCE_DIR;
-  const auto config = config::load_fleet_config(root + "/config/fleet.yaml");
-  const auto site = map::load_site_map(root + "/maps/table_a.yaml");
-  traffic::TrafficManager routes(site.graph.graph, traffic::configuration_from(config));
-  const auto& graph = routes.route_graph();
-  const auto point_near = [&](double x, double y) { return map::nearest_point(graph, x, y); };
-  const int h1_entry = point_near(0.83, 0.82);
-  const int h2_entry = point_near(2.17, 0.82);
-  const int a1_stop = point_near(0.975, 0.45);
-  const int a4_stop = point_near(2.55, 2.025);
-  const std::vector<int> first = routes.search().shortest(h1_entry, a1_stop);
-  const std::vector<int> replanned = routes.search().shortest(h2_entry, a1_stop);
-  const std::vector<int> fl2_route = routes.search().shortest(h2_entry, a4_stop);
+  TableARoutes routes;
+  const int h1_entry = routes.point_near(0.83, 0.82);
+  const int h2_entry = routes.point_near(2.17, 0.82);
+  const int a1_stop = routes.point_near(0.975, 0.45);
+  const int a4_stop = routes.point_near(2.55, 2.025);
+  const std::vector<int> first = routes.shortest(h1_entry, a1_stop);
+  const std::vector<int> replanned = routes.shortest(h2_entry, a1_stop);
+  const std::vector<int> fl2_route = routes.shortest(h2_entry, a4_stop);
   ASSERT_GE(first.size(), 2u);
   ASSERT_GE(replanned.size(), 2u);
   ASSERT_GE(fl2_route.size(), 2u);

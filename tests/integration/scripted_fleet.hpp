@@ -9,8 +9,13 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "config/fleet_config.hpp"
 #include "dds/qos.hpp"
 #include "fleet_harness.hpp"
+#include "map/road_graph_builder.hpp"
+#include "map/site_map.hpp"
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::testing {
 
@@ -153,6 +158,18 @@ struct ScriptedFleet {
     if (!order_reaches(assignment->order_id, "TO_PICK")) return std::nullopt;
     return assignment;
   }
+};
+
+/// table_a's roads as the server's traffic manager grants them under config/fleet.yaml, for
+/// scripting routes it accepts.
+struct TableARoutes {
+  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  traffic::TrafficManager manager{site.graph.graph, traffic::configuration_from(config)};
+
+  const map::RoadGraph& graph() const { return manager.route_graph(); }
+  int point_near(double x, double y) const { return map::nearest_point(graph(), x, y); }
+  std::vector<int> shortest(int from, int to) { return manager.search().shortest(from, to); }
 };
 
 }  // namespace fleet::testing

@@ -5,27 +5,19 @@
 #include <algorithm>
 #include <chrono>
 
-#include "config/fleet_config.hpp"
 #include "dds/qos.hpp"
-#include "map/road_graph_builder.hpp"
-#include "map/site_map.hpp"
 #include "scripted_fleet.hpp"
-#include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
 using namespace fleet::testing;
 using namespace std::chrono_literals;
 
 TEST(WorkArea, ARobotComingAlongTheRoadIsNeverGrantedIntoAHeldArea) {
-  const std::string root = FLEET_SOURCE_DIR;
-  const auto config = config::load_fleet_config(root + "/config/fleet.yaml");
-  const auto site = map::load_site_map(root + "/maps/table_a.yaml");
-  traffic::TrafficManager routes(site.graph.graph, traffic::configuration_from(config));
-  const auto& graph = routes.route_graph();
-  const auto point_near = [&](double x, double y) { return map::nearest_point(graph, x, y); };
+  TableARoutes routes;
+  const map::RoadGraph& graph = routes.graph();
   // fl1's way from home H1 to A4, and fl2 standing on it 1 m along, working beside it: the area
   // it sweeps reaches back along the road towards fl1 (a stacker's docking run from the lane).
-  const std::vector<int> route = routes.search().shortest(point_near(0.83, 0.82), point_near(2.55, 2.025));
+  const std::vector<int> route = routes.shortest(routes.point_near(0.83, 0.82), routes.point_near(2.55, 2.025));
   ASSERT_GE(route.size(), 20u);
   std::vector<double> along{0.0};
   for (std::size_t i = 1; i < route.size(); ++i) {

@@ -182,12 +182,7 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   // The road is free: every route is granted whole. The area is answered "wait" for 30 s.
   const auto grant_all = [&] {
     const robot::TrafficRoute route = stacker->traffic_route();
-    if (route.points.size() < 2) return;
-    robot::TrafficPermit permit;
-    permit.version = route.version;
-    permit.granted_index = static_cast<int>(route.points.size()) - 1;
-    permit.granted_distance = 1e6;
-    stacker->set_traffic_grant(permit);
+    if (route.points.size() >= 2) stacker->set_traffic_grant(all_it_asks_for(route));
   };
   int step = 0;
   for (; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
