@@ -371,8 +371,8 @@ void FleetAgent::publish_traffic(double now_sim) {
       last_traffic_sim_ >= 0.0) {
     return;
   }
-  traffic_writer_.write(
-      {options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim, route.work_area});
+  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
+                         route.work_area, route.arrival_area});
   last_traffic_ = std::move(route);
   last_traffic_sim_ = now_sim;
 }

@@ -183,6 +183,10 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       }
     }
     manager_.report_progress({id, request.version, progress, std::move(stopped_for)}, now_sim);
+    // Turning off its route's end into a place beside the road, it sweeps more than the lane.
+    manager_.set_arrival_area(
+        id, request.points.back(),
+        request.arrival_area.empty() ? geometry::Polygon{} : traffic::convex_hull(request.arrival_area));
   });
 }
 

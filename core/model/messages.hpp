@@ -198,6 +198,10 @@ struct TrafficRequest {
   /// reverse, parking), as points whose convex hull it is, map frame; empty when it only stands. The server answers
   /// AREA_CLEAR once no other robot holds a place it touches, and holds it for the robot from then on.
   geometry::Polygon work_area;
+  /// On a route: the area the robot sweeps turning off the route's last point into a place beside
+  /// the road, as points whose convex hull it is, map frame; empty when it sweeps nothing beyond
+  /// the lane (traffic::TrafficManager::set_arrival_area).
+  geometry::Polygon arrival_area;
 };
 
 /// The server's traffic grant for one robot (see traffic::Grant).

@@ -472,6 +472,7 @@ void Forklift::answer_plan_requests() {
   if (auto permit = follower_.take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, sim_.estimate().position());
+    arrival_area_ = arrival_sweep(place_of(request->purpose));
     safety_.clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
     executor_.path_received(request->id, planning::poses_along(follower_.path()));
@@ -484,6 +485,7 @@ void Forklift::answer_plan_requests() {
   }
   if (route.status == planning::PlanStatus::kFound && route.points.size() >= 2) {
     follower_.adopt_plan(route);
+    arrival_area_ = arrival_sweep(place_of(request->purpose));
     safety_.clear();
     executor_.path_received(request->id, planning::poses_along(route.points));
   } else {
@@ -548,7 +550,10 @@ void Forklift::set_traffic_grant(const TrafficPermit& permit) {
 
 TrafficRoute Forklift::traffic_route() const {
   TrafficRoute r = follower_.route();
-  if (follower_.on_road()) r.stopped_for = safety_.stopped_for(sim_.time(), sim_.estimate().position());
+  if (follower_.on_road()) {
+    r.stopped_for = safety_.stopped_for(sim_.time(), sim_.estimate().position());
+    r.arrival_area = arrival_area_;
+  }
   return r;
 }
 

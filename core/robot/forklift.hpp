@@ -159,6 +159,12 @@ class Forklift : public Robot {
   void answer_plan_requests();
   void collect_reports();
   double clearance_ahead() const;
+  /// What the body sweeps beyond the road's last point of its path, turning off the lane into
+  /// its goal beside the road and on into the loading area at `place` (a pick or a drop), as
+  /// TrafficRoute::arrival_area; empty when the goal is on the road.
+  std::vector<geometry::Vec2> arrival_sweep(std::optional<geometry::Vec2> place) const;
+  /// The loading area a path planned for `purpose` leads to, when it leads to one.
+  std::optional<geometry::Vec2> place_of(task::PlanPurpose purpose) const;
   std::vector<geometry::Polygon> uwb_blockers() const;
   /// Anchors the map shows behind an enabled static obstacle, seen from the estimate.
   std::vector<std::size_t> shadowed_anchors() const;
@@ -190,6 +196,7 @@ class Forklift : public Robot {
   std::vector<Neighbour> neighbours_;
   std::map<std::string, bool> obstacles_;
   TrafficFollower follower_;
+  std::vector<geometry::Vec2> arrival_area_;  ///< arrival_sweep() of the path adopted last
   SafetyStop safety_;
   OrderReporter reports_;
   control::BodyTwist command_;

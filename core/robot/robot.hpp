@@ -37,6 +37,9 @@ struct TrafficRoute {
   std::vector<std::string> stopped_for;
   /// Off the roads: the area the manoeuvre about to start or under way sweeps (model::TrafficRequest).
   geometry::Polygon work_area;
+  /// On the road: what the robot sweeps turning off the route's end into its goal beside the road
+  /// (model::TrafficRequest::arrival_area).
+  geometry::Polygon arrival_area;
 };
 
 /// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).

@@ -85,6 +85,8 @@ class TrafficFollower {
   bool on_road() const { return !road_points_.empty(); }
   /// Metres of path before the road part starts: the way from beside the road onto it.
   double road_start() const { return road_start_; }
+  /// Metres of path where the road part ends: beyond it the path leads off the road to the goal.
+  double road_end() const { return road_cum_.empty() ? road_start_ : road_start_ + road_cum_.back(); }
   /// Still on the way onto the road, where it was last found (room()).
   bool before_road() const { return on_road() && path_s_ < road_start_; }
   bool in_siding() const { return in_siding_; }

@@ -154,7 +154,9 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
     pull_back_grants_into(robot);
   } else {
     robot.body_reach.clear();
+    robot.body_polygon.clear();
   }
+  leave_arrival(robot);
   return SubmitStatus::kAccepted;
 }
 
@@ -237,7 +239,8 @@ void TrafficManager::pull_back_grants_into(const Robot& standing) {
   }
 }
 
-void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vector<std::vector<int>> touched) {
+void TrafficManager::stand(Robot& robot, const geometry::Polygon& body, const std::vector<int>& under,
+                           std::vector<std::vector<int>> touched) {
   int anchor = -1;
   for (std::size_t point = 0; point < graph_.points.size() && anchor < 0; ++point) {
     if (zones_->place_of(static_cast<int>(point)) == under.front()) anchor = static_cast<int>(point);
@@ -251,6 +254,11 @@ void TrafficManager::stand(Robot& robot, const std::vector<int>& under, std::vec
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.body_reach = std::move(touched);
+  robot.body_polygon = body;
+  robot.arrival_point = -1;  // its body is what it holds now
+  robot.arrival_held = false;
+  robot.arrival_area.clear();
+  robot.arrival_reach.clear();
   pull_back_grants_into(robot);
 }
 
@@ -262,6 +270,10 @@ bool TrafficManager::under_body_for(const Robot& robot, int place, int type) con
 
 bool TrafficManager::closes(const Robot& holder, int place, int type) const {
   if (under_body_for(holder, place, type)) return true;
+  if (holder.arrival_held) {
+    const auto& reach = holder.arrival_reach[static_cast<std::size_t>(type)];
+    if (std::binary_search(reach.begin(), reach.end(), place)) return true;
+  }
   const std::vector<int> held = held_places(holder.id);
   return std::any_of(held.begin(), held.end(),
                      [&](int q) { return !under_body(holder, q) && zones_->conflict(holder.type, q, type, place); });
@@ -273,7 +285,7 @@ bool TrafficManager::freeze_robot(int robot_id, const geometry::Polygon& body, d
   std::vector<std::vector<int>> touched;
   const std::vector<int> under = places_under(body, it->second.type, &touched);
   if (under.empty()) return remove_robot(robot_id, now);
-  stand(it->second, under, std::move(touched));
+  stand(it->second, body, under, std::move(touched));
   it->second.lost = true;
   return true;
 }
@@ -296,7 +308,7 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
     it->second.lost = false;  // heard from again, standing where it was lost
     return true;
   }
-  stand(it->second, under, std::move(touched));
+  stand(it->second, body, under, std::move(touched));
   return true;
 }
 
@@ -318,6 +330,7 @@ void TrafficManager::release_passed(Robot& robot) {
   if (robot.progress > robot.trail_release) {
     robot.trail.clear();
     robot.body_reach.clear();
+    robot.body_polygon.clear();
   }
 }
 
@@ -500,10 +513,12 @@ std::string TrafficManager::check_invariant() const {
       if (conflicting[at] >= 0) return report(id, p, conflicting[at]);
       if (body_of[at] >= 0) return report(id, p, body_of[at]);
     }
-    for (int u = 0; u < types && !robot.body_reach.empty(); ++u) {
-      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) {
-        if (held_by[typed(u, p)] >= 0) return report(id, p, held_by[typed(u, p)]);
-      }
+    for (int u = 0; u < types; ++u) {
+      int place = -1;
+      for_each_reach(robot, u, [&](int p) {
+        if (place < 0 && held_by[typed(u, p)] >= 0) place = p;
+      });
+      if (place >= 0) return report(id, place, held_by[typed(u, place)]);
     }
     for (int p : held) {
       if (under_body(robot, p)) continue;
@@ -512,9 +527,7 @@ std::string TrafficManager::check_invariant() const {
         for (int q : zones_->conflicts(robot.type, p, u)) conflicting[typed(u, q)] = id;
       }
     }
-    for (int u = 0; u < types && !robot.body_reach.empty(); ++u) {
-      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) body_of[typed(u, p)] = id;
-    }
+    for (int u = 0; u < types; ++u) for_each_reach(robot, u, [&](int p) { body_of[typed(u, p)] = id; });
   }
   return {};
 }

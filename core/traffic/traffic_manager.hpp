@@ -226,6 +226,19 @@ class TrafficManager {
   /// standing robot itself is never sent anywhere. Empty: it waits no more. Dropped with the
   /// robot and when it sends a route.
   void wait_for_area(int robot_id, std::vector<int> blockers);
+  /// The robot turns off its route's last point `goal_point` into a place beside the road (a
+  /// forklift into a rack place or its home) and sweeps `area` (convex) doing so: a long body
+  /// turning there swings across the lane it arrives on and into the one beside it. Its grant
+  /// reaches that point only once no other robot holds a place whose region touches the area or
+  /// stands in it (robots queued behind it, waiting for it, do not count: they stay put); from
+  /// then on the area closes the places whose regions touch it, as a standing body does, until the
+  /// robot has driven past the first edge of its next route (the way back out sweeps the same
+  /// area) or leaves the roads. Asked again with every request; an empty area, or a route ending
+  /// elsewhere, asks for nothing. Computing the places is a pass over every place: only when the
+  /// area or the point changes.
+  void set_arrival_area(int robot_id, int goal_point, const geometry::Polygon& area);
+  /// Whether the robot holds its arrival area (granted up to its route's last point).
+  bool holds_arrival(int robot_id) const;
 
   /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
   /// places x conflict-set size; no allocation proportional to the graph.
@@ -348,13 +361,39 @@ class TrafficManager {
     /// conflict with it: another robot may drive wherever its footprint stays clear of the body
     /// (the body is not a place's whole region). Empty when it holds no body.
     std::vector<std::vector<int>> body_reach;
+    geometry::Polygon body_polygon;  ///< the body (or arrival area) body_reach was found for
+    /// set_arrival_area: the route end it is asked for (-1: none), the area and, by type, the
+    /// places whose regions touch it, sorted; held from the grant of the route's last point.
+    int arrival_point = -1;
+    geometry::Polygon arrival_area;
+    std::vector<std::vector<int>> arrival_reach;
+    bool arrival_held = false;
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint64_t version);
+  /// A new route: a held arrival area stays held as the body's reach until the robot is past the
+  /// new route's first edge (its way out of where it turned in); the area asked for is dropped.
+  void leave_arrival(Robot& robot);
+  /// The route's last point is granted next and the robot asks for an arrival area not yet held.
+  bool arrival_pending(const Robot& robot, int index) const;
+  /// Robots (ids, sorted) that keep the robot from turning into its arrival area now.
+  std::vector<int> arrival_blockers(const Robot& robot) const;
+  /// The places `robot` closes, for robots of `type`, beyond those of its route: its body's reach
+  /// and its held arrival area. Calls `visit(place)` for each.
+  template <typename Visit>
+  void for_each_reach(const Robot& robot, int type, Visit visit) const {
+    if (!robot.body_reach.empty()) {
+      for (int p : robot.body_reach[static_cast<std::size_t>(type)]) visit(p);
+    }
+    if (robot.arrival_held) {
+      for (int p : robot.arrival_reach[static_cast<std::size_t>(type)]) visit(p);
+    }
+  }
   /// The places a body of `type` holds (see the class comment) and, by type, the places it touches.
   std::vector<int> places_under(const geometry::Polygon& body, int type,
                                 std::vector<std::vector<int>>* touched = nullptr) const;
-  void stand(Robot& robot, const std::vector<int>& under, std::vector<std::vector<int>> touched);
+  void stand(Robot& robot, const geometry::Polygon& body, const std::vector<int>& under,
+             std::vector<std::vector<int>> touched);
   /// Whether `place` is among those the robot's body touches, in its own type's regions.
   bool under_body(const Robot& robot, int place) const { return under_body_for(robot, place, robot.type); }
   bool under_body_for(const Robot& robot, int place, int type) const;

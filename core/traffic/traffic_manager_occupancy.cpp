@@ -83,8 +83,7 @@ void TrafficManager::rebuild_occupancy() {
         if (under_body(robot, p)) continue;
         for (int q : zones_->conflicts(robot.type, p, u)) occupancy_[typed(u, q) * words_ + s / 64] |= bit;
       }
-      if (robot.body_reach.empty()) continue;
-      for (int p : robot.body_reach[static_cast<std::size_t>(u)]) occupancy_[typed(u, p) * words_ + s / 64] |= bit;
+      for_each_reach(robot, u, [&](int p) { occupancy_[typed(u, p) * words_ + s / 64] |= bit; });
     }
   }
   // Entry claims of robots waiting beside the roads longer than priority_wait.
@@ -259,6 +258,7 @@ void TrafficManager::extend(Robot& robot, int slot) {
   }
   const double target = robot.progress + configuration_.lookahead;
   std::vector<int> blockers;
+  std::vector<int> in_arrival;  // ids
   while (robot.grant_end < last && robot.cum[static_cast<std::size_t>(robot.grant_end)] < target) {
     int j = robot.grant_end + 1;
     bool free = true;
@@ -267,13 +267,21 @@ void TrafficManager::extend(Robot& robot, int slot) {
         free = false;
         break;
       }
+      if (arrival_pending(robot, j)) {
+        in_arrival = arrival_blockers(robot);
+        if (!in_arrival.empty()) {
+          free = false;
+          break;
+        }
+      }
       if (j == last || zones_->stoppable(robot.type, robot.places[static_cast<std::size_t>(j)])) break;
     }
     if (!free) {
       robot.blocked = true;
       sort_unique(blockers);
       for (int b : blockers) robot.blocked_by.push_back(slots_[static_cast<std::size_t>(b)]->id);
-      std::sort(robot.blocked_by.begin(), robot.blocked_by.end());
+      robot.blocked_by.insert(robot.blocked_by.end(), in_arrival.begin(), in_arrival.end());
+      sort_unique(robot.blocked_by);
       if (entry_closes(robot.places, j, robot.type)) {
         const int p = robot.places[static_cast<std::size_t>(j)];
         for (const auto& [id, claim] : entries_) {
@@ -286,6 +294,15 @@ void TrafficManager::extend(Robot& robot, int slot) {
     }
     for (int k = robot.grant_end + 1; k <= j; ++k) mark(robot, slot, k);
     robot.grant_end = j;
+    if (arrival_pending(robot, j)) {
+      robot.arrival_held = true;
+      const std::uint64_t bit = std::uint64_t{1} << (slot % 64);
+      for (int u = 0; u < static_cast<int>(zones_->type_count()); ++u) {
+        for (int p : robot.arrival_reach[static_cast<std::size_t>(u)]) {
+          occupancy_[typed(u, p) * words_ + static_cast<std::size_t>(slot / 64)] |= bit;
+        }
+      }
+    }
   }
 }
 
@@ -324,6 +341,14 @@ std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::P
   }
   for (const auto& [id, body] : bodies) {
     if (id != robot_id && geometry::convex_polygons_overlap(body, area)) out.push_back(id);
+  }
+  // Robots turning into a place beside the road (or backing out of one) sweep their arrival area.
+  for (const auto& [id, robot] : robots_) {
+    if (id == robot_id || robot.frozen) continue;
+    const bool in_arrival = robot.arrival_held && geometry::convex_polygons_overlap(robot.arrival_area, area);
+    const bool backing_out = !robot.body_reach.empty() && !robot.body_polygon.empty() &&
+                             geometry::convex_polygons_overlap(robot.body_polygon, area);
+    if (in_arrival || backing_out) out.push_back(id);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

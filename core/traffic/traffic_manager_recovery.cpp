@@ -66,6 +66,7 @@ void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instru
   held.erase(std::remove(held.begin(), held.end(), start), held.end());
   install_route(robot, std::move(points), robot.version + 1);
   robot.trail = std::move(held);
+  leave_arrival(robot);
   robot.pending = instruction;
   robot.last_reroute = now;
 }

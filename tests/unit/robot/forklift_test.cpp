@@ -7,6 +7,7 @@
 #include <string>
 
 #include "control/pallet_place.hpp"
+#include "traffic/conflict_zones.hpp"
 #include "traffic/one_way.hpp"
 
 using namespace fleet;
@@ -163,6 +164,32 @@ void set_out_with_the_whole_route_granted(robot::Forklift& f, const map::SiteMap
 }
 
 }  // namespace
+
+TEST(Forklift, ARouteToAPlaceBesideTheRoadAsksTrafficForWhatItsTurnOffTheLaneSweeps) {
+  const auto site = table_a();
+  robot::Forklift f(under_traffic(*site), site, site->site.find_home("H1")->pose, 3, 1);
+  f.set_standing_loads(pallets_of(site->site));
+  ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
+  for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
+  const robot::TrafficRoute route = f.traffic_route();
+  ASSERT_GE(route.points.size(), 4u) << f.detail();
+  ASSERT_FALSE(route.arrival_area.empty()) << "A3 lies beside the road, off the route's last point";
+  const geometry::Polygon area = traffic::convex_hull(route.arrival_area);
+  // The body turning on the spot at the road's end and in the loading area, any heading.
+  const auto& end = site->graph.graph.points[static_cast<std::size_t>(route.points.back())];
+  for (const geometry::Vec2 at : {geometry::Vec2{end.x, end.y}, site->site.find_area("A3")->pose.position()}) {
+    for (double yaw = 0.0; yaw < 2.0 * std::numbers::pi; yaw += std::numbers::pi / 8) {
+      for (const geometry::Vec2& corner : geometry::footprint_polygon({at.x, at.y, yaw}, f.footprint())) {
+        const geometry::Vec2 just_inside = at + 0.99 * (corner - at);  // corners may be the hull's own
+        EXPECT_TRUE(geometry::contains(area, just_inside)) << "at (" << at.x << ", " << at.y << ")";
+      }
+    }
+  }
+  // Driving on the road it sweeps nothing the route's places do not cover.
+  const geometry::Vec2 start = f.path().front();
+  EXPECT_GT(geometry::distance(start, {end.x, end.y}), 1.0);
+  EXPECT_FALSE(geometry::contains(area, start)) << "the area reaches back to where the robot set off";
+}
 
 TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   const auto site = table_a();
