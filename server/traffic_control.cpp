@@ -116,7 +116,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
       if (result == traffic::SubmitStatus::kInvalid) {
         const std::uint64_t dropped = manager_.version(id);
-        standing = stand_where_it_is(request.robot_id, id, now_sim);
+        standing = stand_where_it_is(request.robot_id, id, now_sim, /*keep_turn=*/true);
         enter = true;
         log_->debug("traffic: {} route {} starts where it does not stand; route {} dropped, it enters afresh",
                     request.robot_id, request.version, dropped);
@@ -328,11 +328,17 @@ bool TrafficControl::hold_body(const std::string& robot_id, int id, const geomet
   return manager_.hold_body(id, body, now_sim);
 }
 
-bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, double now_sim) {
+bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, double now_sim, bool keep_turn) {
+  const geometry::Polygon turn = keep_turn ? manager_.turn_area(id) : geometry::Polygon{};
   manager_.remove_robot(id, now_sim);
   held_bodies_.erase(robot_id);  // held anew from where it stands now
   const auto body = bodies_.find(robot_id);
-  return body != bodies_.end() && hold_body(robot_id, id, body->second, now_sim);
+  if (body == bodies_.end()) return false;
+  if (turn.empty()) return hold_body(robot_id, id, body->second, now_sim);
+  // Still in the place it turned into: its way back onto the road sweeps the same area.
+  std::vector<geometry::Vec2> corners = turn;
+  corners.insert(corners.end(), body->second.begin(), body->second.end());
+  return hold_body(robot_id, id, traffic::convex_hull(std::move(corners)), now_sim);
 }
 
 void TrafficControl::update(double now_sim, double now_wall) {

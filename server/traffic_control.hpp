@@ -47,8 +47,9 @@ class TrafficControl {
   /// now stands holding places; false when its body is clear of the roads (it is removed).
   bool hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim);
   /// Drops the robot's route and holds the places under its body instead (none when its body is
-  /// unknown or clear of the roads); true when it holds some.
-  bool stand_where_it_is(const std::string& robot_id, int id, double now_sim);
+  /// unknown or clear of the roads); true when it holds some. `keep_turn`: a robot still in the
+  /// place it turned into off its route (TrafficManager::turn_area) holds that area with its body.
+  bool stand_where_it_is(const std::string& robot_id, int id, double now_sim, bool keep_turn = false);
   /// Whether the robot, standing (frozen), is on graph point `point` and holds its place.
   bool stands_at(const std::string& robot_id, int id, int point) const;
   /// A robot off the roads with a work area (model::TrafficRequest::work_area): holds the area

@@ -37,6 +37,17 @@ TrafficManager::TrafficManager(const map::RoadGraph& graph, const TrafficConfigu
   if (!(configuration.stop_tolerance >= 0.0))
     throw std::invalid_argument("traffic configuration: stop_tolerance must be >= 0");
   zones_ = std::make_unique<ConflictZones>(graph_, configuration.resources);
+  // Finding the places under a body tests it against every region: their boxes first.
+  region_bounds_.resize(zones_->place_count() * zones_->type_count());
+  for (std::size_t t = 0; t < zones_->type_count(); ++t) {
+    for (std::size_t p = 0; p < zones_->place_count(); ++p) {
+      std::vector<geometry::Vec2> corners;
+      for (const auto& piece : zones_->region(static_cast<int>(t), static_cast<int>(p))) {
+        corners.insert(corners.end(), piece.begin(), piece.end());
+      }
+      region_bounds_[typed(static_cast<int>(t), static_cast<int>(p))] = geometry::bounding_box(corners);
+    }
+  }
   search_ = std::make_unique<RouteSearch>(graph_, *zones_);
   if (configuration.one_way) one_way_ = one_way_plan(graph_, *zones_);
   // One one-way plan for every type, so robots of different types agree on each corridor's
@@ -150,9 +161,13 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
+  // The area of a turn into a place it still holds (it has not driven past the first edge of the
+  // route it left by) stays held until it is past this route's first edge: a robot backing out
+  // of a place may plan again before it is out. The body it stood with before does not: on the
+  // road again, its route's places cover it.
   if (was_standing) {
     pull_back_grants_into(robot);
-  } else {
+  } else if (!robot.reach_of_turn) {
     robot.body_reach.clear();
     robot.body_polygon.clear();
   }
@@ -174,49 +189,6 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   sort_unique(robot.stopped_for);
   const double limit = robot.cum[static_cast<std::size_t>(robot.grant_end)];
   robot.progress = std::clamp(report.distance, robot.progress, std::max(robot.progress, limit));
-}
-
-std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, int type,
-                                              std::vector<std::vector<int>>* touched) const {
-  // Every place whose region the body touches; but when one region holds the whole body (a robot
-  // standing on the road), that place alone: whatever touches the body conflicts with it anyway,
-  // and the wider set would close the road to a robot standing close behind or ahead.
-  std::vector<int> under;
-  int holding = -1;
-  double holding_distance = kInfinity;
-  geometry::Vec2 centre{};
-  for (const auto& corner : body) centre = centre + (1.0 / static_cast<double>(body.size())) * corner;
-  const auto touches = [&](int t, int p) {
-    const auto& region = zones_->region(t, p);
-    return std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) {
-      return geometry::convex_polygons_distance(piece, body) <= 0.0;
-    });
-  };
-  const int types = static_cast<int>(zones_->type_count());
-  if (touched) touched->assign(static_cast<std::size_t>(types), {});
-  for (std::size_t p = 0; p < zones_->place_count(); ++p) {
-    if (touched) {
-      for (int t = 0; t < types; ++t) {
-        if (t != type && touches(t, static_cast<int>(p)))
-          (*touched)[static_cast<std::size_t>(t)].push_back(static_cast<int>(p));
-      }
-    }
-    if (!touches(type, static_cast<int>(p))) continue;
-    const auto& region = zones_->region(type, static_cast<int>(p));
-    under.push_back(static_cast<int>(p));
-    if (touched) (*touched)[static_cast<std::size_t>(type)].push_back(static_cast<int>(p));
-    const bool holds = std::all_of(body.begin(), body.end(), [&](const geometry::Vec2& corner) {
-      return std::any_of(region.begin(), region.end(),
-                         [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
-    });
-    const double d = geometry::distance(zones_->position(static_cast<int>(p)), centre);
-    if (holds && d < holding_distance) {
-      holding = static_cast<int>(p);
-      holding_distance = d;
-    }
-  }
-  if (holding >= 0) return {holding};
-  return under;
 }
 
 void TrafficManager::pull_back_grants_into(const Robot& standing) {
@@ -255,6 +227,7 @@ void TrafficManager::stand(Robot& robot, const geometry::Polygon& body, const st
   robot.in_siding = false;
   robot.body_reach = std::move(touched);
   robot.body_polygon = body;
+  robot.reach_of_turn = false;
   robot.arrival_point = -1;  // its body is what it holds now
   robot.arrival_held = false;
   robot.arrival_area.clear();
@@ -331,6 +304,7 @@ void TrafficManager::release_passed(Robot& robot) {
     robot.trail.clear();
     robot.body_reach.clear();
     robot.body_polygon.clear();
+    robot.reach_of_turn = false;
   }
 }
 

@@ -239,6 +239,9 @@ class TrafficManager {
   void set_arrival_area(int robot_id, int goal_point, const geometry::Polygon& area);
   /// Whether the robot holds its arrival area (granted up to its route's last point).
   bool holds_arrival(int robot_id) const;
+  /// The area of the robot's turn off the road that it still holds: its arrival area, or the one
+  /// it keeps on a new route until past its first edge. Empty when none.
+  geometry::Polygon turn_area(int robot_id) const;
 
   /// One control cycle: releases, grants, deadlock resolution. Cost grows with robots x route
   /// places x conflict-set size; no allocation proportional to the graph.
@@ -362,6 +365,7 @@ class TrafficManager {
     /// (the body is not a place's whole region). Empty when it holds no body.
     std::vector<std::vector<int>> body_reach;
     geometry::Polygon body_polygon;  ///< the body (or arrival area) body_reach was found for
+    bool reach_of_turn = false;      ///< body_reach is the arrival area it has yet to back out of
     /// set_arrival_area: the route end it is asked for (-1: none), the area and, by type, the
     /// places whose regions touch it, sorted; held from the grant of the route's last point.
     int arrival_point = -1;
@@ -455,11 +459,12 @@ class TrafficManager {
     std::unique_ptr<RouteSearch> route_search;  ///< on `route`: re-routes and returns
   };
   std::vector<std::unique_ptr<TypeGraphs>> types_;
-  std::map<int, int> robot_types_;     ///< set_robot_type, by robot id
-  std::map<int, Robot> robots_;        ///< ordered by id: deterministic iteration
-  std::vector<Robot*> slots_;          ///< robots by slot (position in id order), rebuilt each update
-  double now_ = 0.0;                   ///< time of the update in progress
-  std::vector<TrafficEvent> removed_;  ///< removals since the last update, reported by it
+  std::vector<geometry::Bounds> region_bounds_;  ///< of each region's pieces, by typed(type, place)
+  std::map<int, int> robot_types_;               ///< set_robot_type, by robot id
+  std::map<int, Robot> robots_;                  ///< ordered by id: deterministic iteration
+  std::vector<Robot*> slots_;                    ///< robots by slot (position in id order), rebuilt each update
+  double now_ = 0.0;                             ///< time of the update in progress
+  std::vector<TrafficEvent> removed_;            ///< removals since the last update, reported by it
 
   /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
   struct CorridorSpan {

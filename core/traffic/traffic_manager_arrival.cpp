@@ -45,10 +45,19 @@ bool TrafficManager::holds_arrival(int robot_id) const {
   return it != robots_.end() && it->second.arrival_held;
 }
 
+geometry::Polygon TrafficManager::turn_area(int robot_id) const {
+  const auto it = robots_.find(robot_id);
+  if (it == robots_.end() || it->second.frozen) return {};
+  const Robot& robot = it->second;
+  if (robot.arrival_held) return robot.arrival_area;
+  return robot.reach_of_turn ? robot.body_polygon : geometry::Polygon{};
+}
+
 void TrafficManager::leave_arrival(Robot& robot) {
   if (robot.arrival_held) {
     robot.body_reach = std::move(robot.arrival_reach);
     robot.body_polygon = robot.arrival_area;
+    robot.reach_of_turn = true;
   }
   robot.arrival_point = -1;
   robot.arrival_held = false;

@@ -123,6 +123,54 @@ void TrafficManager::rebuild_occupancy() {
   }
 }
 
+std::vector<int> TrafficManager::places_under(const geometry::Polygon& body, int type,
+                                              std::vector<std::vector<int>>* touched) const {
+  // Every place whose region the body touches; but when one region holds the whole body (a robot
+  // standing on the road), that place alone: whatever touches the body conflicts with it anyway,
+  // and the wider set would close the road to a robot standing close behind or ahead.
+  std::vector<int> under;
+  int holding = -1;
+  double holding_distance = kInfinity;
+  geometry::Vec2 centre{};
+  for (const auto& corner : body) centre = centre + (1.0 / static_cast<double>(body.size())) * corner;
+  const geometry::Bounds box = geometry::bounding_box(body);
+  const auto touches = [&](int t, int p) {
+    const geometry::Bounds& around = region_bounds_[typed(t, p)];
+    if (around.min_x > box.max_x || around.max_x < box.min_x || around.min_y > box.max_y || around.max_y < box.min_y) {
+      return false;
+    }
+    const auto& region = zones_->region(t, p);
+    return std::any_of(region.begin(), region.end(), [&](const geometry::Polygon& piece) {
+      return geometry::convex_polygons_distance(piece, body) <= 0.0;
+    });
+  };
+  const int types = static_cast<int>(zones_->type_count());
+  if (touched) touched->assign(static_cast<std::size_t>(types), {});
+  for (std::size_t p = 0; p < zones_->place_count(); ++p) {
+    if (touched) {
+      for (int t = 0; t < types; ++t) {
+        if (t != type && touches(t, static_cast<int>(p)))
+          (*touched)[static_cast<std::size_t>(t)].push_back(static_cast<int>(p));
+      }
+    }
+    if (!touches(type, static_cast<int>(p))) continue;
+    const auto& region = zones_->region(type, static_cast<int>(p));
+    under.push_back(static_cast<int>(p));
+    if (touched) (*touched)[static_cast<std::size_t>(type)].push_back(static_cast<int>(p));
+    const bool holds = std::all_of(body.begin(), body.end(), [&](const geometry::Vec2& corner) {
+      return std::any_of(region.begin(), region.end(),
+                         [&](const geometry::Polygon& piece) { return geometry::contains(piece, corner); });
+    });
+    const double d = geometry::distance(zones_->position(static_cast<int>(p)), centre);
+    if (holds && d < holding_distance) {
+      holding = static_cast<int>(p);
+      holding_distance = d;
+    }
+  }
+  if (holding >= 0) return {holding};
+  return under;
+}
+
 bool TrafficManager::entry_closes(const std::vector<int>& places, int index, int type) const {
   // Closed to robots coming from outside the claim's places; one inside may drive on and out.
   const auto closed = [&](int k) { return entry_closed_[typed(type, places[static_cast<std::size_t>(k)])] != 0; };

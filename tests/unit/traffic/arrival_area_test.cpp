@@ -106,6 +106,11 @@ TEST(ArrivalArea, IsClosedToOthersUntilTheRobotIsBackOnTheRoad) {
     if (back_out_at < 0.0 && t >= 20.0) {
       ASSERT_EQ(m.submit_route({1, 4, onward}, t), SubmitStatus::kAccepted);
       back_out_at = t;
+      EXPECT_EQ(m.turn_area(1), kTurn) << "backing out, it sweeps the area it turned in by";
+    }
+    if (back_out_at >= 0.0 && m.version(1) == 4 && t >= back_out_at + 1.0) {
+      // A new plan before it is out (another order came) keeps the area held.
+      ASSERT_EQ(m.submit_route({1, 6, onward}, t), SubmitStatus::kAccepted);
     }
     const UpdateResult r = m.update(t);
     ASSERT_EQ(m.check_invariant(), "");
@@ -115,13 +120,14 @@ TEST(ArrivalArea, IsClosedToOthersUntilTheRobotIsBackOnTheRoad) {
     if (back_out_at >= 0.0 && t >= back_out_at + 3.0) {  // 3 s backing out before it drives on
       const Grant* g1 = grant_of(r, 1);
       out = std::min(out + 0.1, g1->granted_distance);
-      m.report_progress({1, 4, out, {}}, t);
+      m.report_progress({1, 6, out, {}}, t);
     }
     if (out < 0.05) {
       EXPECT_GT(west_x(west), 6.8) << "robot 2 was granted into the area at t = " << t;
     }
   }
   EXPECT_FALSE(m.holds_arrival(1));
+  EXPECT_TRUE(m.turn_area(1).empty()) << "out on the road, it holds its places alone";
   EXPECT_GT(west, 9.9) << "robot 2 never drove on once robot 1 was out";
 }
 
