@@ -288,9 +288,10 @@ class TrafficManager {
   /// roads holds no place, yet a manoeuvre must not sweep it. A standing robot (frozen, see
   /// hold_body) with its hold in `bodies` counts by that polygon alone: the regions of the places
   /// under it reach up to a body length beyond it, and a parked robot would keep every manoeuvre
-  /// that passes it at that distance from starting. A robot beside the roads starts a
-  /// manoeuvre that sweeps `area` (docking in reverse, parking) only when this is empty, and then
-  /// holds the area (hold_body) until the manoeuvre ends.
+  /// that passes it at that distance from starting. So does a robot on a route that waits for
+  /// `robot_id` (with its body in `bodies`): it goes nowhere until `robot_id` has moved. A robot beside the roads
+  /// starts a manoeuvre that sweeps `area` (docking in reverse, parking) only when this is empty, and then holds the
+  /// area (hold_body) until the manoeuvre ends.
   std::vector<int> holders_in_area(int robot_id, const geometry::Polygon& area,
                                    const std::map<int, geometry::Polygon>& bodies = {}) const;
   /// A robot beside the roads waits to enter at `point` (see holders_in_conflict). Once it has

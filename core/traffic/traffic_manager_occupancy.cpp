@@ -379,7 +379,11 @@ std::vector<int> TrafficManager::holders_in_area(int robot_id, const geometry::P
   places_under(area, type_of(robot_id), &touched);
   std::vector<int> out;
   for (const auto& [id, robot] : robots_) {
-    if (id == robot_id || (robot.frozen && bodies.contains(id))) continue;
+    // A robot that waits for this one stays where it is (its grant ends short of this one's
+    // hold): like a standing one it counts by its body.
+    const bool waits_for_it =
+        robot.wait_since >= 0.0 && std::binary_search(robot.blocked_by.begin(), robot.blocked_by.end(), robot_id);
+    if (id == robot_id || ((robot.frozen || waits_for_it) && bodies.contains(id))) continue;
     const auto& near = touched[static_cast<std::size_t>(robot.type)];
     const std::vector<int> held = held_places(id);
     if (std::any_of(held.begin(), held.end(),

@@ -83,5 +83,40 @@ TEST(WorkArea, OnceHeldNobodyIsGrantedIntoIt) {
   EXPECT_GT(progress, 9.5);
 }
 
+TEST(WorkArea, IsNotHeldByTheRegionsOfARobotWaitingForTheOneAskingOnlyByItsBody) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 10.0, 0.0);
+  TrafficConfiguration configuration;
+  configuration.resources.footprint = {1.0, 0.6};
+  TrafficManager m(b.graph(), configuration);
+  // Robot 3 stands across the road at x = 6 (about to dock beside it); robot 1 comes along and
+  // waits for it, its grant ending short of robot 3's body.
+  ASSERT_TRUE(m.hold_body(3, {{5.6, -1.4}, {6.4, -1.4}, {6.4, 0.2}, {5.6, 0.2}}, 0.0));
+  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+  double progress = 0.0;
+  for (double t = 0.1; t < 30.0; t += 0.1) {
+    const Grant* g = grant_of(m.update(t), 1);
+    ASSERT_NE(g, nullptr);
+    progress = std::min(progress + 0.1, g->granted_distance);
+    m.report_progress({1, 1, progress, {}}, t);
+  }
+  const Grant* g = grant_of(m.update(30.0), 1);
+  ASSERT_EQ(g->status, GrantStatus::kWaiting);
+  ASSERT_EQ(g->blocked_by, std::vector<int>{3});
+  // Robot 3's docking sweeps up to 3 cm short of robot 1's body: the regions of the places robot
+  // 1 holds reach into it, its body does not.
+  const double front = progress + 0.5;
+  const geometry::Polygon sweep{{front + 0.03, -1.5}, {7.5, -1.5}, {7.5, 0.6}, {front + 0.03, 0.6}};
+  const geometry::Polygon body{{progress - 0.5, -0.3}, {front, -0.3}, {front, 0.3}, {progress - 0.5, 0.3}};
+  ASSERT_EQ(m.holders_in_area(3, sweep), std::vector<int>{1}) << "the test's sweep misses robot 1's places";
+  EXPECT_TRUE(m.holders_in_area(3, sweep, {{1, body}}).empty())
+      << "robot 1 waits for robot 3 and stands clear of its sweep";
+  const geometry::Polygon over_it{{front - 0.1, -1.5}, {7.5, -1.5}, {7.5, 0.6}, {front - 0.1, 0.6}};
+  EXPECT_EQ(m.holders_in_area(3, over_it, {{1, body}}), std::vector<int>{1}) << "a sweep over its body waits for it";
+  // Another robot asking for the same sweep, which robot 1 does not wait for, waits for it.
+  const std::vector<int> for_another = m.holders_in_area(4, sweep, {{1, body}});
+  EXPECT_NE(std::find(for_another.begin(), for_another.end(), 1), for_another.end());
+}
+
 }  // namespace
 }  // namespace fleet::traffic
