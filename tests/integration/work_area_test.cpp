@@ -51,7 +51,7 @@ TEST(WorkArea, ARobotComingAlongTheRoadIsNeverGrantedIntoAHeldArea) {
       [&] {
         s.robot.publish_state();
         fl2.publish_state();
-        requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area});
+        requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}});
         grants.take_data([&](model::TrafficGrant&& g) {
           area_clear = area_clear || (g.robot_id == "fl2" && g.status == "AREA_CLEAR");
         });
@@ -69,10 +69,10 @@ TEST(WorkArea, ARobotComingAlongTheRoadIsNeverGrantedIntoAHeldArea) {
     s.robot.publish_state();
     fl2.publish_state();
     if (std::chrono::steady_clock::now() >= next_work) {
-      requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area});
+      requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}});
       next_work += 500ms;
     }
-    requests.write({"fl1", kRoute, route, progress, {}, 0.0, {}});
+    requests.write({"fl1", kRoute, route, progress, {}, 0.0, {}, {}});
     grants.take_data([&](model::TrafficGrant&& g) {
       if (g.robot_id != "fl1" || g.version != kRoute || g.granted_index < 0) return;
       furthest = std::max(furthest, g.granted_index);
