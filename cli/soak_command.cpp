@@ -197,9 +197,10 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   std::map<pid_t, std::string> type_of;
   std::map<pid_t, double> first_seen_s;  // wall seconds into the run
   // An agent allocates as it first uses a part (a stacker's camera frames at its first docking):
-  // it is measured once it has finished an order, from its robot's first DONE.
+  // it is measured once it has finished an order, from its robot's first DONE since the process
+  // started (a restarted agent allocates afresh).
   std::map<pid_t, std::string> robot_of;
-  std::map<std::string, double> first_done_s;  // wall seconds into the run
+  std::map<std::string, std::vector<double>> done_s;  // wall seconds into the run, by robot
   const double warm_up_s = std::max(10.0, 0.1 * options.duration_s);
   auto sample = [&](std::map<pid_t, Usage>& into) {
     for (const auto& child : run.processes().children()) {
@@ -239,7 +240,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     report_reader.take_data([&](model::OrderReport&& report) {
       if (report.status == "DONE") {
         done_by[report.order_id].insert(report.robot_id);
-        first_done_s.emplace(report.robot_id, run.wall_seconds());
+        done_s[report.robot_id].push_back(run.wall_seconds());
       }
     });
     for (auto& f : faults) {
@@ -357,8 +358,9 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         for (const auto& [pid, u] : now_usage) {
           if (u.rss_kb <= 0.0 || run.wall_seconds() - first_seen_s[pid] < warm_up_s) continue;
           if (type_of[pid] == "agent") {
-            const auto done = first_done_s.find(robot_of[pid]);
-            if (done == first_done_s.end() || run.wall_seconds() - done->second < warm_up_s) continue;
+            const std::vector<double>& done = done_s[robot_of[pid]];
+            const auto first = std::lower_bound(done.begin(), done.end(), first_seen_s[pid]);
+            if (first == done.end() || run.wall_seconds() - *first < warm_up_s) continue;
           }
           auto [it, fresh] = into.emplace(pid, u.rss_kb);
           if (!fresh) it->second = std::min(it->second, u.rss_kb);
