@@ -31,7 +31,17 @@ std::vector<std::int64_t> send_crossing_orders(cli::FleetClient& client, const s
     request.pick_area = trips[i].first;
     request.drop_area = trips[i].second;
     request.robot_id = robots[i];
-    const auto reply = client.request_order(request, 5000ms);
+    auto reply = client.request_order(request, 5000ms);
+    // The harness sees every agent's state before the server may have: an order for a robot the
+    // server has not heard from yet is refused as such, and is asked again.
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    for (int attempt = 1; reply && !reply->accepted && reply->error.find("has not been seen") != std::string::npos &&
+                          std::chrono::steady_clock::now() < deadline;
+         ++attempt) {
+      std::this_thread::sleep_for(200ms);
+      request.request_id = request_prefix + std::to_string(i) + "-" + std::to_string(attempt);
+      reply = client.request_order(request, 5000ms);
+    }
     EXPECT_TRUE(reply && reply->accepted) << (reply ? reply->error : "no reply");
     if (!reply || !reply->accepted) break;
     ids.push_back(reply->order_id);
