@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -30,12 +31,15 @@ std::string known_site_path(const std::string& source_dir, const std::string& na
 
 // Offline subcommands working on core/ alone. Each returns an ExitCode and prints results to
 // `out`, errors to `err`.
-int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);        // map check|sample|render
-int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);   // loc-eval
-int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // plan-eval
-int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // ctrl-eval
-int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // fleets
-int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // dock-eval
+int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);       // map check|sample|render
+int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // loc-eval
+/// loc-eval --trajectory rack_aisle: the picker's localization by markers.
+int marker_loc_eval_command(const CommandArgs& args, double duration, std::uint64_t seed, bool json, std::ostream& out,
+                            std::ostream& err);
+int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // plan-eval
+int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // ctrl-eval
+int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);        // fleets
+int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // dock-eval
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
 
 }  // namespace fleet::cli

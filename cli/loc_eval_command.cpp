@@ -16,8 +16,10 @@ namespace fleet::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: fleetctl loc-eval [--trajectory square|figure8|table_a_loop] [--duration S] [--seed N]\n"
-    "                         [--nlos FRACTION] [--plot FILE.svg] [--json]\n";
+    "usage: fleetctl loc-eval [--trajectory square|figure8|table_a_loop|rack_aisle] [--duration S] [--seed N]\n"
+    "                         [--nlos FRACTION] [--plot FILE.svg] [--json]\n"
+    "  rack_aisle: the picker on the plant's rack aisle, localised by markers and wheel odometry\n"
+    "  (no UWB: --nlos and --plot do not apply)\n";
 
 nlohmann::json stats_json(const eval::ErrorStats& s) {
   return {{"pos_rmse_m", s.pos_rmse},
@@ -41,6 +43,7 @@ void print_row(std::ostream& out, const std::string& name, const eval::ErrorStat
 
 int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
   eval::LocEvalParams params;
+  bool rack_aisle = false;
   std::string plot_file;
   bool json = args.json;
   const auto& a = args.args;
@@ -69,9 +72,11 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
       err << "loc-eval: " << flag << " '" << value << "' " << what << "\n";
       return kExitBadInput;
     };
-    if (flag == "--trajectory") {
+    if (flag == "--trajectory" && value == "rack_aisle") {
+      rack_aisle = true;
+    } else if (flag == "--trajectory") {
       const auto t = eval::parse_trajectory(value);
-      if (!t) return bad("is not one of square, figure8, table_a_loop");
+      if (!t) return bad("is not one of square, figure8, table_a_loop, rack_aisle");
       params.trajectory = *t;
     } else if (flag == "--duration") {
       const auto duration = parse_finite(value);
@@ -88,6 +93,14 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
     } else if (flag == "--plot") {
       plot_file = value;
     }
+  }
+
+  if (rack_aisle) {
+    if (params.nlos_fraction > 0.0 || !plot_file.empty()) {
+      err << "loc-eval: --nlos and --plot apply to the UWB trajectories, not rack_aisle\n" << kUsage;
+      return kExitBadInput;
+    }
+    return marker_loc_eval_command(args, params.duration, params.seed, json, out, err);
   }
 
   // Anchors from the demo site when it is readable; the same four corners otherwise.

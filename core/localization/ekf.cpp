@@ -313,6 +313,24 @@ void Ekf::try_resolve_heading() {
   track_.clear();
 }
 
+bool Ekf::passes_gate(const Eigen::Vector2d& innovation, const Eigen::Matrix<double, 2, kStateSize>& h,
+                      const Eigen::Matrix2d& q, const Eigen::Matrix2d& widening, Eigen::Matrix2d& s, double& nis) {
+  s = h * P_ * h.transpose() + q;
+  nis = innovation.dot(s.ldlt().solve(innovation));
+  if (!std::isfinite(nis)) return false;
+  if (params_.gating && nis > params_.gate_chi2) {
+    ++consecutive_rejections_;
+    if (consecutive_rejections_ < params_.max_consecutive_rejections) return false;
+    // Too many rejections in a row: the estimate, not the measurements, is off. Widen the position
+    // uncertainty to cover the innovation and accept.
+    P_.block<2, 2>(kX, kX) += widening;
+    s = h * P_ * h.transpose() + q;
+    nis = innovation.dot(s.ldlt().solve(innovation));
+  }
+  consecutive_rejections_ = 0;
+  return true;
+}
+
 UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d& covariance) {
   if (!std::isfinite(z_pos.x) || !std::isfinite(z_pos.y) || !covariance.allFinite()) {
     return UpdateStatus::kRejectedNonFinite;
@@ -332,20 +350,11 @@ UpdateStatus Ekf::update_uwb(const geometry::Vec2& z_pos, const Eigen::Matrix2d&
   if (!heading_resolved_) h.col(kTheta).setZero();
   const Eigen::Vector2d innovation = z - measurement_model(x_, params_.antenna_offset);  // eq. 4.13
   const Eigen::Matrix2d q = measurement_noise(covariance);
-  Eigen::Matrix2d s = h * P_ * h.transpose() + q;
-  double nis = innovation.dot(s.ldlt().solve(innovation));
-  if (!std::isfinite(nis)) return UpdateStatus::kRejectedNonFinite;
-
-  if (params_.gating && nis > params_.gate_chi2) {
-    ++consecutive_rejections_;
-    if (consecutive_rejections_ < params_.max_consecutive_rejections) return UpdateStatus::kGated;
-    // Too many rejections in a row: the estimate, not the fixes, is off. Widen the position
-    // uncertainty to cover the innovation and accept.
-    P_.block<2, 2>(kX, kX) += innovation * innovation.transpose();
-    s = h * P_ * h.transpose() + q;
-    nis = innovation.dot(s.ldlt().solve(innovation));
+  Eigen::Matrix2d s;
+  double nis = 0.0;
+  if (!passes_gate(innovation, h, q, innovation * innovation.transpose(), s, nis)) {
+    return std::isfinite(nis) ? UpdateStatus::kGated : UpdateStatus::kRejectedNonFinite;
   }
-  consecutive_rejections_ = 0;
 
   if (!heading_resolved_) {
     track_.push_back({rotate(dr_yaw_, params_.antenna_offset) + dr_position_, z_pos, 0.5 * q.trace()});

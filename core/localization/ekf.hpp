@@ -101,6 +101,22 @@ struct EkfParams {
   static EkfParams seed();
   /// Every beyond-thesis feature on, noise tuned to the simulated sensors (see the README).
   static EkfParams tuned();
+  /// The picker's filter: wheel odometry (eq. 3.7) for the velocities and, standing in for a gyro, the yaw
+  /// rate; marker sightings for the pose [Picker thesis, section 4.2.9]; started at a known pose, gated.
+  static EkfParams picker();
+};
+
+/// One marker at a known place on the site, seen by a camera on the body: the measurement of the picker's
+/// localization by markers [Picker thesis, section 4.2.9]. The thesis gives no equations; Fleet fuses each sighting
+/// as a range and bearing, z = (d, alpha), of a landmark at a known position.
+struct MarkerSighting {
+  geometry::Vec2 marker;      ///< the marker's position on the site, metres
+  geometry::Vec2 camera;      ///< the camera's optical centre in the body frame, metres
+  double camera_yaw = 0.0;    ///< the camera's axis in the body frame, rad
+  double d = 0.0;             ///< measured distance camera -> marker, metres
+  double alpha = 0.0;         ///< measured bearing from the optical axis, rad, positive to the left
+  double sigma_d = 0.05;      ///< standard deviation of d, metres
+  double sigma_alpha = 0.01;  ///< standard deviation of alpha, rad
 };
 
 enum class UpdateStatus {
@@ -145,6 +161,13 @@ class Ekf {
   /// velocity_source == encoders.
   UpdateStatus update_encoders(const BodyVelocity& measured);
 
+  /// Starts the filter at a known pose at rest (a robot at its home), heading resolved.
+  void initialize_at(const geometry::Pose2& pose, double position_std, double heading_std);
+
+  /// Marker update: range and bearing of a known marker from a camera on the body, gated like a UWB fix
+  /// (section 1 of EkfParams) at the same chi-square threshold.
+  UpdateStatus update_marker(const MarkerSighting& z);
+
   bool initialized() const { return initialized_; }
   /// False while heading initialisation waits for motion: pose().yaw is then a placeholder.
   bool heading_resolved() const { return heading_resolved_; }
@@ -178,11 +201,20 @@ class Ekf {
   static Eigen::Vector2d measurement_model(const StateVector& x, const geometry::Vec2& offset);
   /// H_t = dh/dx [Forklift thesis, eq. 4.17].
   static Eigen::Matrix<double, 2, kStateSize> measurement_jacobian(const StateVector& x, const geometry::Vec2& offset);
+  /// (d, alpha) of a sighting's marker from its camera, for the state x.
+  static Eigen::Vector2d marker_model(const StateVector& x, const MarkerSighting& z);
+  /// d (d, alpha) / dx.
+  static Eigen::Matrix<double, 2, kStateSize> marker_jacobian(const StateVector& x, const MarkerSighting& z);
 
  private:
   void initialize(const geometry::Vec2& antenna_position, const Eigen::Matrix2d& covariance);
   Eigen::Matrix2d measurement_noise(const Eigen::Matrix2d& fix_covariance) const;
   UpdateStatus update_velocity(const BodyVelocity& z, const std::array<double, 3>& std);
+  /// Mahalanobis gate of a 2-D innovation (EkfParams::gating): false to reject it. After
+  /// max_consecutive_rejections in a row the position covariance grows by `widening` and it passes.
+  /// Sets the innovation covariance `s` and the normalised innovation squared `nis`.
+  bool passes_gate(const Eigen::Vector2d& innovation, const Eigen::Matrix<double, 2, kStateSize>& h,
+                   const Eigen::Matrix2d& q, const Eigen::Matrix2d& widening, Eigen::Matrix2d& s, double& nis);
   /// Removes every correlation of the state `i` (whose value is a placeholder or a constant).
   void decouple(int i);
   void track_heading(double gyro_omega, double dt);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -89,6 +90,61 @@ TEST(MarkerCamera, MarkerFromDetectionInvertsTheModel) {
   EXPECT_NEAR(back.pose.x, m.pose.x, 1e-9);
   EXPECT_NEAR(back.pose.y, m.pose.y, 1e-9);
   EXPECT_NEAR(geometry::angle_diff(back.pose.yaw, m.pose.yaw), 0.0, 1e-9);
+}
+
+TEST(PtzMarkerCamera, PansToTheNearestMarkerItCanDecodeAndSeesItThere) {
+  MarkerCamera cam(MarkerCameraParams::axis_ptz(), 1);
+  // Robot on an aisle heading +x; rack markers facing it on its right (y = 0, facing +y) and one behind its
+  // back (facing away from it), which no pan can decode.
+  const std::vector<Marker> markers{{1, {3.0, 0.0, std::numbers::pi / 2}},
+                                    {2, {6.5, 0.0, std::numbers::pi / 2}},
+                                    {3, {1.2, 2.0, std::numbers::pi / 2}}};
+  const Pose2 robot{1.0, 1.0, 0.0};
+  EXPECT_EQ(aim_at_nearest_marker(cam, robot, markers), 1);
+  MarkerDetection det;
+  ASSERT_TRUE(cam.ideal_measurement(robot, markers[0], det));
+  EXPECT_NEAR(det.alpha, 0.0, 1e-9) << "centred once panned";
+  const Marker back = marker_from_detection(robot, cam.mount(), det);
+  EXPECT_NEAR(back.pose.x, 3.0, 1e-9);
+  EXPECT_NEAR(back.pose.y, 0.0, 1e-9);
+  EXPECT_FALSE(cam.ideal_measurement(robot, markers[2], det)) << "its back faces the camera";
+
+  const std::vector<Marker> behind{markers[2]};
+  const double pan = cam.pan();
+  EXPECT_EQ(aim_at_nearest_marker(cam, robot, behind), -1);
+  EXPECT_EQ(cam.pan(), pan) << "nothing to look at: the head stays";
+}
+
+TEST(PtzMarkerCamera, DistanceErrorGrowsAsTheThesisMeasuredAndMotionCostsFrames) {
+  // Experiment 1 [Picker thesis, section 4.2.9.2.1, Fig. 4.7]: < 30 cm to 5.5 m, about 1 m near 10 m.
+  const auto errors_at = [](double d, double speed) {
+    MarkerCamera cam(MarkerCameraParams::axis_ptz(), 7);
+    cam.set_pan(std::numbers::pi / 2);  // looking ahead along +x
+    const std::vector<Marker> wall{{10, {0.0, 0.0, std::numbers::pi}}};
+    const Pose2 robot{-d - cam.params().camera_x, -cam.params().camera_y, 0.0};
+    std::vector<double> err;
+    int frames = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const double t = i / 30.0;
+      if (!cam.frame_due(t)) continue;
+      ++frames;
+      for (const auto& det : cam.capture(t, robot, wall, speed)) err.push_back(std::abs(det.d - d));
+    }
+    std::sort(err.begin(), err.end());
+    return std::pair{err.empty() ? 1e9 : err[err.size() * 99 / 100], static_cast<double>(err.size()) / frames};
+  };
+  const auto [near_p99, near_rate] = errors_at(3.0, 0.3);
+  const auto [mid_p99, mid_rate] = errors_at(5.5, 0.3);
+  const auto [far_p99, far_rate] = errors_at(10.0, 0.3);
+  const auto [fast_p99, fast_rate] = errors_at(5.5, 1.0);
+  EXPECT_LT(near_p99, 0.12);
+  EXPECT_LT(mid_p99, 0.30);
+  EXPECT_GT(far_p99, 0.5);
+  EXPECT_LT(far_p99, 1.2);
+  EXPECT_GT(near_rate, 0.85);
+  EXPECT_LT(fast_rate, mid_rate - 0.1) << "frames dropped at 1.0 m/s (Fig. 4.8)";
+  (void)fast_p99;
+  (void)far_rate;
 }
 
 TEST(MarkerCamera, RejectsBadParams) {
