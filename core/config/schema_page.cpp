@@ -53,7 +53,7 @@ Relative paths: `server.db_path` is relative to the state folder: `$FLEET_STATE_
 ## Fleets
 
 Beside the keys, the file declares the fleets under `fleets:`. A fleet has an `id`, a
-`robot_type` (the software that drives it: `forklift` or `stacker`), an optional vehicle
+`robot_type` (the software that drives it: `forklift`, `stacker` or `picker`), an optional vehicle
 `profile` and its `robots`, each with an `id` unique across fleets and a `home`, the id of a
 home pose in the site file. The profile is the vehicle's factsheet; every key left out keeps the robot type's own
 vehicle:

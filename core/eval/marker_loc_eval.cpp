@@ -4,11 +4,10 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <set>
 #include <stdexcept>
 
 #include "control/waypoint_controller.hpp"
-#include "sim/encoders.hpp"
+#include "localization/marker_localizer.hpp"
 #include "sim/forklift_body.hpp"
 #include "sim/summit_xls.hpp"
 
@@ -49,14 +48,6 @@ struct ErrorSamples {
   }
 };
 
-/// The second PTZ camera: the rear-left corner, looking left [Picker thesis, section 3.1.1].
-perception::MarkerCameraParams rear_left(perception::MarkerCameraParams p) {
-  p.camera_x = -p.camera_x;
-  p.camera_y = -p.camera_y;
-  p.camera_yaw = geometry::normalize_angle(p.camera_yaw + std::numbers::pi);
-  return p;
-}
-
 }  // namespace
 
 std::vector<map::Marker> rack_aisle_markers(const MarkerLocEvalParams& params) {
@@ -73,7 +64,6 @@ std::vector<map::Marker> rack_aisle_markers(const MarkerLocEvalParams& params) {
 
 MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   if (!(params.duration > 0.0)) throw std::invalid_argument("marker loc-eval: duration must be > 0");
-  if (!(params.fuse_rate_hz > 0.0)) throw std::invalid_argument("marker loc-eval: fuse_rate_hz must be > 0");
   if (!(params.speed > 0.0)) throw std::invalid_argument("marker loc-eval: speed must be > 0");
   const double south_lane = params.south_face_y + params.rack_distance;
   const double north_lane = params.north_face_y - params.rack_distance;
@@ -83,18 +73,10 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   const std::vector<map::Marker> site_markers = params.markers.empty() ? rack_aisle_markers(params) : params.markers;
   std::vector<perception::Marker> markers;
   for (const auto& m : site_markers) markers.push_back({m.id, m.pose});
-  const auto marker_at = [&](int id) {
-    return std::find_if(markers.begin(), markers.end(), [id](const perception::Marker& m) { return m.id == id; });
-  };
 
   const Pose2 start{params.x_from, south_lane, 0.0};
   sim::ForkliftParams body_params = sim::summit_xls_body_params();
   sim::ForkliftBody body(body_params, start, std::mt19937_64(params.seed));
-  sim::WheelEncoders encoders(sim::summit_xls_encoder_params(), std::mt19937_64(params.seed + 1));
-  sim::WheelOdometry odometry(body_params.mecanum, start);
-  std::vector<perception::MarkerCamera> cameras;
-  cameras.emplace_back(params.camera, params.seed + 2);
-  cameras.emplace_back(rear_left(params.camera), params.seed + 3);
   std::vector<geometry::Polygon> occluders = params.occluders;
   if (occluders.empty()) {
     constexpr double kRackDepth = 1.2;
@@ -105,10 +87,12 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
       occluders.push_back({{33.5, lo}, {54.5, lo}, {54.5, hi}, {33.5, hi}});
     }
   }
-  for (auto& camera : cameras) camera.set_occluders(occluders);
-
-  localization::Ekf ekf(params.ekf);
-  ekf.initialize_at(start, params.ekf.init_position_std, params.ekf.init_heading_std);
+  localization::MarkerLocalizerParams lp;
+  lp.camera = params.camera;
+  lp.ekf = params.ekf;
+  lp.fuse_rate_hz = params.fuse_rate_hz;
+  localization::MarkerLocalizer localizer(lp, body_params.mecanum, start, markers, occluders,
+                                          std::mt19937_64(params.seed + 1));
 
   control::WaypointControllerParams cp;
   cp.max_speed = params.speed;
@@ -122,54 +106,20 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   MarkerLocEvalResult r;
   ErrorSamples ekf_errors;
   ErrorSamples odometry_errors;
-  std::set<int> seen;
-  double last_accepted = 0.0;
-  std::vector<double> next_fusion(cameras.size(), 0.0);
   Vec2 last_position = start.position();
   const int steps = static_cast<int>(std::ceil(params.duration / kPeriod));
   for (int i = 1; i <= steps; ++i) {
     const double t = i * kPeriod;
-    const control::BodyTwist cmd = controller.update(ekf.pose());
+    const control::BodyTwist cmd = controller.update(localizer.ekf().pose());
     body.step({cmd.vx, cmd.vy, cmd.omega}, kPeriod);
-    const sim::BodyTwist measured = odometry.update(encoders.measure(body.wheel_speeds(), kPeriod), kPeriod);
-    // The wheels' yaw rate stands in for a gyro: the Summit-XLS of the thesis localises without one.
-    ekf.predict(measured.omega, kPeriod);
-    ekf.update_encoders({measured.vx, measured.vy, measured.omega});
-    const double speed = std::hypot(body.twist().vx, body.twist().vy);
-    for (std::size_t c = 0; c < cameras.size(); ++c) {
-      auto& camera = cameras[c];
-      if (!camera.frame_due(t)) continue;
-      perception::aim_at_nearest_marker(camera, ekf.pose(), markers);
-      const perception::CameraMount mount = camera.mount();
-      for (const auto& det : camera.capture(t, body.pose(), markers, speed)) {
-        const auto marker = marker_at(det.id);
-        if (marker == markers.end()) continue;
-        ++r.sightings;
-        seen.insert(det.id);
-        if (t < next_fusion[c]) continue;
-        next_fusion[c] = t + 1.0 / params.fuse_rate_hz;
-        const auto status = ekf.update_marker({marker->pose.position(),
-                                               {mount.x, mount.y},
-                                               mount.pan,
-                                               det.d,
-                                               det.alpha,
-                                               params.camera.distance_std(det.d),
-                                               params.camera.bearing_std()});
-        if (status == localization::UpdateStatus::kGated) ++r.sightings_gated;
-        if (status == localization::UpdateStatus::kAccepted) {
-          ++r.sightings_fused;
-          r.longest_gap_s = std::max(r.longest_gap_s, t - last_accepted);
-          last_accepted = t;
-        }
-      }
-    }
-    ekf_errors.add(body.pose(), ekf.pose());
-    odometry_errors.add(body.pose(), odometry.pose());
+    localizer.step(t, kPeriod, body.wheel_speeds(), body.pose(), std::hypot(body.twist().vx, body.twist().vy));
+    ekf_errors.add(body.pose(), localizer.ekf().pose());
+    odometry_errors.add(body.pose(), localizer.odometry());
     r.distance_m += geometry::distance(body.pose().position(), last_position);
     last_position = body.pose().position();
     if (i % 25 == 0) {
       r.truth.push_back(body.pose());
-      r.estimate.push_back(ekf.pose());
+      r.estimate.push_back(localizer.ekf().pose());
     }
     if (controller.done()) {
       ++r.laps;
@@ -177,8 +127,11 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
       controller.set_waypoints(legs[leg]);
     }
   }
-  r.longest_gap_s = std::max(r.longest_gap_s, params.duration - last_accepted);
-  r.markers_seen = static_cast<int>(seen.size());
+  r.sightings = localizer.sightings();
+  r.sightings_fused = localizer.fused();
+  r.sightings_gated = localizer.gated();
+  r.longest_gap_s = std::max(localizer.longest_gap(), params.duration - localizer.last_fused());
+  r.markers_seen = static_cast<int>(localizer.markers_seen().size());
   r.ekf = ekf_errors.summary();
   r.odometry = odometry_errors.summary();
   return r;

@@ -112,10 +112,16 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
 }
 
 std::string Forklift::refusal(orders::OrderKind kind) const {
-  return kind == orders::OrderKind::kPick ? "a forklift performs no pickItem" : "";
+  if (kind == orders::OrderKind::kPick) return "a " + config_.type_name + " performs no pickItem";
+  if (kind == orders::OrderKind::kTransport && !config_.forks) return "a " + config_.type_name + " has no forks";
+  return "";
 }
 
 bool Forklift::submit(const task::TaskOrder& order, std::string* why) {
+  if (std::string no = refusal(order.kind); !no.empty()) {
+    if (why) *why = std::move(no);
+    return false;
+  }
   return executor_.submit(order, why);
 }
 

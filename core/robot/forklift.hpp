@@ -29,6 +29,10 @@
 namespace fleet::robot {
 
 struct ForkliftConfig {
+  /// The robot type this software drives, for messages ("forklift", "picker").
+  std::string type_name = "forklift";
+  /// False for a base without forks (the picker): it takes no transport.
+  bool forks = true;
   SimulatedForkliftParams sim;
   task::ExecutorParams task;  ///< its follower defaults to the regulated one
   perception::MarkerCameraParams camera;

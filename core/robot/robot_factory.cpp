@@ -5,6 +5,7 @@
 
 #include "robot/forklift.hpp"
 #include "robot/stacker.hpp"
+#include "sim/summit_xls.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "vehicle/vehicle_types.hpp"
 
@@ -51,6 +52,20 @@ robot::StackerConfig stacker_config(const config::FleetConfig& config, const con
   return c;
 }
 
+/// The picker's base [Picker thesis]: the forklift software without forks on the Summit-XLS, localised by the
+/// site's markers and wheel odometry.
+robot::ForkliftConfig picker_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                    const map::SiteMap& site) {
+  robot::ForkliftConfig c = forklift_config(config, fleet, site);
+  c.type_name = "picker";
+  c.forks = false;
+  const geometry::Footprint footprint = c.sim.forklift.footprint;
+  c.sim.forklift = sim::summit_xls_body_params();
+  c.sim.forklift.footprint = footprint;
+  c.sim.marker_localization = true;
+  return c;
+}
+
 }  // namespace
 
 std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
@@ -59,6 +74,9 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
   // One branch per robot type the agent can drive; its software lives in its own file here.
   if (fleet.robot_type == "forklift") {
     return std::make_unique<Forklift>(forklift_config(config, fleet, *site), site, home, seed, stream);
+  }
+  if (fleet.robot_type == "picker") {
+    return std::make_unique<Forklift>(picker_config(config, fleet, *site), site, home, seed, stream);
   }
   if (fleet.robot_type == "stacker") {
     return std::make_unique<Stacker>(stacker_config(config, fleet, *site), site, home, seed, stream);

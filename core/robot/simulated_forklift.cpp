@@ -29,7 +29,16 @@ SimulatedForklift::SimulatedForklift(const SimulatedForkliftParams& params, cons
       gyro_(params.gyro, seeded_engine(seed, stream + 3)),
       ekf_(filter_params(params, start)),
       uwb_period_(1.0 / params.uwb.rate_hz),
-      calibrate_(params.gyro_standstill_calibration) {}
+      calibrate_(params.gyro_standstill_calibration) {
+  if (params.marker_localization) {
+    std::vector<perception::Marker> markers;
+    for (const auto& m : site.markers) markers.push_back({m.id, m.pose});
+    std::vector<geometry::Polygon> racks;
+    for (const auto& r : site.racks) racks.push_back(r.polygon);
+    markers_.emplace(params.markers, params.forklift.mecanum, start, std::move(markers), std::move(racks),
+                     seeded_engine(seed, stream + 4));
+  }
+}
 
 void SimulatedForklift::warm_up(double seconds, double dt) {
   for (double t = 0.0; t < seconds; t += dt) step({}, dt);
@@ -39,6 +48,10 @@ void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span
                              std::span<const std::size_t> distrusted) {
   body_.step(sim::BodyTwist{cmd.vx, cmd.vy, cmd.omega}, dt);
   t_ += dt;
+  if (markers_) {
+    markers_->step(t_, dt, body_.wheel_speeds(), body_.pose(), std::hypot(body_.twist().vx, body_.twist().vy));
+    return;
+  }
   // Gyro at the control rate: predict, then the commanded velocity (what the robot knows).
   double rate = gyro_.measure(body_.twist().omega, dt);
   if (calibrate_) {
@@ -64,20 +77,20 @@ void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span
 }
 
 geometry::Pose2 SimulatedForklift::estimate() const {
-  return perfect_ || !ekf_.initialized() ? body_.pose() : ekf_.pose();
+  return perfect_ || !ekf().initialized() ? body_.pose() : ekf().pose();
 }
 
 std::array<double, 9> SimulatedForklift::covariance() const {
   std::array<double, 9> c{};
-  if (perfect_ || !ekf_.initialized()) return c;
-  const auto& p = ekf_.covariance();
+  if (perfect_ || !ekf().initialized()) return c;
+  const auto& p = ekf().covariance();
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k) c[static_cast<std::size_t>(3 * r + k)] = p(r, k);
   return c;
 }
 
 double SimulatedForklift::localization_score() const {
-  return perfect_ ? 1.0 : (ekf_.initialized() ? ekf_.score() : 0.0);
+  return perfect_ ? 1.0 : (ekf().initialized() ? ekf().score() : 0.0);
 }
 
 }  // namespace fleet::robot

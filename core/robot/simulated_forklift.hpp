@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <span>
 
 #include "control/twist.hpp"
 #include "localization/ekf.hpp"
+#include "localization/marker_localizer.hpp"
 #include "map/site.hpp"
 #include "sim/forklift_body.hpp"
 #include "sim/imu.hpp"
@@ -25,6 +27,10 @@ struct SimulatedForkliftParams {
   bool gyro_standstill_calibration = false;
   /// Use the true pose as the estimate (evaluations that measure control alone).
   bool perfect_localization = false;
+  /// Localise by the site's markers and wheel odometry instead of UWB and the gyro (the picker
+  /// [Picker thesis, section 4.2.9]); the site's racks hide the markers behind them.
+  bool marker_localization = false;
+  localization::MarkerLocalizerParams markers;
 };
 
 /// A stream of a seeded engine, so that every noise source of every robot is reproducible from
@@ -58,7 +64,10 @@ class SimulatedForklift {
   double localization_score() const;
   double time() const { return t_; }
   const sim::ForkliftBody& body() const { return body_; }
-  const localization::Ekf& ekf() const { return ekf_; }
+  /// The filter behind estimate(): the UWB one, or the marker localizer's.
+  const localization::Ekf& ekf() const { return markers_ ? markers_->ekf() : ekf_; }
+  /// The marker localizer, when the robot localises by markers.
+  const localization::MarkerLocalizer* marker_localizer() const { return markers_ ? &*markers_ : nullptr; }
 
  private:
   static localization::EkfParams filter_params(const SimulatedForkliftParams& p, const geometry::Pose2& start);
@@ -68,6 +77,7 @@ class SimulatedForklift {
   sim::UwbTag tag_;
   sim::Gyro gyro_;
   localization::Ekf ekf_;
+  std::optional<localization::MarkerLocalizer> markers_;
   static constexpr double kStillDelay = 0.3;        // s after the last motion command
   static constexpr double kBiasTimeConstant = 3.0;  // s of standstill averaging
 

@@ -10,7 +10,8 @@ South to north:
   3.5 m with AR markers [Picker thesis, section 4.2.9.3], a pallet on the floor and one at height
   in every bay;
 - the north cross aisle;
-- expedition (part of it on a narrow spur), the waiting area and sixteen parking stalls.
+- expedition (part of it on a narrow spur), the waiting area and sixteen parking stalls;
+- off the south cross aisle, a narrow street with four stalls where the pickers park.
 
 Widths decide who goes where: a vehicle fits a lane when its width plus the plant's 0.10 m
 margin is at most the lane's width. The narrow spurs (0.95 m) take a 0.8 m forklift, not a
@@ -30,6 +31,7 @@ CORRIDOR_LANE = 1.49  # the finished-goods corridor: 2.98 m, two lanes
 RACK_LANE = 1.5       # rack aisles: 3.0 m between rack faces, two lanes
 NARROW_LANE = 0.95    # single-lane spurs only a 0.8 m vehicle fits
 STALL_LANE = 1.1      # the parking street and stalls: a 0.9 m reach truck fits
+PICKER_LANE = 0.7     # the pickers' stalls: a 0.50 m Summit-XLS fits, no pallet truck does
 BAY_LANE = 0.8        # stacker bays: marked on the floor, narrower than any vehicle plus its margin
 
 SOUTH_Y, NORTH_Y = 7.0, 24.0               # cross aisle centres
@@ -39,6 +41,8 @@ PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 36.4
 STREET_Y, STALL_END_Y = 26.9, 29.1
 STALLS = [38.0 + 1.2 * k for k in range(16)]
 STACKER_BAYS, STACKER_BAY_END_Y = (6.5, 10.5, 14.5, 25.0), 21.4
+PICKERS_X, PICKER_STREET_Y = 20.0, 4.5          # the pickers' access off the south cross aisle, their street
+PICKER_STALLS, PICKER_STALL_END_Y = (21.5, 23.0, 24.5, 26.0), 2.5
 EAST_MOUTH = 12                            # the reach trucks' street meets its access at stall 13
 
 PALLET_LENGTH, PALLET_WIDTH = 1.2, 0.8     # EPAL; forks enter along the length
@@ -69,13 +73,18 @@ def network(name="plant", corridor_lanes=2, closed=()):
     for k, x in enumerate(STALLS):
         net.node(f"street{k + 1}", x, STREET_Y)
         net.node(f"stall{k + 1}", x, STALL_END_Y)
+    net.node("pickers", PICKERS_X, SOUTH_Y)
+    net.node("picker_street", PICKERS_X, PICKER_STREET_Y)
+    for k, x in enumerate(PICKER_STALLS):
+        net.node(f"picker_street{k + 1}", x, PICKER_STREET_Y)
+        net.node(f"picker_stall{k + 1}", x, PICKER_STALL_END_Y)
 
     def aisle(nodes, name):
         for k in range(len(nodes) - 1):
             if f"{name} {k + 1}" not in closed:
                 net.edge(nodes[k], nodes[k + 1], f"{name} {k + 1}", TWO, AISLE_LANE)
 
-    aisle(["sw", "packing1", "packing2", "sm", "se"], "south cross aisle")
+    aisle(["sw", "packing1", "packing2", "pickers", "sm", "se"], "south cross aisle")
     bays = [(x, f"stacker{k + 1}") for k, x in enumerate(STACKER_BAYS)]
     west_of_middle = sorted(bays + [(EXPEDITION_SPUR_X, "expedition")])
     aisle(["nw", *[n for _, n in west_of_middle], "nm", "parking", "parking_e", "ne"], "north cross aisle")
@@ -109,6 +118,14 @@ def network(name="plant", corridor_lanes=2, closed=()):
             net.edge(street[k], street[k + 1], f"parking street {name} {k + 1}", ONE, STALL_LANE)
     for k in range(len(STALLS)):
         net.edge(f"street{k + 1}", f"stall{k + 1}", f"stall {k + 1}", ONE, STALL_LANE)
+    # The pickers' parking: an access off the south cross aisle between the packing stations and
+    # the middle aisle, a dead-end street and four stalls 1.5 m apart, all too narrow for any
+    # pallet truck (so never one's siding).
+    picker_street = ["pickers", "picker_street"] + [f"picker_street{k + 1}" for k in range(len(PICKER_STALLS))]
+    for k in range(len(picker_street) - 1):
+        net.edge(picker_street[k], picker_street[k + 1], f"picker street {k + 1}", ONE, PICKER_LANE)
+    for k in range(len(PICKER_STALLS)):
+        net.edge(f"picker_street{k + 1}", f"picker_stall{k + 1}", f"picker stall {k + 1}", ONE, PICKER_LANE)
     net.build()
     return net
 
@@ -266,6 +283,9 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2, cl
     # Stackers park in their bays facing the aisle, the fork tips 0.6 m clear of the pallets.
     for k, x in enumerate(STACKER_BAYS):
         lines.append(f"  - {{id: PT{k + 1}, x: {fmt(x)}, y: {fmt(STACKER_BAY_END_Y)}, yaw: {fmt(N)}}}")
+    # Pickers park at their stalls' ends facing their street.
+    for k, x in enumerate(PICKER_STALLS):
+        lines.append(f"  - {{id: PP{k + 1}, x: {fmt(x)}, y: {fmt(PICKER_STALL_END_Y)}, yaw: {fmt(N)}}}")
     lines.append("racks:")
     for name, (x0, y0, x1, y1) in rack_list:
         lines.append(f"  - {{id: {name}, polygon: [[{fmt(x0)}, {fmt(y0)}], [{fmt(x1)}, {fmt(y0)}], "

@@ -34,11 +34,14 @@ CommandRun run(Command command, std::vector<std::string> args, const std::string
 
 }  // namespace
 
-TEST(FleetsCommand, ThePlantHasThreeFleetsOfDifferentVehicles) {
+TEST(FleetsCommand, ThePlantHasFourFleetsOfDifferentVehicles) {
   const auto r = run(fleets_command, {}, "sites/plant.yaml");
   ASSERT_EQ(r.code, 0);
   const auto doc = nlohmann::json::parse(r.out);
-  ASSERT_EQ(doc["fleets"].size(), 3u);
+  ASSERT_EQ(doc["fleets"].size(), 4u);
+  EXPECT_EQ(doc["fleets"][3]["fleet"], "pickers");
+  EXPECT_EQ(doc["fleets"][3]["typeSpecification"]["agvKinematic"], "OMNI") << doc["fleets"][3];
+  EXPECT_TRUE(doc["fleets"][3]["protocolFeatures"]["agvActions"].empty()) << "moves only";
   EXPECT_EQ(doc["fleets"][2]["fleet"], "stackers");
   EXPECT_EQ(doc["fleets"][2]["typeSpecification"]["agvKinematic"], "THREEWHEEL") << doc["fleets"][2];
   EXPECT_EQ(doc["fleets"][0]["fleet"], "forklifts");

@@ -24,6 +24,7 @@ namespace {
 
 constexpr double kFitMargin = 0.10;  // the plant's margin: a vehicle fits when width + margin <= lane width
 constexpr double kForkliftWidth = 0.8;
+constexpr double kPickerWidth = 0.5;
 constexpr double kReachTruckWidth = 0.9;
 const Footprint kPallet{1.2, 0.8};      // EPAL, forks along the length
 const Footprint kReachTruck{1.6, 0.9};  // the largest vehicle that parks at a home stall
@@ -162,10 +163,18 @@ TEST(Plant, NarrowLanesTakeAForkliftButNotAReachTruck) {
   const SiteMap& map = plant();
   const std::vector<double> widths = lane_widths(map);
   std::size_t narrow = 0;
-  for (const double w : widths) {
-    // Every lane takes a forklift but the stacker bays, which no vehicle drives along.
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    const double w = widths[i];
+    const GraphPoint& at = map.graph.graph.points[i];
+    // Every lane takes a forklift but the stacker bays, which no vehicle drives along, and the
+    // pickers' access, street and stalls south of the south cross aisle, which only a picker fits.
     if (std::abs(w - 0.8) < 1e-3) continue;
-    EXPECT_GE(w, kForkliftWidth + kFitMargin - 1e-9) << "every lane takes a forklift";
+    if (at.x > 19.0 && at.x < 27.0 && at.y < 6.0 && w < kForkliftWidth + kFitMargin) {
+      EXPECT_GE(w, kPickerWidth + kFitMargin - 1e-9) << "a picker fits its street";
+      continue;
+    }
+    EXPECT_GE(w, kForkliftWidth + kFitMargin - 1e-9)
+        << "every lane takes a forklift: " << at.road_id << " at (" << at.x << ", " << at.y << ")";
     if (w < kReachTruckWidth + kFitMargin) ++narrow;
   }
   EXPECT_GT(narrow, 20u);
@@ -189,6 +198,16 @@ TEST(Plant, ForkliftsReachEveryPlaceReachTrucksEveryHighPlaceButNotTheNarrowOnes
   int forklift_homes = 0, reach_truck_homes = 0, narrow_only = 0, high = 0;
   for (const PlaceReach& home : report.homes) {
     if (starts_with(home.id, "PT")) continue;  // a stacker's bay (stacker_test.cpp drives them)
+    if (starts_with(home.id, "PP")) {
+      // A picker's stall: from there it reaches every place it takes boxes from or drops them at.
+      const std::vector<bool> seen = reachable(map, home.nearest_point, kPickerWidth);
+      for (std::size_t i = 0; i < report.areas.size(); ++i) {
+        const LoadingArea& area = map.site.loading_areas[i];
+        if (!area.offers("pickItem") && !area.offers("dropItem")) continue;
+        EXPECT_TRUE(seen[static_cast<std::size_t>(report.areas[i].nearest_point)]) << home.id << " -> " << area.id;
+      }
+      continue;
+    }
     const bool forklift = starts_with(home.id, "PF");
     ASSERT_TRUE(forklift || starts_with(home.id, "PR")) << home.id;
     (forklift ? forklift_homes : reach_truck_homes)++;

@@ -51,9 +51,11 @@ TEST(PlantCapability, APlaceOnlyTheNarrowRoadsReachIsForTheForkliftsOnly) {
   const auto& reach = plant.names.abilities[1];
   ASSERT_EQ(reach.fleet_id, "reach_trucks");
   EXPECT_NE(std::find(reach.out_of_reach.begin(), reach.out_of_reach.end(), "EN1"), reach.out_of_reach.end());
-  // The forklifts reach every place but the stackers' bays (PT1-PT4), which no lane leads into:
-  // a stacker reverses in from the aisle.
-  for (const auto& place : plant.names.abilities[0].out_of_reach) EXPECT_TRUE(place.starts_with("PT")) << place;
+  // The forklifts reach every place but the stackers' bays (PT1-PT4), which no lane leads into
+  // (a stacker reverses in from the aisle), and the pickers' stalls (PP1-PP4), too narrow for them.
+  for (const auto& place : plant.names.abilities[0].out_of_reach) {
+    EXPECT_TRUE(place.starts_with("PT") || place.starts_with("PP")) << place;
+  }
   EXPECT_FALSE(plant.check("EX1", "EN1", "").has_value());
   const auto trucks = plant.check("EX1", "EN1", "reach_trucks");
   ASSERT_TRUE(trucks.has_value());
