@@ -80,6 +80,16 @@ double VacuumGripper::source_vacuum() const {
   return config_.source_vacuum.value_or(forces(config_.max_mass).vacuum);
 }
 
+bool VacuumGripper::covers(const Box& box, double plate_yaw_on_face, double along_length, double along_width) const {
+  // A rectangle lies in a rectangle when its bounding box does.
+  const double cos_yaw = std::abs(std::cos(plate_yaw_on_face));
+  const double sin_yaw = std::abs(std::sin(plate_yaw_on_face));
+  const double half_length = 0.5 * (config_.plate_length * cos_yaw + config_.plate_width * sin_yaw);
+  const double half_width = 0.5 * (config_.plate_length * sin_yaw + config_.plate_width * cos_yaw);
+  return std::abs(along_length) + half_length <= 0.5 * box.length + 1e-12 &&
+         std::abs(along_width) + half_width <= 0.5 * box.width + 1e-12;
+}
+
 GripCheck VacuumGripper::can_hold(const Box& box, double plate_yaw_on_face) const {
   const VacuumGripperConfig& c = config_;
   GripCheck check;
@@ -98,15 +108,12 @@ GripCheck VacuumGripper::can_hold(const Box& box, double plate_yaw_on_face) cons
       return check;
     }
   }
-  // The plate is centred on the face; a rectangle centred in a rectangle fits when its bounding
-  // box does.
-  const double cos_yaw = std::abs(std::cos(plate_yaw_on_face));
-  const double sin_yaw = std::abs(std::sin(plate_yaw_on_face));
-  const double along_length = c.plate_length * cos_yaw + c.plate_width * sin_yaw;
-  const double along_width = c.plate_length * sin_yaw + c.plate_width * cos_yaw;
-  if (along_length > box.length + 1e-12 || along_width > box.width + 1e-12) {
-    check.reason = format("top face %.3f x %.3f m does not cover the cups (%.3f x %.3f m as turned)", box.length,
-                          box.width, along_length, along_width);
+  if (!covers(box, plate_yaw_on_face)) {
+    const double cos_yaw = std::abs(std::cos(plate_yaw_on_face));
+    const double sin_yaw = std::abs(std::sin(plate_yaw_on_face));
+    check.reason =
+        format("top face %.3f x %.3f m does not cover the cups (%.3f x %.3f m as turned)", box.length, box.width,
+               c.plate_length * cos_yaw + c.plate_width * sin_yaw, c.plate_length * sin_yaw + c.plate_width * cos_yaw);
     return check;
   }
   const double available = source_vacuum();

@@ -70,6 +70,10 @@ class VacuumGripper {
   /// `plate_yaw_on_face` (rad) from the face's length, and the source's vacuum at least the one
   /// eq. 3.15 asks for.
   GripCheck can_hold(const Box& box, double plate_yaw_on_face = 0.0) const;
+  /// Whether the cups' outline, turned by `plate_yaw_on_face` from the face's length and its centre off the
+  /// face's centre by `along_length`, `along_width` (m, in the face's axes), lies on the top face: where a
+  /// plate set down on a box located with an error still grips it.
+  bool covers(const Box& box, double plate_yaw_on_face, double along_length = 0.0, double along_width = 0.0) const;
 
  private:
   VacuumGripperConfig config_;

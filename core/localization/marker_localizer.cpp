@@ -9,7 +9,7 @@ namespace fleet::localization {
 
 namespace {
 
-/// The second PTZ camera: the rear-left corner, looking left [Picker thesis, section 3.1.1].
+/// The second PTZ camera: the rear-left corner, the front-right one turned half round [Picker thesis, section 3.1.1].
 perception::MarkerCameraParams rear_left(perception::MarkerCameraParams p) {
   p.camera_x = -p.camera_x;
   p.camera_y = -p.camera_y;

@@ -30,10 +30,10 @@ MarkerCamera::MarkerCamera(MarkerCameraParams params, std::uint64_t seed)
 MarkerCameraParams MarkerCameraParams::axis_ptz() {
   MarkerCameraParams p;
   p.rate_hz = 30.0;
-  // Front-right corner of the 0.65 x 0.50 m base [Picker thesis, section 3.1.1], looking to the right.
+  // Front-right corner of the 0.65 x 0.50 m base, at 45° to the robot's heading [Picker thesis, section 3.1.1].
   p.camera_x = 0.30;
   p.camera_y = -0.22;
-  p.camera_yaw = -std::numbers::pi / 2;
+  p.camera_yaw = -std::numbers::pi / 4;
   p.max_pan = std::numbers::pi;  // ±180° pan
   p.half_fov = 0.40;             // about 46° at no zoom; the seed gives none
   p.range_min = 0.5;             // Experiment 1 began seeing the wall marker at 2.4 m only because of its tilt

@@ -58,7 +58,7 @@ struct MarkerCameraParams {
 
   /// The picker's Axis PTZ camera reading AR markers [Picker thesis, section 4.2.9.2.1, Tables 2-3]: detects
   /// to beyond 10 m, with a distance error below 30 cm up to about 5.5 m and about 1 m near 10 m, and drops
-  /// frames at 1.0 m/s. Mounted at the base's front-right corner, looking right, panning ±180°.
+  /// frames at 1.0 m/s. Mounted at the base's front-right corner at 45° to its heading, panning ±180°.
   static MarkerCameraParams axis_ptz();
 
   /// Standard deviation of a detection's distance at `d`, per frame and systematic together: what a filter

@@ -119,7 +119,7 @@ TEST(PtzMarkerCamera, DistanceErrorGrowsAsTheThesisMeasuredAndMotionCostsFrames)
   // Experiment 1 [Picker thesis, section 4.2.9.2.1, Fig. 4.7]: < 30 cm to 5.5 m, about 1 m near 10 m.
   const auto errors_at = [](double d, double speed) {
     MarkerCamera cam(MarkerCameraParams::axis_ptz(), 7);
-    cam.set_pan(std::numbers::pi / 2);  // looking ahead along +x
+    cam.set_pan(-cam.params().camera_yaw);  // looking ahead along +x
     const std::vector<Marker> wall{{10, {0.0, 0.0, std::numbers::pi}}};
     const Pose2 robot{-d - cam.params().camera_x, -cam.params().camera_y, 0.0};
     std::vector<double> err;
