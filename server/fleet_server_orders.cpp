@@ -228,15 +228,11 @@ void FleetServer::dispatch() {
 }
 
 double FleetServer::travel_cost(const std::string& robot_id, const std::string& place_id) {
-  constexpr double kApproach = 0.30;  // the forklift picks standing this far out from the pallet
   const auto* area = options_.site.find_area(place_id);
   const auto* home = options_.site.find_home(place_id);
   const auto robot = robots_.find(robot_id);
   if ((!area && !home) || robot == robots_.end()) return std::numeric_limits<double>::infinity();
-  const geometry::Pose2 approach =
-      area ? geometry::Pose2{area->pose.x + kApproach * std::cos(area->pose.yaw),
-                             area->pose.y + kApproach * std::sin(area->pose.yaw), area->pose.yaw}
-           : home->pose;
+  const geometry::Pose2 approach = area ? area->approach_pose(options_.site.approach_distance) : home->pose;
   const auto planner = travel_.find(robot->second.fleet_id);
   if (planner == travel_.end()) return std::numeric_limits<double>::infinity();
   const planning::RoadPlan plan = planner->second.plan(robot->second.last.pose, approach);
@@ -263,7 +259,11 @@ void FleetServer::send_assignment(const Order& order) {
   msg.pick_area = order.pick_area;
   msg.drop_area = order.drop_area;
   if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
-  if (const auto* drop = options_.site.find_area(order.drop_area)) msg.drop_pose = drop->pose;
+  if (const auto* drop = options_.site.find_area(order.drop_area)) {
+    // A move to a loading area ends where a vehicle stands to handle its load, not on the load.
+    msg.drop_pose =
+        order.kind == orders::OrderKind::kMove ? drop->approach_pose(options_.site.approach_distance) : drop->pose;
+  }
   if (const auto* parking = options_.site.find_home(order.drop_area);
       parking && order.kind == orders::OrderKind::kMove) {
     msg.drop_pose = parking->pose;

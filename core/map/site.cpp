@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -114,6 +115,11 @@ const Home* Site::find_home(const std::string& id) const {
 
 bool LoadingArea::offers(const std::string& action) const {
   return std::find(actions.begin(), actions.end(), action) != actions.end();
+}
+
+geometry::Pose2 LoadingArea::approach_pose(double distance) const {
+  return {pose.x + distance * std::cos(pose.yaw), pose.y + distance * std::sin(pose.yaw),
+          geometry::normalize_angle(pose.yaw + std::numbers::pi)};
 }
 
 std::vector<std::string> Site::area_ids() const {

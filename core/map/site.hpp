@@ -36,6 +36,9 @@ struct LoadingArea {
   double height = 0.0;
 
   bool offers(const std::string& action) const;
+  /// Where a vehicle stands to handle the load: `distance` out from the place towards the road
+  /// (along its yaw), facing the place.
+  geometry::Pose2 approach_pose(double distance) const;
 };
 
 /// An AR marker at a known pose, for localisation by markers [Picker thesis, section 4.2.9]: on

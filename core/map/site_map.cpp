@@ -96,8 +96,9 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
   for (std::size_t i = 0; i < map.site.loading_areas.size(); ++i) {
     const LoadingArea& a = map.site.loading_areas[i];
     // The forklift stands on the road side of the pallet, facing it (yaw points to the road).
-    const double ax = a.pose.x + approach * std::cos(a.pose.yaw);
-    const double ay = a.pose.y + approach * std::sin(a.pose.yaw);
+    const geometry::Pose2 stand = a.approach_pose(approach);
+    const double ax = stand.x;
+    const double ay = stand.y;
     PlaceReach p = place(a.id, "loading_areas[" + std::to_string(i) + "]", i < area_lines.size() ? area_lines[i] : 0,
                          ax, ay, options.slack);
     if (p.problem.empty()) {
@@ -105,8 +106,8 @@ SiteReport check_site_map(const SiteMap& map, const ReachOptions& options) {
       const int road_point = nearest_point(graph, a.pose.x, a.pose.y, &pallet_to_road);
       if (pallet_to_road < half_lane(road_point)) {
         p.problem = "the pallet at (" + fixed(a.pose.x) + ", " + fixed(a.pose.y) + ") stands on a road (" +
-                    fixed(pallet_to_road) + " m from a lane centre, lane half-width " +
-                    fixed(half_lane(road_point)) + " m)";
+                    fixed(pallet_to_road) + " m from a lane centre, lane half-width " + fixed(half_lane(road_point)) +
+                    " m)";
       }
     }
     report.areas.push_back(std::move(p));

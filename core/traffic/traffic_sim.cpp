@@ -13,8 +13,9 @@ SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, 
   const map::RoadGraph& graph = site.graph.graph;
   SimScenario scenario;
   for (const auto& area : site.site.loading_areas) {
-    const double x = area.pose.x + approach_distance * std::cos(area.pose.yaw);
-    const double y = area.pose.y + approach_distance * std::sin(area.pose.yaw);
+    const geometry::Pose2 stand = area.approach_pose(approach_distance);
+    const double x = stand.x;
+    const double y = stand.y;
     const int p = map::nearest_point(graph, x, y);
     if (p >= 0 &&
         std::find(scenario.goal_points.begin(), scenario.goal_points.end(), p) == scenario.goal_points.end()) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 using namespace fleet::map;
 
 namespace {
@@ -24,6 +26,15 @@ TEST(Site, ShippedTableALoads) {
   EXPECT_EQ(site.uwb_anchors.size(), 4u);
   ASSERT_NE(site.find_area("A1"), nullptr);
   EXPECT_TRUE(site.find_area("A1")->pallet_at_start);
+}
+
+TEST(Site, AVehicleStandsAtTheApproachDistanceOnTheRoadSideFacingThePlace) {
+  LoadingArea area;
+  area.pose = {1.0, 2.0, std::numbers::pi / 2};  // the road lies to +y
+  const fleet::geometry::Pose2 stand = area.approach_pose(0.3);
+  EXPECT_NEAR(stand.x, 1.0, 1e-12);
+  EXPECT_NEAR(stand.y, 2.3, 1e-12);
+  EXPECT_NEAR(stand.yaw, -std::numbers::pi / 2, 1e-12);
 }
 
 TEST(Site, UnknownKeyIsNamedWithFileAndLine) {

@@ -46,7 +46,8 @@ TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   const PlantPicker plant;
   auto picker = plant.make("PP1");
   EXPECT_EQ(picker->footprint().length, 0.65);
-  const auto& target = plant.site->site.find_area("RB3")->pose;
+  // Where the server sends a move to a loading area: the road in front of it, facing it.
+  const auto target = plant.site->site.find_area("RB3")->approach_pose(plant.site->site.approach_distance);
   ASSERT_TRUE(picker->submit({"1", "", {}, "RB3", target, orders::OrderKind::kMove}, nullptr));
   bool done = false;
   double worst = 0.0;
@@ -62,6 +63,7 @@ TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   ASSERT_TRUE(done) << picker->task_state() << " (" << picker->detail() << ") at " << picker->truth().x << ", "
                     << picker->truth().y;
   EXPECT_LT(geometry::distance(picker->truth().position(), target.position()), 0.15);
+  EXPECT_GT(picker->truth().y, 10.2 + 0.25) << "in the aisle, clear of the rack face";
   std::cout << "picker: PP1 -> RB3 in " << picker->time() << " s sim, estimate off by " << worst * 100.0
             << " cm at worst\n";
   EXPECT_LT(worst, 0.15) << "the estimate stays within 15 cm all the way, 30 m and four turns";
