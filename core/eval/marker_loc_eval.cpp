@@ -19,6 +19,10 @@ using geometry::Pose2;
 using geometry::Vec2;
 
 constexpr double kPeriod = 0.02;  // the encoders' and the waypoint controller's 50 Hz
+// The plant's rack rows: from x = 33.5 m, six bays between pillars 3.5 m apart [Picker thesis, section 4.2.9.3].
+constexpr double kRackX0 = 33.5;
+constexpr double kPillarPitch = 3.5;
+constexpr int kBays = 6;
 
 struct ErrorSamples {
   std::vector<double> position;
@@ -51,10 +55,8 @@ struct ErrorSamples {
 }  // namespace
 
 std::vector<map::Marker> rack_aisle_markers(const MarkerLocEvalParams& params) {
-  constexpr double kRackX0 = 33.5;
-  constexpr double kPillarPitch = 3.5;  // [Picker thesis, section 4.2.9.3, Experiment 2]
   std::vector<map::Marker> markers;
-  for (int k = 0; k <= 6; ++k) {
+  for (int k = 0; k <= kBays; ++k) {
     const double x = kRackX0 + kPillarPitch * k;
     markers.push_back({100 + k, {x, params.south_face_y, std::numbers::pi / 2}, 1.0});
     markers.push_back({110 + k, {x, params.north_face_y, -std::numbers::pi / 2}, 1.0});
@@ -84,14 +86,11 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
       const double back = face == params.south_face_y ? face - kRackDepth : face + kRackDepth;
       const double lo = std::min(face, back);
       const double hi = std::max(face, back);
-      occluders.push_back({{33.5, lo}, {54.5, lo}, {54.5, hi}, {33.5, hi}});
+      const double x1 = kRackX0 + kPillarPitch * kBays;
+      occluders.push_back({{kRackX0, lo}, {x1, lo}, {x1, hi}, {kRackX0, hi}});
     }
   }
-  localization::MarkerLocalizerParams lp;
-  lp.camera = params.camera;
-  lp.ekf = params.ekf;
-  lp.fuse_rate_hz = params.fuse_rate_hz;
-  localization::MarkerLocalizer localizer(lp, body_params.mecanum, start, markers, occluders,
+  localization::MarkerLocalizer localizer(params.localizer, body_params.mecanum, start, markers, occluders,
                                           std::mt19937_64(params.seed + 1));
 
   control::WaypointControllerParams cp;

@@ -6,9 +6,8 @@
 
 #include "geometry/polygon.hpp"
 #include "geometry/pose.hpp"
-#include "localization/ekf.hpp"
+#include "localization/marker_localizer.hpp"
 #include "map/site.hpp"
-#include "perception/marker_camera.hpp"
 
 namespace fleet::eval {
 
@@ -30,11 +29,8 @@ struct MarkerLocEvalParams {
   std::vector<map::Marker> markers;
   /// What the cameras cannot see through (the site's racks); empty means the two rack rows of the aisle.
   std::vector<geometry::Polygon> occluders;
-  perception::MarkerCameraParams camera = perception::MarkerCameraParams::axis_ptz();
-  /// Sightings fused per camera per second: a marker's systematic error repeats in every frame, so fusing all
-  /// 30 would make the filter sure of it.
-  double fuse_rate_hz = 5.0;
-  localization::EkfParams ekf = localization::EkfParams::picker();
+  /// The cameras, encoders and filter, as the picker's agent runs them.
+  localization::MarkerLocalizerParams localizer;
 };
 
 struct MarkerLocErrors {
