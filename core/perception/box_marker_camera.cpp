@@ -37,11 +37,8 @@ void DepthMarkerCamera::look_at(const Eigen::Vector3d& target) {
 bool DepthMarkerCamera::ideal(const geometry::Pose2& robot, const BoxMarker& marker, double speed,
                               BoxSighting& out) const {
   // Map -> base frame [Picker thesis, section 4.4.1]: the base's yaw and position on the floor.
-  const double c = std::cos(robot.yaw);
-  const double s = std::sin(robot.yaw);
-  const double dx = marker.top_centre.x() - robot.x;
-  const double dy = marker.top_centre.y() - robot.y;
-  const Eigen::Vector3d in_base(c * dx + s * dy, -s * dx + c * dy, marker.top_centre.z());
+  const geometry::Vec2 flat = geometry::map_to_body(robot, {marker.top_centre.x(), marker.top_centre.y()});
+  const Eigen::Vector3d in_base(flat.x, flat.y, marker.top_centre.z());
   const Eigen::Vector3d ray = in_base - params_.mount;
   const double d = ray.norm();
   if (d < params_.range_min || d > params_.read_range(speed)) return false;
