@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace fleet::planning {
+
+double distance_since_seen(double speed, double age, double stale_after, double max_speed) {
+  const double a = std::max(0.0, age);
+  return std::abs(speed) * std::min(a, stale_after) + max_speed * std::max(0.0, a - stale_after);
+}
 
 DynamicGrid::DynamicGrid(const DynamicGridConfiguration& configuration) : configuration_(configuration) {
   if (configuration.own_radius < 0.0 || configuration.safety_margin < 0.0 || configuration.max_speed < 0.0 ||
@@ -15,23 +19,9 @@ DynamicGrid::DynamicGrid(const DynamicGridConfiguration& configuration) : config
 }
 
 geometry::Polygon DynamicGrid::occupied_region(const Neighbour& n) const {
-  const double age = std::max(0.0, n.age);
-  if (is_stale(n)) {
-    const double body = std::hypot(n.footprint.length, n.footprint.width) / 2.0;
-    const double r =
-        body + configuration_.safety_margin + std::min(configuration_.max_reach, configuration_.max_speed * age);
-    // Circumscribed 16-gon, so the polygon contains the whole disc.
-    constexpr int k = 16;
-    const double rc = r / std::cos(std::numbers::pi / k);
-    geometry::Polygon p;
-    for (int i = 0; i < k; ++i) {
-      const double a = 2.0 * std::numbers::pi * i / k;
-      p.push_back({n.pose.x + rc * std::cos(a), n.pose.y + rc * std::sin(a)});
-    }
-    return p;
-  }
-  const double grow = configuration_.safety_margin + std::abs(n.speed) * age;
-  return geometry::footprint_polygon(n.pose, n.footprint, grow);
+  const double moved = distance_since_seen(n.speed, n.age, configuration_.stale_after, configuration_.max_speed);
+  return geometry::footprint_polygon(n.pose, n.footprint,
+                                     configuration_.safety_margin + std::min(configuration_.max_reach, moved));
 }
 
 void DynamicGrid::update(const OccupancyGrid& static_grid, std::span<const Neighbour> neighbours,

@@ -22,18 +22,25 @@ struct Neighbour {
 struct DynamicGridConfiguration {
   double own_radius = 0.15;     ///< our robot's circumscribed radius: obstacles grow by it
   double safety_margin = 0.05;  ///< metres added around every other robot
-  double stale_after = 0.5;     ///< s; older neighbour data means "anywhere it could be"
+  double stale_after = 0.5;     ///< s; beyond it a neighbour may have sped up to max_speed
   double max_speed = 0.5;       ///< m/s a robot can reach; bounds where a stale one may be
-  double max_reach = 3.0;       ///< metres; caps a stale neighbour's disc
+  double max_reach = 3.0;       ///< metres; caps how far a neighbour's body grows
 };
+
+/// How far a robot last seen `age` seconds ago at `speed` may have moved since: at the speed it
+/// reported for as long as its data counts as fresh (`stale_after`), at up to `max_speed` beyond.
+/// It grows with the age without a jump, so a message a little late (a loaded host, a high time
+/// scale) grows a body by the little it may have moved, not by a whole age at top speed: a
+/// standing robot grown by a metre for a late message stops its neighbours for good.
+double distance_since_seen(double speed, double age, double stale_after, double max_speed);
 
 /// The dynamic occupancy grid [Forklift thesis, section 5.3]: the static grid plus the other robots
 /// and what the lidar sees, all grown by our robot's radius so a path point is checked as a point.
 ///
-/// Fresh neighbours occupy their footprint grown by the margin and by speed x data age (how far
-/// the robot may have moved since); a neighbour older than `stale_after` occupies the disc of
-/// everywhere it could have reached at `max_speed`, so stale data slows us, never lets us drive
-/// into it.
+/// Neighbours occupy their footprint grown by the margin and by how far they may have moved since
+/// their pose was measured (distance_since_seen, capped at `max_reach`): stale data slows us,
+/// never lets us drive into them. Every point of a body moves at most `max_speed` (a turn on the
+/// spot too), so the grown footprint holds wherever the body may be by now.
 class DynamicGrid {
  public:
   explicit DynamicGrid(const DynamicGridConfiguration& configuration = {});
@@ -49,7 +56,6 @@ class DynamicGrid {
   const DynamicGridConfiguration& configuration() const { return configuration_; }
 
   /// The region a neighbour occupies under the rules above (exposed for tests and the web view).
-  /// A stale neighbour gives a polygon approximating its disc.
   geometry::Polygon occupied_region(const Neighbour& n) const;
   bool is_stale(const Neighbour& n) const { return n.age > configuration_.stale_after; }
 

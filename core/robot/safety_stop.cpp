@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "planning/dynamic_grid.hpp"
+
 namespace fleet::robot {
 
 using geometry::Pose2;
@@ -81,7 +83,8 @@ bool SafetyStop::moves_too_close(const control::BodyTwist& cmd, const Pose2& est
   }
   const auto mine_now = geometry::footprint_polygon(estimate, footprint_);
   for (const auto& n : neighbours) {
-    const double moved = n.age > params_.stale_after ? params_.neighbour_max_speed * n.age : n.speed * n.age;
+    const double moved =
+        planning::distance_since_seen(n.speed, n.age, params_.stale_after, params_.neighbour_max_speed);
     const auto theirs = geometry::footprint_polygon(n.pose, n.footprint, std::min(moved, 1.0));
     const double gap_now = geometry::convex_polygons_distance(mine_now, theirs);
     for (const auto& mine : mine_ahead) {

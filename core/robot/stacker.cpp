@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "planning/dynamic_grid.hpp"
+
 namespace fleet::robot {
 
 using geometry::Pose2;
@@ -258,47 +260,44 @@ void Stacker::note_way_out() {
 
 double Stacker::clearance_ahead() const {
   // How far the stacker can drive along its path before its footprint meets another robot's
-  // published one (grown by the margin and by how far a stale one may have moved since).
+  // published one (grown by the margin and by how far it may have moved since, distance_since_seen).
+  // The sweep is the pursuit rolled forward on the body model from the estimate, the wheel as it
+  // stands: in a bend the real rear axle cuts inside the path and the front swings with it, so
+  // bodies placed on the path at its tangent would meet a robot the stacker passes 0.4 m from.
   const std::vector<Vec2>& path = follower_.path();
   if (path.size() < 2 || neighbours_.empty()) return std::numeric_limits<double>::infinity();
-  const double c = centre_offset(config_.body.geometry);
   const geometry::Polygon here = geometry::footprint_polygon(estimate(), footprint_);
   std::vector<geometry::Polygon> others;
   for (const auto& n : neighbours_) {
-    double grow = config_.clearance_margin;
-    if (n.age > config_.stale_after) grow += std::min(n.age * config_.neighbour_max_speed, 3.0);
-    geometry::Polygon p = geometry::footprint_polygon(n.pose, n.footprint, grow);
+    const double moved =
+        planning::distance_since_seen(n.speed, n.age, config_.stale_after, config_.neighbour_max_speed);
+    geometry::Polygon p =
+        geometry::footprint_polygon(n.pose, n.footprint, config_.clearance_margin + std::min(moved, 3.0));
     // Already touching where it stands: the safety stop judges that one.
     if (!geometry::convex_polygons_overlap(p, here)) others.push_back(std::move(p));
   }
   if (others.empty()) return std::numeric_limits<double>::infinity();
-  // From the rear axle's projection onto the path.
-  std::size_t segment = 0;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const double d = geometry::point_segment_distance(estimate_.position(), path[i], path[i + 1]);
-    if (d < best) {
-      best = d;
-      segment = i;
-    }
-  }
+  const double c = centre_offset(config_.body.geometry);
+  sim::Tricycle ghost = body_;
+  ghost.move_to(estimate_);
+  // Steps of the sweep: one body pose per clearance_sample at top speed, and a bound on the steps
+  // for a pivot, which turns the body without moving the rear axle.
+  const double dt = config_.clearance_sample / config_.pursuit.max_speed;
+  const int max_steps = static_cast<int>(std::ceil(3.0 * config_.clearance_lookahead / config_.clearance_sample));
   double travelled = 0.0;
-  Vec2 prev = estimate_.position();
-  for (std::size_t i = segment + 1; i < path.size() && travelled < config_.clearance_lookahead; ++i) {
-    const double len = geometry::distance(prev, path[i]);
-    if (len < 1e-9) continue;
-    const double yaw = std::atan2(path[i].y - prev.y, path[i].x - prev.x);
-    for (double s = config_.clearance_sample; s <= len; s += config_.clearance_sample) {
-      const Vec2 rear = prev + (s / len) * (path[i] - prev);
-      const Vec2 centre = rear + c * heading_of(yaw);
-      const geometry::Polygon swept = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_);
-      for (const auto& o : others) {
-        if (geometry::convex_polygons_overlap(swept, o)) return std::max(0.0, travelled + s - config_.clearance_sample);
-      }
-      if (travelled + s >= config_.clearance_lookahead) break;
+  for (int k = 0; k < max_steps && travelled < config_.clearance_lookahead; ++k) {
+    const control::TricyclePursuitOutput out =
+        control::pursue(ghost.pose(), path, std::numeric_limits<double>::infinity(), ghost.state().theta_steer,
+                        config_.pursuit, config_.body.geometry.wheelbase);
+    if (out.arrived) break;
+    const Vec2 before = ghost.pose().position();
+    ghost.step(out.command, dt);
+    const geometry::Polygon swept =
+        geometry::footprint_polygon(geometry::body_pose_to_map(ghost.pose(), {c, 0.0, 0.0}), footprint_);
+    for (const auto& o : others) {
+      if (geometry::convex_polygons_overlap(swept, o)) return travelled;
     }
-    travelled += len;
-    prev = path[i];
+    travelled += geometry::distance(before, ghost.pose().position());
   }
   return std::numeric_limits<double>::infinity();
 }

@@ -106,6 +106,9 @@ class Tricycle {
   void step(const TricycleCommand& command, double dt);
   /// Puts the stacker at `pose`, at rest with the wheel straight.
   void reset(const geometry::Pose2& pose);
+  /// Moves the stacker to `pose`, its wheel's speed, angle and held command kept: a prediction
+  /// started from a pose estimate.
+  void move_to(const geometry::Pose2& pose) { state_.pose = pose; }
 
   const TricycleState& state() const { return state_; }
   const geometry::Pose2& pose() const { return state_.pose; }

@@ -565,7 +565,9 @@ UpdateResult TrafficManager::update(double now) {
     if (now - robot.wait_since < (behind_lost_only ? configuration_.lost_reroute_wait : configuration_.reroute_wait)) {
       continue;
     }
-    if (!reroute(robot, robot.blocked_by, now, out, TrafficEvent::Kind::kRerouted)) robot.last_reroute = now;
+    // A copy: the new route clears blocked_by, and the event names who it went round.
+    const std::vector<int> blockers = robot.blocked_by;
+    if (!reroute(robot, blockers, now, out, TrafficEvent::Kind::kRerouted)) robot.last_reroute = now;
   }
 
   out.grants.reserve(slots_.size());

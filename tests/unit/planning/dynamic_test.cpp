@@ -114,28 +114,41 @@ TEST(DynamicGrid, FreshNeighbourGrowsWithSpeedTimesAge) {
   EXPECT_FALSE(dyn.grid().occupied_at({2.3, 2.0}));
 }
 
-TEST(DynamicGrid, StaleNeighbourOccupiesEverywhereItCouldHaveReached) {
+TEST(DynamicGrid, AStaleNeighbourGrowsAtTopSpeedOnlyForTheTimeBeyondStaleAfter) {
   OccupancyGrid base({0.0, 0.0, 4.0, 4.0}, 0.02);
   DynamicGrid dyn({.own_radius = 0.0, .safety_margin = 0.0, .stale_after = 0.5, .max_speed = 0.5});
   Neighbour n;
   n.pose = {2.0, 2.0, 0.0};
   n.footprint = {0.25, 0.16};
-  n.speed = 0.0;  // it reported standing still, but that was long ago
+  n.speed = 0.0;  // it reported standing still
   n.age = 0.49;
   dyn.update(base, std::span<const Neighbour>(&n, 1), nullptr);
   EXPECT_FALSE(dyn.is_stale(n));
-  EXPECT_FALSE(dyn.grid().occupied_at({2.0, 2.3}));
-  n.age = 1.0;
+  EXPECT_FALSE(dyn.grid().occupied_at({2.0, 2.12}));
+  // A little late: it may have started off for 0.1 s, 5 cm at most, not 0.55 s at top speed.
+  n.age = 0.6;
   EXPECT_TRUE(dyn.is_stale(n));
+  EXPECT_NEAR(distance_since_seen(n.speed, n.age, 0.5, 0.5), 0.05, 1e-12);
   dyn.update(base, std::span<const Neighbour>(&n, 1), nullptr);
-  // Body radius ~0.148 + 0.5 m/s x 1 s: every direction, including sideways and behind.
-  for (double a = 0.0; a < 6.28; a += 0.5) {
-    EXPECT_TRUE(dyn.grid().occupied_at({2.0 + 0.6 * std::cos(a), 2.0 + 0.6 * std::sin(a)})) << a;
-  }
-  EXPECT_FALSE(dyn.grid().occupied_at({2.0, 2.7}));
+  EXPECT_TRUE(dyn.grid().occupied_at({2.0, 2.12}));
+  EXPECT_FALSE(dyn.grid().occupied_at({2.0, 2.16}));
+  // Long stale: 0.5 m/s x 1.5 s beyond, in every direction, sideways and behind too.
   n.age = 2.0;
   dyn.update(base, std::span<const Neighbour>(&n, 1), nullptr);
-  EXPECT_TRUE(dyn.grid().occupied_at({2.0, 3.1}));
+  for (double a = 0.0; a < 6.28; a += 0.5) {
+    EXPECT_TRUE(dyn.grid().occupied_at({2.0 + 0.8 * std::cos(a), 2.0 + 0.8 * std::sin(a)})) << a;
+  }
+  EXPECT_FALSE(dyn.grid().occupied_at({2.0, 2.9}));
+  // The growth has no jump at stale_after, and a moving one keeps its reported speed until then.
+  EXPECT_NEAR(distance_since_seen(0.4, 0.5, 0.5, 0.5), 0.2, 1e-12);
+  EXPECT_NEAR(distance_since_seen(0.4, 0.5 + 1e-9, 0.5, 0.5), 0.2, 1e-8);
+  EXPECT_NEAR(distance_since_seen(0.4, 0.7, 0.5, 0.5), 0.3, 1e-12);
+  // A cap keeps a long-silent robot from closing the whole map.
+  DynamicGrid capped({.own_radius = 0.0, .safety_margin = 0.0, .stale_after = 0.5, .max_speed = 0.5, .max_reach = 0.3});
+  n.age = 100.0;
+  capped.update(base, std::span<const Neighbour>(&n, 1), nullptr);
+  EXPECT_TRUE(capped.grid().occupied_at({2.0, 2.35}));
+  EXPECT_FALSE(capped.grid().occupied_at({2.0, 2.42}));
 }
 
 TEST(DynamicGrid, OwnRadiusGrowsEverythingAndStaticStays) {

@@ -57,9 +57,13 @@ TEST(SafetyStop, ANeighboursPoseCountsAsEverywhereItCouldHaveReachedSince) {
   Neighbour moving = standing;
   moving.speed = 0.5;
   EXPECT_TRUE(stop.moves_too_close(forward, kHere, {moving}));
-  // A pose older than stale_after grows by the top speed whatever the reported one: 0.7 s x 0.3 m/s.
+  // Beyond stale_after it grows by the top speed whatever the reported one: a little late, a
+  // little (0.2 s x 0.3 m/s); longer silent, more (0.7 s x 0.3 m/s).
+  Neighbour late = fresh;
+  late.age = 0.7;
+  EXPECT_FALSE(stop.moves_too_close(forward, kHere, {late}));
   Neighbour stale = fresh;
-  stale.age = 0.7;
+  stale.age = 1.2;
   EXPECT_TRUE(stop.moves_too_close(forward, kHere, {stale}));
   EXPECT_FALSE(stop.moves_too_close({-0.1, 0.0, 0.0}, kHere, {stale})) << "moving away stays allowed";
 }

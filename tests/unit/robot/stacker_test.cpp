@@ -367,3 +367,53 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   ASSERT_TRUE(traffic.hold_body(2, in_the_way, 0.0));
   EXPECT_EQ(traffic.holders_in_area(4, way_out, {{2, in_the_way}}), std::vector<int>{2});
 }
+
+namespace fleet::robot {
+namespace {
+
+/// Drives a stacker loaded at FG13 to WA1 and on its way home, with everything granted, while a
+/// reach truck whose pose is `age` seconds old stands where the soak's rt1 waited, at the middle
+/// aisle's north end: whether the stacker passes it on its turn into the aisle.
+bool passes_reach_truck_at_the_junction(double age, std::string* why) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2", true);
+  stacker->set_standing_loads(plant.loads);
+  if (!stacker->submit(plant.transport("FG13", "WA1"), why)) return false;
+  const Neighbour waiting{"rt1", {30.43, 24.38, -2.72}, {1.6, 0.9}, 0.0, age};
+  const geometry::Polygon body = geometry::footprint_polygon(waiting.pose, waiting.footprint);
+  bool going_home = false;
+  double nearest = 1e9;
+  for (int i = 0; i < 20 * 260; ++i) {
+    stacker->set_traffic_grant(all_it_asks_for(stacker->traffic_route()));
+    if (going_home) stacker->set_neighbours({waiting});
+    stacker->step();
+    stacker->take_events();
+    going_home = going_home || stacker->task_state() == "GO_HOME";
+    if (!going_home) continue;
+    nearest = std::min(nearest, geometry::convex_polygons_distance(
+                                    geometry::footprint_polygon(stacker->truth(), stacker->footprint()), body));
+    // Down the middle aisle, past the junction.
+    if (stacker->truth().y < 19.0 && stacker->truth().x > 27.0) {
+      if (nearest < 0.3) *why = "passed within " + std::to_string(nearest) + " m";
+      return nearest >= 0.3;
+    }
+  }
+  *why = "stands at (" + std::to_string(stacker->truth().x) + ", " + std::to_string(stacker->truth().y) + ") in " +
+         stacker->task_state() + ": " + stacker->detail();
+  return false;
+}
+
+}  // namespace
+
+// The stacker's way home from WA1 turns into the middle aisle where a reach truck waits for it
+// to pass. The stacker passes 0.4 m from it, also when the truck's pose arrives late (0.65 s
+// old: a loaded host at time scale 5); a robot silent for 1.5 s may be anywhere within a metre,
+// and the stacker waits.
+TEST(Stacker, TurnsIntoAnAislePastARobotWaitingAtItsJunction) {
+  std::string why;
+  EXPECT_TRUE(passes_reach_truck_at_the_junction(0.0, &why)) << why;
+  EXPECT_TRUE(passes_reach_truck_at_the_junction(0.65, &why)) << why;
+  EXPECT_FALSE(passes_reach_truck_at_the_junction(1.5, &why)) << "a robot silent for 1.5 s was passed";
+}
+
+}  // namespace fleet::robot

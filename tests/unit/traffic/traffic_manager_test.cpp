@@ -569,9 +569,10 @@ TEST(TrafficManager, InAOneWayCorridorRobotsQueueUpToARobotStandingAtItsGoal) {
 /// Robot `id` followed every 0.05 s for up to `limit` s, driving 0.2 m/s within its grants,
 /// until the manager re-routes it.
 struct RerouteWatch {
-  double at = -1.0;       ///< when it was re-routed; negative: not within the limit
-  double max_wait = 0.0;  ///< longest `waited_s` its grants showed
-  Grant grant;            ///< the re-routing grant, or the last one
+  double at = -1.0;             ///< when it was re-routed; negative: not within the limit
+  double max_wait = 0.0;        ///< longest `waited_s` its grants showed
+  Grant grant;                  ///< the re-routing grant, or the last one
+  std::vector<int> went_round;  ///< whom the re-route event names
 };
 RerouteWatch follow_until_rerouted(TrafficManager& m, int id, double limit) {
   RerouteWatch watch;
@@ -584,6 +585,9 @@ RerouteWatch follow_until_rerouted(TrafficManager& m, int id, double limit) {
     watch.max_wait = std::max(watch.max_wait, watch.grant.waited_s);
     if (watch.grant.instruction == Instruction::kReroute) {
       watch.at = now;
+      for (const auto& e : r.events) {
+        if (e.kind == TrafficEvent::Kind::kRerouted && e.robot_id == id) watch.went_round = e.others;
+      }
       break;
     }
     distance = std::min(distance + 0.01, watch.grant.granted_distance);
@@ -606,6 +610,7 @@ TEST(TrafficManager, BoundedWaitReroutesAroundARobotThatDoesNotMove) {
   ASSERT_GE(watch.at, 0.0);
   EXPECT_LE(watch.max_wait, config.reroute_wait + 0.1);
   EXPECT_EQ(watch.grant.version, 2u);
+  EXPECT_EQ(watch.went_round, std::vector<int>{1}) << "the event names the robot it went round";
   // The new route goes round the other way: it never comes near robot 1.
   for (int p : watch.grant.route) {
     for (int q : m.held_places(1)) EXPECT_FALSE(m.zones().conflict(m.zones().place_of(p), q));
