@@ -265,37 +265,49 @@ void TrafficManager::resolve_cycles(double now, UpdateResult& out) {
     const bool instructed =
         std::any_of(ids.begin(), ids.end(), [&](int id) { return robots_.at(id).pending != Instruction::kNone; });
     if (instructed) continue;
-    bool resolved = false;
-    for (int s : component) {
-      Robot& victim = *slots_[static_cast<std::size_t>(s)];
-      // A robot standing beside the roads is never sent anywhere (it may be docking).
-      if (victim.frozen || now - victim.last_reroute < kActOnInstruction) continue;
-      // A member already yielding to it on a siding makes way for it: sending it off as well
-      // would only swap who yields, again and again. Unless that member waits for it on the way:
-      // then it makes way for nobody, and the robot it yields to is the one to move.
-      const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
-        const Robot& other = robots_.at(id);
-        return other.in_siding && !waiting(other, victim.id) &&
-               std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
-      });
-      if (yielded_to) continue;
-      // It goes round the robots it waits for, or out of the way of the robots waiting for it.
-      std::vector<int> waiters;
-      for (int id : ids) {
-        if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
+    // A member whose own safety check stops it for another member's body cannot drive a new
+    // route from where it stands any more than its old one: it is sent nowhere until the others
+    // have been tried and it has given its road back (each new route would also restart the
+    // report of its stop, and the cycle would come back as often).
+    const auto stopped_by_member = [&](const Robot& r) {
+      return std::any_of(r.stopped_for.begin(), r.stopped_for.end(),
+                         [&](int id) { return id != r.id && std::find(ids.begin(), ids.end(), id) != ids.end(); });
+    };
+    const auto send_one_away = [&](bool body_stopped) {
+      for (int s : component) {
+        Robot& victim = *slots_[static_cast<std::size_t>(s)];
+        if (stopped_by_member(victim) != body_stopped) continue;
+        // A robot standing beside the roads is never sent anywhere (it may be docking).
+        if (victim.frozen || now - victim.last_reroute < kActOnInstruction) continue;
+        // A member already yielding to it on a siding makes way for it: sending it off as well
+        // would only swap who yields, again and again. Unless that member waits for it on the
+        // way: then it makes way for nobody, and the robot it yields to is the one to move.
+        const bool yielded_to = std::any_of(ids.begin(), ids.end(), [&](int id) {
+          const Robot& other = robots_.at(id);
+          return other.in_siding && !waiting(other, victim.id) &&
+                 std::find(other.yield_to.begin(), other.yield_to.end(), victim.id) != other.yield_to.end();
+        });
+        if (yielded_to) continue;
+        // It goes round the robots it waits for, or out of the way of the robots waiting for it.
+        std::vector<int> waiters;
+        for (int id : ids) {
+          if (id != victim.id && waiting(robots_.at(id), victim.id)) waiters.push_back(id);
+        }
+        if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
+            send_to_siding(victim, waiters, now, out, in_the_way[static_cast<std::size_t>(s)] != 0)) {
+          return true;
+        }
       }
-      if (reroute(victim, blockers_of(victim), now, out, TrafficEvent::Kind::kDeadlockResolved) ||
-          send_to_siding(victim, waiters, now, out, in_the_way[static_cast<std::size_t>(s)] != 0)) {
-        resolved = true;
-        break;
-      }
-    }
+      return false;
+    };
+    bool resolved = send_one_away(false);
     // A member whose safety check stops it for another member's body cannot use the road it holds
     // beyond where it stands; when the others wait for that road, it gives it back and waits
     // until those bodies have passed.
     for (std::size_t k = 0; !resolved && k < component.size(); ++k) {
       resolved = give_way(*slots_[static_cast<std::size_t>(component[k])], ids, now, out);
     }
+    if (!resolved) resolved = send_one_away(true);
     // Last resort: a way round against a one-way corridor. Robots standing where the one-way
     // plan does not expect them (a map switch changed the corridors' directions) can face each
     // other with no way out along the plan; driving against it is safe, as nobody enters a

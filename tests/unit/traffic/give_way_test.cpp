@@ -5,9 +5,12 @@
 
 #include <algorithm>
 
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
 #include "test_grants.hpp"
 #include "test_graphs.hpp"
 #include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::traffic {
 namespace {
@@ -62,6 +65,53 @@ TEST(GiveWay, ARobotStoppedByABodyGivesItsRoadToTheRobotWaitingForIt) {
     r = m.update(t);
   }
   EXPECT_GT(grant_of(r, 2)->granted_distance, 0.6);
+}
+
+// Two reach trucks leave neighbouring stalls of the plant's parking street (1.2 m apart) at once.
+// The first is granted the street; turning out of its stall it would sweep within its margin of
+// the second, which stands in its stall waiting for that street: its safety check stops it for
+// that body. Sent to a siding it could not drive either (and each new route restarts its stop's
+// report, so the cycle came back every 3 s, for minutes). It gives its road back instead: the
+// second drives out first, then the first follows.
+TEST(GiveWay, ARobotStoppedInItsStallByItsNeighbourLetsTheNeighbourOutFirst) {
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  TrafficManager m(site.graph.graph, configuration_from(config));
+  const int trucks = vehicle_type_of(config, "reach_trucks");
+  m.set_robot_type(1, trucks);
+  m.set_robot_type(3, trucks);
+  const auto& lanes = m.route_graph(trucks);
+  const int goal = map::nearest_point(lanes, 45.0, 24.9);
+  const auto first = m.search(trucks).shortest(map::nearest_point(lanes, 52.4, 29.1), goal);
+  const auto second = m.search(trucks).shortest(map::nearest_point(lanes, 53.6, 29.1), goal);
+  ASSERT_GT(first.size(), 5u);
+  ASSERT_GT(second.size(), 5u);
+  ASSERT_EQ(m.submit_route({1, 1, first}, 0.0), SubmitStatus::kAccepted);
+  UpdateResult r = m.update(0.0);
+  ASSERT_EQ(m.submit_route({3, 1, second}, 0.05), SubmitStatus::kAccepted);
+  double t = 0.05, d1 = 0.0, d3 = 0.0;
+  std::uint64_t v1 = 1, v3 = 1;
+  int sidings = 0;
+  constexpr double kStep = 0.05, kSpeed = 0.8;
+  for (int i = 0; i < 20 * 120 && d1 < 4.0; ++i, t += kStep) {
+    r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    sidings += has_event(r, TrafficEvent::Kind::kSidingSent, 1) ? 1 : 0;
+    if (const Grant* g = grant_of(r, 1)) {
+      if (g->version != v1) d1 = 0.0, v1 = g->version;
+      // Stopped by the second truck's body while that one stands within 2 m of its stall.
+      if (d3 > 2.0) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
+    }
+    if (const Grant* g = grant_of(r, 3)) {
+      if (g->version != v3) d3 = 0.0, v3 = g->version;
+      d3 = std::max(d3, std::min(g->granted_distance, d3 + kSpeed * kStep));
+    }
+    m.report_progress({1, v1, d1, d3 > 2.0 ? std::vector<int>{} : std::vector<int>{3}}, t);
+    m.report_progress({3, v3, d3, {}}, t);
+  }
+  EXPECT_GT(d3, 2.0) << "the second truck never left its stall";
+  EXPECT_GE(d1, 4.0) << "the first truck never followed";
+  EXPECT_EQ(sidings, 0) << "the stopped truck was sent to sidings it could not drive to";
 }
 
 }  // namespace
