@@ -170,13 +170,43 @@ std::vector<std::string> actions_of(const Reader& r, const YAML::Node& entry, co
   return actions;
 }
 
+BoxStock boxes_of(const Reader& r, const YAML::Node& node, const std::string& key, const LoadingArea& area) {
+  r.allow_keys(node, key, {"item", "count", "size", "mass"});
+  if (!area.pallet_at_start) r.fail(node, key, "boxes need a pallet to stand on (pallet: true)");
+  if (!area.offers("pickItem")) r.fail(node, key, "boxes are picked only where the place offers pickItem");
+  BoxStock stock;
+  stock.item = r.text(node, "item", key);
+  const double count = r.number(node, "count", key);
+  if (count < 1.0 || count != std::floor(count)) {
+    r.fail(node["count"], key + ".count", "'" + node["count"].Scalar() + "' is not a whole number of boxes >= 1");
+  }
+  stock.count = static_cast<int>(count);
+  const YAML::Node size = node["size"];
+  if (size) {
+    if (!size.IsSequence() || size.size() != 3) r.fail(size, key + ".size", "must be [length, width, height]");
+    double* dims[] = {&stock.length, &stock.width, &stock.height};
+    for (std::size_t j = 0; j < 3; ++j) {
+      *dims[j] = r.number_value(size[j], key + ".size");
+      if (!(*dims[j] > 0.0)) r.fail(size[j], key + ".size", "'" + size[j].Scalar() + "' is not a length > 0");
+    }
+  }
+  if (node["mass"]) {
+    stock.mass = r.number_value(node["mass"], key + ".mass");
+    if (!(stock.mass > 0.0)) r.fail(node["mass"], key + ".mass", "'" + node["mass"].Scalar() + "' is not a mass > 0");
+  }
+  return stock;
+}
+
 void read_loading_areas(const Reader& r, const YAML::Node& root, Site& site) {
   std::set<std::string> ids;
   const YAML::Node areas = r.list(root, "loading_areas");
   for (std::size_t i = 0; i < areas.size(); ++i) {
     const std::string key = "loading_areas[" + std::to_string(i) + "]";
-    r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet", "actions", "height"});
-    LoadingArea area{r.text(areas[i], "id", key), pose_of(r, areas[i], key), r.boolean(areas[i], "pallet", key, false)};
+    r.allow_keys(areas[i], key, {"id", "x", "y", "yaw", "pallet", "actions", "height", "boxes"});
+    LoadingArea area;
+    area.id = r.text(areas[i], "id", key);
+    area.pose = pose_of(r, areas[i], key);
+    area.pallet_at_start = r.boolean(areas[i], "pallet", key, false);
     unique_id(r, ids, area.id, areas[i], key);
     if (!site.bounds.contains(area.pose.position()))
       r.fail(areas[i], key, "loading area '" + area.id + "' lies outside the bounds");
@@ -188,6 +218,7 @@ void read_loading_areas(const Reader& r, const YAML::Node& root, Site& site) {
                "'" + areas[i]["height"].Scalar() + "' is below the floor (must be >= 0)");
       }
     }
+    if (areas[i]["boxes"]) area.boxes = boxes_of(r, areas[i]["boxes"], key + ".boxes", area);
     site.loading_areas.push_back(std::move(area));
   }
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,18 @@ inline const std::vector<std::string>& place_action_names() {
 /// Where a pallet stands and which way it faces ("location and direction of the loading area and
 /// their ids" [Forklift thesis, section 3]). `pose.yaw` points from the pallet towards the side a forklift
 /// approaches from, so a forklift picks facing `yaw + pi`.
+/// Boxes of one item standing on the pallet at a rack place, for picking by items [Picker thesis,
+/// section 4.4: pallets of marked boxes of at most 5 kg]. One item per pallet, as a warehouse
+/// stores a pallet per article.
+struct BoxStock {
+  std::string item;     ///< the article's code, as pick lines name it
+  int count = 0;        ///< boxes on the pallet
+  double length = 0.3;  ///< one box, metres
+  double width = 0.3;
+  double height = 0.25;
+  double mass = 3.0;  ///< kg
+};
+
 struct LoadingArea {
   std::string id;
   geometry::Pose2 pose;
@@ -34,6 +47,8 @@ struct LoadingArea {
   /// Height of the load above the floor, metres: 0 on the floor, more on a rack level or platform;
   /// only a vehicle that lifts that high handles it.
   double height = 0.0;
+  /// The boxes on its pallet, where the site declares them (a place that offers pickItem).
+  std::optional<BoxStock> boxes;
 
   bool offers(const std::string& action) const;
   /// Where a vehicle stands to handle the load: `distance` out from the place towards the road

@@ -135,8 +135,21 @@ def beside(lane_edge, side, clearance=CLEARANCE):
     return lane_edge + side * (clearance + PALLET_LENGTH / 2)
 
 
-def place(kind, x, y, yaw, pallet, actions=None, height=0.0):
-    return {"kind": kind, "x": x, "y": y, "yaw": yaw, "pallet": pallet, "actions": actions, "height": height}
+def place(kind, x, y, yaw, pallet, actions=None, height=0.0, boxes=None):
+    return {"kind": kind, "x": x, "y": y, "yaw": yaw, "pallet": pallet, "actions": actions, "height": height,
+            "boxes": boxes}
+
+
+# Articles on the floor pallets of the rack bays, for the pickers: (length, width, height, kg) of a
+# box. The last is too heavy for the picker's gripper (5 kg [Picker thesis, section 3.3]): a pick
+# line for it is refused.
+BOX_KINDS = ((0.30, 0.30, 0.25, 3.0), (0.40, 0.30, 0.20, 4.5), (0.30, 0.20, 0.15, 1.5), (0.60, 0.40, 0.30, 12.0))
+
+
+def box_stock(k):
+    """The boxes on the k-th floor pallet of the racks: article A1.. and 6 to 18 boxes."""
+    length, width, height, mass = BOX_KINDS[k % len(BOX_KINDS)]
+    return {"item": f"A{k + 1}", "count": 6 + (5 * k) % 13, "size": (length, width, height), "mass": mass}
 
 
 def corridor_and_open_places():
@@ -189,7 +202,9 @@ def rack_places():
                 places.append(place("RH", centre + 1.05, y, yaw, bay % 2 == 1, None, HIGH_LEVELS[1]))
                 continue
             level = HIGH_LEVELS[0] if into_aisle > 0 else HIGH_LEVELS[1]
-            places.append(place("RB", centre - 1.05, y, yaw, True, ["pick", "drop", "pickItem"]))
+            floor_pallets = sum(1 for p in places if p["kind"] == "RB")
+            places.append(place("RB", centre - 1.05, y, yaw, True, ["pick", "drop", "pickItem"], 0.0,
+                                box_stock(floor_pallets)))
             places.append(place("RH", centre + 1.05, y, yaw, bay % 2 == 0, None, level))
     return places
 
@@ -259,6 +274,10 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2, cl
             extra += f", actions: [{', '.join(p['actions'])}]"
         if p["height"]:
             extra += f", height: {fmt(p['height'])}"
+        if p["boxes"]:
+            b = p["boxes"]
+            extra += (f", boxes: {{item: {b['item']}, count: {b['count']}, "
+                      f"size: [{', '.join(fmt(v) for v in b['size'])}], mass: {fmt(b['mass'])}}}")
         lines.append(f"  - {{id: {p['kind']}{counts[p['kind']]}, x: {fmt(p['x'])}, y: {fmt(p['y'])}, "
                      f"yaw: {fmt(p['yaw'])}, pallet: {'true' if p['pallet'] else 'false'}{extra}}}")
     # Designated obstacles, off at start: each closes a cross aisle between two junctions.

@@ -94,6 +94,34 @@ TEST(Site, UnknownActionsAndLoadsBelowTheFloorAreNamed) {
             std::string::npos);
 }
 
+TEST(Site, APlaceForItemsDeclaresTheBoxesOnItsPallet) {
+  const std::string place = "  - {id: B1, x: 1, y: 1, yaw: 0, pallet: true, actions: [pick, pickItem], ";
+  const Site site = parse_site(
+      kBounds + "loading_areas:\n" + place + "boxes: {item: A7, count: 9, size: [0.4, 0.3, 0.2], mass: 4.5}}\n",
+      "maps/good.yaml");
+  ASSERT_TRUE(site.loading_areas[0].boxes.has_value());
+  const BoxStock& b = *site.loading_areas[0].boxes;
+  EXPECT_EQ(b.item, "A7");
+  EXPECT_EQ(b.count, 9);
+  EXPECT_DOUBLE_EQ(b.length, 0.4);
+  EXPECT_DOUBLE_EQ(b.height, 0.2);
+  EXPECT_DOUBLE_EQ(b.mass, 4.5);
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n" + place + "boxes: {item: A7, count: 2.5}}\n")
+                .find("key 'loading_areas[0].boxes.count': '2.5' is not a whole number of boxes >= 1"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n" + place + "boxes: {item: A7, count: 2, size: [0.4, 0]}}\n")
+                .find("key 'loading_areas[0].boxes.size': must be [length, width, height]"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n  - {id: B1, x: 1, y: 1, yaw: 0, actions: [pickItem], " +
+                       "boxes: {item: A7, count: 2}}\n")
+                .find("boxes need a pallet to stand on (pallet: true)"),
+            std::string::npos);
+  EXPECT_NE(message_of(kBounds + "loading_areas:\n  - {id: B1, x: 1, y: 1, yaw: 0, pallet: true, " +
+                       "boxes: {item: A7, count: 2}}\n")
+                .find("boxes are picked only where the place offers pickItem"),
+            std::string::npos);
+}
+
 TEST(Site, MarkersHaveWholeNumberIdsOncePoseAndHeight) {
   const Site site = parse_site(kBounds +
                                    "markers:\n  - {id: 7, x: 1, y: 2, z: 1.5, yaw: 3.14}\n"
