@@ -127,11 +127,11 @@ model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
 
 fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
   return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
-          borrow(v.robot_id),   v.priority,          borrow(v.kind)};
+          borrow(v.robot_id),   v.priority,          borrow(v.kind),      borrow(v.lines)};
 }
 model::OrderRequest from_wire(const fleet_msg_OrderRequest& w) {
   return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
-          text(w.robot_id),   w.priority,        text(w.kind)};
+          text(w.robot_id),   w.priority,        text(w.kind),      text(w.lines)};
 }
 
 fleet_msg_Command to_wire(const model::Command& v, Scratch&) {
@@ -142,21 +142,23 @@ model::Command from_wire(const fleet_msg_Command& w) {
 }
 
 fleet_msg_RequestReply to_wire(const model::RequestReply& v, Scratch&) {
-  return {borrow(v.request_id), v.accepted, v.order_id, borrow(v.error)};
+  return {borrow(v.request_id), v.accepted, v.order_id, borrow(v.error), v.order_count};
 }
 model::RequestReply from_wire(const fleet_msg_RequestReply& w) {
-  return {text(w.request_id), w.accepted, w.order_id, text(w.error)};
+  return {text(w.request_id), w.accepted, w.order_id, text(w.error), w.order_count};
 }
 
 fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
   return {v.order_id,          borrow(v.robot_id),     borrow(v.pick_area), wire_pose(v.pick_pose),
           borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled,
-          borrow(v.kind)};
+          borrow(v.kind),      borrow(v.lines)};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
-  return {w.order_id,        text(w.robot_id),        text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled,
-          text(w.kind)};
+  return {w.order_id,        text(w.robot_id),
+          text(w.pick_area), model_pose(w.pick_pose),
+          text(w.drop_area), model_pose(w.drop_pose),
+          w.update_id,       w.cancelled,
+          text(w.kind),      text(w.lines)};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {

@@ -52,6 +52,8 @@ CREATE TABLE IF NOT EXISTS pallets (
 constexpr const char* kMigrations[] = {
     // 1: orders have a kind (transport, move, pick); every earlier order was a transport.
     "ALTER TABLE orders ADD COLUMN kind TEXT NOT NULL DEFAULT 'transport';",
+    // 2: a pick order keeps its tour's lines (CSV); no earlier order had any.
+    "ALTER TABLE orders ADD COLUMN lines TEXT NOT NULL DEFAULT '';",
 };
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -83,7 +85,7 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
     }
   };
   prepare(
-      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17) "
+      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18) "
       "ON CONFLICT(id) DO UPDATE SET robot_id=?6, status=?9, phase=?10, reason=?11, update_id=?12, "
       "updated_sim=?14, assigned_sim=?15, finished_sim=?16",
       &upsert_);
@@ -158,6 +160,7 @@ void OrderStore::save(const orders::Order& o) {
     sqlite3_bind_double(upsert_, 15, o.assigned_sim);
     sqlite3_bind_double(upsert_, 16, o.finished_sim);
     sqlite3_bind_text(upsert_, 17, std::string(orders::to_string(o.kind)).c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(upsert_, 18, o.lines.c_str(), -1, SQLITE_TRANSIENT);
     step(upsert_);
 
     sqlite3_bind_int64(count_events_, 1, o.id);
@@ -188,11 +191,12 @@ void OrderStore::save(const orders::Order& o) {
 std::vector<orders::Order> OrderStore::load_all() const {
   std::vector<orders::Order> out;
   sqlite3_stmt* stmt = nullptr;
-  sqlite3_prepare_v2(db_,
-                     "SELECT id, request_id, pick_area, drop_area, fleet_id, robot_id, robot_requested, priority, "
-                     "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind "
-                     "FROM orders ORDER BY id",
-                     -1, &stmt, nullptr);
+  sqlite3_prepare_v2(
+      db_,
+      "SELECT id, request_id, pick_area, drop_area, fleet_id, robot_id, robot_requested, priority, "
+      "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind, lines "
+      "FROM orders ORDER BY id",
+      -1, &stmt, nullptr);
   while (sqlite3_step(stmt) == SQLITE_ROW) {
     orders::Order o;
     o.id = sqlite3_column_int64(stmt, 0);
@@ -220,6 +224,7 @@ std::vector<orders::Order> OrderStore::load_all() const {
       throw StoreError(path_ + ": order " + std::to_string(o.id) + " has unknown kind '" + text_column(stmt, 16) + "'");
     }
     o.kind = *kind;
+    o.lines = text_column(stmt, 17);
     out.push_back(std::move(o));
   }
   sqlite3_finalize(stmt);

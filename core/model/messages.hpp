@@ -32,7 +32,8 @@ struct OrderRequest {
   std::string fleet_id;  ///< empty: the server chooses
   std::string robot_id;  ///< empty: the server chooses
   int priority = 0;
-  std::string kind;  ///< orders::OrderKind name; empty: transport
+  std::string kind;   ///< orders::OrderKind name; empty: transport
+  std::string lines;  ///< pick: the pick list as CSV, place,item,quantity per line
 };
 
 struct Command {
@@ -46,8 +47,9 @@ struct Command {
 struct RequestReply {
   std::string request_id;
   bool accepted = false;
-  std::int64_t order_id = 0;
+  std::int64_t order_id = 0;  ///< the first order created
   std::string error;
+  int order_count = 0;  ///< orders created: ids order_id to order_id + order_count - 1
 };
 
 /// An order as sent to its robot.
@@ -60,7 +62,8 @@ struct OrderAssignment {
   geometry::Pose2 drop_pose;
   std::uint32_t update_id = 0;
   bool cancelled = false;
-  std::string kind;  ///< orders::OrderKind name; a move drives to drop_area / drop_pose and stays
+  std::string kind;   ///< orders::OrderKind name; a move drives to drop_area / drop_pose and stays
+  std::string lines;  ///< pick: the tour's lines as CSV, place,item,quantity, in driving order
 };
 
 /// An agent's report on its order.

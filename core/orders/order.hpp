@@ -55,6 +55,9 @@ struct Order {
   /// The VDA 5050 nodes with their actions, from kind and places (order_steps); filled by whoever
   /// creates or loads the order, since place heights come from the site.
   std::vector<OrderStep> steps;
+  /// A pick order's tour: its lines as CSV (place,item,quantity per line, in driving order, as
+  /// parse_pick_lines reads them); empty for other kinds.
+  std::string lines;
   std::string fleet_id;  ///< requested fleet, empty for any
   std::string robot_id;  ///< requested robot before assignment; the robot after it
   bool robot_requested = false;

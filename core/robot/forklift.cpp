@@ -80,6 +80,10 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
                .escape_speed = config.escape_speed,
                .stop_moved = config.stop_moved},
               config.sim.forklift.footprint) {
+  if (config_.arm) {
+    arm_.emplace(arm::PickMotionPlanner(arm::Ur5{}, arm::VacuumGripper{}), config_.box_camera, config_.arm_layout,
+                 seed ^ (stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL);
+  }
   reset_obstacles();
   // At start, not at the first order: the planners' tables for the whole site are the bulk of
   // the agent's memory, which then stays flat while it works.
@@ -112,7 +116,7 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
 }
 
 std::string Forklift::refusal(orders::OrderKind kind) const {
-  if (kind == orders::OrderKind::kPick) return "a " + config_.type_name + " performs no pickItem";
+  if (kind == orders::OrderKind::kPick && !config_.arm) return "a " + config_.type_name + " performs no pickItem";
   if (kind == orders::OrderKind::kTransport && !config_.forks) return "a " + config_.type_name + " has no forks";
   return "";
 }
@@ -454,11 +458,48 @@ void Forklift::step() {
       break;
   }
 
+  work_items(t);
   command_ = safety_.safe(out.twist, sim_.estimate(), neighbours_);
   const auto blockers = uwb_blockers();
   sim_.step(command_, dt, blockers, shadowed_anchors());
   answer_plan_requests();
   collect_reports();
+}
+
+void Forklift::work_items(double t) {
+  const task::State state = executor_.state();
+  if (!arm_ || (state != task::State::kPickItems && state != task::State::kDropItems)) {
+    arm_done_at_.reset();
+    return;
+  }
+  if (arm_done_at_) {
+    if (t < *arm_done_at_) return;
+    arm_done_at_.reset();
+    if (state == task::State::kDropItems) tray_.clear();
+    executor_.items_done(true);
+    return;
+  }
+  const task::TaskOrder& order = *executor_.order();
+  ArmWork work;
+  if (state == task::State::kPickItems) {
+    const task::ItemStop& stop = order.items.at(executor_.item_line());
+    const map::LoadingArea* area = site_->site.find_area(stop.place_id);
+    if (area == nullptr || !area->boxes) {
+      executor_.items_done(false, "place " + stop.place_id + " holds no boxes");
+      return;
+    }
+    work = arm_->pick(*area->boxes, stop.quantity, tray_);
+  } else {
+    work = arm_->drop(tray_, 0);
+  }
+  if (!work.ok) {
+    executor_.items_done(false, work.reason);
+    return;
+  }
+  arm_done_at_ = t + work.duration;
+  reports_.set_detail((state == task::State::kPickItems ? "arm picks " : "arm puts down ") +
+                      std::to_string(work.boxes) + " box" + (work.boxes == 1 ? "" : "es") + " in " +
+                      std::to_string(static_cast<int>(std::lround(work.duration))) + " s");
 }
 
 void Forklift::hand_grid_to_planners() {

@@ -19,6 +19,7 @@
 #include "planning/route_planner.hpp"
 #include "planning/static_grid.hpp"
 #include "robot/order_reporter.hpp"
+#include "robot/picker_arm_work.hpp"
 #include "robot/robot.hpp"
 #include "robot/safety_stop.hpp"
 #include "robot/simulated_forklift.hpp"
@@ -33,6 +34,11 @@ struct ForkliftConfig {
   std::string type_name = "forklift";
   /// False for a base without forks (the picker): it takes no transport.
   bool forks = true;
+  /// An arm that picks boxes (the picker's UR5 with its vacuum gripper and boom camera): the
+  /// robot takes pick orders, its arm working at each stop (PickerArmWork).
+  bool arm = false;
+  perception::DepthMarkerCameraParams box_camera;
+  PickerArmLayout arm_layout;
   SimulatedForkliftParams sim;
   task::ExecutorParams task;  ///< its follower defaults to the regulated one
   perception::MarkerCameraParams camera;
@@ -172,6 +178,9 @@ class Forklift : public Robot {
   std::vector<geometry::Polygon> uwb_blockers() const;
   /// Anchors the map shows behind an enabled static obstacle, seen from the estimate.
   std::vector<std::size_t> shadowed_anchors() const;
+  /// PICK_ITEMS and DROP_ITEMS: plans and times the arm's work at the stop on entering, answers
+  /// the executor when that time has passed.
+  void work_items(double t);
 
   ForkliftConfig config_;
   std::shared_ptr<const map::SiteMap> site_;
@@ -212,6 +221,9 @@ class Forklift : public Robot {
   std::map<std::string, int> seen_free_;
   int next_temporary_ = 1;
   bool held_by_traffic_ = false;
+  std::optional<PickerArmWork> arm_;
+  std::vector<map::BoxStock> tray_;    ///< the boxes on the picker's tray, bottom first
+  std::optional<double> arm_done_at_;  ///< sim time the arm's work at this stop ends
 };
 
 }  // namespace fleet::robot

@@ -59,6 +59,9 @@ robot::ForkliftConfig picker_config(const config::FleetConfig& config, const con
   robot::ForkliftConfig c = forklift_config(config, fleet, site);
   c.type_name = "picker";
   c.forks = false;
+  c.arm = true;
+  // The boom camera over the left side, where the pallet stands at a stop.
+  c.box_camera.mount = {0.25, 0.20, 1.50};
   const geometry::Footprint footprint = c.sim.forklift.footprint;
   c.sim.forklift = sim::summit_xls_body_params();
   c.sim.forklift.footprint = footprint;

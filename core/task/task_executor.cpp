@@ -1,6 +1,8 @@
 #include "task/task_executor.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace fleet::task {
 
@@ -55,19 +57,35 @@ bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
     if (why) *why = std::string("order not accepted in ") + to_string(machine_.state());
     return false;
   }
+  if (order.kind == orders::OrderKind::kPick && order.items.empty()) {
+    if (why) *why = "a pick order names no items";
+    return false;
+  }
   order_ = order;
+  item_line_ = 0;
   const Transition tr = fire(order.kind == orders::OrderKind::kMove ? Event::kMoveOrder : Event::kOrder);
   if (!tr.accepted) order_.reset();
   if (!tr.accepted && why) *why = tr.reason;
   return tr.accepted;
 }
 
+Pose2 TaskExecutor::item_pose(const Pose2& place) const {
+  const double toward_road = place.yaw;
+  return {place.x + params_.item_standoff * std::cos(toward_road),
+          place.y + params_.item_standoff * std::sin(toward_road),
+          geometry::normalize_angle(toward_road + std::numbers::pi / 2.0)};
+}
+
 Pose2 TaskExecutor::goal_for(PlanPurpose purpose) const {
-  // Paths end on the road in front of the area; search and place take it from there.
+  // Paths end on the road in front of the area; search and place take it from there. A pick
+  // order's end beside the place, where the arm reaches it.
+  const bool items = order_ && order_->kind == orders::OrderKind::kPick;
   switch (purpose) {
     case PlanPurpose::kToPick:
+      if (items) return item_pose(order_->items.at(std::min(item_line_, order_->items.size() - 1)).place);
       return control::PalletSearch::search_pose(order_->pick_area, params_.search.standoff);
     case PlanPurpose::kToDrop:
+      if (items) return item_pose(order_->drop_area);
       return control::PalletSearch::search_pose(order_->drop_area, params_.search.standoff);
     case PlanPurpose::kHome:
       return home_;
@@ -122,7 +140,8 @@ void TaskExecutor::apply(const Transition& tr) {
       place_.stop();
       pick_attempts_ = 0;
       waiting_for_plan_ = false;
-      report(TaskReport::Kind::kAccepted, order_->pick_area_id);
+      // A pick order comes back here for each of its lines; it was accepted once.
+      if (item_line_ == 0) report(TaskReport::Kind::kAccepted, order_->pick_area_id);
       request_plan(PlanPurpose::kToPick);
       // Taken while waiting for traffic on the way home: wait on until the road is granted.
       if (blocked_) fire(Event::kBlocked);
@@ -208,10 +227,27 @@ void TaskExecutor::apply(const Transition& tr) {
         fire(Event::kUnblocked);
       }
       break;
+    case Effect::kStartItems:
+      // The base stands; the owner's arm works and answers with items_done().
+      follower_.clear();
+      break;
     case Effect::kNone:
     case Effect::kSuspend:
     case Effect::kClear:
       break;
+  }
+}
+
+void TaskExecutor::items_done(bool ok, const std::string& reason) {
+  const State s = machine_.state();
+  if (s != State::kPickItems && s != State::kDropItems) return;
+  if (!ok) {
+    fire(Event::kItemsFailed, reason.empty() ? std::string("the arm failed") : reason);
+  } else if (s == State::kDropItems) {
+    fire(Event::kItemsDropped);
+  } else {
+    ++item_line_;
+    fire(item_line_ < order_->items.size() ? Event::kItemsPicked : Event::kTourPicked);
   }
 }
 
@@ -226,7 +262,9 @@ void TaskExecutor::path_received(std::uint64_t request_id, std::vector<Pose2> pa
     // turns towards the area itself, and the way home ends in the home heading.
     const auto& a = path[path.size() - 2];
     auto& b = path.back();
-    if (active_purpose_ == PlanPurpose::kHome || active_purpose_ == PlanPurpose::kToPlace) {
+    const bool side_on = order_ && order_->kind == orders::OrderKind::kPick &&
+                         (active_purpose_ == PlanPurpose::kToPick || active_purpose_ == PlanPurpose::kToDrop);
+    if (active_purpose_ == PlanPurpose::kHome || active_purpose_ == PlanPurpose::kToPlace || side_on) {
       b.yaw = goal_for(active_purpose_).yaw;
     } else if (geometry::distance(a.position(), b.position()) > 1e-6) {
       b.yaw = std::atan2(b.y - a.y, b.x - a.x);
@@ -312,6 +350,8 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
     case State::kIdle:
     case State::kPaused:
     case State::kError:
+    case State::kPickItems:
+    case State::kDropItems:
       break;
     case State::kWaiting:
       if (waiting_for_plan_ && !pending_request_ && in.time - last_request_time_ >= params_.replan_interval) {
@@ -330,7 +370,11 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
           request_plan(active_purpose_);
           break;
         }
-        fire(machine_.state() == State::kGoHome ? Event::kHomeReached : Event::kPathEnded);
+        if (machine_.state() == State::kGoHome) {
+          fire(Event::kHomeReached);
+        } else {
+          fire(order_ && order_->kind == orders::OrderKind::kPick ? Event::kAtItems : Event::kPathEnded);
+        }
       }
       break;
     }

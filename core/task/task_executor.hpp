@@ -16,9 +16,19 @@
 
 namespace fleet::task {
 
+/// One line of a pick order as the robot drives it: the place (its loading-area pose), the item
+/// and how many boxes the arm takes there.
+struct ItemStop {
+  std::string place_id;
+  geometry::Pose2 place;
+  std::string item;
+  int quantity = 0;
+};
+
 /// An order as the forklift sees it. A transport: where to pick, where to drop (loading-area
 /// poses, yaw pointing from the pallet towards the approach road). A move: the parking place in
-/// drop_area_id / drop_area (the pose the robot parks at).
+/// drop_area_id / drop_area (the pose the robot parks at). A pick: the stops in `items`, one per
+/// line in the order they are driven, then the drop place in drop_area_id / drop_area.
 struct TaskOrder {
   std::string order_id;
   std::string pick_area_id;
@@ -26,6 +36,7 @@ struct TaskOrder {
   std::string drop_area_id;
   geometry::Pose2 drop_area;
   orders::OrderKind kind = orders::OrderKind::kTransport;
+  std::vector<ItemStop> items{};
 };
 
 enum class PlanPurpose { kToPick, kToDrop, kHome, kToPlace };
@@ -60,6 +71,9 @@ struct ExecutorParams {
   /// A path whose end is further than this from the goal (the search pose, or home) is not an
   /// arrival: the executor plans again from where the robot stands, metres.
   double arrival_tolerance = 0.10;
+  /// A pick order's stops: the robot's centre stands this far out from a place's pose (towards
+  /// the road, along its yaw), side-on with the place on its left, within its arm's reach.
+  double item_standoff = 1.0;  ///< metres
 };
 
 /// Per-step inputs, at the pose rate (70 Hz [Forklift thesis, Table 3.1]).
@@ -106,6 +120,13 @@ class TaskExecutor {
   bool resume();
   bool cancel(std::string* why = nullptr);
   void fault(const std::string& reason);
+  /// The arm finished what PICK_ITEMS or DROP_ITEMS asked of it (the current line's boxes, or
+  /// every box of the tour), or could not (`reason`). Ignored in any other state.
+  void items_done(bool ok, const std::string& reason = {});
+  /// The line PICK_ITEMS works on (index into the order's items).
+  std::size_t item_line() const { return item_line_; }
+  /// Where the robot stands to pick or drop items at `place`: side-on, the place on its left.
+  geometry::Pose2 item_pose(const geometry::Pose2& place) const;
   bool reset();
   void set_home(const geometry::Pose2& home) { home_ = home; }
 
@@ -154,6 +175,7 @@ class TaskExecutor {
   double last_time_ = std::numeric_limits<double>::quiet_NaN();
   bool fork_up_ = false;
   int pick_attempts_ = 0;
+  std::size_t item_line_ = 0;
   std::vector<TaskReport> reports_;
   std::vector<Transition> transitions_;
 };

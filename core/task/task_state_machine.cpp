@@ -39,6 +39,16 @@ constexpr std::array kTable = {
     TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kPathEnded, S::kDropPallet, P::kDropping, F::kStartDrop},
     TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropDone, S::kGoHome, P::kNone, F::kFinishOrder},
     TransitionRow{S::kDropPallet, kAny, P::kNone, E::kDropFailed, S::kError, P::kNone, F::kFail},
+    // A pick order: beside each line's place the arm takes its boxes, then at the drop place it
+    // puts them all down. The boxes on the tray are never cancelled nor left: a failed arm stops
+    // the robot for an operator [Picker thesis, section 5.3.3.1.2].
+    TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kAtItems, S::kPickItems, P::kPicking, F::kStartItems},
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kItemsPicked, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kTourPicked, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
+    TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kAtItems, S::kDropItems, P::kDropping, F::kStartItems},
+    TransitionRow{S::kDropItems, kAny, P::kNone, E::kItemsDropped, S::kGoHome, P::kNone, F::kFinishOrder},
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kItemsFailed, S::kError, P::kNone, F::kFail},
+    TransitionRow{S::kDropItems, kAny, P::kNone, E::kItemsFailed, S::kError, P::kNone, F::kFail},
     TransitionRow{S::kGoHome, kAny, P::kNone, E::kHomeReached, S::kIdle, P::kNone, F::kStop},
     // Traffic / no plan: only while driving on roads.
     TransitionRow{S::kTrackPath, kAny, P::kNone, E::kBlocked, S::kWaiting, P::kNone, F::kSuspend},
@@ -50,6 +60,8 @@ constexpr std::array kTable = {
     TransitionRow{S::kSearchPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
     TransitionRow{S::kPickPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
     TransitionRow{S::kDropPallet, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
+    TransitionRow{S::kDropItems, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
     TransitionRow{S::kGoHome, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
     TransitionRow{S::kWaiting, kAny, P::kNone, E::kPause, S::kPaused, P::kNone, F::kSuspend},
     TransitionRow{S::kPaused, kAny, P::kNone, E::kResume, S::kPaused, P::kNone, F::kRestore, true},
@@ -81,6 +93,10 @@ const char* to_string(State s) {
       return "PICK_PALLET";
     case S::kDropPallet:
       return "DROP_PALLET";
+    case S::kPickItems:
+      return "PICK_ITEMS";
+    case S::kDropItems:
+      return "DROP_ITEMS";
     case S::kGoHome:
       return "GO_HOME";
     case S::kWaiting:
@@ -131,6 +147,16 @@ const char* to_string(Event e) {
       return "fault";
     case E::kReset:
       return "reset";
+    case E::kAtItems:
+      return "at_items";
+    case E::kItemsPicked:
+      return "items_picked";
+    case E::kTourPicked:
+      return "tour_picked";
+    case E::kItemsDropped:
+      return "items_dropped";
+    case E::kItemsFailed:
+      return "items_failed";
   }
   return "unknown";
 }
@@ -171,6 +197,8 @@ const char* to_string(Effect e) {
       return "fail";
     case F::kClear:
       return "clear";
+    case F::kStartItems:
+      return "start_items";
   }
   return "unknown";
 }

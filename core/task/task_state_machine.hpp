@@ -12,28 +12,47 @@ namespace fleet::task {
 /// The agent's task states [Forklift thesis, section 6.4, Fig. 6.9], plus WAITING (blocked by traffic or
 /// no plan), PAUSED (on command) and ERROR (with a reason). The seed's IDLE_GO_HOME is kGoHome:
 /// it drives home like TRACK_PATH but, unlike it, accepts new orders.
-enum class State { kIdle, kTrackPath, kSearchPallet, kPickPallet, kDropPallet, kGoHome, kWaiting, kPaused, kError };
+/// A pick order (a mobile manipulator's) has PICK_ITEMS and DROP_ITEMS in place of the pallet's
+/// search, pick and drop: the arm works while the base stands beside the place.
+enum class State {
+  kIdle,
+  kTrackPath,
+  kSearchPallet,
+  kPickPallet,
+  kDropPallet,
+  kPickItems,
+  kDropItems,
+  kGoHome,
+  kWaiting,
+  kPaused,
+  kError
+};
 
 /// Inputs that can move the machine. The agent (or the TaskExecutor on its behalf) raises them.
 enum class Event {
-  kOrder,        ///< a transport order arrived
-  kMoveOrder,    ///< a move order arrived: drive to a parking place and stay there
-  kPathEnded,    ///< the follower reached the end of the planner's path
-  kPalletFound,  ///< the search confirmed the marker
-  kAreaEmpty,    ///< the search swept without seeing the marker
-  kPickDone,     ///< pallet on the forks and lifted
-  kPickFailed,   ///< marker lost or pick timed out; the search runs again
-  kPickGaveUp,   ///< the pick failed too often; the forks are empty, so the order fails and it goes home
-  kDropDone,     ///< pallet lowered on the target area and the forklift backed out
-  kDropFailed,   ///< placement did not converge
-  kHomeReached,  ///< the follower reached the home pose
-  kBlocked,      ///< traffic or no plan: stand still
-  kUnblocked,    ///< go on with what was interrupted
-  kPause,        ///< operator pause
-  kResume,       ///< operator resume
-  kCancel,       ///< operator cancels the order (only before the pallet is lifted)
-  kFault,        ///< something failed beyond recovery; carries a reason
-  kReset,        ///< operator clears an error
+  kOrder,         ///< a transport order arrived
+  kMoveOrder,     ///< a move order arrived: drive to a parking place and stay there
+  kPathEnded,     ///< the follower reached the end of the planner's path
+  kPalletFound,   ///< the search confirmed the marker
+  kAreaEmpty,     ///< the search swept without seeing the marker
+  kPickDone,      ///< pallet on the forks and lifted
+  kPickFailed,    ///< marker lost or pick timed out; the search runs again
+  kPickGaveUp,    ///< the pick failed too often; the forks are empty, so the order fails and it goes home
+  kDropDone,      ///< pallet lowered on the target area and the forklift backed out
+  kDropFailed,    ///< placement did not converge
+  kHomeReached,   ///< the follower reached the home pose
+  kBlocked,       ///< traffic or no plan: stand still
+  kUnblocked,     ///< go on with what was interrupted
+  kPause,         ///< operator pause
+  kResume,        ///< operator resume
+  kCancel,        ///< operator cancels the order (only before the pallet is lifted)
+  kFault,         ///< something failed beyond recovery; carries a reason
+  kReset,         ///< operator clears an error
+  kAtItems,       ///< a pick order's path ended beside the place of its line, or of its drop
+  kItemsPicked,   ///< the arm took the line's boxes; lines are left
+  kTourPicked,    ///< the arm took the last line's boxes
+  kItemsDropped,  ///< the arm put every box down on the drop place
+  kItemsFailed,   ///< the arm could not pick or drop (no box found, out of reach); carries a reason
 };
 
 /// What the owner must do when a transition fires. One per row, so a test can check it.
@@ -55,6 +74,7 @@ enum class Effect {
   kRestore,      ///< continue what was interrupted
   kFail,         ///< stop, report the order failed with the reason
   kClear,        ///< forget the error
+  kStartItems,   ///< the arm picks the line's boxes, or drops the tour's, with the base standing
 };
 
 const char* to_string(State s);

@@ -141,9 +141,10 @@ def place(kind, x, y, yaw, pallet, actions=None, height=0.0, boxes=None):
 
 
 # Articles on the floor pallets of the rack bays, for the pickers: (length, width, height, kg) of a
-# box. The last is too heavy for the picker's gripper (5 kg [Picker thesis, section 3.3]): a pick
+# box, none lower than 0.20 m: the arm, 0.80 m up with its elbow kept at 60 degrees or more
+# [Picker thesis, Table 10], reaches no lower top face beside the base. The last is too heavy for the picker's gripper (5 kg [Picker thesis, section 3.3]): a pick
 # line for it is refused.
-BOX_KINDS = ((0.30, 0.30, 0.25, 3.0), (0.40, 0.30, 0.20, 4.5), (0.30, 0.20, 0.15, 1.5), (0.60, 0.40, 0.30, 12.0))
+BOX_KINDS = ((0.30, 0.30, 0.25, 3.0), (0.40, 0.30, 0.20, 4.5), (0.30, 0.20, 0.20, 1.5), (0.60, 0.40, 0.30, 12.0))
 
 
 def box_stock(k):

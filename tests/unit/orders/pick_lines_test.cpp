@@ -79,7 +79,7 @@ TEST(PickLines, EveryLineIsCheckedAgainstWhatItsPlaceHolds) {
 
 TEST(PickLines, ToursKeepToTheAislesAndToWhatAPickerCarries) {
   const Plant plant;
-  // RB1 and RB5 face one aisle, RB2 the next (places alternate between the rows' faces).
+  // RB1, RB2 and RB5 stand along one rack face: visited by x.
   const auto lines = parse_pick_lines("RB2,A2,1\nRB5,A5,2\nRB1,A1,3\nRB1,A1,1\n", "l.csv");
   const auto tours = plan_tours(lines, 4, plant.poses);
   int boxes = 0;

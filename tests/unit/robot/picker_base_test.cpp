@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <set>
 
 #include "config/fleet_config.hpp"
 #include "robot/forklift.hpp"
@@ -70,11 +71,51 @@ TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   EXPECT_GT(picker->localization_score(), 0.3);
 }
 
-TEST(PickerBase, TakesNoTransportsAndNoPicksItsArmCannotDoHere) {
+// A tour of two lines [Picker thesis, section 5.3.3.1.1, beyond its one box per job]: to RB1 and
+// RB3 in the upper rack aisle, one box each onto the tray, then down to the packing station PS1.
+TEST(PickerBase, DrivesAPickTourPicksEachLinesBoxesAndPutsThemDownAtThePackingStation) {
+  const PlantPicker plant;
+  auto picker = plant.make("PP1");
+  const auto& site = plant.site->site;
+  task::TaskOrder tour{
+      "3", "RB1", site.find_area("RB1")->pose, "PS1", site.find_area("PS1")->pose, orders::OrderKind::kPick};
+  tour.items = {{"RB1", site.find_area("RB1")->pose, "A1", 1}, {"RB3", site.find_area("RB3")->pose, "A3", 1}};
+  std::string why;
+  ASSERT_TRUE(picker->submit(tour, &why)) << why;
+  std::set<std::string> states;
+  bool done = false;
+  double picking_s = 0.0, dropping_s = 0.0;
+  while (!done && picker->time() < 600.0) {
+    grant_everything(*picker);
+    picker->step();
+    const std::string state = picker->task_state();
+    states.insert(state);
+    if (state == "PICK_ITEMS") picking_s += picker->step_period();
+    if (state == "DROP_ITEMS") {
+      dropping_s += picker->step_period();
+      // Side-on beside the packing pallet, within the arm's reach of it.
+      ASSERT_LT(geometry::distance(picker->truth().position(), {7.825, 4.1}), 0.15);
+    }
+    for (const auto& e : picker->take_events()) {
+      ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
+      done = done || e.kind == RobotEvent::Kind::kDone;
+    }
+  }
+  ASSERT_TRUE(done) << picker->task_state() << " (" << picker->detail() << ") at " << picker->truth().x << ", "
+                    << picker->truth().y;
+  for (const char* s : {"TRACK_PATH", "PICK_ITEMS", "DROP_ITEMS"}) EXPECT_TRUE(states.contains(s)) << s;
+  // Two boxes: each located, picked and set on the tray, then taken off and put down.
+  EXPECT_GT(picking_s, 20.0);
+  EXPECT_GT(dropping_s, 20.0);
+  std::cout << "picker tour: 2 lines, 2 boxes in " << picker->time() << " s sim; arm " << picking_s << " s picking, "
+            << dropping_s << " s dropping\n";
+}
+
+TEST(PickerBase, TakesNoTransports) {
   const PlantPicker plant;
   auto picker = plant.make("PP2");
   EXPECT_EQ(picker->refusal(orders::OrderKind::kTransport), "a picker has no forks");
-  EXPECT_EQ(picker->refusal(orders::OrderKind::kPick), "a picker performs no pickItem");
+  EXPECT_EQ(picker->refusal(orders::OrderKind::kPick), "");
   EXPECT_EQ(picker->refusal(orders::OrderKind::kMove), "");
   std::string why;
   const auto& area = plant.site->site.find_area("RB1")->pose;

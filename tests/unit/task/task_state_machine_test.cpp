@@ -11,9 +11,9 @@ namespace {
 
 using orders::OrderPhase;
 
-const std::vector<State> kAllStates = {State::kIdle,       State::kTrackPath,  State::kSearchPallet,
-                                       State::kPickPallet, State::kDropPallet, State::kGoHome,
-                                       State::kWaiting,    State::kPaused,     State::kError};
+const std::vector<State> kAllStates = {State::kIdle,       State::kTrackPath, State::kSearchPallet, State::kPickPallet,
+                                       State::kDropPallet, State::kPickItems, State::kDropItems,    State::kGoHome,
+                                       State::kWaiting,    State::kPaused,    State::kError};
 
 void expect(TaskStateMachine& m, Event e, State to, OrderPhase phase, Effect effect) {
   const State from = m.state();
@@ -51,6 +51,16 @@ TaskStateMachine machine_in(State target) {
       go(Event::kPickDone);
       go(Event::kPathEnded);
       break;
+    case State::kPickItems:
+      go(Event::kOrder);
+      go(Event::kAtItems);
+      break;
+    case State::kDropItems:
+      go(Event::kOrder);
+      go(Event::kAtItems);
+      go(Event::kTourPicked);
+      go(Event::kAtItems);
+      break;
     case State::kGoHome:
       go(Event::kOrder);
       go(Event::kPathEnded);
@@ -82,6 +92,26 @@ TEST(TaskStateMachine, HappyPathOfFig69) {
   expect(m, Event::kPathEnded, State::kDropPallet, OrderPhase::kDropping, Effect::kStartDrop);
   expect(m, Event::kDropDone, State::kGoHome, OrderPhase::kNone, Effect::kFinishOrder);
   expect(m, Event::kHomeReached, State::kIdle, OrderPhase::kNone, Effect::kStop);
+}
+
+// A pick order [Picker thesis, section 5.3.3.1.1]: beside each line's place the arm takes its
+// boxes, then at the drop place it puts them all down; boxes on the tray are never cancelled.
+TEST(TaskStateMachine, APickTourVisitsEachLineThenDropsEverything) {
+  TaskStateMachine m;
+  expect(m, Event::kOrder, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
+  expect(m, Event::kAtItems, State::kPickItems, OrderPhase::kPicking, Effect::kStartItems);
+  expect(m, Event::kItemsPicked, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
+  expect(m, Event::kAtItems, State::kPickItems, OrderPhase::kPicking, Effect::kStartItems);
+  EXPECT_FALSE(m.handle(Event::kCancel).accepted) << "boxes on the tray";
+  expect(m, Event::kTourPicked, State::kTrackPath, OrderPhase::kToDrop, Effect::kPlanToDrop);
+  EXPECT_FALSE(m.handle(Event::kCancel).accepted) << "boxes on the tray";
+  expect(m, Event::kAtItems, State::kDropItems, OrderPhase::kDropping, Effect::kStartItems);
+  expect(m, Event::kItemsDropped, State::kGoHome, OrderPhase::kNone, Effect::kFinishOrder);
+
+  TaskStateMachine failing = machine_in(State::kDropItems);
+  const Transition tr = failing.handle(Event::kItemsFailed, "box 2 of A1 onto the pallet: out of reach");
+  EXPECT_EQ(tr.to, State::kError);
+  EXPECT_EQ(failing.error_reason(), "box 2 of A1 onto the pallet: out of reach");
 }
 
 TEST(TaskStateMachine, EmptyAreaGoesHomeAndAcceptsOrdersOnTheWay) {

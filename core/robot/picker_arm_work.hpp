@@ -1,0 +1,76 @@
+#pragma once
+// What the picker's arm does while the base stands beside a place: the boxes of a pick line
+// located with the boom camera, picked and stowed on the base's tray; at the drop place taken
+// from the tray and put down on the pallet [Picker thesis, section 4.4, Algorithm 4].
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "arm/pick_motion.hpp"
+#include "geometry/pose.hpp"
+#include "map/site.hpp"
+#include "perception/box_marker_camera.hpp"
+
+namespace fleet::robot {
+
+/// Where boxes stand relative to the base parked side-on beside a place (the place on its left).
+struct PickerArmLayout {
+  /// From the base's centre to the near edge of the pallet, to the left, m: the item standoff
+  /// (1.0 m) less half an EPAL's length (0.6 m).
+  double pallet_edge_y = 0.40;
+  double pallet_top = 0.144;  ///< EPAL height, m
+  /// Boxes are taken along the pallet's near edge, one slot after the other, this far apart
+  /// along the base, m; the rest of the pallet's layout is not modelled.
+  double slot_pitch = 0.35;
+  int slots = 3;  ///< in front of the arm first, then ahead of it, then behind
+  /// Out of the arm's reach, the base slides along the pallet to bring the box in front of the
+  /// arm, at this speed [Picker thesis, section 5.3.3.1.2: the arm asks navigation to move].
+  double slide_speed = 0.3;  ///< m/s, the thesis's test speed
+  /// The tray over the rear of the base the boxes ride on, one beside the other: each slot's
+  /// bottom centre, base frame, m. Stacked, they would come too near the arm's base column for
+  /// the joint limits of [Picker thesis, Table 10]; so a tour carries as many boxes as it has slots.
+  std::vector<Eigen::Vector3d> tray{{-0.25, 0.15, 0.40}, {-0.25, -0.15, 0.40}};
+};
+
+/// The arm's time for one stop, or why it cannot work there.
+struct ArmWork {
+  bool ok = false;
+  std::string reason;
+  double duration = 0.0;  ///< s: every locate, pick, stow (or unstow and drop) of the stop
+  int boxes = 0;
+};
+
+/// Plans the arm's work at a stop and times it; the boxes are located by the simulated boom
+/// camera from their true places, with its noise.
+class PickerArmWork {
+ public:
+  PickerArmWork(arm::PickMotionPlanner planner, perception::DepthMarkerCameraParams camera, PickerArmLayout layout,
+                std::uint64_t seed);
+
+  /// `quantity` boxes of `stock` picked off the pallet on the left and set on the tray's free
+  /// slots, after the boxes `tray` holds already; they are added to it. Refused when the tray
+  /// has not that many free slots.
+  ArmWork pick(const map::BoxStock& stock, int quantity, std::vector<map::BoxStock>& tray);
+  /// Every box of `tray` taken off it, the last set first, and put down on the pallet on the left, which
+  /// holds `on_pallet` boxes already (side by side along its near edge, then a layer up).
+  ArmWork drop(const std::vector<map::BoxStock>& tray, int on_pallet);
+
+  const PickerArmLayout& layout() const { return layout_; }
+
+ private:
+  /// The box's top-face marker in the base frame, at slot `k` of the pallet's near edge, `layer`
+  /// boxes up.
+  perception::BoxMarker marker_at(const map::BoxStock& stock, int k, int layer) const;
+  /// Where the base tries to stand for a box `box_x` along the pallet from the arm, in order:
+  /// (along the pallet, away from it) from where it stopped, m.
+  std::vector<Eigen::Vector2d> base_moves(double box_x) const;
+  /// Where the box `index` of the tray stands on it: its slot's bottom centre, base frame.
+  Eigen::Vector3d tray_bottom(std::size_t index) const { return layout_.tray.at(index); }
+
+  arm::PickMotionPlanner planner_;
+  perception::DepthMarkerCamera camera_;
+  PickerArmLayout layout_;
+};
+
+}  // namespace fleet::robot
