@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/errors.hpp"
 #include "common/paths.hpp"
 #include "common/process_memory.hpp"
+#include "orders/pick_lines.hpp"
 
 namespace fleet::agent {
 
@@ -88,6 +90,21 @@ void FleetAgent::finish_order(const std::string& status, const std::string& reas
   order_.reset();
 }
 
+std::string FleetAgent::item_stops(const model::OrderAssignment& assignment, std::vector<task::ItemStop>& stops) const {
+  std::vector<orders::PickLine> lines;
+  try {
+    lines = orders::parse_pick_lines(assignment.lines, "order " + std::to_string(assignment.order_id));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  for (const orders::PickLine& l : lines) {
+    const map::LoadingArea* area = options_.site->site.find_area(l.place);
+    if (area == nullptr) return "order " + std::to_string(assignment.order_id) + ": unknown place " + l.place;
+    stops.push_back({l.place, area->pose, l.item, l.quantity});
+  }
+  return "";
+}
+
 void FleetAgent::handle_orders() {
   order_reader_.take_data([&](model::OrderAssignment&& assignment) {
     if (assignment.robot_id != options_.robot_id) return;
@@ -136,12 +153,13 @@ void FleetAgent::handle_orders() {
     if (!kind) {
       why = "unknown order kind '" + assignment.kind + "'";
     }
-    const task::TaskOrder task_order{std::to_string(assignment.order_id),
-                                     assignment.pick_area,
-                                     assignment.pick_pose,
-                                     assignment.drop_area,
-                                     assignment.drop_pose,
-                                     kind.value_or(orders::OrderKind::kTransport)};
+    task::TaskOrder task_order{std::to_string(assignment.order_id),
+                               assignment.pick_area,
+                               assignment.pick_pose,
+                               assignment.drop_area,
+                               assignment.drop_pose,
+                               kind.value_or(orders::OrderKind::kTransport)};
+    if (why.empty() && kind == orders::OrderKind::kPick) why = item_stops(assignment, task_order.items);
     if (!why.empty()) {
       // the kind is not one this robot type knows
     } else if (order_) {
@@ -285,7 +303,9 @@ void FleetAgent::handle_events() {
         break;
       case K::kDone:
         if (!order_) break;
-        if (e.load_id < 0) {
+        if (order_->assignment.kind == "pick") {
+          log_->info("order {} done: boxes put down at {}", order_->assignment.order_id, order_->assignment.drop_area);
+        } else if (e.load_id < 0) {
           log_->info("order {} done: parked at {}", order_->assignment.order_id, order_->assignment.drop_area);
         } else {
           log_->info("order {} done: load {} put down at {} ({:.3f}, {:.3f}, {:.3f})", order_->assignment.order_id,

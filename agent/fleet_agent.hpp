@@ -44,6 +44,10 @@ class FleetAgent {
     std::string phase;
   };
 
+  /// A pick order's lines as the robot drives them, each place's pose from the site; empty when
+  /// they can be read, else why not.
+  std::string item_stops(const model::OrderAssignment& assignment, std::vector<task::ItemStop>& stops) const;
+
   void handle_orders();
   void handle_site_inputs();
   void handle_fleet_view(double now_sim);

@@ -36,11 +36,14 @@ std::vector<CommandSpec> make_table() {
        "",
        false,
        {choice("--kind", {"transport", "move", "pick"}, "K"), value("--from", "AREA"), value("--to", "PLACE", true),
-        value("--priority", "P"), value("--robot", "R"), value("--fleet", "F"), on_off("--wait")},
+        value("--lines", "FILE.csv"), value("--priority", "P"), value("--robot", "R"), value("--fleet", "F"),
+        on_off("--wait")},
        "create an order, print its id: a transport --from AREA --to AREA (the default\n"
-       "kind), a move --to PARKING (go there and stay); only fleets that can do its\n"
-       "actions take it (exit 2 when none can); --wait follows it to its end\n"
-       "(exit 0 DONE, 1 FAILED or CANCELLED)"},
+       "kind), a move --to PARKING (go there and stay), a pick --lines FILE.csv --to\n"
+       "PLACE (place,item,quantity per line; one order per tour, their ids printed);\n"
+       "only fleets that can do its actions take it (exit 2 when none can, or for a\n"
+       "line no place can give); --wait follows it to its end (exit 0 DONE, 1 FAILED\n"
+       "or CANCELLED)"},
       {Group::kServer,
        "order",
        "list",

@@ -18,9 +18,10 @@ enum ExitCode : int {
 /// Arguments of one subcommand: everything after the subcommand name, global flags removed.
 struct CommandArgs {
   std::vector<std::string> args;
-  bool json = false;        ///< --json: the last line printed is one JSON object
-  std::string config_file;  ///< --config, default config/fleet.yaml
-  std::string source_dir;   ///< project root (maps/, config/ live there)
+  bool json = false;          ///< --json: the last line printed is one JSON object
+  std::string config_file;    ///< --config, default config/fleet.yaml
+  bool config_given = false;  ///< --config or --site named the configuration
+  std::string source_dir;     ///< project root (maps/, config/ live there)
 };
 
 /// The site files' names under `source_dir`/maps (without .yaml), sorted.

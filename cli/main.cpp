@@ -57,7 +57,10 @@ int main(int argc, char** argv) {
     CommandArgs command;
     command.json = args.flag("json");
     // A site with fleets of its own (config/sites/SITE.yaml) brings them when no --config is given.
-    command.config_file = config_path_for(args.value("config"), args.peek("site"));
+    const auto config_flag = args.value("config");
+    const auto site_flag = args.peek("site");
+    command.config_file = config_path_for(config_flag, site_flag);
+    command.config_given = config_flag.has_value() || site_flag.has_value();
     command.source_dir = project_root();
     const auto domain_flag = args.integer("domain", 0, 232);
     const auto timeout_flag = args.number("timeout", 0.1, 1e6);

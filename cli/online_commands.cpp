@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -13,12 +14,14 @@
 #include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
+#include "common/paths.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "orders/order.hpp"
 #include "orders/order_request_check.hpp"
+#include "orders/pick_lines.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::cli {
@@ -32,9 +35,22 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   const bool move = request.kind == "move";
   const auto from = args.value("from");
   const auto to = args.value("to");
+  const auto lines_file = args.value("lines");
+  std::vector<orders::PickLine> lines;
+  if (lines_file) {
+    if (request.kind != "pick") throw ArgError("--lines is for --kind pick");
+    if (from) throw ArgError("order add --kind pick --lines takes its places from the lines, not --from");
+    std::ifstream in(*lines_file);
+    if (!in) throw ArgError("--lines: cannot read '" + *lines_file + "'");
+    std::ostringstream text;
+    text << in.rdbuf();
+    request.lines = text.str();
+    lines = orders::parse_pick_lines(request.lines, *lines_file);
+  }
   if (move && !to) throw ArgError("order add --kind move needs --to PLACE (a parking place)");
-  if (!move && (!from || !to)) throw ArgError("order add needs --from AREA and --to AREA");
-  request.pick_area = from.value_or("");
+  if (lines_file && !to) throw ArgError("order add --kind pick --lines needs --to PLACE (where the boxes go)");
+  if (!move && !lines_file && (!from || !to)) throw ArgError("order add needs --from AREA and --to AREA");
+  request.pick_area = lines_file ? lines.front().place : from.value_or("");
   request.drop_area = *to;
   const long priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority).value_or(0);
   request.priority = static_cast<int>(priority);
@@ -49,7 +65,10 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   // The fleets and their abilities from the configuration, the place heights from the site the
   // server serves, the place names from the server itself.
   const auto site = map::load_site_map(known_site_path(command.source_dir, info.site));
-  const auto config = config::load_fleet_config(command.config_file);
+  // The fleets of the site the server serves, unless named: a plant's pickers are not in the
+  // default configuration.
+  const auto config =
+      config::load_fleet_config(command.config_given ? command.config_file : config_path_for(std::nullopt, info.site));
   orders::KnownNames names = orders::known_names(config, site.site);
   const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
   for (auto& ability : names.abilities) {
@@ -64,7 +83,21 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
                                                    {"fleet", "--fleet"}, {"priority", "--priority"}};
   if (const auto problem = orders::check_order_request(
           {request.kind, request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority}, names)) {
-    throw ArgError(flag_of.at(problem->field) + ": " + problem->message);
+    throw ArgError((lines_file && problem->field == "from" ? std::string("--lines") : flag_of.at(problem->field)) +
+                   ": " + problem->message);
+  }
+  if (lines_file) {
+    // What the site declares on its places; what is left of it now the server checks.
+    if (const auto why =
+            orders::check_pick_lines(lines, orders::place_ids(site.site), orders::declared_boxes(site.site),
+                                     orders::max_pickable_mass(config), *lines_file)) {
+      throw ArgError(*why);
+    }
+    const auto poses = orders::place_poses(site.site);
+    if (const auto tours = orders::plan_tours(lines, orders::kTourBoxes, poses).size(); wait && tours > 1) {
+      throw ArgError("--wait follows one order; these lines make " + std::to_string(tours) + " tours of at most " +
+                     std::to_string(orders::kTourBoxes) + " boxes");
+    }
   }
 
   const auto reply = client.request_order(request, connection.timeout);
@@ -74,10 +107,14 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   }
   // The request was well formed: a refusal is the fleet's (pallets, busy robots), not bad input.
   if (!reply->accepted) throw CommandExit{kExitFailed, "order refused: " + reply->error};
+  const int created = std::max(1, reply->order_count);
   if (command.json && !wait) {
-    out << nlohmann::json{{"order_id", reply->order_id}, {"state", "QUEUED"}}.dump() << "\n";
+    nlohmann::json ids = nlohmann::json::array();
+    for (int k = 0; k < created; ++k) ids.push_back(reply->order_id + k);
+    out << nlohmann::json{{"order_id", reply->order_id}, {"order_ids", ids}, {"state", "QUEUED"}}.dump() << "\n";
   } else if (!command.json) {
-    out << reply->order_id << "\n" << std::flush;
+    for (int k = 0; k < created; ++k) out << reply->order_id + k << "\n";
+    out << std::flush;
   }
   if (!wait) return kExitOk;
 

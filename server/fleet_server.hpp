@@ -112,6 +112,12 @@ class FleetServer {
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
   model::RequestReply execute(const model::Command& command);
+  /// A pick request with its pick list: checked whole, then one pick order per tour.
+  model::RequestReply execute_pick_list(const model::OrderRequest& request);
+  /// The boxes each rack place has left for new pick orders: what the site declares, less what
+  /// every pick order not failed nor cancelled takes.
+  std::map<std::string, map::BoxStock> boxes_left() const;
+
   /// The loading areas, robots and fleets an order request may name.
   const orders::KnownNames& known_names() const;
   /// Why a move to `place` cannot be placed now (another robot parks there, or an open move goes
@@ -167,7 +173,7 @@ class FleetServer {
   std::map<std::string, RobotEntry> robots_;
   std::map<std::string, model::RobotPath> paths_;
   orders::AreaLedger ledger_;                          ///< what stands where: the pallets' simulation truth
-  std::map<std::string, std::string> parked_at_;      ///< robot -> the parking place it goes home to
+  std::map<std::string, std::string> parked_at_;       ///< robot -> the parking place it goes home to
   std::map<std::string, bool> obstacle_enabled_;       ///< obstacle id -> enabled
   std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
   /// Orders whose robot was lost with the pallet on its forks -> wall time it was lost. The pallet

@@ -98,6 +98,11 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
       parked_at_[report.robot_id] = order.drop_area;
       log_->info("order {} done: {} parks at {}", id, report.robot_id, order.drop_area);
     }
+  } else if (report.status == "DONE" && order.kind == orders::OrderKind::kPick) {
+    // Boxes, not the pallets they stood on: the pallet ledger is unchanged.
+    result = book_.transition(id, OrderStatus::kDone, now);
+    if (result == TransitionResult::kApplied)
+      log_->info("order {} done: {} put its boxes down at {}", id, report.robot_id, order.drop_area);
   } else if (report.status == "DONE") {
     result = book_.transition(id, OrderStatus::kDone, now);
     if (result == TransitionResult::kApplied) load_put_down(order, report);

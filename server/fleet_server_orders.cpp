@@ -25,8 +25,9 @@ void FleetServer::handle_order_requests() {
 model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
   auto refuse = [&](const std::string& error) {
     log_->warn("order request {} refused: {}", request.request_id, error);
-    return model::RequestReply{request.request_id, false, 0, error};
+    return model::RequestReply{request.request_id, false, 0, error, 0};
   };
+  if (request.kind == "pick" && !request.lines.empty()) return execute_pick_list(request);
   const orders::OrderRequestFields fields{request.kind,     request.pick_area, request.drop_area,
                                           request.robot_id, request.fleet_id,  request.priority};
   if (const auto problem = orders::check_order_request(fields, known_names())) {
@@ -60,7 +61,7 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
   log_->info("order {} created: {} {} -> {} (request {})", order.id, orders::to_string(order.kind), order.pick_area,
              order.drop_area, order.request_id);
   publish_order(order);  // stored before the requester hears of it
-  return {request.request_id, true, order.id, ""};
+  return {request.request_id, true, order.id, "", 1};
 }
 
 void FleetServer::handle_commands() {
@@ -273,6 +274,7 @@ void FleetServer::send_assignment(const Order& order) {
     msg.drop_pose = parking->pose;
   }
   msg.kind = std::string(orders::to_string(order.kind));
+  msg.lines = order.lines;
   msg.update_id = order.update_id;
   order_writer_.write(msg);
   awaiting_ack_since_[order.id] = SimClock::wall_now();

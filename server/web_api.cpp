@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <regex>
 
+#include "common/errors.hpp"
 #include "model/names.hpp"
 #include "orders/order_request_check.hpp"
+#include "orders/pick_lines.hpp"
 #include "server/web_http.hpp"
 #include "server/web_server.hpp"
 
@@ -115,12 +117,24 @@ void WebServer::api_routes() {
   route("POST", "/api/orders", [=, this](const Request& req, Response& res) {
     if (!authorized(req, res)) return;
     const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority"}, res)) return;
+    if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority", "lines"}, res)) return;
     const auto kind = string_field(*body, "kind", false, res);
     if (!kind) return;
-    // A move has no pick area.
-    const auto from = string_field(*body, "from", *kind != "move", res);
+    const auto lines = string_field(*body, "lines", false, res);
+    if (!lines) return;
+    if (!lines->empty() && *kind != "pick") return send_error(res, 400, "lines", "lines are for kind pick");
+    // A move has no pick area; a pick list names its places in its lines.
+    auto from = string_field(*body, "from", *kind != "move" && lines->empty(), res);
     if (!from) return;
+    std::vector<orders::PickLine> pick_lines;
+    if (!lines->empty()) {
+      try {
+        pick_lines = orders::parse_pick_lines(*lines, "lines");
+      } catch (const InputError& e) {
+        return send_error(res, 400, "lines", e.what());
+      }
+      *from = pick_lines.front().place;
+    }
     const auto to = string_field(*body, "to", true, res);
     if (!to) return;
     const auto robot = string_field(*body, "robot", false, res);
@@ -136,7 +150,15 @@ void WebServer::api_routes() {
     if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, names)) {
       return send_error(res, 400, problem->field, problem->message);
     }
+    if (const auto why = pick_lines.empty()
+                             ? std::nullopt
+                             : orders::check_pick_lines(pick_lines, orders::place_ids(site_.site_map->site),
+                                                        orders::declared_boxes(site_.site_map->site),
+                                                        orders::max_pickable_mass(*site_.config), "lines")) {
+      return send_error(res, 400, "lines", *why);
+    }
     model::OrderRequest request;
+    request.lines = *lines;
     request.request_id = next_request_id();
     request.kind = *kind;
     request.pick_area = *from;
@@ -151,7 +173,11 @@ void WebServer::api_routes() {
       return send_error(res, 409, "", reply->error);
     }
     log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
-    send_json(res, 201, {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}});
+    nlohmann::json ids = nlohmann::json::array();
+    for (int k = 0; k < std::max(1, reply->order_count); ++k) ids.push_back(reply->order_id + k);
+    send_json(
+        res, 201,
+        {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}, {"order_ids", ids}});
   });
 
   route("DELETE", R"(/api/orders/([^/]+))", [=](const Request& req, Response& res) {

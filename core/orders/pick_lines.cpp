@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "common/errors.hpp"
+#include "config/fleet_config.hpp"
 #include "model/names.hpp"
 
 namespace fleet::orders {
@@ -98,6 +99,37 @@ std::optional<std::string> check_pick_lines(const std::vector<PickLine>& lines, 
     }
   }
   return std::nullopt;
+}
+
+std::map<std::string, map::BoxStock> declared_boxes(const map::Site& site) {
+  std::map<std::string, map::BoxStock> out;
+  for (const auto& area : site.loading_areas) {
+    if (area.boxes) out[area.id] = *area.boxes;
+  }
+  return out;
+}
+
+double max_pickable_mass(const config::FleetConfig& config) {
+  double heaviest = 0.0;
+  for (const auto& fleet : config.fleets) {
+    const auto& actions = fleet.profile.actions;
+    if (std::find(actions.begin(), actions.end(), "pickItem") != actions.end()) {
+      heaviest = std::max(heaviest, fleet.profile.load.max_mass);
+    }
+  }
+  return heaviest;
+}
+
+std::vector<std::string> place_ids(const map::Site& site) {
+  std::vector<std::string> out;
+  for (const auto& area : site.loading_areas) out.push_back(area.id);
+  return out;
+}
+
+std::map<std::string, geometry::Pose2> place_poses(const map::Site& site) {
+  std::map<std::string, geometry::Pose2> out;
+  for (const auto& area : site.loading_areas) out[area.id] = area.pose;
+  return out;
 }
 
 int PickTour::boxes() const {

@@ -11,6 +11,10 @@
 
 #include "map/site.hpp"
 
+namespace fleet::config {
+struct FleetConfig;
+}
+
 namespace fleet::orders {
 
 /// One line of a pick list: `quantity` boxes of `item` from the rack place `place`.
@@ -35,6 +39,17 @@ std::vector<PickLine> parse_pick_lines(std::string_view text, const std::string&
 std::optional<std::string> check_pick_lines(const std::vector<PickLine>& lines, const std::vector<std::string>& places,
                                             const std::map<std::string, map::BoxStock>& stock, double max_box_mass,
                                             const std::string& source);
+
+/// The boxes the site declares on its places, by place.
+std::map<std::string, map::BoxStock> declared_boxes(const map::Site& site);
+/// The heaviest box a fleet that performs pickItem holds (its load's max_mass), kg; 0 without one.
+double max_pickable_mass(const config::FleetConfig& config);
+/// The site's place ids and poses, for check_pick_lines and plan_tours.
+std::vector<std::string> place_ids(const map::Site& site);
+std::map<std::string, geometry::Pose2> place_poses(const map::Site& site);
+
+/// Boxes a picker carries on one tour: the two slots of its tray (robot::PickerArmLayout).
+inline constexpr int kTourBoxes = 2;
 
 /// A picker's round: lines picked one after the other, then dropped together.
 struct PickTour {

@@ -57,8 +57,9 @@ RobotType picker() {
   t.description =
       "mecanum base with a UR5 arm and a vacuum gripper for boxes in rack aisles, localised by AR markers "
       "[Picker thesis]";
-  // The base drives the forklift software without forks: moves only, until the arm takes items.
-  t.possible_actions = {};
+  // The base drives the forklift software without forks; its arm picks boxes at rack places and
+  // puts them down at packing places [Picker thesis, section 4.4].
+  t.possible_actions = {"pickItem", "dropItem"};
   VehicleProfile& p = t.defaults;
   p.footprint = rectangle(0.65, 0.50);  // Robotnik Summit-XLS [Picker thesis, section 3.1.1]
   p.kinematics = Kinematics::kOmni;

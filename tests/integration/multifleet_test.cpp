@@ -33,7 +33,6 @@ fleets:
   return path;
 }
 
-
 }  // namespace
 
 TEST(MultiFleet, OrdersGoToFleetsThatCanDoThemAndOthersAreBadInput) {
@@ -90,4 +89,39 @@ TEST(MultiFleet, OrdersGoToFleetsThatCanDoThemAndOthersAreBadInput) {
   const auto taken = fleet.fleetctl({"order", "add", "--kind", "move", "--to", "H7"}, 30);
   EXPECT_EQ(taken.exit_code, 1) << taken.err;
   EXPECT_NE(taken.err.find("parking place 'H7' is " + mover + "'s"), std::string::npos) << taken.err;
+}
+
+// A pick list on the plant: a picker drives the tour over real processes and DDS (domain 94),
+// and lines the places cannot give are refused before anything is stored.
+TEST(MultiFleet, APickerDrivesAPickListsTourAndBadLinesAreNamed) {
+  FleetHarness fleet(94, 10.0, "plant");
+  fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  fleet.start_server();
+  fleet.start_agent("pk1");
+  ASSERT_TRUE(fleet.wait_for_robots({"pk1"}));
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/tour.csv") << "place,item,quantity\nRB1,A1,1\nRB3,A3,1\n";
+  std::ofstream(dir + "/heavy.csv") << "RB1,A1,1\nRB4,A4,1\n";
+  std::ofstream(dir + "/too_many.csv") << "RB1,A1,6\n";
+
+  const auto heavy =
+      fleet.fleetctl({"order", "add", "--kind", "pick", "--lines", dir + "/heavy.csv", "--to", "PS1"}, 30);
+  EXPECT_EQ(heavy.exit_code, 2) << heavy.err;
+  EXPECT_NE(heavy.err.find("heavy.csv:2: a box of A4 weighs 12.0 kg"), std::string::npos) << heavy.err;
+
+  const auto tour = fleet.fleetctl(
+      {"--json", "order", "add", "--kind", "pick", "--lines", dir + "/tour.csv", "--to", "PS1", "--wait"}, 300);
+  ASSERT_EQ(tour.exit_code, 0) << tour.err << fleet.log_of("fleet-agent-pk1");
+  const json done = last_json_line(tour.out);
+  EXPECT_EQ(done["kind"], "pick");
+  EXPECT_EQ(done["robot_id"], "pk1");
+  EXPECT_EQ(done["state"], "DONE");
+
+  // RB1 had 6 boxes of A1 and the tour took one: 6 more are more than it has left. The line is
+  // good input; the place's stock is the fleet's state (exit 1).
+  const auto more =
+      fleet.fleetctl({"order", "add", "--kind", "pick", "--lines", dir + "/too_many.csv", "--to", "PS1"}, 30);
+  EXPECT_EQ(more.exit_code, 1) << more.err;
+  EXPECT_NE(more.err.find("pick list:1: place RB1 holds 5 boxes of A1, the lines ask for 6"), std::string::npos)
+      << more.err;
 }

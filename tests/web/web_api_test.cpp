@@ -198,6 +198,11 @@ TEST_F(WebApi, OrderBadInputNamesTheField) {
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "robot": "fl99"})"), 400, "'fl99'", "robot");
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "fleet": "boats"})"), 400, "'boats'", "fleet");
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "priority": "high"})"), 400, "integer", "priority");
+  // A pick list: read before anything else; table_a has no fleet that picks items.
+  expect_error(post("/api/orders", R"({"from": "A1", "to": "A2", "lines": "A1,X,1"})"), 400, "kind pick", "lines");
+  expect_error(post("/api/orders", R"({"kind": "pick", "to": "A2", "lines": "A1,X"})"), 400,
+               "lines:1: expected place,item,quantity", "lines");
+  expect_error(post("/api/orders", R"({"kind": "pick", "to": "A2", "lines": "A1,X,1"})"), 400, "pickItem", "kind");
   // Valid names the server refuses (the same check as fleetctl's): A3 holds a pallet already.
   expect_error(post("/api/orders", R"({"from": "A1", "to": "A3"})"), 409, "A3");
 }

@@ -41,7 +41,10 @@ TEST(FleetsCommand, ThePlantHasFourFleetsOfDifferentVehicles) {
   ASSERT_EQ(doc["fleets"].size(), 4u);
   EXPECT_EQ(doc["fleets"][3]["fleet"], "pickers");
   EXPECT_EQ(doc["fleets"][3]["typeSpecification"]["agvKinematic"], "OMNI") << doc["fleets"][3];
-  EXPECT_TRUE(doc["fleets"][3]["protocolFeatures"]["agvActions"].empty()) << "moves only";
+  const auto& picker_actions = doc["fleets"][3]["protocolFeatures"]["agvActions"];
+  ASSERT_EQ(picker_actions.size(), 2u) << doc["fleets"][3];
+  EXPECT_EQ(picker_actions[0]["actionType"], "pickItem");
+  EXPECT_EQ(picker_actions[1]["actionType"], "dropItem");
   EXPECT_EQ(doc["fleets"][2]["fleet"], "stackers");
   EXPECT_EQ(doc["fleets"][2]["typeSpecification"]["agvKinematic"], "THREEWHEEL") << doc["fleets"][2];
   EXPECT_EQ(doc["fleets"][0]["fleet"], "forklifts");

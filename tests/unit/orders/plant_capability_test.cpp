@@ -71,13 +71,16 @@ TEST(PlantCapability, AFinishedGoodsPlaceBehindItsLimiterIsNeverADropPlace) {
   EXPECT_NE(drop->message.find("FG1 offers pick, not 'drop'"), std::string::npos) << drop->message;
 }
 
-TEST(PlantCapability, AnActionNoFleetHasIsRefusedNamingEveryFleet) {
+TEST(PlantCapability, OnlyThePickersPickItemsAndOnlyWhereAPlaceOffersThem) {
   Plant plant;
-  const auto pick = orders::check_order_request({"pick", "RB1", "PS1", "", "", 0}, plant.names);
-  ASSERT_TRUE(pick.has_value());
-  EXPECT_EQ(pick->field, "kind");
-  EXPECT_NE(pick->message.find("forklifts cannot 'pickItem'"), std::string::npos) << pick->message;
-  EXPECT_NE(pick->message.find("reach_trucks cannot 'pickItem'"), std::string::npos) << pick->message;
+  EXPECT_EQ(orders::check_order_request({"pick", "RB1", "PS1", "", "", 0}, plant.names), std::nullopt);
+  const auto pinned = orders::check_order_request({"pick", "RB1", "PS1", "", "forklifts", 0}, plant.names);
+  ASSERT_TRUE(pinned.has_value());
+  EXPECT_NE(pinned->message.find("forklifts cannot 'pickItem'"), std::string::npos) << pinned->message;
+  // A transport's places offer no items: EX1 takes no dropItem.
+  const auto to_expedition = orders::check_order_request({"pick", "RB1", "EX1", "", "", 0}, plant.names);
+  ASSERT_TRUE(to_expedition.has_value());
+  EXPECT_NE(to_expedition->message.find("'dropItem'"), std::string::npos) << to_expedition->message;
 }
 
 TEST(PlantCapability, AStackerDocksOnlyWhereTheRoadInFrontLeavesItRoomToTurn) {
