@@ -88,9 +88,8 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   }
   if (lines_file) {
     // What the site declares on its places; what is left of it now the server checks.
-    if (const auto why =
-            orders::check_pick_lines(lines, orders::place_ids(site.site), orders::declared_boxes(site.site),
-                                     orders::max_pickable_mass(config), *lines_file)) {
+    if (const auto why = orders::check_pick_lines(lines, site.site.area_ids(), orders::declared_boxes(site.site),
+                                                  orders::max_pickable_mass(config), *lines_file)) {
       throw ArgError(*why);
     }
     const auto poses = orders::place_poses(site.site);

@@ -8,16 +8,6 @@
 
 namespace fleet::server {
 
-namespace {
-
-std::string csv_of(const std::vector<orders::PickLine>& lines) {
-  std::string out;
-  for (const auto& l : lines) out += l.place + "," + l.item + "," + std::to_string(l.quantity) + "\n";
-  return out;
-}
-
-}  // namespace
-
 std::map<std::string, map::BoxStock> FleetServer::boxes_left() const {
   std::map<std::string, map::BoxStock> left = orders::declared_boxes(options_.site);
   // Every pick order not failed nor cancelled has its boxes: taken already, or promised.
@@ -55,7 +45,7 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
   if (!request.robot_id.empty()) {
     if (const auto why = not_seen(request.robot_id)) return refuse(*why);
   }
-  if (const auto why = orders::check_pick_lines(lines, orders::place_ids(options_.site), boxes_left(),
+  if (const auto why = orders::check_pick_lines(lines, options_.site.area_ids(), boxes_left(),
                                                 orders::max_pickable_mass(options_.config), source)) {
     return refuse("lines: " + *why);
   }
@@ -67,7 +57,7 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
     draft.request_id = request.request_id;
     draft.pick_area = tour.lines.front().place;
     draft.drop_area = request.drop_area;
-    draft.lines = csv_of(tour.lines);
+    draft.lines = orders::pick_lines_csv(tour.lines);
     draft.fleet_id = request.fleet_id;
     draft.robot_id = request.robot_id;
     draft.robot_requested = !request.robot_id.empty();

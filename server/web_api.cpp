@@ -152,7 +152,7 @@ void WebServer::api_routes() {
     }
     if (const auto why = pick_lines.empty()
                              ? std::nullopt
-                             : orders::check_pick_lines(pick_lines, orders::place_ids(site_.site_map->site),
+                             : orders::check_pick_lines(pick_lines, site_.site_map->site.area_ids(),
                                                         orders::declared_boxes(site_.site_map->site),
                                                         orders::max_pickable_mass(*site_.config), "lines")) {
       return send_error(res, 400, "lines", *why);

@@ -75,6 +75,12 @@ std::vector<PickLine> parse_pick_lines(std::string_view text, const std::string&
   return lines;
 }
 
+std::string pick_lines_csv(const std::vector<PickLine>& lines) {
+  std::string out;
+  for (const PickLine& l : lines) out += l.place + "," + l.item + "," + std::to_string(l.quantity) + "\n";
+  return out;
+}
+
 std::optional<std::string> check_pick_lines(const std::vector<PickLine>& lines, const std::vector<std::string>& places,
                                             const std::map<std::string, map::BoxStock>& stock, double max_box_mass,
                                             const std::string& source) {
@@ -118,12 +124,6 @@ double max_pickable_mass(const config::FleetConfig& config) {
     }
   }
   return heaviest;
-}
-
-std::vector<std::string> place_ids(const map::Site& site) {
-  std::vector<std::string> out;
-  for (const auto& area : site.loading_areas) out.push_back(area.id);
-  return out;
 }
 
 std::map<std::string, geometry::Pose2> place_poses(const map::Site& site) {

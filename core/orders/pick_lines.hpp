@@ -30,6 +30,8 @@ struct PickLine {
 /// `source:line` and the field for a line it cannot read (a missing field, a quantity that is
 /// not a whole number >= 1), or when there is no line at all.
 std::vector<PickLine> parse_pick_lines(std::string_view text, const std::string& source);
+/// `lines` as parse_pick_lines reads them: place,item,quantity per line.
+std::string pick_lines_csv(const std::vector<PickLine>& lines);
 
 /// The first problem of `lines`, naming `source:line`, or nothing when every line can be
 /// picked: the place is known (`places`, with the closest names otherwise) and has boxes
@@ -44,8 +46,7 @@ std::optional<std::string> check_pick_lines(const std::vector<PickLine>& lines, 
 std::map<std::string, map::BoxStock> declared_boxes(const map::Site& site);
 /// The heaviest box a fleet that performs pickItem holds (its load's max_mass), kg; 0 without one.
 double max_pickable_mass(const config::FleetConfig& config);
-/// The site's place ids and poses, for check_pick_lines and plan_tours.
-std::vector<std::string> place_ids(const map::Site& site);
+/// The site's place poses, for plan_tours.
 std::map<std::string, geometry::Pose2> place_poses(const map::Site& site);
 
 /// Boxes a picker carries on one tour: the two slots of its tray (robot::PickerArmLayout).

@@ -26,6 +26,9 @@ TEST(PickLines, ReadsPlaceItemQuantityWithAHeaderCommentsAndBlankLines) {
   EXPECT_EQ(lines[0].quantity, 2);
   EXPECT_EQ(lines[0].line, 3);
   EXPECT_EQ(lines[1].line, 5);
+  // Written back as the server stores a tour, it reads the same.
+  EXPECT_EQ(pick_lines_csv(lines), "RB1,A1,2\nRB3,A3,1\n");
+  EXPECT_EQ(parse_pick_lines(pick_lines_csv(lines), "again.csv")[1].quantity, 1);
 }
 
 TEST(PickLines, ALineItCannotReadIsNamedWithItsFileAndNumber) {
@@ -39,16 +42,9 @@ TEST(PickLines, ALineItCannotReadIsNamedWithItsFileAndNumber) {
 
 struct Plant {
   map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
-  std::vector<std::string> places;
-  std::map<std::string, map::BoxStock> stock;
-  std::map<std::string, geometry::Pose2> poses;
-  Plant() {
-    for (const auto& a : site.site.loading_areas) {
-      places.push_back(a.id);
-      poses[a.id] = a.pose;
-      if (a.boxes) stock[a.id] = *a.boxes;
-    }
-  }
+  std::vector<std::string> places = site.site.area_ids();
+  std::map<std::string, map::BoxStock> stock = declared_boxes(site.site);
+  std::map<std::string, geometry::Pose2> poses = place_poses(site.site);
   std::optional<std::string> check(std::string_view text) const {
     return check_pick_lines(parse_pick_lines(text, "l.csv"), places, stock, 5.0, "l.csv");
   }
