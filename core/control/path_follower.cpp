@@ -36,6 +36,7 @@ FollowerParams FollowerParams::regulated() {
   p.regulate_curvature = true;
   p.regulate_obstacles = true;
   p.limit_acceleration = true;
+  p.shortest_first_leg = 0.25;
   return p;
 }
 
@@ -109,6 +110,12 @@ void PathFollower::set_path(std::vector<Pose2> path) {
   leg_ends_.push_back(path_.size() - 1);
   status_ = FollowerStatus::kTracking;
   reset_controller();
+  if (leg_ends_.size() > 1 && cum_[leg_ends_.front()] < params_.shortest_first_leg) {
+    // The projection may overshoot a leg's start, so the robot joins the second leg from behind it.
+    leg_ = 1;
+    progress_ = leg_start();
+    target_index_ = progress_;
+  }
 }
 
 void PathFollower::set_pose_target(const Pose2& target) {

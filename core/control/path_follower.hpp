@@ -43,6 +43,10 @@ struct FollowerParams {
   bool limit_acceleration = false;
   double max_linear_accel = 0.5;   ///< m/s^2
   double max_angular_accel = 6.0;  ///< rad/s^2
+  /// A path whose first leg (up to a cusp) is shorter than this starts on its second leg: a
+  /// robot standing a few centimetres past the road point its route begins at does not turn
+  /// round to touch it and turn back, sweeping its body through the room beside it, m.
+  double shortest_first_leg = 0.0;
 
   /// The settings with every extension switched on.
   static FollowerParams regulated();
@@ -94,8 +98,8 @@ class PathFollower {
 
   /// Follows `path` (at least one pose). Headings of the inner poses are ignored; the last
   /// pose's heading is the one to finish with. A path that turns back on itself is split at the
-  /// cusp: the robot drives to the cusp, turns in place and goes on. Resets the PID and the
-  /// progress along the path.
+  /// cusp: the robot drives to the cusp, turns in place and goes on; a first leg shorter than
+  /// `shortest_first_leg` is skipped. Resets the PID and the progress along the path.
   void set_path(std::vector<geometry::Pose2> path);
 
   /// Pose-target mode (section 6.1: "path with single point and heading"): drive to the point,

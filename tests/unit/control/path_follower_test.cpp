@@ -195,6 +195,34 @@ TEST(PathFollower, TurnsAroundAtACusp) {
   }
 }
 
+TEST(PathFollower, DoesNotTurnRoundToTouchARoadPointJustBehindIt) {
+  // A forklift parked 5 cm short of its stall's road point: its route out starts with that point,
+  // behind it, and turns back on itself there. Turning round in a stall beside a parked neighbour
+  // sweeps its corners into the neighbour.
+  std::vector<Pose2> path{{0.0, 0.0, std::numbers::pi}, {0.05, 0.0, 0.0}};
+  for (int i = 1; i <= 10; ++i) path.push_back({0.05 - 0.1 * i, 0.0, std::numbers::pi});
+  for (const double shortest : {0.0, 0.25}) {
+    FollowerParams p = FollowerParams::regulated();
+    p.shortest_first_leg = shortest;
+    PathFollower f(p);
+    f.set_path(path);
+    Pose2 pose{0.0, 0.0, std::numbers::pi};
+    double max_turn = 0.0;
+    for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+      const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+      pose = integrate_twist(pose, cmd, kDt);
+      max_turn = std::max(max_turn, std::abs(geometry::angle_diff(pose.yaw, std::numbers::pi)));
+    }
+    ASSERT_TRUE(f.arrived()) << "shortest_first_leg=" << shortest;
+    EXPECT_NEAR(pose.x, -0.95, 0.03) << "shortest_first_leg=" << shortest;
+    if (shortest > 0.0) {
+      EXPECT_LT(max_turn, 0.1);
+    } else {
+      EXPECT_GT(max_turn, 3.0) << "the thesis's follower drives every leg";
+    }
+  }
+}
+
 TEST(PathFollower, ObstacleRegulationSlowsAndStops) {
   FollowerParams p = FollowerParams::regulated();
   p.limit_acceleration = false;

@@ -219,3 +219,43 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
   EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
 }
+
+TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComingHome) {
+  // Seen in the plant soak: fk1 came home and stopped 6 cm short of its stall's road point, where
+  // every route out starts. It turned round to touch that point and back again; beside fk2,
+  // parked in the next stall, its corners met fk2's body half way round and it stood there,
+  // facing the wall, until fk2 left.
+  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const config::FleetSpec& fleet = config.fleets.front();
+  const geometry::Pose2 home = site->site.find_home("PF1")->pose;
+  auto robot = robot::make_robot(fleet, config, site, {home.x + 0.02, home.y - 0.07, home.yaw}, 1, 1);
+  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  const geometry::Pose2 next_home = site->site.find_home("PF2")->pose;
+  const robot::Neighbour parked{"fk2", {next_home.x, next_home.y - 0.04, next_home.yaw}, {1.2, 0.8}, 0.0, 0.1};
+  const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
+  const auto step = [&] {
+    robot->set_neighbours({parked});
+    robot->set_true_neighbours({parked_body});
+    robot->step();
+  };
+  while (robot->time() < 1.0) step();
+  ASSERT_TRUE(robot->submit({"19", "WA2", site->site.find_area("WA2")->pose, "EN1", site->site.find_area("EN1")->pose},
+                            nullptr));
+  double most_turned = 0.0;
+  double closest = std::numeric_limits<double>::infinity();
+  while (robot->time() < 11.0 && robot->truth().y > 27.5) {
+    robot::TrafficPermit all_of_it;
+    all_of_it.version = robot->route_version();
+    all_of_it.granted_index = 1000;
+    all_of_it.granted_distance = 1e9;
+    robot->set_traffic_grant(all_of_it);
+    step();
+    most_turned = std::max(most_turned, std::abs(geometry::angle_diff(robot->truth().yaw, home.yaw)));
+    closest = std::min(closest, geometry::convex_polygons_distance(
+                                    geometry::footprint_polygon(robot->truth(), robot->footprint()), parked_body));
+  }
+  EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
+  EXPECT_LT(most_turned, 0.3);
+  EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
+}
