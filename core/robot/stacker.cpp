@@ -18,10 +18,10 @@ Vec2 heading_of(double yaw) {
   return {std::cos(yaw), std::sin(yaw)};
 }
 
-/// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
 // How far a lane's heading may differ from the pallet row's for a docking run to start on it, rad.
 constexpr double kLaneAlongRow = 0.35;
 
+/// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
 double centre_offset(const sim::TricycleGeometry& g) {
   return 0.5 * (g.front_x() + g.fork_tip_x());
 }
@@ -227,6 +227,7 @@ bool Stacker::plan_route() {
   if (auto permit = follower_.take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, estimate().position());
+    at_siding_end_ = false;
     note_way_out();
     safety_.clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
@@ -245,6 +246,7 @@ bool Stacker::plan_route() {
     return false;
   }
   follower_.adopt_plan(route);
+  at_siding_end_ = false;
   note_way_out();
   safety_.clear();
   return true;
@@ -317,7 +319,7 @@ void Stacker::drive() {
   // Measured at the centre, ahead of the rear axle: the body stops short of the grant's end.
   const double room = follower_.room(estimate().position());
   const double clearance = clearance_ahead();
-  const bool held = room <= 0.0;
+  const bool held = room <= 0.0 || at_siding_end_;
   const bool blocked = clearance <= 0.05;
   if (held != held_by_traffic_ || blocked != blocked_) {
     held_by_traffic_ = held;
@@ -336,6 +338,13 @@ void Stacker::drive() {
   const control::TricyclePursuitOutput out =
       control::pursue(estimate_, follower_.path(), std::min(room, clearance), body_.state().theta_steer,
                       config_.pursuit, config_.body.geometry.wheelbase);
+  if (out.arrived && follower_.in_siding()) {
+    // A siding's end is no place of the order: the stacker waits there, held, until the traffic
+    // manager sends it on or the siding times out, instead of docking to whatever stands nearby.
+    at_siding_end_ = true;
+    apply({0.0, body_.state().theta_steer});
+    return;
+  }
   if (out.arrived) {
     follower_.leave_road();
     apply({0.0, body_.state().theta_steer});

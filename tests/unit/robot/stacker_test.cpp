@@ -417,3 +417,54 @@ TEST(Stacker, TurnsIntoAnAislePastARobotWaitingAtItsJunction) {
 }
 
 }  // namespace fleet::robot
+
+TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
+  // Seen in the plant soak: st2, on its way to dock at RB13, yielded on a siding in the north
+  // cross aisle; at the siding's end it took its route for done and docked to the expedition
+  // pallets beside it.
+  PlantStacker plant;
+  auto stacker = plant.make("PT2", true);
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX3"), &why)) << why;
+  const geometry::Vec2 bay = plant.site->site.find_home("PT2")->pose.position();
+  std::vector<int> route;
+  for (int step = 0; step < 20 * 60 && route.size() < 8; ++step) {
+    const robot::TrafficRoute r = stacker->traffic_route();
+    if (r.points.size() >= 2) {
+      stacker->set_traffic_grant(all_it_asks_for(r));
+      // On the aisle, out of its bay: the route ahead.
+      if (geometry::distance(stacker->truth().position(), bay) > 3.0) route = r.points;
+    }
+    stacker->step();
+  }
+  ASSERT_GE(route.size(), 8u) << stacker->task_state() << " (" << stacker->detail() << ")";
+  // The manager sends it to a siding: the next few points of its own route.
+  robot::TrafficPermit siding;
+  siding.version = stacker->traffic_route().version + 1;
+  siding.route.assign(route.begin(), route.begin() + 5);
+  siding.granted_index = 4;
+  siding.granted_distance = 1e6;
+  siding.siding = true;
+  stacker->set_traffic_grant(siding);
+  const auto& end = plant.site->graph.graph.points[static_cast<std::size_t>(route[4])];
+  const double sent = stacker->time();
+  while (stacker->time() < sent + 25.0) {
+    stacker->step();
+    ASSERT_EQ(stacker->task_state(), "TO_PICK") << stacker->detail();
+  }
+  EXPECT_LT(geometry::distance(stacker->rear_axle().position(), {end.x, end.y}), 0.3);
+  EXPECT_EQ(stacker->traffic_route().version, siding.version) << "still waits on the siding";
+  // Not called back, it plans its own way on after the siding's timeout and lifts FG5's pallet.
+  int lifted = -1;
+  for (int step = 0; step < 20 * 300 && lifted < 0; ++step) {
+    const robot::TrafficRoute r = stacker->traffic_route();
+    if (r.points.size() >= 2 || !r.work_area.empty()) stacker->set_traffic_grant(all_it_asks_for(r));
+    stacker->step();
+    for (const auto& e : stacker->take_events()) {
+      ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
+      if (e.kind == RobotEvent::Kind::kLifted) lifted = e.load_id;
+    }
+  }
+  EXPECT_EQ(lifted, plant.load_at.at("FG5")) << stacker->task_state() << " (" << stacker->detail() << ")";
+}
