@@ -54,6 +54,9 @@ constexpr const char* kMigrations[] = {
     "ALTER TABLE orders ADD COLUMN kind TEXT NOT NULL DEFAULT 'transport';",
     // 2: a pick order keeps its tour's lines (CSV); no earlier order had any.
     "ALTER TABLE orders ADD COLUMN lines TEXT NOT NULL DEFAULT '';",
+    // 3: an order the server created for the packing chain says why, and after which orders.
+    "ALTER TABLE orders ADD COLUMN cause TEXT NOT NULL DEFAULT '';"
+    "ALTER TABLE orders ADD COLUMN caused_by TEXT NOT NULL DEFAULT '';",
 };
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -85,7 +88,7 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
     }
   };
   prepare(
-      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18) "
+      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20) "
       "ON CONFLICT(id) DO UPDATE SET robot_id=?6, status=?9, phase=?10, reason=?11, update_id=?12, "
       "updated_sim=?14, assigned_sim=?15, finished_sim=?16",
       &upsert_);
@@ -161,6 +164,8 @@ void OrderStore::save(const orders::Order& o) {
     sqlite3_bind_double(upsert_, 16, o.finished_sim);
     sqlite3_bind_text(upsert_, 17, std::string(orders::to_string(o.kind)).c_str(), -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(upsert_, 18, o.lines.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(upsert_, 19, o.cause.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(upsert_, 20, orders::ids_text(o.caused_by).c_str(), -1, SQLITE_TRANSIENT);
     step(upsert_);
 
     sqlite3_bind_int64(count_events_, 1, o.id);
@@ -194,8 +199,8 @@ std::vector<orders::Order> OrderStore::load_all() const {
   sqlite3_prepare_v2(
       db_,
       "SELECT id, request_id, pick_area, drop_area, fleet_id, robot_id, robot_requested, priority, "
-      "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind, lines "
-      "FROM orders ORDER BY id",
+      "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind, lines, "
+      "cause, caused_by FROM orders ORDER BY id",
       -1, &stmt, nullptr);
   while (sqlite3_step(stmt) == SQLITE_ROW) {
     orders::Order o;
@@ -225,6 +230,13 @@ std::vector<orders::Order> OrderStore::load_all() const {
     }
     o.kind = *kind;
     o.lines = text_column(stmt, 17);
+    o.cause = text_column(stmt, 18);
+    const auto caused_by = orders::parse_ids(text_column(stmt, 19));
+    if (!caused_by) {
+      throw StoreError(path_ + ": order " + std::to_string(o.id) + " has caused_by '" + text_column(stmt, 19) +
+                       "', not order ids");
+    }
+    o.caused_by = *caused_by;
     out.push_back(std::move(o));
   }
   sqlite3_finalize(stmt);

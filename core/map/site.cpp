@@ -298,6 +298,44 @@ void read_anchors_homes_markers(const Reader& r, const YAML::Node& root, Site& s
 
 }  // namespace
 
+Packing packing_of(const Reader& r, const YAML::Node& node, const Site& site) {
+  const std::string key = "packing";
+  r.allow_keys(node, key, {"boxes_per_pallet", "stations", "full_pallets_to", "empty_pallets_from"});
+  Packing packing;
+  const double boxes = r.number(node, "boxes_per_pallet", key);
+  if (boxes < 1.0 || boxes != std::floor(boxes)) {
+    r.fail(node["boxes_per_pallet"], key + ".boxes_per_pallet",
+           "'" + node["boxes_per_pallet"].Scalar() + "' is not a whole number of boxes >= 1");
+  }
+  packing.boxes_per_pallet = static_cast<int>(boxes);
+  // Each list names places that offer what the chain does there.
+  const auto places = [&](const std::string& name, std::vector<std::string> needs) {
+    const std::string list_key = key + "." + name;
+    const YAML::Node list = node[name];
+    if (!list) throw MapError(r.at(node) + ": key '" + list_key + "' is missing");
+    if (!list.IsSequence() || list.size() == 0) r.fail(list, list_key, "must be a list of place ids");
+    std::vector<std::string> ids;
+    for (std::size_t j = 0; j < list.size(); ++j) {
+      const std::string jkey = list_key + "[" + std::to_string(j) + "]";
+      if (!list[j].IsScalar()) r.fail(list[j], jkey, "must be a place id");
+      const std::string id = list[j].Scalar();
+      const LoadingArea* area = site.find_area(id);
+      if (!area) r.fail(list[j], jkey, "unknown place '" + id + "'");
+      for (const auto& action : needs) {
+        if (!area->offers(action)) r.fail(list[j], jkey, "place '" + id + "' does not offer " + action);
+      }
+      if (std::find(ids.begin(), ids.end(), id) != ids.end())
+        r.fail(list[j], jkey, "place '" + id + "' is named twice");
+      ids.push_back(id);
+    }
+    return ids;
+  };
+  packing.stations = places("stations", {"pick", "drop", "dropItem"});
+  packing.full_pallets_to = places("full_pallets_to", {"drop"});
+  packing.empty_pallets_from = places("empty_pallets_from", {"pick"});
+  return packing;
+}
+
 Site parse_site(const std::string& yaml_text, const std::string& path) {
   const Reader r(path);
   YAML::Node root;
@@ -309,7 +347,7 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
   if (!root.IsMap()) throw MapError(path + ": expected a map of keys at the top level");
   r.allow_keys(root, "",
                {"name", "opendrive", "bounds", "road_width", "graph_spacing", "approach_distance", "loading_areas",
-                "static_obstacles", "uwb_anchors", "homes", "racks", "markers", "variant_of"});
+                "static_obstacles", "uwb_anchors", "homes", "racks", "markers", "packing", "variant_of"});
 
   Site site;
   site.file = path;
@@ -341,6 +379,7 @@ Site parse_site(const std::string& yaml_text, const std::string& path) {
   read_loading_areas(r, root, site);
   read_obstacles_and_racks(r, root, site);
   read_anchors_homes_markers(r, root, site);
+  if (root["packing"]) site.packing = packing_of(r, root["packing"], site);
   return site;
 }
 

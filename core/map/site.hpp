@@ -56,6 +56,16 @@ struct LoadingArea {
   geometry::Pose2 approach_pose(double distance) const;
 };
 
+/// Packing stations: pallets on places that pickers fill with boxes. A pallet holding
+/// `boxes_per_pallet` boxes is full: it goes to one of `full_pallets_to`, and an empty pallet from
+/// one of `empty_pallets_from` takes its place.
+struct Packing {
+  int boxes_per_pallet = 0;
+  std::vector<std::string> stations;  ///< in the order pick tours move on to the next free one
+  std::vector<std::string> full_pallets_to;
+  std::vector<std::string> empty_pallets_from;
+};
+
 /// An AR marker at a known pose, for localisation by markers [Picker thesis, section 4.2.9]: on
 /// posts every 10 m in open areas and on rack pillars every 3.5 m.
 struct Marker {
@@ -107,6 +117,7 @@ struct Site {
   std::vector<Home> homes;
   std::vector<Rack> racks;
   std::vector<Marker> markers;
+  std::optional<Packing> packing;
   /// Non-empty: this file is a design variant of the named site, kept to compare designs
   /// (`fleetctl traffic-eval --against`), not a state of the site robots are switched to.
   std::string variant_of;

@@ -29,6 +29,10 @@ std::optional<OrderPhase> parse_phase(std::string_view text);
 
 bool is_final(OrderStatus status);
 
+/// Order ids as text, space-separated ("12 14 15"), and back; nullopt for anything but ids.
+std::string ids_text(const std::vector<std::int64_t>& ids);
+std::optional<std::vector<std::int64_t>> parse_ids(std::string_view text);
+
 /// Only these transitions happen; anything else is refused and logged by the caller.
 ///   QUEUED   -> ASSIGNED | CANCELLED | FAILED
 ///   ASSIGNED -> ACTIVE | QUEUED (rejected, not acknowledged, robot lost) | DONE | FAILED | CANCELLED
@@ -71,6 +75,11 @@ struct Order {
   double assigned_sim = 0.0;
   double finished_sim = 0.0;
   std::vector<OrderEvent> history;  ///< every transition, oldest first
+  /// Why the server created this order itself (the packing chain), for people; empty otherwise.
+  std::string cause;
+  /// The orders this one follows from: the pick orders that filled the pallet it takes away, or
+  /// the transport that took away the pallet it replaces.
+  std::vector<std::int64_t> caused_by;
 
   /// The place the robot drives to first: the pick area, or a move's destination.
   const std::string& first_place() const { return kind == OrderKind::kMove ? drop_area : pick_area; }

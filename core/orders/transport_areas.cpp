@@ -18,7 +18,8 @@ const Order* open_order(const OrderBook& book, UsesPlace&& uses_place) {
 int expected_loads(const AreaLedger& ledger, const OrderBook& book, const std::string& place_id) {
   int balance = ledger.holds_load(place_id) ? 1 : 0;
   for (const auto& [id, o] : book.all()) {
-    if (is_final(o.status)) continue;
+    // Pick orders move boxes and moves move robots; only transports move loads.
+    if (is_final(o.status) || o.kind != OrderKind::kTransport) continue;
     if (o.pick_area == place_id) --balance;
     if (o.drop_area == place_id) ++balance;
   }

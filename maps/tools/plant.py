@@ -144,6 +144,8 @@ def place(kind, x, y, yaw, pallet, actions=None, height=0.0, boxes=None):
 # box, none lower than 0.20 m: the arm, 0.80 m up with its elbow kept at 60 degrees or more
 # [Picker thesis, Table 10], reaches no lower top face beside the base. The last is too heavy for the picker's gripper (5 kg [Picker thesis, section 3.3]): a pick
 # line for it is refused.
+# Boxes a packing pallet takes before it goes to expedition: three two-box tours.
+BOXES_PER_PALLET = 6
 BOX_KINDS = ((0.30, 0.30, 0.25, 3.0), (0.40, 0.30, 0.20, 4.5), (0.30, 0.20, 0.20, 1.5), (0.60, 0.40, 0.30, 12.0))
 
 
@@ -313,6 +315,12 @@ def site_yaml(places, rack_list, marker_list, name="plant", corridor_lanes=2, cl
     lines.append("markers:")
     for marker_id, x, y, yaw, z in marker_list:
         lines.append(f"  - {{id: {marker_id}, x: {fmt(x)}, y: {fmt(y)}, z: {fmt(z)}, yaw: {fmt(yaw)}}}")
+    # The packing chain: pickers fill the packing pallets; a full one goes to expedition and an
+    # empty pallet from the packaging corridor takes its place.
+    lines.append("packing:")
+    lines.append(f"  boxes_per_pallet: {BOXES_PER_PALLET}")
+    for key, kind in (("stations", "PS"), ("full_pallets_to", "EX"), ("empty_pallets_from", "PK")):
+        lines.append(f"  {key}: [{', '.join(f'{kind}{k + 1}' for k in range(counts[kind]))}]")
     return "\n".join(lines) + "\n"
 
 

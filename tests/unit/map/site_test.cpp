@@ -176,3 +176,35 @@ TEST(SiteRevision, ADesignVariantIsNeverARevision) {
 
 }  // namespace
 }  // namespace fleet::map
+
+TEST(Site, PackingNamesStationsWherePickersDropAndPlacesForFullAndEmptyPallets) {
+  const std::string places = kBounds +
+                             "loading_areas:\n"
+                             "  - {id: PS1, x: 1, y: 1, yaw: 0, pallet: true, actions: [pick, drop, dropItem]}\n"
+                             "  - {id: EX1, x: 2, y: 1, yaw: 0}\n"
+                             "  - {id: PK1, x: 2, y: 2, yaw: 0, pallet: true}\n";
+  const Site site = parse_site(places +
+                                   "packing: {boxes_per_pallet: 6, stations: [PS1], full_pallets_to: [EX1], "
+                                   "empty_pallets_from: [PK1]}\n",
+                               "maps/good.yaml");
+  ASSERT_TRUE(site.packing.has_value());
+  EXPECT_EQ(site.packing->boxes_per_pallet, 6);
+  EXPECT_EQ(site.packing->stations, std::vector<std::string>{"PS1"});
+  EXPECT_EQ(site.packing->full_pallets_to, std::vector<std::string>{"EX1"});
+  EXPECT_EQ(site.packing->empty_pallets_from, std::vector<std::string>{"PK1"});
+  EXPECT_NE(message_of(places + "packing: {boxes_per_pallet: 6, stations: [PS1], full_pallets_to: [EX9], "
+                                "empty_pallets_from: [PK1]}\n")
+                .find("maps/bad.yaml:6: key 'packing.full_pallets_to[0]': unknown place 'EX9'"),
+            std::string::npos);
+  EXPECT_NE(message_of(places + "packing: {boxes_per_pallet: 6, stations: [EX1], full_pallets_to: [EX1], "
+                                "empty_pallets_from: [PK1]}\n")
+                .find("key 'packing.stations[0]': place 'EX1' does not offer dropItem"),
+            std::string::npos);
+  EXPECT_NE(message_of(places + "packing: {boxes_per_pallet: 0, stations: [PS1], full_pallets_to: [EX1], "
+                                "empty_pallets_from: [PK1]}\n")
+                .find("key 'packing.boxes_per_pallet': '0' is not a whole number of boxes >= 1"),
+            std::string::npos);
+  EXPECT_NE(message_of(places + "packing: {boxes_per_pallet: 6, stations: [PS1], full_pallets_to: [EX1]}\n")
+                .find("key 'packing.empty_pallets_from' is missing"),
+            std::string::npos);
+}
