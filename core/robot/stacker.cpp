@@ -176,6 +176,7 @@ void Stacker::set_traffic_grant(const TrafficPermit& permit) {
 TrafficRoute Stacker::traffic_route() const {
   TrafficRoute r = follower_.route();
   if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
+  if (follower_.on_road() && !follower_.in_siding()) r.arrival_area = arrival_area_;
   if (!follower_.on_road() && law_) r.work_area = work_area_;
   if (follower_.before_road() && !way_out_.empty()) r.work_area = way_out_;
   return r;
@@ -246,6 +247,7 @@ bool Stacker::plan_route() {
     return false;
   }
   follower_.adopt_plan(route);
+  arrival_area_ = arrival_manoeuvre(follower_.path());
   at_siding_end_ = false;
   note_way_out();
   safety_.clear();

@@ -133,10 +133,16 @@ class Stacker : public Robot {
   void dock();
   void handle_forks();
   void start_docking();
-  /// The corners of the footprints the docking manoeuvre sweeps: where it stands, target 1, the
-  /// pivot at target 2, the realignment stand-off and the docked pose, grown by the safety gap
-  /// (TrafficRoute::work_area).
-  std::vector<geometry::Vec2> manoeuvre_area() const;
+  /// The docking law's settings for the docking, placing or parking the state leads to.
+  control::DockingParams docking_params() const;
+  /// The corners of the footprints the docking manoeuvre of `law` sweeps from `here` (rear axle):
+  /// target 1, the pivot at target 2, the realignment stand-off and the docked pose, grown by the
+  /// safety gap (TrafficRoute::work_area).
+  std::vector<geometry::Vec2> manoeuvre_area(const control::DockingLaw& law, const geometry::Pose2& here) const;
+  /// The same for the manoeuvre at the end of `path` (the rear axle's), with the body standing
+  /// there: what traffic holds as the route's arrival area, so nobody is granted into it while the
+  /// stacker drives up to it (TrafficRoute::arrival_area).
+  std::vector<geometry::Vec2> arrival_manoeuvre(const std::vector<geometry::Vec2>& path) const;
   /// Adds the corners of the footprint with its rear axle at `rear` heading `yaw`, grown by the
   /// safety gap: one body of a swept area.
   void add_swept_body(std::vector<geometry::Vec2>& corners, geometry::Vec2 rear, double yaw) const;
@@ -190,6 +196,7 @@ class Stacker : public Robot {
   std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
   bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
   std::vector<geometry::Vec2> way_out_;               ///< way_out_area() of the route it leaves a dock or bay by
+  std::vector<geometry::Vec2> arrival_area_;          ///< arrival_manoeuvre() of the route to its docking
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

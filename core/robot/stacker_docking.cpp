@@ -76,13 +76,17 @@ perception::PalletRow Stacker::pallet_row(const Pose2& place, double base_height
   return row;
 }
 
-void Stacker::start_docking() {
+control::DockingParams Stacker::docking_params() const {
   control::DockingParams params = config_.docking;
   params.vehicle = config_.body.geometry;
   params.detection_gate = 0.5 * config_.row_pitch;
-  params.place_on_prior = state_ != StackerState::kDocking;
+  params.place_on_prior = state_ != StackerState::kDocking && state_ != StackerState::kToPick;
+  return params;
+}
+
+void Stacker::start_docking() {
   const Pose2 prior = dock_prior();
-  law_.emplace(params, prior, estimate_, rng_());
+  law_.emplace(docking_params(), prior, estimate_, rng_());
   if (state_ == StackerState::kDocking) {
     double height = 0.0;
     if (const auto* area = site_->site.find_area(order_->pick_area_id)) height = area->height;
@@ -93,7 +97,7 @@ void Stacker::start_docking() {
   reports_.set_detail("");
   shown_phase_.reset();
   detected_pallet_.reset();
-  work_area_ = manoeuvre_area();
+  work_area_ = manoeuvre_area(*law_, estimate_);
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
 }
@@ -106,14 +110,25 @@ void Stacker::add_swept_body(std::vector<Vec2>& corners, Vec2 rear, double yaw) 
   corners.insert(corners.end(), body.begin(), body.end());
 }
 
-std::vector<Vec2> Stacker::manoeuvre_area() const {
+std::vector<Vec2> Stacker::arrival_manoeuvre(const std::vector<Vec2>& path) const {
+  if (path.size() < 2) return {};
+  // The rear axle ends the route at its last point, heading along its last leg.
+  const Vec2 end = path.back();
+  const Vec2 before = path[path.size() - 2];
+  const Pose2 there{end.x, end.y, std::atan2(end.y - before.y, end.x - before.x)};
+  const control::DockingLaw law(docking_params(), dock_prior(), there);
+  std::vector<Vec2> corners = manoeuvre_area(law, there);
+  add_swept_body(corners, there.position(), there.yaw);
+  return corners;
+}
+
+std::vector<Vec2> Stacker::manoeuvre_area(const control::DockingLaw& law, const Pose2& here) const {
   const sim::TricycleGeometry& g = config_.body.geometry;
   std::vector<Vec2> corners;
   const auto add = [&](Vec2 rear, double yaw) { add_swept_body(corners, rear, yaw); };
   // Not where it stands: its body holds that already, and the robots queued up behind it touch it.
   // The run starts with the rear axle short of target 2 and never backs past it.
-  const Pose2 here = estimate_;
-  const auto [target1, target2] = law_->targets();
+  const auto [target1, target2] = law.targets();
   add(target1, here.yaw);
   // The pivot about the rear axle at target 2, from the heading along the row to the docked one.
   const Pose2 prior = dock_prior();

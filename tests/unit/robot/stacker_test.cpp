@@ -468,3 +468,43 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
   }
   EXPECT_EQ(lifted, plant.load_at.at("FG5")) << stacker->task_state() << " (" << stacker->detail() << ")";
 }
+
+TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt) {
+  // Seen in the plant soak: a forklift was granted along the corridor up beside st3 as st3 reached
+  // the end of its route to PK1; st3's docking area then held the forklift, whose way on st3's
+  // body blocked, and both stood for good.
+  PlantStacker plant;
+  auto stacker = plant.make("PT2", true);
+  stacker->set_standing_loads(plant.loads);
+  std::string why;
+  ASSERT_TRUE(stacker->submit(plant.transport("PK4", "EX3"), &why)) << why;
+  std::vector<geometry::Vec2> arrival;
+  for (int step = 0; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
+    const robot::TrafficRoute r = stacker->traffic_route();
+    if (r.points.size() >= 2) {
+      stacker->set_traffic_grant(all_it_asks_for(r));
+      arrival = r.arrival_area;
+    }
+    stacker->step();
+  }
+  ASSERT_EQ(stacker->task_state(), "DOCKING");
+  ASSERT_GE(arrival.size(), 3u) << "the route named no arrival area";
+  const geometry::Polygon held = traffic::convex_hull(arrival);
+  // What the docking asks traffic to hold lies inside what the route held, but for the
+  // difference between the planned and the reached pose at the route's end.
+  std::vector<geometry::Vec2> work;
+  for (int step = 0; step < 20 && work.empty(); ++step) {
+    work = stacker->traffic_route().work_area;
+    stacker->step();
+  }
+  ASSERT_FALSE(work.empty());
+  for (const auto& corner : work) {
+    EXPECT_LT(geometry::convex_polygons_distance(
+                  held, {corner, corner + geometry::Vec2{1e-3, 0.0}, corner + geometry::Vec2{0.0, 1e-3}}),
+              0.15)
+        << "corner (" << corner.x << ", " << corner.y << ") outside the arrival area";
+  }
+  // It reaches across the corridor's far lane, where the forklift stood.
+  const geometry::Pose2 pk4 = plant.site->site.find_area("PK4")->pose;
+  EXPECT_TRUE(geometry::contains(held, {pk4.x, 17.85}));
+}
