@@ -20,6 +20,8 @@ Vec2 heading_of(double yaw) {
 
 // How far a lane's heading may differ from the pallet row's for a docking run to start on it, rad.
 constexpr double kLaneAlongRow = 0.35;
+// A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
+constexpr double kSameEnd = 0.05;
 
 /// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
 double centre_offset(const sim::TricycleGeometry& g) {
@@ -247,6 +249,7 @@ bool Stacker::plan_route() {
     return false;
   }
   follower_.adopt_plan(route);
+  planned_end_ = follower_.path().back();
   arrival_area_ = arrival_manoeuvre(follower_.path());
   at_siding_end_ = false;
   note_way_out();
@@ -340,10 +343,14 @@ void Stacker::drive() {
   const control::TricyclePursuitOutput out =
       control::pursue(estimate_, follower_.path(), std::min(room, clearance), body_.state().theta_steer,
                       config_.pursuit, config_.body.geometry.wheelbase);
-  if (out.arrived && follower_.in_siding()) {
-    // A siding's end is no place of the order: the stacker waits there, held, until the traffic
-    // manager sends it on or the siding times out, instead of docking to whatever stands nearby.
-    at_siding_end_ = true;
+  if (out.arrived &&
+      (follower_.in_siding() || need_route_ || geometry::distance(follower_.path().back(), planned_end_) > kSameEnd)) {
+    // A siding's end, or a route of the traffic manager's that ends short of its own, is no place
+    // of the order: the stacker waits at a siding, held, until the manager sends it on or the
+    // siding times out, and plans its way on from anywhere else, instead of docking to whatever
+    // stands nearby.
+    at_siding_end_ = follower_.in_siding();
+    if (!at_siding_end_) need_route_ = true;
     apply({0.0, body_.state().theta_steer});
     return;
   }

@@ -203,6 +203,7 @@ class Stacker : public Robot {
   bool held_by_traffic_ = false;
   bool blocked_ = false;
   bool at_siding_end_ = false;  ///< the pursuit reached the end of the siding it was sent to
+  geometry::Vec2 planned_end_;  ///< where its own plan's route ends: the docking's start
   std::map<int, geometry::Pose2> standing_;
   std::vector<Neighbour> neighbours_;
   std::vector<geometry::Polygon> true_neighbours_;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -457,16 +458,20 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
   EXPECT_EQ(stacker->traffic_route().version, siding.version) << "still waits on the siding";
   // Not called back, it plans its own way on after the siding's timeout and lifts FG5's pallet.
   int lifted = -1;
+  std::optional<geometry::Vec2> docked_from;
   for (int step = 0; step < 20 * 300 && lifted < 0; ++step) {
     const robot::TrafficRoute r = stacker->traffic_route();
     if (r.points.size() >= 2 || !r.work_area.empty()) stacker->set_traffic_grant(all_it_asks_for(r));
     stacker->step();
+    if (!docked_from && stacker->task_state() == "DOCKING") docked_from = stacker->rear_axle().position();
     for (const auto& e : stacker->take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
       if (e.kind == RobotEvent::Kind::kLifted) lifted = e.load_id;
     }
   }
   EXPECT_EQ(lifted, plant.load_at.at("FG5")) << stacker->task_state() << " (" << stacker->detail() << ")";
+  ASSERT_TRUE(docked_from.has_value());
+  EXPECT_GT(geometry::distance(*docked_from, {end.x, end.y}), 0.3) << "docked from the siding's end";
 }
 
 TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt) {
