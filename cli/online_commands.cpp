@@ -204,7 +204,15 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
   const auto orders = client.orders(std::chrono::milliseconds(600));
   const auto it = orders.find(id);
   if (it == orders.end()) throw CommandExit{kExitBadInput, "unknown order " + std::to_string(id)};
-  const nlohmann::json o = order_json(it->second);
+  nlohmann::json o = order_json(it->second);
+  // The chain onwards: the orders that follow from this one (the packing chain's transports).
+  std::vector<const model::OrderInfo*> led_to;
+  for (const auto& [other_id, other] : orders) {
+    if (std::find(other.caused_by.begin(), other.caused_by.end(), id) != other.caused_by.end())
+      led_to.push_back(&other);
+  }
+  o["led_to"] = nlohmann::json::array();
+  for (const auto* next : led_to) o["led_to"].push_back(next->order_id);
   if (command.json) {
     out << o.dump() << "\n";
     return kExitOk;
@@ -212,6 +220,11 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
   out << "order " << id << ": " << o["pick_area"].get<std::string>() << " -> " << o["drop_area"].get<std::string>()
       << ", " << o["state"].get<std::string>()
       << (o["robot_id"].get<std::string>().empty() ? "" : " on " + o["robot_id"].get<std::string>()) << "\n";
+  if (!it->second.cause.empty()) out << "  because " << it->second.cause << "\n";
+  for (const auto* next : led_to) {
+    out << "  led to order " << next->order_id << ": " << next->pick_area << " -> " << next->drop_area << ", "
+        << next->state << (next->cause.empty() ? "" : " (" + next->cause + ")") << "\n";
+  }
   const double created = it->second.created_sim;
   for (const auto& e : it->second.history) {
     out << std::fixed << std::setprecision(1) << "  +" << e.sim_time - created << " s  " << e.state

@@ -68,12 +68,22 @@ nlohmann::json order_json(const model::OrderInfo& o) {
   // The step being executed, from the phase the robot reports (null before it starts).
   const auto phase = orders::parse_phase(o.phase);
   const nlohmann::json step = phase ? nlohmann::json(orders::step_index(*phase)) : nlohmann::json();
-  return {{"order_id", o.order_id},       {"kind", o.kind},           {"steps", steps},
+  return {{"order_id", o.order_id},
+          {"kind", o.kind},
+          {"steps", steps},
           {"step", step},
-          {"pick_area", o.pick_area},     {"drop_area", o.drop_area},
-          {"robot_id", o.robot_id},       {"state", o.state},         {"phase", o.phase},
-          {"reason", o.reason},           {"priority", o.priority},   {"created_sim", o.created_sim},
-          {"updated_sim", o.updated_sim}, {"history", history}};
+          {"pick_area", o.pick_area},
+          {"drop_area", o.drop_area},
+          {"robot_id", o.robot_id},
+          {"state", o.state},
+          {"phase", o.phase},
+          {"reason", o.reason},
+          {"priority", o.priority},
+          {"created_sim", o.created_sim},
+          {"updated_sim", o.updated_sim},
+          {"history", history},
+          {"cause", o.cause},
+          {"caused_by", o.caused_by}};
 }
 
 }  // namespace fleet::cli

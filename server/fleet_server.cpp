@@ -50,7 +50,9 @@ model::OrderInfo info_of(const Order& o) {
           o.created_sim,
           o.updated_sim,
           std::move(history),
-          std::string(orders::to_string(o.kind))};
+          std::string(orders::to_string(o.kind)),
+          o.cause,
+          o.caused_by};
 }
 
 FleetServer::FleetServer(ServerOptions options, Logger log)
@@ -246,6 +248,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     }
     check_acknowledgements();
     if (auto_orders_) create_auto_orders();
+    advance_packing_chain();
     dispatch();
     publish_fleet_view();
     publish_web_snapshot();

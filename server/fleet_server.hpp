@@ -113,6 +113,9 @@ class FleetServer {
   model::RequestReply execute(const model::OrderRequest& request);
   model::RequestReply execute(const model::Command& command);
   /// A pick request with its pick list: checked whole, then one pick order per tour.
+  /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
+  /// has packing stations.
+  void advance_packing_chain();
   model::RequestReply execute_pick_list(const model::OrderRequest& request);
   /// The boxes each rack place has left for new pick orders: what the site declares, less what
   /// every pick order not failed nor cancelled takes.

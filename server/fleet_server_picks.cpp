@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "orders/packing_chain.hpp"
 #include "orders/pick_lines.hpp"
 #include "server/fleet_server.hpp"
 
@@ -56,7 +57,10 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
     draft.kind = orders::OrderKind::kPick;
     draft.request_id = request.request_id;
     draft.pick_area = tour.lines.front().place;
-    draft.drop_area = request.drop_area;
+    // A packing pallet without room for the tour's boxes sends the tour on to the next one.
+    draft.drop_area = options_.site.packing ? orders::station_for_tour(*options_.site.packing, ledger_, book_,
+                                                                       request.drop_area, tour.boxes())
+                                            : request.drop_area;
     draft.lines = orders::pick_lines_csv(tour.lines);
     draft.fleet_id = request.fleet_id;
     draft.robot_id = request.robot_id;
@@ -71,6 +75,25 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
     publish_order(order);
   }
   return {request.request_id, true, first, "", static_cast<int>(tours.size())};
+}
+
+void FleetServer::advance_packing_chain() {
+  if (!options_.site.packing) return;
+  // Each transport is created before the next is looked for; a handful per cycle at most.
+  for (int i = 0; i < 4; ++i) {
+    auto due = orders::next_chain_transport(*options_.site.packing, ledger_, book_);
+    if (!due) return;
+    orders::Order draft;
+    draft.request_id = "packing";
+    draft.pick_area = due->pick;
+    draft.drop_area = due->drop;
+    draft.cause = std::move(due->cause);
+    draft.caused_by = std::move(due->caused_by);
+    fill_steps(draft);
+    const orders::Order& order = book_.create(std::move(draft), clock_.now());
+    log_->info("order {} created: {} -> {}, {}", order.id, order.pick_area, order.drop_area, order.cause);
+    publish_order(order);
+  }
 }
 
 }  // namespace fleet::server

@@ -91,7 +91,9 @@ json order_json(const model::OrderInfo& o) {
               {"reason", o.reason},
               {"priority", o.priority},
               {"created", r3(o.created_sim)},
-              {"updated", r3(o.updated_sim)}};
+              {"updated", r3(o.updated_sim)},
+              {"cause", o.cause},
+              {"caused_by", o.caused_by}};
 }
 
 json globals_json(const LiveSnapshot& s) {

@@ -111,8 +111,10 @@ struct OrderInfo {
   int priority = 0;
   double created_sim = 0.0;
   double updated_sim = 0.0;
-  std::vector<OrderEvent> history;  ///< oldest first, at most kMaxOrderHistory
-  std::string kind;                 ///< orders::OrderKind name
+  std::vector<OrderEvent> history;      ///< oldest first, at most kMaxOrderHistory
+  std::string kind;                     ///< orders::OrderKind name
+  std::string cause;                    ///< why the server created it itself (orders::Order::cause)
+  std::vector<std::int64_t> caused_by;  ///< the orders it follows from
 };
 
 inline constexpr std::size_t kMaxOrderHistory = 64;

@@ -144,8 +144,8 @@ def place(kind, x, y, yaw, pallet, actions=None, height=0.0, boxes=None):
 # box, none lower than 0.20 m: the arm, 0.80 m up with its elbow kept at 60 degrees or more
 # [Picker thesis, Table 10], reaches no lower top face beside the base. The last is too heavy for the picker's gripper (5 kg [Picker thesis, section 3.3]): a pick
 # line for it is refused.
-# Boxes a packing pallet takes before it goes to expedition: three two-box tours.
-BOXES_PER_PALLET = 6
+# Boxes a packing pallet takes before it goes to expedition: two two-box tours.
+BOXES_PER_PALLET = 4
 BOX_KINDS = ((0.30, 0.30, 0.25, 3.0), (0.40, 0.30, 0.20, 4.5), (0.30, 0.20, 0.20, 1.5), (0.60, 0.40, 0.30, 12.0))
 
 

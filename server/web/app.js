@@ -296,12 +296,17 @@
 
     const orders = Object.values(frame.orders);
     orders.sort((a, b) => (OPEN.has(b.state) - OPEN.has(a.state)) || (b.id - a.id));
+    // The packing chain: which orders an order follows from, and which follow from it.
+    const ledTo = {};
+    for (const o of orders) for (const from of o.caused_by || []) (ledTo[from] = ledTo[from] || []).push(o.id);
     el('orders').tBodies[0].innerHTML = orders.map((o) => {
       const open = OPEN.has(o.state);
       const age = open ? g.sim_time - o.created : o.updated - o.created;
       const reason = o.reason && !open ? `<span class="detail">${esc(o.reason)}</span>` : '';
+      const chain = (o.caused_by && o.caused_by.length ? `<span class="detail" title="${esc(o.cause)}">after ${o.caused_by.join(', ')}</span>` : '') +
+        (ledTo[o.id] ? `<span class="detail">then ${ledTo[o.id].join(', ')}</span>` : '');
       return `<tr class="${open ? '' : 'ended'}" data-order="${o.id}">` +
-        `<td>${o.id}</td><td>${esc(o.kind === "move" ? "move" : o.from)}</td><td>${esc(o.to)}</td><td>${esc(o.robot)}</td>` +
+        `<td>${o.id}${chain}</td><td>${esc(o.kind === "move" ? "move" : o.from)}</td><td>${esc(o.to)}</td><td>${esc(o.robot)}</td>` +
         `<td class="state-${esc(o.state)}">${esc(o.state)}${reason}</td><td>${esc(o.phase)}</td><td>${fmtAge(age)}</td>` +
         `<td>${open ? `<button class="small" data-action="cancel" data-order="${o.id}">cancel</button>` : ''}</td></tr>`;
     }).join('');
