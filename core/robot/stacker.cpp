@@ -250,7 +250,12 @@ bool Stacker::plan_route() {
   }
   follower_.adopt_plan(route);
   planned_end_ = follower_.path().back();
-  arrival_area_ = arrival_manoeuvre(follower_.path());
+  // Docking at a pallet place sweeps across the lane it comes along; parking in its bay off the
+  // aisle it waits for its work area as it arrives, like a robot beside the roads.
+  arrival_area_.clear();
+  if (state_ == StackerState::kToPick || state_ == StackerState::kToDrop) {
+    arrival_area_ = arrival_manoeuvre(follower_.path());
+  }
   at_siding_end_ = false;
   note_way_out();
   safety_.clear();
