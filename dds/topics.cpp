@@ -1,12 +1,11 @@
 #include "dds/topics.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <deque>
 #include <optional>
-#include <sstream>
 
 #include "fleet.h"
+#include "model/names.hpp"
 
 namespace fleet::dds {
 
@@ -56,16 +55,6 @@ dds_sequence_long int_seq(Scratch& s, const std::vector<int>& items) {
   return {static_cast<uint32_t>(buffer.size()), static_cast<uint32_t>(buffer.size()), buffer.data(), false};
 }
 
-/// Order ids, space-separated on the wire.
-std::string ids_text(const std::vector<std::int64_t>& ids) {
-  std::string out;
-  for (const std::int64_t id : ids) {
-    if (!out.empty()) out += ' ';
-    out += std::to_string(id);
-  }
-  return out;
-}
-
 fleet_msg_Pose2D wire_pose(const geometry::Pose2& p) {
   return {p.x, p.y, p.yaw};
 }
@@ -76,17 +65,6 @@ std::string text(const char* s) {
   return s ? std::string(s) : std::string();
 }
 
-/// What ids_text wrote; anything that is not an id is skipped.
-std::vector<std::int64_t> ids_of(const std::string& text) {
-  std::vector<std::int64_t> ids;
-  std::istringstream in(text);
-  for (std::string word; in >> word;) {
-    char* end = nullptr;
-    const long long id = std::strtoll(word.c_str(), &end, 10);
-    if (end != nullptr && *end == '\0' && id > 0) ids.push_back(id);
-  }
-  return ids;
-}
 geometry::Pose2 model_pose(const fleet_msg_Pose2D& p) {
   return {p.x, p.y, p.yaw};
 }
@@ -229,7 +207,7 @@ fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
           {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false},
           borrow(v.kind),
           borrow(v.cause),
-          s.text(ids_text(v.caused_by))};
+          s.text(model::ids_text(v.caused_by))};
 }
 model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
   model::OrderInfo v{w.order_id,
@@ -247,7 +225,7 @@ model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
                      {},
                      text(w.kind),
                      text(w.cause),
-                     ids_of(text(w.caused_by))};
+                     model::parse_ids(text(w.caused_by)).value_or(std::vector<std::int64_t>{})};
   for (uint32_t i = 0; i < w.history._length; ++i) {
     const auto& e = w.history._buffer[i];
     v.history.push_back(

@@ -114,7 +114,7 @@ class FleetServer {
   model::RequestReply execute(const model::Command& command);
   /// A pick request with its pick list: checked whole, then one pick order per tour.
   /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
-  /// has packing stations.
+  /// has packing stations and an order changed since it last looked.
   void advance_packing_chain();
   model::RequestReply execute_pick_list(const model::OrderRequest& request);
   /// The boxes each rack place has left for new pick orders: what the site declares, less what
@@ -185,6 +185,8 @@ class FleetServer {
   std::map<std::int64_t, int> resends_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;
+  /// An order changed since the packing chain last looked: only then can it owe a transport.
+  bool chain_stale_ = true;
   double last_fleet_view_wall_ = 0.0;
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;

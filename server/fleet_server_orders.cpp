@@ -288,6 +288,7 @@ void FleetServer::publish_order(const Order& order) {
   // Written before anyone is told: a crash after this line loses nothing that was announced.
   store_.save(order);
   order_info_writer_.write(info_of(order));
+  chain_stale_ = true;
   if (orders::is_final(order.status)) {
     // A finished order leaves the latched Order topic, so an agent that restarts never receives
     // it again; OrderInfo keeps the record.

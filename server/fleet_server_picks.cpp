@@ -78,7 +78,8 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
 }
 
 void FleetServer::advance_packing_chain() {
-  if (!options_.site.packing) return;
+  if (!options_.site.packing || !chain_stale_) return;
+  chain_stale_ = false;
   // Each transport is created before the next is looked for; a handful per cycle at most.
   for (int i = 0; i < 4; ++i) {
     auto due = orders::next_chain_transport(*options_.site.packing, ledger_, book_);

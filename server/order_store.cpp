@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "model/names.hpp"
+
 namespace fleet::server {
 
 namespace {
@@ -165,7 +167,7 @@ void OrderStore::save(const orders::Order& o) {
     sqlite3_bind_text(upsert_, 17, std::string(orders::to_string(o.kind)).c_str(), -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(upsert_, 18, o.lines.c_str(), -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(upsert_, 19, o.cause.c_str(), -1, SQLITE_TRANSIENT);
-    sqlite3_bind_text(upsert_, 20, orders::ids_text(o.caused_by).c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(upsert_, 20, model::ids_text(o.caused_by).c_str(), -1, SQLITE_TRANSIENT);
     step(upsert_);
 
     sqlite3_bind_int64(count_events_, 1, o.id);
@@ -231,7 +233,7 @@ std::vector<orders::Order> OrderStore::load_all() const {
     o.kind = *kind;
     o.lines = text_column(stmt, 17);
     o.cause = text_column(stmt, 18);
-    const auto caused_by = orders::parse_ids(text_column(stmt, 19));
+    const auto caused_by = model::parse_ids(text_column(stmt, 19));
     if (!caused_by) {
       throw StoreError(path_ + ": order " + std::to_string(o.id) + " has caused_by '" + text_column(stmt, 19) +
                        "', not order ids");

@@ -1,6 +1,7 @@
 #include "model/names.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <numeric>
 
 namespace fleet::model {
@@ -45,6 +46,32 @@ std::string unknown_name_message(const std::string& what, const std::string& nam
   if (valid.empty()) return "unknown " + what + " '" + name + "'; there are none";
   if (valid.size() <= kListAll) return "unknown " + what + " '" + name + "'; valid: " + join(valid);
   return "unknown " + what + " '" + name + "'; closest: " + join(closest_names(name, valid));
+}
+
+std::string ids_text(const std::vector<std::int64_t>& ids) {
+  std::string text;
+  for (const std::int64_t id : ids) {
+    if (!text.empty()) text += ' ';
+    text += std::to_string(id);
+  }
+  return text;
+}
+
+std::optional<std::vector<std::int64_t>> parse_ids(std::string_view text) {
+  std::vector<std::int64_t> ids;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    if (text[i] == ' ') {
+      ++i;
+      continue;
+    }
+    std::int64_t id = 0;
+    const auto [end, error] = std::from_chars(text.data() + i, text.data() + text.size(), id);
+    if (error != std::errc{} || id <= 0 || (end != text.data() + text.size() && *end != ' ')) return std::nullopt;
+    ids.push_back(id);
+    i = static_cast<std::size_t>(end - text.data());
+  }
+  return ids;
 }
 
 }  // namespace fleet::model

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fleet::model {
@@ -16,5 +19,10 @@ std::vector<std::string> closest_names(const std::string& name, const std::vecto
 /// "unknown loading area 'NOPE'; valid: A1, A2" (or "closest: ..." when there are many).
 std::string unknown_name_message(const std::string& what, const std::string& name,
                                  const std::vector<std::string>& valid);
+
+/// Order ids as text, space-separated ("12 14 15"), as the order database and the wire carry
+/// them, and back; nullopt for anything but ids.
+std::string ids_text(const std::vector<std::int64_t>& ids);
+std::optional<std::vector<std::int64_t>> parse_ids(std::string_view text);
 
 }  // namespace fleet::model

@@ -1,7 +1,6 @@
 #include "orders/order.hpp"
 
 #include <array>
-#include <charconv>
 
 namespace fleet::orders {
 
@@ -36,32 +35,6 @@ std::size_t step_index(OrderPhase phase) {
 
 bool is_final(OrderStatus status) {
   return status == OrderStatus::kDone || status == OrderStatus::kFailed || status == OrderStatus::kCancelled;
-}
-
-std::string ids_text(const std::vector<std::int64_t>& ids) {
-  std::string text;
-  for (const std::int64_t id : ids) {
-    if (!text.empty()) text += ' ';
-    text += std::to_string(id);
-  }
-  return text;
-}
-
-std::optional<std::vector<std::int64_t>> parse_ids(std::string_view text) {
-  std::vector<std::int64_t> ids;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    if (text[i] == ' ') {
-      ++i;
-      continue;
-    }
-    std::int64_t id = 0;
-    const auto [end, error] = std::from_chars(text.data() + i, text.data() + text.size(), id);
-    if (error != std::errc{} || id <= 0 || (end != text.data() + text.size() && *end != ' ')) return std::nullopt;
-    ids.push_back(id);
-    i = static_cast<std::size_t>(end - text.data());
-  }
-  return ids;
 }
 
 bool is_legal_transition(OrderStatus from, OrderStatus to) {

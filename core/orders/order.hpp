@@ -29,10 +29,6 @@ std::optional<OrderPhase> parse_phase(std::string_view text);
 
 bool is_final(OrderStatus status);
 
-/// Order ids as text, space-separated ("12 14 15"), and back; nullopt for anything but ids.
-std::string ids_text(const std::vector<std::int64_t>& ids);
-std::optional<std::vector<std::int64_t>> parse_ids(std::string_view text);
-
 /// Only these transitions happen; anything else is refused and logged by the caller.
 ///   QUEUED   -> ASSIGNED | CANCELLED | FAILED
 ///   ASSIGNED -> ACTIVE | QUEUED (rejected, not acknowledged, robot lost) | DONE | FAILED | CANCELLED

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "model/names.hpp"
+
 namespace fleet::orders {
 namespace {
 
@@ -120,11 +122,11 @@ TEST(PackingChain, ATourGoesOnToTheNextStationWithRoomAndAPalletThatStays) {
 }
 
 TEST(PackingChain, OrderIdsTravelAsTextAndBack) {
-  EXPECT_EQ(ids_text({12, 14, 15}), "12 14 15");
-  EXPECT_EQ(parse_ids("12 14 15"), (std::vector<std::int64_t>{12, 14, 15}));
-  EXPECT_EQ(parse_ids(""), std::vector<std::int64_t>{});
-  EXPECT_FALSE(parse_ids("12,14"));
-  EXPECT_FALSE(parse_ids("-3"));
+  EXPECT_EQ(model::ids_text({12, 14, 15}), "12 14 15");
+  EXPECT_EQ(model::parse_ids("12 14 15"), (std::vector<std::int64_t>{12, 14, 15}));
+  EXPECT_EQ(model::parse_ids(""), std::vector<std::int64_t>{});
+  EXPECT_FALSE(model::parse_ids("12,14"));
+  EXPECT_FALSE(model::parse_ids("-3"));
 }
 
 }  // namespace
