@@ -191,15 +191,21 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
 }
 
 void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim) {
+  // Lost in the middle of a manoeuvre beside the roads, it may be heard from again any moment and
+  // go on with it: it keeps the whole area the manoeuvre sweeps, or a robot granted into that area
+  // meanwhile and the manoeuvring one would each stand in the other's way.
+  const auto held = held_bodies_.find(robot_id);
+  const bool manoeuvring = working_.contains(robot_id) && held != held_bodies_.end();
+  const geometry::Polygon kept = manoeuvring ? held->second : body;
   auto it = numbers_.find(robot_id);
   if (it != numbers_.end()) manager_.drop_entry(it->second);
-  if (it != numbers_.end() && manager_.freeze_robot(it->second, body, now_sim)) {
-    held_bodies_[robot_id] = body;
-    log_->warn("traffic: {} lost; it keeps the places its body stands on ({}), the rest is freed", robot_id,
-               manager_.held_places(it->second).size());
+  if (it != numbers_.end() && manager_.freeze_robot(it->second, kept, now_sim)) {
+    held_bodies_[robot_id] = kept;
+    log_->warn("traffic: {} lost; it keeps the places its {} ({}), the rest is freed", robot_id,
+               manoeuvring ? "manoeuvre sweeps" : "body stands on", manager_.held_places(it->second).size());
   }
   status_.erase(robot_id);
-  working_.erase(robot_id);
+  if (!manoeuvring) working_.erase(robot_id);
 }
 
 bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) const {
