@@ -443,6 +443,14 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     for (; behind >= step; behind -= step) {
       robot_->step();
       handle_events();
+      // A long catch-up (a burst of camera frames, a loaded host) still publishes at the state
+      // rate, so that the server's liveness deadline sees a robot that is only busy.
+      const double now_wall = SimClock::wall_now();
+      if (behind >= 2.0 * step && now_wall - last_publish_wall >= publish_period_wall) {
+        publish_state(robot_->time() + offset);
+        publish_traffic(robot_->time() + offset);
+        last_publish_wall = now_wall;
+      }
     }
     const double now_wall = SimClock::wall_now();
     if (now_wall - last_publish_wall >= publish_period_wall) {

@@ -64,6 +64,19 @@ void BM_RealSenseFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_RealSenseFrame)->Unit(benchmark::kMillisecond);
 
+// The same frame rendered only inside the detector's region of interest, as the stacker's
+// cameras render it while docking.
+void BM_RealSenseFrameWindow(benchmark::State& state) {
+  const auto scene = row();
+  fleet::sim::DepthCamera camera(fleet::sim::realsense_r200(), 1);
+  fleet::perception::PalletExpectation expected;
+  expected.pallet = fleet::geometry::map_pose_to_body(kRearView, kPallet);
+  expected.base_height = 0.30;
+  const auto window = fleet::perception::detection_window(camera.model(), expected);
+  for (auto _ : state) benchmark::DoNotOptimize(camera.render(scene, kRearView, window).depth.data());
+}
+BENCHMARK(BM_RealSenseFrameWindow)->Unit(benchmark::kMillisecond);
+
 void BM_DetectPalletRealSense(benchmark::State& state) {
   const auto scene = row();
   fleet::sim::DepthCamera camera(fleet::sim::realsense_r200(), 1);

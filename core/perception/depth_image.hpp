@@ -58,6 +58,16 @@ struct DepthCameraModel {
   double pixel_angle() const { return hfov / width; }
 };
 
+/// A rectangle of pixels, columns [col0, col1) and rows [row0, row1).
+struct PixelWindow {
+  int col0 = 0;
+  int col1 = 0;
+  int row0 = 0;
+  int row1 = 0;
+  bool empty() const { return col0 >= col1 || row0 >= row1; }
+  bool contains(int col, int row) const { return col >= col0 && col < col1 && row >= row0 && row < row1; }
+};
+
 /// A depth image, row-major, row 0 at the top, column 0 at the left. Each value is the depth
 /// along the optical axis in metres (the convention of REP-118 and of the RealSense SDK, not the
 /// range along the ray); NaN where there is no return.
@@ -99,6 +109,24 @@ inline Vec3 pixel_ray(const DepthCameraModel& camera, const CameraAxes& axes, do
   const double b = (0.5 * camera.height - row) / camera.fy();
   return axes.forward + a * axes.left + b * axes.up;
 }
+
+/// pixel_ray for many pixels of one camera: the focal lengths (a tangent each) computed once.
+class PixelRays {
+ public:
+  PixelRays(const DepthCameraModel& camera, const CameraAxes& axes)
+      : axes_(axes), half_width_(0.5 * camera.width), half_height_(0.5 * camera.height), fx_(camera.fx()),
+        fy_(camera.fy()) {}
+  Vec3 operator()(double col, double row) const {
+    return axes_.forward + ((half_width_ - col) / fx_) * axes_.left + ((half_height_ - row) / fy_) * axes_.up;
+  }
+
+ private:
+  CameraAxes axes_;
+  double half_width_;
+  double half_height_;
+  double fx_;
+  double fy_;
+};
 
 /// The 3-D point a pixel sees, in the body frame; nullopt where the pixel has no return.
 inline std::optional<Vec3> pixel_point(const DepthCameraModel& camera, const DepthImage& image, int col, int row) {

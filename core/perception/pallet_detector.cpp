@@ -44,11 +44,6 @@ FaceFrame facing_face(const geometry::Pose2& pallet, Vec2 camera_xy, double half
   return face_of(pallet.position() + half_length * dir, dir);
 }
 
-struct Roi {
-  int col0 = 0, col1 = 0, row0 = 0, row1 = 0;
-  bool empty() const { return col0 >= col1 || row0 >= row1; }
-};
-
 /// Extent of the searched volume around a face, metres: half along the face and half along
 /// its normal, covering any pallet inside the docking area.
 struct SearchExtent {
@@ -64,7 +59,7 @@ SearchExtent search_extent(const PalletExpectation& expected, const PalletDetect
 
 /// The region of interest: the searched volume projected into the image [Stacker thesis,
 /// section 6.2.1]. A volume reaching behind the camera takes the whole image.
-Roi region_of_interest(const DepthCameraModel& camera, const CameraAxes& axes, const FaceFrame& face,
+PixelWindow region_of_interest(const DepthCameraModel& camera, const CameraAxes& axes, const FaceFrame& face,
                        SearchExtent extent, double base_height, const PalletDetectorParams& params) {
   double col_min = camera.width, col_max = 0.0, row_min = camera.height, row_max = 0.0;
   for (double sl : {-extent.lateral, extent.lateral}) {
@@ -92,12 +87,13 @@ struct Sample {
 };
 
 std::vector<Sample> gather(const DepthImage& image, const DepthCameraModel& camera, const CameraAxes& axes,
-                           const Roi& roi) {
+                           const PixelWindow& roi) {
   std::vector<Sample> samples;
   samples.reserve(static_cast<std::size_t>(roi.col1 - roi.col0) * (roi.row1 - roi.row0));
+  const PixelRays ray_through(camera, axes);
   for (int row = roi.row0; row < roi.row1; ++row) {
     for (int col = roi.col0; col < roi.col1; ++col) {
-      samples.push_back({pixel_ray(camera, axes, col + 0.5, row + 0.5), image.at(col, row)});
+      samples.push_back({ray_through(col + 0.5, row + 0.5), image.at(col, row)});
     }
   }
   return samples;
@@ -418,6 +414,14 @@ geometry::Pose2 Detection::pallet_pose(double length) const {
   return {c.x, c.y, yaw};
 }
 
+PixelWindow detection_window(const DepthCameraModel& camera, const PalletExpectation& expected,
+                             const PalletDetectorParams& params) {
+  const FaceFrame roi_face = facing_face(expected.roi_centre.value_or(expected.pallet), xy(camera_origin(camera)),
+                                         0.5 * params.pallet.length);
+  return region_of_interest(camera, camera_axes(camera.mount), roi_face, search_extent(expected, params),
+                            expected.base_height, params);
+}
+
 Detection detect_pallet(const DepthImage& image, const DepthCameraModel& camera, const PalletExpectation& expected,
                         const PalletDetectorParams& params) {
   Detection result;
@@ -428,7 +432,7 @@ Detection detect_pallet(const DepthImage& image, const DepthCameraModel& camera,
   const FaceFrame roi_face = facing_face(expected.roi_centre.value_or(expected.pallet), xy(origin), half_length);
   const SearchExtent extent = search_extent(expected, params);
 
-  const Roi roi = region_of_interest(camera, axes, roi_face, extent, expected.base_height, params);
+  const PixelWindow roi = region_of_interest(camera, axes, roi_face, extent, expected.base_height, params);
   if (roi.empty()) {
     result.reason = "the expected pallet is outside the camera's field of view";
     return result;

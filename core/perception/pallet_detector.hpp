@@ -87,6 +87,11 @@ struct Detection {
 Detection detect_pallet(const DepthImage& image, const DepthCameraModel& camera, const PalletExpectation& expected,
                         const PalletDetectorParams& params = {});
 
+/// The pixels detect_pallet reads for `expected`: the region of interest [Stacker thesis,
+/// section 6.2.1]. A camera need render nothing else.
+PixelWindow detection_window(const DepthCameraModel& camera, const PalletExpectation& expected,
+                             const PalletDetectorParams& params = {});
+
 /// Follows one pallet from frame to frame: each frame's region of interest is centred on the
 /// last detection [Stacker thesis, section 6.2.1], while the docking area stays on the target.
 /// Loses the track after `max_misses` frames in a row without a detection.

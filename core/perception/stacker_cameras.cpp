@@ -44,7 +44,7 @@ std::optional<geometry::Pose2> StackerCameraDetector::operator()(const geometry:
   e.area = params_.area;
   if (last_ && geometry::distance(last_->position(), expected.position()) > params_.track_radius) last_.reset();
   if (last_) e.roi_centre = geometry::map_pose_to_body(vehicle, *last_);
-  const DepthImage image = camera.render(row_.scene, vehicle);
+  const DepthImage image = camera.render(row_.scene, vehicle, detection_window(camera.model(), e));
   const Detection d = detect_pallet(image, camera.model(), e);
   times_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count());
   ++frames_;

@@ -28,6 +28,23 @@ Box3 enclosing(const std::vector<Box3>& boxes) {
   return b;
 }
 
+// SplitMix64's finaliser: a well-mixed 64-bit value from a counter (Steele, Lea and Flood, 2014).
+std::uint64_t mix(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+// A unit normal drawn from `key` alone (Box-Muller on the two halves of its hash), so that a
+// pixel's noise depends on its frame and index and not on which other pixels were drawn.
+double unit_normal(std::uint64_t key) {
+  const std::uint64_t bits = mix(key);
+  const double u1 = (static_cast<double>(bits >> 32) + 0.5) / 4294967296.0;  // (0, 1): the log stays finite
+  const double u2 = static_cast<double>(bits & 0xffffffffULL) / 4294967296.0;
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
 // Reciprocal of a direction component; an exact zero becomes a huge value of the right sign
 // so that the slab test still classifies the ray correctly.
 double safe_inverse(double v) {
@@ -234,25 +251,35 @@ DepthCameraParams realsense_r200() {
 }
 
 DepthCamera::DepthCamera(DepthCameraParams params, std::uint64_t seed)
-    : params_(params), rng_(static_cast<std::mt19937::result_type>(seed ^ (seed >> 32))) {}
+    : params_(params), seed_(seed) {}
 
 void DepthCamera::set_pan_tilt(double pan, double tilt) {
   params_.model.mount.pan = pan;
   params_.model.mount.tilt = tilt;
 }
 
-perception::DepthImage DepthCamera::render(const DepthScene& scene, const geometry::Pose2& robot_pose) {
-  return render_impl(scene, robot_pose, &rng_);
+perception::DepthImage DepthCamera::render(const DepthScene& scene, const geometry::Pose2& robot_pose,
+                                           const std::optional<perception::PixelWindow>& window) {
+  const perception::DepthCameraModel& m = params_.model;
+  const perception::PixelWindow whole{0, m.width, 0, m.height};
+  const std::uint64_t frame_key = mix(seed_ ^ mix(++frames_));
+  if (!window) return render_impl(scene, robot_pose, whole, frame_key);
+  const perception::PixelWindow clipped{std::max(window->col0, 0), std::min(window->col1, m.width),
+                                        std::max(window->row0, 0), std::min(window->row1, m.height)};
+  return render_impl(scene, robot_pose, clipped, frame_key);
 }
 
 perception::DepthImage DepthCamera::render_ideal(const DepthScene& scene, const geometry::Pose2& robot_pose) const {
-  return render_impl(scene, robot_pose, nullptr);
+  return render_impl(scene, robot_pose, {0, params_.model.width, 0, params_.model.height}, std::nullopt);
 }
 
 perception::DepthImage DepthCamera::render_impl(const DepthScene& scene, const geometry::Pose2& robot_pose,
-                                                std::mt19937* rng) const {
+                                                const perception::PixelWindow& window,
+                                                std::optional<std::uint64_t> frame_key) const {
   const perception::DepthCameraModel& m = params_.model;
-  perception::DepthImage image{m.width, m.height, std::vector<float>(static_cast<std::size_t>(m.width) * m.height)};
+  perception::DepthImage image{m.width, m.height,
+                               std::vector<float>(static_cast<std::size_t>(m.width) * m.height,
+                                                  perception::DepthImage::kNoReturn)};
   // Camera axes and origin in the map frame: the robot turns the body-frame axes by its yaw.
   const perception::CameraAxes body_axes = perception::camera_axes(m.mount);
   const double c = std::cos(robot_pose.yaw);
@@ -266,11 +293,10 @@ perception::DepthImage DepthCamera::render_impl(const DepthScene& scene, const g
   const double fy = m.fy();
   std::vector<PreparedObject> objects = prepare(scene, origin);
   restrict_to_image(objects, m, origin, forward, left, up);
-  std::normal_distribution<double> unit_normal(0.0, 1.0);
-  for (int row = 0; row < m.height; ++row) {
+  for (int row = window.row0; row < window.row1; ++row) {
     const double b = (0.5 * m.height - (row + 0.5)) / fy;
     const Vec3 row_base = forward + b * up;
-    for (int col = 0; col < m.width; ++col) {
+    for (int col = window.col0; col < window.col1; ++col) {
       const double a = (0.5 * m.width - (col + 0.5)) / fx;
       // A ray with unit optical-axis component: its parameter is the depth, its length per
       // unit depth converts depth to range.
@@ -283,7 +309,9 @@ perception::DepthImage DepthCamera::render_impl(const DepthScene& scene, const g
         out = perception::DepthImage::kNoReturn;
         continue;
       }
-      if (rng != nullptr) range += params_.noise.sigma(range) * unit_normal(*rng);
+      if (frame_key) {
+        range += params_.noise.sigma(range) * unit_normal(*frame_key + static_cast<std::uint64_t>(row) * m.width + col);
+      }
       out = range < m.min_range || range > m.max_range ? perception::DepthImage::kNoReturn
                                                        : static_cast<float>(range / range_per_depth);
     }

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <cstdint>
-#include <random>
+#include <optional>
 #include <vector>
 
 #include "geometry/pose.hpp"
@@ -116,8 +116,9 @@ DepthCameraParams sick_3vistor_t(double pan);
 /// range squared (1 sigma).
 DepthCameraParams realsense_r200();
 
-/// A depth camera rendered by ray casting the scene. Noise comes from the engine seeded at
-/// construction, so a run is reproducible. Not thread-safe (the engine is shared).
+/// A depth camera rendered by ray casting the scene. A pixel's noise is drawn from the seed given
+/// at construction, the frame's number and the pixel's index, so a run is reproducible and a pixel
+/// reads the same whichever window of the frame is rendered. Not thread-safe (frames are counted).
 class DepthCamera {
  public:
   DepthCamera(DepthCameraParams params, std::uint64_t seed);
@@ -127,17 +128,22 @@ class DepthCamera {
   /// Turns the pan-tilt unit.
   void set_pan_tilt(double pan, double tilt);
 
-  /// The depth image seen from a robot at `robot_pose` on the floor of `scene`.
-  perception::DepthImage render(const DepthScene& scene, const geometry::Pose2& robot_pose);
+  /// The depth image seen from a robot at `robot_pose` on the floor of `scene`. With a `window`
+  /// only its pixels are cast and the rest of the image has no return: a detector that reads a
+  /// region of interest costs what that region costs.
+  perception::DepthImage render(const DepthScene& scene, const geometry::Pose2& robot_pose,
+                                const std::optional<perception::PixelWindow>& window = std::nullopt);
   /// The same without noise.
   perception::DepthImage render_ideal(const DepthScene& scene, const geometry::Pose2& robot_pose) const;
 
  private:
   perception::DepthImage render_impl(const DepthScene& scene, const geometry::Pose2& robot_pose,
-                                     std::mt19937* rng) const;
+                                     const perception::PixelWindow& window,
+                                     std::optional<std::uint64_t> frame_key) const;
 
   DepthCameraParams params_;
-  std::mt19937 rng_;
+  std::uint64_t seed_;
+  std::uint64_t frames_ = 0;
 };
 
 }  // namespace fleet::sim

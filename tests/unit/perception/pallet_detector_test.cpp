@@ -163,3 +163,40 @@ TEST(PalletTracker, FollowsThePalletWhileTheRobotDrivesAlongTheRow) {
   ASSERT_TRUE(tracker.tracking());
   EXPECT_LT(geometry::distance(tracker.last_in_map()->position(), truth.position()), 0.03);
 }
+
+TEST(PalletDetector, ReadsOnlyItsWindowSoACameraNeedRenderNothingElse) {
+  // Two cameras alike: a pixel's noise depends on the seed, the frame and the pixel, not on which
+  // other pixels were rendered.
+  sim::DepthCamera camera(sim::realsense_r200(), 15);
+  sim::DepthCamera twin(sim::realsense_r200(), 15);
+  const Pose2 truth = perception::pallet_ahead_of_camera(camera.model(), 1.6, 0.0);
+  const sim::DepthScene scene = PalletRow::around(truth);
+  const PalletExpectation e = expect(truth);
+  const perception::PixelWindow window = perception::detection_window(camera.model(), e);
+  ASSERT_FALSE(window.empty());
+  EXPECT_LT((window.col1 - window.col0) * (window.row1 - window.row0), 640 * 480 / 2);
+
+  const perception::DepthImage full = camera.render(scene, Pose2{});
+  const perception::DepthImage part = twin.render(scene, Pose2{}, window);
+  int inside = 0;
+  for (int row = 0; row < part.height; ++row) {
+    for (int col = 0; col < part.width; ++col) {
+      if (!window.contains(col, row)) {
+        ASSERT_FALSE(part.has_return(col, row)) << col << "," << row;
+        continue;
+      }
+      ++inside;
+      ASSERT_EQ(full.has_return(col, row), part.has_return(col, row)) << col << "," << row;
+      if (full.has_return(col, row)) {
+        ASSERT_EQ(full.at(col, row), part.at(col, row));
+      }
+    }
+  }
+  EXPECT_GT(inside, 0);
+  const Detection from_full = perception::detect_pallet(full, camera.model(), e);
+  const Detection from_part = perception::detect_pallet(part, camera.model(), e);
+  ASSERT_TRUE(from_part.found) << from_part.reason;
+  EXPECT_EQ(from_full.midpoint.x, from_part.midpoint.x);
+  EXPECT_EQ(from_full.midpoint.y, from_part.midpoint.y);
+  EXPECT_EQ(from_full.yaw, from_part.yaw);
+}
