@@ -457,12 +457,14 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"at", {round_to(d.pose.x, 0.001), round_to(d.pose.y, 0.001)}}});
   }
   const double now_sim = run.start_sim() + run.sim_seconds();
+  const auto done_by_kind = monitor::done_by_kind(run.orders(), tally.first_id);
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},
                          {"orders_failed", tally.failed},
                          {"orders_open", tally.open},
                          {"orders_lost", tally.lost},
                          {"orders_done_by_fleet", run.done_by_fleet()},
+                         {"orders_done_by_kind", done_by_kind},
                          {"orders_duplicated", duplicated},
                          {"collisions", run.collisions().size()},
                          {"deadlocks", run.progress().deadlocks().size()},
@@ -508,7 +510,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << " s wall, traffic " << traffic << ")\n"
         << "  orders: " << tally.created << " created, " << tally.done << " done, " << tally.failed << " failed, "
         << tally.open << " open, " << tally.lost << " lost, " << duplicated << " done twice\n"
-        << "  done per fleet: " << fleet_counts(run.done_by_fleet()) << "\n"
+        << "  done per fleet: " << fleet_counts(run.done_by_fleet()) << "; per kind: " << fleet_counts(done_by_kind)
+        << "\n"
         << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
         << " s sim; longest wait " << summary["max_wait_s"] << " s\n"
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"

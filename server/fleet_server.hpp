@@ -7,6 +7,8 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
@@ -18,6 +20,7 @@
 #include "orders/order_book.hpp"
 #include "orders/order_recovery.hpp"
 #include "orders/order_request_check.hpp"
+#include "orders/pick_lines.hpp"
 #include "planning/road_planner.hpp"
 #include "server/order_store.hpp"
 #include "server/traffic_control.hpp"
@@ -117,6 +120,11 @@ class FleetServer {
   /// has packing stations and an order changed since it last looked.
   void advance_packing_chain();
   model::RequestReply execute_pick_list(const model::OrderRequest& request);
+  /// Cuts checked lines into tours and stores each as a pick order: (first order id, tours).
+  std::pair<std::int64_t, int> create_pick_tours(const std::vector<orders::PickLine>& lines,
+                                                 const model::OrderRequest& request);
+  /// An automatic pick list while free pickers outnumber the queued pick orders.
+  void create_auto_pick(long free_pickers);
   /// The boxes each rack place has left for new pick orders: what the site declares, less what
   /// every pick order not failed nor cancelled takes.
   std::map<std::string, map::BoxStock> boxes_left() const;

@@ -170,18 +170,21 @@ bool FleetServer::robot_is_free(const RobotEntry& robot) const {
 
 void FleetServer::create_auto_orders() {
   // [Forklift thesis, section 3]: random orders whenever a forklift is free, from an area holding a
-  // pallet to a free one. Robots that carry no pallets (pickers) are not waiting for one.
+  // pallet to a free one. Robots that carry no pallets (pickers) get pick lists instead.
   const auto& names = known_names();
-  const auto transports = [&](const std::string& fleet_id) {
-    if (names.abilities.empty()) return true;
+  const auto can = [&](const std::string& fleet_id, orders::OrderKind kind) {
+    if (names.abilities.empty()) return kind == orders::OrderKind::kTransport;
     const auto ability = std::find_if(names.abilities.begin(), names.abilities.end(),
                                       [&](const orders::FleetAbility& a) { return a.fleet_id == fleet_id; });
     return ability != names.abilities.end() &&
-           !orders::incapability(*ability, orders::order_steps(orders::OrderKind::kTransport, "", "")).has_value();
+           !orders::incapability(*ability, orders::order_steps(kind, "", "")).has_value();
   };
-  const long free_robots = std::count_if(robots_.begin(), robots_.end(), [&](const auto& e) {
-    return robot_is_free(e.second) && transports(e.second.fleet_id);
-  });
+  const auto free_for = [&](orders::OrderKind kind) {
+    return std::count_if(robots_.begin(), robots_.end(),
+                         [&](const auto& e) { return robot_is_free(e.second) && can(e.second.fleet_id, kind); });
+  };
+  if (const long free_pickers = free_for(orders::OrderKind::kPick); free_pickers > 0) create_auto_pick(free_pickers);
+  const long free_robots = free_for(orders::OrderKind::kTransport);
   const long queued = static_cast<long>(book_.with_status(OrderStatus::kQueued).size());
   if (free_robots <= queued) return;
   const auto doable = [&](const std::string& pick, const std::string& drop) {

@@ -50,6 +50,12 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
                                                 orders::max_pickable_mass(options_.config), source)) {
     return refuse("lines: " + *why);
   }
+  const auto [first, tours] = create_pick_tours(lines, request);
+  return {request.request_id, true, first, "", tours};
+}
+
+std::pair<std::int64_t, int> FleetServer::create_pick_tours(const std::vector<orders::PickLine>& lines,
+                                                            const model::OrderRequest& request) {
   const auto tours = orders::plan_tours(lines, orders::kTourBoxes, orders::place_poses(options_.site));
   std::int64_t first = 0;
   for (const auto& tour : tours) {
@@ -74,7 +80,26 @@ model::RequestReply FleetServer::execute_pick_list(const model::OrderRequest& re
                order.request_id);
     publish_order(order);
   }
-  return {request.request_id, true, first, "", static_cast<int>(tours.size())};
+  return {first, static_cast<int>(tours.size())};
+}
+
+void FleetServer::create_auto_pick(long free_pickers) {
+  // The pick lists a warehouse system would send, one tour per free picker: boxes from the racks to
+  // the packing stations, whose full pallets then go on to expedition by the packing chain.
+  if (!options_.site.packing || options_.site.packing->stations.empty()) return;
+  const long queued = static_cast<long>(std::count_if(book_.all().begin(), book_.all().end(), [](const auto& e) {
+    return e.second.kind == orders::OrderKind::kPick && e.second.status == orders::OrderStatus::kQueued;
+  }));
+  if (free_pickers <= queued) return;
+  const auto lines = orders::choose_auto_pick_list(boxes_left(), orders::place_poses(options_.site),
+                                                   orders::max_pickable_mass(options_.config), orders::kTourBoxes,
+                                                   rng_);
+  if (!lines) return;
+  model::OrderRequest request;
+  request.request_id = "auto";
+  request.kind = "pick";
+  request.drop_area = options_.site.packing->stations.front();
+  create_pick_tours(*lines, request);
 }
 
 void FleetServer::advance_packing_chain() {

@@ -86,4 +86,19 @@ OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, 
   return t;
 }
 
+std::map<std::string, long> done_by_kind(const std::map<std::int64_t, model::OrderInfo>& orders,
+                                         std::int64_t first_id) {
+  std::map<std::string, long> done{{"transport", 0}, {"pick", 0}, {"chained", 0}};
+  for (auto it = orders.lower_bound(first_id); it != orders.end(); ++it) {
+    const model::OrderInfo& o = it->second;
+    if (o.state != "DONE") continue;
+    if (!o.cause.empty()) {
+      ++done["chained"];
+    } else {
+      ++done[o.kind.empty() ? std::string("transport") : o.kind];
+    }
+  }
+  return done;
+}
+
 }  // namespace fleet::monitor

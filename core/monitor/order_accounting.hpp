@@ -42,4 +42,11 @@ OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, d
 /// vanished.
 OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, std::int64_t first_id = 1);
 
+/// Orders done, with ids >= `first_id`, by what they were: `transport` and `pick` as placed (by
+/// a user or the automatic orders), and `chained`: transports the server created itself (a full
+/// packing pallet to expedition, an empty one to its station; OrderInfo::cause set). Each of
+/// the three is listed, 0 when none.
+std::map<std::string, long> done_by_kind(const std::map<std::int64_t, model::OrderInfo>& orders,
+                                         std::int64_t first_id = 1);
+
 }  // namespace fleet::monitor

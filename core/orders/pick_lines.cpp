@@ -178,4 +178,31 @@ std::vector<PickTour> plan_tours(const std::vector<PickLine>& lines, int capacit
   return tours;
 }
 
+std::optional<std::vector<PickLine>> choose_auto_pick_list(const std::map<std::string, map::BoxStock>& stock,
+                                                           const std::map<std::string, geometry::Pose2>& poses,
+                                                           double max_box_mass, int capacity, std::mt19937_64& rng) {
+  std::vector<std::string> places;
+  for (const auto& [place, boxes] : stock) {
+    if (boxes.count > 0 && boxes.mass <= max_box_mass && poses.contains(place)) places.push_back(place);
+  }
+  if (places.empty() || capacity < 1) return std::nullopt;
+  const auto take = [&](const std::string& place, int room) {
+    const auto& boxes = stock.at(place);
+    const int most = std::min(room, boxes.count);
+    return PickLine{place, boxes.item, 1 + static_cast<int>(rng() % static_cast<std::uint64_t>(most)), 0};
+  };
+  std::vector<PickLine> lines{take(places[rng() % places.size()], capacity)};
+  const int room = capacity - lines.front().quantity;
+  if (room > 0) {
+    const double row_y = poses.at(lines.front().place).y;
+    std::vector<std::string> same_row;
+    for (const auto& place : places) {
+      if (place != lines.front().place && std::abs(poses.at(place).y - row_y) < 0.05) same_row.push_back(place);
+    }
+    if (!same_row.empty()) lines.push_back(take(same_row[rng() % same_row.size()], room));
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) lines[i].line = static_cast<int>(i) + 1;
+  return lines;
+}
+
 }  // namespace fleet::orders

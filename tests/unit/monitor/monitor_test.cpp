@@ -56,6 +56,32 @@ TEST(OrderAccounting, GapsAreLostOrders) {
   EXPECT_EQ(tally_orders({}, 1).created, 0);
 }
 
+TEST(OrderAccounting, DoneOrdersCountByKindWithTheServersOwnTransportsApart) {
+  std::map<std::int64_t, model::OrderInfo> orders;
+  auto add = [&](std::int64_t id, const char* kind, const char* state, const char* cause = "") {
+    model::OrderInfo info;
+    info.order_id = id;
+    info.kind = kind;
+    info.state = state;
+    info.cause = cause;
+    orders[id] = info;
+  };
+  add(1, "transport", "DONE");
+  add(2, "pick", "DONE");
+  add(3, "pick", "DONE");
+  add(4, "transport", "DONE", "packing: PS1 full after 2, 3");
+  add(5, "pick", "FAILED");
+  add(6, "transport", "ACTIVE", "packing: empty pallet for PS1");
+  add(7, "move", "DONE");
+  const auto done = done_by_kind(orders);
+  EXPECT_EQ(done.at("transport"), 1);
+  EXPECT_EQ(done.at("pick"), 2);
+  EXPECT_EQ(done.at("chained"), 1);
+  EXPECT_EQ(done.at("move"), 1);
+  EXPECT_EQ(done_by_kind(orders, 4).at("pick"), 0);
+  EXPECT_EQ(done_by_kind({}).at("chained"), 0);
+}
+
 TEST(OrderStats, CountsRatesTimesAndUtilisation) {
   std::map<std::int64_t, model::OrderInfo> orders;
   auto order = [&](std::int64_t id, const char* state, double created, double ended,

@@ -101,5 +101,32 @@ TEST(PickLines, ToursKeepToTheAislesAndToWhatAPickerCarries) {
   EXPECT_THROW(plan_tours(lines, 0, plant.poses), std::invalid_argument);
 }
 
+TEST(PickLines, AutomaticListsAreValidKeepToOneRackRowAndStopWhenTheBoxesRunOut) {
+  Plant plant;
+  std::mt19937_64 rng(7);
+  int two_lines = 0;
+  for (int i = 0; i < 200; ++i) {
+    const auto lines = choose_auto_pick_list(plant.stock, plant.poses, 5.0, kTourBoxes, rng);
+    ASSERT_TRUE(lines.has_value());
+    const auto csv = pick_lines_csv(*lines);
+    EXPECT_EQ(check_pick_lines(*lines, plant.places, plant.stock, 5.0, "auto"), std::nullopt) << csv;
+    int boxes = 0;
+    for (const auto& line : *lines) {
+      boxes += line.quantity;
+      EXPECT_NEAR(plant.poses.at(line.place).y, plant.poses.at(lines->front().place).y, 0.05) << csv;
+    }
+    EXPECT_GE(boxes, 1);
+    EXPECT_LE(boxes, kTourBoxes);
+    EXPECT_EQ(plan_tours(*lines, kTourBoxes, plant.poses).size(), 1u) << csv;
+    if (lines->size() == 2) ++two_lines;
+  }
+  EXPECT_GT(two_lines, 0);
+  // Only the heavy boxes left: the grippers hold none of them, so there is no list to give.
+  for (auto& [place, boxes] : plant.stock) {
+    if (boxes.mass <= 5.0) boxes.count = 0;
+  }
+  EXPECT_EQ(choose_auto_pick_list(plant.stock, plant.poses, 5.0, kTourBoxes, rng), std::nullopt);
+}
+
 }  // namespace
 }  // namespace fleet::orders

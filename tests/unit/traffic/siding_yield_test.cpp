@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "test_grants.hpp"
 #include "test_graphs.hpp"
@@ -17,42 +18,53 @@ using testing::grant_of;
 using testing::has_event;
 using testing::point_at;
 
-TEST(SidingYield, TheRobotMadeWayForMovesWhenTheYieldingRobotWaitsForIt) {
-  // A 6 m corridor with a 0.6 m siding spur up from its middle.
+// Two robots driven head-on into a 6 m corridor with a 0.6 m siding spur up from its middle,
+// until the manager sends one of them to the siding.
+struct HeadOn {
   testing::GraphBuilder b;
-  b.road(0.0, 0.0, 6.0, 0.0);
-  b.road(3.0, 0.0, 3.0, 0.6);
-  const auto& g = b.graph();
-  TrafficConfiguration c;
-  c.one_way = false;
-  TrafficManager m(g, c);
-  const int west = point_at(g, 0.0, 0.0), east = point_at(g, 6.0, 0.0);
-  std::vector<int> eastward, westward;
-  for (int k = 0; k <= 60; ++k) eastward.push_back(point_at(g, 0.1 * k, 0.0));
-  westward.assign(eastward.rbegin(), eastward.rend());
-  ASSERT_EQ(eastward.front(), west);
-  ASSERT_EQ(westward.front(), east);
-  ASSERT_EQ(m.submit_route({1, 1, eastward}, 0.0), SubmitStatus::kAccepted);
-  ASSERT_EQ(m.submit_route({2, 1, westward}, 0.0), SubmitStatus::kAccepted);
-  // Both drive head-on into the corridor until one is sent to the siding.
+  std::unique_ptr<TrafficManager> m;
   double t = 0.0;
   UpdateResult r;
   int yielding = 0;
   std::uint64_t version[3] = {0, 1, 1};
   double driven[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i < 600 && yielding == 0; ++i, t += 0.05) {
-    r = m.update(t);
-    for (int id : {1, 2}) {
-      const Grant* grant = grant_of(r, id);
-      if (grant->instruction != Instruction::kNone && grant->version != version[id]) {
-        version[id] = grant->version;
-        driven[id] = 0.0;
+
+  HeadOn() {
+    b.road(0.0, 0.0, 6.0, 0.0);
+    b.road(3.0, 0.0, 3.0, 0.6);
+    TrafficConfiguration c;
+    c.one_way = false;
+    m = std::make_unique<TrafficManager>(b.graph(), c);
+    std::vector<int> eastward, westward;
+    for (int k = 0; k <= 60; ++k) eastward.push_back(point_at(b.graph(), 0.1 * k, 0.0));
+    westward.assign(eastward.rbegin(), eastward.rend());
+    EXPECT_EQ(m->submit_route({1, 1, eastward}, 0.0), SubmitStatus::kAccepted);
+    EXPECT_EQ(m->submit_route({2, 1, westward}, 0.0), SubmitStatus::kAccepted);
+    for (int i = 0; i < 600 && yielding == 0; ++i, t += 0.05) {
+      r = m->update(t);
+      for (int id : {1, 2}) {
+        const Grant* grant = grant_of(r, id);
+        if (grant->instruction != Instruction::kNone && grant->version != version[id]) {
+          version[id] = grant->version;
+          driven[id] = 0.0;
+        }
+        if (has_event(r, TrafficEvent::Kind::kSidingSent, id)) yielding = id;
+        driven[id] = std::min(driven[id] + 0.02, grant->granted_distance);
+        m->report_progress({id, version[id], driven[id], {}}, t);
       }
-      if (has_event(r, TrafficEvent::Kind::kSidingSent, id)) yielding = id;
-      driven[id] = std::min(driven[id] + 0.02, grant->granted_distance);
-      m.report_progress({id, version[id], driven[id], {}}, t);
     }
   }
+};
+
+TEST(SidingYield, TheRobotMadeWayForMovesWhenTheYieldingRobotWaitsForIt) {
+  HeadOn h;
+  const auto& g = h.b.graph();
+  TrafficManager& m = *h.m;
+  double& t = h.t;
+  UpdateResult& r = h.r;
+  const int yielding = h.yielding;
+  auto& version = h.version;
+  auto& driven = h.driven;
   ASSERT_NE(yielding, 0) << "nobody was sent to the siding";
   const int other = 3 - yielding;
   // They met in the middle: the yielding robot turns into the spur right in front of the other,
@@ -80,6 +92,34 @@ TEST(SidingYield, TheRobotMadeWayForMovesWhenTheYieldingRobotWaitsForIt) {
   EXPECT_TRUE(other_moved_off) << "robot " << other << ", which robot " << yielding
                                << " waits for on its way to the siding, was never sent off"
                                << (unresolved ? " (unresolved deadlock)" : "");
+}
+
+// Met so close that each one's safety check stops it for the other's body, neither can drive a
+// new route that starts towards the other. The one sent away in vain is not sent again and again
+// while the other stands: the other is sent off in its turn.
+TEST(SidingYield, WhenBothStopForTheOtherTheOneSentAwayInVainIsNotTheOnlyOneSent) {
+  HeadOn h;
+  ASSERT_NE(h.yielding, 0) << "nobody was sent to the siding";
+  const int first = h.yielding;
+  const int other = 3 - first;
+  int first_sent = 0;
+  bool other_sent = false;
+  for (int i = 0; i < 600 && !other_sent; ++i, h.t += 0.05) {
+    h.m->report_progress({first, h.version[first], h.driven[first], {other}}, h.t);
+    h.m->report_progress({other, h.version[other], h.driven[other], {first}}, h.t);
+    h.r = h.m->update(h.t);
+    ASSERT_EQ(h.m->check_invariant(), "");
+    for (int id : {first, other}) {
+      const Grant* grant = grant_of(h.r, id);
+      if (grant->instruction == Instruction::kNone || grant->version == h.version[id]) continue;
+      h.version[id] = grant->version;
+      h.driven[id] = 0.0;
+      if (id == first) ++first_sent;
+      other_sent = other_sent || id == other;
+    }
+  }
+  EXPECT_TRUE(other_sent) << "robot " << other << " was never sent off; robot " << first << " was sent "
+                          << first_sent << " more times";
 }
 
 }  // namespace
