@@ -141,13 +141,16 @@ bool FleetRun::poll() {
     if (open && !info.robot_id.empty()) task_of_[info.robot_id] = std::to_string(info.order_id) + "/" + info.phase;
     orders_[info.order_id] = std::move(info);
   });
-  state_reader_->take_data(
-      [&](model::RobotState&& state) { progress_.note_state(state.robot_id, state.task_state, state.sim_time); });
+  state_reader_->take_data([&](model::RobotState&& state) {
+    progress_.note_state(state.robot_id, state.task_state, state.sim_time);
+    localization_.note_estimate(state.robot_id, state.pose, state.sim_time);
+  });
   // Who waits for whom, so a robot queued behind robots that move is not taken for a deadlock.
   grant_reader_->take_data(
       [&](model::TrafficGrant&& grant) { progress_.note_waiting_for(grant.robot_id, std::move(grant.blocked_by)); });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
+    localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
       std::string waits;
@@ -229,6 +232,14 @@ std::map<std::string, long> FleetRun::done_by_fleet() const {
     if (const auto robot = config_.find_robot(order.robot_id)) ++done[robot->first->id];
   }
   return done;
+}
+
+std::map<std::string, monitor::ErrorFigures> FleetRun::localization_by_fleet() const {
+  std::map<std::string, std::string> fleet_of;
+  for (const auto& robot_id : robot_ids_) {
+    if (const auto robot = config_.find_robot(robot_id)) fleet_of[robot_id] = robot->first->id;
+  }
+  return monitor::error_figures(localization_.errors(), fleet_of);
 }
 
 monitor::OrderTally FleetRun::tally() const {

@@ -12,6 +12,7 @@
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "monitor/collision_monitor.hpp"
+#include "monitor/localization_watch.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/progress_monitor.hpp"
 #include "monitor/track_recorder.hpp"
@@ -59,6 +60,9 @@ class FleetRun {
   /// move (see ProgressMonitor).
   const monitor::ProgressMonitor& progress() const { return progress_; }
   const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
+  /// Each fleet's localization error: estimates (RobotState) against the simulation's truth.
+  std::map<std::string, monitor::ErrorFigures> localization_by_fleet() const;
+  const monitor::LocalizationWatch& localization() const { return localization_; }
   /// Orders done in the run per fleet of the robot that did them, every fleet of the
   /// configuration listed (0 when none).
   std::map<std::string, long> done_by_fleet() const;
@@ -101,6 +105,7 @@ class FleetRun {
   std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
   std::map<std::int64_t, model::OrderInfo> orders_;
   monitor::CollisionMonitor collisions_;
+  monitor::LocalizationWatch localization_;
   monitor::TrackRecorder tracks_;
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;

@@ -63,7 +63,7 @@ int marker_loc_eval_command(const CommandArgs& args, double duration, std::uint6
   out << "  " << std::left << std::setw(22) << "estimate" << std::right << std::setw(9) << "rmse cm" << std::setw(9)
       << "p95 cm" << std::setw(9) << "max cm" << std::setw(10) << "hdg rmse" << std::setw(10) << "hdg max" << '\n';
   print_row(out, "wheel odometry", r.odometry);
-  print_row(out, "EKF odometry+markers", r.ekf);
+  print_row(out, "EKF gyro+odometry+markers", r.ekf);
   if (json) {
     nlohmann::json j;
     j["trajectory"] = "rack_aisle";

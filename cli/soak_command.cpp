@@ -458,6 +458,21 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   }
   const double now_sim = run.start_sim() + run.sim_seconds();
   const auto done_by_kind = monitor::done_by_kind(run.orders(), tally.first_id);
+  nlohmann::json localization = nlohmann::json::object();
+  for (const auto& [fleet, e] : run.localization_by_fleet()) {
+    localization[fleet] = {{"p95_m", round_to(e.p95, 0.001)}, {"max_m", round_to(e.max, 0.001)}};
+  }
+  // The robot whose estimate strayed furthest: where and when, to read its log there.
+  nlohmann::json worst_localization = nlohmann::json::object();
+  for (const auto& [robot, w] : run.localization().worst()) {
+    if (worst_localization.empty() || w.error > worst_localization["error_m"].get<double>()) {
+      worst_localization = {{"robot", robot},
+                            {"error_m", round_to(w.error, 0.001)},
+                            {"sim_s", round_to(w.sim_time - run.start_sim(), 0.1)},
+                            {"truth", {round_to(w.truth.x, 0.001), round_to(w.truth.y, 0.001)}},
+                            {"estimate", {round_to(w.estimate.x, 0.001), round_to(w.estimate.y, 0.001)}}};
+    }
+  }
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},
                          {"orders_failed", tally.failed},
@@ -465,6 +480,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"orders_lost", tally.lost},
                          {"orders_done_by_fleet", run.done_by_fleet()},
                          {"orders_done_by_kind", done_by_kind},
+                         {"localization_error", localization},
+                         {"localization_worst", worst_localization},
                          {"orders_duplicated", duplicated},
                          {"collisions", run.collisions().size()},
                          {"deadlocks", run.progress().deadlocks().size()},
@@ -514,6 +531,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "\n"
         << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
         << " s sim; longest wait " << summary["max_wait_s"] << " s\n"
+        << "  localization error (estimate against truth): " << localization.dump() << "\n"
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"
         << "  faults: " << faults.size() << " injected, detection p95 " << summary["detect_latency_p95_s"]
         << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"

@@ -31,15 +31,15 @@ MarkerLocalizer::MarkerLocalizer(const MarkerLocalizerParams& params, const sim:
   cameras_.emplace_back(params_.camera, rng());
   cameras_.emplace_back(rear_left(params_.camera), rng());
   for (auto& camera : cameras_) camera.set_occluders(occluders);
+  if (params_.gyro) gyro_.emplace(*params_.gyro, std::mt19937_64(rng()));
   next_fusion_.assign(cameras_.size(), 0.0);
   ekf_.initialize_at(start, params_.ekf.init_position_std, params_.ekf.init_heading_std);
 }
 
 void MarkerLocalizer::step(double t, double dt, const sim::WheelSpeeds& wheels, const geometry::Pose2& truth,
-                           double speed) {
+                           double speed, double yaw_rate) {
   const sim::BodyTwist measured = odometry_.update(encoders_.measure(wheels, dt), dt);
-  // The wheels' yaw rate stands in for a gyro: the Summit-XLS of the thesis localises without one.
-  ekf_.predict(measured.omega, dt);
+  ekf_.predict(gyro_ ? gyro_->measure(yaw_rate, dt) : measured.omega, dt);
   ekf_.update_encoders({measured.vx, measured.vy, measured.omega});
   for (std::size_t c = 0; c < cameras_.size(); ++c) {
     auto& camera = cameras_[c];

@@ -283,7 +283,7 @@ class PathLine {
 
 }  // namespace
 
-double Forklift::clearance_ahead() const {
+double Forklift::clearance_ahead(geometry::Pose2& blocked_at) const {
   // How far the robot can move along its path before its footprint meets a cell of the dynamic
   // layer: the other robots from FleetView (grown by their speed x data age, or the stale rule)
   // and what the lidar sees [Forklift thesis, section 5.3]. The footprint itself is swept, not a point
@@ -337,6 +337,7 @@ double Forklift::clearance_ahead() const {
       if (on_join && i == 1) towards = line->point_at(along + s + steer);
       const double heading = std::atan2(towards.y - p.y, towards.x - p.x);
       if (footprint_hits(layer, {p.x, p.y, heading}, footprint(), kMargin, touched)) {
+        blocked_at = {p.x, p.y, heading};
         return std::max(0.0, travelled + s - kSample);
       }
     }
@@ -380,7 +381,7 @@ void Forklift::update_surroundings() {
   }
 }
 
-double Forklift::follow_traffic(double t, double clearance) {
+double Forklift::follow_traffic(double t, double clearance, const geometry::Pose2& blocked_at) {
   // Another robot in the way: wait (WAITING, with the reason), and after a while plan around it
   // with a temporary obstacle [Forklift thesis, section 5.3]. Under traffic control the robot also
   // stops at the end of its grant; the neighbour check stays underneath as the safety layer.
@@ -399,9 +400,11 @@ double Forklift::follow_traffic(double t, double clearance) {
   if (follower_.siding_timed_out(t, held)) executor_.replan();
   if (blocked) {
     const Pose2 here = sim_.estimate();
-    // The robot whose cells stopped it: they are grown by its speed and data age (a standing one
-    // that reports seldom is grown most), so its body may be a metre off when the sweep meets them.
-    const std::string ahead = safety_.robot_within(here, neighbours_, 1.0);
+    // The robot whose cells stopped it, nearest the swept pose that met them: they are grown by
+    // its speed and data age (a standing one that reports seldom is grown most), so its body may
+    // be a metre off that pose. Measured from where this robot stands instead, a large vehicle
+    // that stops its stopping distance short of the cells is further than that from their robot.
+    const std::string ahead = safety_.robot_within(blocked_at, neighbours_, 1.0);
     reports_.stopped_ahead(ahead);
     safety_.note(t, here.position(), ahead);
   } else if (held) {
@@ -433,8 +436,9 @@ void Forklift::step() {
     next_dynamic_update_ = t + kDynamicUpdatePeriod;
     update_surroundings();
   }
-  const double clearance = clearance_ahead();
-  const double room = follow_traffic(t, clearance);
+  Pose2 blocked_at = sim_.estimate();
+  const double clearance = clearance_ahead(blocked_at);
+  const double room = follow_traffic(t, clearance, blocked_at);
 
   std::vector<perception::MarkerDetection> detections;
   if (camera_.frame_due(t)) detections = camera_.capture(t, sim_.truth(), pallets_.markers());

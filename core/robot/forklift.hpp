@@ -162,13 +162,16 @@ class Forklift : public Robot {
   void reset_obstacles();
   /// The dynamic grid from the neighbours and a lidar scan, and temporaries seen free removed.
   void update_surroundings();
-  /// Stops for what is in the way and holds at the end of the grant; returns the traffic room.
-  double follow_traffic(double t, double clearance);
+  /// Stops for what is in the way (met by the path sweep at `blocked_at`) and holds at the end
+  /// of the grant; returns the traffic room.
+  double follow_traffic(double t, double clearance, const geometry::Pose2& blocked_at);
   /// The static grid to the planners, when an obstacle changed it since they last had it.
   void hand_grid_to_planners();
   void answer_plan_requests();
   void collect_reports();
-  double clearance_ahead() const;
+  /// How far the robot drives along its path before its swept footprint meets another robot's
+  /// cells or a lidar return; `blocked_at` is the swept pose that met them.
+  double clearance_ahead(geometry::Pose2& blocked_at) const;
   /// What the body sweeps beyond the road's last point of its path, turning off the lane into
   /// its goal beside the road and on into the loading area at `place` (a pick or a drop), as
   /// TrafficRoute::arrival_area; empty when the goal is on the road.

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "monitor/collision_monitor.hpp"
+#include "monitor/localization_watch.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/track_recorder.hpp"
 
@@ -80,6 +81,31 @@ TEST(OrderAccounting, DoneOrdersCountByKindWithTheServersOwnTransportsApart) {
   EXPECT_EQ(done.at("move"), 1);
   EXPECT_EQ(done_by_kind(orders, 4).at("pick"), 0);
   EXPECT_EQ(done_by_kind({}).at("chained"), 0);
+}
+
+TEST(LocalizationWatch, ComparesEachEstimateWithTheTruthOfTheSameStampAndGroupsByFleet) {
+  LocalizationWatch watch;
+  watch.note_truth("pk1", {1.0, 0.0, 0.0}, 10.0);
+  watch.note_estimate("pk1", {1.3, 0.4, 0.0}, 10.0);  // 0.5 m off
+  watch.note_estimate("pk1", {9.0, 9.0, 0.0}, 10.5);  // its truth not in yet
+  watch.note_truth("pk1", {9.0, 9.1, 0.0}, 10.5);     // now: 0.1 m
+  watch.note_truth("pk1", {5.0, 5.0, 0.0}, 11.0);     // no estimate of that stamp
+  watch.note_estimate("fk1", {0.0, 0.0, 0.0}, 10.0);
+  watch.note_truth("fk1", {0.0, 0.02, 0.0}, 10.0);
+  watch.note_truth("fk1", {0.0, 0.03, 0.0}, 10.0);  // the same publication again: counted once
+  watch.note_estimate("fk1", {std::nan(""), 0.0, 0.0}, 11.0);
+  watch.note_truth("fk1", {0.0, 0.0, 0.0}, 11.0);
+  ASSERT_EQ(watch.errors().at("pk1").size(), 2u);
+  EXPECT_NEAR(watch.errors().at("pk1")[0], 0.5, 1e-12);
+  EXPECT_NEAR(watch.errors().at("pk1")[1], 0.1, 1e-9);
+  ASSERT_EQ(watch.errors().at("fk1").size(), 1u);
+  EXPECT_NEAR(watch.worst().at("pk1").error, 0.5, 1e-12);
+  EXPECT_EQ(watch.worst().at("pk1").sim_time, 10.0);
+  EXPECT_EQ(watch.worst().at("pk1").truth.x, 1.0);
+  const auto figures = error_figures(watch.errors(), {{"pk1", "pickers"}, {"fk1", "forklifts"}});
+  EXPECT_NEAR(figures.at("pickers").max, 0.5, 1e-12);
+  EXPECT_EQ(figures.at("pickers").samples, 2);
+  EXPECT_NEAR(figures.at("forklifts").p95, 0.02, 1e-12);
 }
 
 TEST(OrderStats, CountsRatesTimesAndUtilisation) {

@@ -124,3 +124,43 @@ TEST(PickerBase, TakesNoTransports) {
 }
 
 }  // namespace
+
+// Tours one after the other as the automatic orders send them, from racks in the upper and the
+// lower aisles to packing stations on both sides of the packing area.
+TEST(PickerBase, KeepsItsEstimateTourAfterTourAcrossThePlant) {
+  const PlantPicker plant;
+  auto picker = plant.make("PP1");
+  const auto& site = plant.site->site;
+  const std::vector<std::pair<std::string, std::string>> tours{
+      {"RB5", "PS2"}, {"RB9", "PS4"}, {"RB15", "PS6"}, {"RB2", "PS8"}, {"RB11", "PS3"}};
+  double worst = 0.0;
+  std::string worst_where;
+  int n = 0;
+  for (const auto& [from, to] : tours) {
+    const auto* rack = site.find_area(from);
+    task::TaskOrder tour{std::to_string(++n), from, rack->pose, to, site.find_area(to)->pose, orders::OrderKind::kPick};
+    tour.items = {{from, rack->pose, rack->boxes->item, 1}};
+    std::string why;
+    ASSERT_TRUE(picker->submit(tour, &why)) << why;
+    bool done = false;
+    const double started = picker->time();
+    while (!done && picker->time() < started + 400.0) {
+      grant_everything(*picker);
+      picker->step();
+      const double error = geometry::distance(picker->estimate().position(), picker->truth().position());
+      if (error > worst) {
+        worst = error;
+        worst_where = from + " -> " + to + " " + picker->task_state() + " at (" + std::to_string(picker->truth().x) +
+                      ", " + std::to_string(picker->truth().y) + "), estimate (" +
+                      std::to_string(picker->estimate().x) + ", " + std::to_string(picker->estimate().y) + ")";
+      }
+      for (const auto& e : picker->take_events()) {
+        ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << from << " -> " << to << ": " << e.text;
+        done = done || e.kind == RobotEvent::Kind::kDone;
+      }
+    }
+    ASSERT_TRUE(done) << from << " -> " << to << ": " << picker->task_state() << " (" << picker->detail() << ")";
+  }
+  std::cout << "picker: 5 tours, estimate off by " << worst * 100.0 << " cm at worst: " << worst_where << "\n";
+  EXPECT_LT(worst, 0.5) << "worst " << worst_where;
+}

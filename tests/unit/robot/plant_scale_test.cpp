@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -258,4 +259,51 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
   EXPECT_LT(most_turned, 0.3);
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
+}
+
+TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
+  // Seen in the plant soak: a reach truck stops its stopping distance (0.5 m) short of a picker's
+  // grown cells, about a metre from the picker's body; named from where it stood it reported
+  // "an obstacle ahead", traffic never learnt whom it waited for, and the picker, waiting in turn
+  // for the road the truck held, stood there with it for good.
+  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
+                                  [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
+  ASSERT_NE(fleet, config.fleets.end());
+  auto robot = robot::make_robot(*fleet, config, site, site->site.find_home("PR1")->pose, 1, 1);
+  if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
+  std::vector<robot::Neighbour> picker;
+  const auto step = [&] {
+    robot::TrafficPermit all_of_it;
+    all_of_it.version = robot->route_version();
+    all_of_it.granted_index = 1000;
+    all_of_it.granted_distance = 1e9;
+    robot->set_traffic_grant(all_of_it);
+    robot->set_neighbours(picker);
+    robot->step();
+  };
+  while (robot->time() < 1.0) step();
+  ASSERT_TRUE(robot->submit({"7", "FG5", site->site.find_area("FG5")->pose, "RH4", site->site.find_area("RH4")->pose},
+                            nullptr));
+  while (robot->time() < 20.0 && robot->path().size() < 2) step();
+  ASSERT_GE(robot->path().size(), 2u);
+  // Where the truck will be in 3 m: a picker stands there, reporting as it should.
+  double left = 3.0 + geometry::distance(robot->estimate().position(), robot->path().front());
+  geometry::Vec2 at = robot->path().front();
+  for (std::size_t i = 1; i < robot->path().size() && left > 0.0; ++i) {
+    const geometry::Vec2 a = robot->path()[i - 1], b = robot->path()[i];
+    const double d = geometry::distance(a, b);
+    at = d >= left ? a + (left / d) * (b - a) : b;
+    left -= d;
+  }
+  picker = {{"pk9", {at.x, at.y, 0.0}, {0.65, 0.50}, 0.3, 0.1}};
+  while (robot->time() < 60.0 && !robot->detail().ends_with(" ahead")) step();
+  EXPECT_EQ(robot->detail(), "robot pk9 ahead");
+  RecordProperty("gap", std::to_string(geometry::convex_polygons_distance(
+                            geometry::footprint_polygon(robot->estimate(), robot->footprint()),
+                            geometry::footprint_polygon(picker.front().pose, picker.front().footprint))));
+  const double stopped_at = robot->time();
+  while (robot->time() < stopped_at + 3.5) step();
+  EXPECT_EQ(robot->traffic_route().stopped_for, std::vector<std::string>{"pk9"}) << robot->detail();
 }

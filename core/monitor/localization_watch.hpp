@@ -1,0 +1,53 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geometry/pose.hpp"
+
+namespace fleet::monitor {
+
+/// How far each robot's estimate (RobotState) is from where the simulation has it (SimTruth).
+/// An agent stamps both with the same simulated time when it publishes them, so an estimate is
+/// compared with the truth of the same stamp, whichever arrives first.
+class LocalizationWatch {
+ public:
+  void note_estimate(const std::string& robot_id, const geometry::Pose2& estimate, double sim_time);
+  void note_truth(const std::string& robot_id, const geometry::Pose2& truth, double sim_time);
+
+  /// Position errors (metres) compared so far, per robot.
+  const std::map<std::string, std::vector<double>>& errors() const { return errors_; }
+
+  /// The largest error of a robot: how large, when, and where the robot truly was.
+  struct Worst {
+    double error = 0.0;
+    double sim_time = 0.0;
+    geometry::Pose2 truth;
+    geometry::Pose2 estimate;
+  };
+  const std::map<std::string, Worst>& worst() const { return worst_; }
+
+ private:
+  struct Stamped {
+    geometry::Pose2 pose;
+    double sim_time = -1.0;
+  };
+  void compare(const std::string& robot_id);
+
+  std::map<std::string, Stamped> estimates_;
+  std::map<std::string, Stamped> truths_;
+  std::map<std::string, std::vector<double>> errors_;
+  std::map<std::string, Worst> worst_;
+};
+
+/// p95 and maximum of the position errors of each group of robots (a fleet, say), metres.
+struct ErrorFigures {
+  double p95 = 0.0;
+  double max = 0.0;
+  long samples = 0;
+};
+std::map<std::string, ErrorFigures> error_figures(const std::map<std::string, std::vector<double>>& errors,
+                                                  const std::map<std::string, std::string>& group_of);
+
+}  // namespace fleet::monitor
