@@ -426,6 +426,14 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   double target = clock_.now();
   publish_state(target);
   ProcessMemory memory;
+  const auto publish_when_due = [&](double sim_time) {
+    const double now_wall = SimClock::wall_now();
+    if (now_wall - last_publish_wall < publish_period_wall) return false;
+    publish_state(sim_time);
+    publish_traffic(sim_time);
+    last_publish_wall = now_wall;
+    return true;
+  };
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(2));
     handle_site_inputs();
@@ -445,23 +453,13 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       handle_events();
       // A long catch-up (a burst of camera frames, a loaded host) still publishes at the state
       // rate, so that the server's liveness deadline sees a robot that is only busy.
-      const double now_wall = SimClock::wall_now();
-      if (behind >= 2.0 * step && now_wall - last_publish_wall >= publish_period_wall) {
-        publish_state(robot_->time() + offset);
-        publish_traffic(robot_->time() + offset);
-        last_publish_wall = now_wall;
-      }
+      if (behind >= 2.0 * step) publish_when_due(robot_->time() + offset);
     }
-    const double now_wall = SimClock::wall_now();
-    if (now_wall - last_publish_wall >= publish_period_wall) {
-      publish_state(target);
-      publish_traffic(target);
-      last_publish_wall = now_wall;
-    } else if (traffic_ && robot_->route_version() != last_traffic_.version) {
+    if (!publish_when_due(target) && traffic_ && robot_->route_version() != last_traffic_.version) {
       publish_traffic(target);
     }
     flush_delayed_states();
-    memory.tick(now_wall);
+    memory.tick(SimClock::wall_now());
   }
   log_->info("stopping");
 }

@@ -464,14 +464,16 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   }
   // The robot whose estimate strayed furthest: where and when, to read its log there.
   nlohmann::json worst_localization = nlohmann::json::object();
-  for (const auto& [robot, w] : run.localization().worst()) {
-    if (worst_localization.empty() || w.error > worst_localization["error_m"].get<double>()) {
-      worst_localization = {{"robot", robot},
-                            {"error_m", round_to(w.error, 0.001)},
-                            {"sim_s", round_to(w.sim_time - run.start_sim(), 0.1)},
-                            {"truth", {round_to(w.truth.x, 0.001), round_to(w.truth.y, 0.001)}},
-                            {"estimate", {round_to(w.estimate.x, 0.001), round_to(w.estimate.y, 0.001)}}};
-    }
+  const auto& worst = run.localization().worst();
+  if (const auto w = std::max_element(worst.begin(), worst.end(),
+                                      [](const auto& a, const auto& b) { return a.second.error < b.second.error; });
+      w != worst.end()) {
+    const auto& [robot, e] = *w;
+    worst_localization = {{"robot", robot},
+                          {"error_m", round_to(e.error, 0.001)},
+                          {"sim_s", round_to(e.sim_time - run.start_sim(), 0.1)},
+                          {"truth", {round_to(e.truth.x, 0.001), round_to(e.truth.y, 0.001)}},
+                          {"estimate", {round_to(e.estimate.x, 0.001), round_to(e.estimate.y, 0.001)}}};
   }
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},

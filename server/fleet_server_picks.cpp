@@ -87,9 +87,9 @@ void FleetServer::create_auto_pick(long free_pickers) {
   // The pick lists a warehouse system would send, one tour per free picker: boxes from the racks to
   // the packing stations, whose full pallets then go on to expedition by the packing chain.
   if (!options_.site.packing || options_.site.packing->stations.empty()) return;
-  const long queued = static_cast<long>(std::count_if(book_.all().begin(), book_.all().end(), [](const auto& e) {
-    return e.second.kind == orders::OrderKind::kPick && e.second.status == orders::OrderStatus::kQueued;
-  }));
+  const auto queue = book_.with_status(orders::OrderStatus::kQueued);
+  const long queued = std::count_if(queue.begin(), queue.end(),
+                                    [](const orders::Order* o) { return o->kind == orders::OrderKind::kPick; });
   if (free_pickers <= queued) return;
   const auto lines = orders::choose_auto_pick_list(boxes_left(), orders::place_poses(options_.site),
                                                    orders::max_pickable_mass(options_.config), orders::kTourBoxes,

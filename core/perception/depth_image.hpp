@@ -104,13 +104,7 @@ inline CameraAxes camera_axes(const CameraMount& mount) {
 
 /// The ray through image position (col, row) (pixel centres at +0.5) in the body frame, scaled
 /// so that its component along the optical axis is 1: origin + depth * ray is the 3-D point.
-inline Vec3 pixel_ray(const DepthCameraModel& camera, const CameraAxes& axes, double col, double row) {
-  const double a = (0.5 * camera.width - col) / camera.fx();
-  const double b = (0.5 * camera.height - row) / camera.fy();
-  return axes.forward + a * axes.left + b * axes.up;
-}
-
-/// pixel_ray for many pixels of one camera: the focal lengths (a tangent each) computed once.
+/// The focal lengths (a tangent each) are computed once per camera, for many pixels.
 class PixelRays {
  public:
   PixelRays(const DepthCameraModel& camera, const CameraAxes& axes)
@@ -127,6 +121,11 @@ class PixelRays {
   double fx_;
   double fy_;
 };
+
+/// The same ray for one pixel.
+inline Vec3 pixel_ray(const DepthCameraModel& camera, const CameraAxes& axes, double col, double row) {
+  return PixelRays(camera, axes)(col, row);
+}
 
 /// The 3-D point a pixel sees, in the body frame; nullopt where the pixel has no return.
 inline std::optional<Vec3> pixel_point(const DepthCameraModel& camera, const DepthImage& image, int col, int row) {
