@@ -91,9 +91,9 @@ void FleetServer::create_auto_pick(long free_pickers) {
   const long queued = std::count_if(queue.begin(), queue.end(),
                                     [](const orders::Order* o) { return o->kind == orders::OrderKind::kPick; });
   if (free_pickers <= queued) return;
-  const auto lines = orders::choose_auto_pick_list(boxes_left(), orders::place_poses(options_.site),
-                                                   orders::max_pickable_mass(options_.config), orders::kTourBoxes,
-                                                   rng_);
+  const auto lines =
+      orders::choose_auto_pick_list(boxes_left(), orders::place_poses(options_.site),
+                                    orders::max_pickable_mass(options_.config), orders::kTourBoxes, rng_);
   if (!lines) return;
   model::OrderRequest request;
   request.request_id = "auto";

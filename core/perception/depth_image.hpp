@@ -108,7 +108,10 @@ inline CameraAxes camera_axes(const CameraMount& mount) {
 class PixelRays {
  public:
   PixelRays(const DepthCameraModel& camera, const CameraAxes& axes)
-      : axes_(axes), half_width_(0.5 * camera.width), half_height_(0.5 * camera.height), fx_(camera.fx()),
+      : axes_(axes),
+        half_width_(0.5 * camera.width),
+        half_height_(0.5 * camera.height),
+        fx_(camera.fx()),
         fy_(camera.fy()) {}
   Vec3 operator()(double col, double row) const {
     return axes_.forward + ((half_width_ - col) / fx_) * axes_.left + ((half_height_ - row) / fy_) * axes_.up;

@@ -60,7 +60,7 @@ SearchExtent search_extent(const PalletExpectation& expected, const PalletDetect
 /// The region of interest: the searched volume projected into the image [Stacker thesis,
 /// section 6.2.1]. A volume reaching behind the camera takes the whole image.
 PixelWindow region_of_interest(const DepthCameraModel& camera, const CameraAxes& axes, const FaceFrame& face,
-                       SearchExtent extent, double base_height, const PalletDetectorParams& params) {
+                               SearchExtent extent, double base_height, const PalletDetectorParams& params) {
   double col_min = camera.width, col_max = 0.0, row_min = camera.height, row_max = 0.0;
   for (double sl : {-extent.lateral, extent.lateral}) {
     for (double sd : {-extent.depth, extent.depth}) {
@@ -416,8 +416,8 @@ geometry::Pose2 Detection::pallet_pose(double length) const {
 
 PixelWindow detection_window(const DepthCameraModel& camera, const PalletExpectation& expected,
                              const PalletDetectorParams& params) {
-  const FaceFrame roi_face = facing_face(expected.roi_centre.value_or(expected.pallet), xy(camera_origin(camera)),
-                                         0.5 * params.pallet.length);
+  const FaceFrame roi_face =
+      facing_face(expected.roi_centre.value_or(expected.pallet), xy(camera_origin(camera)), 0.5 * params.pallet.length);
   return region_of_interest(camera, camera_axes(camera.mount), roi_face, search_extent(expected, params),
                             expected.base_height, params);
 }

@@ -250,8 +250,7 @@ DepthCameraParams realsense_r200() {
   return p;
 }
 
-DepthCamera::DepthCamera(DepthCameraParams params, std::uint64_t seed)
-    : params_(params), seed_(seed) {}
+DepthCamera::DepthCamera(DepthCameraParams params, std::uint64_t seed) : params_(params), seed_(seed) {}
 
 void DepthCamera::set_pan_tilt(double pan, double tilt) {
   params_.model.mount.pan = pan;
@@ -277,9 +276,9 @@ perception::DepthImage DepthCamera::render_impl(const DepthScene& scene, const g
                                                 const perception::PixelWindow& window,
                                                 std::optional<std::uint64_t> frame_key) const {
   const perception::DepthCameraModel& m = params_.model;
-  perception::DepthImage image{m.width, m.height,
-                               std::vector<float>(static_cast<std::size_t>(m.width) * m.height,
-                                                  perception::DepthImage::kNoReturn)};
+  perception::DepthImage image{
+      m.width, m.height,
+      std::vector<float>(static_cast<std::size_t>(m.width) * m.height, perception::DepthImage::kNoReturn)};
   // Camera axes and origin in the map frame: the robot turns the body-frame axes by its yaw.
   const perception::CameraAxes body_axes = perception::camera_axes(m.mount);
   const double c = std::cos(robot_pose.yaw);

@@ -121,10 +121,16 @@ TEST(OrderStats, CountsRatesTimesAndUtilisation) {
     orders[id] = o;
   };
   // fl1 busy 100..160 (done), fl2 busy 200..250 then re-queued, then fl1 250..300 and still active.
-  order(1, "DONE", 100, 160, {{100, "QUEUED", "", "", "", 0, 0}, {100, "ASSIGNED", "", "fl1", "", 0, 0},
-                               {110, "ACTIVE", "TO_PICK", "fl1", "", 0, 0}, {160, "DONE", "DROPPING", "fl1", "", 0, 0}});
-  order(2, "ACTIVE", 200, 250, {{200, "QUEUED", "", "", "", 0, 0}, {200, "ASSIGNED", "", "fl2", "", 0, 0},
-                                 {250, "QUEUED", "", "", "robot fl2 lost", 0, 0}, {250, "ASSIGNED", "", "fl1", "", 0, 0}});
+  order(1, "DONE", 100, 160,
+        {{100, "QUEUED", "", "", "", 0, 0},
+         {100, "ASSIGNED", "", "fl1", "", 0, 0},
+         {110, "ACTIVE", "TO_PICK", "fl1", "", 0, 0},
+         {160, "DONE", "DROPPING", "fl1", "", 0, 0}});
+  order(2, "ACTIVE", 200, 250,
+        {{200, "QUEUED", "", "", "", 0, 0},
+         {200, "ASSIGNED", "", "fl2", "", 0, 0},
+         {250, "QUEUED", "", "", "robot fl2 lost", 0, 0},
+         {250, "ASSIGNED", "", "fl1", "", 0, 0}});
   const OrderStats s = order_stats(orders, 300);
   EXPECT_EQ(s.by_state.at("DONE"), 1);
   EXPECT_EQ(s.by_state.at("ACTIVE"), 1);
@@ -205,8 +211,8 @@ TEST(TrackRecorder, WhatItWritesReadsBackAndABadRowIsNamedWithItsLine) {
 TEST(CollisionMonitor, PolygonFootprintsCollideOnlyWhereTheirShapesMeet) {
   // A body with its rear corners cut (a reach truck's chamfers): a small robot standing in the cut
   // is inside the rectangle extent but touches nothing.
-  const fleet::geometry::Polygon chamfered{{0.8, -0.45}, {0.8, 0.45}, {-0.6, 0.45}, {-0.8, 0.25}, {-0.8, -0.25},
-                                           {-0.6, -0.45}};
+  const fleet::geometry::Polygon chamfered{{0.8, -0.45}, {0.8, 0.45},   {-0.6, 0.45},
+                                           {-0.8, 0.25}, {-0.8, -0.25}, {-0.6, -0.45}};
   const fleet::geometry::Polygon small{{0.05, -0.05}, {0.05, 0.05}, {-0.05, 0.05}, {-0.05, -0.05}};
   fleet::monitor::CollisionMonitor monitor;
   monitor.update("rt1", {0.0, 0.0, 0.0}, chamfered, 1.0);

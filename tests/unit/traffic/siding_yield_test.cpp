@@ -118,8 +118,8 @@ TEST(SidingYield, WhenBothStopForTheOtherTheOneSentAwayInVainIsNotTheOnlyOneSent
       other_sent = other_sent || id == other;
     }
   }
-  EXPECT_TRUE(other_sent) << "robot " << other << " was never sent off; robot " << first << " was sent "
-                          << first_sent << " more times";
+  EXPECT_TRUE(other_sent) << "robot " << other << " was never sent off; robot " << first << " was sent " << first_sent
+                          << " more times";
 }
 
 }  // namespace
