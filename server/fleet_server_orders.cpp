@@ -185,8 +185,7 @@ void FleetServer::create_auto_orders() {
   };
   if (const long free_pickers = free_for(orders::OrderKind::kPick); free_pickers > 0) create_auto_pick(free_pickers);
   const long free_robots = free_for(orders::OrderKind::kTransport);
-  const long queued = static_cast<long>(book_.with_status(OrderStatus::kQueued).size());
-  if (free_robots <= queued) return;
+  if (!orders::auto_transport_wanted(book_, free_robots)) return;
   const auto doable = [&](const std::string& pick, const std::string& drop) {
     return !orders::check_order_request({"", pick, drop, "", "", 0}, names).has_value();
   };

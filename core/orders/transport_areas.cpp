@@ -1,5 +1,6 @@
 #include "orders/transport_areas.hpp"
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -47,6 +48,14 @@ std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, c
 
 bool ready_to_dispatch(const AreaLedger& ledger, const Order& order) {
   return ledger.holds_load(order.pick_area) && !ledger.holds_load(order.drop_area);
+}
+
+bool auto_transport_wanted(const OrderBook& book, long free_transport_robots) {
+  const auto queued = book.with_status(OrderStatus::kQueued);
+  const long queued_transports = std::count_if(queued.begin(), queued.end(), [](const Order* o) {
+    return o->kind == OrderKind::kTransport;
+  });
+  return free_transport_robots > queued_transports;
 }
 
 std::optional<TransportChoice> choose_auto_transport(const AreaLedger& ledger, const OrderBook& book,

@@ -26,6 +26,11 @@ std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, c
 /// free: one chained behind another (A->B, then B->C) waits for the first to finish.
 bool ready_to_dispatch(const AreaLedger& ledger, const Order& order);
 
+/// Whether the automatic order source [Forklift thesis, section 3] should add a transport: more
+/// robots able to carry are free than transports wait in the queue. Queued orders of other kinds
+/// (pick tours) wait for other robots and hold no transport back.
+bool auto_transport_wanted(const OrderBook& book, long free_transport_robots);
+
 struct TransportChoice {
   std::string pick;
   std::string drop;

@@ -65,6 +65,22 @@ TEST(TransportAreas, AChainedOrderIsNotReadyUntilItsLoadArrives) {
   EXPECT_FALSE(ready_to_dispatch(site.ledger, site.order("A2", "A3")));
 }
 
+TEST(TransportAreas, QueuedPickToursHoldNoAutomaticTransportBack) {
+  Site site;
+  EXPECT_TRUE(auto_transport_wanted(site.book, 1));
+  EXPECT_FALSE(auto_transport_wanted(site.book, 0));
+  for (int tour = 0; tour < 2; ++tour) {
+    Order pick;
+    pick.kind = OrderKind::kPick;
+    pick.drop_area = "PACK1";
+    site.book.create(std::move(pick), 0.0);
+  }
+  EXPECT_TRUE(auto_transport_wanted(site.book, 1)) << "two pick tours wait for pickers, not for this robot";
+  site.order("A1", "A3");
+  EXPECT_FALSE(auto_transport_wanted(site.book, 1)) << "one transport waits for the one free robot";
+  EXPECT_TRUE(auto_transport_wanted(site.book, 2));
+}
+
 TEST(TransportAreas, AnAutomaticTransportUsesNoPromisedPlace) {
   Site site;
   site.order("A1", "A3");
