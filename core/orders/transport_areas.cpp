@@ -52,9 +52,8 @@ bool ready_to_dispatch(const AreaLedger& ledger, const Order& order) {
 
 bool auto_transport_wanted(const OrderBook& book, long free_transport_robots) {
   const auto queued = book.with_status(OrderStatus::kQueued);
-  const long queued_transports = std::count_if(queued.begin(), queued.end(), [](const Order* o) {
-    return o->kind == OrderKind::kTransport;
-  });
+  const long queued_transports =
+      std::count_if(queued.begin(), queued.end(), [](const Order* o) { return o->kind == OrderKind::kTransport; });
   return free_transport_robots > queued_transports;
 }
 
