@@ -144,6 +144,9 @@ bool FleetRun::poll() {
   state_reader_->take_data([&](model::RobotState&& state) {
     progress_.note_state(state.robot_id, state.task_state, state.sim_time);
     localization_.note_estimate(state.robot_id, state.pose, state.sim_time);
+    // Beside each robot's true track, where it believed it was: a report's tracks show both.
+    if (geometry::is_finite(state.pose)) tracks_.add(state.robot_id + "/estimate", state.pose, state.sim_time);
+    report_far_off_estimates();
   });
   // Who waits for whom, so a robot queued behind robots that move is not taken for a deadlock.
   grant_reader_->take_data(
@@ -151,6 +154,7 @@ bool FleetRun::poll() {
   truth_reader_->take_data([&](model::SimTruth&& truth) {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);
+    report_far_off_estimates();
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
       std::string waits;
@@ -196,6 +200,18 @@ void FleetRun::stop() {
   }
   processes_.reap();
   processes_.stop_all(5.0);
+}
+
+void FleetRun::report_far_off_estimates() {
+  for (const auto& off : localization_.take_far_off()) {
+    ++estimates_far_off_;
+    const auto& at = off.at;
+    log_->warn(
+        "localization: {} believes it is at ({:.2f}, {:.2f}), {:.2f} m from where it is ({:.2f}, {:.2f}), at t={:.1f} "
+        "s sim",
+        off.robot_id, at.estimate.x, at.estimate.y, at.error, at.truth.x, at.truth.y, at.sim_time - start_sim_);
+    write_tracks("localization-" + std::to_string(estimates_far_off_) + "-" + off.robot_id, 90.0, at.sim_time);
+  }
 }
 
 void FleetRun::write_tracks(const std::string& name, double seconds, double now_sim) {

@@ -83,6 +83,8 @@ class FleetRun {
 
  private:
   std::string binary(const std::string& name) const;
+  /// Logs each robot whose estimate went far from the truth, with the tracks of both.
+  void report_far_off_estimates();
   /// Writes every robot's track of the last `seconds` sim into the run folder as `name`.csv.
   void write_tracks(const std::string& name, double seconds, double now_sim);
 
@@ -106,6 +108,7 @@ class FleetRun {
   std::map<std::int64_t, model::OrderInfo> orders_;
   monitor::CollisionMonitor collisions_;
   monitor::LocalizationWatch localization_;
+  int estimates_far_off_ = 0;
   monitor::TrackRecorder tracks_;
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;

@@ -369,9 +369,19 @@ void TrafficControl::update(double now_sim, double now_wall) {
       case traffic::TrafficEvent::Kind::kRerouted:
         log_->info("traffic: {} re-routed around {}", robot, others);
         break;
-      case traffic::TrafficEvent::Kind::kSidingSent:
-        log_->info("traffic: {} yields on a siding to {}", robot, others);
+      case traffic::TrafficEvent::Kind::kSidingSent: {
+        const auto& route = manager_.route(e.robot_id);
+        if (route.empty()) {
+          log_->info("traffic: {} yields on a siding to {}", robot, others);
+          break;
+        }
+        const auto& zones = manager_.zones();
+        const auto from = zones.position(zones.place_of(route.front()));
+        const auto to = zones.position(zones.place_of(route.back()));
+        log_->info("traffic: {} yields on a siding to {}: from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})", robot, others,
+                   from.x, from.y, to.x, to.y);
         break;
+      }
       case traffic::TrafficEvent::Kind::kGaveWay:
         log_->info("traffic: {} stands for {} and gives back the road ahead of it", robot, others);
         break;

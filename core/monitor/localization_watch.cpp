@@ -30,8 +30,18 @@ void LocalizationWatch::compare(const std::string& robot_id) {
   if (!geometry::is_finite(e->second.pose) || !geometry::is_finite(t->second.pose)) return;
   const double error = geometry::distance(e->second.pose.position(), t->second.pose.position());
   errors_[robot_id].push_back(error);
-  if (Worst& w = worst_[robot_id]; error >= w.error) w = {error, t->second.sim_time, t->second.pose, e->second.pose};
+  const Worst here{error, t->second.sim_time, t->second.pose, e->second.pose};
+  if (Worst& w = worst_[robot_id]; error >= w.error) w = here;
+  bool& off = far_off_[robot_id];
+  if (!off && error >= off_after_) new_far_off_.push_back({robot_id, here});
+  off = off ? error >= back_under_ : error >= off_after_;
   e->second.sim_time = -1.0;  // each publication once
+}
+
+std::vector<LocalizationWatch::FarOff> LocalizationWatch::take_far_off() {
+  std::vector<FarOff> out;
+  out.swap(new_far_off_);
+  return out;
 }
 
 std::map<std::string, ErrorFigures> error_figures(const std::map<std::string, std::vector<double>>& errors,

@@ -13,6 +13,11 @@ namespace fleet::monitor {
 /// compared with the truth of the same stamp, whichever arrives first.
 class LocalizationWatch {
  public:
+  /// An estimate `off_after` metres or more from the truth is reported once (take_far_off) until
+  /// the error has come back under `back_under`.
+  explicit LocalizationWatch(double off_after = 1.0, double back_under = 0.5)
+      : off_after_(off_after), back_under_(back_under) {}
+
   void note_estimate(const std::string& robot_id, const geometry::Pose2& estimate, double sim_time);
   void note_truth(const std::string& robot_id, const geometry::Pose2& truth, double sim_time);
 
@@ -28,6 +33,13 @@ class LocalizationWatch {
   };
   const std::map<std::string, Worst>& worst() const { return worst_; }
 
+  /// A robot whose estimate went `off_after` metres or more from the truth since the last call.
+  struct FarOff {
+    std::string robot_id;
+    Worst at;
+  };
+  std::vector<FarOff> take_far_off();
+
  private:
   struct Stamped {
     geometry::Pose2 pose;
@@ -39,6 +51,10 @@ class LocalizationWatch {
   std::map<std::string, Stamped> truths_;
   std::map<std::string, std::vector<double>> errors_;
   std::map<std::string, Worst> worst_;
+  double off_after_;
+  double back_under_;
+  std::map<std::string, bool> far_off_;  ///< by robot: reported off, not back yet
+  std::vector<FarOff> new_far_off_;
 };
 
 /// p95 and maximum of the position errors of each group of robots (a fleet, say), metres.

@@ -50,7 +50,15 @@ std::vector<Vec2> Forklift::arrival_sweep(std::optional<Vec2> place) const {
   const double beyond = std::max(0.0, along - road_end) + (place ? geometry::distance(path.back(), *place) : 0.0);
   if (beyond < kBesideTheRoad) return {};
   turn_at(path.back());
-  if (place) turn_at(*place);
+  if (place) {
+    turn_at(*place);
+    // Having set a load down it backs its forks out of it, further from the place than the path
+    // ends, and turns there onto its next route: a long vehicle leaving a rack place sweeps the
+    // far lane of the aisle (pallet_place's back_out_distance).
+    const Vec2 away = path.back() - *place;
+    const double length = std::hypot(away.x, away.y);
+    if (length > 1e-9) turn_at(path.back() + (config_.task.place.back_out_distance / length) * away);
+  }
   return corners;
 }
 

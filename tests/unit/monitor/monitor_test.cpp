@@ -108,6 +108,33 @@ TEST(LocalizationWatch, ComparesEachEstimateWithTheTruthOfTheSameStampAndGroupsB
   EXPECT_NEAR(figures.at("forklifts").p95, 0.02, 1e-12);
 }
 
+TEST(LocalizationWatch, ReportsAnEstimateFarOffOnceUntilItComesBack) {
+  LocalizationWatch watch(1.0, 0.5);
+  double t = 0.0;
+  const auto off_by = [&](double error) {
+    t += 0.1;
+    watch.note_truth("pk1", {0.0, 0.0, 0.0}, t);
+    watch.note_estimate("pk1", {error, 0.0, 0.0}, t);
+  };
+  off_by(0.2);
+  EXPECT_TRUE(watch.take_far_off().empty());
+  off_by(1.2);
+  off_by(3.0);
+  off_by(0.7);  // still off: not back under 0.5 m
+  off_by(1.5);
+  auto reported = watch.take_far_off();
+  ASSERT_EQ(reported.size(), 1u);
+  EXPECT_EQ(reported[0].robot_id, "pk1");
+  EXPECT_NEAR(reported[0].at.error, 1.2, 1e-12);
+  EXPECT_NEAR(reported[0].at.estimate.x, 1.2, 1e-12);
+  EXPECT_TRUE(watch.take_far_off().empty()) << "taken once";
+  off_by(0.3);  // back
+  off_by(1.1);  // off again: a new report
+  reported = watch.take_far_off();
+  ASSERT_EQ(reported.size(), 1u);
+  EXPECT_NEAR(reported[0].at.error, 1.1, 1e-12);
+}
+
 TEST(OrderStats, CountsRatesTimesAndUtilisation) {
   std::map<std::int64_t, model::OrderInfo> orders;
   auto order = [&](std::int64_t id, const char* state, double created, double ended,

@@ -175,9 +175,15 @@ TEST(Forklift, ARouteToAPlaceBesideTheRoadAsksTrafficForWhatItsTurnOffTheLaneSwe
   ASSERT_GE(route.points.size(), 4u) << f.detail();
   ASSERT_FALSE(route.arrival_area.empty()) << "A3 lies beside the road, off the route's last point";
   const geometry::Polygon area = traffic::convex_hull(route.arrival_area);
-  // The body turning on the spot at the road's end and in the loading area, any heading.
+  // The body turning on the spot at the road's end, in the loading area, and where it has backed
+  // its forks out of a load it set down, any heading.
   const auto& end = site->graph.graph.points[static_cast<std::size_t>(route.points.back())];
-  for (const geometry::Vec2 at : {geometry::Vec2{end.x, end.y}, site->site.find_area("A3")->pose.position()}) {
+  const geometry::Vec2 place = site->site.find_area("A3")->pose.position();
+  const geometry::Vec2 path_end = f.path().back();
+  const geometry::Vec2 backed_out =
+      path_end +
+      (under_traffic(*site).task.place.back_out_distance / geometry::distance(path_end, place)) * (path_end - place);
+  for (const geometry::Vec2 at : {geometry::Vec2{end.x, end.y}, place, backed_out}) {
     for (double yaw = 0.0; yaw < 2.0 * std::numbers::pi; yaw += std::numbers::pi / 8) {
       for (const geometry::Vec2& corner : geometry::footprint_polygon({at.x, at.y, yaw}, f.footprint())) {
         const geometry::Vec2 just_inside = at + 0.99 * (corner - at);  // corners may be the hull's own

@@ -97,29 +97,48 @@ TEST(SidingYield, TheRobotMadeWayForMovesWhenTheYieldingRobotWaitsForIt) {
 // Met so close that each one's safety check stops it for the other's body, neither can drive a
 // new route that starts towards the other. The one sent away in vain is not sent again and again
 // while the other stands: the other is sent off in its turn.
-TEST(SidingYield, WhenBothStopForTheOtherTheOneSentAwayInVainIsNotTheOnlyOneSent) {
+// An agent takes its new route a while after the manager sent it (`ack_lag` seconds: the message
+// crosses DDS, the agent plans and reports): a lag longer than the manager waits for a robot to
+// act on an instruction must not hand the same robot the next instruction every time.
+void expect_both_sent_in_turn(double ack_lag) {
   HeadOn h;
   ASSERT_NE(h.yielding, 0) << "nobody was sent to the siding";
   const int first = h.yielding;
   const int other = 3 - first;
   int first_sent = 0;
   bool other_sent = false;
-  for (int i = 0; i < 600 && !other_sent; ++i, h.t += 0.05) {
+  std::uint64_t offered[3] = {0, h.version[1], h.version[2]};
+  double offered_at[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 1200 && !other_sent; ++i, h.t += 0.05) {
+    for (int id : {first, other}) {
+      if (offered[id] != h.version[id] && h.t - offered_at[id] >= ack_lag) {
+        h.version[id] = offered[id];
+        h.driven[id] = 0.0;
+      }
+    }
     h.m->report_progress({first, h.version[first], h.driven[first], {other}}, h.t);
     h.m->report_progress({other, h.version[other], h.driven[other], {first}}, h.t);
     h.r = h.m->update(h.t);
     ASSERT_EQ(h.m->check_invariant(), "");
     for (int id : {first, other}) {
       const Grant* grant = grant_of(h.r, id);
-      if (grant->instruction == Instruction::kNone || grant->version == h.version[id]) continue;
-      h.version[id] = grant->version;
-      h.driven[id] = 0.0;
+      if (grant->instruction == Instruction::kNone || grant->version == offered[id]) continue;
+      offered[id] = grant->version;
+      offered_at[id] = h.t;
       if (id == first) ++first_sent;
       other_sent = other_sent || id == other;
     }
   }
   EXPECT_TRUE(other_sent) << "robot " << other << " was never sent off; robot " << first << " was sent " << first_sent
-                          << " more times";
+                          << " more times (ack lag " << ack_lag << " s)";
+}
+
+TEST(SidingYield, WhenBothStopForTheOtherTheOneSentAwayInVainIsNotTheOnlyOneSent) {
+  expect_both_sent_in_turn(0.0);
+}
+
+TEST(SidingYield, WhenBothStopForTheOtherTheyAreSentInTurnHoweverLateAgentsTakeTheirRoutes) {
+  for (double lag : {1.0, 2.5, 5.0}) expect_both_sent_in_turn(lag);
 }
 
 }  // namespace
