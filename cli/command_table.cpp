@@ -193,6 +193,15 @@ std::vector<CommandSpec> make_table() {
        "the stacker's docking runs and detection ranges on core/ alone, beside the thesis's (exit 1 below\n"
        "                       99 % docked)"},
       {Group::kOffline,
+       "pick-eval",
+       "",
+       "",
+       false,
+       {value("--seed", "S")},
+       "the picker on core/ alone beside the thesis's figures: aisle tests I-III,\n"
+       "marker error against distance, arm pick cycle, job cycle and items per hour\n"
+       "on maps/plant_pick_list.csv (exit 1 when a target is missed)"},
+      {Group::kOffline,
        "traffic-eval",
        "",
        "",

@@ -41,6 +41,7 @@ int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // ctrl-eval
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);        // fleets
 int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // dock-eval
+int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // pick-eval
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
 
 }  // namespace fleet::cli

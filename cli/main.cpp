@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
     if (name == "plan-eval") return plan_eval_command(command, out, err);
     if (name == "ctrl-eval") return ctrl_eval_command(command, out, err);
     if (name == "dock-eval") return dock_eval_command(command, out, err);
+    if (name == "pick-eval") return pick_eval_command(command, out, err);
     if (name == "fleets") return fleets_command(command, out, err);
     if (name == "traffic-eval") return traffic_eval_command(command, out, err);
     if (name == "config") {

@@ -111,8 +111,8 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
     const double t = i * kPeriod;
     const control::BodyTwist cmd = controller.update(localizer.ekf().pose());
     body.step({cmd.vx, cmd.vy, cmd.omega}, kPeriod);
-    localizer.step(t, kPeriod, body.wheel_speeds(), body.pose(), std::hypot(body.twist().vx, body.twist().vy),
-                   body.twist().omega);
+    localizer.step(t, kPeriod, {cmd.vx, cmd.vy, cmd.omega}, body.wheel_speeds(), body.pose(),
+                   std::hypot(body.twist().vx, body.twist().vy), body.twist().omega);
     ekf_errors.add(body.pose(), localizer.ekf().pose());
     odometry_errors.add(body.pose(), localizer.odometry());
     r.distance_m += geometry::distance(body.pose().position(), last_position);

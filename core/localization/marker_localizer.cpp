@@ -36,15 +36,23 @@ MarkerLocalizer::MarkerLocalizer(const MarkerLocalizerParams& params, const sim:
   ekf_.initialize_at(start, params_.ekf.init_position_std, params_.ekf.init_heading_std);
 }
 
-void MarkerLocalizer::step(double t, double dt, const sim::WheelSpeeds& wheels, const geometry::Pose2& truth,
-                           double speed, double yaw_rate) {
+void MarkerLocalizer::step(double t, double dt, const sim::BodyTwist& command, const sim::WheelSpeeds& wheels,
+                           const geometry::Pose2& truth, double speed, double yaw_rate) {
   const sim::BodyTwist measured = odometry_.update(encoders_.measure(wheels, dt), dt);
   ekf_.predict(gyro_ ? gyro_->measure(yaw_rate, dt) : measured.omega, dt);
-  ekf_.update_encoders({measured.vx, measured.vy, measured.omega});
+  const bool still = command.vx == 0.0 && command.vy == 0.0 && command.omega == 0.0;
+  still_for_ = still ? still_for_ + dt : 0.0;
+  if (still_for_ >= params_.ekf.standstill_delay) {
+    ekf_.update_standstill();
+  } else {
+    ekf_.update_encoders({measured.vx, measured.vy, measured.omega});
+  }
+  int aimed_at = -1;  // the first camera's marker: the second looks at another where it can
   for (std::size_t c = 0; c < cameras_.size(); ++c) {
     auto& camera = cameras_[c];
     if (!camera.frame_due(t)) continue;
-    perception::aim_at_nearest_marker(camera, ekf_.pose(), markers_);
+    const int other = perception::aim_at_nearest_marker(camera, ekf_.pose(), markers_, aimed_at);
+    aimed_at = other >= 0 ? other : perception::aim_at_nearest_marker(camera, ekf_.pose(), markers_);
     const perception::CameraMount mount = camera.mount();
     for (const auto& det : camera.capture(t, truth, markers_, speed)) {
       const auto marker =

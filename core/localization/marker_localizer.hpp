@@ -43,10 +43,12 @@ class MarkerLocalizer {
                   std::vector<perception::Marker> markers, std::vector<geometry::Polygon> occluders,
                   std::mt19937_64 rng);
 
-  /// One step of `dt` s ending at sim time `t`: the wheels turned at `wheels` (truth), the body stands at `truth`
-  /// moving at `speed` m/s over the floor and turning at `yaw_rate` rad/s.
-  void step(double t, double dt, const sim::WheelSpeeds& wheels, const geometry::Pose2& truth, double speed,
-            double yaw_rate);
+  /// One step of `dt` s ending at sim time `t`: the robot commanded `command`, the wheels turned at `wheels`
+  /// (truth), the body stands at `truth` moving at `speed` m/s over the floor and turning at `yaw_rate` rad/s.
+  /// After the ekf's standstill_delay of zero commands the wheels have stopped: a zero-velocity update, with
+  /// the gyro's reading at rest as a measurement of its bias, replaces the encoders' velocities.
+  void step(double t, double dt, const sim::BodyTwist& command, const sim::WheelSpeeds& wheels,
+            const geometry::Pose2& truth, double speed, double yaw_rate);
 
   const Ekf& ekf() const { return ekf_; }
   /// Wheel odometry alone, from the same start: what the robot would know without markers.
@@ -69,6 +71,7 @@ class MarkerLocalizer {
   std::optional<sim::Gyro> gyro_;
   std::vector<perception::MarkerCamera> cameras_;
   std::vector<double> next_fusion_;
+  double still_for_ = 0.0;  ///< s of zero commands
   Ekf ekf_;
   int sightings_ = 0;
   int fused_ = 0;

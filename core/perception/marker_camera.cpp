@@ -154,7 +154,8 @@ std::vector<MarkerDetection> MarkerCamera::capture(double t, const Pose2& robot_
   return detections;
 }
 
-int aim_at_nearest_marker(MarkerCamera& camera, const Pose2& estimate, std::span<const Marker> markers) {
+int aim_at_nearest_marker(MarkerCamera& camera, const Pose2& estimate, std::span<const Marker> markers,
+                          int other_than) {
   const MarkerCameraParams& p = camera.params();
   CameraMount at_rest;
   at_rest.x = p.camera_x;
@@ -165,6 +166,7 @@ int aim_at_nearest_marker(MarkerCamera& camera, const Pose2& estimate, std::span
   double best_d = p.range_max;
   double best_pan = camera.pan();
   for (const Marker& marker : markers) {
+    if (marker.id == other_than) continue;
     const Vec2 to = marker.pose.position() - rest.position();
     const double d = geometry::norm(to);
     if (d < p.range_min || d >= best_d) continue;

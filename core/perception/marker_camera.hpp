@@ -121,8 +121,10 @@ class MarkerCamera {
 /// Turns a pan-tilt camera at the nearest of `markers` it could decode from a robot at `estimate` (face towards
 /// the camera, within range and viewing angle once turned), as the picker's localization supervisor scans for
 /// rack markers [Picker thesis, section 5.3.3.1, Fig. 5.3]. Returns the marker's id, or -1 (pan unchanged) when none
-/// is.
-int aim_at_nearest_marker(MarkerCamera& camera, const geometry::Pose2& estimate, std::span<const Marker> markers);
+/// is. A marker `other_than` (another camera's) is passed over: two cameras on one marker give two of the three
+/// pose coordinates, and the pose drifts about that marker under its systematic error.
+int aim_at_nearest_marker(MarkerCamera& camera, const geometry::Pose2& estimate, std::span<const Marker> markers,
+                          int other_than = -1);
 
 /// The camera pose in the map frame for a robot at `robot`: same heading, `camera_x` ahead.
 geometry::Pose2 camera_pose(const geometry::Pose2& robot, double camera_x);

@@ -81,8 +81,8 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
                .stop_moved = config.stop_moved},
               config.sim.forklift.footprint) {
   if (config_.arm) {
-    arm_.emplace(arm::PickMotionPlanner(arm::Ur5{}, arm::VacuumGripper{}), config_.box_camera, config_.arm_layout,
-                 seed ^ (stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL);
+    arm_.emplace(make_picker_arm_work(config_.box_camera, config_.arm_layout,
+                                      seed ^ (stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL));
   }
   reset_obstacles();
   // At start, not at the first order: the planners' tables for the whole site are the bulk of

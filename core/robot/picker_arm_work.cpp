@@ -54,51 +54,68 @@ std::vector<Eigen::Vector2d> PickerArmWork::base_moves(double box_x) const {
   return moves;
 }
 
+std::string PickerArmWork::tray_refusal(int quantity, const std::vector<map::BoxStock>& tray) const {
+  if (tray.size() + static_cast<std::size_t>(quantity) <= layout_.tray.size()) return {};
+  return "the tray holds " + std::to_string(layout_.tray.size()) + " boxes, " + std::to_string(tray.size()) +
+         " on it, " + std::to_string(quantity) + " more asked for";
+}
+
+bool PickerArmWork::pick_box(const map::BoxStock& stock, const perception::BoxMarker& truth,
+                             std::vector<map::BoxStock>& tray, double& t, ArmWork& work) {
+  constexpr double kLocateLimit = 10.0;  // s: one scan and one extraction [section 5.3.3.1.3]
+  const std::string which = "box " + std::to_string(work.boxes + 1) + " of " + stock.item;
+  arm::MotionPlan picked;
+  picked.reason = "its marker was not read within " + std::to_string(static_cast<int>(kLocateLimit)) + " s";
+  Eigen::Vector2d at{0.0, 0.0};
+  for (const Eigen::Vector2d& move : base_moves(truth.top_centre.x())) {
+    // The base moves (the arm asks navigation to [Picker thesis, section 5.3.3.1.2]) and looks again.
+    work.duration += (move - at).norm() / layout_.slide_speed;
+    at = move;
+    perception::BoxMarker seen_from_here = truth;
+    seen_from_here.top_centre.x() -= move.x();
+    seen_from_here.top_centre.y() += move.y();
+    perception::BoxSighting seen;
+    const double before = t;
+    const bool found = locate(camera_, seen_from_here, t, kLocateLimit, seen);
+    work.duration += t - before;  // a marker not read costs the whole scan
+    if (!found) continue;
+    picked = planner_.plan_pick({box_of(stock), seen.top_centre, seen.yaw});
+    if (picked.ok) break;
+  }
+  if (!picked.ok) {
+    work.reason = which + ": " + picked.reason;
+    return false;
+  }
+  work.duration += at.norm() / layout_.slide_speed;  // back beside the pallet's middle
+  const arm::MotionPlan stowed =
+      planner_.plan_drop(box_of(stock), {tray_bottom(tray.size()), 0.0}, picked.plate_yaw_on_box);
+  if (!stowed.ok) {
+    work.reason = which + " onto the tray: " + stowed.reason;
+    return false;
+  }
+  work.duration += picked.duration() + stowed.duration();
+  t += picked.duration() + stowed.duration();
+  tray.push_back(stock);
+  ++work.boxes;
+  return true;
+}
+
 ArmWork PickerArmWork::pick(const map::BoxStock& stock, int quantity, std::vector<map::BoxStock>& tray) {
   ArmWork work;
-  if (tray.size() + static_cast<std::size_t>(quantity) > layout_.tray.size()) {
-    work.reason = "the tray holds " + std::to_string(layout_.tray.size()) + " boxes, " + std::to_string(tray.size()) +
-                  " on it, " + std::to_string(quantity) + " more asked for";
-    return work;
-  }
-  constexpr double kLocateLimit = 10.0;  // s: one scan and one extraction [section 5.3.3.1.3]
-  double t = 0.0;
+  work.reason = tray_refusal(quantity, tray);
+  if (!work.reason.empty()) return work;
   for (int k = 0; k < quantity; ++k) {
-    const std::string which = "box " + std::to_string(k + 1) + " of " + stock.item;
-    const perception::BoxMarker truth = marker_at(stock, k, 0);
-    arm::MotionPlan picked;
-    picked.reason = "its marker was not read within " + std::to_string(static_cast<int>(kLocateLimit)) + " s";
-    Eigen::Vector2d at{0.0, 0.0};
-    for (const Eigen::Vector2d& move : base_moves(truth.top_centre.x())) {
-      // The base moves (the arm asks navigation to [Picker thesis, section 5.3.3.1.2]) and looks again.
-      work.duration += (move - at).norm() / layout_.slide_speed;
-      at = move;
-      perception::BoxMarker seen_from_here = truth;
-      seen_from_here.top_centre.x() -= move.x();
-      seen_from_here.top_centre.y() += move.y();
-      perception::BoxSighting seen;
-      const double before = t;
-      if (!locate(camera_, seen_from_here, t, kLocateLimit, seen)) continue;
-      work.duration += t - before;
-      picked = planner_.plan_pick({box_of(stock), seen.top_centre, seen.yaw});
-      if (picked.ok) break;
-    }
-    if (!picked.ok) {
-      work.reason = which + ": " + picked.reason;
-      return work;
-    }
-    work.duration += at.norm() / layout_.slide_speed;  // back beside the pallet's middle
-    const arm::MotionPlan stowed =
-        planner_.plan_drop(box_of(stock), {tray_bottom(tray.size()), 0.0}, picked.plate_yaw_on_box);
-    if (!stowed.ok) {
-      work.reason = which + " onto the tray: " + stowed.reason;
-      return work;
-    }
-    work.duration += picked.duration() + stowed.duration();
-    tray.push_back(stock);
-    ++work.boxes;
+    if (!pick_box(stock, marker_at(stock, k, 0), tray, camera_time_, work)) return work;
   }
   work.ok = true;
+  return work;
+}
+
+ArmWork PickerArmWork::pick_at(const map::BoxStock& stock, int position, int layer, std::vector<map::BoxStock>& tray) {
+  ArmWork work;
+  work.reason = tray_refusal(1, tray);
+  if (!work.reason.empty()) return work;
+  work.ok = pick_box(stock, marker_at(stock, position, layer), tray, camera_time_, work);
   return work;
 }
 
@@ -134,6 +151,11 @@ ArmWork PickerArmWork::drop(const std::vector<map::BoxStock>& tray, int on_palle
   }
   work.ok = true;
   return work;
+}
+
+PickerArmWork make_picker_arm_work(const perception::DepthMarkerCameraParams& camera, const PickerArmLayout& layout,
+                                   std::uint64_t seed) {
+  return PickerArmWork(arm::PickMotionPlanner(arm::Ur5{}, arm::VacuumGripper{}), camera, layout, seed);
 }
 
 }  // namespace fleet::robot

@@ -52,6 +52,10 @@ class PickerArmWork {
   /// slots, after the boxes `tray` holds already; they are added to it. Refused when the tray
   /// has not that many free slots.
   ArmWork pick(const map::BoxStock& stock, int quantity, std::vector<map::BoxStock>& tray);
+  /// One box of `stock` picked as pick() picks each, from any place of the pallet: position
+  /// `position` along its near edge (slot position % slots, the order pick() and drop() fill them
+  /// in) and `layer` boxes up; set on the tray's next free slot and added to it.
+  ArmWork pick_at(const map::BoxStock& stock, int position, int layer, std::vector<map::BoxStock>& tray);
   /// Every box of `tray` taken off it, the last set first, and put down on the pallet on the left, which
   /// holds `on_pallet` boxes already (side by side along its near edge, then a layer up).
   ArmWork drop(const std::vector<map::BoxStock>& tray, int on_pallet);
@@ -65,12 +69,28 @@ class PickerArmWork {
   /// Where the base tries to stand for a box `box_x` along the pallet from the arm, in order:
   /// (along the pallet, away from it) from where it stopped, m.
   std::vector<Eigen::Vector2d> base_moves(double box_x) const;
+  /// Why the tray cannot take `quantity` boxes more; empty when it can.
+  std::string tray_refusal(int quantity, const std::vector<map::BoxStock>& tray) const;
+  /// The box whose marker is `truth` located (the base sliding along the pallet when the arm cannot reach it),
+  /// picked and stowed on the tray; its times added to `work` and the camera's clock `t`. False with
+  /// `work.reason` set when it could not be.
+  bool pick_box(const map::BoxStock& stock, const perception::BoxMarker& truth, std::vector<map::BoxStock>& tray,
+                double& t, ArmWork& work);
   /// Where the box `index` of the tray stands on it: its slot's bottom centre, base frame.
   Eigen::Vector3d tray_bottom(std::size_t index) const { return layout_.tray.at(index); }
 
   arm::PickMotionPlanner planner_;
   perception::DepthMarkerCamera camera_;
+  /// The boom camera's clock, s: it runs on from one stop to the next (the camera takes its
+  /// frames at its rate on one clock, whatever the stop).
+  double camera_time_ = 0.0;
   PickerArmLayout layout_;
 };
+
+/// The picker's arm work as the robot builds it (robot_type picker): the UR5 with its vacuum gripper
+/// [Picker thesis, sections 3.1-3.2], the boom camera and layout of its configuration
+/// (ForkliftConfig::box_camera, ForkliftConfig::arm_layout).
+PickerArmWork make_picker_arm_work(const perception::DepthMarkerCameraParams& camera, const PickerArmLayout& layout,
+                                   std::uint64_t seed);
 
 }  // namespace fleet::robot

@@ -52,10 +52,12 @@ robot::StackerConfig stacker_config(const config::FleetConfig& config, const con
   return c;
 }
 
+}  // namespace
+
 /// The picker's base [Picker thesis]: the forklift software without forks on the Summit-XLS, localised by the
 /// site's markers and wheel odometry.
-robot::ForkliftConfig picker_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
-                                    const map::SiteMap& site) {
+robot::ForkliftConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                          const map::SiteMap& site) {
   robot::ForkliftConfig c = forklift_config(config, fleet, site);
   c.type_name = "picker";
   c.forks = false;
@@ -69,8 +71,6 @@ robot::ForkliftConfig picker_config(const config::FleetConfig& config, const con
   return c;
 }
 
-}  // namespace
-
 std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
                                   std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
                                   std::uint64_t seed, std::uint64_t stream) {
@@ -79,7 +79,7 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
     return std::make_unique<Forklift>(forklift_config(config, fleet, *site), site, home, seed, stream);
   }
   if (fleet.robot_type == "picker") {
-    return std::make_unique<Forklift>(picker_config(config, fleet, *site), site, home, seed, stream);
+    return std::make_unique<Forklift>(picker_robot_config(config, fleet, *site), site, home, seed, stream);
   }
   if (fleet.robot_type == "stacker") {
     return std::make_unique<Stacker>(stacker_config(config, fleet, *site), site, home, seed, stream);

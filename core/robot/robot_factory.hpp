@@ -9,12 +9,20 @@
 
 namespace fleet::robot {
 
+struct ForkliftConfig;  // robot/forklift.hpp
+
 /// The robot of `fleet`'s robot type, at `home` on `site`, configured from the fleet's profile
 /// and `config`'s settings; `seed` and `stream` pick its noise. Throws std::invalid_argument
 /// naming the type and the known ones (vehicle::robot_types()) when the agent cannot build it.
 std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::FleetConfig& config,
                                   std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
                                   std::uint64_t seed, std::uint64_t stream);
+
+/// The picker's software as make_robot configures it for `fleet` (robot_type picker): the
+/// forklift software without forks on the Summit-XLS, with the UR5 arm and its boom camera
+/// [Picker thesis]. For whoever needs the picker's parts without the robot (pick-eval).
+ForkliftConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                   const map::SiteMap& site);
 
 /// The graph a robot of `fleet` plans on: under traffic, the traffic manager's graph for its
 /// fleet's vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).

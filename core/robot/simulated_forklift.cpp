@@ -49,8 +49,8 @@ void SimulatedForklift::step(const control::BodyTwist& cmd, double dt, std::span
   body_.step(sim::BodyTwist{cmd.vx, cmd.vy, cmd.omega}, dt);
   t_ += dt;
   if (markers_) {
-    markers_->step(t_, dt, body_.wheel_speeds(), body_.pose(), std::hypot(body_.twist().vx, body_.twist().vy),
-                   body_.twist().omega);
+    markers_->step(t_, dt, sim::BodyTwist{cmd.vx, cmd.vy, cmd.omega}, body_.wheel_speeds(), body_.pose(),
+                   std::hypot(body_.twist().vx, body_.twist().vy), body_.twist().omega);
     return;
   }
   // Gyro at the control rate: predict, then the commanded velocity (what the robot knows).

@@ -4,22 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <limits>
 #include <numbers>
-#include <random>
-#include <span>
 #include <string>
 #include <vector>
 
 #include "aisle/hough_lines.hpp"
-#include "aisle/rack_aisle_sim.hpp"
-#include "geometry/polygon.hpp"
+#include "eval/aisle_eval.hpp"
 #include "sim/forklift_body.hpp"
 
 using namespace fleet::aisle;
-using fleet::geometry::Polygon;
 using fleet::geometry::Pose2;
 using fleet::sim::BodyTwist;
 
@@ -40,159 +34,24 @@ RackLinePair pair_at(double left_distance, double right_distance, double heading
   return pair;
 }
 
-// ---- closed loop: the simulated mecanum body, the two simulated lidars, the detector and the follower ------------
+// ---- closed loop (eval::run_aisle): the simulated mecanum body and lidars, the detector and the follower ---------
 
-struct PickerSetup {
-  std::string name;
-  Pose2 start;
-  AisleFollowerParams follower;
-  double distance = 0.0;  ///< X_f − X_i along the picker's own direction of travel
-};
+using fleet::eval::aisle_figures;
+using fleet::eval::AisleFigures;
+using fleet::eval::AisleRun;
+using fleet::eval::PickerSetup;
+using fleet::eval::PickerTrace;
+using fleet::eval::run_aisle;
+using fleet::eval::seed_aisle_case;
+using fleet::eval::seed_aisle_setup;
+using fleet::eval::SeedAisleCase;
 
-struct PickerTrace {
-  PickerSetup setup;
-  double travel_yaw = 0.0;   ///< the aisle direction the picker travels along (0 or pi)
-  double lateral_ref = 0.0;  ///< aisle-frame y of d_ref from the chosen face
-  std::vector<double> time;
-  std::vector<Pose2> pose;
-  std::vector<BodyTwist> twist;  ///< the true body twist
-  std::vector<bool> lines_found;
-};
-
-struct RunResult {
-  std::vector<PickerTrace> traces;
-  double min_gap = std::numeric_limits<double>::infinity();  ///< closest approach of two pickers' bodies
-};
-
-RunResult run_aisle(const std::vector<PickerSetup>& setups, double duration, std::uint64_t seed) {
-  const RackAisle aisle;
-  std::vector<fleet::sim::ForkliftBody> bodies;
-  // The plant the thesis designed and ran the aisle laws on: first order, τ = 0.02 s [Picker thesis, eq. 4.29]. The
-  // Summit-XLS default follows the measured step of Fig. 4.27 (τ = 0.075 s), on which Test III settles in ~12 s.
-  fleet::sim::ForkliftParams body_params = fleet::sim::summit_xls_body_params();
-  body_params.wheel_time_constant = 0.02;
-  std::vector<PickerLidars> lidars;
-  std::vector<RackLineDetector> detectors;
-  std::vector<AisleFollower> followers;
-  RunResult result;
-  for (std::size_t i = 0; i < setups.size(); ++i) {
-    const PickerSetup& s = setups[i];
-    bodies.emplace_back(body_params, s.start, std::mt19937_64(seed + 17 * i));
-    lidars.emplace_back(picker_lidar_mounts(), 0.02, std::mt19937_64(seed + 17 * i + 1));
-    detectors.emplace_back();
-    followers.emplace_back(s.follower);
-    followers.back().start(s.distance);
-    PickerTrace trace;
-    trace.setup = s;
-    trace.travel_yaw = std::abs(s.start.yaw) < kPi / 2.0 ? 0.0 : kPi;
-    const bool right_face_low = (trace.travel_yaw == 0.0) == (s.follower.side == RackSide::kRight);
-    trace.lateral_ref =
-        right_face_low ? s.follower.reference_distance : aisle.params().width - s.follower.reference_distance;
-    result.traces.push_back(trace);
-  }
-  const int steps = static_cast<int>(std::lround(duration / kPeriod));
-  for (int k = 0; k < steps; ++k) {
-    std::vector<BodyTwist> commands(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      std::vector<Polygon> others;  // the other pickers are obstacles to this one's lidars
-      for (std::size_t j = 0; j < bodies.size(); ++j) {
-        if (j != i) others.push_back(bodies[j].footprint_polygon());
-      }
-      const auto scans = lidars[i].scan(bodies[i].pose(), aisle, others);
-      const RackLinePair pair = detectors[i].detect(scans, lidars[i].mounts());
-      // The encoders: what the wheels turn at, through the forward kinematics (slip makes it differ from the truth).
-      const BodyTwist odometry = bodies[i].kinematics().forward(bodies[i].wheel_speeds());
-      commands[i] = followers[i].update(pair, odometry, kPeriod);
-      result.traces[i].lines_found.push_back(pair.found());
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      bodies[i].step(commands[i], kPeriod);
-      PickerTrace& t = result.traces[i];
-      t.time.push_back((k + 1) * kPeriod);
-      t.pose.push_back(bodies[i].pose());
-      t.twist.push_back(bodies[i].twist());
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      for (std::size_t j = i + 1; j < bodies.size(); ++j) {
-        result.min_gap = std::min(result.min_gap, fleet::geometry::convex_polygons_distance(
-                                                      bodies[i].footprint_polygon(), bodies[j].footprint_polygon()));
-      }
-    }
-  }
-  return result;
-}
-
-double lateral_error(const PickerTrace& t, std::size_t k) {
-  return t.pose[k].y - t.lateral_ref;
-}
-double heading_error(const PickerTrace& t, std::size_t k) {
-  return fleet::geometry::angle_diff(t.pose[k].yaw, t.travel_yaw);
-}
-double along(const PickerTrace& t, std::size_t k) {
-  const double dx = t.pose[k].x - t.setup.start.x;
-  return t.travel_yaw == 0.0 ? dx : -dx;
-}
-
-/// From when on the picker stays within `lateral_tol` of d_ref and `heading_tol` of the aisle, seconds from the
-/// start; infinity when it is still outside at the end.
-double settle_time(const PickerTrace& t, double lateral_tol, double heading_tol) {
-  for (std::size_t k = t.time.size(); k-- > 0;) {
-    if (std::abs(lateral_error(t, k)) > lateral_tol || std::abs(heading_error(t, k)) > heading_tol) {
-      return k + 1 == t.time.size() ? std::numeric_limits<double>::infinity() : t.time[k];
-    }
-  }
-  return 0.0;
-}
-
-struct Figures {
-  double settle = 0.0;         ///< within 3 cm of d_ref and 1 deg of the aisle, for good
-  double lateral_5cm = 0.0;    ///< first time within 5 cm of d_ref
-  double heading_1deg = 0.0;   ///< first time within 1 deg of the aisle
-  double peak_lateral = 0.0;   ///< m/s
-  double peak_forward = 0.0;   ///< m/s
-  double peak_yaw_rate = 0.0;  ///< rad/s
-  double final_lateral = 0.0;  ///< m
-  double final_heading = 0.0;  ///< rad
-  double final_along = 0.0;    ///< travelled minus requested, m
-  double lost_fraction = 0.0;  ///< frames without a line pair
-};
-
-Figures figures(const PickerTrace& t) {
-  Figures f;
-  f.settle = settle_time(t, 0.03, 1.0 * kDeg);
-  f.lateral_5cm = f.heading_1deg = std::numeric_limits<double>::infinity();
-  int lost = 0;
-  for (std::size_t k = 0; k < t.time.size(); ++k) {
-    if (std::abs(lateral_error(t, k)) <= 0.05) f.lateral_5cm = std::min(f.lateral_5cm, t.time[k]);
-    if (std::abs(heading_error(t, k)) <= 1.0 * kDeg) f.heading_1deg = std::min(f.heading_1deg, t.time[k]);
-    f.peak_lateral = std::max(f.peak_lateral, std::abs(t.twist[k].vy));
-    f.peak_forward = std::max(f.peak_forward, std::abs(t.twist[k].vx));
-    f.peak_yaw_rate = std::max(f.peak_yaw_rate, std::abs(t.twist[k].omega));
-    if (!t.lines_found[k]) ++lost;
-  }
-  const std::size_t last = t.time.size() - 1;
-  f.final_lateral = lateral_error(t, last);
-  f.final_heading = heading_error(t, last);
-  f.final_along = along(t, last) - t.setup.distance;
-  f.lost_fraction = static_cast<double>(lost) / static_cast<double>(t.time.size());
-  return f;
-}
-
-void print_figures(const PickerTrace& t, const Figures& f) {
+void print_figures(const PickerTrace& t, const AisleFigures& f) {
   std::printf(
       "[aisle follow] %-28s settled (3 cm, 1 deg) %.2f s | lateral <5 cm %.2f s | heading <1 deg %.2f s | peak v %.3f "
       "u %.3f m/s r %.3f rad/s | final lateral %+.3f m heading %+.2f deg along %+.3f m | frames without pair %.1f %%\n",
       t.setup.name.c_str(), f.settle, f.lateral_5cm, f.heading_1deg, f.peak_lateral, f.peak_forward, f.peak_yaw_rate,
       f.final_lateral, f.final_heading / kDeg, f.final_along, 100.0 * f.lost_fraction);
-}
-
-/// The seed's tests I-III [Picker thesis, Tables 7-9]: rack 3 m, d_ref = 1 m from the right-hand face (y = 0).
-PickerSetup seed_test(const std::string& name, Pose2 start, double distance) {
-  PickerSetup s;
-  s.name = name;
-  s.start = start;
-  s.distance = distance;
-  return s;
 }
 
 }  // namespace
@@ -276,8 +135,9 @@ TEST(AisleFollower, CountsTheDistanceAlongTheAisleFromOdometry) {
 
 TEST(AisleFollowing, TestI_LateralShiftOfOneMetre) {
   // [Table 7]: parallel to the racks, 1 m off d_ref, no travel along the aisle.
-  const RunResult r = run_aisle({seed_test("I (1 m lateral shift)", {0.0, 2.0, 0.0}, 0.0)}, 8.0, 101);
-  const Figures f = figures(r.traces[0]);
+  const SeedAisleCase c = seed_aisle_case("I");
+  const AisleRun r = run_aisle({c.setup}, c.duration, c.seed);
+  const AisleFigures f = aisle_figures(r.traces[0]);
   print_figures(r.traces[0], f);
   EXPECT_LT(f.settle, 6.5);
   EXPECT_LT(std::abs(f.final_lateral), 0.02);
@@ -289,8 +149,9 @@ TEST(AisleFollowing, TestI_LateralShiftOfOneMetre) {
 
 TEST(AisleFollowing, TestII_ToTheReferenceWhileDrivingFiveMetres) {
   // [Table 8]: (-2.5, 1.5) -> (2.5, 1.0), parallel. The seed: lateral ~0.2 m/s for ~4 s, forward up to 0.3 m/s.
-  const RunResult r = run_aisle({seed_test("II (-2.5,1.5)->(2.5,1.0)", {-2.5, 1.5, 0.0}, 5.0)}, 22.0, 202);
-  const Figures f = figures(r.traces[0]);
+  const SeedAisleCase c = seed_aisle_case("II");
+  const AisleRun r = run_aisle({c.setup}, c.duration, c.seed);
+  const AisleFigures f = aisle_figures(r.traces[0]);
   print_figures(r.traces[0], f);
   EXPECT_LT(f.settle, 4.5);
   EXPECT_LT(f.peak_forward, 0.32);  // u0 = 0.3 m/s, plus the wheel slip
@@ -303,10 +164,11 @@ TEST(AisleFollowing, TestII_ToTheReferenceWhileDrivingFiveMetres) {
 
 TEST(AisleFollowing, TestIII_TurnedTwentyFiveDegreesAtTheStart) {
   // [Table 9]: as II with 25 deg initial yaw; the seed: orientation and lateral converged in under 5 s. Both senses.
-  for (double yaw : {25.0, -25.0}) {
-    const std::string name = yaw > 0 ? "III (+25 deg)" : "III (-25 deg)";
-    const RunResult r = run_aisle({seed_test(name, {-2.5, 1.5, yaw * kDeg}, 5.0)}, 22.0, 303);
-    const Figures f = figures(r.traces[0]);
+  for (const char* which : {"III +25", "III -25"}) {
+    const SeedAisleCase c = seed_aisle_case(which);
+    const std::string& name = c.setup.name;
+    const AisleRun r = run_aisle({c.setup}, c.duration, c.seed);
+    const AisleFigures f = aisle_figures(r.traces[0]);
     print_figures(r.traces[0], f);
     EXPECT_LT(f.settle, 5.0) << name;
     EXPECT_LT(f.heading_1deg, 3.0) << name;
@@ -320,12 +182,12 @@ TEST(AisleFollowing, TestIII_TurnedTwentyFiveDegreesAtTheStart) {
 TEST(AisleFollowing, TwoPickersShareTheAisleOnePerSide) {
   // [section 4.3.3.1]: one picker 1 m off the right-hand face driving +x, one 1 m off the left-hand face driving -x;
   // they pass each other mid-aisle, each seeing the other in its scans.
-  PickerSetup a = seed_test("pair A (y=0 face, +x)", {-3.0, 1.3, 8.0 * kDeg}, 6.0);
-  PickerSetup b = seed_test("pair B (y=3 face, -x)", {3.0, 1.7, kPi - 8.0 * kDeg}, 6.0);
+  PickerSetup a = seed_aisle_setup("pair A (y=0 face, +x)", {-3.0, 1.3, 8.0 * kDeg}, 6.0);
+  PickerSetup b = seed_aisle_setup("pair B (y=3 face, -x)", {3.0, 1.7, kPi - 8.0 * kDeg}, 6.0);
   b.follower.side = RackSide::kRight;  // travelling -x, the face y = 3 is on its right
-  const RunResult r = run_aisle({a, b}, 14.0, 404);
+  const AisleRun r = run_aisle({a, b}, 14.0, 404);
   for (const PickerTrace& t : r.traces) {
-    const Figures f = figures(t);
+    const AisleFigures f = aisle_figures(t);
     print_figures(t, f);
     EXPECT_LT(f.settle, 5.0) << t.setup.name;
     EXPECT_EQ(f.lost_fraction, 0.0) << t.setup.name;
@@ -348,10 +210,10 @@ TEST(AisleFollowing, TwoPickersShareTheAisleOnePerSide) {
 }
 
 TEST(AisleFollowing, TheLeftFaceOptionMirrorsTestII) {
-  PickerSetup s = seed_test("II mirrored (left face)", {-2.5, 1.5, 0.0}, 5.0);
+  PickerSetup s = seed_aisle_setup("II mirrored (left face)", {-2.5, 1.5, 0.0}, 5.0);
   s.follower.side = RackSide::kLeft;
-  const RunResult r = run_aisle({s}, 8.0, 505);
-  const Figures f = figures(r.traces[0]);
+  const AisleRun r = run_aisle({s}, 8.0, 505);
+  const AisleFigures f = aisle_figures(r.traces[0]);
   print_figures(r.traces[0], f);
   EXPECT_NEAR(r.traces[0].lateral_ref, 2.0, 1e-12);
   EXPECT_LT(f.settle, 4.5);
