@@ -65,8 +65,23 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
       }
     }
   }
+  watch_pickers_in_aisles();
   run_dir_ = state_dir() + "/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir_);
+}
+
+void FleetRun::watch_pickers_in_aisles() {
+  std::vector<std::string> pickers;
+  for (const auto& id : robot_ids_) {
+    const auto robot = config_.find_robot(id);
+    if (robot && robot->first->robot_type == "picker") pickers.push_back(id);
+  }
+  if (pickers.size() < 2) return;
+  const map::Site site = map::load_site(map::site_path(maps_dir(), options_.site));
+  std::vector<std::pair<std::string, geometry::Polygon>> racks;
+  for (const auto& rack : site.racks) racks.emplace_back(rack.id, rack.polygon);
+  auto aisles = monitor::rack_aisles(racks);
+  if (!aisles.empty()) aisle_share_.emplace(std::move(aisles), std::move(pickers));
 }
 
 FleetRun::~FleetRun() {
@@ -155,6 +170,7 @@ bool FleetRun::poll() {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);
     report_far_off_estimates();
+    if (aisle_share_) aisle_share_->note(truth.robot_id, truth.pose.position(), truth.sim_time);
     if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
       std::string waits;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
+#include "monitor/aisle_share.hpp"
 #include "monitor/collision_monitor.hpp"
 #include "monitor/localization_watch.hpp"
 #include "monitor/order_accounting.hpp"
@@ -63,6 +65,8 @@ class FleetRun {
   /// Each fleet's localization error: estimates (RobotState) against the simulation's truth.
   std::map<std::string, monitor::ErrorFigures> localization_by_fleet() const;
   const monitor::LocalizationWatch& localization() const { return localization_; }
+  /// Two or more pickers in one rack aisle; none without two pickers or racks.
+  const monitor::AisleShareWatch* aisle_share() const { return aisle_share_ ? &*aisle_share_ : nullptr; }
   /// Orders done in the run per fleet of the robot that did them, every fleet of the
   /// configuration listed (0 when none).
   std::map<std::string, long> done_by_fleet() const;
@@ -83,6 +87,8 @@ class FleetRun {
 
  private:
   std::string binary(const std::string& name) const;
+  /// With two pickers or more and racks on the site: the aisles between the racks to watch.
+  void watch_pickers_in_aisles();
   /// Logs each robot whose estimate went far from the truth, with the tracks of both.
   void report_far_off_estimates();
   /// Writes every robot's track of the last `seconds` sim into the run folder as `name`.csv.
@@ -109,6 +115,7 @@ class FleetRun {
   monitor::CollisionMonitor collisions_;
   monitor::LocalizationWatch localization_;
   int estimates_far_off_ = 0;
+  std::optional<monitor::AisleShareWatch> aisle_share_;
   monitor::TrackRecorder tracks_;
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;

@@ -475,6 +475,15 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                           {"truth", {round_to(e.truth.x, 0.001), round_to(e.truth.y, 0.001)}},
                           {"estimate", {round_to(e.estimate.x, 0.001), round_to(e.estimate.y, 0.001)}}};
   }
+  // Two pickers working one aisle, one along each face [Picker thesis, section 4.3.3.1].
+  nlohmann::json aisle_share = nlohmann::json::object();
+  if (const auto* share = run.aisle_share()) {
+    aisle_share = {{"seconds", round_to(share->shared_seconds(), 0.1)},
+                   {"times", share->times()},
+                   {"longest_s", round_to(share->longest_seconds(), 0.1)},
+                   {"longest_aisle", share->longest_aisle()},
+                   {"longest_robots", share->longest_robots()}};
+  }
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},
                          {"orders_failed", tally.failed},
@@ -484,6 +493,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"orders_done_by_kind", done_by_kind},
                          {"localization_error", localization},
                          {"localization_worst", worst_localization},
+                         {"pickers_sharing_an_aisle", aisle_share},
                          {"orders_duplicated", duplicated},
                          {"collisions", run.collisions().size()},
                          {"deadlocks", run.progress().deadlocks().size()},
@@ -534,6 +544,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "  order time: mean " << summary["order_time_mean_s"] << " s, p95 " << summary["order_time_p95_s"]
         << " s sim; longest wait " << summary["max_wait_s"] << " s\n"
         << "  localization error (estimate against truth): " << localization.dump() << "\n"
+        << "  pickers sharing an aisle: " << aisle_share.dump() << "\n"
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"
         << "  faults: " << faults.size() << " injected, detection p95 " << summary["detect_latency_p95_s"]
         << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"

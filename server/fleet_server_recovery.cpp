@@ -69,10 +69,13 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
-    if (orders::when_robot_lost({order->phase, robot.last.carrying_pallet}) == Recovery::kWait) {
+    const bool boxes = orders::boxes_aboard(*order);
+    if (orders::when_robot_lost({order->phase, robot.last.carrying_pallet, boxes}) == Recovery::kWait) {
       awaiting_lost_robot_.emplace(id, SimClock::wall_now());
       log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
-                 robot.last.carrying_pallet ? "with the pallet on its forks" : "at the pick area",
+                 robot.last.carrying_pallet ? "with the pallet on its forks"
+                 : boxes                    ? "with the tour's boxes on its tray"
+                                            : "at the pick area",
                  options_.config.settings.get_double("server.lost_with_pallet_wait_s"));
       return;
     }

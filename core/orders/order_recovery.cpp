@@ -54,8 +54,17 @@ Recovery when_robot_lost(const LostRobotFacts& facts) {
   // load on its forks, only this robot can finish the order, and a stalled robot carries on when
   // it answers again. (Re-queued instead, the order was withdrawn from it as it came back with
   // the load, and it stood in the lane with it for good.)
-  if (facts.reports_carrying || at_pick_place(facts.phase)) return Recovery::kWait;
+  if (facts.reports_carrying || facts.carries_boxes || at_pick_place(facts.phase)) return Recovery::kWait;
   return Recovery::kRequeue;
+}
+
+bool boxes_aboard(const Order& order) {
+  if (order.kind != OrderKind::kPick) return false;
+  for (auto e = order.history.rbegin(); e != order.history.rend(); ++e) {
+    if (e->status == OrderStatus::kAssigned || e->status == OrderStatus::kQueued) return false;
+    if (e->phase == OrderPhase::kPicking) return true;
+  }
+  return false;
 }
 
 Recovery when_giving_up(bool robot_carries_load) {

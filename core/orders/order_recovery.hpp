@@ -33,11 +33,16 @@ bool past_the_lift(OrderPhase phase);
 struct LostRobotFacts {
   OrderPhase phase = OrderPhase::kNone;  ///< the order's phase as last reported
   bool reports_carrying = false;         ///< the robot's last state had a load on its forks
+  bool carries_boxes = false;            ///< a pick tour it has picked boxes for (boxes_aboard)
 };
 
-/// kWait when only the lost robot can finish the order (the load is on it, or it may be lifting
-/// it as it froze at the pick place); kRequeue otherwise.
+/// kWait when only the lost robot can finish the order (the load or the tour's boxes are on it,
+/// or it may be lifting the load as it froze at the pick place); kRequeue otherwise.
 Recovery when_robot_lost(const LostRobotFacts& facts);
+
+/// A pick tour whose robot has picked since it was last assigned the tour: boxes of it ride on
+/// that robot's tray, and another picker sent for them would pick them a second time.
+bool boxes_aboard(const Order& order);
 
 /// The server gives up on a lost robot's order (it came back restarted, or not at all in time).
 /// kRequeue when the load truth does not have the load on the robot (it still stands at the pick

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "monitor/aisle_share.hpp"
 #include "monitor/collision_monitor.hpp"
 #include "monitor/localization_watch.hpp"
 #include "monitor/order_accounting.hpp"
@@ -133,6 +134,40 @@ TEST(LocalizationWatch, ReportsAnEstimateFarOffOnceUntilItComesBack) {
   reported = watch.take_far_off();
   ASSERT_EQ(reported.size(), 1u);
   EXPECT_NEAR(reported[0].at.error, 1.1, 1e-12);
+}
+
+TEST(AisleShare, FindsTheAislesBetweenFacingRacksAndNotAcrossOthers) {
+  const auto rect = [](double x0, double y0, double x1, double y1) {
+    return geometry::Polygon{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  };
+  const std::vector<std::pair<std::string, geometry::Polygon>> racks{
+      {"R1", rect(33.5, 9.0, 54.5, 10.2)},     {"R2", rect(33.5, 13.2, 54.5, 15.6)},
+      {"R3", rect(33.5, 18.6, 54.5, 19.8)},    {"FAR", rect(33.5, 30.0, 54.5, 31.0)},
+      {"N1", rect(33.44, 10.08, 33.56, 10.2)},  // an upright
+  };
+  const auto aisles = rack_aisles(racks);
+  ASSERT_EQ(aisles.size(), 2u);
+  EXPECT_EQ(aisles[0].name, "R1|R2");
+  EXPECT_DOUBLE_EQ(aisles[0].box.min_y, 10.2);
+  EXPECT_DOUBLE_EQ(aisles[0].box.max_y, 13.2);
+  EXPECT_EQ(aisles[1].name, "R2|R3");  // R1|R3 has R2 between them, R3|FAR is too wide
+}
+
+TEST(AisleShare, CountsTheTimeTwoPickersWorkOneAisle) {
+  AisleShareWatch watch({{"R1|R2", {33.5, 10.2, 54.5, 13.2}}, {"R2|R3", {33.5, 15.6, 54.5, 18.6}}},
+                        {"pk1", "pk2", "pk3"});
+  for (int k = 0; k <= 300; ++k) {
+    const double t = 0.1 * k;
+    watch.note("pk1", {40.0, 11.0}, t);  // in the aisle all along
+    watch.note("pk2", k >= 50 && k < 150 ? geometry::Vec2{45.0, 12.4} : geometry::Vec2{20.0, 8.0}, t);
+    watch.note("pk3", k >= 200 && k < 230 ? geometry::Vec2{50.0, 11.0} : geometry::Vec2{40.0, 17.0}, t);
+    watch.note("fk1", {41.0, 11.0}, t);  // not a picker
+  }
+  EXPECT_NEAR(watch.shared_seconds(), 13.0, 0.11);  // pk2 from 5 s to 15 s, pk3 from 20 s to 23 s
+  EXPECT_EQ(watch.times(), 2);
+  EXPECT_NEAR(watch.longest_seconds(), 10.0, 0.11);
+  EXPECT_EQ(watch.longest_aisle(), "R1|R2");
+  EXPECT_EQ(watch.longest_robots(), (std::vector<std::string>{"pk1", "pk2"}));
 }
 
 TEST(OrderStats, CountsRatesTimesAndUtilisation) {

@@ -23,6 +23,34 @@ TEST(OrderRecovery, LostAtThePickPlaceWaitsForTheRobot) {
   EXPECT_EQ(when_robot_lost({OrderPhase::kPicking, false}), Recovery::kWait);
 }
 
+TEST(OrderRecovery, APickerLostWithTheTourBoxesOnItsTrayWaitsForIt) {
+  for (OrderPhase phase : {OrderPhase::kToPick, OrderPhase::kToDrop, OrderPhase::kDropping}) {
+    EXPECT_EQ(when_robot_lost({phase, false, true}), Recovery::kWait) << to_string(phase);
+  }
+  Order tour;
+  tour.kind = OrderKind::kPick;
+  const auto event = [&](OrderStatus status, OrderPhase phase) {
+    tour.history.push_back({0.0, status, phase, "pk3", "", 0.0, 0.0});
+  };
+  event(OrderStatus::kQueued, OrderPhase::kNone);
+  event(OrderStatus::kAssigned, OrderPhase::kNone);
+  event(OrderStatus::kActive, OrderPhase::kToPick);
+  EXPECT_FALSE(boxes_aboard(tour)) << "nothing picked yet";
+  event(OrderStatus::kActive, OrderPhase::kPicking);
+  event(OrderStatus::kActive, OrderPhase::kToPick);  // to the tour's second place
+  EXPECT_TRUE(boxes_aboard(tour));
+  event(OrderStatus::kActive, OrderPhase::kToDrop);
+  EXPECT_TRUE(boxes_aboard(tour));
+  event(OrderStatus::kQueued, OrderPhase::kNone);  // given up on: another picker starts afresh
+  event(OrderStatus::kAssigned, OrderPhase::kNone);
+  event(OrderStatus::kActive, OrderPhase::kToPick);
+  EXPECT_FALSE(boxes_aboard(tour));
+  Order transport = tour;
+  transport.kind = OrderKind::kTransport;
+  transport.history.push_back({0.0, OrderStatus::kActive, OrderPhase::kPicking, "fk1", "", 0.0, 0.0});
+  EXPECT_FALSE(boxes_aboard(transport)) << "a transport's load is on the forks, reported as such";
+}
+
 TEST(OrderRecovery, GivingUpBeforeTheLiftRequeues) {
   EXPECT_EQ(when_giving_up(false), Recovery::kRequeue);
 }
