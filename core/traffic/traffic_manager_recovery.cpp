@@ -28,6 +28,14 @@ std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int
     if (it == robots_.end()) continue;
     const Robot& o = it->second;
     holder_type = o.type;
+    // A body it stands with (beside the roads, or not yet off the place it backed out of) and the
+    // area of its turn into a place close the places they touch, as place_free_for counts them.
+    const auto close_reach = [&](const std::vector<std::vector<int>>& reach) {
+      if (reach.empty()) return;
+      for (int q : reach[static_cast<std::size_t>(type)]) mask[static_cast<std::size_t>(q)] = 1;
+    };
+    close_reach(o.body_reach);
+    if (o.arrival_held) close_reach(o.arrival_reach);
     for (int p : o.trail) add(p);
     int end = o.grant_end;
     if (with_next_stretch) end = std::max(end, next_stretch_end(o));
