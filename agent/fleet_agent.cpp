@@ -392,7 +392,7 @@ void FleetAgent::publish_traffic(double now_sim) {
     return;
   }
   traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
-                         route.work_area, route.arrival_area});
+                         route.work_area, route.arrival_area, map_id_});
   last_traffic_ = std::move(route);
   last_traffic_sim_ = now_sim;
 }

@@ -340,11 +340,13 @@ model::SimTruth from_wire(const fleet_msg_SimTruth& w) {
 
 fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
   return {borrow(v.robot_id),          v.version,  int_seq(s, v.points),     v.progress,
-          s.string_seq(v.stopped_for), v.sim_time, s.point_seq(v.work_area), s.point_seq(v.arrival_area)};
+          s.string_seq(v.stopped_for), v.sim_time, s.point_seq(v.work_area), s.point_seq(v.arrival_area),
+          borrow(v.map_id)};
 }
 model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
   return {text(w.robot_id),          w.version,  ints_of(w.points),      w.progress,
-          strings_of(w.stopped_for), w.sim_time, points_of(w.work_area), points_of(w.arrival_area)};
+          strings_of(w.stopped_for), w.sim_time, points_of(w.work_area), points_of(w.arrival_area),
+          text(w.map_id)};
 }
 
 fleet_msg_TrafficGrant to_wire(const model::TrafficGrant& v, Scratch& s) {

@@ -87,7 +87,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
     waitset_.attach(reader);
   }
   if (options_.config.settings.get_bool("traffic.enabled")) {
-    traffic_ = std::make_unique<TrafficControl>(options_.site_map->graph.graph,
+    traffic_ = std::make_unique<TrafficControl>(options_.site_map->graph.graph, options_.site.name,
                                                 traffic::configuration_from(options_.config), participant_, log_);
   } else {
     log_->info("traffic control off: robots avoid each other only locally (the Forklift thesis's behaviour)");
@@ -209,8 +209,8 @@ std::string FleetServer::switch_map(const std::string& map_id) {
   if (traffic_) {
     // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
     traffic_.reset();
-    traffic_ = std::make_unique<TrafficControl>(next->graph.graph, traffic::configuration_from(options_.config),
-                                                participant_, log_);
+    traffic_ = std::make_unique<TrafficControl>(next->graph.graph, next->site.name,
+                                                traffic::configuration_from(options_.config), participant_, log_);
     // Where every robot stands, before any of them enters the new graph.
     for (const auto& [id, robot] : robots_) {
       if (robot.registered) traffic_->set_body(id, body_of(robot));  // lost ones too: still there

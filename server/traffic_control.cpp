@@ -40,9 +40,11 @@ bool same_grant(const model::TrafficGrant& a, const model::TrafficGrant& b) {
 }
 }  // namespace
 
-TrafficControl::TrafficControl(const map::RoadGraph& graph, const traffic::TrafficConfiguration& configuration,
-                               dds::Participant& participant, Logger log)
+TrafficControl::TrafficControl(const map::RoadGraph& graph, std::string map_id,
+                               const traffic::TrafficConfiguration& configuration, dds::Participant& participant,
+                               Logger log)
     : manager_(graph, configuration),
+      map_id_(std::move(map_id)),
       log_(std::move(log)),
       grant_writer_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
@@ -73,6 +75,17 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
       return;
     }
+    if (request.map_id != map_id_) {
+      // Sent before the robot heard of a map switch: its points number another graph, whose
+      // places would be held and granted for a way it does not drive. Until it replans on this
+      // map it stands for the places its body touches, as one not heard from.
+      if (other_map_.insert(request.robot_id).second) {
+        log_->info("traffic: {} still drives on map '{}'; its requests wait until it replans on '{}'", request.robot_id,
+                   request.map_id, map_id_);
+      }
+      return;
+    }
+    other_map_.erase(request.robot_id);
     heard_.insert(request.robot_id);
     const auto bad_point = std::find_if(request.points.begin(), request.points.end(), [&](int point) {
       return point < 0 || static_cast<std::size_t>(point) >= manager_.zones().point_count();

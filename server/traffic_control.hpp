@@ -25,7 +25,8 @@ struct TrafficStatus {
 /// traffic::TrafficManager, its grants out as TrafficGrant, one update per cycle.
 class TrafficControl {
  public:
-  TrafficControl(const map::RoadGraph& graph, const traffic::TrafficConfiguration& configuration,
+  /// `map_id` names the map whose road graph `graph` is: requests for another map are ignored.
+  TrafficControl(const map::RoadGraph& graph, std::string map_id, const traffic::TrafficConfiguration& configuration,
                  dds::Participant& participant, Logger log);
 
   /// Reads the agents' routes and progress (call every loop).
@@ -69,6 +70,8 @@ class TrafficControl {
   void publish(model::TrafficGrant grant, double now_wall);
 
   traffic::TrafficManager manager_;
+  std::string map_id_;
+  std::set<std::string> other_map_;  ///< robots whose last request was for another map (logged once)
   Logger log_;
   std::map<std::string, int> numbers_;  ///< robot id -> the manager's integer id
   std::map<int, std::string> names_;

@@ -207,6 +207,9 @@ struct TrafficRequest {
   /// the road, as points whose convex hull it is, map frame; empty when it sweeps nothing beyond
   /// the lane (traffic::TrafficManager::set_arrival_area).
   geometry::Polygon arrival_area;
+  /// The map whose road graph numbers `points`. A request for another map than the server's was
+  /// sent before the robot heard of a map switch: the server ignores it.
+  std::string map_id;
 };
 
 /// The server's traffic grant for one robot (see traffic::Grant).

@@ -50,6 +50,11 @@ class OctoMapLayer {
   /// Writes a 2D grid into the tree: each cell's leaves clamped occupied or free.
   void insert_grid(const OccupancyGrid& grid);
 
+  /// Every leaf of the area free (clamped), as the projection reads a leaf not seen yet: the tree
+  /// then holds all the area's leaves from the start, so its memory does not grow with the ground
+  /// the robot covers, and a miss on a free leaf is skipped without a tree search.
+  void assume_free();
+
   /// Marks in `out` every cell holding the centre of an occupied leaf, read from the tree itself.
   void project(OccupancyGrid& out) const;
   /// The projection kept up to date by insert_scan / insert_grid (geometry: area at
@@ -66,6 +71,7 @@ class OctoMapLayer {
   void apply(std::uint16_t kx, std::uint16_t ky, bool hit);
   void set_leaf(std::uint16_t kx, std::uint16_t ky, float log_odds);
   void record(std::uint16_t kx, std::uint16_t ky, float before, float after);
+  std::unique_ptr<octomap::OcTree> make_tree() const;
 
   OctoMapConfiguration configuration_;
   std::unique_ptr<octomap::OcTree> tree_;

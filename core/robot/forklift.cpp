@@ -88,6 +88,9 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
   // At start, not at the first order: the planners' tables for the whole site are the bulk of
   // the agent's memory, which then stays flat while it works.
   hand_grid_to_planners();
+  // Likewise the lidar map: every leaf of the site from the start (the ground free until seen
+  // otherwise), not one more for each stretch of floor the robot first sees.
+  octomap_.assume_free();
   sim_.warm_up(1.0, step_period());
 }
 

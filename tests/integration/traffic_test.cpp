@@ -194,4 +194,7 @@ TEST(MapSwitch, EveryAgentGetsTheNewMapReplansOnItAndFinishesItsOrder) {
       reply->order_id, [](const model::OrderInfo&) {}, 150s);
   ASSERT_TRUE(done);
   EXPECT_EQ(done->state, "DONE") << done->reason;
+  // Requests sent on the old map before an agent heard of the switch are set aside, never taken
+  // as routes on the new graph (whose point numbers mean other places).
+  EXPECT_EQ(fleet.log_of("fleet-server").find(" refused ("), std::string::npos) << fleet.log_of("fleet-server");
 }

@@ -85,6 +85,29 @@ TEST(OctoMapLayer, ScansMarkHitsAndClearFreeSpace) {
   EXPECT_EQ(again.cells(), layer.sensed().cells());
 }
 
+TEST(OctoMapLayer, AssumedFreeItHoldsEveryLeafFromTheStartAndStillSeesWhatComes) {
+  const geometry::Bounds area{0.0, 0.0, 12.0, 4.0};
+  OctoMapLayer layer(octo_config(area, 0.05, 0.05));
+  layer.assume_free();
+  const std::size_t leaves = layer.leaf_count();
+  EXPECT_GE(leaves, static_cast<std::size_t>(240 * 80));
+  EXPECT_EQ(layer.leaf_state({11.0, 3.0}), 0);
+  EXPECT_FALSE(layer.sensed().occupied_at({11.0, 3.0}));
+  // Scans from all over the area add no leaf: its memory does not grow with the ground covered.
+  LidarSim lidar;
+  const std::vector<geometry::Polygon> obstacles{square(3.0, 2.0, 0.3), square(11.0, 2.0, 0.3)};
+  for (double x = 1.0; x < 12.0; x += 1.0) {
+    for (int i = 0; i < 3; ++i) layer.insert_scan(lidar.scan({x, 2.0, 0.0}, obstacles));
+  }
+  EXPECT_EQ(layer.leaf_count(), leaves);
+  EXPECT_EQ(layer.leaf_state({2.85, 2.0}), 1);
+  EXPECT_TRUE(layer.sensed().occupied_at({2.85, 2.0}));
+  EXPECT_FALSE(layer.sensed().occupied_at({2.5, 2.0}));
+  OccupancyGrid projected(area, 0.05);
+  layer.project(projected);
+  EXPECT_EQ(projected.cells(), layer.sensed().cells());
+}
+
 TEST(LidarSim, RangesToPolygonFaces) {
   LidarSim lidar({.beams = 4, .max_range = 4.0});
   const std::vector<geometry::Polygon> obstacles{square(0.0, 1.0, 0.2), square(10.0, 0.0, 1.0)};
