@@ -32,6 +32,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
           *fleet_, options_.config, options_.site,
           options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
           options_.seed, robot_stream(options_.robot_id))),
+      step_lag_(robot_->step_period()),
       participant_(options_.domain),
       state_writer_(participant_, dds::qos::robot_state()),
       truth_writer_(participant_, dds::qos::live_state()),
@@ -346,6 +347,11 @@ void FleetAgent::publish_state(double now_sim) {
   robot::DockingView docking = robot_->docking_view();
   state.docking_targets = std::move(docking.targets);
   state.detected_pallet = docking.detected_pallet;
+  const StepLagMeter::Figures lag = step_lag_.figures();
+  state.control_lag_p50 = lag.p50_s;
+  state.control_lag_p99 = lag.p99_s;
+  state.control_period = step_lag_.period();
+  state.control_steps_skipped = lag.skipped;
   if (pose_delay_s_ > 0.0) {
     // A slow network: the state is stamped now and arrives late.
     std::uniform_real_distribution<double> jitter(-pose_jitter_s_, pose_jitter_s_);
@@ -445,10 +451,13 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     double behind = target - (robot_->time() + offset);
     if (behind > 1.0) {
       offset += behind - step;
+      step_lag_.steps_skipped(static_cast<std::int64_t>((behind - step) / step));
       behind = step;
     }
     handle_traffic();
     for (; behind >= step; behind -= step) {
+      // Late by how far the clock had passed the end of the period this step covers.
+      step_lag_.step_ran(behind - step);
       robot_->step();
       handle_events();
       // A long catch-up (a burst of camera frames, a loaded host) still publishes at the state

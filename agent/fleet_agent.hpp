@@ -10,6 +10,7 @@
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
+#include "common/step_lag.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
@@ -69,6 +70,7 @@ class FleetAgent {
   SimClock clock_;
   const config::FleetSpec* fleet_ = nullptr;
   std::unique_ptr<robot::Robot> robot_;
+  StepLagMeter step_lag_;  ///< how late the control steps run (reported in RobotState)
   std::string map_id_;
   std::optional<CurrentOrder> order_;
   std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled

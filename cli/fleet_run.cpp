@@ -159,6 +159,10 @@ bool FleetRun::poll() {
   state_reader_->take_data([&](model::RobotState&& state) {
     progress_.note_state(state.robot_id, state.task_state, state.sim_time);
     localization_.note_estimate(state.robot_id, state.pose, state.sim_time);
+    if (state.control_period > 0.0) {
+      control_lag_[state.robot_id] = {state.robot_id, state.control_lag_p50, state.control_lag_p99,
+                                      state.control_period, state.control_steps_skipped};
+    }
     // Beside each robot's true track, where it believed it was: a report's tracks show both.
     if (geometry::is_finite(state.pose)) tracks_.add(state.robot_id + "/estimate", state.pose, state.sim_time);
     report_far_off_estimates();
@@ -371,6 +375,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"time_scale", options.time_scale},
                          {"domain", domain},
                          {"crashed", run.crashes()},
+                         {"control_lag_worst", control_lag_json(run.worst_control_lag())},
                          {"run_dir", run.run_dir()}};
   if (command.json) {
     out << summary.dump() << "\n";
@@ -381,10 +386,40 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "  done per fleet: " << fleet_counts(run.done_by_fleet()) << "\n"
         << "  collisions: " << run.collisions().size() << "\n"
         << "  stalls (an open order without progress for 60 s sim): " << stalls.size() << "\n"
+        << "  control lag (worst agent, sim s): " << summary["control_lag_worst"].dump() << "\n"
         << "  processes that ended on their own: " << (run.crashes().empty() ? "none" : model::join(run.crashes()))
         << "\n  logs: " << run.run_dir() << "/\n";
   }
   return (t.lost == 0 && run.crashes().empty()) ? kExitOk : kExitFailed;
+}
+
+std::optional<ControlLag> FleetRun::worst_control_lag() const {
+  std::optional<ControlLag> worst;
+  for (const auto& [robot, lag] : control_lag_) {
+    if (!worst || lag.p99_s / lag.period_s > worst->p99_s / worst->period_s) worst = lag;
+  }
+  return worst;
+}
+
+std::map<std::string, double> FleetRun::control_lag_p99_by_fleet() const {
+  std::map<std::string, double> worst;
+  for (const auto& [robot_id, lag] : control_lag_) {
+    const auto robot = config_.find_robot(robot_id);
+    if (!robot) continue;
+    double& w = worst[robot->first->id];
+    w = std::max(w, std::round(lag.p99_s * 1e4) / 1e4);
+  }
+  return worst;
+}
+
+nlohmann::json control_lag_json(const std::optional<ControlLag>& lag) {
+  if (!lag) return nlohmann::json::object();
+  const auto to_tenth_ms = [](double s) { return std::round(s * 1e4) / 1e4; };
+  return {{"robot", lag->robot},
+          {"p50_s", to_tenth_ms(lag->p50_s)},
+          {"p99_s", to_tenth_ms(lag->p99_s)},
+          {"period_s", to_tenth_ms(lag->period_s)},
+          {"steps_skipped", lag->steps_skipped}};
 }
 
 }  // namespace fleet::cli

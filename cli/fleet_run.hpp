@@ -3,6 +3,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -40,6 +41,15 @@ struct RunOptions {
   std::string agent_wrap;
 };
 
+/// How late one agent's control steps run against the clock (model::RobotState's control_lag).
+struct ControlLag {
+  std::string robot;
+  double p50_s = 0.0;
+  double p99_s = 0.0;
+  double period_s = 0.0;
+  std::int64_t steps_skipped = 0;
+};
+
 /// A whole Fleet on this host: one fleet-server and N fleet-agents as child processes on one DDS
 /// domain, watched by fleetctl (orders, ground-truth collisions, crashed processes).
 class FleetRun {
@@ -65,6 +75,11 @@ class FleetRun {
   /// Each fleet's localization error: estimates (RobotState) against the simulation's truth.
   std::map<std::string, monitor::ErrorFigures> localization_by_fleet() const;
   const monitor::LocalizationWatch& localization() const { return localization_; }
+  /// The agent whose control steps run latest at p99 (its last report), with its period;
+  /// none before any agent reported.
+  std::optional<ControlLag> worst_control_lag() const;
+  /// Each fleet's worst p99 lateness of control steps, simulated seconds (fleets with a report).
+  std::map<std::string, double> control_lag_p99_by_fleet() const;
   /// Two or more pickers in one rack aisle; none without two pickers or racks.
   const monitor::AisleShareWatch* aisle_share() const { return aisle_share_ ? &*aisle_share_ : nullptr; }
   /// Orders done in the run per fleet of the robot that did them, every fleet of the
@@ -115,11 +130,15 @@ class FleetRun {
   monitor::CollisionMonitor collisions_;
   monitor::LocalizationWatch localization_;
   int estimates_far_off_ = 0;
+  std::map<std::string, ControlLag> control_lag_;  ///< each robot's last report
   std::optional<monitor::AisleShareWatch> aisle_share_;
   monitor::TrackRecorder tracks_;
   std::vector<std::string> crashes_;
   std::set<std::size_t> expected_exits_;
 };
+
+/// {robot, p50_s, p99_s, period_s, steps_skipped}, or {} before any agent reported, for the summaries.
+nlohmann::json control_lag_json(const std::optional<ControlLag>& lag);
 
 /// "forklifts 12, reach_trucks 9", for the summaries.
 std::string fleet_counts(const std::map<std::string, long>& counts);

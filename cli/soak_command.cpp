@@ -484,6 +484,9 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                    {"longest_aisle", share->longest_aisle()},
                    {"longest_robots", share->longest_robots()}};
   }
+  // The agent whose control steps ran latest against the clock.
+  const auto lag = run.worst_control_lag();
+  const nlohmann::json control_lag = control_lag_json(lag);
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},
                          {"orders_failed", tally.failed},
@@ -514,6 +517,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"rss_growth_pct", growth_json},
                          {"rss_measured_processes", measured_json},
                          {"cpu_pct", cpu_json},
+                         {"control_lag_worst", control_lag},
+                         {"control_lag_p99_by_fleet", run.control_lag_p99_by_fleet()},
                          {"crashed", run.crashes()},
                          {"faults", fault_list},
                          {"faults_skipped", skipped},
@@ -529,6 +534,12 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
   if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
   if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
+  // In real time only: at a higher time scale the host runs every agent that many times faster
+  // than its robot would, and the figures say how far it falls short, not whether a robot would.
+  if (lag && options.time_scale <= 1.0 && lag->p99_s > lag->period_s) {
+    failures.push_back(fmt::format("agent {} behind the clock: control steps {:.1f} ms late at p99, period {:.1f} ms",
+                                   lag->robot, 1000.0 * lag->p99_s, 1000.0 * lag->period_s));
+  }
   summary["failures"] = failures;
   // Kept with the logs and tracks, so a run read back later still has its figures.
   std::ofstream(run.run_dir() + "/summary.json") << summary.dump(2) << "\n";
@@ -550,6 +561,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"
         << "  memory growth (second half): " << growth_json.dump() << " % over " << measured_json.dump()
         << " processes, CPU: " << cpu_json.dump() << " % of a core\n"
+        << "  control lag (worst agent, sim s): " << control_lag.dump() << "\n"
         << "  " << (failures.empty() ? "PASS" : "FAIL: " + model::join(failures, "; ")) << "\n"
         << "  logs: " << run.run_dir() << "/\n";
   }

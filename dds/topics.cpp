@@ -255,6 +255,10 @@ fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch& s) {
   w.docking_targets =
       s.point_seq(std::vector<geometry::Vec2>(v.docking_targets.begin(), v.docking_targets.begin() + targets));
   w.detected_pallet = s.pose_seq(v.detected_pallet);
+  w.control_lag_p50 = v.control_lag_p50;
+  w.control_lag_p99 = v.control_lag_p99;
+  w.control_period = v.control_period;
+  w.control_steps_skipped = v.control_steps_skipped;
   return w;
 }
 model::RobotState from_wire(const fleet_msg_RobotState& w) {
@@ -274,6 +278,10 @@ model::RobotState from_wire(const fleet_msg_RobotState& w) {
   v.sim_time = w.sim_time;
   v.docking_targets = points_of(w.docking_targets);
   v.detected_pallet = pose_of(w.detected_pallet);
+  v.control_lag_p50 = w.control_lag_p50;
+  v.control_lag_p99 = w.control_lag_p99;
+  v.control_period = w.control_period;
+  v.control_steps_skipped = w.control_steps_skipped;
   return v;
 }
 

@@ -138,6 +138,12 @@ struct RobotState {
   /// yaw), in the frame of `pose`. Empty otherwise.
   std::vector<geometry::Vec2> docking_targets;
   std::optional<geometry::Pose2> detected_pallet;
+  /// How late the agent's control steps run against the clock since it started (StepLagMeter),
+  /// seconds of sim time; its control period; steps it jumped over after falling far behind.
+  double control_lag_p50 = 0.0;
+  double control_lag_p99 = 0.0;
+  double control_period = 0.0;
+  std::int64_t control_steps_skipped = 0;
 };
 
 struct RobotPath {

@@ -185,6 +185,14 @@ TEST(MapSwitch, EveryAgentGetsTheNewMapReplansOnItAndFinishesItsOrder) {
     for (const auto& [id, s] : states) switched = switched && s.map_id == "table_a_north_closed";
   }
   EXPECT_TRUE(switched);
+  // Each agent reports how late its control steps run against the clock (at most a second
+  // behind: later it jumps the clock and counts the steps it skipped).
+  for (const auto& [id, s] : client.robot_states(300ms)) {
+    EXPECT_NEAR(s.control_period, 1.0 / 70.0, 1e-9) << id;
+    EXPECT_GE(s.control_lag_p99, s.control_lag_p50) << id;
+    EXPECT_LE(s.control_lag_p99, 1.0) << id;
+    EXPECT_GE(s.control_steps_skipped, 0) << id;
+  }
   for (const auto& r : robots) {
     EXPECT_NE(fleet.log_of("fleet-agent-" + r).find("map switched from 'table_a' to 'table_a_north_closed'"),
               std::string::npos)
