@@ -274,35 +274,17 @@ nlohmann::json job_json(const eval::JobCycleResult& j) {
 }  // namespace
 
 int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
+  Args flags(args.args);
+  if (flags.flag("help")) {
+    out << kUsage;
+    return kExitOk;
+  }
   eval::PickEvalParams params;
   params.files = eval::plant_pick_eval_files(args.source_dir);
-  bool json = args.json;
-  const auto& a = args.args;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const std::string& flag = a[i];
-    if (flag == "--json") {
-      json = true;
-      continue;
-    }
-    if (flag == "--help" || flag == "-h") {
-      out << kUsage;
-      return kExitOk;
-    }
-    if (flag != "--seed") {
-      err << "pick-eval: unknown flag '" << flag << "'\n" << kUsage;
-      return kExitBadInput;
-    }
-    if (i + 1 >= a.size()) {
-      err << "pick-eval: " << flag << " needs a value\n" << kUsage;
-      return kExitBadInput;
-    }
-    const std::string& value = a[++i];
-    const auto seed = parse_u64(value);
-    if (!seed) {
-      err << "pick-eval: " << flag << " '" << value << "' must be a non-negative integer\n";
-      return kExitBadInput;
-    }
-    params.seed = *seed;
+  const bool json = flags.flag("json") || args.json;
+  params.seed = flags.u64("seed").value_or(params.seed);
+  if (const auto rest = flags.positionals(); !rest.empty()) {
+    throw ArgError("pick-eval: unexpected argument '" + rest[0] + "'");
   }
 
   eval::PickEvalResult r;

@@ -1,4 +1,4 @@
-// fleetctl fleets and traffic-eval through the entry points fleetctl calls.
+// fleetctl fleets, traffic-eval and pick-eval's flags through the entry points fleetctl calls.
 
 #include <gtest/gtest.h>
 
@@ -72,6 +72,14 @@ TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plantt"}, "sites/plant.yaml"),
                fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);
+}
+
+TEST(PickEval, AFlagItDoesNotKnowOrASeedThatIsNoNumberIsBadInput) {
+  EXPECT_THROW(run(pick_eval_command, {"--seed", "one"}, "sites/plant.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(pick_eval_command, {"--seed"}, "sites/plant.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(pick_eval_command, {"--runs", "3"}, "sites/plant.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(pick_eval_command, {"extra"}, "sites/plant.yaml"), fleet::ArgError);
+  EXPECT_EQ(run(pick_eval_command, {"--help"}, "sites/plant.yaml").code, 0);
 }
 
 TEST(SiteConfig, ASiteWithFleetsOfItsOwnBringsThemUnlessAConfigIsGiven) {
