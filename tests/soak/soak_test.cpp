@@ -38,4 +38,9 @@ TEST(Soak, FourAgentsUnderEveryFaultLoseNothingRunNothingTwiceCollideNeverAndDet
   EXPECT_LE(summary["detect_latency_p95_s"].get<double>(), 1.5);
   for (const auto& [type, growth] : summary["rss_growth_pct"].items()) EXPECT_LE(growth.get<double>(), 10.0) << type;
   EXPECT_GT(summary["orders_done"].get<int>(), 0);
+  // The agents reported how late their control steps ran (not judged at time scale 10).
+  const auto& lag = summary["control_lag_worst"];
+  ASSERT_TRUE(lag.contains("p99_s")) << lag.dump();
+  EXPECT_NEAR(lag["period_s"].get<double>(), 1.0 / 70.0, 1e-3);
+  EXPECT_GE(lag["p99_s"].get<double>(), lag["p50_s"].get<double>());
 }
