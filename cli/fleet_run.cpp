@@ -407,19 +407,22 @@ std::map<std::string, double> FleetRun::control_lag_p99_by_fleet() const {
     const auto robot = config_.find_robot(robot_id);
     if (!robot) continue;
     double& w = worst[robot->first->id];
-    w = std::max(w, std::round(lag.p99_s * 1e4) / 1e4);
+    w = std::max(w, lag.p99_s);
   }
   return worst;
 }
 
 nlohmann::json control_lag_json(const std::optional<ControlLag>& lag) {
   if (!lag) return nlohmann::json::object();
-  const auto to_tenth_ms = [](double s) { return std::round(s * 1e4) / 1e4; };
   return {{"robot", lag->robot},
-          {"p50_s", to_tenth_ms(lag->p50_s)},
-          {"p99_s", to_tenth_ms(lag->p99_s)},
-          {"period_s", to_tenth_ms(lag->period_s)},
+          {"p50_s", round_to(lag->p50_s, 0.0001)},
+          {"p99_s", round_to(lag->p99_s, 0.0001)},
+          {"period_s", round_to(lag->period_s, 0.0001)},
           {"steps_skipped", lag->steps_skipped}};
+}
+
+double round_to(double v, double step) {
+  return std::round(v / step) / std::round(1.0 / step);
 }
 
 }  // namespace fleet::cli

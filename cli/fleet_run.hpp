@@ -140,6 +140,9 @@ class FleetRun {
 /// {robot, p50_s, p99_s, period_s, steps_skipped}, or {} before any agent reported, for the summaries.
 nlohmann::json control_lag_json(const std::optional<ControlLag>& lag);
 
+/// `v` to a multiple of `step` (0.1, 0.01, ...), printed without binary noise (170.6, not 170.60000000000002).
+double round_to(double v, double step);
+
 /// "forklifts 12, reach_trucks 9", for the summaries.
 std::string fleet_counts(const std::map<std::string, long>& counts);
 

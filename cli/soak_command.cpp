@@ -61,11 +61,6 @@ std::optional<Usage> usage_of(pid_t pid) {
   return u;
 }
 
-/// `v` to a multiple of `step` (0.1, 0.01, ...), printed without binary noise (170.6, not 170.60000000000002).
-double round_to(double v, double step) {
-  return std::round(v / step) / std::round(1.0 / step);
-}
-
 /// One injected fault and what it led to, in wall seconds from the injection.
 struct FaultRecord {
   monitor::FaultKind kind;
@@ -487,6 +482,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   // The agent whose control steps ran latest against the clock.
   const auto lag = run.worst_control_lag();
   const nlohmann::json control_lag = control_lag_json(lag);
+  nlohmann::json lag_by_fleet = nlohmann::json::object();
+  for (const auto& [fleet, p99] : run.control_lag_p99_by_fleet()) lag_by_fleet[fleet] = round_to(p99, 0.0001);
   nlohmann::json summary{{"orders_created", tally.created},
                          {"orders_done", tally.done},
                          {"orders_failed", tally.failed},
@@ -518,7 +515,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"rss_measured_processes", measured_json},
                          {"cpu_pct", cpu_json},
                          {"control_lag_worst", control_lag},
-                         {"control_lag_p99_by_fleet", run.control_lag_p99_by_fleet()},
+                         {"control_lag_p99_by_fleet", lag_by_fleet},
                          {"crashed", run.crashes()},
                          {"faults", fault_list},
                          {"faults_skipped", skipped},

@@ -23,6 +23,7 @@ std::uint32_t pack(std::uint16_t kx, std::uint16_t ky) {
 
 OctoMapLayer::OctoMapLayer(const OctoMapConfiguration& c)
     : configuration_(c),
+      tree_(std::make_unique<octomap::OcTree>(c.resolution)),
       sensed_(c.area, c.projection_resolution, OccupancyGrid::kFree) {
   auto probability = [](double p, const char* key) {
     if (!(p > 0.0 && p < 1.0)) throw std::invalid_argument(std::string("octomap layer: ") + key + " must be in (0, 1)");
@@ -35,7 +36,11 @@ OctoMapLayer::OctoMapLayer(const OctoMapConfiguration& c)
   if (!(c.prob_hit > 0.5) || !(c.prob_miss < 0.5)) {
     throw std::invalid_argument("octomap layer: prob_hit must exceed 0.5 and prob_miss stay below it");
   }
-  tree_ = make_tree();
+  tree_->setProbHit(c.prob_hit);
+  tree_->setProbMiss(c.prob_miss);
+  tree_->setClampingThresMin(c.clamp_min);
+  tree_->setClampingThresMax(c.clamp_max);
+  tree_->setOccupancyThres(c.occupancy_threshold);
   // Read the thresholds back as the tree stores them, so the early-abort comparisons below agree
   // bit for bit with the tree's own clamping.
   hit_ = tree_->getProbHitLog();
@@ -53,17 +58,6 @@ OctoMapLayer::OctoMapLayer(const OctoMapConfiguration& c)
 }
 
 OctoMapLayer::~OctoMapLayer() = default;
-
-std::unique_ptr<octomap::OcTree> OctoMapLayer::make_tree() const {
-  const OctoMapConfiguration& c = configuration_;
-  auto tree = std::make_unique<octomap::OcTree>(c.resolution);
-  tree->setProbHit(c.prob_hit);
-  tree->setProbMiss(c.prob_miss);
-  tree->setClampingThresMin(c.clamp_min);
-  tree->setClampingThresMax(c.clamp_max);
-  tree->setOccupancyThres(c.occupancy_threshold);
-  return tree;
-}
 
 void OctoMapLayer::assume_free() {
   for (int my = 0; my < mirror_h_; ++my) {

@@ -71,7 +71,6 @@ class OctoMapLayer {
   void apply(std::uint16_t kx, std::uint16_t ky, bool hit);
   void set_leaf(std::uint16_t kx, std::uint16_t ky, float log_odds);
   void record(std::uint16_t kx, std::uint16_t ky, float before, float after);
-  std::unique_ptr<octomap::OcTree> make_tree() const;
 
   OctoMapConfiguration configuration_;
   std::unique_ptr<octomap::OcTree> tree_;
