@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       throw ArgError("--id: " + model::unknown_name_message("robot", *id, ids) + " (declared in " + config->source +
                      ")");
     }
-    auto site_map = app::load_site(*config, {robot->second});
+    auto site_map = app::load_site(*config, {*id});
     const std::atomic<bool>& stop = app::start_daemon();
 
     agent::AgentOptions options;

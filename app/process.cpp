@@ -39,8 +39,7 @@ spdlog::level::level_enum finish_args(Args& args) {
   return verbose ? spdlog::level::debug : spdlog::level::info;
 }
 
-std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
-                                              const std::vector<const config::RobotSpec*>& robots) {
+std::shared_ptr<const map::SiteMap> load_site(config::FleetConfig& config, const std::vector<std::string>& robot_ids) {
   const std::string site = config.settings.get_string("site");
   const std::string site_file = map::site_path(maps_dir(), site);
   if (!std::filesystem::exists(site_file)) {
@@ -48,7 +47,11 @@ std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
                      maps_dir() + "/NAME.yaml)");
   }
   auto site_map = std::make_shared<const map::SiteMap>(map::load_site_map(site_file));
-  for (const config::RobotSpec* robot : robots) {
+  std::vector<std::string> homes;
+  for (const map::Home& home : site_map->site.homes) homes.push_back(home.id);
+  config::assign_homes(config, homes, site);
+  for (const std::string& id : robot_ids) {
+    const config::RobotSpec* robot = config.find_robot(id)->second;
     if (!site_map->site.find_home(robot->home)) {
       throw config::ConfigError(config.source + ": robot '" + robot->id + "': home '" + robot->home +
                                 "' is not a home of " + site_file);

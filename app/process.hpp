@@ -24,9 +24,9 @@ std::optional<config::FleetConfig> read_config(Args& args, const char* help, std
 spdlog::level::level_enum finish_args(Args& args);
 
 /// The configured site (maps/<site>.yaml) with its road network and graph, loaded once for the
-/// process; ConfigError naming the robot when the home of one of `robots` is not in it.
-std::shared_ptr<const map::SiteMap> load_site(const config::FleetConfig& config,
-                                              const std::vector<const config::RobotSpec*>& robots);
+/// process. Robots declared by count get their homes from it (config::assign_homes); ConfigError
+/// naming the robot when the home of one of `robot_ids` is not in it.
+std::shared_ptr<const map::SiteMap> load_site(config::FleetConfig& config, const std::vector<std::string>& robot_ids);
 
 /// SIGINT and SIGTERM set a flag instead of ending the process; the flag is returned.
 const std::atomic<bool>& install_stop_handlers();

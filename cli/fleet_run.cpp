@@ -52,6 +52,12 @@ std::string timestamp() {
 
 FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
     : options_(std::move(options)), config_(std::move(config)), log_(std::move(log)) {
+  const map::Site site = map::load_site(map::site_path(maps_dir(), options_.site));
+  // What the server and agents will do with the same files: robots declared by count need a home
+  // each, and a site with too few stops the run here, before any process starts.
+  std::vector<std::string> homes;
+  for (const map::Home& home : site.homes) homes.push_back(home.id);
+  config::assign_homes(config_, homes, site.name);
   const auto robots = config_.all_robots();
   if (options_.agents < 1 || options_.agents > static_cast<int>(robots.size())) {
     throw ArgError("--agents " + std::to_string(options_.agents) + ": " + config_.source + " declares " +
@@ -65,19 +71,18 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
       }
     }
   }
-  watch_pickers_in_aisles();
+  watch_pickers_in_aisles(site);
   run_dir_ = state_dir() + "/runs/" + options_.kind + "-" + timestamp() + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir_);
 }
 
-void FleetRun::watch_pickers_in_aisles() {
+void FleetRun::watch_pickers_in_aisles(const map::Site& site) {
   std::vector<std::string> pickers;
   for (const auto& id : robot_ids_) {
     const auto robot = config_.find_robot(id);
     if (robot && robot->first->robot_type == "picker") pickers.push_back(id);
   }
   if (pickers.size() < 2) return;
-  const map::Site site = map::load_site(map::site_path(maps_dir(), options_.site));
   std::vector<std::pair<std::string, geometry::Polygon>> racks;
   for (const auto& rack : site.racks) racks.emplace_back(rack.id, rack.polygon);
   auto aisles = monitor::rack_aisles(racks);
@@ -288,7 +293,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   config::FleetConfig config = config::load_fleet_config(command.config_file);
   options.config_file = command.config_file;
   options.domain = domain;
-  options.agents = static_cast<int>(args.integer("agents", 1, 64).value_or(4));
+  options.agents = static_cast<int>(args.integer("agents", 1, kMaxAgents).value_or(4));
   options.site = args.value("site").value_or(config.settings.get_string("site"));
   options.duration_s = args.number("duration", 0.0, 1e7).value_or(0.0);
   options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(config.settings.get_double("time_scale"));

@@ -13,6 +13,7 @@
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
+#include "map/site.hpp"
 #include "monitor/aisle_share.hpp"
 #include "monitor/collision_monitor.hpp"
 #include "monitor/localization_watch.hpp"
@@ -21,6 +22,9 @@
 #include "monitor/track_recorder.hpp"
 
 namespace fleet::cli {
+
+/// The most agent processes `fleetctl demo` and `fleetctl soak` start on one host.
+constexpr int kMaxAgents = 256;
 
 struct RunOptions {
   std::string kind = "demo";  ///< names the run folder: <state folder>/runs/<kind>-<time>
@@ -103,7 +107,7 @@ class FleetRun {
  private:
   std::string binary(const std::string& name) const;
   /// With two pickers or more and racks on the site: the aisles between the racks to watch.
-  void watch_pickers_in_aisles();
+  void watch_pickers_in_aisles(const map::Site& site);
   /// Logs each robot whose estimate went far from the truth, with the tracks of both.
   void report_far_off_estimates();
   /// Writes every robot's track of the last `seconds` sim into the run folder as `name`.csv.

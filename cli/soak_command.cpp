@@ -81,7 +81,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.kind = "soak";
   options.config_file = command.config_file;
   options.domain = domain;
-  options.agents = static_cast<int>(args.integer("agents", 1, 64).value_or(4));
+  options.agents = static_cast<int>(args.integer("agents", 1, kMaxAgents).value_or(4));
   options.site = args.value("site").value_or(config.settings.get_string("site"));
   options.duration_s = args.number("duration", 1.0, 1e7).value_or(180.0);
   options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(10.0);

@@ -103,8 +103,8 @@ int main(int argc, char** argv) {
     const std::optional<std::string> token_flag = args.value("api-token");
     const auto level = app::finish_args(args);
 
-    std::vector<const config::RobotSpec*> robots;
-    for (const auto& [fleet, robot] : config->all_robots()) robots.push_back(robot);
+    std::vector<std::string> robots;
+    for (const auto& [fleet, robot] : config->all_robots()) robots.push_back(robot->id);
     // Loaded once, road network and graph included: dispatch costs and the web view use them.
     const auto site_map = app::load_site(*config, robots);
     const std::atomic<bool>& stop = app::start_daemon();

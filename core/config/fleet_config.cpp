@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -14,6 +15,7 @@ namespace fleet::config {
 namespace {
 
 using yaml::check_keys;
+using yaml::positive_number;
 using yaml::required_text;
 using yaml::where;
 
@@ -27,6 +29,55 @@ void flatten(const YAML::Node& node, const std::string& prefix, const std::strin
     } else {
       throw ConfigError(where(source, item.second) + ": key '" + key + "' must be a single value");
     }
+  }
+}
+
+constexpr int kMaxCountedRobots = 10000;
+
+void add_robot(RobotSpec robot, const YAML::Node& node, const std::string& key, const std::string& source,
+               FleetSpec& fleet, std::set<std::string>& robot_ids) {
+  if (!robot_ids.insert(robot.id).second) {
+    throw ConfigError(where(source, node) + ": key '" + key + ".id': duplicate robot id '" + robot.id + "'");
+  }
+  fleet.robots.push_back(std::move(robot));
+}
+
+/// `robots:` is a list of {id, home}, or {count: N, id: PATTERN}: N robots named by PATTERN with
+/// `{n}` replaced by 1..N, their homes given later from the site's free homes (assign_homes).
+void parse_robots(const YAML::Node& robots, const YAML::Node& fleet_node, const std::string& fleet_key,
+                  const std::string& source, FleetSpec& fleet, std::set<std::string>& robot_ids) {
+  const std::string key = fleet_key + ".robots";
+  if (robots && robots.IsMap()) {
+    check_keys(robots, {"count", "id"}, key, source);
+    const double count = positive_number(robots["count"], key + ".count", source);
+    if (count != std::floor(count) || count > kMaxCountedRobots) {
+      throw ConfigError(where(source, robots["count"]) + ": key '" + key + ".count' must be a whole number 1 .. " +
+                        std::to_string(kMaxCountedRobots));
+    }
+    const std::string pattern = required_text(robots, "id", key, source);
+    const auto slot = pattern.find("{n}");
+    if (slot == std::string::npos) {
+      throw ConfigError(where(source, robots["id"]) + ": key '" + key + ".id': '" + pattern +
+                        "' must hold {n}, the robot's number (e.g. fl{n})");
+    }
+    for (int n = 1; n <= static_cast<int>(count); ++n) {
+      std::string id = pattern;
+      id.replace(slot, 3, std::to_string(n));
+      add_robot({std::move(id), ""}, robots, key, source, fleet, robot_ids);
+    }
+    return;
+  }
+  if (!robots || !robots.IsSequence() || robots.size() == 0) {
+    throw ConfigError(where(source, fleet_node) + ": key '" + key +
+                      "' must be a non-empty list, or {count: N, id: PATTERN}");
+  }
+  for (std::size_t j = 0; j < robots.size(); ++j) {
+    const std::string rkey = key + "[" + std::to_string(j) + "]";
+    const YAML::Node r = robots[j];
+    if (!r.IsMap()) throw ConfigError(where(source, r) + ": key '" + rkey + "' must be a map");
+    check_keys(r, {"id", "home"}, rkey, source);
+    add_robot({required_text(r, "id", rkey, source), required_text(r, "home", rkey, source)}, r, rkey, source, fleet,
+              robot_ids);
   }
 }
 
@@ -56,21 +107,7 @@ std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& s
     }
     fleet.profile = parse_vehicle_profile(f["profile"], *type, key + ".profile", source);
     fleet.footprint = fleet.profile.extent();
-    const YAML::Node robots = f["robots"];
-    if (!robots || !robots.IsSequence() || robots.size() == 0) {
-      throw ConfigError(where(source, f) + ": key '" + key + ".robots' must be a non-empty list");
-    }
-    for (std::size_t j = 0; j < robots.size(); ++j) {
-      const std::string rkey = key + ".robots[" + std::to_string(j) + "]";
-      const YAML::Node r = robots[j];
-      if (!r.IsMap()) throw ConfigError(where(source, r) + ": key '" + rkey + "' must be a map");
-      check_keys(r, {"id", "home"}, rkey, source);
-      RobotSpec robot{required_text(r, "id", rkey, source), required_text(r, "home", rkey, source)};
-      if (!robot_ids.insert(robot.id).second) {
-        throw ConfigError(where(source, r) + ": key '" + rkey + ".id': duplicate robot id '" + robot.id + "'");
-      }
-      fleet.robots.push_back(std::move(robot));
-    }
+    parse_robots(f["robots"], f, key, source, fleet, robot_ids);
     fleets.push_back(std::move(fleet));
   }
   return fleets;
@@ -92,6 +129,34 @@ std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_r
     if (pair.second->id == robot_id) return pair;
   }
   return std::nullopt;
+}
+
+void assign_homes(FleetConfig& config, const std::vector<std::string>& site_homes, const std::string& site_name) {
+  std::set<std::string> taken;
+  std::size_t wanted = 0;
+  for (const FleetSpec& fleet : config.fleets) {
+    for (const RobotSpec& robot : fleet.robots) {
+      if (robot.home.empty())
+        ++wanted;
+      else
+        taken.insert(robot.home);
+    }
+  }
+  std::vector<std::string> free;
+  for (const std::string& home : site_homes) {
+    if (!taken.contains(home)) free.push_back(home);
+  }
+  if (wanted > free.size()) {
+    throw ConfigError(config.source + ": the fleets declare " + std::to_string(wanted) +
+                      " robots by count, but site '" + site_name + "' has " + std::to_string(free.size()) +
+                      " homes left for them (" + std::to_string(site_homes.size()) + " in all)");
+  }
+  std::size_t next = 0;
+  for (FleetSpec& fleet : config.fleets) {
+    for (RobotSpec& robot : fleet.robots) {
+      if (robot.home.empty()) robot.home = free[next++];
+    }
+  }
 }
 
 void apply_common_flags(Args& args, FleetConfig& config) {

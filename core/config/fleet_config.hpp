@@ -13,7 +13,9 @@ namespace fleet::config {
 
 struct RobotSpec {
   std::string id;
-  std::string home;  ///< id of a home pose in the site file
+  /// Id of a home pose in the site file; empty for a robot declared by count until
+  /// assign_homes gives it one.
+  std::string home;
 };
 
 /// A fleet: robots of one robot type sharing one vehicle profile.
@@ -37,6 +39,11 @@ struct FleetConfig {
   /// The fleet a robot belongs to, or nothing.
   std::optional<std::pair<const FleetSpec*, const RobotSpec*>> find_robot(const std::string& robot_id) const;
 };
+
+/// Gives each robot declared by count (`robots: {count: N, id: PATTERN}`, empty home) a home of
+/// the site: the site's homes in file order, skipping those a listed robot names. The same
+/// configuration and site give every process the same homes. ConfigError when the site has too few.
+void assign_homes(FleetConfig& config, const std::vector<std::string>& site_homes, const std::string& site_name);
 
 /// Applies the flags every Fleet process shares to `config`: --domain, --site, --time-scale and
 /// --seed override dds.domain, site, time_scale and seed, each checked like the file's value.

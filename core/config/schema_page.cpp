@@ -80,6 +80,11 @@ fleets:
       - {id: fl1, home: H1}
 ```
 
+A large fleet is declared by count: `robots: {count: 200, id: "fl{n}"}` gives robots `fl1` to
+`fl200`, each parked at a home of the site: the site's homes in file order, skipping the ones a
+listed robot names. Every process reads the same files and gives the same homes; a site with too
+few homes stops the program with how many it has left.
+
 An unknown robot type, a footprint that is not a simple polygon or an action the robot type
 cannot perform stops the program naming the file, the line and the key. `fleetctl fleets`
 prints every fleet; `fleetctl fleets --json` and `GET /api/fleets` give them as VDA 5050

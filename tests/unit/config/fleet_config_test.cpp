@@ -118,3 +118,57 @@ TEST(ConfigurationPage, EveryKeyHasARowUnderItsSection) {
   EXPECT_LT(page.find("## Traffic control"), page.find("| `traffic.enabled` |"));
   EXPECT_NE(page.find("| `seed` | 1 |  | 0 .. 2147483647 |"), std::string::npos) << "integer ranges print whole";
 }
+
+namespace {
+const char* kCountedAndListed = R"(
+fleets:
+  - id: forklifts
+    robot_type: forklift
+    robots: {count: 3, id: "fk{n}"}
+  - id: trucks
+    robot_type: forklift
+    robots:
+      - {id: rt1, home: P2}
+)";
+}  // namespace
+
+TEST(FleetConfig, RobotsByCountAreNamedByThePattern) {
+  const FleetConfig config = parse_fleet_config(kCountedAndListed, "t");
+  ASSERT_EQ(config.fleets[0].robots.size(), 3u);
+  EXPECT_EQ(config.fleets[0].robots[0].id, "fk1");
+  EXPECT_EQ(config.fleets[0].robots[2].id, "fk3");
+  EXPECT_TRUE(config.fleets[0].robots[1].home.empty());
+}
+
+TEST(FleetConfig, RobotsByCountTakeTheSiteHomesNoListedRobotNames) {
+  FleetConfig config = parse_fleet_config(kCountedAndListed, "t");
+  assign_homes(config, {"P1", "P2", "P3", "P4", "P5"}, "yard");
+  EXPECT_EQ(config.find_robot("fk1")->second->home, "P1");
+  EXPECT_EQ(config.find_robot("fk2")->second->home, "P3");  // P2 is rt1's
+  EXPECT_EQ(config.find_robot("fk3")->second->home, "P4");
+  EXPECT_EQ(config.find_robot("rt1")->second->home, "P2");
+}
+
+TEST(FleetConfig, TooFewHomesForTheCountNameTheSite) {
+  FleetConfig config = parse_fleet_config(kCountedAndListed, "fleet.yaml");
+  try {
+    assign_homes(config, {"P1", "P2", "P3"}, "yard");
+    FAIL() << "three homes cannot hold four robots";
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("fleet.yaml"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'yard' has 2 homes left"), std::string::npos) << msg;
+  }
+}
+
+TEST(FleetConfig, BadCountOrPatternIsRefused) {
+  const std::string head = "fleets:\n  - id: f\n    robot_type: forklift\n    robots: ";
+  EXPECT_NE(message_of(head + "{count: 2, id: fk}\n").find("must hold {n}"), std::string::npos);
+  EXPECT_NE(message_of(head + "{count: 2.5, id: \"fk{n}\"}\n").find("whole number"), std::string::npos);
+  EXPECT_NE(message_of(head + "{count: 0, id: \"fk{n}\"}\n").find("must be positive"), std::string::npos);
+  EXPECT_NE(message_of(head + "{count: 2, id: \"fk{n}\", home: H1}\n").find("home"), std::string::npos);
+  EXPECT_NE(message_of(head + "{count: 2, id: \"x{n}\"}\n  - id: g\n    robot_type: forklift\n    robots: "
+                              "[{id: x2, home: H1}]\n")
+                .find("duplicate robot id 'x2'"),
+            std::string::npos);
+}
