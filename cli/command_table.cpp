@@ -135,6 +135,20 @@ std::vector<CommandSpec> make_table() {
        "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"
        "--seed; exit 0 only when nothing was lost, duplicated, collided or deadlocked;\n"
        "--verbose: debug logs of every process in the run directory"},
+      {Group::kStartsFleet,
+       "load",
+       "",
+       "",
+       false,
+       {value("--robots", "N=50"), value("--site", "NAME"), value("--duration", "SECONDS=120"),
+        value("--warmup", "SECONDS=10"), value("--time-scale", "K=1"), value("--seed", "S"), value("--fleet", "ID"),
+        on_off("--verbose")},
+       "a load test of the server: a real fleet-server (automatic orders, traffic,\n"
+       "its database and one web stream client) against N emulated robots on one DDS\n"
+       "participant (a load generator: kinematic, exact poses, no sensors) that speak\n"
+       "to it as agents do; prints server CPU and memory, traffic cycle and dispatch\n"
+       "times, grant latency, wire rates and orders done; exit 0 when every robot\n"
+       "reported and none collided or deadlocked"},
       {Group::kOffline,
        "map",
        "check",

@@ -152,6 +152,9 @@ std::string fleet_counts(const std::map<std::string, long>& counts);
 
 /// `fleetctl soak` (soak_command.cpp).
 int soak_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);
+/// `fleetctl load`: a real fleet-server against N emulated robots (cli/emulated_fleet.hpp), with
+/// what the server's work costs.
+int load_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);
 
 /// `fleetctl demo`.
 int demo_command(const struct CommandArgs& args, std::ostream& out, std::ostream& err, std::uint32_t domain);

@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     if (name == "routing-age") return routing_age_command(command, connection, out, err);
     if (name == "demo") return demo_command(command, out, err, connection.domain);
     if (name == "soak") return soak_command(command, out, err, connection.domain);
+    if (name == "load") return load_command(command, out, err, connection.domain);
     throw ArgError("unknown command '" + name + "'; see fleetctl --help");
   } catch (...) {
     // The message without the program name, which report_failure adds.

@@ -9,6 +9,9 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -110,6 +113,43 @@ std::string ProcessGroup::describe(int exit_status) {
   if (WIFEXITED(exit_status)) return "exited with " + std::to_string(WEXITSTATUS(exit_status));
   if (WIFSIGNALED(exit_status)) return "killed by signal " + std::to_string(WTERMSIG(exit_status));
   return "ended (status " + std::to_string(exit_status) + ")";
+}
+
+std::optional<Usage> usage_of(pid_t pid) {
+  Usage u;
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  if (!status) return std::nullopt;
+  for (std::string line; std::getline(status, line);) {
+    if (line.starts_with("VmRSS:")) u.rss_kb = std::stod(line.substr(6));
+    if (line.starts_with("VmHWM:")) u.peak_rss_kb = std::stod(line.substr(6));
+  }
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  // Fields after the command name (which may hold spaces) start after the last ')'.
+  const auto close = text.rfind(')');
+  if (close == std::string::npos || close + 2 > text.size()) return std::nullopt;
+  std::istringstream rest(text.substr(close + 2));
+  std::vector<std::string> fields;
+  for (std::string f; rest >> f;) fields.push_back(f);
+  if (fields.size() < 13) return std::nullopt;
+  u.cpu_s = (std::stod(fields[11]) + std::stod(fields[12])) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  return u;
+}
+
+std::optional<double> loopback_bytes() {
+  std::ifstream dev("/proc/net/dev");
+  for (std::string line; std::getline(dev, line);) {
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    std::istringstream name(line.substr(0, colon));
+    std::string interface;
+    name >> interface;
+    if (interface != "lo") continue;
+    std::istringstream counters(line.substr(colon + 1));
+    double received = 0.0;
+    if (counters >> received) return received;
+  }
+  return std::nullopt;
 }
 
 }  // namespace fleet::cli

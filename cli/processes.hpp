@@ -2,6 +2,7 @@
 
 #include <sys/types.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,19 @@ class ProcessGroup {
  private:
   std::vector<Child> children_;
 };
+
+/// Resident memory (kB) and CPU time (s) of a process, from /proc.
+struct Usage {
+  double rss_kb = 0.0;
+  double peak_rss_kb = 0.0;  ///< VmHWM: the most it was resident
+  double cpu_s = 0.0;
+};
+/// Nothing once the process is gone.
+std::optional<Usage> usage_of(pid_t pid);
+
+/// Bytes received on the loopback interface since boot (/proc/net/dev); on loopback every byte
+/// sent is received once. Nothing when it cannot be read.
+std::optional<double> loopback_bytes();
 
 /// SIGINT and SIGTERM set a flag instead of killing fleetctl, so it can stop its children and
 /// print its summary: the daemons' handlers (app/process.hpp).

@@ -38,29 +38,6 @@ constexpr double kServerPauseWall = 1.0;   // a killed server stays down this lo
 // whose every way it closes waits it out [Forklift thesis, Fig. 5.11] without counting as deadlocked.
 constexpr double kObstacleOnSim = 45.0;
 
-/// Resident memory (kB) and CPU time (s) of a process, from /proc; nothing once it is gone.
-struct Usage {
-  double rss_kb = 0.0;
-  double cpu_s = 0.0;
-};
-std::optional<Usage> usage_of(pid_t pid) {
-  Usage u;
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  if (!status) return std::nullopt;
-  for (std::string line; std::getline(status, line);) {
-    if (line.starts_with("VmRSS:")) u.rss_kb = std::stod(line.substr(6));
-  }
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
-  // Fields after the command name (which may hold spaces) start after the last ')'.
-  std::istringstream rest(text.substr(text.rfind(')') + 2));
-  std::vector<std::string> fields;
-  for (std::string f; rest >> f;) fields.push_back(f);
-  if (fields.size() < 13) return std::nullopt;
-  u.cpu_s = (std::stod(fields[11]) + std::stod(fields[12])) / static_cast<double>(sysconf(_SC_CLK_TCK));
-  return u;
-}
-
 /// One injected fault and what it led to, in wall seconds from the injection.
 struct FaultRecord {
   monitor::FaultKind kind;

@@ -375,6 +375,39 @@ model::TrafficGrant from_wire(const fleet_msg_TrafficGrant& w) {
           ints_of(w.route), w.sim_time};
 }
 
+fleet_msg_ServerLoad to_wire(const model::ServerLoad& v, Scratch&) {
+  return {borrow(v.server_id),
+          v.sim_time,
+          v.robots,
+          v.traffic_cycles,
+          v.traffic_cycle_p50_ms,
+          v.traffic_cycle_p99_ms,
+          v.traffic_cycle_max_ms,
+          v.traffic_update_p50_ms,
+          v.traffic_update_p99_ms,
+          v.traffic_update_max_ms,
+          v.dispatches,
+          v.dispatch_p50_ms,
+          v.dispatch_p99_ms,
+          v.dispatch_max_ms};
+}
+model::ServerLoad from_wire(const fleet_msg_ServerLoad& w) {
+  return {text(w.server_id),
+          w.sim_time,
+          w.robots,
+          w.traffic_cycles,
+          w.traffic_cycle_p50_ms,
+          w.traffic_cycle_p99_ms,
+          w.traffic_cycle_max_ms,
+          w.traffic_update_p50_ms,
+          w.traffic_update_p99_ms,
+          w.traffic_update_max_ms,
+          w.dispatches,
+          w.dispatch_p50_ms,
+          w.dispatch_p99_ms,
+          w.dispatch_max_ms};
+}
+
 }  // namespace
 
 #define FLEET_DDS_TOPIC_IMPL(Type, Wire, TopicName)                                                     \
@@ -427,5 +460,6 @@ FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")
 FLEET_DDS_TOPIC_IMPL(TrafficRequest, fleet_msg_TrafficRequest, "fleet/TrafficRequest")
 FLEET_DDS_TOPIC_IMPL(TrafficGrant, fleet_msg_TrafficGrant, "fleet/TrafficGrant")
+FLEET_DDS_TOPIC_IMPL(ServerLoad, fleet_msg_ServerLoad, "fleet/ServerLoad")
 
 }  // namespace fleet::dds

@@ -36,6 +36,7 @@ FLEET_DDS_TOPIC(FleetView)
 FLEET_DDS_TOPIC(SimTruth)
 FLEET_DDS_TOPIC(TrafficRequest)
 FLEET_DDS_TOPIC(TrafficGrant)
+FLEET_DDS_TOPIC(ServerLoad)
 
 }  // namespace fleet::dds
 

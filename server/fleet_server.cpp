@@ -80,7 +80,8 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       robot_path_reader_(participant_, dds::qos::live_state()),
       truth_reader_(participant_, dds::qos::live_state()),
       order_report_reader_(participant_, dds::qos::latched_state()),
-      waitset_(participant_) {
+      waitset_(participant_),
+      load_meter_(participant_) {
   reset_obstacles();
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
@@ -239,9 +240,13 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       // Traffic cycles at 20 Hz of sim time, at most 100 Hz of wall time at high time scales.
       const double now_sim = clock_.now();
       const double now_wall = SimClock::wall_now();
+      const auto requests_start = ServerLoadMeter::Clock::now();
       traffic_->handle_requests(now_sim, now_wall);
+      const auto update_start = ServerLoadMeter::Clock::now();
+      load_meter_.requests_taken(update_start - requests_start);
       if (now_sim >= next_traffic_sim_ && now_wall - last_traffic_wall_ >= 0.01) {
         traffic_->update(now_sim, now_wall);
+        load_meter_.traffic_updated(ServerLoadMeter::Clock::now() - update_start);
         next_traffic_sim_ = now_sim + 0.05;
         last_traffic_wall_ = now_wall;
       }
@@ -252,6 +257,9 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     dispatch();
     publish_fleet_view();
     publish_web_snapshot();
+    const int reported = static_cast<int>(
+        std::count_if(robots_.begin(), robots_.end(), [](const auto& r) { return r.second.registered; }));
+    load_meter_.publish_when_due(SimClock::wall_now(), clock_.now(), reported);
     memory.tick(SimClock::wall_now());
   }
   log_->info("stopping; {} orders known", book_.all().size());
@@ -303,7 +311,7 @@ void FleetServer::build_fleet_graphs(const map::SiteMap& site) {
   const auto graphs = traffic::fleet_graphs(site.graph.graph, options_.config);
   for (auto& ability : known_names_.abilities) {
     const map::RoadGraph& graph = graphs.at(ability.fleet_id);
-    travel_.emplace(ability.fleet_id, planning::RoadPlanner(graph));
+    travel_.emplace(ability.fleet_id, planning::RoadDistances(graph));
     ability.out_of_reach = traffic::fleet_places_out_of_reach(site, graph, options_.config, ability.fleet_id);
   }
 }

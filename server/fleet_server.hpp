@@ -22,7 +22,9 @@
 #include "orders/order_request_check.hpp"
 #include "orders/pick_lines.hpp"
 #include "planning/road_planner.hpp"
+#include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
+#include "server/server_load.hpp"
 #include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
 
@@ -172,7 +174,7 @@ class FleetServer {
   Logger log_;
   OrderStore store_;
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
-  std::map<std::string, planning::RoadPlanner> travel_;
+  std::map<std::string, planning::RoadDistances> travel_;
   /// What orders may name on the site served, with each fleet's abilities and the places it
   /// cannot reach (build_fleet_graphs).
   orders::KnownNames known_names_;
@@ -220,6 +222,7 @@ class FleetServer {
   dds::Reader<model::SimTruth> truth_reader_;
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::WaitSet waitset_;
+  ServerLoadMeter load_meter_;
   std::unique_ptr<TrafficControl> traffic_;  ///< null when traffic.enabled is false
   double next_traffic_sim_ = 0.0;
   double last_traffic_wall_ = 0.0;

@@ -217,6 +217,7 @@ void FleetServer::dispatch() {
     if (ability != names.abilities.end()) free.emplace_back(robot.id, robot.fleet_id, *ability);
   }
   if (free.empty()) return;
+  const auto start = ServerLoadMeter::Clock::now();
   const auto cost = [&](const std::string& robot_id, const std::string& area_id) {
     return travel_cost(robot_id, area_id);
   };
@@ -228,6 +229,7 @@ void FleetServer::dispatch() {
     publish_order(order);
     send_assignment(order);
   }
+  load_meter_.dispatched(ServerLoadMeter::Clock::now() - start);
 }
 
 double FleetServer::travel_cost(const std::string& robot_id, const std::string& place_id) {
@@ -242,9 +244,7 @@ double FleetServer::travel_cost(const std::string& robot_id, const std::string& 
   const geometry::Pose2 approach = area ? area->approach_pose(kApproach) : home->pose;
   const auto planner = travel_.find(robot->second.fleet_id);
   if (planner == travel_.end()) return std::numeric_limits<double>::infinity();
-  const planning::RoadPlan plan = planner->second.plan(robot->second.last.pose, approach);
-  if (plan.status != planning::PlanStatus::kFound) return std::numeric_limits<double>::infinity();
-  return geometry::distance(robot->second.last.pose.position(), plan.points.front()) + plan.length;
+  return planner->second.travel(robot->second.last.pose, approach);
 }
 
 void FleetServer::withdraw(const Order& order, const std::string& robot_id) {

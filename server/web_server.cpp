@@ -34,7 +34,13 @@ namespace {
 
 using namespace web_json;
 
-json robot_json(const RobotView& view) {
+json path_array(const std::vector<geometry::Vec2>& path) {
+  json out = json::array();
+  for (const auto& p : path) out.push_back(point(p.x, p.y));
+  return out;
+}
+
+json robot_json(const RobotView& view, FramePaths* paths = nullptr) {
   const auto& s = view.state;
   json j{{"fleet", s.fleet_id},
          {"map", s.map_id},
@@ -54,9 +60,17 @@ json robot_json(const RobotView& view) {
          {"health", view.health},
          {"age", round_places(view.age_s, 1)},
          {"fp", json::array({view.footprint.length, view.footprint.width})}};
-  json path = json::array();
-  for (const auto& p : view.path) path.push_back(point(p.x, p.y));
-  j["path"] = std::move(path);
+  if (paths) {
+    auto& entry = paths->by_robot[view.state.robot_id];
+    if (!entry.text || entry.points != view.path) {
+      entry.points = view.path;
+      entry.text = std::make_shared<const std::string>(path_array(view.path).dump());
+      entry.version = paths->next_version++;
+    }
+    j["path_v"] = entry.version;
+  } else {
+    j["path"] = path_array(view.path);
+  }
   if (!view.traffic.empty()) {
     json reserved = json::array();
     for (const auto& p : view.reserved) reserved.push_back(point(p.x, p.y));
@@ -172,8 +186,8 @@ std::string mime_of(const std::string& path) {
   return "application/octet-stream";
 }
 
-std::string sse_event(const char* name, std::uint64_t version, const json& data) {
-  return std::string("event: ") + name + "\nid: " + std::to_string(version) + "\ndata: " + data.dump() + "\n\n";
+std::string sse_text(const char* name, std::uint64_t version, const std::string& data) {
+  return std::string("event: ") + name + "\nid: " + std::to_string(version) + "\ndata: " + data + "\n\n";
 }
 
 }  // namespace
@@ -211,9 +225,9 @@ json state_json(const LiveSnapshot& snapshot) {
   return j;
 }
 
-json frame_json(const LiveSnapshot& snapshot) {
+json frame_json(const LiveSnapshot& snapshot, FramePaths* paths) {
   json robots = json::object();
-  for (const auto& view : snapshot.robots) robots[view.state.robot_id] = robot_json(view);
+  for (const auto& view : snapshot.robots) robots[view.state.robot_id] = robot_json(view, paths);
   json orders = json::object();
   for (const auto& o : snapshot.orders) orders[std::to_string(o.order_id)] = order_json(o);
   return json{{"globals", globals_json(snapshot)},
@@ -221,6 +235,23 @@ json frame_json(const LiveSnapshot& snapshot) {
               {"orders", std::move(orders)},
               {"obstacles", snapshot.obstacle_enabled},
               {"pallets", snapshot.pallet_at}};
+}
+
+std::string with_paths(const json& event, const FramePaths& paths, const std::vector<std::string>& ids) {
+  std::string text = event.dump();
+  std::string spliced;
+  for (const std::string& id : ids) {
+    const auto it = paths.by_robot.find(id);
+    if (it == paths.by_robot.end() || !it->second.text) continue;
+    if (!spliced.empty()) spliced.push_back(',');
+    spliced.append(json(id).dump()).push_back(':');
+    spliced.append(*it->second.text);
+  }
+  if (spliced.empty()) return text;
+  text.pop_back();  // the closing brace of the event's object
+  if (text.size() > 1) text.push_back(',');
+  text.append("\"paths\":{").append(spliced).append("}}");
+  return text;
 }
 
 json frame_diff(const json& prev, const json& next) {
@@ -279,8 +310,24 @@ struct WebServer::Frame {
   std::uint64_t version = 0;
   std::uint64_t prev_version = 0;
   json frame;
-  std::string full_event;
   std::string diff_event;
+
+  /// Written only when a client needs it (it joined or fell behind): with hundreds of robots the
+  /// whole frame is megabytes of text, and clients that keep up take the diff.
+  const std::string& full_event() const {
+    std::call_once(full_once_, [this] {
+      std::vector<std::string> ids;
+      for (const auto& [id, entry] : paths.by_robot) ids.push_back(id);
+      full_event_ = sse_text("full", version, with_paths(frame, paths, ids));
+    });
+    return full_event_;
+  }
+  /// The paths as of this frame (their texts shared with the frames before and after).
+  FramePaths paths;
+
+ private:
+  mutable std::once_flag full_once_;
+  mutable std::string full_event_;
 };
 
 WebServer::WebServer(WebOptions options, WebBridge& bridge, WebSiteInfo site, Logger log)
@@ -336,6 +383,7 @@ void WebServer::pump() {
   const auto period = std::chrono::duration<double>(1.0 / options_.stream_hz);
   std::uint64_t seen = 0;
   std::shared_ptr<const Frame> previous;
+  FramePaths paths;
   while (true) {
     {
       std::unique_lock lock(frame_mutex_);
@@ -356,11 +404,20 @@ void WebServer::pump() {
     seen = version;
     auto frame = std::make_shared<Frame>();
     frame->version = version;
-    frame->frame = frame_json(snapshot);
-    frame->full_event = sse_event("full", version, frame->frame);
+    frame->frame = frame_json(snapshot, &paths);
+    // Robots that left take their paths with them.
+    std::erase_if(paths.by_robot, [&](const auto& e) { return !frame->frame["robots"].contains(e.first); });
+    frame->paths = paths;
     if (previous) {
       frame->prev_version = previous->version;
-      frame->diff_event = sse_event("diff", version, frame_diff(previous->frame, frame->frame));
+      const json diff = frame_diff(previous->frame, frame->frame);
+      std::vector<std::string> changed;
+      if (const auto robots = diff.find("robots"); robots != diff.end()) {
+        for (const auto& [id, fields] : robots->items()) {
+          if (fields.contains("path_v")) changed.push_back(id);
+        }
+      }
+      frame->diff_event = sse_text("diff", version, with_paths(diff, paths, changed));
     }
     previous = frame;
     ++frames_built_;
@@ -474,7 +531,7 @@ void WebServer::routes() {
             return sink.write(keepalive.data(), keepalive.size());
           }
           const bool diff_fits = *last_sent != 0 && frame->prev_version == *last_sent && !frame->diff_event.empty();
-          const std::string& event = diff_fits ? frame->diff_event : frame->full_event;
+          const std::string& event = diff_fits ? frame->diff_event : frame->full_event();
           *last_sent = frame->version;
           return sink.write(event.data(), event.size());
         },

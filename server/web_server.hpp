@@ -7,6 +7,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -59,7 +60,24 @@ nlohmann::json state_json(const LiveSnapshot& snapshot);
 /// A stream frame: the snapshot keyed by id ({"robots": {id: {...}}, "orders": {id: {...}},
 /// "obstacles", "pallets", "globals"}), rounded to what the page can show (0.1 mm), orders without
 /// their history. Diffs are taken between two of these.
-nlohmann::json frame_json(const LiveSnapshot& snapshot);
+/// The robots' paths as JSON text, kept between frames: a path changes when a robot replans, its
+/// pose every frame. With hundreds of robots, paths of hundreds of points each made the stream's
+/// frames mostly paths; they travel apart, under "paths": {id: [[x, y], ...]}, whole, in the
+/// frame a robot's path changed in (and in every full frame).
+struct FramePaths {
+  struct Entry {
+    std::vector<geometry::Vec2> points;
+    std::shared_ptr<const std::string> text;
+    std::uint64_t version = 0;
+  };
+  std::map<std::string, Entry> by_robot;
+  std::uint64_t next_version = 1;
+};
+/// With `paths`, each robot carries "path_v" (its path's version in `paths`) instead of "path".
+nlohmann::json frame_json(const LiveSnapshot& snapshot, FramePaths* paths = nullptr);
+
+/// The text of `event` (a frame or a diff) with the paths of `ids` spliced in under "paths".
+std::string with_paths(const nlohmann::json& event, const FramePaths& paths, const std::vector<std::string>& ids);
 
 /// What changed from `prev` to `next` (both frame_json): per robot and order only the fields that
 /// changed (a new id carries all its fields), per obstacle, pallet and global value only the

@@ -125,8 +125,16 @@ std::vector<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::all_robo
 
 std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_robot(
     const std::string& robot_id) const {
-  for (const auto& pair : all_robots()) {
-    if (pair.second->id == robot_id) return pair;
+  if (const auto it = robot_index.find(robot_id); it != robot_index.end()) {
+    const auto [f, r] = it->second;
+    if (f < fleets.size() && r < fleets[f].robots.size() && fleets[f].robots[r].id == robot_id) {
+      return std::pair{&fleets[f], &fleets[f].robots[r]};
+    }
+  }
+  for (const FleetSpec& f : fleets) {
+    for (const RobotSpec& r : f.robots) {
+      if (r.id == robot_id) return std::pair{&f, &r};
+    }
   }
   return std::nullopt;
 }
@@ -199,6 +207,10 @@ FleetConfig parse_fleet_config(const std::string& yaml_text, const std::string& 
     }
   }
   if (config.fleets.empty()) throw ConfigError(source + ": key 'fleets' is missing: declare at least one fleet");
+  for (std::size_t f = 0; f < config.fleets.size(); ++f) {
+    for (std::size_t r = 0; r < config.fleets[f].robots.size(); ++r)
+      config.robot_index[config.fleets[f].robots[r].id] = {f, r};
+  }
   return config;
 }
 

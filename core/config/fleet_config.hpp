@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/args.hpp"
@@ -38,6 +39,11 @@ struct FleetConfig {
   std::vector<std::pair<const FleetSpec*, const RobotSpec*>> all_robots() const;
   /// The fleet a robot belongs to, or nothing.
   std::optional<std::pair<const FleetSpec*, const RobotSpec*>> find_robot(const std::string& robot_id) const;
+
+  /// Robot id -> (fleet index, robot index), made by parse_fleet_config: the server looks robots
+  /// up for every message, among hundreds. Positions, not pointers, so copies stay right; a
+  /// configuration changed after parsing is searched in full.
+  std::unordered_map<std::string, std::pair<std::size_t, std::size_t>> robot_index;
 };
 
 /// Gives each robot declared by count (`robots: {count: N, id: PATTERN}`, empty home) a home of

@@ -232,4 +232,22 @@ struct TrafficGrant {
   double sim_time = 0.0;
 };
 
+/// What the server's own work costs, since it started (idl/fleet.idl ServerLoad).
+struct ServerLoad {
+  std::string server_id;
+  double sim_time = 0.0;
+  int robots = 0;
+  std::int64_t traffic_cycles = 0;
+  double traffic_cycle_p50_ms = 0.0;
+  double traffic_cycle_p99_ms = 0.0;
+  double traffic_cycle_max_ms = 0.0;
+  double traffic_update_p50_ms = 0.0;  ///< the update alone: every robot's grant decided
+  double traffic_update_p99_ms = 0.0;
+  double traffic_update_max_ms = 0.0;
+  std::int64_t dispatches = 0;
+  double dispatch_p50_ms = 0.0;
+  double dispatch_p99_ms = 0.0;
+  double dispatch_max_ms = 0.0;
+};
+
 }  // namespace fleet::model

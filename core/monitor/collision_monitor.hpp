@@ -41,6 +41,7 @@ class CollisionMonitor {
   struct Truth {
     geometry::Pose2 pose;
     geometry::Polygon body;  ///< body frame
+    double radius = 0.0;     ///< of the circle round the body origin that holds the body
     double sim_time = 0.0;
   };
   double max_skew_;

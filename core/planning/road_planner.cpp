@@ -55,6 +55,7 @@ RoadPlanner::RoadPlanner(const map::RoadGraph& graph, const RoadPlannerConfigura
     offsets_[i + 1] = static_cast<std::uint32_t>(targets_.size());
   }
   mark_main_component();
+  build_index();
   blocked_.assign(n, 0);
   stamp_.assign(n, 0);
   closed_.assign(n, 0);
@@ -134,7 +135,75 @@ void RoadPlanner::mark_main_component() {
   for (std::size_t i = 0; i < n; ++i) main_component_[i] = component[i] == main ? 1 : 0;
 }
 
+void RoadPlanner::build_index() {
+  if (xs_.empty()) return;
+  const auto [min_x, max_x] = std::minmax_element(xs_.begin(), xs_.end());
+  const auto [min_y, max_y] = std::minmax_element(ys_.begin(), ys_.end());
+  index_min_x_ = *min_x;
+  index_min_y_ = *min_y;
+  index_nx_ = static_cast<int>((*max_x - *min_x) / kIndexCell) + 1;
+  index_ny_ = static_cast<int>((*max_y - *min_y) / kIndexCell) + 1;
+  const auto cell_of = [&](std::size_t i) {
+    const int cx = std::min(index_nx_ - 1, static_cast<int>((xs_[i] - index_min_x_) / kIndexCell));
+    const int cy = std::min(index_ny_ - 1, static_cast<int>((ys_[i] - index_min_y_) / kIndexCell));
+    return static_cast<std::size_t>(cy) * static_cast<std::size_t>(index_nx_) + static_cast<std::size_t>(cx);
+  };
+  cell_start_.assign(static_cast<std::size_t>(index_nx_) * static_cast<std::size_t>(index_ny_) + 1, 0);
+  for (std::size_t i = 0; i < xs_.size(); ++i) ++cell_start_[cell_of(i) + 1];
+  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  cell_points_.resize(xs_.size());
+  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < xs_.size(); ++i) cell_points_[fill[cell_of(i)]++] = static_cast<int>(i);
+}
+
 int RoadPlanner::nearest_point(Vec2 p, PointUse use) const {
+  const double fx = (p.x - index_min_x_) / kIndexCell;
+  const double fy = (p.y - index_min_y_) / kIndexCell;
+  // Off the indexed area (or not a number) the plain scan answers.
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < index_nx_ && fy < index_ny_)) return nearest_point_scan(p, use);
+  const int cx = static_cast<int>(fx);
+  const int cy = static_cast<int>(fy);
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  const auto visit = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= index_nx_ || y >= index_ny_) return;
+    const std::size_t c =
+        static_cast<std::size_t>(y) * static_cast<std::size_t>(index_nx_) + static_cast<std::size_t>(x);
+    for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+      const int i = cell_points_[k];
+      if (use == PointUse::kRoute && !main_component_[static_cast<std::size_t>(i)]) continue;
+      const double dx = xs_[static_cast<std::size_t>(i)] - p.x;
+      const double dy = ys_[static_cast<std::size_t>(i)] - p.y;
+      const double d2 = dx * dx + dy * dy;
+      // Ties go to the lower id, as in the scan.
+      if (d2 < best_d2 || (d2 == best_d2 && i < best)) {
+        best_d2 = d2;
+        best = i;
+      }
+    }
+  };
+  const int rings = std::max(index_nx_, index_ny_);
+  for (int r = 0; r <= rings; ++r) {
+    if (r == 0) {
+      visit(cx, cy);
+    } else {
+      for (int x = cx - r; x <= cx + r; ++x) {
+        visit(x, cy - r);
+        visit(x, cy + r);
+      }
+      for (int y = cy - r + 1; y <= cy + r - 1; ++y) {
+        visit(cx - r, y);
+        visit(cx + r, y);
+      }
+    }
+    // Every point of ring r + 1 is at least r cells away from p.
+    const double reach = r * kIndexCell;
+    if (best >= 0 && best_d2 <= reach * reach) break;
+  }
+  return best;
+}
+
+int RoadPlanner::nearest_point_scan(Vec2 p, PointUse use) const {
   int best = -1;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < xs_.size(); ++i) {

@@ -68,6 +68,8 @@ class RoadPlanner {
   std::vector<std::pair<int, double>> start_states(geometry::Vec2 p, double slack) const;
 
   std::size_t point_count() const { return xs_.size(); }
+  /// Whether point `i` is in the main strongly connected component (see PointUse::kRoute).
+  bool in_main_component(int i) const { return main_component_[static_cast<std::size_t>(i)] != 0; }
   geometry::Vec2 point(int i) const { return {xs_[static_cast<std::size_t>(i)], ys_[static_cast<std::size_t>(i)]}; }
   const RoadPlannerConfiguration& configuration() const { return configuration_; }
 
@@ -87,6 +89,16 @@ class RoadPlanner {
   std::vector<double> edge_angle_;  ///< atan2(dy, dx) of each edge, the heading it assigns
   std::vector<std::uint8_t> blocked_;
   std::vector<std::uint8_t> main_component_;  ///< 1 for points of the largest strong component
+
+  // The points by square cells of kIndexCell metres, for nearest_point: a site of tens of
+  // thousands of points is asked for the nearest one many times a second.
+  static constexpr double kIndexCell = 2.0;
+  void build_index();
+  int nearest_point_scan(geometry::Vec2 p, PointUse use) const;
+  double index_min_x_ = 0.0, index_min_y_ = 0.0;
+  int index_nx_ = 0, index_ny_ = 0;
+  std::vector<std::uint32_t> cell_start_;  ///< points of cell c: cell_points_[cell_start_[c] .. cell_start_[c+1])
+  std::vector<int> cell_points_;
 
   // Search state, reused; `stamp_` tells which entries belong to the current query.
   std::vector<std::uint32_t> stamp_;

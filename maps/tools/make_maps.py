@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the shipped site maps: maps/{table_a,table_b,warehouse,plant}.{xodr,yaml}.
+"""Writes the shipped site maps: maps/{table_a,table_b,warehouse,big_warehouse,plant}.{xodr,yaml}.
 
 A map is drawn as straight road segments between nodes. Every road is one lane of the site's
 road width, with its lane centre on the reference line (laneOffset = half the width), driven both
@@ -313,10 +313,68 @@ aisle centres and three cross aisles; for scale and planner benchmarks."""
     return net, site_yaml("warehouse", comment, (0, 0, 40, 20), 1.0, 0.5, areas, obstacles, anchors, homes, racks)
 
 
+def big_warehouse():
+    # 200 m x 100 m: the warehouse's rack rows, aisles and bays on one regular grid, a road on every
+    # grid line. Roads along x every 4.2 m from y = 1.7 (24: the south and north perimeter roads and 22
+    # aisles between them) cross roads along y every 18 m from x = 1 (11: the west and east perimeter
+    # roads and 9 cross aisles). Each block between two cross aisles has the warehouse's 9 bays.
+    net = Network("big_warehouse", 1.0)
+    ys = [1.7 + 4.2 * i for i in range(24)]
+    xs = [1.0 + 18.0 * k for k in range(11)]
+    for i, y in enumerate(ys):
+        for k, x in enumerate(xs):
+            net.node(f"n{i}.{k}", x, y)
+    row_name = {0: "south", len(ys) - 1: "north"}
+    col_name = {0: "west", len(xs) - 1: "east"}
+    for i in range(len(ys)):
+        for k in range(len(xs) - 1):
+            net.edge(f"n{i}.{k}", f"n{i}.{k + 1}", f"{row_name.get(i, f'aisle {i}')} {k + 1}")
+    for k in range(len(xs)):
+        for i in range(len(ys) - 1):
+            net.edge(f"n{i}.{k}", f"n{i + 1}.{k}", f"{col_name.get(k, f'cross {k}')} {i + 1}")
+    net.build()
+    # Pallet places in the bays x0 + 2.5 + 1.5 j (j = 0..8) as in the warehouse; two a rack face
+    # and block (j = 2 and 6), on both sides of every aisle, 0.9 m from the aisle centre.
+    areas = []
+    for i, y in enumerate(ys[1:-1], start=1):
+        for side, yaw in ((-1, N), (1, S)):
+            for n, x in enumerate(x0 + 2.5 + 1.5 * j for x0 in xs[:-1] for j in (2, 6)):
+                areas.append((x, y + side * 0.9, yaw, (i + n) % 2 == 0))
+    # Rack rows 1.2 m deep between every two roads along x, broken by the cross aisles.
+    racks = [(x0 + 1.5, y0 + 2.1 - 0.6, x1 - 1.5, y0 + 2.1 + 0.6) for y0 in ys[:-1] for x0, x1 in zip(xs, xs[1:])]
+    # Aisle obstacles, off, between two bays of a block so each closes one aisle only.
+    obstacles = [(xs[k] + 8.2, ys[i] - 0.5, xs[k] + 8.8, ys[i] + 0.5) for i, k in ((3, 1), (8, 8), (15, 3), (20, 9))]
+    anchors = ([(40.0 * k, 0.0, 4.0) for k in range(6)] + [(200.0, 50.0, 4.0)] +
+               [(200.0 - 40.0 * k, 100.0, 4.0) for k in range(6)] + [(0.0, 50.0, 4.0)])
+    # Homes 0.6 m from a road's centre line, parked along it, 0.9 m apart, at least 1.5 m along the
+    # road from any junction: 17 a block outside the south and north perimeter roads, two between
+    # two roads along x outside the west and east perimeter roads and west of every cross aisle.
+    rows = []
+    for y, off in ((ys[0], -0.6), (ys[-1], 0.6)):
+        rows += [[(x0 + 1.8 + 0.9 * n, y + off, E) for n in range(17)] for x0 in xs[:-1]]
+    for x, off in [(xs[0], -0.6), (xs[-1], 0.6)] + [(x, -0.6) for x in xs[1:-1]]:
+        rows += [[(x + off, y0 + 1.65, N), (x + off, y0 + 2.55, N)] for y0 in ys[:-1]]
+    # Listed so that any first N spread over the site: each next home is the one farthest from
+    # those before it (ties: the earlier in the rows above), from the south-west one on.
+    left = [h for row in rows for h in row]
+    homes = [left.pop(0)]
+    gap = [math.hypot(x - homes[0][0], y - homes[0][1]) for x, y, _ in left]
+    while left:
+        far = max(range(len(left)), key=lambda n: (gap[n], -n))
+        homes.append(left.pop(far))
+        gap.pop(far)
+        gap = [min(g, math.hypot(x - homes[-1][0], y - homes[-1][1])) for g, (x, y, _) in zip(gap, left)]
+    comment = """Big warehouse: 200 m x 100 m, the warehouse's rack rows and 3 m aisles on a regular grid; 1 m
+roads on 22 aisle centres, 9 cross aisles and a perimeter road, hundreds of homes; for scale runs of
+the server and the load generator (fleetctl traffic-eval)."""
+    return net, site_yaml("big_warehouse", comment, (0, 0, 200, 100), 1.0, 0.5, areas, obstacles, anchors, homes,
+                          racks)
+
+
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse, plant,
-                 lambda: plant("plant_one_lane", 1), lambda: plant("plant_middle_closed", 2, ("middle aisle 2",))):
+    for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse,
+                 big_warehouse, plant, lambda: plant("plant_one_lane", 1), lambda: plant("plant_middle_closed", 2, ("middle aisle 2",))):
         net, yaml_text = make()
         with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
             f.write(net.xodr())

@@ -440,6 +440,12 @@
   }
 
   // ---- the stream ----
+  // Paths travel apart from the robots' other fields, only when a robot's path changed.
+  function takePaths(paths) {
+    for (const [id, path] of Object.entries(paths || {}))
+      if (frame.robots[id]) frame.robots[id].path = path;
+  }
+
   function applyDiff(d) {
     for (const name of ['robots', 'orders']) {
       const section = frame[name];
@@ -455,6 +461,7 @@
       Object.assign(frame[name], d[name] || {});
       for (const k of d[`${name}_removed`] || []) delete frame[name][k];
     }
+    takePaths(d.paths);
   }
 
   // The server switched its robots to another map of the site: draw that map's roads.
@@ -488,6 +495,8 @@
     const status = el('connection');
     source.addEventListener('full', (e) => {
       frame = JSON.parse(e.data);
+      takePaths(frame.paths);
+      delete frame.paths;
       stats.fullFrames++;
       onFrame();
     });

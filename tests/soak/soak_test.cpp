@@ -44,3 +44,37 @@ TEST(Soak, FourAgentsUnderEveryFaultLoseNothingRunNothingTwiceCollideNeverAndDet
   EXPECT_NEAR(lag["period_s"].get<double>(), 1.0 / 70.0, 1e-3);
   EXPECT_GE(lag["p99_s"].get<double>(), lag["p50_s"].get<double>());
 }
+
+// fleetctl load: the real server against emulated robots; judged by its exit status and the
+// figures every run must print.
+TEST(Load, TwentyEmulatedRobotsAreServedAndMeasured) {
+  FleetHarness fleet(76, 10.0);
+  fleet.use_config(FLEET_SOURCE_DIR "/config/sites/big_warehouse.yaml");
+  const auto run = fleet.fleetctl({"--json", "load", "--robots", "20", "--site", "big_warehouse", "--duration", "20",
+                                   "--warmup", "5", "--time-scale", "5"},
+                                  120.0);
+  const auto line_start = run.out.rfind('\n', run.out.size() >= 2 ? run.out.size() - 2 : 0);
+  const std::string line = run.out.substr(line_start == std::string::npos ? 0 : line_start + 1);
+  ASSERT_FALSE(line.empty()) << run.err;
+  const auto summary = nlohmann::json::parse(line);
+  std::cout << "load summary: " << summary.dump() << "\n";
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(summary["robots_reported"], 20);
+  EXPECT_EQ(summary["collisions"], 0);
+  EXPECT_EQ(summary["deadlocks"], 0);
+  EXPECT_GT(summary["traffic_cycles"].get<int>(), 0);
+  EXPECT_GT(summary["routes_sent"].get<int>(), 0);
+  EXPECT_EQ(summary["routes_unanswered"], 0);
+  EXPECT_GT(summary["grant_latency_ms"]["p50"].get<double>(), 0.0);
+  EXPECT_GT(summary["server_cpu_pct"].get<double>(), 0.0);
+  EXPECT_GT(summary["samples_to_server_per_s"].get<double>(), 20.0 * 20.0);  // state and traffic at 20 Hz sim
+  EXPECT_GT(summary["web_stream_bytes_per_s"].get<double>(), 0.0);
+}
+
+TEST(Load, MoreRobotsThanTheFleetDeclaresIsBadInput) {
+  FleetHarness fleet(77, 10.0);
+  fleet.use_config(FLEET_SOURCE_DIR "/config/sites/big_warehouse.yaml");
+  const auto run = fleet.fleetctl({"load", "--robots", "601", "--site", "big_warehouse"}, 60.0);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("declares 600 robots"), std::string::npos) << run.err;
+}

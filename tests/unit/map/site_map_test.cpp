@@ -20,7 +20,7 @@ using namespace fleet::map;
 
 namespace {
 
-const char* const kShipped[] = {"table_a", "table_b", "warehouse", "plant"};
+const char* const kShipped[] = {"table_a", "table_b", "warehouse", "plant", "big_warehouse"};
 
 std::string shipped(const std::string& name) {
   return FLEET_SOURCE_DIR "/maps/" + name + ".yaml";

@@ -6,6 +6,7 @@
 #include <queue>
 #include <random>
 
+#include "planning/road_travel.hpp"
 #include "planning/static_grid.hpp"
 #include "test_graphs.hpp"
 
@@ -225,6 +226,57 @@ TEST(RoadPlanner, HonoursCancelFlagAndNodeCap) {
   PlanOptions zero;
   zero.time_budget = std::chrono::microseconds(0);
   EXPECT_EQ(planner.plan_between(s, t, 0.0, zero).status, PlanStatus::kTimeout);
+}
+
+}  // namespace
+}  // namespace fleet::planning
+
+namespace fleet::planning {
+namespace {
+
+TEST(RoadPlanner, NearestPointFromTheIndexIsTheNearestOfAll) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 10; ++trial) {
+    const map::RoadGraph g = random_graph(rng, 200 + trial * 50, 400);
+    const RoadPlanner planner(g);
+    std::uniform_real_distribution<double> coord(-5.0, 25.0);  // inside the points' box and around it
+    for (int q = 0; q < 200; ++q) {
+      const geometry::Vec2 p{coord(rng), coord(rng)};
+      for (const auto use : {RoadPlanner::PointUse::kAny, RoadPlanner::PointUse::kRoute}) {
+        int best = -1;
+        double best_d2 = std::numeric_limits<double>::infinity();
+        for (const auto& point : g.points) {
+          const double d2 = (point.x - p.x) * (point.x - p.x) + (point.y - p.y) * (point.y - p.y);
+          if (use == RoadPlanner::PointUse::kRoute && !planner.in_main_component(point.id)) continue;
+          if (d2 < best_d2) {
+            best_d2 = d2;
+            best = point.id;
+          }
+        }
+        ASSERT_EQ(planner.nearest_point(p, use), best) << "trial " << trial << " at " << p.x << ", " << p.y;
+      }
+    }
+  }
+}
+
+TEST(RoadDistances, OneSearchGivesEveryStartTheShortestWayToTheGoal) {
+  std::mt19937 rng(5);
+  const map::RoadGraph g = random_graph(rng, 300, 500);
+  RoadDistances distances(g);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(g.points.size()) - 1);
+  for (int q = 0; q < 30; ++q) {
+    const int goal = pick(rng);
+    const auto& field = distances.to_point(goal);
+    for (int k = 0; k < 20; ++k) {
+      const int start = pick(rng);
+      const double best = dijkstra(g, start, goal);
+      if (std::isinf(best)) {
+        EXPECT_TRUE(std::isinf(field[static_cast<std::size_t>(start)]));
+      } else {
+        EXPECT_NEAR(field[static_cast<std::size_t>(start)], best, 1e-3 * (1.0 + best));
+      }
+    }
+  }
 }
 
 }  // namespace
