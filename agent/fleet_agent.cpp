@@ -45,7 +45,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       obstacle_reader_(participant_, dds::qos::latched_state()),
       control_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()),
-      fleet_view_reader_(participant_, dds::qos::live_state()),
+      neighbour_reader_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       truth_reader_(participant_, dds::qos::live_state()),
       waitset_(participant_) {
   map_id_ = options_.site->site.name;
@@ -268,9 +268,9 @@ void FleetAgent::handle_fleet_view(double now_sim) {
     for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
     robot_->set_true_neighbours(std::move(footprints));
   }
-  std::optional<model::FleetView> latest;
-  fleet_view_reader_.take_data([&](model::FleetView&& view) {
-    if (view.map_id == map_id_) latest = std::move(view);
+  std::optional<model::NeighbourView> latest;
+  neighbour_reader_.take_data([&](model::NeighbourView&& view) {
+    if (view.robot_id == options_.robot_id && view.map_id == map_id_) latest = std::move(view);
   });
   if (!latest) return;
   std::vector<robot::Neighbour> listed;
@@ -283,9 +283,14 @@ void FleetAgent::handle_fleet_view(double now_sim) {
     listed.push_back({r.robot_id, r.pose, r.footprint, lost ? 0.0 : std::abs(r.speed),
                       lost ? 0.0 : std::max(0.0, now_sim - r.sim_time)});
   }
-  // Robots missing from this view stay where last listed (a collision after a server restart in
-  // the 2-hour soak: the first views of the new server lacked robots not heard from yet).
-  neighbours_.update(listed, now_sim);
+  // Robots missing from this view stay where last listed: the first views of a server that just
+  // restarted lack the robots it has not heard from yet. A complete view shows who has left the
+  // radius it covers.
+  if (latest->complete) {
+    neighbours_.update_within(listed, now_sim, robot_->estimate().position(), latest->radius);
+  } else {
+    neighbours_.update(listed, now_sim);
+  }
   robot_->set_neighbours(neighbours_.current());
 }
 

@@ -107,7 +107,8 @@ class FleetAgent {
   dds::Reader<model::StaticObstacleState> obstacle_reader_;
   dds::Reader<model::RobotControl> control_reader_;
   dds::Reader<model::PalletTruth> pallet_reader_;
-  dds::Reader<model::FleetView> fleet_view_reader_;
+  /// The robots near this one, in its own partition (model::robot_partition).
+  dds::Reader<model::NeighbourView> neighbour_reader_;
   dds::Reader<model::SimTruth> truth_reader_;  ///< simulation only: what the lidar sees
   dds::WaitSet waitset_;
 };

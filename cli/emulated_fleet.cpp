@@ -37,6 +37,8 @@ EmulatedFleet::EmulatedFleet(EmulatedFleetOptions options, std::shared_ptr<const
   for (const auto& [id, home] : options_.robots) {
     index_[id] = robots_.size();
     robots_.emplace_back(id, home, options_.params, first_version);
+    neighbour_readers_.push_back(std::make_unique<dds::Reader<model::NeighbourView>>(
+        participant_, dds::qos::live_state(), model::robot_partition(id)));
   }
   links_.resize(robots_.size());
 }
@@ -49,7 +51,12 @@ void EmulatedFleet::run_until(double now_sim) {
   if (sim_ < 0.0 || now_sim - sim_ > 1.0) sim_ = now_sim;  // the start, or a stall not replayed
   for (; sim_ + step <= now_sim; sim_ += step) step_all(sim_);
   const bool due = now_sim >= next_publish_sim_;
-  if (due) next_publish_sim_ = now_sim + 1.0 / options_.state_hz;
+  if (due) {
+    next_publish_sim_ = now_sim + 1.0 / options_.state_hz;
+    for (auto& reader : neighbour_readers_) {
+      figures_.samples_in += reader->take_data([](model::NeighbourView&&) {});
+    }
+  }
   for (std::size_t i = 0; i < robots_.size(); ++i) {
     // A new route goes out at once, as an agent's; the rest at the state rate.
     const bool new_route = robots_[i].route_version() != links_[i].sent_version;

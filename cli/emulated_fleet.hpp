@@ -32,7 +32,7 @@ struct EmulatedFleetOptions {
 /// What the emulated fleet saw on the wire and on the floor.
 struct EmulatedFleetFigures {
   std::int64_t samples_out = 0;             ///< RobotState, TrafficRequest, OrderReport and RobotPath written
-  std::int64_t samples_in = 0;              ///< TrafficGrant and Order samples taken for these robots
+  std::int64_t samples_in = 0;              ///< TrafficGrant, Order and NeighbourView samples taken for these robots
   LatencyHistogram::Figures grant_latency;  ///< wall seconds from a new route to its first grant
   std::int64_t routes_sent = 0;
   std::int64_t routes_answered_late = 0;  ///< first grant later than two traffic cycles (wall)
@@ -104,6 +104,9 @@ class EmulatedFleet {
   dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::PalletTruth> pallet_reader_;
+  /// Each robot's NeighbourView, in its partition as an agent's; taken and counted, not used (an
+  /// emulated robot has no safety stop).
+  std::vector<std::unique_ptr<dds::Reader<model::NeighbourView>>> neighbour_readers_;
 };
 
 }  // namespace fleet::cli

@@ -23,6 +23,28 @@ dds_entity_t Participant::topic_for(const char* name, const dds_topic_descriptor
   return topic;
 }
 
+namespace {
+
+dds_entity_t create_in(dds_entity_t participant, const std::string& partition, bool publisher) {
+  dds_qos_t* qos = dds_create_qos();
+  dds_qset_partition1(qos, partition.c_str());
+  const dds_entity_t entity =
+      publisher ? dds_create_publisher(participant, qos, nullptr) : dds_create_subscriber(participant, qos, nullptr);
+  dds_delete_qos(qos);
+  return check(entity,
+               std::string(publisher ? "create publisher" : "create subscriber") + " in partition " + partition);
+}
+
+}  // namespace
+
+dds_entity_t create_publisher_in(dds_entity_t participant, const std::string& partition) {
+  return create_in(participant, partition, true);
+}
+
+dds_entity_t create_subscriber_in(dds_entity_t participant, const std::string& partition) {
+  return create_in(participant, partition, false);
+}
+
 std::uint32_t matched_readers(dds_entity_t writer) {
   dds_publication_matched_status_t status{};
   if (dds_get_publication_matched_status(writer, &status) < 0) return 0;

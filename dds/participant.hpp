@@ -58,6 +58,12 @@ class Participant {
   std::map<std::string, dds_entity_t> topics_;
 };
 
+/// A publisher (or subscriber) of `participant` in the one partition `partition`: its writers
+/// (readers) match only readers (writers) in that partition, so samples meant for one robot go to
+/// that robot alone, not to every reader of the topic.
+dds_entity_t create_publisher_in(dds_entity_t participant, const std::string& partition);
+dds_entity_t create_subscriber_in(dds_entity_t participant, const std::string& partition);
+
 /// Counts of matched remote endpoints.
 std::uint32_t matched_readers(dds_entity_t writer);
 std::uint32_t matched_writers(dds_entity_t reader);
@@ -68,7 +74,12 @@ class Writer {
   Writer(Participant& participant, const Qos& qos)
       : handle_(check(dds_create_writer(participant.handle(), participant.template topic<T>(), qos.get(), nullptr),
                       std::string("create writer ") + TopicTraits<T>::name)) {}
-  ~Writer() { dds_delete(handle_); }
+  /// A writer in partition `partition` alone (create_publisher_in).
+  Writer(Participant& participant, const Qos& qos, const std::string& partition)
+      : owner_(create_publisher_in(participant.handle(), partition)),
+        handle_(check(dds_create_writer(owner_, participant.template topic<T>(), qos.get(), nullptr),
+                      std::string("create writer ") + TopicTraits<T>::name + " in partition " + partition)) {}
+  ~Writer() { dds_delete(owner_ != 0 ? owner_ : handle_); }
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
@@ -95,6 +106,7 @@ class Writer {
   dds_entity_t handle() const { return handle_; }
 
  private:
+  dds_entity_t owner_ = 0;  ///< the publisher of a partition writer, deleted with it
   dds_entity_t handle_;
 };
 
@@ -106,7 +118,12 @@ class Reader {
   Reader(Participant& participant, const Qos& qos)
       : handle_(check(dds_create_reader(participant.handle(), participant.template topic<T>(), qos.get(), nullptr),
                       std::string("create reader ") + TopicTraits<T>::name)) {}
-  ~Reader() { dds_delete(handle_); }
+  /// A reader in partition `partition` alone (create_subscriber_in).
+  Reader(Participant& participant, const Qos& qos, const std::string& partition)
+      : owner_(create_subscriber_in(participant.handle(), partition)),
+        handle_(check(dds_create_reader(owner_, participant.template topic<T>(), qos.get(), nullptr),
+                      std::string("create reader ") + TopicTraits<T>::name + " in partition " + partition)) {}
+  ~Reader() { dds_delete(owner_ != 0 ? owner_ : handle_); }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
 
@@ -136,6 +153,7 @@ class Reader {
   }
 
  private:
+  dds_entity_t owner_ = 0;  ///< the subscriber of a partition reader, deleted with it
   dds_entity_t handle_;
 };
 

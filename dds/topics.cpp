@@ -339,6 +339,35 @@ model::FleetView from_wire(const fleet_msg_FleetView& w) {
   return v;
 }
 
+fleet_msg_NeighbourView to_wire(const model::NeighbourView& v, Scratch& s) {
+  auto& robots = s.snapshots.emplace_back();
+  for (const auto& r : v.robots) {
+    robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length, r.footprint.width,
+                      r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
+  }
+  return {borrow(v.robot_id),
+          borrow(v.map_id),
+          v.sim_time,
+          v.radius,
+          v.complete,
+          {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false}};
+}
+model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
+  model::NeighbourView v{text(w.robot_id), text(w.map_id), w.sim_time, w.radius, w.complete, {}};
+  for (uint32_t i = 0; i < w.robots._length; ++i) {
+    const auto& r = w.robots._buffer[i];
+    v.robots.push_back({text(r.robot_id),
+                        text(r.fleet_id),
+                        model_pose(r.pose),
+                        {r.length, r.width},
+                        r.speed,
+                        text(r.task_state),
+                        r.sim_time,
+                        points_of(r.path)});
+  }
+  return v;
+}
+
 fleet_msg_SimTruth to_wire(const model::SimTruth& v, Scratch&) {
   return {borrow(v.robot_id), wire_pose(v.pose), v.footprint.length, v.footprint.width, v.carrying_pallet, v.sim_time};
 }
@@ -457,6 +486,7 @@ FLEET_DDS_TOPIC_IMPL(RobotControl, fleet_msg_RobotControl, "fleet/RobotControl")
 FLEET_DDS_TOPIC_IMPL(PalletTruth, fleet_msg_PalletTruth, "fleet/PalletTruth")
 FLEET_DDS_TOPIC_IMPL(StaticObstacleState, fleet_msg_StaticObstacle, "fleet/StaticObstacles")
 FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
+FLEET_DDS_TOPIC_IMPL(NeighbourView, fleet_msg_NeighbourView, "fleet/NeighbourView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")
 FLEET_DDS_TOPIC_IMPL(TrafficRequest, fleet_msg_TrafficRequest, "fleet/TrafficRequest")
 FLEET_DDS_TOPIC_IMPL(TrafficGrant, fleet_msg_TrafficGrant, "fleet/TrafficGrant")

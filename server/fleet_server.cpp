@@ -21,7 +21,6 @@ using orders::OrderStatus;
 
 namespace {
 constexpr double kReplyRetentionWallS = 30.0;  // a requester has this long to read its reply
-constexpr double kMaxRoutingHzWall = 100.0;    // FleetView is capped in wall rate at high time scales
 
 /// The site's loading areas as the places of the area ledger, in the site's order.
 std::vector<orders::Place> places_of(const map::Site& site) {
@@ -252,7 +251,11 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       }
     }
     check_acknowledgements();
-    if (auto_orders_) create_auto_orders();
+    // Automatic orders a few times a second: each round looks at every robot.
+    if (auto_orders_ && SimClock::wall_now() - last_auto_orders_wall_ >= kAutoOrdersPeriodWall) {
+      last_auto_orders_wall_ = SimClock::wall_now();
+      create_auto_orders();
+    }
     advance_packing_chain();
     dispatch();
     publish_fleet_view();
@@ -425,34 +428,6 @@ geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {
   std::vector<geometry::Vec2> corners;
   for (const auto& p : spec->first->profile.footprint) corners.push_back(geometry::body_to_map(robot.last.pose, p));
   return traffic::convex_hull(std::move(corners));
-}
-
-void FleetServer::publish_fleet_view() {
-  const double now_wall = SimClock::wall_now();
-  const double period_wall = std::max(
-      1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("server.fleet_view_hz")));
-  if (now_wall - last_fleet_view_wall_ < period_wall) return;
-  last_fleet_view_wall_ = now_wall;
-  std::map<std::string, model::FleetView> views;
-  for (const auto& [id, robot] : robots_) {
-    if (!robot.registered) continue;
-    const auto spec = options_.config.find_robot(id);
-    model::RobotSnapshot snap;
-    snap.robot_id = id;
-    snap.fleet_id = robot.fleet_id;
-    snap.pose = robot.last.pose;
-    if (spec) snap.footprint = spec->first->footprint;
-    snap.speed = robot.last.speed;
-    snap.task_state = robot.lost ? "LOST" : robot.last.task_state;
-    snap.sim_time = robot.last.sim_time;
-    if (auto p = paths_.find(id); p != paths_.end()) snap.path = p->second.points;
-    const std::string map_id = robot.last.map_id.empty() ? options_.site.name : robot.last.map_id;
-    auto& view = views[map_id];
-    view.map_id = map_id;
-    view.sim_time = clock_.now();
-    view.robots.push_back(std::move(snap));
-  }
-  for (const auto& [map_id, view] : views) fleet_view_writer_.write(view);
 }
 
 }  // namespace fleet::server

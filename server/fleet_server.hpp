@@ -102,6 +102,9 @@ class FleetServer {
   void create_auto_orders();
   void dispatch();
   void publish_fleet_view();
+  /// Each robot's NeighbourView: the robots of its map within server.neighbour_radius.
+  void publish_neighbour_views(const std::vector<std::pair<std::string, model::RobotSnapshot>>& snapshots,
+                               double now_wall);
   void handle_web_requests();
   void publish_web_snapshot();
 
@@ -195,6 +198,8 @@ class FleetServer {
   std::map<std::int64_t, int> resends_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   bool auto_orders_ = false;
+  static constexpr double kAutoOrdersPeriodWall = 0.05;
+  double last_auto_orders_wall_ = 0.0;
   /// An order changed since the packing chain last looked: only then can it owe a transport.
   bool chain_stale_ = true;
   double last_fleet_view_wall_ = 0.0;
@@ -215,6 +220,8 @@ class FleetServer {
   dds::Writer<model::PalletTruth> pallet_writer_;
   dds::Writer<model::StaticObstacleState> obstacle_writer_;
   dds::Writer<model::FleetView> fleet_view_writer_;
+  /// One per robot, each in the robot's own partition (model::robot_partition).
+  std::map<std::string, std::unique_ptr<dds::Writer<model::NeighbourView>>> neighbour_writers_;
   dds::Reader<model::OrderRequest> request_reader_;
   dds::Reader<model::Command> command_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;

@@ -186,6 +186,21 @@ struct FleetView {
   std::vector<RobotSnapshot> robots;
 };
 
+/// The robots within `radius` of one robot, for its agent alone (idl/fleet.idl NeighbourView).
+struct NeighbourView {
+  std::string robot_id;
+  std::string map_id;
+  double sim_time = 0.0;
+  double radius = 0.0;
+  bool complete = true;
+  std::vector<RobotSnapshot> robots;
+};
+
+/// The DDS partition of the messages meant for one robot's agent alone.
+inline std::string robot_partition(const std::string& robot_id) {
+  return "robot." + robot_id;
+}
+
 struct SimTruth {
   std::string robot_id;
   geometry::Pose2 pose;

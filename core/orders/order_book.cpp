@@ -10,11 +10,17 @@ const Order& OrderBook::create(Order draft, double now_sim) {
   draft.phase = OrderPhase::kNone;
   draft.created_sim = draft.updated_sim = now_sim;
   draft.history = {{now_sim, OrderStatus::kQueued, OrderPhase::kNone, "", "", 0.0, 0.0}};
+  unfinished_.insert(draft.id);
   return orders_[draft.id] = std::move(draft);
 }
 
 void OrderBook::restore(const Order& order) {
   orders_[order.id] = order;
+  if (is_final(order.status)) {
+    unfinished_.erase(order.id);
+  } else {
+    unfinished_.insert(order.id);
+  }
   next_id_ = std::max(next_id_, order.id + 1);
 }
 
@@ -32,7 +38,10 @@ TransitionResult OrderBook::transition(std::int64_t id, OrderStatus to, double n
     order.phase = OrderPhase::kNone;
     if (!order.robot_requested) order.robot_id.clear();
   }
-  if (is_final(to)) order.finished_sim = now_sim;
+  if (is_final(to)) {
+    order.finished_sim = now_sim;
+    unfinished_.erase(id);
+  }
   order.history.push_back({now_sim, to, order.phase, order.robot_id, reason, 0.0, 0.0});
   // A done order is in no phase; the history says it ended DROPPING. FAILED and CANCELLED keep
   // the phase they stopped in, which says where.
@@ -94,14 +103,19 @@ std::vector<const Order*> OrderBook::with_status(OrderStatus status) const {
 }
 
 std::vector<const Order*> OrderBook::queue() const {
-  std::vector<const Order*> out = with_status(OrderStatus::kQueued);
+  std::vector<const Order*> out;
+  for (const std::int64_t id : unfinished_) {
+    const Order& order = orders_.at(id);
+    if (order.status == OrderStatus::kQueued) out.push_back(&order);
+  }
   std::stable_sort(out.begin(), out.end(), [](const Order* a, const Order* b) { return a->priority > b->priority; });
   return out;
 }
 
 const Order* OrderBook::open_order_of(const std::string& robot_id) const {
-  for (const auto& [id, order] : orders_) {
-    if (!is_final(order.status) && order.status != OrderStatus::kQueued && order.robot_id == robot_id) return &order;
+  for (const std::int64_t id : unfinished_) {
+    const Order& order = orders_.at(id);
+    if (order.status != OrderStatus::kQueued && order.robot_id == robot_id) return &order;
   }
   return nullptr;
 }

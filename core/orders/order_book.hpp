@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,9 @@ class OrderBook {
 
  private:
   std::map<std::int64_t, Order> orders_;
+  /// Ids of the orders not yet final, in id order: what the queue and a robot's open order are
+  /// looked up among, while the book keeps every order of a long run.
+  std::set<std::int64_t> unfinished_;
   std::int64_t next_id_;
 };
 

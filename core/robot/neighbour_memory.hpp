@@ -19,6 +19,12 @@ class NeighbourMemory {
 
   /// The robots of a view that arrived at sim time `now` (this robot left out by the caller).
   void update(const std::vector<Neighbour>& listed, double now);
+  /// The same for a view that lists every robot within `radius` of `centre` (a NeighbourView of
+  /// a server that has heard from every robot): one remembered well inside that circle and not
+  /// listed has left it, and is forgotten at once. Near the edge (within `edge` of it) it may
+  /// have been listed from a pose a step older than ours; there it is kept as by update().
+  void update_within(const std::vector<Neighbour>& listed, double now, geometry::Vec2 centre, double radius,
+                     double edge = 1.0);
   /// Everyone remembered, by id.
   std::vector<Neighbour> current() const;
 

@@ -40,3 +40,22 @@ TEST(NeighbourMemory, ARobotLeftOutOfViewsForLongIsForgotten) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NeighbourMemory, ARobotThatLeftTheRadiusOfACompleteViewIsForgottenAtOnce) {
+  NeighbourMemory memory(20.0);
+  memory.update_within({at("fl2", 3.0), at("fl4", 9.5)}, 100.0, {0.0, 0.5}, 10.0);
+  // fl2 drove off beyond the radius: a complete view no longer lists it, and where it was last
+  // listed (3 m away, well inside) it is not any more.
+  memory.update_within({at("fl4", 9.6)}, 100.05, {0.0, 0.5}, 10.0);
+  EXPECT_EQ(ids(memory.current()), (std::vector<std::string>{"fl4"}));
+  // fl4 left across the edge: its last pose was within a metre of it, so it is kept a while
+  // (it may have been listed from a pose of ours a step older).
+  memory.update_within({}, 100.1, {0.0, 0.5}, 10.0);
+  EXPECT_EQ(ids(memory.current()), (std::vector<std::string>{"fl4"}));
+  memory.update_within({}, 121.0, {0.0, 0.5}, 10.0);
+  EXPECT_TRUE(memory.current().empty());
+}
+
+}  // namespace
