@@ -34,14 +34,6 @@ std::string tail_of(const std::string& file, std::size_t lines) {
   return out;
 }
 
-/// 128 random bits as hex: the web view's token for this demo.
-std::string random_token() {
-  std::random_device device;
-  char out[33];
-  for (int i = 0; i < 4; ++i) std::snprintf(out + 8 * i, 9, "%08x", device());
-  return out;
-}
-
 std::string timestamp() {
   const std::time_t t = std::time(nullptr);
   char buffer[32];
@@ -49,6 +41,13 @@ std::string timestamp() {
   return buffer;
 }
 }  // namespace
+
+std::string random_token() {
+  std::random_device device;
+  char out[33];
+  for (int i = 0; i < 4; ++i) std::snprintf(out + 8 * i, 9, "%08x", device());
+  return out;
+}
 
 FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
     : options_(std::move(options)), config_(std::move(config)), log_(std::move(log)) {

@@ -23,6 +23,9 @@
 
 namespace fleet::cli {
 
+/// 128 random bits as hex: a web view's API token for a fleet fleetctl starts (demo, load).
+std::string random_token();
+
 /// The most agent processes `fleetctl demo` and `fleetctl soak` start on one host.
 constexpr int kMaxAgents = 256;
 

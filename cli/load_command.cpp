@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <random>
 #include <thread>
 
 #include "cli/client.hpp"
@@ -86,14 +85,6 @@ class StreamClient {
   std::atomic<double> bytes_{0.0};
   std::thread thread_;
 };
-
-std::string random_hex(std::size_t n) {
-  std::random_device entropy;
-  static const char* kHex = "0123456789abcdef";
-  std::string s;
-  for (std::size_t i = 0; i < n; ++i) s += kHex[entropy() % 16];
-  return s;
-}
 
 /// The emulated fleet: the config's fleet `fleet_id` (or its first), its first `robots` robots
 /// at their homes.
@@ -334,7 +325,7 @@ int load_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       state_dir() + "/runs/load-" + std::to_string(options.robots) + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir);
   const int http_port = free_port();
-  const std::string token = random_hex(32);
+  const std::string token = random_token();
   ProcessGroup processes;
   start_server(processes, command, options, domain, run_dir, http_port, token);
   err << "fleetctl load: fleet-server and " << options.robots << " emulated robots of fleet '" << fleet.id

@@ -313,59 +313,42 @@ model::StaticObstacleState from_wire(const fleet_msg_StaticObstacle& w) {
   return {text(w.obstacle_id), text(w.map_id), w.enabled, points_of(w.polygon)};
 }
 
-fleet_msg_FleetView to_wire(const model::FleetView& v, Scratch& s) {
+dds_sequence_fleet_msg_RobotSnapshot snapshot_seq(Scratch& s, const std::vector<model::RobotSnapshot>& items) {
   auto& robots = s.snapshots.emplace_back();
-  for (const auto& r : v.robots) {
+  for (const auto& r : items) {
     robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length, r.footprint.width,
                       r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
   }
-  return {borrow(v.map_id),
-          v.sim_time,
-          {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false}};
+  return {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false};
+}
+std::vector<model::RobotSnapshot> snapshots_of(const dds_sequence_fleet_msg_RobotSnapshot& w) {
+  std::vector<model::RobotSnapshot> out;
+  for (uint32_t i = 0; i < w._length; ++i) {
+    const auto& r = w._buffer[i];
+    out.push_back({text(r.robot_id),
+                   text(r.fleet_id),
+                   model_pose(r.pose),
+                   {r.length, r.width},
+                   r.speed,
+                   text(r.task_state),
+                   r.sim_time,
+                   points_of(r.path)});
+  }
+  return out;
+}
+
+fleet_msg_FleetView to_wire(const model::FleetView& v, Scratch& s) {
+  return {borrow(v.map_id), v.sim_time, snapshot_seq(s, v.robots)};
 }
 model::FleetView from_wire(const fleet_msg_FleetView& w) {
-  model::FleetView v{text(w.map_id), w.sim_time, {}};
-  for (uint32_t i = 0; i < w.robots._length; ++i) {
-    const auto& r = w.robots._buffer[i];
-    v.robots.push_back({text(r.robot_id),
-                        text(r.fleet_id),
-                        model_pose(r.pose),
-                        {r.length, r.width},
-                        r.speed,
-                        text(r.task_state),
-                        r.sim_time,
-                        points_of(r.path)});
-  }
-  return v;
+  return {text(w.map_id), w.sim_time, snapshots_of(w.robots)};
 }
 
 fleet_msg_NeighbourView to_wire(const model::NeighbourView& v, Scratch& s) {
-  auto& robots = s.snapshots.emplace_back();
-  for (const auto& r : v.robots) {
-    robots.push_back({borrow(r.robot_id), borrow(r.fleet_id), wire_pose(r.pose), r.footprint.length, r.footprint.width,
-                      r.speed, borrow(r.task_state), r.sim_time, s.point_seq(r.path)});
-  }
-  return {borrow(v.robot_id),
-          borrow(v.map_id),
-          v.sim_time,
-          v.radius,
-          v.complete,
-          {static_cast<uint32_t>(robots.size()), static_cast<uint32_t>(robots.size()), robots.data(), false}};
+  return {borrow(v.robot_id), borrow(v.map_id), v.sim_time, v.radius, v.complete, snapshot_seq(s, v.robots)};
 }
 model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
-  model::NeighbourView v{text(w.robot_id), text(w.map_id), w.sim_time, w.radius, w.complete, {}};
-  for (uint32_t i = 0; i < w.robots._length; ++i) {
-    const auto& r = w.robots._buffer[i];
-    v.robots.push_back({text(r.robot_id),
-                        text(r.fleet_id),
-                        model_pose(r.pose),
-                        {r.length, r.width},
-                        r.speed,
-                        text(r.task_state),
-                        r.sim_time,
-                        points_of(r.path)});
-  }
-  return v;
+  return {text(w.robot_id), text(w.map_id), w.sim_time, w.radius, w.complete, snapshots_of(w.robots)};
 }
 
 fleet_msg_SimTruth to_wire(const model::SimTruth& v, Scratch&) {
