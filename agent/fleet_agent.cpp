@@ -411,7 +411,7 @@ void FleetAgent::publish_traffic(double now_sim) {
 void FleetAgent::handle_traffic() {
   if (!traffic_) return;
   grant_reader_.take_data([&](model::TrafficGrant&& grant) {
-    if (grant.robot_id != options_.robot_id) return;
+    if (grant.robot_id != options_.robot_id || grant.sim_time < grants_valid_from_sim_) return;
     robot::TrafficPermit permit;
     permit.version = grant.version;
     permit.granted_index = grant.granted_index;
@@ -427,6 +427,18 @@ void FleetAgent::handle_traffic() {
   });
 }
 
+void FleetAgent::drop_grant(double now_sim) {
+  if (!traffic_) return;
+  grants_valid_from_sim_ = now_sim;
+  robot::TrafficPermit none;
+  none.version = robot_->traffic_route().version;
+  none.granted_index = -1;  // no grant for this route: the robot stands
+  robot_->set_traffic_grant(none);
+  log_->warn(
+      "stood still for longer than the server waits before it takes a robot for lost: standing until the "
+      "traffic manager grants the road again");
+}
+
 void FleetAgent::run(const std::atomic<bool>& stop) {
   const double step = robot_->step_period();
   const double publish_period_wall =
@@ -437,6 +449,9 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   double target = clock_.now();
   publish_state(target);
   ProcessMemory memory;
+  // Half the server's silence limit: a stop that long may have cost the robot its grants.
+  const double grant_lost_gap_wall = 0.5 * options_.config.settings.get_double("server.robot_lost_after_s");
+  double last_loop_wall = SimClock::wall_now();
   const auto publish_when_due = [&](double sim_time) {
     const double now_wall = SimClock::wall_now();
     if (now_wall - last_publish_wall < publish_period_wall) return false;
@@ -447,6 +462,9 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   };
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(2));
+    const double loop_wall = SimClock::wall_now();
+    if (loop_wall - last_loop_wall >= grant_lost_gap_wall) drop_grant(clock_.now());
+    last_loop_wall = loop_wall;
     handle_site_inputs();
     handle_orders();
     target = clock_.now();

@@ -63,6 +63,10 @@ class FleetAgent {
   void publish_state(double now_sim);
   void publish_traffic(double now_sim);
   void handle_traffic();
+  /// After the process stood still long enough for the server to take the robot for lost: the
+  /// road granted beyond its body may have gone to others meanwhile, so it stands until a grant
+  /// made after `now_sim` arrives.
+  void drop_grant(double now_sim);
   void flush_delayed_states();
 
   AgentOptions options_;
@@ -89,6 +93,7 @@ class FleetAgent {
   bool traffic_ = false;
   robot::TrafficRoute last_traffic_;
   double last_traffic_sim_ = -1.0;
+  double grants_valid_from_sim_ = -1.0;  ///< grants stamped earlier are stale (drop_grant)
   // Fault injection (faults.pose_delay_ms): RobotState held back until its wall time is due.
   double pose_delay_s_ = 0.0;
   double pose_jitter_s_ = 0.0;

@@ -34,6 +34,9 @@ constexpr double kFaultPeriodSim = 120.0;  // a fault every two simulated minute
 constexpr double kKillPauseWall = 2.0;     // a killed agent stays down this long
 constexpr double kStallWall = 3.0;         // a stopped agent stays frozen this long
 constexpr double kServerPauseWall = 1.0;   // a killed server stays down this long
+/// Faults that fell behind their schedule (a map switch refused for a while) come one by one, this
+/// far apart: a robot stalled while the server is down could not be found stalled.
+constexpr double kFaultGapWall = kStallWall + 2.0;
 // An obstacle switched on stays on this long: shorter than the 60 s deadlock window, so a robot
 // whose every way it closes waits it out [Forklift thesis, Fig. 5.11] without counting as deadlocked.
 constexpr double kObstacleOnSim = 45.0;
@@ -318,6 +321,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       log->warn("fault {}: {} at t={:.0f} s sim{}", faults.size() + 1, to_string(fault.kind), elapsed_sim,
                 record.target.empty() ? "" : " (" + record.target + ")");
       faults.push_back(record);
+      retry_fault_at_wall = now_wall + kFaultGapWall;
     }
 
     if (elapsed >= next_usage_sample) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dds/qos.hpp"
+#include "robot/neighbour_memory.hpp"
 #include "server/fleet_server.hpp"
 
 namespace fleet::server {
@@ -14,6 +15,9 @@ namespace {
 constexpr double kMaxRoutingHzWall = 100.0;  // the views are capped in wall rate at high time scales
 /// Wall seconds after the start before a NeighbourView counts as complete: by then every robot
 /// that is alive has reported (they report at agent.state_hz) and the server knows where it is.
+/// A robot that stands frozen across a restart reports later; the views wait for the agents'
+/// forgetting time as well (robot::NeighbourMemory::kForgetAfterS), after which an agent would no
+/// longer keep it either way.
 constexpr double kViewsCompleteAfterWall = 3.0;
 
 }  // namespace
@@ -57,7 +61,9 @@ void FleetServer::publish_fleet_view() {
 void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::string, model::RobotSnapshot>>& snapshots,
                                           double now_wall) {
   const double radius = options_.config.settings.get_double("server.neighbour_radius");
-  const bool complete = now_wall - started_wall_ >= kViewsCompleteAfterWall;
+  const double complete_after_wall =
+      std::max(kViewsCompleteAfterWall, clock_.to_wall(robot::NeighbourMemory::kForgetAfterS));
+  const bool complete = now_wall - started_wall_ >= complete_after_wall;
   // By x, so that each robot looks only at the strip of robots within the radius along x.
   std::vector<std::size_t> by_x(snapshots.size());
   for (std::size_t i = 0; i < by_x.size(); ++i) by_x[i] = i;

@@ -218,6 +218,8 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
                manoeuvring ? "manoeuvre sweeps" : "body stands on", manager_.held_places(it->second).size());
   }
   status_.erase(robot_id);
+  // Its next grant goes out at once when it is back: it stands until one comes.
+  sent_.erase(robot_id);
   if (!manoeuvring) working_.erase(robot_id);
 }
 

@@ -15,7 +15,12 @@ namespace fleet::robot {
 /// views have gone without it for `forget_after_s`.
 class NeighbourMemory {
  public:
-  explicit NeighbourMemory(double forget_after_s = 20.0) : forget_after_s_(forget_after_s) {}
+  /// Sim seconds a robot no view lists is remembered (the default of the constructor). A view
+  /// counts as complete only from a server that has run this long: a robot it has not heard from
+  /// (frozen while the server restarted) would be forgotten by now from an incomplete view too.
+  static constexpr double kForgetAfterS = 20.0;
+
+  explicit NeighbourMemory(double forget_after_s = kForgetAfterS) : forget_after_s_(forget_after_s) {}
 
   /// The robots of a view that arrived at sim time `now` (this robot left out by the caller).
   void update(const std::vector<Neighbour>& listed, double now);

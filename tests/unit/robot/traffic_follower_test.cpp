@@ -70,6 +70,24 @@ TEST(TrafficFollower, AGrantShorterThanThePathStopsTheRobotAtTheGrant) {
   EXPECT_TRUE(std::isinf(f.room({2.0, 0.0})));
 }
 
+TEST(TrafficFollower, AGrantWithdrawnMidRouteHoldsTheRobotWhereItIsUntilTheNextGrant) {
+  // What an agent does after its process stood still: it drops the grant it had (the road ahead
+  // may have gone to another robot meanwhile) and waits for a fresh one.
+  const map::RoadGraph g = straight_road();
+  TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
+  f.adopt_plan(own_plan(g, 4));
+  const std::uint64_t version = f.route().version;
+  f.grant({version, 4, 4.0, {}, {}, false});
+  EXPECT_TRUE(std::isinf(room_after_driving(f, 0.0, 2.5)));
+  TrafficPermit none;
+  none.version = version;
+  none.granted_index = -1;
+  EXPECT_FALSE(f.grant(none));
+  EXPECT_LT(f.room({2.5, 0.0}), 0.0) << "no room at all, not even to turn";
+  f.grant({version, 3, 3.0, {}, {}, false});
+  EXPECT_NEAR(f.room({2.5, 0.0}), 1.5, 1e-6);
+}
+
 TEST(TrafficFollower, ARobotThatWaitsOffTheRoadForRoomStandsUntilGrantedPastTheEntry) {
   const map::RoadGraph g = straight_road();
   for (bool waits : {false, true}) {
