@@ -11,6 +11,7 @@
 namespace fleet::agent {
 
 namespace {
+constexpr double kMaxSleepWall = 0.02;  // the main loop's longest sleep between control steps
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
 constexpr std::size_t kKeptReports = 8;      // latched order reports kept for a restarted server
 
@@ -461,7 +462,11 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     return true;
   };
   while (!stop.load()) {
-    waitset_.wait(std::chrono::milliseconds(2));
+    // Asleep until the next control step is due or an input arrives (the grants, orders and site
+    // inputs wake the waitset): a fixed short timeout woke the process hundreds of times a second
+    // for nothing, a fifth of an idle agent's CPU.
+    const double until_step_wall = clock_.to_wall(robot_->time() + offset + step - clock_.now());
+    waitset_.wait(std::chrono::microseconds(static_cast<long>(std::clamp(until_step_wall, 0.0, kMaxSleepWall) * 1e6)));
     const double loop_wall = SimClock::wall_now();
     if (loop_wall - last_loop_wall >= grant_lost_gap_wall) drop_grant(clock_.now());
     last_loop_wall = loop_wall;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the shipped site maps: maps/{table_a,table_b,warehouse,big_warehouse,plant}.{xodr,yaml}.
+"""Writes the shipped site maps: maps/{table_a,table_b,warehouse,big_warehouse,mid_warehouse,plant}.{xodr,yaml}.
 
 A map is drawn as straight road segments between nodes. Every road is one lane of the site's
 road width, with its lane centre on the reference line (laneOffset = half the width), driven both
@@ -313,14 +313,15 @@ aisle centres and three cross aisles; for scale and planner benchmarks."""
     return net, site_yaml("warehouse", comment, (0, 0, 40, 20), 1.0, 0.5, areas, obstacles, anchors, homes, racks)
 
 
-def big_warehouse():
+def big_warehouse(name="big_warehouse", rows_along_x=24, roads_along_y=11, width=200.0, height=100.0):
     # 200 m x 100 m: the warehouse's rack rows, aisles and bays on one regular grid, a road on every
     # grid line. Roads along x every 4.2 m from y = 1.7 (24: the south and north perimeter roads and 22
     # aisles between them) cross roads along y every 18 m from x = 1 (11: the west and east perimeter
     # roads and 9 cross aisles). Each block between two cross aisles has the warehouse's 9 bays.
-    net = Network("big_warehouse", 1.0)
-    ys = [1.7 + 4.2 * i for i in range(24)]
-    xs = [1.0 + 18.0 * k for k in range(11)]
+    # Fewer rows and roads give the same pattern smaller (mid_warehouse).
+    net = Network(name, 1.0)
+    ys = [1.7 + 4.2 * i for i in range(rows_along_x)]
+    xs = [1.0 + 18.0 * k for k in range(roads_along_y)]
     for i, y in enumerate(ys):
         for k, x in enumerate(xs):
             net.node(f"n{i}.{k}", x, y)
@@ -343,9 +344,13 @@ def big_warehouse():
     # Rack rows 1.2 m deep between every two roads along x, broken by the cross aisles.
     racks = [(x0 + 1.5, y0 + 2.1 - 0.6, x1 - 1.5, y0 + 2.1 + 0.6) for y0 in ys[:-1] for x0, x1 in zip(xs, xs[1:])]
     # Aisle obstacles, off, between two bays of a block so each closes one aisle only.
-    obstacles = [(xs[k] + 8.2, ys[i] - 0.5, xs[k] + 8.8, ys[i] + 0.5) for i, k in ((3, 1), (8, 8), (15, 3), (20, 9))]
-    anchors = ([(40.0 * k, 0.0, 4.0) for k in range(6)] + [(200.0, 50.0, 4.0)] +
-               [(200.0 - 40.0 * k, 100.0, 4.0) for k in range(6)] + [(0.0, 50.0, 4.0)])
+    closed = [(i * (rows_along_x - 1) // 24 + 1, min(k * roads_along_y // 11, roads_along_y - 2))
+              for i, k in ((3, 1), (8, 8), (15, 3), (20, 9))]
+    obstacles = [(xs[k] + 8.2, ys[i] - 0.5, xs[k] + 8.8, ys[i] + 0.5) for i, k in dict.fromkeys(closed)]
+    # UWB anchors on the ceiling, a grid at most 20 m apart: every point of the floor has four within
+    # the tags' 30 m range.
+    nx, ny = math.ceil(width / 20.0), math.ceil(height / 20.0)
+    anchors = [(round(width * k / nx, 2), round(height * j / ny, 2), 4.0) for j in range(ny + 1) for k in range(nx + 1)]
     # Homes 0.6 m from a road's centre line, parked along it, 0.9 m apart, at least 1.5 m along the
     # road from any junction: 17 a block outside the south and north perimeter roads, two between
     # two roads along x outside the west and east perimeter roads and west of every cross aisle.
@@ -367,14 +372,17 @@ def big_warehouse():
     comment = """Big warehouse: 200 m x 100 m, the warehouse's rack rows and 3 m aisles on a regular grid; 1 m
 roads on 22 aisle centres, 9 cross aisles and a perimeter road, hundreds of homes; for scale runs of
 the server and the load generator (fleetctl traffic-eval)."""
-    return net, site_yaml("big_warehouse", comment, (0, 0, 200, 100), 1.0, 0.5, areas, obstacles, anchors, homes,
-                          racks)
+    if name != "big_warehouse":
+        comment = f"""{name.replace("_", " ").capitalize()}: {width:.0f} m x {height:.0f} m, the big warehouse's pattern with
+{rows_along_x - 2} aisles and {roads_along_y - 2} cross aisles, {len(homes)} homes; for soaks with many agents."""
+    return net, site_yaml(name, comment, (0, 0, round(width), round(height)), 1.0, 0.5, areas, obstacles, anchors,
+                          homes, racks)
 
 
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
     for make in (table_a, lambda: table_a("table_a_north_closed", ("cross north",)), table_b, warehouse,
-                 big_warehouse, plant, lambda: plant("plant_one_lane", 1), lambda: plant("plant_middle_closed", 2, ("middle aisle 2",))):
+                 big_warehouse, lambda: big_warehouse("mid_warehouse", 8, 4, 56.0, 33.0), plant, lambda: plant("plant_one_lane", 1), lambda: plant("plant_middle_closed", 2, ("middle aisle 2",))):
         net, yaml_text = make()
         with open(os.path.join(out_dir, net.name + ".xodr"), "w") as f:
             f.write(net.xodr())
