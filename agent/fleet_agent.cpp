@@ -11,7 +11,9 @@
 namespace fleet::agent {
 
 namespace {
-constexpr double kMaxSleepWall = 0.02;  // the main loop's longest sleep between control steps
+constexpr double kMaxSleepWall = 0.02;
+/// Wall seconds without a NeighbourView after which the agent reads SimTruth itself.
+constexpr double kViewsStaleWall = 0.5;      // the main loop's longest sleep between control steps
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
 constexpr std::size_t kKeptReports = 8;      // latched order reports kept for a restarted server
 
@@ -47,7 +49,6 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       control_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()),
       neighbour_reader_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
-      truth_reader_(participant_, dds::qos::live_state()),
       waitset_(participant_) {
   map_id_ = options_.site->site.name;
   traffic_ = options_.config.settings.get_bool("traffic.enabled");
@@ -257,22 +258,49 @@ void FleetAgent::switch_map(const std::string& map_id) {
   }
 }
 
-void FleetAgent::handle_fleet_view(double now_sim) {
-  bool truths_changed = false;
-  truth_reader_.take_data([&](model::SimTruth&& truth) {
-    if (truth.robot_id == options_.robot_id || !geometry::is_finite(truth.pose)) return;
-    truths_[truth.robot_id] = std::move(truth);
-    truths_changed = true;
-  });
-  if (truths_changed) {
-    std::vector<geometry::Polygon> footprints;
-    for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
-    robot_->set_true_neighbours(std::move(footprints));
+void FleetAgent::take_true_bodies(std::optional<model::NeighbourView>& latest) {
+  // Simulation only: what the sensors see. The server relays the true bodies near this robot in
+  // its NeighbourView. While no view comes (the server is down), the agent reads every robot's
+  // SimTruth itself, so that its simulated lidar does not lose sight of robots that move on.
+  const double now_wall = SimClock::wall_now();
+  bool changed = false;
+  if (latest) {
+    last_view_wall_ = now_wall;
+    if (direct_truths_) {
+      direct_truths_.reset();
+      log_->info("NeighbourViews are back: the true bodies come from them again");
+    }
+    // A complete view holds every body near this one; the first views of a server that just
+    // started lack those it has not heard from yet.
+    if (latest->complete) truths_.clear();
+    for (auto& body : latest->bodies) {
+      if (body.robot_id != options_.robot_id && geometry::is_finite(body.pose))
+        truths_[body.robot_id] = std::move(body);
+    }
+    changed = true;
+  } else if (!direct_truths_ && now_wall - last_view_wall_ > kViewsStaleWall) {
+    direct_truths_ = std::make_unique<dds::Reader<model::SimTruth>>(participant_, dds::qos::live_state());
+    log_->info("no NeighbourView for {:.1f} s: reading every robot's SimTruth until views come again", kViewsStaleWall);
   }
+  if (direct_truths_) {
+    direct_truths_->take_data([&](model::SimTruth&& truth) {
+      if (truth.robot_id == options_.robot_id || !geometry::is_finite(truth.pose)) return;
+      truths_[truth.robot_id] = std::move(truth);
+      changed = true;
+    });
+  }
+  if (!changed) return;
+  std::vector<geometry::Polygon> footprints;
+  for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
+  robot_->set_true_neighbours(std::move(footprints));
+}
+
+void FleetAgent::handle_fleet_view(double now_sim) {
   std::optional<model::NeighbourView> latest;
   neighbour_reader_.take_data([&](model::NeighbourView&& view) {
     if (view.robot_id == options_.robot_id && view.map_id == map_id_) latest = std::move(view);
   });
+  take_true_bodies(latest);
   if (!latest) return;
   std::vector<robot::Neighbour> listed;
   for (const auto& r : latest->robots) {

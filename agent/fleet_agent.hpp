@@ -52,6 +52,9 @@ class FleetAgent {
   void handle_orders();
   void handle_site_inputs();
   void handle_fleet_view(double now_sim);
+  /// Simulation only: the other robots' true bodies for the simulated sensors, from the latest
+  /// view (null when none came this time) or, while views stay away, from SimTruth itself.
+  void take_true_bodies(std::optional<model::NeighbourView>& latest);
   void switch_map(const std::string& map_id);
   void handle_events();
   /// Writes an OrderReport on the current order; nothing when there is none.
@@ -82,6 +85,8 @@ class FleetAgent {
   std::map<std::pair<std::string, std::string>, bool> obstacle_cache_;  ///< (map, obstacle) -> enabled
   std::map<int, model::PalletTruth> pallets_;
   std::map<std::string, model::SimTruth> truths_;
+  std::unique_ptr<dds::Reader<model::SimTruth>> direct_truths_;  ///< only while no view comes
+  double last_view_wall_ = 0.0;
   robot::NeighbourMemory neighbours_;
   /// The final reports (DONE or FAILED) of the last kKeptReports orders, oldest first: latched
   /// for a restarted server, and repeated when it offers one of those orders again.
@@ -114,7 +119,6 @@ class FleetAgent {
   dds::Reader<model::PalletTruth> pallet_reader_;
   /// The robots near this one, in its own partition (model::robot_partition).
   dds::Reader<model::NeighbourView> neighbour_reader_;
-  dds::Reader<model::SimTruth> truth_reader_;  ///< simulation only: what the lidar sees
   dds::WaitSet waitset_;
 };
 

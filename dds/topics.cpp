@@ -25,6 +25,7 @@ struct Scratch {
   std::deque<std::vector<fleet_msg_OrderEvent>> events;
   std::deque<std::vector<int32_t>> ints;
   std::deque<std::vector<fleet_msg_Pose2D>> poses;
+  std::deque<std::vector<fleet_msg_SimTruth>> truths;
   std::deque<std::string> texts;
 
   /// A string made for the message, kept until it is written.
@@ -344,18 +345,29 @@ model::FleetView from_wire(const fleet_msg_FleetView& w) {
   return {text(w.map_id), w.sim_time, snapshots_of(w.robots)};
 }
 
-fleet_msg_NeighbourView to_wire(const model::NeighbourView& v, Scratch& s) {
-  return {borrow(v.robot_id), borrow(v.map_id), v.sim_time, v.radius, v.complete, snapshot_seq(s, v.robots)};
-}
-model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
-  return {text(w.robot_id), text(w.map_id), w.sim_time, w.radius, w.complete, snapshots_of(w.robots)};
-}
-
 fleet_msg_SimTruth to_wire(const model::SimTruth& v, Scratch&) {
   return {borrow(v.robot_id), wire_pose(v.pose), v.footprint.length, v.footprint.width, v.carrying_pallet, v.sim_time};
 }
 model::SimTruth from_wire(const fleet_msg_SimTruth& w) {
   return {text(w.robot_id), model_pose(w.pose), {w.length, w.width}, w.carrying_pallet, w.sim_time};
+}
+
+fleet_msg_NeighbourView to_wire(const model::NeighbourView& v, Scratch& s) {
+  auto& bodies = s.truths.emplace_back();
+  for (const auto& b : v.bodies) bodies.push_back(to_wire(b, s));
+  return {borrow(v.robot_id),
+          borrow(v.map_id),
+          v.sim_time,
+          v.radius,
+          v.complete,
+          snapshot_seq(s, v.robots),
+          {static_cast<uint32_t>(bodies.size()), static_cast<uint32_t>(bodies.size()), bodies.data(), false}};
+}
+model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
+  model::NeighbourView v{text(w.robot_id), text(w.map_id),         w.sim_time, w.radius,
+                         w.complete,       snapshots_of(w.robots), {}};
+  for (uint32_t i = 0; i < w.bodies._length; ++i) v.bodies.push_back(from_wire(w.bodies._buffer[i]));
+  return v;
 }
 
 fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {

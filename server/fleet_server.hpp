@@ -102,6 +102,8 @@ class FleetServer {
   void create_auto_orders();
   void dispatch();
   void publish_fleet_view();
+  /// Simulation only: the true bodies within the view's radius of its robot's true body.
+  void add_true_bodies(model::NeighbourView& view, const geometry::Pose2& estimate) const;
   /// Each robot's NeighbourView: the robots of its map within server.neighbour_radius.
   void publish_neighbour_views(const std::vector<std::pair<std::string, model::RobotSnapshot>>& snapshots,
                                double now_wall);

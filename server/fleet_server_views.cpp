@@ -78,7 +78,7 @@ void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::strin
                                              participant_, dds::qos::live_state(), model::robot_partition(me.robot_id)))
                    .first;
     }
-    model::NeighbourView view{me.robot_id, map_id, clock_.now(), radius, complete, {}};
+    model::NeighbourView view{me.robot_id, map_id, clock_.now(), radius, complete, {}, {}};
     const auto near = [&](std::size_t j) {
       const auto& [other_map, other] = snapshots[by_x[j]];
       const double dx = other.pose.x - me.pose.x;
@@ -87,7 +87,19 @@ void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::strin
     };
     for (std::size_t j = k; j-- > 0 && me.pose.x - snapshots[by_x[j]].second.pose.x <= radius;) near(j);
     for (std::size_t j = k + 1; j < by_x.size() && snapshots[by_x[j]].second.pose.x - me.pose.x <= radius; ++j) near(j);
+    add_true_bodies(view, me.pose);
     writer->second->write(view);
+  }
+}
+
+void FleetServer::add_true_bodies(model::NeighbourView& view, const geometry::Pose2& estimate) const {
+  // Simulation only. Each agent's simulated sensors see the true bodies of the robots near its
+  // own true body; relayed here, an agent receives one view instead of every robot's SimTruth.
+  const auto own = truths_.find(view.robot_id);
+  const geometry::Vec2 centre = own != truths_.end() ? own->second.pose.position() : estimate.position();
+  for (const auto& [id, truth] : truths_) {
+    if (id == view.robot_id || !geometry::is_finite(truth.pose)) continue;
+    if (geometry::distance(truth.pose.position(), centre) <= view.radius) view.bodies.push_back(truth);
   }
 }
 

@@ -186,6 +186,15 @@ struct FleetView {
   std::vector<RobotSnapshot> robots;
 };
 
+/// Simulation only: a robot's true pose and footprint (idl/fleet.idl SimTruth).
+struct SimTruth {
+  std::string robot_id;
+  geometry::Pose2 pose;
+  geometry::Footprint footprint;
+  bool carrying_pallet = false;
+  double sim_time = 0.0;
+};
+
 /// The robots within `radius` of one robot, for its agent alone (idl/fleet.idl NeighbourView).
 struct NeighbourView {
   std::string robot_id;
@@ -194,20 +203,14 @@ struct NeighbourView {
   double radius = 0.0;
   bool complete = true;
   std::vector<RobotSnapshot> robots;
+  /// Simulation only: the true bodies near it, from the SimTruth the server hears (its sensors see these).
+  std::vector<SimTruth> bodies;
 };
 
 /// The DDS partition of the messages meant for one robot's agent alone.
 inline std::string robot_partition(const std::string& robot_id) {
   return "robot." + robot_id;
 }
-
-struct SimTruth {
-  std::string robot_id;
-  geometry::Pose2 pose;
-  geometry::Footprint footprint;
-  bool carrying_pallet = false;
-  double sim_time = 0.0;
-};
 
 /// An agent's road-graph route and its progress along it, for traffic control. Empty `points`: the
 /// robot is off the roads and holds nothing.

@@ -155,7 +155,13 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
       }
     }
   }
-  // Pass 2: the cells each beam passes before its endpoint (Amanatides and Woo in key space).
+  // Pass 2: the cells each beam passes before its endpoint (Amanatides and Woo in key space). From
+  // a sensor on the site, a beam that has left the site's rectangle never comes back: the rest of
+  // it is not traced (apply() would drop those cells).
+  const bool origin_on_site = okx >= kx0_ && oky >= ky0_ && okx < kx0_ + mirror_w_ && oky < ky0_ + mirror_h_;
+  const auto off_site = [&](int kx, int ky) {
+    return origin_on_site && (kx < kx0_ || ky < ky0_ || kx >= kx0_ + mirror_w_ || ky >= ky0_ + mirror_h_);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const double ex = ends[i].first;
     const double ey = ends[i].second;
@@ -173,7 +179,12 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
     double tx = dx != 0.0 ? (sx > 0 ? (kx + 1 - ox) : (ox - kx)) * tdx : inf;
     double ty = dy != 0.0 ? (sy > 0 ? (ky + 1 - oy) : (oy - ky)) * tdy : inf;
     const int steps = std::abs(ekx - kx) + std::abs(eky - ky);
+    bool left_site = false;
     for (int k = 0; k < steps && (kx != ekx || ky != eky); ++k) {
+      if (off_site(kx, ky)) {
+        left_site = true;
+        break;
+      }
       std::uint32_t& s = slot(kx, ky);
       if (s != hit_mark && s != free_mark) {
         s = free_mark;
@@ -187,7 +198,7 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
         ty += tdy;
       }
     }
-    if (!has_hit[i] && kx == ekx && ky == eky) {
+    if (!has_hit[i] && !left_site && kx == ekx && ky == eky && !off_site(kx, ky)) {
       // No return: the last cell within range was seen free too.
       std::uint32_t& s = slot(kx, ky);
       if (s != hit_mark && s != free_mark) {

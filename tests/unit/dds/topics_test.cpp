@@ -95,3 +95,33 @@ TEST(Topics, RobotStateCarriesAtMostTheTwoTargetsTheIdlBounds) {
   ASSERT_EQ(taken->docking_targets.size(), 2u);
   EXPECT_DOUBLE_EQ(taken->docking_targets[1].x, 12.5);
 }
+
+TEST(Topics, NeighbourViewComesBackWithItsRobotsAndTrueBodiesInTheRobotsPartition) {
+  dds::use_fleet_dds_config();
+  dds::Participant participant(kDomain);
+  const std::string partition = model::robot_partition("c7");
+  dds::Writer<model::NeighbourView> writer(participant, dds::qos::live_state(), partition);
+  dds::Reader<model::NeighbourView> reader(participant, dds::qos::live_state(), partition);
+  model::NeighbourView sent{"c7", "mid_warehouse", 12.5, 8.0, true, {}, {}};
+  sent.robots.push_back({"c8", "carts", {3.0, 4.0, 0.5}, {0.6, 0.4}, 0.8, "TRACK_PATH", 12.4, {}});
+  sent.bodies.push_back({"c8", {3.02, 3.99, 0.51}, {0.6, 0.4}, true, 12.45});
+  ASSERT_TRUE(writer.wait_for_readers(1, std::chrono::seconds(5)));
+  ASSERT_TRUE(writer.write(sent));
+  std::optional<model::NeighbourView> taken;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!taken && std::chrono::steady_clock::now() < end) {
+    reader.take_data([&](model::NeighbourView&& view) { taken = std::move(view); });
+    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(taken) << "nothing came back";
+  EXPECT_EQ(taken->robot_id, "c7");
+  EXPECT_TRUE(taken->complete);
+  ASSERT_EQ(taken->robots.size(), 1u);
+  EXPECT_EQ(taken->robots[0].task_state, "TRACK_PATH");
+  ASSERT_EQ(taken->bodies.size(), 1u);
+  EXPECT_EQ(taken->bodies[0].robot_id, "c8");
+  EXPECT_DOUBLE_EQ(taken->bodies[0].pose.x, 3.02);
+  EXPECT_DOUBLE_EQ(taken->bodies[0].footprint.length, 0.6);
+  EXPECT_TRUE(taken->bodies[0].carrying_pallet);
+  EXPECT_DOUBLE_EQ(taken->bodies[0].sim_time, 12.45);
+}
