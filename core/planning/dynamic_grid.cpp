@@ -29,11 +29,18 @@ void DynamicGrid::update(const OccupancyGrid& static_grid, std::span<const Neigh
   if (sensed != nullptr && !sensed->same_geometry(static_grid)) {
     throw std::invalid_argument("dynamic grid: sensed layer and static grid differ in geometry");
   }
-  OccupancyGrid raw(static_grid.bounds(), static_grid.resolution(), OccupancyGrid::kFree);
-  if (sensed != nullptr) raw = *sensed;
-  for (const Neighbour& n : neighbours) raw.fill_polygon(occupied_region(n), true);
+  // Ten times a second over the whole site: the grids keep their storage from one update to the
+  // next (copies into a grid of the same size allocate nothing).
+  if (sensed != nullptr) {
+    raw_ = *sensed;
+  } else if (raw_.same_geometry(static_grid)) {
+    raw_.clear();
+  } else {
+    raw_ = OccupancyGrid(static_grid.bounds(), static_grid.resolution(), OccupancyGrid::kFree);
+  }
+  for (const Neighbour& n : neighbours) raw_.fill_polygon(occupied_region(n), true);
   // Grow everything by our own radius: the path is then checked as a line of points.
-  dynamic_ = raw.dilated(configuration_.own_radius);
+  raw_.dilate_into(dynamic_, configuration_.own_radius);
   grid_ = static_grid;
   grid_.merge_occupied(dynamic_);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -136,9 +137,15 @@ bool OccupancyGrid::segment_free(Vec2 a, Vec2 b) const {
 }
 
 OccupancyGrid OccupancyGrid::dilated(double radius) const {
-  OccupancyGrid out = *this;
+  OccupancyGrid out;
+  dilate_into(out, radius);
+  return out;
+}
+
+void OccupancyGrid::dilate_into(OccupancyGrid& out, double radius) const {
+  out = *this;
   const int r = static_cast<int>(std::floor(radius / resolution_ + 1e-9));
-  if (r <= 0) return out;
+  if (r <= 0) return;
   std::vector<CellIndex> offsets;
   for (int dy = -r; dy <= r; ++dy) {
     for (int dx = -r; dx <= r; ++dx) {
@@ -148,6 +155,11 @@ OccupancyGrid OccupancyGrid::dilated(double radius) const {
   // Only cells on the boundary of an occupied region can grow it.
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
+      // Mostly free: eight cells at a time while they are.
+      if (std::uint64_t eight = 0; x + 8 <= width_ && (std::memcpy(&eight, &cells_[index(x, y)], 8), eight == 0)) {
+        x += 7;
+        continue;
+      }
       if (cells_[index(x, y)] == kFree) continue;
       const bool interior = x > 0 && y > 0 && x + 1 < width_ && y + 1 < height_ && cells_[index(x - 1, y)] != kFree &&
                             cells_[index(x + 1, y)] != kFree && cells_[index(x, y - 1)] != kFree &&
@@ -160,14 +172,17 @@ OccupancyGrid OccupancyGrid::dilated(double radius) const {
       }
     }
   }
-  return out;
 }
 
 void OccupancyGrid::merge_occupied(const OccupancyGrid& other) {
   if (!same_geometry(other)) throw std::invalid_argument("occupancy grid: merge of grids with different geometry");
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    if (other.cells_[i] != kFree) cells_[i] = kOccupied;
-  }
+  // Without a branch, so that the compiler vectorises it: it runs over whole sites ten times a second.
+  // The size in a local: bytes may alias the vector's own fields, and a size read back from memory
+  // each round keeps the loop scalar.
+  const std::size_t n = cells_.size();
+  std::uint8_t* __restrict mine = cells_.data();
+  const std::uint8_t* __restrict theirs = other.cells_.data();
+  for (std::size_t i = 0; i < n; ++i) mine[i] = theirs[i] != kFree ? kOccupied : mine[i];
 }
 
 std::size_t OccupancyGrid::occupied_count() const {

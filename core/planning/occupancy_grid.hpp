@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -63,9 +64,13 @@ class OccupancyGrid {
   void fill_segment(geometry::Vec2 a, geometry::Vec2 b, bool occupied);
 
   /// A copy whose occupied cells are grown by `radius` metres (a disc of cell offsets).
+  /// The same as dilated(), written into `out`, whose storage is reused when it has room.
+  void dilate_into(OccupancyGrid& out, double radius) const;
   OccupancyGrid dilated(double radius) const;
   /// Marks occupied every cell occupied in `other`, which must have the same geometry.
   void merge_occupied(const OccupancyGrid& other);
+  /// Every cell free.
+  void clear() { std::fill(cells_.begin(), cells_.end(), kFree); }
 
   /// True when every cell the segment passes through is free. Where the segment crosses a cell
   /// corner exactly, both side cells must be free, so a path never squeezes between diagonal

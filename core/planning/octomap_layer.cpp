@@ -110,27 +110,22 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
   const double res = configuration_.resolution;
   const double inv = 1.0 / res;
   const int half = static_cast<int>(std::ceil(scan.max_range * inv)) + 2;
-  if (window_size_ != 2 * half + 1) {
-    window_size_ = 2 * half + 1;
-    window_.assign(static_cast<std::size_t>(window_size_) * window_size_, 0);
-    scan_stamp_ = 0;
-  }
-  scan_stamp_ += 2;
-  if (scan_stamp_ < 2) {  // wrapped
-    std::fill(window_.begin(), window_.end(), 0);
-    scan_stamp_ = 2;
-  }
-  const std::uint32_t free_mark = scan_stamp_;
-  const std::uint32_t hit_mark = scan_stamp_ + 1;
+  // Which cells of the square around the sensor this scan has marked, one bit each: small enough
+  // to stay in the cache while the beams are traced, and cleared for each scan.
+  window_size_ = 2 * half + 1;
+  const std::size_t words = (static_cast<std::size_t>(window_size_) * window_size_ + 63) / 64;
+  marked_free_.assign(words, 0);
+  marked_hit_.assign(words, 0);
   // Continuous key coordinates: key = floor(u), as OcTreeBaseImpl::coordToKey does.
   const double ox = scan.pose.x * inv + 32768.0;
   const double oy = scan.pose.y * inv + 32768.0;
   const int okx = static_cast<int>(std::floor(ox));
   const int oky = static_cast<int>(std::floor(oy));
-  auto slot = [&](int kx, int ky) -> std::uint32_t& {
-    return window_[static_cast<std::size_t>(ky - oky + half) * window_size_ + (kx - okx + half)];
+  auto slot = [&](int kx, int ky) {
+    return static_cast<std::size_t>(ky - oky + half) * window_size_ + (kx - okx + half);
   };
-  free_keys_.clear();
+  auto marked = [](const std::vector<std::uint64_t>& bits, std::size_t i) { return (bits[i >> 6] >> (i & 63)) & 1u; };
+  auto mark = [](std::vector<std::uint64_t>& bits, std::size_t i) { bits[i >> 6] |= std::uint64_t{1} << (i & 63); };
   hit_keys_.clear();
   const std::size_t n = scan.ranges.size();
   ends_.resize(n);
@@ -148,9 +143,9 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
     if (hit) {
       const int kx = static_cast<int>(std::floor(ends[i].first));
       const int ky = static_cast<int>(std::floor(ends[i].second));
-      std::uint32_t& s = slot(kx, ky);
-      if (s != hit_mark) {
-        s = hit_mark;
+      const std::size_t at = slot(kx, ky);
+      if (!marked(marked_hit_, at)) {
+        mark(marked_hit_, at);
         hit_keys_.push_back(pack(static_cast<std::uint16_t>(kx), static_cast<std::uint16_t>(ky)));
       }
     }
@@ -161,6 +156,18 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
   const bool origin_on_site = okx >= kx0_ && oky >= ky0_ && okx < kx0_ + mirror_w_ && oky < ky0_ + mirror_h_;
   const auto off_site = [&](int kx, int ky) {
     return origin_on_site && (kx < kx0_ || ky < ky0_ || kx >= kx0_ + mirror_w_ || ky >= ky0_ + mirror_h_);
+  };
+  // A cell seen free is updated at once, unless it is already as free as the tree lets it be
+  // (most of them, read from the mirror without a search of the tree).
+  const auto see_free = [&](int kx, int ky) {
+    const std::size_t at = slot(kx, ky);
+    if (marked(marked_hit_, at) || marked(marked_free_, at)) return;
+    const int mx = kx - kx0_;
+    const int my = ky - ky0_;
+    if (mx < 0 || my < 0 || mx >= mirror_w_ || my >= mirror_h_) return;
+    if (mirror_[static_cast<std::size_t>(my) * mirror_w_ + mx] <= clamp_min_) return;
+    mark(marked_free_, at);
+    apply(static_cast<std::uint16_t>(kx), static_cast<std::uint16_t>(ky), false);
   };
   for (std::size_t i = 0; i < n; ++i) {
     const double ex = ends[i].first;
@@ -185,11 +192,7 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
         left_site = true;
         break;
       }
-      std::uint32_t& s = slot(kx, ky);
-      if (s != hit_mark && s != free_mark) {
-        s = free_mark;
-        free_keys_.push_back(pack(static_cast<std::uint16_t>(kx), static_cast<std::uint16_t>(ky)));
-      }
+      see_free(kx, ky);
       if (tx < ty) {
         kx += sx;
         tx += tdx;
@@ -200,15 +203,9 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
     }
     if (!has_hit[i] && !left_site && kx == ekx && ky == eky && !off_site(kx, ky)) {
       // No return: the last cell within range was seen free too.
-      std::uint32_t& s = slot(kx, ky);
-      if (s != hit_mark && s != free_mark) {
-        s = free_mark;
-        free_keys_.push_back(pack(static_cast<std::uint16_t>(kx), static_cast<std::uint16_t>(ky)));
-      }
+      see_free(kx, ky);
     }
   }
-  for (std::uint32_t k : free_keys_)
-    apply(static_cast<std::uint16_t>(k >> 16), static_cast<std::uint16_t>(k & 0xffff), false);
   for (std::uint32_t k : hit_keys_)
     apply(static_cast<std::uint16_t>(k >> 16), static_cast<std::uint16_t>(k & 0xffff), true);
 }

@@ -84,10 +84,9 @@ class OctoMapLayer {
   OccupancyGrid sensed_;
   std::vector<std::uint16_t> occupied_leaves_;
   // Per scan de-duplication window around the sensor.
-  std::vector<std::uint32_t> window_;
+  std::vector<std::uint64_t> marked_free_, marked_hit_;  ///< one bit per cell of the window
   int window_size_ = 0;
-  std::uint32_t scan_stamp_ = 0;
-  std::vector<std::uint32_t> free_keys_, hit_keys_;  ///< packed (kx << 16) | ky
+  std::vector<std::uint32_t> hit_keys_;              ///< packed (kx << 16) | ky
   std::vector<std::pair<double, double>> ends_;      ///< beam endpoints in key coordinates
   std::vector<std::uint8_t> has_hit_;
 };

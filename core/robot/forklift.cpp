@@ -223,27 +223,39 @@ std::vector<std::size_t> Forklift::shadowed_anchors() const {
 }
 
 namespace {
-/// The occupied cells of `layer` inside the footprint at `pose`, grown by `margin`, as indices
-/// y * width + x in ascending order.
-std::vector<int> footprint_cells(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
-                                 double margin) {
-  std::vector<int> cells;
+/// Calls `visit(index)` for each occupied cell of `layer` inside the footprint at `pose`, grown by
+/// `margin`, index y * width + x in ascending order, until it returns true; true when one did.
+template <typename Visit>
+bool visit_footprint_cells(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
+                           double margin, Visit visit) {
   const double hl = fp.length / 2.0 + margin;
   const double hw = fp.width / 2.0 + margin;
   const double reach = std::hypot(hl, hw);
   const double res = layer.resolution();
   const Vec2 o = layer.origin();
-  const int x0 = static_cast<int>(std::floor((pose.x - reach - o.x) / res));
-  const int x1 = static_cast<int>(std::floor((pose.x + reach - o.x) / res));
-  const int y0 = static_cast<int>(std::floor((pose.y - reach - o.y) / res));
-  const int y1 = static_cast<int>(std::floor((pose.y + reach - o.y) / res));
+  const int x0 = std::max(0, static_cast<int>(std::floor((pose.x - reach - o.x) / res)));
+  const int x1 = std::min(layer.width() - 1, static_cast<int>(std::floor((pose.x + reach - o.x) / res)));
+  const int y0 = std::max(0, static_cast<int>(std::floor((pose.y - reach - o.y) / res)));
+  const int y1 = std::min(layer.height() - 1, static_cast<int>(std::floor((pose.y + reach - o.y) / res)));
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
-      if (!layer.in_bounds(x, y) || !layer.occupied(x, y)) continue;
+      if (!layer.occupied(x, y)) continue;
       const Vec2 b = geometry::map_to_body(pose, layer.cell_center(x, y));
-      if (std::abs(b.x) <= hl && std::abs(b.y) <= hw) cells.push_back(y * layer.width() + x);
+      if (std::abs(b.x) <= hl && std::abs(b.y) <= hw && visit(y * layer.width() + x)) return true;
     }
   }
+  return false;
+}
+
+/// The occupied cells of `layer` inside the footprint at `pose`, grown by `margin`, as indices
+/// y * width + x in ascending order.
+std::vector<int> footprint_cells(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
+                                 double margin) {
+  std::vector<int> cells;
+  visit_footprint_cells(layer, pose, fp, margin, [&](int cell) {
+    cells.push_back(cell);
+    return false;
+  });
   return cells;
 }
 
@@ -251,10 +263,9 @@ std::vector<int> footprint_cells(const planning::OccupancyGrid& layer, const Pos
 /// (sorted indices).
 bool footprint_hits(const planning::OccupancyGrid& layer, const Pose2& pose, const geometry::Footprint& fp,
                     double margin, const std::vector<int>& already_touched) {
-  for (int cell : footprint_cells(layer, pose, fp, margin)) {
-    if (!std::binary_search(already_touched.begin(), already_touched.end(), cell)) return true;
-  }
-  return false;
+  return visit_footprint_cells(layer, pose, fp, margin, [&](int cell) {
+    return !std::binary_search(already_touched.begin(), already_touched.end(), cell);
+  });
 }
 
 /// A path walked by arc length: the point `s` metres along it, clamped to its ends.

@@ -26,6 +26,13 @@ double footprint_distance(const Pose2& pose, const geometry::Footprint& fp, Vec2
   return std::hypot(std::max(std::abs(b.x) - fp.length / 2.0, 0.0), std::max(std::abs(b.y) - fp.width / 2.0, 0.0));
 }
 
+/// The radius of the smallest circle about `centre` that holds `polygon`.
+double reach_of(const geometry::Polygon& polygon, Vec2 centre) {
+  double r = 0.0;
+  for (const Vec2& v : polygon) r = std::max(r, geometry::distance(v, centre));
+  return r;
+}
+
 }  // namespace
 
 void SafetyStop::take_scan(const planning::LidarScan& scan) {
@@ -82,10 +89,18 @@ bool SafetyStop::moves_too_close(const control::BodyTwist& cmd, const Pose2& est
     mine_ahead[k] = geometry::footprint_polygon(ahead[k], footprint_);
   }
   const auto mine_now = geometry::footprint_polygon(estimate, footprint_);
+  // A body whose bounding circle stays further than the safety gap from every swept pose's
+  // bounding circle cannot come within the gap: most of the others, most of the lidar returns.
+  const Vec2 centre = estimate.position();
+  double swept = 0.0;
+  for (const Pose2& pose : ahead) swept = std::max(swept, geometry::distance(centre, pose.position()));
+  const double body = std::max(reach_of(mine_now, centre), std::hypot(footprint_.length / 2.0, footprint_.width / 2.0));
+  const double reach = body + swept + params_.safety_gap;
   for (const auto& n : neighbours) {
     const double moved =
         planning::distance_since_seen(n.speed, n.age, params_.stale_after, params_.neighbour_max_speed);
     const auto theirs = geometry::footprint_polygon(n.pose, n.footprint, std::min(moved, 1.0));
+    if (geometry::distance(centre, n.pose.position()) > reach + reach_of(theirs, n.pose.position())) continue;
     const double gap_now = geometry::convex_polygons_distance(mine_now, theirs);
     for (const auto& mine : mine_ahead) {
       const double gap = geometry::convex_polygons_distance(mine, theirs);
@@ -93,6 +108,7 @@ bool SafetyStop::moves_too_close(const control::BodyTwist& cmd, const Pose2& est
     }
   }
   for (const Vec2& p : returns_) {
+    if (geometry::distance(centre, p) > reach) continue;
     const double gap_now = footprint_distance(estimate, footprint_, p);
     for (const Pose2& pose : ahead) {
       const double gap = footprint_distance(pose, footprint_, p);
