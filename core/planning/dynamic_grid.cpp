@@ -32,17 +32,16 @@ void DynamicGrid::update(const OccupancyGrid& static_grid, std::span<const Neigh
   // Ten times a second over the whole site: the grids keep their storage from one update to the
   // next (copies into a grid of the same size allocate nothing).
   if (sensed != nullptr) {
-    raw_ = *sensed;
-  } else if (raw_.same_geometry(static_grid)) {
-    raw_.clear();
+    dynamic_ = *sensed;
+  } else if (dynamic_.same_geometry(static_grid)) {
+    dynamic_.clear();
   } else {
-    raw_ = OccupancyGrid(static_grid.bounds(), static_grid.resolution(), OccupancyGrid::kFree);
+    dynamic_ = OccupancyGrid(static_grid.bounds(), static_grid.resolution(), OccupancyGrid::kFree);
   }
-  for (const Neighbour& n : neighbours) raw_.fill_polygon(occupied_region(n), true);
+  for (const Neighbour& n : neighbours) dynamic_.fill_polygon(occupied_region(n), true);
   // Grow everything by our own radius: the path is then checked as a line of points.
-  raw_.dilate_into(dynamic_, configuration_.own_radius);
-  grid_ = static_grid;
-  grid_.merge_occupied(dynamic_);
+  dynamic_.dilate(configuration_.own_radius);
+  grid_.assign_union(static_grid, dynamic_);
 }
 
 }  // namespace fleet::planning

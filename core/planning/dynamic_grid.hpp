@@ -61,7 +61,6 @@ class DynamicGrid {
 
  private:
   DynamicGridConfiguration configuration_;
-  OccupancyGrid raw_;  ///< the sensed layer and the others' regions, before growing
   OccupancyGrid dynamic_;
   OccupancyGrid grid_;
 };

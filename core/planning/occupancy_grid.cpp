@@ -137,13 +137,12 @@ bool OccupancyGrid::segment_free(Vec2 a, Vec2 b) const {
 }
 
 OccupancyGrid OccupancyGrid::dilated(double radius) const {
-  OccupancyGrid out;
-  dilate_into(out, radius);
+  OccupancyGrid out = *this;
+  out.dilate(radius);
   return out;
 }
 
-void OccupancyGrid::dilate_into(OccupancyGrid& out, double radius) const {
-  out = *this;
+void OccupancyGrid::dilate(double radius) {
   const int r = static_cast<int>(std::floor(radius / resolution_ + 1e-9));
   if (r <= 0) return;
   std::vector<CellIndex> offsets;
@@ -152,7 +151,9 @@ void OccupancyGrid::dilate_into(OccupancyGrid& out, double radius) const {
       if (dx * dx + dy * dy <= r * r && (dx != 0 || dy != 0)) offsets.push_back({dx, dy});
     }
   }
-  // Only cells on the boundary of an occupied region can grow it.
+  // Only cells on the boundary of an occupied region can grow it. They are found first, so that
+  // the cells grown in place do not grow in turn.
+  std::vector<CellIndex> boundary;
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       // Mostly free: eight cells at a time while they are.
@@ -164,14 +165,26 @@ void OccupancyGrid::dilate_into(OccupancyGrid& out, double radius) const {
       const bool interior = x > 0 && y > 0 && x + 1 < width_ && y + 1 < height_ && cells_[index(x - 1, y)] != kFree &&
                             cells_[index(x + 1, y)] != kFree && cells_[index(x, y - 1)] != kFree &&
                             cells_[index(x, y + 1)] != kFree;
-      if (interior) continue;
-      for (const CellIndex& o : offsets) {
-        const int nx = x + o.x;
-        const int ny = y + o.y;
-        if (in_bounds(nx, ny)) out.cells_[index(nx, ny)] = kOccupied;
-      }
+      if (!interior) boundary.push_back({x, y});
     }
   }
+  for (const CellIndex& c : boundary) {
+    for (const CellIndex& o : offsets) {
+      const int nx = c.x + o.x;
+      const int ny = c.y + o.y;
+      if (in_bounds(nx, ny)) cells_[index(nx, ny)] = kOccupied;
+    }
+  }
+}
+
+void OccupancyGrid::assign_union(const OccupancyGrid& a, const OccupancyGrid& b) {
+  if (!a.same_geometry(b)) throw std::invalid_argument("occupancy grid: union of grids with different geometry");
+  if (!same_geometry(a)) *this = OccupancyGrid(a.bounds(), a.resolution());
+  const std::size_t n = cells_.size();
+  std::uint8_t* __restrict out = cells_.data();
+  const std::uint8_t* __restrict first = a.cells_.data();
+  const std::uint8_t* __restrict second = b.cells_.data();
+  for (std::size_t i = 0; i < n; ++i) out[i] = first[i] != kFree || second[i] != kFree ? kOccupied : kFree;
 }
 
 void OccupancyGrid::merge_occupied(const OccupancyGrid& other) {

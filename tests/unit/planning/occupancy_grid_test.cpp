@@ -64,6 +64,41 @@ TEST(OccupancyGrid, DilationGrowsByRadius) {
   EXPECT_EQ(g.occupied_count(), 1u);
 }
 
+TEST(OccupancyGrid, DilationInPlaceGrowsOnlyTheCellsOccupiedBeforeIt) {
+  // A wall of cells across whole rows of eight (the free-row skip) and one lone cell: grown in
+  // place, the grown cells must not grow in turn.
+  OccupancyGrid g({0.0, 0.0, 3.2, 2.0}, 0.1);
+  for (int x = 0; x < 32; ++x) g.set(x, 5, true);
+  g.set(20, 15, true);
+  OccupancyGrid in_place = g;
+  in_place.dilate(0.2);
+  const OccupancyGrid copy = g.dilated(0.2);
+  EXPECT_TRUE(in_place.occupied(3, 7));
+  EXPECT_FALSE(in_place.occupied(3, 8));
+  EXPECT_TRUE(in_place.occupied(20, 17));
+  EXPECT_FALSE(in_place.occupied(20, 18));
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) EXPECT_EQ(in_place.occupied(x, y), copy.occupied(x, y)) << x << ", " << y;
+  }
+}
+
+TEST(OccupancyGrid, UnionOfTwoGridsIsOccupiedWhereEitherIs) {
+  OccupancyGrid a({0.0, 0.0, 1.0, 1.0}, 0.1);
+  OccupancyGrid b = a;
+  a.set(1, 1, true);
+  b.set(8, 8, true);
+  OccupancyGrid out;
+  out.assign_union(a, b);
+  EXPECT_TRUE(out.same_geometry(a));
+  EXPECT_TRUE(out.occupied(1, 1));
+  EXPECT_TRUE(out.occupied(8, 8));
+  EXPECT_EQ(out.occupied_count(), 2u);
+  b.set(8, 8, false);
+  out.assign_union(a, b);  // into the storage it has
+  EXPECT_EQ(out.occupied_count(), 1u);
+  EXPECT_THROW(out.assign_union(a, OccupancyGrid({0.0, 0.0, 2.0, 1.0}, 0.1)), std::invalid_argument);
+}
+
 TEST(StaticGrid, RoadSquaresLoadingAreasAndObstacles) {
   const map::RoadGraph graph = testing::lattice_graph(2, 1, 1.0, 0.1);  // (0.3,0.3)-(1.3,0.3)
   map::Site site = testing::site_for(graph);
