@@ -11,9 +11,8 @@
 namespace fleet::agent {
 
 namespace {
-constexpr double kMaxSleepWall = 0.02;
-/// Wall seconds without a NeighbourView after which the agent reads SimTruth itself.
-constexpr double kViewsStaleWall = 0.5;      // the main loop's longest sleep between control steps
+constexpr double kMaxSleepWall = 0.02;       // the main loop's longest sleep between control steps
+constexpr double kViewsStaleWall = 0.5;      // wall seconds without a NeighbourView: read SimTruth itself
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
 constexpr std::size_t kKeptReports = 8;      // latched order reports kept for a restarted server
 

@@ -180,22 +180,13 @@ void OccupancyGrid::dilate(double radius) {
 void OccupancyGrid::assign_union(const OccupancyGrid& a, const OccupancyGrid& b) {
   if (!a.same_geometry(b)) throw std::invalid_argument("occupancy grid: union of grids with different geometry");
   if (!same_geometry(a)) *this = OccupancyGrid(a.bounds(), a.resolution());
+  // Without a branch and with the size in a local, so that the compiler vectorises it (bytes may
+  // alias the vector's own fields): it runs over whole sites ten times a second.
   const std::size_t n = cells_.size();
   std::uint8_t* __restrict out = cells_.data();
   const std::uint8_t* __restrict first = a.cells_.data();
   const std::uint8_t* __restrict second = b.cells_.data();
   for (std::size_t i = 0; i < n; ++i) out[i] = first[i] != kFree || second[i] != kFree ? kOccupied : kFree;
-}
-
-void OccupancyGrid::merge_occupied(const OccupancyGrid& other) {
-  if (!same_geometry(other)) throw std::invalid_argument("occupancy grid: merge of grids with different geometry");
-  // Without a branch, so that the compiler vectorises it: it runs over whole sites ten times a second.
-  // The size in a local: bytes may alias the vector's own fields, and a size read back from memory
-  // each round keeps the loop scalar.
-  const std::size_t n = cells_.size();
-  std::uint8_t* __restrict mine = cells_.data();
-  const std::uint8_t* __restrict theirs = other.cells_.data();
-  for (std::size_t i = 0; i < n; ++i) mine[i] = theirs[i] != kFree ? kOccupied : mine[i];
 }
 
 std::size_t OccupancyGrid::occupied_count() const {

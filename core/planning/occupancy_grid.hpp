@@ -64,14 +64,12 @@ class OccupancyGrid {
   void fill_segment(geometry::Vec2 a, geometry::Vec2 b, bool occupied);
 
   /// A copy whose occupied cells are grown by `radius` metres (a disc of cell offsets).
+  OccupancyGrid dilated(double radius) const;
   /// Grows the occupied cells by `radius` metres in place, as dilated() does.
   void dilate(double radius);
   /// Every cell occupied in `a` or `b` (of the same geometry) occupied, the rest free; the storage
   /// is reused when this grid already has their geometry.
   void assign_union(const OccupancyGrid& a, const OccupancyGrid& b);
-  OccupancyGrid dilated(double radius) const;
-  /// Marks occupied every cell occupied in `other`, which must have the same geometry.
-  void merge_occupied(const OccupancyGrid& other);
   /// Every cell free.
   void clear() { std::fill(cells_.begin(), cells_.end(), kFree); }
 

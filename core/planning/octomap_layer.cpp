@@ -157,15 +157,11 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
   const auto off_site = [&](int kx, int ky) {
     return origin_on_site && (kx < kx0_ || ky < ky0_ || kx >= kx0_ + mirror_w_ || ky >= ky0_ + mirror_h_);
   };
-  // A cell seen free is updated at once, unless it is already as free as the tree lets it be
-  // (most of them, read from the mirror without a search of the tree).
+  // A cell seen free is updated at once (apply() skips one already as free as the tree lets it be
+  // without a search of the tree, and cells off the site).
   const auto see_free = [&](int kx, int ky) {
     const std::size_t at = slot(kx, ky);
     if (marked(marked_hit_, at) || marked(marked_free_, at)) return;
-    const int mx = kx - kx0_;
-    const int my = ky - ky0_;
-    if (mx < 0 || my < 0 || mx >= mirror_w_ || my >= mirror_h_) return;
-    if (mirror_[static_cast<std::size_t>(my) * mirror_w_ + mx] <= clamp_min_) return;
     mark(marked_free_, at);
     apply(static_cast<std::uint16_t>(kx), static_cast<std::uint16_t>(ky), false);
   };
@@ -201,7 +197,7 @@ void OctoMapLayer::insert_scan(const LidarScan& scan) {
         ty += tdy;
       }
     }
-    if (!has_hit[i] && !left_site && kx == ekx && ky == eky && !off_site(kx, ky)) {
+    if (!has_hit[i] && !left_site && kx == ekx && ky == eky) {
       // No return: the last cell within range was seen free too.
       see_free(kx, ky);
     }
