@@ -586,7 +586,10 @@ UpdateResult TrafficManager::update(double now) {
     } else {
       g.status = GrantStatus::kMoving;
     }
+    // An entrant whose claim keeps it out is waited for like a robot on the road.
     g.blocked_by = robot->blocked_by;
+    g.blocked_by.insert(g.blocked_by.end(), robot->kept_out_by.begin(), robot->kept_out_by.end());
+    sort_unique(g.blocked_by);
     g.instruction = robot->pending;
     if (robot->pending != Instruction::kNone) g.route = robot->route;
     out.grants.push_back(std::move(g));

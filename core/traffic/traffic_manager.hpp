@@ -90,7 +90,9 @@ struct Grant {
   double granted_distance = 0.0;
   GrantStatus status = GrantStatus::kMoving;
   double waited_s = 0.0;        ///< how long the robot has been waiting, 0 when not waiting
-  std::vector<int> blocked_by;  ///< robot ids holding the road beyond the grant (it will wait for them)
+  /// Robot ids holding the road beyond the grant, and entrants whose claim keeps it out (it will
+  /// wait for them).
+  std::vector<int> blocked_by;
   /// kReroute / kSiding: `route` (version `version`) replaces the robot's route. Repeated in every
   /// grant until the robot reports progress on that version.
   Instruction instruction = Instruction::kNone;

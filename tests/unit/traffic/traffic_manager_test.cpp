@@ -233,6 +233,18 @@ TEST(TrafficManager, EntryClaimHoldsForAsLongAsTheRobotInItsZoneTakesToDriveOut)
   EXPECT_EQ(road.m.check_invariant(), "");
 }
 
+TEST(TrafficManager, ARobotKeptOutByAnEntryClaimWaitsForTheEntrant) {
+  // The entrant is off the roads, yet the robot it keeps out waits for it: its grant names it,
+  // so who waits for whom can be read down to the robot at the end of the line.
+  ClaimedRoad road;
+  for (double t = 0.0; t < 12.0; t += 0.1) road.step(t);
+  const auto r = road.m.update(12.0);
+  const Grant* g1 = grant_of(r, 1);
+  ASSERT_NE(g1, nullptr);
+  EXPECT_EQ(g1->status, GrantStatus::kWaiting);
+  EXPECT_EQ(g1->blocked_by, std::vector<int>{3});
+}
+
 TEST(TrafficManager, EntryClaimIsLiftedWhenTheRobotInItsWayWaitsOnIt) {
   GraphBuilder b;
   const auto road = b.road(0.0, 0.0, 3.0, 0.0);
