@@ -41,7 +41,16 @@ void DynamicGrid::update(const OccupancyGrid& static_grid, std::span<const Neigh
   for (const Neighbour& n : neighbours) dynamic_.fill_polygon(occupied_region(n), true);
   // Grow everything by our own radius: the path is then checked as a line of points.
   dynamic_.dilate(configuration_.own_radius);
-  grid_.assign_union(static_grid, dynamic_);
+  static_grid_ = &static_grid;
+  grid_current_ = false;
+}
+
+const OccupancyGrid& DynamicGrid::grid() const {
+  if (!grid_current_ && static_grid_ != nullptr) {
+    grid_.assign_union(*static_grid_, dynamic_);
+    grid_current_ = true;
+  }
+  return grid_;
 }
 
 }  // namespace fleet::planning

@@ -8,13 +8,18 @@
 # Everything stays inside the namespaces this script creates (10.77.0.0/24, names fleet-*);
 # nothing touches the host's own interfaces or routes. The namespaces go when the script ends.
 #
-# usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--json FILE] [--verbose]
+# usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--site S] [--time-scale X]
+#                                   [--json FILE] [--verbose]
+# Up to 4 agents run on table_a at time scale 10; more run on mid_warehouse at time scale 1, where
+# every agent has a home and the machine keeps up with them.
 # --verbose: debug logs of every process in the run directory (the soak's --verbose).
 set -euo pipefail
 
 duration=120
 loss=0.02
 agents=4
+site=""
+time_scale=""
 json_out=""
 verbose=()
 while [ $# -gt 0 ]; do
@@ -22,11 +27,21 @@ while [ $# -gt 0 ]; do
     --duration) duration="$2"; shift 2 ;;
     --loss) loss="$2"; shift 2 ;;
     --agents) agents="$2"; shift 2 ;;
+    --site) site="$2"; shift 2 ;;
+    --time-scale) time_scale="$2"; shift 2 ;;
     --json) json_out="$2"; shift 2 ;;
     --verbose) verbose=(--verbose); shift ;;
     *) echo "netns.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
+
+if [ "$agents" -le 4 ]; then
+  site="${site:-table_a}"
+  time_scale="${time_scale:-10}"
+else
+  site="${site:-mid_warehouse}"
+  time_scale="${time_scale:-1}"
+fi
 
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 bin="${FLEET_BIN:-$root/build/bin}"
@@ -80,10 +95,10 @@ done
 
 export CYCLONEDDS_URI="file://$root/config/cyclonedds-compose.xml"
 echo "netns.sh: server in ${hosts[0]}, $agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
-  "poses 20 +- 10 ms late; soak for $duration s" >&2
+  "poses 20 +- 10 ms late; soak on $site at time scale $time_scale for $duration s" >&2
 set +e
-ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 soak --agents "$agents" --site table_a --duration "$duration" \
-  --time-scale 10 --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
+ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 soak --agents "$agents" --site "$site" --duration "$duration" \
+  --time-scale "$time_scale" --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
   --set faults.pose_delay_ms=20 --set faults.pose_delay_jitter_ms=10 \
   --agent-wrap "ip netns exec ${tag}-a{n}" "${verbose[@]}" --json > "${json_out:-/dev/stdout}"
 status=$?
