@@ -41,7 +41,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
       traffic_writer_(participant_, dds::qos::live_state()),
-      grant_reader_(participant_, dds::qos::live_state()),
+      grant_reader_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
       obstacle_reader_(participant_, dds::qos::latched_state()),

@@ -111,6 +111,7 @@ class FleetAgent {
   dds::Writer<model::OrderReport> report_writer_;
   dds::Writer<model::RobotPath> path_writer_;
   dds::Writer<model::TrafficRequest> traffic_writer_;
+  /// Its traffic grants, in its own partition (model::robot_partition).
   dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::MapAssignment> map_reader_;

@@ -29,7 +29,7 @@ EmulatedFleet::EmulatedFleet(EmulatedFleetOptions options, std::shared_ptr<const
       report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
       traffic_writer_(participant_, dds::qos::live_state()),
-      grant_reader_(participant_, dds::qos::live_state()),
+      grant_reader_(participant_, dds::qos::live_state(), model::every_robot_partition()),
       order_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()) {
   const std::uint64_t first_version = robot::first_route_version(std::chrono::system_clock::now());

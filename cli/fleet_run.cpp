@@ -101,7 +101,8 @@ void FleetRun::start() {
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
   truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
   state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state());
-  grant_reader_ = std::make_unique<dds::Reader<model::TrafficGrant>>(*participant_, dds::qos::live_state());
+  grant_reader_ = std::make_unique<dds::Reader<model::TrafficGrant>>(*participant_, dds::qos::live_state(),
+                                                                     model::every_robot_partition());
 
   const std::vector<std::string> common{"--config",     options_.config_file,
                                         "--domain",     std::to_string(options_.domain),

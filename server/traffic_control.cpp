@@ -46,7 +46,7 @@ TrafficControl::TrafficControl(const map::RoadGraph& graph, std::string map_id,
     : manager_(graph, configuration),
       map_id_(std::move(map_id)),
       log_(std::move(log)),
-      grant_writer_(participant, dds::qos::live_state()),
+      participant_(participant),
       request_reader_(participant, dds::qos::live_state()) {
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_.zones().place_count(),
              configuration.lookahead, configuration.one_way ? "on" : "off");
@@ -472,7 +472,17 @@ void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
     log_->debug("traffic: {} {} v{} up to point {} ({:.2f} m){}{}", grant.robot_id, grant.status, grant.version,
                 grant.granted_index, grant.granted_distance, blockers.empty() ? "" : ", waits for ", blockers);
   }
-  grant_writer_.write(grant);
+  // Into the robot's own partition: its agent alone hears it (and the watchers of every robot),
+  // not every agent every other robot's grant.
+  auto writer = grant_writers_.find(grant.robot_id);
+  if (writer == grant_writers_.end()) {
+    writer =
+        grant_writers_
+            .emplace(grant.robot_id, std::make_unique<dds::Writer<model::TrafficGrant>>(
+                                         participant_, dds::qos::live_state(), model::robot_partition(grant.robot_id)))
+            .first;
+  }
+  writer->second->write(grant);
   sent_wall_[grant.robot_id] = now_wall;
   sent_[grant.robot_id] = std::move(grant);
 }

@@ -89,7 +89,9 @@ class TrafficControl {
   double settle_until_wall_ = -1.0;                       ///< requests wait until then: robots' bodies are learnt first
   std::map<std::string, geometry::Polygon> bodies_;       ///< last known footprint of each robot
   std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
-  dds::Writer<model::TrafficGrant> grant_writer_;
+  dds::Participant& participant_;
+  /// One per robot, each in the robot's own partition (model::robot_partition).
+  std::map<std::string, std::unique_ptr<dds::Writer<model::TrafficGrant>>> grant_writers_;
   dds::Reader<model::TrafficRequest> request_reader_;
 };
 

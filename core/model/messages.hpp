@@ -212,6 +212,11 @@ inline std::string robot_partition(const std::string& robot_id) {
   return "robot." + robot_id;
 }
 
+/// Every robot's partition at once (a wildcard): for the readers that watch the whole fleet.
+inline std::string every_robot_partition() {
+  return "robot.*";
+}
+
 /// An agent's road-graph route and its progress along it, for traffic control. Empty `points`: the
 /// robot is off the roads and holds nothing.
 struct TrafficRequest {

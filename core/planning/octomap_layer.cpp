@@ -54,6 +54,7 @@ OctoMapLayer::OctoMapLayer(const OctoMapConfiguration& c)
   mirror_w_ = tree_->coordToKey(c.area.max_x) - kx0_ + 1;
   mirror_h_ = tree_->coordToKey(c.area.max_y) - ky0_ + 1;
   mirror_.assign(static_cast<std::size_t>(mirror_w_) * mirror_h_, kUnknown);
+  clamped_free_.assign((mirror_.size() + 63) / 64, 0);
   occupied_leaves_.assign(sensed_.size(), 0);
 }
 
@@ -86,12 +87,15 @@ void OctoMapLayer::apply(std::uint16_t kx, std::uint16_t ky, bool hit) {
   const int mx = kx - kx0_;
   const int my = ky - ky0_;
   if (mx < 0 || my < 0 || mx >= mirror_w_ || my >= mirror_h_) return;  // outside the site
-  float& m = mirror_[static_cast<std::size_t>(my) * mirror_w_ + mx];
+  const std::size_t i = static_cast<std::size_t>(my) * mirror_w_ + mx;
   // A clamped leaf cannot move further the same way (the tree's own early abort, without the search).
-  if (hit ? m >= clamp_max_ : m <= clamp_min_) return;
+  if (!hit && ((clamped_free_[i >> 6] >> (i & 63)) & 1u) != 0) return;
+  float& m = mirror_[i];
+  if (hit && m >= clamp_max_) return;
   const float before = m;
   const octomap::OcTreeNode* node = tree_->updateNode(octomap::OcTreeKey(kx, ky, kz_), hit ? hit_ : miss_, true);
   m = node->getLogOdds();
+  note_leaf(i, m);
   record(kx, ky, before, m);
 }
 
@@ -99,10 +103,12 @@ void OctoMapLayer::set_leaf(std::uint16_t kx, std::uint16_t ky, float log_odds) 
   const int mx = kx - kx0_;
   const int my = ky - ky0_;
   if (mx < 0 || my < 0 || mx >= mirror_w_ || my >= mirror_h_) return;
-  float& m = mirror_[static_cast<std::size_t>(my) * mirror_w_ + mx];
+  const std::size_t i = static_cast<std::size_t>(my) * mirror_w_ + mx;
+  float& m = mirror_[i];
   const float before = m;
   const octomap::OcTreeNode* node = tree_->setNodeValue(octomap::OcTreeKey(kx, ky, kz_), log_odds, true);
   m = node->getLogOdds();
+  note_leaf(i, m);
   record(kx, ky, before, m);
 }
 

@@ -354,7 +354,8 @@ TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManage
   ASSERT_TRUE(s.robot.registers_with(s.fleet)) << s.server_log();
   ASSERT_TRUE(fl2.registers_with(s.fleet)) << s.server_log();
   dds::Writer<model::TrafficRequest> requests(s.client.participant(), dds::qos::live_state());
-  dds::Reader<model::TrafficGrant> grants(s.client.participant(), dds::qos::live_state());
+  dds::Reader<model::TrafficGrant> grants(s.client.participant(), dds::qos::live_state(),
+                                          model::every_robot_partition());
   const auto both_answer = [&] {
     s.robot.publish_state();
     fl2.publish_state();

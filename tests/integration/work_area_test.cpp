@@ -57,7 +57,8 @@ AreaRun run_beside_a_work_area(int domain, bool worker_goes_silent) {
   EXPECT_TRUE(ready) << s.server_log();
   if (!ready) return run;
   dds::Writer<model::TrafficRequest> requests(s.client.participant(), dds::qos::live_state());
-  dds::Reader<model::TrafficGrant> grants(s.client.participant(), dds::qos::live_state());
+  dds::Reader<model::TrafficGrant> grants(s.client.participant(), dds::qos::live_state(),
+                                          model::every_robot_partition());
   const geometry::Polygon area{{from.x - 0.05, from.y - 0.05},
                                {from.x + 0.05, from.y - 0.05},
                                {from.x + 0.05, from.y + 0.05},
