@@ -11,6 +11,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -96,6 +97,14 @@ std::string FleetRun::binary(const std::string& name) const {
   return (std::filesystem::read_symlink("/proc/self/exe").parent_path() / name).string();
 }
 
+void FleetRun::throw_if_a_process_ended() {
+  for (std::size_t i : processes_.reap()) {
+    const auto& child = processes_.children()[i];
+    throw std::runtime_error(child.name + " " + ProcessGroup::describe(child.exit_status) + "; its log " +
+                             child.log_file + " ends with:\n" + tail_of(child.log_file, 10));
+  }
+}
+
 void FleetRun::start() {
   participant_ = std::make_unique<dds::Participant>(options_.domain);
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
@@ -117,6 +126,19 @@ void FleetRun::start() {
   if (!options_.api_token.empty()) server_argv.insert(server_argv.end(), {"--api-token", options_.api_token});
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
+  // One agent starts when the one before it publishes its state: an agent's start (its site, grids
+  // and OctoMap) costs a few tenths of a CPU second, and 48 of them at once held the two cores for
+  // seconds, the first agents' control steps with them.
+  dds::Reader<model::RobotState> came_up(*participant_, dds::qos::live_state());
+  std::set<std::string> up;
+  const auto wait_until_up = [&](const std::string& id) {
+    const auto give_up = std::chrono::steady_clock::now() + kAgentStartWait;
+    while (!up.contains(id) && std::chrono::steady_clock::now() < give_up && !stop_requested()) {
+      came_up.take_data([&](model::RobotState&& state) { up.insert(state.robot_id); });
+      throw_if_a_process_ended();
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  };
   for (const auto& id : robot_ids_) {
     std::vector<std::string> argv;
     if (!options_.agent_wrap.empty()) {
@@ -132,6 +154,7 @@ void FleetRun::start() {
     argv.insert(argv.end(), common.begin(), common.end());
     argv.insert(argv.end(), options_.extra_agent_args.begin(), options_.extra_agent_args.end());
     processes_.start("fleet-agent " + id, argv, run_dir_ + "/fleet-agent-" + id + ".log");
+    wait_until_up(id);
   }
   started_ = std::chrono::steady_clock::now();
   start_sim_ = SimClock(options_.time_scale).now();
@@ -139,11 +162,7 @@ void FleetRun::start() {
   FleetClient probe(options_.domain);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(15);
   while (!probe.find_server(std::chrono::milliseconds(200))) {
-    for (std::size_t i : processes_.reap()) {
-      const auto& child = processes_.children()[i];
-      throw std::runtime_error(child.name + " " + ProcessGroup::describe(child.exit_status) + "; its log " +
-                               child.log_file + " ends with:\n" + tail_of(child.log_file, 10));
-    }
+    throw_if_a_process_ended();
     if (std::chrono::steady_clock::now() > deadline) {
       throw std::runtime_error("fleet-server did not appear on DDS domain " + std::to_string(options_.domain) +
                                " within 15 s; see " + run_dir_);

@@ -64,7 +64,9 @@ class FleetRun {
   FleetRun(RunOptions options, config::FleetConfig config, Logger log);
   ~FleetRun();
 
-  /// Starts the processes and waits for the server to answer; throws with its log on failure.
+  /// Starts the server, then the agents one after another (each once the one before publishes its
+  /// state, or after kAgentStartWait), and waits for the server to answer; throws with the log of
+  /// a process that ended meanwhile.
   void start();
   /// Reads what the fleet publishes; call often. Returns false once the run should end.
   bool poll();
@@ -108,6 +110,9 @@ class FleetRun {
   const std::vector<std::string>& robot_ids() const { return robot_ids_; }
 
  private:
+  static constexpr std::chrono::seconds kAgentStartWait{10};
+  /// Throws when a started process has ended, with the end of its log.
+  void throw_if_a_process_ended();
   std::string binary(const std::string& name) const;
   /// With two pickers or more and racks on the site: the aisles between the racks to watch.
   void watch_pickers_in_aisles(const map::Site& site);
