@@ -1,10 +1,7 @@
 #include "traffic/one_way.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <functional>
-#include <limits>
-#include <queue>
 
 namespace fleet::traffic {
 
@@ -14,88 +11,6 @@ struct JunctionEdge {
   int a = 0, b = 0;  ///< branch places at the corridor's low and high ends
   int corridor = 0;
 };
-
-using Adjacency = std::vector<std::vector<std::pair<int, int>>>;  ///< per place: (neighbour, edge or -1)
-
-std::vector<double> corridor_lengths(const std::vector<int>& size, const std::vector<JunctionEdge>& edges) {
-  std::vector<double> lengths;
-  for (const JunctionEdge& e : edges)
-    lengths.push_back(static_cast<double>(size[static_cast<std::size_t>(e.corridor)]));
-  return lengths;
-}
-
-/// Sum of the shortest distances (in places passed) from a sample of branch places to every
-/// branch place, driving each corridor only its way; infinity when one cannot be reached.
-double detour_cost(const std::vector<JunctionEdge>& edges, const std::vector<double>& lengths,
-                   const Adjacency& adjacency, const std::vector<int>& branches, const std::vector<int>& edge_dir) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const std::size_t step = std::max<std::size_t>(1, branches.size() / 24);
-  std::vector<double> dist(adjacency.size(), kInf);
-  double total = 0.0;
-  using Item = std::pair<double, int>;
-  for (std::size_t s = 0; s < branches.size(); s += step) {
-    std::fill(dist.begin(), dist.end(), kInf);
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-    dist[static_cast<std::size_t>(branches[s])] = 0.0;
-    open.push({0.0, branches[s]});
-    while (!open.empty()) {
-      const auto [d, v] = open.top();
-      open.pop();
-      if (d > dist[static_cast<std::size_t>(v)]) continue;
-      for (const auto& [w, e] : adjacency[static_cast<std::size_t>(v)]) {
-        double length = 1.0;
-        if (e >= 0) {
-          const auto se = static_cast<std::size_t>(e);
-          const int dir = edge_dir[se];
-          if ((dir == 1 && edges[se].a != v) || (dir == -1 && edges[se].b != v)) continue;
-          length = lengths[se];
-        }
-        if (d + length < dist[static_cast<std::size_t>(w)]) {
-          dist[static_cast<std::size_t>(w)] = d + length;
-          open.push({d + length, w});
-        }
-      }
-    }
-    for (int b : branches) total += dist[static_cast<std::size_t>(b)];
-  }
-  return total;
-}
-
-/// A depth-first orientation keeps every place reachable, but on a grid of roads its routes can
-/// run several times the distance (a cart on the big warehouse drove 1 km between places 180 m
-/// apart). When the sampled routes are more than half as long again as on two-way roads, each
-/// corridor in turn is flipped where that shortens them and leaves every place reachable.
-/// Networks of a few loops (the demo tables, the plant: 32 oriented corridors or fewer) keep the
-/// depth-first orientation: orientations chosen for shorter routes stalled more often there with
-/// 12 robots in the core simulator.
-void shorten_detours(const std::vector<JunctionEdge>& edges, const std::vector<double>& lengths,
-                     const Adjacency& adjacency, const ConflictZones& zones, std::vector<int>& edge_dir) {
-  constexpr double kDetourLimit = 1.5;
-  constexpr std::size_t kSmallNetwork = 32;  // oriented corridors
-  if (edges.size() <= kSmallNetwork) return;
-  std::vector<int> branches;
-  for (std::size_t p = 0; p < adjacency.size(); ++p) {
-    if (zones.branch(static_cast<int>(p))) branches.push_back(static_cast<int>(p));
-  }
-  const double two_way = detour_cost(edges, lengths, adjacency, branches, std::vector<int>(edges.size(), 0));
-  double cost = detour_cost(edges, lengths, adjacency, branches, edge_dir);
-  if (!(cost > kDetourLimit * two_way) || !std::isfinite(cost)) return;
-  for (int pass = 0; pass < 2; ++pass) {
-    bool improved = false;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      if (edge_dir[e] == 0) continue;  // a bridge: two-way
-      edge_dir[e] = -edge_dir[e];
-      const double flipped = detour_cost(edges, lengths, adjacency, branches, edge_dir);
-      if (flipped < cost) {
-        cost = flipped;
-        improved = true;
-      } else {
-        edge_dir[e] = -edge_dir[e];
-      }
-    }
-    if (!improved) break;
-  }
-}
 
 }  // namespace
 
@@ -147,7 +62,7 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
     edges.push_back({a, b, static_cast<int>(c)});
   }
   // Two-way links between branch places: junction interiors and branch places next to each other.
-  Adjacency adjacency(places);
+  std::vector<std::vector<std::pair<int, int>>> adjacency(places);  // (neighbour, edge index or -1)
   for (std::size_t e = 0; e < edges.size(); ++e) {
     adjacency[static_cast<std::size_t>(edges[e].a)].push_back({edges[e].b, static_cast<int>(e)});
     adjacency[static_cast<std::size_t>(edges[e].b)].push_back({edges[e].a, static_cast<int>(e)});
@@ -214,10 +129,7 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
     for (std::size_t p = 0; p < places; ++p) {
       if (zones.branch(static_cast<int>(p)) && order[p] < 0) visit(static_cast<int>(p), -1);
     }
-    return edge_dir;
-  };
 
-  auto plan_from = [&](const std::vector<int>& edge_dir) {
     OneWayPlan plan;
     plan.corridor_direction.assign(corridors, 0);
     for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -268,10 +180,7 @@ OneWayPlan one_way_plan(const map::RoadGraph& graph, const ConflictZones& zones)
   // on the demo tables and stalled more often in the simulator with 12 robots than this one, so
   // the choice stays simple and deterministic (see the README's traffic section).
   for (std::size_t root = 0; root < places; ++root) {
-    if (!zones.branch(static_cast<int>(root))) continue;
-    std::vector<int> edge_dir = orient(static_cast<int>(root), false);
-    shorten_detours(edges, corridor_lengths(size, edges), adjacency, zones, edge_dir);
-    return plan_from(edge_dir);
+    if (zones.branch(static_cast<int>(root))) return orient(static_cast<int>(root), false);
   }
   OneWayPlan none;
   none.graph = graph;

@@ -50,43 +50,6 @@ TEST(OneWay, DemoTablesStayStronglyConnectedWithOneWayCorridors) {
   }
 }
 
-TEST(OneWay, RoutesOnAGridOfRoadsStayCloseToTheirTwoWayLength) {
-  // The big warehouse's 24 x 11 roads: a depth-first orientation alone sent carts around the site
-  // for places a few blocks apart.
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/big_warehouse.yaml");
-  const auto& g = site.graph.graph;
-  const ConflictZones zones(g);
-  const OneWayPlan plan = one_way_plan(g, zones);
-  RouteSearch one_way(plan.graph, zones);
-  RouteSearch two_way(g, zones);
-  const auto length = [&](const std::vector<int>& route) {
-    double sum = 0.0;
-    for (std::size_t k = 1; k < route.size(); ++k) {
-      sum += std::hypot(
-          g.points[static_cast<std::size_t>(route[k])].x - g.points[static_cast<std::size_t>(route[k - 1])].x,
-          g.points[static_cast<std::size_t>(route[k])].y - g.points[static_cast<std::size_t>(route[k - 1])].y);
-    }
-    return sum;
-  };
-  double one_way_sum = 0.0, two_way_sum = 0.0, worst = 0.0;
-  const auto& areas = site.site.loading_areas;
-  for (std::size_t i = 0; i < areas.size(); i += 97) {
-    for (std::size_t j = 13; j < areas.size(); j += 101) {
-      const int a = map::nearest_point(g, areas[i].pose.x, areas[i].pose.y);
-      const int b = map::nearest_point(g, areas[j].pose.x, areas[j].pose.y);
-      if (a == b) continue;
-      const double d1 = length(one_way.shortest(a, b));
-      const double d2 = length(two_way.shortest(a, b));
-      ASSERT_GT(d1, 0.0) << a << " -> " << b;
-      one_way_sum += d1;
-      two_way_sum += d2;
-      worst = std::max(worst, d1 - d2);
-    }
-  }
-  EXPECT_LT(one_way_sum, 1.5 * two_way_sum);
-  EXPECT_LT(worst, 300.0) << "metres longer than on two-way roads, at worst";
-}
-
 TEST(OneWay, DeadEndsAndTreesStayTwoWay) {
   const auto g = testing::corridor_with_siding();
   const ConflictZones zones(g);
