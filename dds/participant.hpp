@@ -5,8 +5,9 @@
 #include <chrono>
 #include <functional>
 #include <map>
-#include <stdexcept>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,29 @@ class Writer {
  private:
   dds_entity_t owner_ = 0;  ///< the publisher of a partition writer, deleted with it
   dds_entity_t handle_;
+};
+
+/// One writer of T per partition, for data meant for one reader (a robot's grants in its own
+/// partition). `open` creates a partition's writer ahead of its first sample: created at the first
+/// write, the writer would still be matching its readers as that sample goes out.
+template <typename T>
+class PartitionWriters {
+ public:
+  PartitionWriters(Participant& participant, Qos qos) : participant_(participant), qos_(std::move(qos)) {}
+
+  Writer<T>& open(const std::string& partition) {
+    auto it = writers_.find(partition);
+    if (it == writers_.end()) {
+      it = writers_.emplace(partition, std::make_unique<Writer<T>>(participant_, qos_, partition)).first;
+    }
+    return *it->second;
+  }
+  bool write(const std::string& partition, const T& value) { return open(partition).write(value); }
+
+ private:
+  Participant& participant_;
+  Qos qos_;
+  std::map<std::string, std::unique_ptr<Writer<T>>> writers_;
 };
 
 template <typename T>

@@ -151,6 +151,8 @@ class FleetServer {
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
   /// when there is no way.
   double travel_cost(const std::string& robot_id, const std::string& place_id);
+  /// Whether a registered robot's body stands on loading area `place_id` (orders::body_stands_on).
+  bool robot_on_place(const std::string& place_id) const;
   bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
   /// The robot's footprint at its last reported pose.
@@ -223,7 +225,7 @@ class FleetServer {
   dds::Writer<model::StaticObstacleState> obstacle_writer_;
   dds::Writer<model::FleetView> fleet_view_writer_;
   /// One per robot, each in the robot's own partition (model::robot_partition).
-  std::map<std::string, std::unique_ptr<dds::Writer<model::NeighbourView>>> neighbour_writers_;
+  dds::PartitionWriters<model::NeighbourView> neighbour_writers_{participant_, dds::qos::live_state()};
   dds::Reader<model::OrderRequest> request_reader_;
   dds::Reader<model::Command> command_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;

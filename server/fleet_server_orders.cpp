@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "model/names.hpp"
 #include "orders/transport_areas.hpp"
@@ -203,9 +204,18 @@ void FleetServer::create_auto_orders() {
 
 void FleetServer::dispatch() {
   std::vector<const Order*> queue;
+  std::map<std::string, bool> taken;  // place -> a robot's body stands on it, asked once per dispatch
+  const orders::PlaceTaken place_taken = [&](const std::string& place_id) {
+    const auto [it, asked] = taken.try_emplace(place_id, false);
+    if (asked) it->second = robot_on_place(place_id);
+    return it->second;
+  };
   for (const Order* o : book_.queue()) {
-    // A transport waits until its load stands at the pick place and the drop place is free.
-    if (o->kind != orders::OrderKind::kTransport || orders::ready_to_dispatch(ledger_, *o)) queue.push_back(o);
+    // A transport waits until its load stands at the pick place, the drop place is free, and no
+    // robot stands on either.
+    if (o->kind != orders::OrderKind::kTransport || orders::ready_to_dispatch(ledger_, *o, place_taken)) {
+      queue.push_back(o);
+    }
   }
   if (queue.empty()) return;
   std::vector<orders::FreeRobot> free;
@@ -230,6 +240,18 @@ void FleetServer::dispatch() {
     send_assignment(order);
   }
   load_meter_.dispatched(ServerLoadMeter::Clock::now() - start);
+}
+
+bool FleetServer::robot_on_place(const std::string& place_id) const {
+  // Bodies are a few metres long at most: robots farther than this from the place are not shaped.
+  constexpr double kNearM = 5.0;
+  const auto* area = options_.site.find_area(place_id);
+  if (!area) return false;
+  for (const auto& [id, robot] : robots_) {
+    if (!robot.registered || geometry::distance(robot.last.pose.position(), area->pose.position()) > kNearM) continue;
+    if (orders::body_stands_on(body_of(robot), *area, options_.site.approach_distance)) return true;
+  }
+  return false;
 }
 
 double FleetServer::travel_cost(const std::string& robot_id, const std::string& place_id) {

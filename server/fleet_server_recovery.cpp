@@ -38,6 +38,7 @@ void FleetServer::handle_robot_states() {
     if (!robot.registered || robot.lost) {
       log_->info("robot {} ({}) {} at ({:.2f}, {:.2f}), state {}", state.robot_id, known->first->id,
                  robot.lost ? "is back" : "registered", state.pose.x, state.pose.y, state.task_state);
+      if (!robot.registered) neighbour_writers_.open(model::robot_partition(state.robot_id));
       // A robot that comes back may still report an order the server has moved on from:
       // tell it so (the latched Order carries the cancellation).
       if (state.order_id != 0) {

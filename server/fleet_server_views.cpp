@@ -71,13 +71,6 @@ void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::strin
             [&](std::size_t a, std::size_t b) { return snapshots[a].second.pose.x < snapshots[b].second.pose.x; });
   for (std::size_t k = 0; k < by_x.size(); ++k) {
     const auto& [map_id, me] = snapshots[by_x[k]];
-    auto writer = neighbour_writers_.find(me.robot_id);
-    if (writer == neighbour_writers_.end()) {
-      writer = neighbour_writers_
-                   .emplace(me.robot_id, std::make_unique<dds::Writer<model::NeighbourView>>(
-                                             participant_, dds::qos::live_state(), model::robot_partition(me.robot_id)))
-                   .first;
-    }
     model::NeighbourView view{me.robot_id, map_id, clock_.now(), radius, complete, {}, {}};
     const auto near = [&](std::size_t j) {
       const auto& [other_map, other] = snapshots[by_x[j]];
@@ -88,7 +81,7 @@ void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::strin
     for (std::size_t j = k; j-- > 0 && me.pose.x - snapshots[by_x[j]].second.pose.x <= radius;) near(j);
     for (std::size_t j = k + 1; j < by_x.size() && snapshots[by_x[j]].second.pose.x - me.pose.x <= radius; ++j) near(j);
     add_true_bodies(view, me.pose);
-    writer->second->write(view);
+    neighbour_writers_.write(model::robot_partition(me.robot_id), view);
   }
 }
 

@@ -46,7 +46,7 @@ TrafficControl::TrafficControl(const map::RoadGraph& graph, std::string map_id,
     : manager_(graph, configuration),
       map_id_(std::move(map_id)),
       log_(std::move(log)),
-      participant_(participant),
+      grant_writers_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_.zones().place_count(),
              configuration.lookahead, configuration.one_way ? "on" : "off");
@@ -332,6 +332,7 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
 }
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {
+  if (!bodies_.contains(robot_id)) grant_writers_.open(model::robot_partition(robot_id));
   bodies_[robot_id] = body;
 }
 
@@ -474,15 +475,7 @@ void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
   }
   // Into the robot's own partition: its agent alone hears it (and the watchers of every robot),
   // not every agent every other robot's grant.
-  auto writer = grant_writers_.find(grant.robot_id);
-  if (writer == grant_writers_.end()) {
-    writer =
-        grant_writers_
-            .emplace(grant.robot_id, std::make_unique<dds::Writer<model::TrafficGrant>>(
-                                         participant_, dds::qos::live_state(), model::robot_partition(grant.robot_id)))
-            .first;
-  }
-  writer->second->write(grant);
+  grant_writers_.write(model::robot_partition(grant.robot_id), grant);
   sent_wall_[grant.robot_id] = now_wall;
   sent_[grant.robot_id] = std::move(grant);
 }

@@ -37,7 +37,8 @@ class TrafficControl {
   /// what it held is freed at once.
   void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim);
   /// Where a robot that answers stands now (its footprint at its reported pose). A robot without
-  /// a route — parked, or not admitted yet — holds the places its body overlaps.
+  /// a route — parked, or not admitted yet — holds the places its body overlaps. A robot's first
+  /// body opens the writer of its grants, so that its reader has matched by the first grant.
   void set_body(const std::string& robot_id, const geometry::Polygon& body);
 
   const std::map<std::string, TrafficStatus>& status() const { return status_; }
@@ -89,9 +90,8 @@ class TrafficControl {
   double settle_until_wall_ = -1.0;                       ///< requests wait until then: robots' bodies are learnt first
   std::map<std::string, geometry::Polygon> bodies_;       ///< last known footprint of each robot
   std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
-  dds::Participant& participant_;
   /// One per robot, each in the robot's own partition (model::robot_partition).
-  std::map<std::string, std::unique_ptr<dds::Writer<model::TrafficGrant>>> grant_writers_;
+  dds::PartitionWriters<model::TrafficGrant> grant_writers_;
   dds::Reader<model::TrafficRequest> request_reader_;
 };
 

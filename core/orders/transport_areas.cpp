@@ -46,8 +46,15 @@ std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, c
   return "";
 }
 
-bool ready_to_dispatch(const AreaLedger& ledger, const Order& order) {
-  return ledger.holds_load(order.pick_area) && !ledger.holds_load(order.drop_area);
+bool body_stands_on(const geometry::Polygon& body, const map::LoadingArea& area, double approach_distance) {
+  if (body.size() < 3) return false;
+  return geometry::contains(body, area.pose.position()) ||
+         geometry::contains(body, area.approach_pose(approach_distance).position());
+}
+
+bool ready_to_dispatch(const AreaLedger& ledger, const Order& order, const PlaceTaken& taken) {
+  if (!ledger.holds_load(order.pick_area) || ledger.holds_load(order.drop_area)) return false;
+  return !taken || (!taken(order.pick_area) && !taken(order.drop_area));
 }
 
 bool auto_transport_wanted(const OrderBook& book, long free_transport_robots) {

@@ -7,6 +7,8 @@
 #include <random>
 #include <string>
 
+#include "geometry/polygon.hpp"
+#include "map/site.hpp"
 #include "orders/area_ledger.hpp"
 #include "orders/order_book.hpp"
 
@@ -22,9 +24,19 @@ int expected_loads(const AreaLedger& ledger, const OrderBook& book, const std::s
 std::string why_not_transport(const AreaLedger& ledger, const OrderBook& book, const std::string& pick,
                               const std::string& drop);
 
+/// Whether a robot's body (convex, in the map frame) stands on a loading area: it covers the load's
+/// point, or the point `approach_distance` out from it where a vehicle stands to handle the load.
+bool body_stands_on(const geometry::Polygon& body, const map::LoadingArea& area, double approach_distance);
+
+/// Whether some robot's body stands on the place `place_id` (body_stands_on); the server answers it
+/// from the robots' last poses.
+using PlaceTaken = std::function<bool(const std::string& place_id)>;
+
 /// A queued order goes out only when its load stands at the pick place and the drop place is
-/// free: one chained behind another (A->B, then B->C) waits for the first to finish.
-bool ready_to_dispatch(const AreaLedger& ledger, const Order& order);
+/// free: one chained behind another (A->B, then B->C) waits for the first to finish. It also waits
+/// while a robot's body stands on either place (`taken`): a robot that just put a load down there
+/// stands on it until its way off is granted, and a robot sent in meanwhile would drive into it.
+bool ready_to_dispatch(const AreaLedger& ledger, const Order& order, const PlaceTaken& taken = {});
 
 /// Whether the automatic order source [Forklift thesis, section 3] should add a transport: more
 /// robots able to carry are free than transports wait in the queue. Queued orders of other kinds

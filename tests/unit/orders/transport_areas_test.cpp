@@ -65,6 +65,31 @@ TEST(TransportAreas, AChainedOrderIsNotReadyUntilItsLoadArrives) {
   EXPECT_FALSE(ready_to_dispatch(site.ledger, site.order("A2", "A3")));
 }
 
+TEST(TransportAreas, AnOrderWaitsWhileARobotStandsOnItsPlaces) {
+  Site site;
+  const Order& order = site.order("A1", "A3");
+  std::set<std::string> taken{"A3"};
+  const PlaceTaken stands = [&](const std::string& place) { return taken.contains(place); };
+  EXPECT_FALSE(ready_to_dispatch(site.ledger, order, stands));
+  taken = {"A1"};
+  EXPECT_FALSE(ready_to_dispatch(site.ledger, order, stands));
+  taken.clear();
+  EXPECT_TRUE(ready_to_dispatch(site.ledger, order, stands));
+}
+
+TEST(TransportAreas, ABodyStandsOnAPlaceWhereItCoversTheLoadOrTheApproach) {
+  using fleet::geometry::Footprint;
+  using fleet::geometry::footprint_polygon;
+  fleet::map::LoadingArea area;
+  area.pose = {10.0, 5.0, 1.5707963};  // approached from the north: the approach point is (10, 6.2)
+  const Footprint body{1.0, 0.6};
+  EXPECT_TRUE(body_stands_on(footprint_polygon({10.0, 5.0, 0.0}, body), area, 1.2));
+  EXPECT_TRUE(body_stands_on(footprint_polygon({10.0, 6.4, 0.0}, body), area, 1.2));
+  EXPECT_FALSE(body_stands_on(footprint_polygon({10.0, 5.7, 0.0}, body), area, 1.2));  // between them
+  EXPECT_FALSE(body_stands_on(footprint_polygon({11.0, 5.0, 0.0}, body), area, 1.2));
+  EXPECT_FALSE(body_stands_on({}, area, 1.2));
+}
+
 TEST(TransportAreas, QueuedPickToursHoldNoAutomaticTransportBack) {
   Site site;
   EXPECT_TRUE(auto_transport_wanted(site.book, 1));
