@@ -138,7 +138,11 @@ void EmulatedFleet::take_grants() {
       // server's answer time, whatever this process was busy with when the grant arrived.
       const double latency = static_cast<double>(info.source_timestamp_ns) * 1e-9 - link.route_sent_wall;
       grant_latency_.add(latency);
-      if (latency > 2.0 * options_.traffic_period_wall_s) ++figures_.routes_answered_late;
+      if (latency > 2.0 * options_.traffic_period_wall_s) {
+        ++figures_.routes_answered_late;
+        log_->debug("route v{} of {} answered after {:.0f} ms ({})", grant.version, grant.robot_id, latency * 1e3,
+                    grant.status);
+      }
       link.route_sent_wall = -1.0;
     }
     robot::TrafficPermit permit;

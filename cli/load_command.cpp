@@ -320,7 +320,7 @@ int load_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   const config::FleetSpec& fleet = *config.find_robot(fleet_opts.robots.front().first)->first;
 
   install_stop_handlers();
-  auto log = make_logger("fleetctl load");
+  auto log = make_logger("fleetctl load", "", options.verbose ? spdlog::level::debug : spdlog::level::info);
   const std::string run_dir =
       state_dir() + "/runs/load-" + std::to_string(options.robots) + "-" + std::to_string(getpid());
   std::filesystem::create_directories(run_dir);

@@ -224,17 +224,25 @@ std::string FleetServer::switch_map(const std::string& map_id) {
 }
 
 void FleetServer::run(const std::atomic<bool>& stop) {
+  // A loop that takes longer than two traffic cycles answers requests late: it says where its
+  // time went (debug log), which is what a late grant is read back from.
+  constexpr double kSlowLoopWall = 0.1;
   ProcessMemory memory;
+  LoopStages stages;
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(5));
+    stages.start();
     handle_order_requests();
     handle_commands();
+    stages.lap("requests");
     handle_robot_states();
     handle_robot_paths();
     handle_order_reports();
+    stages.lap("states");
     handle_web_requests();
     check_robot_health();
     forget_old_replies();
+    stages.lap("web");
     if (traffic_) {
       // Traffic cycles at 20 Hz of sim time, at most 100 Hz of wall time at high time scales.
       const double now_sim = clock_.now();
@@ -243,12 +251,14 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       traffic_->handle_requests(now_sim, now_wall);
       const auto update_start = ServerLoadMeter::Clock::now();
       load_meter_.requests_taken(update_start - requests_start);
+      stages.lap("traffic requests");
       if (now_sim >= next_traffic_sim_ && now_wall - last_traffic_wall_ >= 0.01) {
         traffic_->update(now_sim, now_wall);
         load_meter_.traffic_updated(ServerLoadMeter::Clock::now() - update_start);
         next_traffic_sim_ = now_sim + 0.05;
         last_traffic_wall_ = now_wall;
       }
+      stages.lap("traffic update");
     }
     check_acknowledgements();
     // Automatic orders a few times a second: each round looks at every robot.
@@ -257,13 +267,20 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       create_auto_orders();
     }
     advance_packing_chain();
+    stages.lap("orders");
     dispatch();
+    stages.lap("dispatch");
     publish_fleet_view();
+    stages.lap("views");
     publish_web_snapshot();
     const int reported = static_cast<int>(
         std::count_if(robots_.begin(), robots_.end(), [](const auto& r) { return r.second.registered; }));
     load_meter_.publish_when_due(SimClock::wall_now(), clock_.now(), reported);
     memory.tick(SimClock::wall_now());
+    stages.lap("web snapshot");
+    if (stages.total_s() > kSlowLoopWall && log_->should_log(spdlog::level::debug)) {
+      log_->debug("server loop took {:.0f} ms: {}", stages.total_s() * 1e3, stages.describe());
+    }
   }
   log_->info("stopping; {} orders known", book_.all().size());
 }

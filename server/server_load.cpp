@@ -1,5 +1,7 @@
 #include "server/server_load.hpp"
 
+#include <fmt/format.h>
+
 #include "dds/qos.hpp"
 
 namespace fleet::server {
@@ -33,6 +35,14 @@ void ServerLoadMeter::publish_when_due(double now_wall, double now_sim, int robo
   writer_.write({"fleet-server", now_sim, robots, traffic.count, traffic.p50_s * 1e3, traffic.p99_s * 1e3,
                  traffic.max_s * 1e3, update.p50_s * 1e3, update.p99_s * 1e3, update.max_s * 1e3, dispatch.count,
                  dispatch.p50_s * 1e3, dispatch.p99_s * 1e3, dispatch.max_s * 1e3});
+}
+
+std::string LoopStages::describe() const {
+  std::string out;
+  for (const auto& [stage, seconds] : laps_) {
+    out += fmt::format("{}{} {:.0f} ms", out.empty() ? "" : ", ", stage, seconds * 1e3);
+  }
+  return out;
 }
 
 }  // namespace fleet::server

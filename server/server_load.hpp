@@ -1,6 +1,9 @@
 #pragma once
 
 #include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "common/latency_histogram.hpp"
 #include "dds/topics.hpp"
@@ -29,6 +32,28 @@ class ServerLoadMeter {
   LatencyHistogram dispatch_;
   Clock::duration requests_since_cycle_{};
   double last_publish_wall_ = 0.0;
+};
+
+/// Wall time of the stages of one server loop, lap by lap.
+class LoopStages {
+ public:
+  void start() {
+    laps_.clear();
+    started_ = last_ = ServerLoadMeter::Clock::now();
+  }
+  void lap(const char* stage) {
+    const auto now = ServerLoadMeter::Clock::now();
+    laps_.emplace_back(stage, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+  double total_s() const { return std::chrono::duration<double>(last_ - started_).count(); }
+  /// "requests 0 ms, states 3 ms, ...".
+  std::string describe() const;
+
+ private:
+  std::vector<std::pair<const char*, double>> laps_;
+  ServerLoadMeter::Clock::time_point started_;
+  ServerLoadMeter::Clock::time_point last_;
 };
 
 }  // namespace fleet::server
