@@ -332,8 +332,9 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
 }
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {
-  if (!bodies_.contains(robot_id)) grant_writers_.open(model::robot_partition(robot_id));
-  bodies_[robot_id] = body;
+  const auto [known, first] = bodies_.try_emplace(robot_id);
+  if (first) grant_writers_.open(model::robot_partition(robot_id));
+  known->second = body;
 }
 
 bool TrafficControl::hold_body(const std::string& robot_id, int id, const geometry::Polygon& body, double now_sim) {
