@@ -211,10 +211,11 @@ std::vector<CommandSpec> make_table() {
        "",
        "",
        false,
-       {value("--seed", "S")},
+       {value("--seed", "S"), value("--drop", "PLACE")},
        "the picker on core/ alone beside the thesis's figures: aisle tests I-III,\n"
        "marker error against distance, arm pick cycle, job cycle and items per hour\n"
-       "on maps/plant_pick_list.csv (exit 1 when a target is missed)"},
+       "on maps/plant_pick_list.csv, dropped at --drop PLACE (default the first packing\n"
+       "station) (exit 1 when a target is missed)"},
       {Group::kOffline,
        "traffic-eval",
        "",

@@ -18,7 +18,7 @@ namespace fleet::cli {
 
 namespace {
 
-constexpr const char* kUsage = "usage: fleetctl pick-eval [--seed S] [--json]\n";
+constexpr const char* kUsage = "usage: fleetctl pick-eval [--seed S] [--drop PLACE] [--json]\n";
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 const char* met(bool ok) {
@@ -145,6 +145,10 @@ void print_job(std::ostream& out, const eval::PickEvalResult& r) {
   out << "   tour cycle median " << j.cycle_median << " s (" << j.cycle_median / 60.0 << " min), max " << j.cycle_max
       << " s (" << j.cycle_max / 60.0 << " min); " << j.delivered << " boxes in " << j.total_time
       << " s: " << j.items_per_hour << " items/h (" << met(j.within_target) << ")\n"
+      << "   per delivered box: arm " << j.arm_per_box << " s (alone, with no driving: " << j.arm_bound_items_per_hour
+      << " items/h), driving " << j.travel_per_box
+      << " s (alone, with an arm that took no time: " << j.travel_bound_items_per_hour
+      << " items/h); a tour carries at most " << j.tour_capacity << " boxes\n"
       << "   assumptions:\n";
   for (const auto& a : j.assumptions) out << "     - " << a << '\n';
 }
@@ -264,6 +268,11 @@ nlohmann::json job_json(const eval::JobCycleResult& j) {
           {"cycle_max_s", j.cycle_max},
           {"total_s", j.total_time},
           {"items_per_hour", j.items_per_hour},
+          {"arm_s_per_box", j.arm_per_box},
+          {"travel_s_per_box", j.travel_per_box},
+          {"arm_bound_items_per_hour", j.arm_bound_items_per_hour},
+          {"travel_bound_items_per_hour", j.travel_bound_items_per_hour},
+          {"tour_capacity", j.tour_capacity},
           {"thesis_cycle_s", j.thesis_cycle},
           {"target_items_per_hour", j.target_items_per_hour},
           {"within_target", j.within_target},
@@ -283,6 +292,7 @@ int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   params.files = eval::plant_pick_eval_files(args.source_dir);
   const bool json = flags.flag("json") || args.json;
   params.seed = flags.u64("seed").value_or(params.seed);
+  params.drop_place = flags.value("drop").value_or("");
   if (const auto rest = flags.positionals(); !rest.empty()) {
     throw ArgError("pick-eval: unexpected argument '" + rest[0] + "'");
   }

@@ -296,10 +296,10 @@ std::string drop_place_of(const PlantPicker& plant, const std::string& asked) {
 }
 
 JobCycleResult run_job_cycle(const PlantPicker& plant, const std::vector<orders::PickLine>& lines,
-                             const PickEvalParams& params) {
+                             const std::string& drop_place, const PickEvalParams& params) {
   JobCycleResult j;
   j.pick_list = params.files.pick_list;
-  j.drop_place = drop_place_of(plant, params.drop_place);
+  j.drop_place = drop_place;
   j.fleet = plant.fleet.id;
   j.max_speed = plant.fleet.profile.max_speed;
   j.max_acceleration = plant.fleet.profile.max_acceleration;
@@ -316,11 +316,18 @@ JobCycleResult run_job_cycle(const PlantPicker& plant, const std::vector<orders:
   const task::TaskExecutor executor(plant.picker.task, {});
   JobContext job{plant, executor, travel, arm, j.drop_place};
   std::vector<double> cycles;
+  j.tour_capacity = orders::kTourBoxes;
+  double arm_time = 0.0;
+  double travel_time = 0.0;
   for (const orders::PickTour& tour :
        orders::plan_tours(lines, orders::kTourBoxes, orders::place_poses(plant.site.site))) {
     TourResult r = run_tour(job, tour);
     r.cycle_time = r.travel_time + r.pick_time + r.drop_time;
-    if (r.ok) j.delivered += r.boxes;
+    if (r.ok) {
+      j.delivered += r.boxes;
+      arm_time += r.pick_time + r.drop_time;
+      travel_time += r.travel_time;
+    }
     j.total_time += r.cycle_time;
     cycles.push_back(r.cycle_time);
     j.tours.push_back(std::move(r));
@@ -328,6 +335,12 @@ JobCycleResult run_job_cycle(const PlantPicker& plant, const std::vector<orders:
   j.cycle_median = median(cycles);
   j.cycle_max = cycles.empty() ? 0.0 : *std::max_element(cycles.begin(), cycles.end());
   j.items_per_hour = j.total_time > 0.0 ? j.delivered * 3600.0 / j.total_time : 0.0;
+  if (j.delivered > 0) {
+    j.arm_per_box = arm_time / j.delivered;
+    j.travel_per_box = travel_time / j.delivered;
+    if (j.arm_per_box > 0.0) j.arm_bound_items_per_hour = 3600.0 / j.arm_per_box;
+    if (j.travel_per_box > 0.0) j.travel_bound_items_per_hour = 3600.0 / j.travel_per_box;
+  }
   j.within_target =
       j.delivered == j.boxes && j.cycle_max <= j.thesis_cycle && j.items_per_hour >= j.target_items_per_hour;
   return j;
@@ -365,10 +378,11 @@ PickEvalResult run_pick_eval(const PickEvalParams& params) {
   // The files first: bad input is told before the long sections run.
   const PlantPicker plant = load_plant_picker(params.files);
   const std::vector<orders::PickLine> lines = checked_pick_list(plant, params.files.pick_list);
+  const std::string drop_place = drop_place_of(plant, params.drop_place);
   if (params.aisle) r.aisle = run_seed_aisle_tests(params.seed, r.aisle_targets);
   r.markers = run_marker_sweep(params.markers, params.seed);
   r.picks = run_pick_trials(plant, params.pick_trials, params.seed);
-  r.job = run_job_cycle(plant, lines, params);
+  r.job = run_job_cycle(plant, lines, drop_place, params);
   return r;
 }
 

@@ -156,6 +156,14 @@ struct JobCycleResult {
   double cycle_max = 0.0;
   double total_time = 0.0;  ///< s, the tours back to back
   double items_per_hour = 0.0;
+  /// Where a delivered box's time goes, over the tours that delivered: the arm (locate, pick,
+  /// stow, unstow, put down) and the driving, s per box. Each alone bounds the rate: the arm's
+  /// with no driving at all, the driving's with an arm that took no time.
+  double arm_per_box = 0.0;
+  double travel_per_box = 0.0;
+  double arm_bound_items_per_hour = 0.0;
+  double travel_bound_items_per_hour = 0.0;
+  int tour_capacity = 0;  ///< boxes a tour carries at most
   std::vector<std::string> assumptions;
   /// "The time of the simulation was specified to be 7 minutes approximately" for one job of pick
   /// and drop [Picker thesis, section 5.3.3.1.3].

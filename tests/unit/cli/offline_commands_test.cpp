@@ -80,6 +80,13 @@ TEST(PickEval, AFlagItDoesNotKnowOrASeedThatIsNoNumberIsBadInput) {
   EXPECT_THROW(run(pick_eval_command, {"--runs", "3"}, "sites/plant.yaml"), fleet::ArgError);
   EXPECT_THROW(run(pick_eval_command, {"extra"}, "sites/plant.yaml"), fleet::ArgError);
   EXPECT_EQ(run(pick_eval_command, {"--help"}, "sites/plant.yaml").code, 0);
+  EXPECT_THROW(run(pick_eval_command, {"--drop"}, "sites/plant.yaml"), fleet::ArgError);
+}
+
+TEST(PickEval, AnUnknownDropPlaceIsBadInputBeforeAnySectionRuns) {
+  const CommandRun r = run(pick_eval_command, {"--drop", "NOWHERE"}, "sites/plant.yaml");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
 TEST(SiteConfig, ASiteWithFleetsOfItsOwnBringsThemUnlessAConfigIsGiven) {

@@ -159,6 +159,21 @@ TEST_F(PickEval, TheJobsToursAddUpToItsTimeAndItsItemsPerHour) {
   EXPECT_GT(j.tours.front().travel_distance, 40.0);
 }
 
+TEST_F(PickEval, TheArmAndTheDrivingEachBoundTheItemsPerHourAndTogetherMakeIt) {
+  const JobCycleResult& j = result().job;
+  ASSERT_EQ(j.delivered, j.boxes);
+  EXPECT_EQ(j.tour_capacity, orders::kTourBoxes);
+  for (const TourResult& t : j.tours) EXPECT_LE(t.boxes, j.tour_capacity);
+  // Every tour delivered, so the arm's and the driving's seconds per box make the job's whole time.
+  EXPECT_NEAR((j.arm_per_box + j.travel_per_box) * j.delivered, j.total_time, 1e-6);
+  EXPECT_NEAR(j.arm_bound_items_per_hour, 3600.0 / j.arm_per_box, 1e-9);
+  EXPECT_NEAR(j.travel_bound_items_per_hour, 3600.0 / j.travel_per_box, 1e-9);
+  // Each alone is faster than both together; the rate is their harmonic combination.
+  EXPECT_GT(j.arm_bound_items_per_hour, j.items_per_hour);
+  EXPECT_GT(j.travel_bound_items_per_hour, j.items_per_hour);
+  EXPECT_NEAR(1.0 / j.items_per_hour, 1.0 / j.arm_bound_items_per_hour + 1.0 / j.travel_bound_items_per_hour, 1e-9);
+}
+
 TEST(PickEvalInput, APickListTheSiteCannotServeIsBadInputNamingTheLine) {
   const auto dir = std::filesystem::temp_directory_path() / "pick_eval_test";
   std::filesystem::create_directories(dir);
