@@ -1,7 +1,8 @@
 """The plant: a real-scale site, 60 m x 30 m, for several fleets at once (docs/maps.md).
 
 South to north:
-- packing stations on two narrow spurs and a high-bay rack facing the south cross aisle;
+- packing stations on two narrow spurs, four more along the south cross aisle by the racks, and a
+  high-bay rack facing the south cross aisle;
 - the south cross aisle (3.5 m, two lanes, keep right);
 - west: the finished-goods corridor, 2.98 m with two lanes of 1.49 m [Stacker thesis, section
   4.1.2], EPAL pallets behind a raised limiter on its north side (they stand 0.30 m up [Stacker
@@ -38,6 +39,7 @@ SOUTH_Y, NORTH_Y = 7.0, 24.0               # cross aisle centres
 WEST_X, MID_X, EAST_X = 2.5, 30.0, 57.5    # north-south aisle centres
 CORRIDOR_Y, RACK_AISLE_Y = 17.1, 11.7      # the corridor continues as the upper rack aisle
 PACKING_XS, EXPEDITION_SPUR_X, PARKING_X = (8.0, 16.0), 21.0, 36.4
+AISLE_PACKING_XS = (27.0, 28.2, 29.4, 30.6)  # packing stations along the south cross aisle, by the racks
 STREET_Y, STALL_END_Y = 26.9, 29.1
 STALLS = [38.0 + 1.2 * k for k in range(16)]
 STACKER_BAYS, STACKER_BAY_END_Y = (6.5, 10.5, 14.5, 25.0), 21.4
@@ -182,6 +184,11 @@ def corridor_and_open_places():
             for side, yaw in ((-1, E), (1, W)):
                 x = beside(x0 + side * NARROW_LANE / 2, side)
                 places.append(place("PS", x, y, yaw, True, ["pick", "drop", "dropItem"]))
+    # And along the south side of the south cross aisle, between the pickers' street and the
+    # high-bay row: a stacker docks to these from the aisle, as at expedition; the spurs are too
+    # narrow for it to turn in.
+    for x in AISLE_PACKING_XS:
+        places.append(place("PS", x, beside(SOUTH_Y - AISLE_LANE, -1), N, True, ["pick", "drop", "dropItem"]))
     return places
 
 

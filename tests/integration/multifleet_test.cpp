@@ -144,31 +144,31 @@ json orders_until(FleetHarness& fleet, const std::function<bool(const json&)>& d
   return rows;
 }
 
-TEST(MultiFleet, PickersFillAPackingPalletAndAForkliftTakesItToExpeditionAndBringsAnEmptyOne) {
-  // The plant's packing pallets take 4 boxes: two 2-box tours fill PS1's. The server then orders
-  // the full pallet to a free expedition place and an empty one from the packaging corridor to
-  // PS1; a tour asked for meanwhile goes on to PS2. One picker drives the tours: two pickers meet
-  // head-on in a packing station's dead-end spur (docs/known-limits.md).
+TEST(MultiFleet, APickerFillsAPackingPalletAndAStackerTakesItToExpeditionAndBringsAnEmptyOne) {
+  // The plant's packing pallets take 4 boxes: two 2-box tours fill PS9's, on the south cross aisle.
+  // The server then orders the full pallet to a free expedition place and an empty one from the
+  // packaging corridor to PS9, and the stacker, docking from the aisle, drives both [Picker thesis,
+  // section 4.3.3.1: pickers load, transporters carry]. A tour asked for meanwhile goes on to PS10.
   FleetHarness fleet(95, 10.0, "plant");
   fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
   fleet.start_server();
-  for (const char* robot : {"pk1", "fk1"}) fleet.start_agent(robot);
-  ASSERT_TRUE(fleet.wait_for_robots({"pk1", "fk1"}));
+  for (const char* robot : {"pk1", "st1"}) fleet.start_agent(robot);
+  ASSERT_TRUE(fleet.wait_for_robots({"pk1", "st1"}));
   const std::string dir = ::testing::TempDir();
   std::ofstream(dir + "/fill.csv") << "place,item,quantity\nRB1,A1,2\nRB3,A3,2\n";
   std::ofstream(dir + "/one.csv") << "RB2,A2,1\n";
 
   const auto fill =
-      fleet.fleetctl({"--json", "order", "add", "--kind", "pick", "--lines", dir + "/fill.csv", "--to", "PS1"}, 30);
+      fleet.fleetctl({"--json", "order", "add", "--kind", "pick", "--lines", dir + "/fill.csv", "--to", "PS9"}, 30);
   ASSERT_EQ(fill.exit_code, 0) << fill.err;
   const json tours = last_json_line(fill.out)["order_ids"];
   ASSERT_EQ(tours.size(), 2u) << fill.out;
   const auto one =
-      fleet.fleetctl({"--json", "order", "add", "--kind", "pick", "--lines", dir + "/one.csv", "--to", "PS1"}, 30);
+      fleet.fleetctl({"--json", "order", "add", "--kind", "pick", "--lines", dir + "/one.csv", "--to", "PS9"}, 30);
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const auto moved_on =
       fleet.fleetctl({"--json", "order", "show", std::to_string(last_json_line(one.out)["order_id"].get<long>())}, 30);
-  EXPECT_EQ(last_json_line(moved_on.out)["drop_area"], "PS2") << "PS1's pallet is promised 4 boxes already";
+  EXPECT_EQ(last_json_line(moved_on.out)["drop_area"], "PS10") << "PS9's pallet is promised 4 boxes already";
 
   // Both tours done, then both transports of the chain.
   const json rows = orders_until(
@@ -183,21 +183,23 @@ TEST(MultiFleet, PickersFillAPackingPalletAndAForkliftTakesItToExpeditionAndBrin
   const json* empty = nullptr;
   for (const auto& o : rows) {
     if (o["cause"].get<std::string>().empty()) continue;
-    (o["pick_area"] == "PS1" ? full : empty) = &o;
+    (o["pick_area"] == "PS9" ? full : empty) = &o;
   }
   ASSERT_TRUE(full && empty) << rows.dump(1) << fleet.log_of("fleet-server");
   EXPECT_EQ((*full)["state"], "DONE") << (*full)["reason"];
   EXPECT_EQ((*full)["drop_area"], "EX1") << "the first free expedition place";
+  EXPECT_EQ((*full)["robot_id"], "st1");
+  EXPECT_EQ((*empty)["robot_id"], "st1");
   EXPECT_EQ((*full)["caused_by"], tours);
-  EXPECT_EQ((*empty)["drop_area"], "PS1");
+  EXPECT_EQ((*empty)["drop_area"], "PS9");
   EXPECT_EQ((*empty)["state"], "DONE") << (*empty)["reason"];
   EXPECT_EQ((*empty)["caused_by"], json::array({(*full)["order_id"]}));
 
   // order show names the chain both ways.
   const auto tour = fleet.fleetctl({"order", "show", std::to_string(tours[0].get<long>())}, 30);
-  EXPECT_NE(tour.out.find("led to order " + std::to_string((*full)["order_id"].get<long>()) + ": PS1 -> EX1"),
+  EXPECT_NE(tour.out.find("led to order " + std::to_string((*full)["order_id"].get<long>()) + ": PS9 -> EX1"),
             std::string::npos)
       << tour.out;
   const auto taken = fleet.fleetctl({"order", "show", std::to_string((*full)["order_id"].get<long>())}, 30);
-  EXPECT_NE(taken.out.find("because the pallet at PS1 is full: 4 boxes from orders"), std::string::npos) << taken.out;
+  EXPECT_NE(taken.out.find("because the pallet at PS9 is full: 4 boxes from orders"), std::string::npos) << taken.out;
 }

@@ -90,11 +90,17 @@ TEST(PlantCapability, AStackerDocksOnlyWhereTheRoadInFrontLeavesItRoomToTurn) {
   const auto out = [&](const std::string& place) {
     return std::find(stackers.out_of_reach.begin(), stackers.out_of_reach.end(), place) != stackers.out_of_reach.end();
   };
-  // The narrow spurs: the expedition spur's EN places and the packing stations.
+  // The narrow spurs: the expedition spur's EN places and the packing stations on the spurs.
   for (const char* place : {"EN1", "EN6", "PS1", "PS8"}) EXPECT_TRUE(out(place)) << place;
-  // The corridor (2.98 m), the cross aisles (3.5 m) and the rack aisles (3.0 m).
-  for (const char* place : {"FG1", "FG16", "PK1", "EX1", "EX11", "WA1", "RB1"}) EXPECT_FALSE(out(place)) << place;
+  // The corridor (2.98 m), the cross aisles (3.5 m: the packing stations along the south one too)
+  // and the rack aisles (3.0 m).
+  for (const char* place : {"FG1", "FG16", "PK1", "EX1", "EX11", "WA1", "RB1", "PS9", "PS12"}) {
+    EXPECT_FALSE(out(place)) << place;
+  }
   EXPECT_FALSE(plant.check("FG1", "EX2", "stackers").has_value());
+  // The packing chain's two transports from a station by the racks.
+  EXPECT_FALSE(plant.check("PS9", "EX1", "stackers").has_value());
+  EXPECT_FALSE(plant.check("PK1", "PS9", "stackers").has_value());
   const auto spur = plant.check("FG1", "EN1", "stackers");
   ASSERT_TRUE(spur.has_value());
   EXPECT_NE(spur->message.find("stackers does not reach EN1"), std::string::npos) << spur->message;
