@@ -436,6 +436,9 @@ class TrafficManager {
   bool reroute(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out, TrafficEvent::Kind kind,
                bool against_one_way = false);
   bool give_way(Robot& robot, const std::vector<int>& members, double now, UpdateResult& out);
+  /// Whether `waiter`'s next stretch beyond its grant is in conflict with the places `holder`
+  /// keeps standing at route index `reached` (its trail and the places up to there).
+  bool needs_places_up_to(const Robot& waiter, const Robot& holder, int reached) const;
   /// `clear_of_self`: the siding must also lie off the places in conflict with those the robot
   /// holds now, so it moves a body length at least (its body stands in another's way).
   bool send_to_siding(Robot& robot, const std::vector<int>& others, double now, UpdateResult& out,
@@ -446,6 +449,11 @@ class TrafficManager {
   std::vector<std::uint8_t> places_of_others(const std::vector<int>& others, bool with_next_stretch, double window,
                                              int type) const;
   bool first_stretch_free(const std::vector<int>& points, int slot) const;
+  /// Where the robot stands: on its route at its progress, or its body's centre beside the roads.
+  geometry::Vec2 position_of(const Robot& robot) const;
+  /// Places (by place) with a point nearer a robot whose body stops this one (stopped_for) than
+  /// this robot stands now: ways through them lead towards a body its safety check keeps it from.
+  std::vector<std::uint8_t> towards_stoppers(const Robot& robot) const;
   int slot_of(int robot_id) const;
   bool higher_priority(const Robot& a, const Robot& b) const;
 

@@ -48,6 +48,52 @@ std::vector<std::uint8_t> TrafficManager::places_of_others(const std::vector<int
   return mask;
 }
 
+geometry::Vec2 TrafficManager::position_of(const Robot& robot) const {
+  // Standing beside the roads: where its body is.
+  if (robot.frozen && !robot.body_polygon.empty()) {
+    geometry::Vec2 sum{0.0, 0.0};
+    for (const geometry::Vec2& v : robot.body_polygon) sum = {sum.x + v.x, sum.y + v.y};
+    const auto n = static_cast<double>(robot.body_polygon.size());
+    return {sum.x / n, sum.y / n};
+  }
+  const auto point = [&](std::size_t k) {
+    const map::GraphPoint& p = graph_.points[static_cast<std::size_t>(robot.route[k])];
+    return geometry::Vec2{p.x, p.y};
+  };
+  std::size_t k = 0;
+  while (k + 1 < robot.route.size() && robot.cum[k + 1] <= robot.progress) ++k;
+  if (k + 1 >= robot.route.size()) return point(k);
+  const double length = robot.cum[k + 1] - robot.cum[k];
+  const double f = length > 0.0 ? std::clamp((robot.progress - robot.cum[k]) / length, 0.0, 1.0) : 0.0;
+  const geometry::Vec2 a = point(k), b = point(k + 1);
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)};
+}
+
+std::vector<std::uint8_t> TrafficManager::towards_stoppers(const Robot& robot) const {
+  std::vector<std::uint8_t> mask(zones_->place_count(), 0);
+  std::vector<geometry::Vec2> stoppers;
+  for (int id : robot.stopped_for) {
+    if (const auto it = robots_.find(id); id != robot.id && it != robots_.end())
+      stoppers.push_back(position_of(it->second));
+  }
+  if (stoppers.empty()) return mask;
+  // The safety check lets a robot move apart from a body it stopped for, never closer: a way that
+  // first leads nearer a stopper than the robot stands now is one it cannot drive. A little
+  // slack keeps the points beside it (as far from the stopper as it is) open.
+  constexpr double kSlack = 0.05;  // metres
+  const geometry::Vec2 here = position_of(robot);
+  for (std::size_t p = 0; p < graph_.points.size(); ++p) {
+    const geometry::Vec2 q{graph_.points[p].x, graph_.points[p].y};
+    for (const geometry::Vec2& s : stoppers) {
+      if (geometry::distance(q, s) < geometry::distance(here, s) - kSlack) {
+        mask[static_cast<std::size_t>(zones_->place_of(static_cast<int>(p)))] = 1;
+        break;
+      }
+    }
+  }
+  return mask;
+}
+
 bool TrafficManager::first_stretch_free(const std::vector<int>& points, int slot) const {
   std::vector<int> places(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) places[i] = zones_->place_of(points[i]);
@@ -85,7 +131,9 @@ bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, doubl
   const int from = anchor_index(robot);
   const int anchor = robot.route[static_cast<std::size_t>(from)];
   const int goal = robot.route.back();
-  const auto blocked = places_of_others(others, true, 0.0, robot.type);
+  auto blocked = places_of_others(others, true, 0.0, robot.type);
+  const auto towards = towards_stoppers(robot);
+  for (std::size_t p = 0; p < blocked.size(); ++p) blocked[p] = static_cast<std::uint8_t>(blocked[p] | towards[p]);
   const TypeGraphs& graphs = *types_[static_cast<std::size_t>(robot.type)];
   std::vector<int> path = (against_one_way ? graphs.search : graphs.route_search)->shortest(anchor, goal, &blocked);
   if (path.size() < 2) return false;
@@ -113,7 +161,9 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
   for (const auto& [id, o] : robots_) {
     if (id != robot.id) everyone.push_back(id);
   }
-  const auto through = places_of_others(everyone, false, 0.0, robot.type);
+  auto through = places_of_others(everyone, false, 0.0, robot.type);
+  const auto towards = towards_stoppers(robot);
+  for (std::size_t p = 0; p < through.size(); ++p) through[p] = static_cast<std::uint8_t>(through[p] | towards[p]);
   // ... and must end off the others' remaining routes, or it would stand in their way again; when
   // no such place is reachable, off their next `siding_window` metres (they pass it before it
   // matters).
@@ -174,6 +224,21 @@ void TrafficManager::try_resume(Robot& robot, double now, UpdateResult& out) {
   robot.yield_to.clear();
 }
 
+bool TrafficManager::needs_places_up_to(const Robot& waiter, const Robot& holder, int reached) const {
+  std::vector<int> kept(holder.trail);
+  for (int k = holder.first_held; k <= reached; ++k) kept.push_back(holder.places[static_cast<std::size_t>(k)]);
+  const int last = static_cast<int>(waiter.route.size()) - 1;
+  for (int j = waiter.grant_end + 1; j <= last; ++j) {
+    const int q = waiter.places[static_cast<std::size_t>(j)];
+    for (int p : kept) {
+      const auto& in_conflict = zones_->conflicts(holder.type, p, waiter.type);
+      if (std::find(in_conflict.begin(), in_conflict.end(), q) != in_conflict.end()) return true;
+    }
+    if (zones_->stoppable(waiter.type, q)) break;
+  }
+  return false;
+}
+
 bool TrafficManager::give_way(Robot& robot, const std::vector<int>& members, double now, UpdateResult& out) {
   if (robot.frozen || !robot.giving_way_to.empty()) return false;
   std::vector<int> stoppers;
@@ -183,6 +248,15 @@ bool TrafficManager::give_way(Robot& robot, const std::vector<int>& members, dou
   if (stoppers.empty()) return false;
   const int reached = reached_index(robot);
   if (reached >= robot.grant_end) return false;
+  // Giving back the road beyond itself helps only a stopper free to drive into it: not one whose
+  // own safety check stops it for this robot's body, nor one whose next stretch is in conflict
+  // with where this robot stands. Those wait for its body, which must move.
+  const bool frees_a_stopper = std::any_of(stoppers.begin(), stoppers.end(), [&](int id) {
+    const Robot& stopper = robots_.at(id);
+    return !std::binary_search(stopper.stopped_for.begin(), stopper.stopped_for.end(), robot.id) &&
+           !needs_places_up_to(stopper, robot, reached);
+  });
+  if (!frees_a_stopper) return false;
   robot.grant_end = reached;
   robot.giving_way_to = std::move(stoppers);
   out.events.push_back({TrafficEvent::Kind::kGaveWay, now, robot.id, robot.giving_way_to});

@@ -1,0 +1,138 @@
+// Two robots meet head-on in a lane driven both ways; their agents' safety checks stop each for
+// the other's body before either reaches the end of its grant. The lane has a spur on either side
+// of them: one between them, one behind the robot going south. A siding through the spur between
+// them leads towards the body that stops the robot sent there, which its safety check does not let
+// it drive: the manager must send it the other way.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "test_grants.hpp"
+#include "test_graphs.hpp"
+#include "traffic/traffic_manager.hpp"
+
+namespace fleet::traffic {
+namespace {
+
+using testing::grant_of;
+using testing::has_event;
+using testing::point_at;
+
+struct Point {
+  double x = 0.0, y = 0.0;
+};
+
+// An agent reduced to what the manager sees of it: it drives its route up to its grant, and a
+// stand-in for its safety check, longer ahead than the places' 0.25 x 0.16 m bodies (as a turning
+// body reaches past its places), stops it where a step would bring another robot's centre within
+// kBodyGap ahead and kBodyWidth beside it, and nearer than it is; such a stop is reported after
+// 3 s, as agents do.
+struct EmulatedRobot {
+  static constexpr double kBodyGap = 2.0;      // metres between centres, ahead
+  static constexpr double kBodyWidth = 0.3;    // metres between centres, beside
+  static constexpr double kReportAfter = 3.0;  // sim seconds
+
+  int id = 0;
+  std::vector<int> route;
+  std::uint64_t version = 1;
+  double driven = 0.0;
+  double stopped_since = -1.0;
+  int stopped_for = -1;
+
+  Point at(const map::RoadGraph& g, double distance) const {
+    double left = distance;
+    for (std::size_t k = 1; k < route.size(); ++k) {
+      const auto& a = g.points[static_cast<std::size_t>(route[k - 1])];
+      const auto& b = g.points[static_cast<std::size_t>(route[k])];
+      const double length = std::hypot(b.x - a.x, b.y - a.y);
+      if (left <= length) return {a.x + (b.x - a.x) * left / length, a.y + (b.y - a.y) * left / length};
+      left -= length;
+    }
+    const auto& last = g.points[static_cast<std::size_t>(route.back())];
+    return {last.x, last.y};
+  }
+};
+
+double gap(Point a, Point b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+/// Whether a robot stepping from `from` to `to` stops for a body centred at `body`.
+bool stops_for(Point from, Point to, Point body) {
+  const double dx = to.x - from.x, dy = to.y - from.y;
+  const double step = std::hypot(dx, dy);
+  if (step < 1e-9 || gap(to, body) >= gap(from, body)) return false;
+  const double ahead = ((body.x - to.x) * dx + (body.y - to.y) * dy) / step;
+  const double beside = std::abs((body.y - to.y) * dx - (body.x - to.x) * dy) / step;
+  return ahead > -EmulatedRobot::kBodyGap && ahead < EmulatedRobot::kBodyGap && beside < EmulatedRobot::kBodyWidth;
+}
+
+TEST(BodyStopSiding, ARobotStoppedForABodyIsSentToASidingAwayFromItNotPastIt) {
+  testing::GraphBuilder b;
+  b.road(0.0, 0.0, 0.0, 12.0);
+  b.road(0.0, 4.5, 3.0, 4.5);   // the spur between them
+  b.road(0.0, 9.0, -3.0, 9.0);  // the spur behind the southbound robot
+  const auto& g = b.graph();
+  TrafficConfiguration c;
+  c.one_way = false;
+  TrafficManager m(g, c);
+  std::map<int, EmulatedRobot> robots;
+  robots[1].id = 1;
+  for (int k = 60; k >= 0; --k) robots[1].route.push_back(point_at(g, 0.0, 0.1 * k));  // south from y = 6
+  robots[2].id = 2;
+  for (int k = 20; k <= 120; ++k) robots[2].route.push_back(point_at(g, 0.0, 0.1 * k));  // north from y = 2
+  for (auto& [id, robot] : robots) ASSERT_EQ(m.submit_route({id, 1, robot.route}, 0.0), SubmitStatus::kAccepted);
+
+  double t = 0.0;
+  int sidings = 0;
+  bool both_arrived = false;
+  constexpr double kStep = 0.05, kSpeed = 0.4;
+  for (int i = 0; i < 20 * 300 && !both_arrived; ++i, t += kStep) {
+    const UpdateResult r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    both_arrived = true;
+    for (auto& [id, robot] : robots) {
+      sidings += has_event(r, TrafficEvent::Kind::kSidingSent, id) ? 1 : 0;
+      const Grant* grant = grant_of(r, id);
+      ASSERT_NE(grant, nullptr);
+      if (grant->instruction == Instruction::kSiding && grant->version != robot.version) {
+        // The way to the siding never leads nearer the other robot than this one stands.
+        const EmulatedRobot& other = robots[3 - id];
+        const Point there = other.at(g, other.driven);
+        const double now_apart = gap(robot.at(g, robot.driven), there);
+        for (int p : grant->route) {
+          const Point q{g.points[static_cast<std::size_t>(p)].x, g.points[static_cast<std::size_t>(p)].y};
+          EXPECT_GE(gap(q, there), now_apart - 0.15) << "robot " << id << " sent past robot " << 3 - id
+                                                     << " at t = " << t << " s, through (" << q.x << ", " << q.y << ")";
+        }
+      }
+      if (grant->instruction != Instruction::kNone && grant->version != robot.version) {
+        robot.version = grant->version;
+        robot.route = grant->route;
+        robot.driven = 0.0;
+        robot.stopped_since = -1.0;
+      }
+      both_arrived = both_arrived && grant->status == GrantStatus::kArrived;
+      const EmulatedRobot& other = robots[3 - id];
+      const Point here = robot.at(g, robot.driven);
+      const Point there = other.at(g, other.driven);
+      const double next = std::min(robot.driven + kSpeed * kStep, grant->granted_distance);
+      const Point ahead = robot.at(g, next);
+      if (stops_for(here, ahead, there)) {
+        if (robot.stopped_since < 0.0) robot.stopped_since = t;
+      } else {
+        robot.driven = std::max(robot.driven, next);
+        robot.stopped_since = -1.0;
+      }
+      const bool report = robot.stopped_since >= 0.0 && t - robot.stopped_since >= EmulatedRobot::kReportAfter;
+      m.report_progress({id, robot.version, robot.driven, report ? std::vector<int>{3 - id} : std::vector<int>{}}, t);
+    }
+  }
+  EXPECT_TRUE(both_arrived) << "after " << t << " s, with " << sidings << " sidings sent";
+  EXPECT_LE(sidings, 3);
+}
+
+}  // namespace
+}  // namespace fleet::traffic
