@@ -7,6 +7,7 @@
 #include <map>
 
 #include "model/names.hpp"
+#include "orders/packing_chain.hpp"
 #include "orders/transport_areas.hpp"
 #include "server/fleet_server.hpp"
 
@@ -188,6 +189,10 @@ void FleetServer::create_auto_orders() {
   const long free_robots = free_for(orders::OrderKind::kTransport);
   if (!orders::auto_transport_wanted(book_, free_robots)) return;
   const auto doable = [&](const std::string& pick, const std::string& drop) {
+    if (const auto& packing = options_.site.packing; packing && (!orders::open_to_random_transports(*packing, pick) ||
+                                                                 !orders::open_to_random_transports(*packing, drop))) {
+      return false;
+    }
     return !orders::check_order_request({"", pick, drop, "", "", 0}, names).has_value();
   };
   const auto choice = orders::choose_auto_transport(ledger_, book_, rng_, doable);

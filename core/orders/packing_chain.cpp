@@ -124,4 +124,8 @@ std::optional<ChainTransport> next_chain_transport(const map::Packing& packing, 
   return std::nullopt;
 }
 
+bool open_to_random_transports(const map::Packing& packing, const std::string& place) {
+  return std::find(packing.stations.begin(), packing.stations.end(), place) == packing.stations.end();
+}
+
 }  // namespace fleet::orders

@@ -35,6 +35,11 @@ StationFill station_fill(const OrderBook& book, const std::string& station);
 std::string station_for_tour(const map::Packing& packing, const AreaLedger& ledger, const OrderBook& book,
                              const std::string& requested, int boxes);
 
+/// Whether the automatic transports [Forklift thesis, section 3] may pick at or drop to `place`:
+/// not at a packing station, whose pallet only the chain moves (a pallet taken away half full
+/// would leave the station without one until a random transport brought another).
+bool open_to_random_transports(const map::Packing& packing, const std::string& place);
+
 /// A transport the chain owes now, with why.
 struct ChainTransport {
   std::string pick;

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <set>
+
 #include "model/names.hpp"
+#include "orders/transport_areas.hpp"
 
 namespace fleet::orders {
 namespace {
@@ -119,6 +123,27 @@ TEST(PackingChain, ATourGoesOnToTheNextStationWithRoomAndAPalletThatStays) {
   EXPECT_EQ(station_for_tour(c.packing, c.ledger, c.book, "PS2", 1), "PS1");
   EXPECT_EQ(station_for_tour(c.packing, c.ledger, c.book, "PS2", 2), "PS2") << "no station has room";
   EXPECT_EQ(station_for_tour(c.packing, c.ledger, c.book, "EX1", 2), "EX1") << "not a station";
+}
+
+TEST(PackingChain, RandomTransportsLeaveTheStationsPalletsToTheChain) {
+  Chain c;
+  EXPECT_FALSE(open_to_random_transports(c.packing, "PS1"));
+  EXPECT_FALSE(open_to_random_transports(c.packing, "PS2"));
+  for (const char* place : {"EX1", "PK2", "RB1"}) EXPECT_TRUE(open_to_random_transports(c.packing, place)) << place;
+  // Drawn over and over, the automatic transports pick and drop everywhere but at the stations.
+  std::mt19937_64 rng(7);
+  const auto open = [&](const std::string& pick, const std::string& drop) {
+    return open_to_random_transports(c.packing, pick) && open_to_random_transports(c.packing, drop);
+  };
+  std::set<std::string> picks, drops;
+  for (int k = 0; k < 200; ++k) {
+    const auto choice = choose_auto_transport(c.ledger, c.book, rng, open);
+    ASSERT_TRUE(choice);
+    picks.insert(choice->pick);
+    drops.insert(choice->drop);
+  }
+  EXPECT_EQ(picks, (std::set<std::string>{"EX2", "PK2"}));
+  EXPECT_EQ(drops, (std::set<std::string>{"EX1", "PK1", "RB1"}));
 }
 
 TEST(PackingChain, OrderIdsTravelAsTextAndBack) {
