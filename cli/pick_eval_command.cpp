@@ -153,6 +153,42 @@ void print_job(std::ostream& out, const eval::PickEvalResult& r) {
   for (const auto& a : j.assumptions) out << "     - " << a << '\n';
 }
 
+void print_loader(std::ostream& out, const eval::PickEvalResult& r) {
+  const auto& l = r.loader;
+  out << "5. the loader with a transporter behind it [section 4.3.3.1, not built by the thesis]: the same list, "
+      << l.deck.size() << " places on the transporter's pallet, " << l.runs << " transporters filled\n";
+  if (l.deck.empty()) {
+    out << "   the arm reaches no place behind the base\n";
+    return;
+  }
+  out << "   " << l.delivered << " of " << l.boxes << " boxes in " << l.total_time << " s: arm " << l.arm_time << " s ("
+      << l.arm_per_box << " s a box), driving " << l.travel_time << " s, transporters moving up " << l.swap_time
+      << " s: " << l.items_per_hour << " items/h (target " << l.target_items_per_hour << ": "
+      << (l.items_per_hour >= l.target_items_per_hour ? "met" : "missed") << ")\n";
+  for (const auto& f : l.failures) out << "   refused: " << f << '\n';
+  out << "   assumptions:\n";
+  for (const auto& a : l.assumptions) out << "     - " << a << '\n';
+}
+
+nlohmann::json loader_json(const eval::LoaderCycleResult& l) {
+  nlohmann::json deck = nlohmann::json::array();
+  for (const auto& p : l.deck) deck.push_back({p.x(), p.y(), p.z()});
+  return {{"deck", deck},
+          {"runs", l.runs},
+          {"boxes", l.boxes},
+          {"delivered", l.delivered},
+          {"arm_s", l.arm_time},
+          {"arm_s_per_box", l.arm_per_box},
+          {"travel_s", l.travel_time},
+          {"swap_s", l.swap_time},
+          {"swap_m", l.swap_distance},
+          {"total_s", l.total_time},
+          {"items_per_hour", l.items_per_hour},
+          {"target_items_per_hour", l.target_items_per_hour},
+          {"failures", l.failures},
+          {"assumptions", l.assumptions}};
+}
+
 nlohmann::json aisle_json(const eval::PickEvalResult& r) {
   nlohmann::json tests = nlohmann::json::array();
   for (const auto& a : r.aisle) {
@@ -313,11 +349,17 @@ int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   print_markers(out, r);
   print_picks(out, r);
   print_job(out, r);
+  print_loader(out, r);
   out << "targets: " << (r.within_targets() ? "all met" : "some MISSED (exit 1)") << '\n';
 
   if (json) {
-    nlohmann::json j{{"seed", params.seed},          {"aisle", aisle_json(r)}, {"markers", markers_json(r.markers)},
-                     {"picks", picks_json(r.picks)}, {"job", job_json(r.job)}, {"within_targets", r.within_targets()}};
+    nlohmann::json j{{"seed", params.seed},
+                     {"aisle", aisle_json(r)},
+                     {"markers", markers_json(r.markers)},
+                     {"picks", picks_json(r.picks)},
+                     {"job", job_json(r.job)},
+                     {"loader", loader_json(r.loader)},
+                     {"within_targets", r.within_targets()}};
     out << j.dump() << '\n';
   }
   // A target missed makes the run a failure, as dock-eval's.

@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "arm/pick_motion.hpp"
 #include "arm/ur5.hpp"
 #include "common/errors.hpp"
 #include "config/fleet_config.hpp"
@@ -346,6 +347,89 @@ JobCycleResult run_job_cycle(const PlantPicker& plant, const std::vector<orders:
   return j;
 }
 
+// ---- section 5: the loader with a transporter behind it ---------------------------------------------------------
+
+constexpr std::uint64_t kLoaderStream = 3000000;
+
+/// The places behind the picker's base where a box could stand on a transporter's pallet, raised
+/// to the tray's height: rows 0.3 m apart from just behind the base, three across.
+std::vector<Eigen::Vector3d> deck_candidates(const robot::PickerArmLayout& layout) {
+  const double height = layout.tray.empty() ? 0.40 : layout.tray.front().z();
+  std::vector<Eigen::Vector3d> places;
+  for (double x : {-0.55, -0.85, -1.15}) {
+    for (double y : {0.25, -0.25, 0.0}) places.emplace_back(x, y, height);
+  }
+  return places;
+}
+
+LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<orders::PickLine>& lines,
+                                   const PickEvalParams& params) {
+  LoaderCycleResult l;
+  for (const auto& line : lines) l.boxes += line.quantity;
+  if (lines.empty()) return l;
+  const map::LoadingArea* first = plant.site.site.find_area(lines.front().place);
+  const map::BoxStock& sample = *first->boxes;
+  const arm::PickMotionPlanner planner(arm::Ur5{}, arm::VacuumGripper{});
+  for (const Eigen::Vector3d& place : deck_candidates(plant.picker.arm_layout)) {
+    const arm::Box box{sample.mass, sample.length, sample.width, sample.height};
+    if (planner.plan_drop(box, {place, 0.0}, 0.0).ok) l.deck.push_back(place);
+  }
+  // The transporter moves up by its length and half a metre, at the stackers' profile.
+  const auto stackers = std::find_if(plant.config.fleets.begin(), plant.config.fleets.end(),
+                                     [](const config::FleetSpec& f) { return f.robot_type == "stacker"; });
+  const config::FleetSpec& transporter = stackers != plant.config.fleets.end() ? *stackers : plant.fleet;
+  l.swap_distance = transporter.footprint.length + 0.5;
+  const double swap =
+      arm::trapezoid_time(l.swap_distance, transporter.profile.max_speed, transporter.profile.max_acceleration);
+  std::ostringstream moves;
+  moves.setf(std::ios::fixed);
+  moves.precision(1);
+  moves << "a full transporter leaves and the next, waiting behind, moves up " << l.swap_distance
+        << " m at the profile of fleet " << transporter.id << " (" << swap << " s), the picker standing meanwhile; "
+        << "the transporters' drives to and from the packing stations overlap the picking";
+  l.assumptions = {
+      "one picker alone on the site, and always a transporter behind it with an empty pallet",
+      "the transporter's pallet raised to the tray's height right behind the base: a box goes on the places the "
+      "arm reaches there with the list's first box, one layer",
+      moves.str(),
+      "travel: the same road-graph route and trapezoid legs as the job cycle, from place to place; the first run "
+      "starts at its first place",
+      "the arm's times are PickerArmWork's plans (locate, pick, set down), as in the job cycle",
+  };
+  if (l.deck.empty()) return l;
+  robot::PickerArmLayout layout = plant.picker.arm_layout;
+  layout.tray = l.deck;
+  robot::PickerArmWork arm =
+      robot::make_picker_arm_work(plant.picker.box_camera, layout, seed_of(params.seed, kLoaderStream));
+  const auto graphs = traffic::fleet_graphs(plant.site.graph.graph, plant.config);
+  planning::RoadPlanner travel(graphs.at(plant.fleet.id));
+  const task::TaskExecutor executor(plant.picker.task, {});
+  JobContext job{plant, executor, travel, arm, ""};
+  const auto& profile = plant.fleet.profile;
+  std::string at;
+  for (const orders::PickTour& run :
+       orders::plan_tours(lines, static_cast<int>(l.deck.size()), orders::place_poses(plant.site.site))) {
+    std::vector<map::BoxStock> pallet;
+    for (const orders::PickLine& line : run.lines) {
+      if (!at.empty() && at != line.place) {
+        const double d = planning::road_travel_distance(travel, job.stand_beside(at), job.stand_beside(line.place));
+        if (std::isfinite(d)) l.travel_time += arm::trapezoid_time(d, profile.max_speed, profile.max_acceleration);
+      }
+      at = line.place;
+      const robot::ArmWork work = arm.pick(*plant.site.site.find_area(line.place)->boxes, line.quantity, pallet);
+      l.arm_time += work.duration;
+      l.delivered += work.boxes;
+      if (!work.ok) l.failures.push_back(line.place + ": " + work.reason);
+    }
+    ++l.runs;
+    l.swap_time += swap;
+  }
+  l.total_time = l.arm_time + l.travel_time + l.swap_time;
+  if (l.total_time > 0.0) l.items_per_hour = l.delivered * 3600.0 / l.total_time;
+  if (l.delivered > 0) l.arm_per_box = l.arm_time / l.delivered;
+  return l;
+}
+
 }  // namespace
 
 MarkerSweepResult run_marker_sweep(const MarkerSweepParams& params, std::uint64_t seed) {
@@ -383,6 +467,7 @@ PickEvalResult run_pick_eval(const PickEvalParams& params) {
   r.markers = run_marker_sweep(params.markers, params.seed);
   r.picks = run_pick_trials(plant, params.pick_trials, params.seed);
   r.job = run_job_cycle(plant, lines, drop_place, params);
+  r.loader = run_loader_cycle(plant, lines, params);
   return r;
 }
 

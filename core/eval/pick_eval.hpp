@@ -5,6 +5,7 @@
 // 4.4, Algorithm 4] and the job cycle of one picker on a plant pick list, each beside the thesis's
 // figure and a target.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -173,6 +174,30 @@ struct JobCycleResult {
   bool within_target = false;  ///< cycle_max <= thesis_cycle and items_per_hour >= the target
 };
 
+/// The loader and transporter of [Picker thesis, section 4.3.3.1], which the thesis never built:
+/// a transporter (a stacker) stands behind the picker with a pallet on its raised forks, and the
+/// picker sets each box straight on that pallet instead of its own tray. It neither unstows nor
+/// drives to a packing station; when the pallet is full, the next transporter, waiting behind,
+/// moves up while the full one leaves. The same pick list, plans and travel as the job cycle.
+struct LoaderCycleResult {
+  /// Where a box can stand on the transporter's pallet: the candidate places behind the base
+  /// (base frame, bottom centre, m) that the arm reaches with the list's first box.
+  std::vector<Eigen::Vector3d> deck;
+  int runs = 0;                ///< transporter loads, planned like tours of `deck.size()` boxes
+  int boxes = 0;               ///< asked for
+  int delivered = 0;           ///< boxes set on a transporter
+  double arm_time = 0.0;       ///< s: locate, pick and set down, every box
+  double travel_time = 0.0;    ///< s: the picker from place to place
+  double swap_time = 0.0;      ///< s: every transporter moving up behind a full one
+  double swap_distance = 0.0;  ///< m a transporter moves up: its length and a gap
+  double total_time = 0.0;
+  double items_per_hour = 0.0;
+  double arm_per_box = 0.0;           ///< s
+  std::vector<std::string> failures;  ///< boxes the arm refused, with why
+  std::vector<std::string> assumptions;
+  double target_items_per_hour = 100.0;  ///< IAM Robotics' published rate
+};
+
 struct PickEvalResult {
   PickEvalParams params;
   std::vector<AisleTestResult> aisle;
@@ -180,6 +205,7 @@ struct PickEvalResult {
   MarkerSweepResult markers;
   PickCycleResult picks;
   JobCycleResult job;
+  LoaderCycleResult loader;
 
   /// Every section within its target.
   bool within_targets() const;

@@ -159,6 +159,28 @@ TEST_F(PickEval, TheJobsToursAddUpToItsTimeAndItsItemsPerHour) {
   EXPECT_GT(j.tours.front().travel_distance, 40.0);
 }
 
+TEST_F(PickEval, ALoaderSettingBoxesOnATransporterBehindItSkipsTheTrayAndTheDriveToTheStation) {
+  const LoaderCycleResult& l = result().loader;
+  const JobCycleResult& j = result().job;
+  ASSERT_FALSE(l.deck.empty()) << "the arm reaches no place behind the base";
+  // Every place on the transporter's pallet lies behind the base, within the UR5's reach.
+  for (const auto& p : l.deck) {
+    EXPECT_LT(p.x(), -0.325) << "not behind the 0.65 m base";
+    EXPECT_LT(std::hypot(p.x(), p.y()), 1.3);
+  }
+  EXPECT_EQ(l.boxes, j.boxes);
+  EXPECT_EQ(l.delivered, l.boxes) << (l.failures.empty() ? "" : l.failures.front());
+  EXPECT_GE(l.runs * static_cast<int>(l.deck.size()), l.boxes) << "runs of at most " << l.deck.size() << " boxes";
+  // No unstowing and no putting down at a station: the arm's share of a box is smaller, and the
+  // picker no longer drives back and forth to the station.
+  EXPECT_LT(l.arm_per_box, j.arm_per_box);
+  EXPECT_LT(l.travel_time, j.travel_per_box * j.delivered);
+  EXPECT_NEAR(l.total_time, l.arm_time + l.travel_time + l.swap_time, 1e-9);
+  EXPECT_NEAR(l.items_per_hour, l.delivered * 3600.0 / l.total_time, 1e-9);
+  EXPECT_GT(l.items_per_hour, j.items_per_hour);
+  EXPECT_GT(l.swap_time, 0.0);
+}
+
 TEST_F(PickEval, TheArmAndTheDrivingEachBoundTheItemsPerHourAndTogetherMakeIt) {
   const JobCycleResult& j = result().job;
   ASSERT_EQ(j.delivered, j.boxes);
