@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -392,8 +393,8 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
       "the transporter's pallet raised to the tray's height right behind the base: a box goes on the places the "
       "arm reaches there with the list's first box, one layer",
       moves.str(),
-      "travel: the same road-graph route and trapezoid legs as the job cycle, from place to place; the first run "
-      "starts at its first place",
+      "travel: the same road-graph route and trapezoid legs as the job cycle, from place to place as one walk: "
+      "from the first place in aisle order, always on to the nearest by road",
       "the arm's times are PickerArmWork's plans (locate, pick, set down), as in the job cycle",
   };
   if (l.deck.empty()) return l;
@@ -406,24 +407,49 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
   const task::TaskExecutor executor(plant.picker.task, {});
   JobContext job{plant, executor, travel, arm, ""};
   const auto& profile = plant.fleet.profile;
-  std::string at;
-  for (const orders::PickTour& run :
+  const auto distance = [&](const std::string& from, const std::string& to) {
+    return planning::road_travel_distance(travel, job.stand_beside(from), job.stand_beside(to));
+  };
+  // The picker no longer returns anywhere between loads, so it visits the places as one walk:
+  // from the first place in aisle order, always on to the nearest by road (the aisles are one way).
+  std::vector<orders::PickLine> left;
+  for (const orders::PickTour& t :
        orders::plan_tours(lines, static_cast<int>(l.deck.size()), orders::place_poses(plant.site.site))) {
-    std::vector<map::BoxStock> pallet;
-    for (const orders::PickLine& line : run.lines) {
-      if (!at.empty() && at != line.place) {
-        const double d = planning::road_travel_distance(travel, job.stand_beside(at), job.stand_beside(line.place));
-        if (std::isfinite(d)) l.travel_time += arm::trapezoid_time(d, profile.max_speed, profile.max_acceleration);
-      }
-      at = line.place;
-      const robot::ArmWork work = arm.pick(*plant.site.site.find_area(line.place)->boxes, line.quantity, pallet);
-      l.arm_time += work.duration;
-      l.delivered += work.boxes;
-      if (!work.ok) l.failures.push_back(line.place + ": " + work.reason);
-    }
-    ++l.runs;
-    l.swap_time += swap;
+    left.insert(left.end(), t.lines.begin(), t.lines.end());
   }
+  std::vector<orders::PickLine> walk;
+  while (!left.empty()) {
+    std::size_t next = 0;
+    if (!walk.empty()) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < left.size(); ++k) {
+        const double d = left[k].place == walk.back().place ? 0.0 : distance(walk.back().place, left[k].place);
+        if (d < nearest) nearest = d, next = k;
+      }
+    }
+    walk.push_back(left[next]);
+    left.erase(left.begin() + static_cast<std::ptrdiff_t>(next));
+  }
+  std::vector<map::BoxStock> pallet;
+  std::string at;
+  for (const orders::PickLine& line : walk) {
+    if (pallet.size() + static_cast<std::size_t>(line.quantity) > l.deck.size()) {
+      pallet.clear();  // the full transporter leaves, the next moves up
+      ++l.runs;
+      l.swap_time += swap;
+    }
+    if (!at.empty() && at != line.place) {
+      const double d = distance(at, line.place);
+      if (std::isfinite(d)) l.travel_time += arm::trapezoid_time(d, profile.max_speed, profile.max_acceleration);
+    }
+    at = line.place;
+    const robot::ArmWork work = arm.pick(*plant.site.site.find_area(line.place)->boxes, line.quantity, pallet);
+    l.arm_time += work.duration;
+    l.delivered += work.boxes;
+    if (!work.ok) l.failures.push_back(line.place + ": " + work.reason);
+  }
+  ++l.runs;  // the last transporter leaves as well
+  l.swap_time += swap;
   l.total_time = l.arm_time + l.travel_time + l.swap_time;
   if (l.total_time > 0.0) l.items_per_hour = l.delivered * 3600.0 / l.total_time;
   if (l.delivered > 0) l.arm_per_box = l.arm_time / l.delivered;

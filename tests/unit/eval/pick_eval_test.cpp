@@ -178,6 +178,7 @@ TEST_F(PickEval, ALoaderSettingBoxesOnATransporterBehindItSkipsTheTrayAndTheDriv
   EXPECT_NEAR(l.total_time, l.arm_time + l.travel_time + l.swap_time, 1e-9);
   EXPECT_NEAR(l.items_per_hour, l.delivered * 3600.0 / l.total_time, 1e-9);
   EXPECT_GT(l.items_per_hour, j.items_per_hour);
+  EXPECT_GE(l.items_per_hour, l.target_items_per_hour);
   EXPECT_GT(l.swap_time, 0.0);
 }
 
