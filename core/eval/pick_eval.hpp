@@ -178,12 +178,13 @@ struct JobCycleResult {
 /// a transporter (a stacker) stands behind the picker with a pallet on its raised forks, and the
 /// picker sets each box straight on that pallet instead of its own tray. It neither unstows nor
 /// drives to a packing station; when the pallet is full, the next transporter, waiting behind,
-/// moves up while the full one leaves. The same pick list, plans and travel as the job cycle.
+/// moves up while the full one leaves. The same pick list, arm plans and road travel as the job
+/// cycle; the places are walked nearest first.
 struct LoaderCycleResult {
   /// Where a box can stand on the transporter's pallet: the candidate places behind the base
   /// (base frame, bottom centre, m) that the arm reaches with the list's first box.
   std::vector<Eigen::Vector3d> deck;
-  int runs = 0;                ///< transporter loads, planned like tours of `deck.size()` boxes
+  int runs = 0;                ///< transporters filled, one after the other along the walk
   int boxes = 0;               ///< asked for
   int delivered = 0;           ///< boxes set on a transporter
   double arm_time = 0.0;       ///< s: locate, pick and set down, every box
