@@ -219,30 +219,58 @@ std::vector<std::string> job_assumptions(const JobCycleResult& j) {
   };
 }
 
-/// What a job's tours share: the plant, where the picker stands at a place, the travel planner, the arm.
-struct JobContext {
-  const PlantPicker& plant;
-  const task::TaskExecutor& executor;  ///< only for item_pose: where the picker stands beside a place
-  planning::RoadPlanner& travel;
-  robot::PickerArmWork& arm;
-  std::string drop_place;
+/// How the picker gets from place to place: the server's travel planner for its fleet
+/// (FleetServer::build_fleet_graphs: its fleet graph, only the lanes its vehicle fits), where it
+/// stands beside a place, and a leg's time at its profile.
+class PickerRoads {
+ public:
+  explicit PickerRoads(const PlantPicker& plant)
+      : plant_(plant),
+        graphs_(traffic::fleet_graphs(plant.site.graph.graph, plant.config)),
+        travel_(graphs_.at(plant.fleet.id)),
+        executor_(plant.picker.task, {}) {}
 
   geometry::Pose2 stand_beside(const std::string& place) const {
-    const map::LoadingArea* area = plant.site.site.find_area(place);
-    if (area == nullptr) throw InputError("unknown place '" + place + "' on " + plant.site.site.name);
-    return executor.item_pose(area->pose);
+    const map::LoadingArea* area = plant_.site.site.find_area(place);
+    if (area == nullptr) throw InputError("unknown place '" + place + "' on " + plant_.site.site.name);
+    return executor_.item_pose(area->pose);
   }
+
+  /// Metres by road from the stand beside `from` to the stand beside `to`; +inf without a way.
+  double distance(const std::string& from, const std::string& to) {
+    return planning::road_travel_distance(travel_, stand_beside(from), stand_beside(to));
+  }
+
+  /// A trapezoid from rest to rest at the picker's profile; no time for a leg without a way.
+  TourLeg leg(const std::string& from, const std::string& to) {
+    TourLeg l{from, to, distance(from, to), 0.0};
+    const auto& profile = plant_.fleet.profile;
+    if (std::isfinite(l.distance))
+      l.time = arm::trapezoid_time(l.distance, profile.max_speed, profile.max_acceleration);
+    return l;
+  }
+
+ private:
+  const PlantPicker& plant_;
+  std::map<std::string, map::RoadGraph> graphs_;  ///< travel_ plans on one of them
+  planning::RoadPlanner travel_;
+  task::TaskExecutor executor_;  ///< only for item_pose
+};
+
+/// What a job's tours share: the plant, its roads, the arm.
+struct JobContext {
+  const PlantPicker& plant;
+  PickerRoads& roads;
+  robot::PickerArmWork& arm;
+  std::string drop_place;
 };
 
 /// One tour from the drop place's stand to each place in turn and back; its cycle time is left to the caller.
 TourResult run_tour(JobContext& job, const orders::PickTour& tour) {
-  const auto& profile = job.plant.fleet.profile;
   TourResult r;
   std::string at = job.drop_place;
   const auto drive_to = [&](const std::string& to) {
-    TourLeg leg{at, to, 0.0, 0.0};
-    leg.distance = planning::road_travel_distance(job.travel, job.stand_beside(at), job.stand_beside(to));
-    leg.time = arm::trapezoid_time(leg.distance, profile.max_speed, profile.max_acceleration);
+    const TourLeg leg = job.roads.leg(at, to);
     r.travel_distance += leg.distance;
     r.travel_time += leg.time;
     r.legs.push_back(leg);
@@ -308,15 +336,11 @@ JobCycleResult run_job_cycle(const PlantPicker& plant, const std::vector<orders:
   j.assumptions = job_assumptions(j);
   j.lines = static_cast<int>(lines.size());
   for (const auto& l : lines) j.boxes += l.quantity;
-  // The server's travel planner for the fleet (FleetServer::build_fleet_graphs): its fleet graph, only the lanes its
-  // vehicle fits.
-  const auto graphs = traffic::fleet_graphs(plant.site.graph.graph, plant.config);
-  planning::RoadPlanner travel(graphs.at(plant.fleet.id));
+  PickerRoads roads(plant);
   // One arm for the whole job, as the robot keeps one.
   robot::PickerArmWork arm =
       robot::make_picker_arm_work(plant.picker.box_camera, plant.picker.arm_layout, seed_of(params.seed, kJobStream));
-  const task::TaskExecutor executor(plant.picker.task, {});
-  JobContext job{plant, executor, travel, arm, j.drop_place};
+  JobContext job{plant, roads, arm, j.drop_place};
   std::vector<double> cycles;
   j.tour_capacity = orders::kTourBoxes;
   double arm_time = 0.0;
@@ -372,8 +396,7 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
   const map::BoxStock& sample = *first->boxes;
   const arm::PickMotionPlanner planner(arm::Ur5{}, arm::VacuumGripper{});
   for (const Eigen::Vector3d& place : deck_candidates(plant.picker.arm_layout)) {
-    const arm::Box box{sample.mass, sample.length, sample.width, sample.height};
-    if (planner.plan_drop(box, {place, 0.0}, 0.0).ok) l.deck.push_back(place);
+    if (planner.plan_drop(robot::box_of(sample), {place, 0.0}, 0.0).ok) l.deck.push_back(place);
   }
   // The transporter moves up by its length and half a metre, at the stackers' profile.
   const auto stackers = std::find_if(plant.config.fleets.begin(), plant.config.fleets.end(),
@@ -402,14 +425,7 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
   layout.tray = l.deck;
   robot::PickerArmWork arm =
       robot::make_picker_arm_work(plant.picker.box_camera, layout, seed_of(params.seed, kLoaderStream));
-  const auto graphs = traffic::fleet_graphs(plant.site.graph.graph, plant.config);
-  planning::RoadPlanner travel(graphs.at(plant.fleet.id));
-  const task::TaskExecutor executor(plant.picker.task, {});
-  JobContext job{plant, executor, travel, arm, ""};
-  const auto& profile = plant.fleet.profile;
-  const auto distance = [&](const std::string& from, const std::string& to) {
-    return planning::road_travel_distance(travel, job.stand_beside(from), job.stand_beside(to));
-  };
+  PickerRoads roads(plant);
   // The picker no longer returns anywhere between loads, so it visits the places as one walk:
   // from the first place in aisle order, always on to the nearest by road (the aisles are one way).
   std::vector<orders::PickLine> left;
@@ -423,7 +439,7 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
     if (!walk.empty()) {
       double nearest = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < left.size(); ++k) {
-        const double d = left[k].place == walk.back().place ? 0.0 : distance(walk.back().place, left[k].place);
+        const double d = left[k].place == walk.back().place ? 0.0 : roads.distance(walk.back().place, left[k].place);
         if (d < nearest) nearest = d, next = k;
       }
     }
@@ -438,10 +454,7 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
       ++l.runs;
       l.swap_time += swap;
     }
-    if (!at.empty() && at != line.place) {
-      const double d = distance(at, line.place);
-      if (std::isfinite(d)) l.travel_time += arm::trapezoid_time(d, profile.max_speed, profile.max_acceleration);
-    }
+    if (!at.empty() && at != line.place) l.travel_time += roads.leg(at, line.place).time;
     at = line.place;
     const robot::ArmWork work = arm.pick(*plant.site.site.find_area(line.place)->boxes, line.quantity, pallet);
     l.arm_time += work.duration;

@@ -62,6 +62,12 @@ Route RoutePlanner::plan(const geometry::Pose2& start, const geometry::Pose2& go
   route.points.push_back(start.position());
   if (geometry::distance(start.position(), first) > configuration_.on_graph_tolerance) {
     route.to_road = grid_.plan(start.position(), first, remaining(options, deadline));
+    if (route.to_road.status == PlanStatus::kInvalidStart) {
+      // The robot stands where its map has no free space: a map switch took away the road under
+      // it. It drives straight onto the road point its road plan starts from (the nearest, or
+      // one beside it: start_states), its own safety check watching as always.
+      route.to_road = {PlanStatus::kFound, {start.position(), first}, geometry::distance(start.position(), first), 0};
+    }
     if (route.to_road.status != PlanStatus::kFound) {
       route.status = route.to_road.status;
       route.points.clear();

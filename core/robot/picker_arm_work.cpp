@@ -5,11 +5,11 @@
 
 namespace fleet::robot {
 
-namespace {
-
-arm::Box box_of(const map::BoxStock& s) {
-  return {s.mass, s.length, s.width, s.height};
+arm::Box box_of(const map::BoxStock& stock) {
+  return {stock.mass, stock.length, stock.width, stock.height};
 }
+
+namespace {
 
 /// Locating a box: the camera's frames until it reads the marker, at most `limit` s. The thesis's
 /// localization scans take about 5 s per camera rotation and 5 s to extract [section 5.3.3.1.3].

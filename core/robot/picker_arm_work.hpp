@@ -87,6 +87,9 @@ class PickerArmWork {
   PickerArmLayout layout_;
 };
 
+/// The box a place's stock holds, as the arm's plans take it: mass and size.
+arm::Box box_of(const map::BoxStock& stock);
+
 /// The picker's arm work as the robot builds it (robot_type picker): the UR5 with its vacuum gripper
 /// [Picker thesis, sections 3.1-3.2], the boom camera and layout of its configuration
 /// (ForkliftConfig::box_camera, ForkliftConfig::arm_layout).

@@ -454,6 +454,9 @@ class TrafficManager {
   /// Places (by place) with a point nearer a robot whose body stops this one (stopped_for) than
   /// this robot stands now: ways through them lead towards a body its safety check keeps it from.
   std::vector<std::uint8_t> towards_stoppers(const Robot& robot) const;
+  /// Places `robot` may not drive through on a way round or to a siding: those of the others
+  /// (places_of_others, no window) and those towards its stoppers.
+  std::vector<std::uint8_t> closed_to(const Robot& robot, const std::vector<int>& others, bool with_next_stretch) const;
   int slot_of(int robot_id) const;
   bool higher_priority(const Robot& a, const Robot& b) const;
 

@@ -94,6 +94,14 @@ std::vector<std::uint8_t> TrafficManager::towards_stoppers(const Robot& robot) c
   return mask;
 }
 
+std::vector<std::uint8_t> TrafficManager::closed_to(const Robot& robot, const std::vector<int>& others,
+                                                    bool with_next_stretch) const {
+  auto closed = places_of_others(others, with_next_stretch, 0.0, robot.type);
+  const auto towards = towards_stoppers(robot);
+  for (std::size_t p = 0; p < closed.size(); ++p) closed[p] = static_cast<std::uint8_t>(closed[p] | towards[p]);
+  return closed;
+}
+
 bool TrafficManager::first_stretch_free(const std::vector<int>& points, int slot) const {
   std::vector<int> places(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) places[i] = zones_->place_of(points[i]);
@@ -131,9 +139,7 @@ bool TrafficManager::reroute(Robot& robot, const std::vector<int>& others, doubl
   const int from = anchor_index(robot);
   const int anchor = robot.route[static_cast<std::size_t>(from)];
   const int goal = robot.route.back();
-  auto blocked = places_of_others(others, true, 0.0, robot.type);
-  const auto towards = towards_stoppers(robot);
-  for (std::size_t p = 0; p < blocked.size(); ++p) blocked[p] = static_cast<std::uint8_t>(blocked[p] | towards[p]);
+  const auto blocked = closed_to(robot, others, true);
   const TypeGraphs& graphs = *types_[static_cast<std::size_t>(robot.type)];
   std::vector<int> path = (against_one_way ? graphs.search : graphs.route_search)->shortest(anchor, goal, &blocked);
   if (path.size() < 2) return false;
@@ -161,9 +167,7 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
   for (const auto& [id, o] : robots_) {
     if (id != robot.id) everyone.push_back(id);
   }
-  auto through = places_of_others(everyone, false, 0.0, robot.type);
-  const auto towards = towards_stoppers(robot);
-  for (std::size_t p = 0; p < through.size(); ++p) through[p] = static_cast<std::uint8_t>(through[p] | towards[p]);
+  const auto through = closed_to(robot, everyone, false);
   // ... and must end off the others' remaining routes, or it would stand in their way again; when
   // no such place is reachable, off their next `siding_window` metres (they pass it before it
   // matters).
