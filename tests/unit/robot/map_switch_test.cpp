@@ -11,8 +11,7 @@ using robot::RobotEvent;
 namespace {
 
 std::shared_ptr<const map::SiteMap> table(const std::string& name) {
-  return std::make_shared<const map::SiteMap>(
-      map::load_site_map(map::site_path(FLEET_SOURCE_DIR "/maps", name)));
+  return std::make_shared<const map::SiteMap>(map::load_site_map(map::site_path(FLEET_SOURCE_DIR "/maps", name)));
 }
 
 TEST(MapSwitch, ARobotOnARoadTheNewMapClosesDrivesBackOntoTheRoadsAndDoesItsOrder) {
