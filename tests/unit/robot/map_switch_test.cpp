@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "config/fleet_config.hpp"
+#include "road_to_itself.hpp"
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
 
@@ -35,11 +36,7 @@ TEST(MapSwitch, ARobotOnARoadTheNewMapClosesDrivesBackOntoTheRoadsAndDoesItsOrde
   bool done = false;
   std::string no_route_at;
   while (!done && robot->time() < 120.0) {
-    robot::TrafficPermit all_of_it;
-    all_of_it.version = robot->route_version();
-    all_of_it.granted_index = 1000;
-    all_of_it.granted_distance = 1e9;
-    robot->set_traffic_grant(all_of_it);
+    test::grant_everything(*robot);
     robot->step();
     if (robot->detail() == "no route" && no_route_at.empty()) no_route_at = std::to_string(robot->time());
     for (const auto& e : robot->take_events()) {

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "config/fleet_config.hpp"
+#include "road_to_itself.hpp"
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
 
@@ -35,14 +36,6 @@ struct PlantPicker {
   }
 };
 
-void grant_everything(robot::Robot& robot) {
-  robot::TrafficPermit all_of_it;
-  all_of_it.version = robot.route_version();
-  all_of_it.granted_index = 1000;
-  all_of_it.granted_distance = 1e9;
-  robot.set_traffic_grant(all_of_it);
-}
-
 TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   const PlantPicker plant;
   auto picker = plant.make("PP1");
@@ -53,7 +46,7 @@ TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   bool done = false;
   double worst = 0.0;
   while (!done && picker->time() < 150.0) {
-    grant_everything(*picker);
+    test::grant_everything(*picker);
     picker->step();
     worst = std::max(worst, geometry::distance(picker->estimate().position(), picker->truth().position()));
     for (const auto& e : picker->take_events()) {
@@ -86,7 +79,7 @@ TEST(PickerBase, DrivesAPickTourPicksEachLinesBoxesAndPutsThemDownAtThePackingSt
   bool done = false;
   double picking_s = 0.0, dropping_s = 0.0;
   while (!done && picker->time() < 600.0) {
-    grant_everything(*picker);
+    test::grant_everything(*picker);
     picker->step();
     const std::string state = picker->task_state();
     states.insert(state);
@@ -145,7 +138,7 @@ TEST(PickerBase, KeepsItsEstimateTourAfterTourAcrossThePlant) {
     bool done = false;
     const double started = picker->time();
     while (!done && picker->time() < started + 400.0) {
-      grant_everything(*picker);
+      test::grant_everything(*picker);
       picker->step();
       const double error = geometry::distance(picker->estimate().position(), picker->truth().position());
       if (error > worst) {

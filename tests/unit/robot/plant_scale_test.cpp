@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "config/fleet_config.hpp"
+#include "road_to_itself.hpp"
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
 #include "sim/mecanum.hpp"
@@ -208,11 +209,7 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
                             nullptr));
   double closest = std::numeric_limits<double>::infinity();
   while (robot->time() < 11.0 && robot->truth().y > 27.5) {
-    robot::TrafficPermit all_of_it;
-    all_of_it.version = robot->route_version();
-    all_of_it.granted_index = 1000;
-    all_of_it.granted_distance = 1e9;
-    robot->set_traffic_grant(all_of_it);
+    test::grant_everything(*robot);
     step();
     closest = std::min(closest, geometry::convex_polygons_distance(
                                     geometry::footprint_polygon(robot->truth(), robot->footprint()), parked_body));
@@ -246,11 +243,7 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   double most_turned = 0.0;
   double closest = std::numeric_limits<double>::infinity();
   while (robot->time() < 11.0 && robot->truth().y > 27.5) {
-    robot::TrafficPermit all_of_it;
-    all_of_it.version = robot->route_version();
-    all_of_it.granted_index = 1000;
-    all_of_it.granted_distance = 1e9;
-    robot->set_traffic_grant(all_of_it);
+    test::grant_everything(*robot);
     step();
     most_turned = std::max(most_turned, std::abs(geometry::angle_diff(robot->truth().yaw, home.yaw)));
     closest = std::min(closest, geometry::convex_polygons_distance(
@@ -275,11 +268,7 @@ TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
   if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
   std::vector<robot::Neighbour> picker;
   const auto step = [&] {
-    robot::TrafficPermit all_of_it;
-    all_of_it.version = robot->route_version();
-    all_of_it.granted_index = 1000;
-    all_of_it.granted_distance = 1e9;
-    robot->set_traffic_grant(all_of_it);
+    test::grant_everything(*robot);
     robot->set_neighbours(picker);
     robot->step();
   };

@@ -12,6 +12,7 @@
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker_job.hpp"
 #include "traffic/conflict_zones.hpp"
@@ -76,19 +77,6 @@ TEST(StackerJob, WalksATransportFromItsBayBackToItsBay) {
   }
   EXPECT_EQ(robot::stacker_phase(StackerState::kDocking), orders::OrderPhase::kPicking);
   EXPECT_EQ(robot::stacker_phase(StackerState::kPlacing), orders::OrderPhase::kDropping);
-}
-
-/// A traffic manager with the road to itself: the whole route granted, an asked-for area clear.
-robot::TrafficPermit all_it_asks_for(const robot::TrafficRoute& route) {
-  robot::TrafficPermit permit;
-  if (!route.work_area.empty() && route.points.size() < 2) {
-    permit.area = robot::TrafficPermit::Area::kClear;
-  } else {
-    permit.version = route.version;
-    permit.granted_index = static_cast<int>(route.points.size()) - 1;
-    permit.granted_distance = 1e6;
-  }
-  return permit;
 }
 
 struct PlantStacker {
@@ -183,7 +171,7 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   // The road is free: every route is granted whole. The area is answered "wait" for 30 s.
   const auto grant_all = [&] {
     const robot::TrafficRoute route = stacker->traffic_route();
-    if (route.points.size() >= 2) stacker->set_traffic_grant(all_it_asks_for(route));
+    if (route.points.size() >= 2) stacker->set_traffic_grant(test::all_it_asks_for(route));
   };
   int step = 0;
   for (; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
@@ -312,7 +300,7 @@ TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
     } else {
       held.clear();
     }
-    stacker->set_traffic_grant(all_it_asks_for(route));
+    stacker->set_traffic_grant(test::all_it_asks_for(route));
     stacker->step();
     for (const auto& e : stacker->take_events()) {
       if (e.kind == RobotEvent::Kind::kLifted) plant.loads.erase(e.load_id);
@@ -344,7 +332,7 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   std::string why;
   ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX7"), &why)) << why;
   for (int i = 0; i < 20 * 600 && stacker->task_state() != "TO_DROP"; ++i) {
-    stacker->set_traffic_grant(all_it_asks_for(stacker->traffic_route()));
+    stacker->set_traffic_grant(test::all_it_asks_for(stacker->traffic_route()));
     stacker->step();
   }
   ASSERT_EQ(stacker->task_state(), "TO_DROP") << stacker->detail();
@@ -385,7 +373,7 @@ bool passes_reach_truck_at_the_junction(double age, std::string* why) {
   bool going_home = false;
   double nearest = 1e9;
   for (int i = 0; i < 20 * 260; ++i) {
-    stacker->set_traffic_grant(all_it_asks_for(stacker->traffic_route()));
+    stacker->set_traffic_grant(test::all_it_asks_for(stacker->traffic_route()));
     if (going_home) stacker->set_neighbours({waiting});
     stacker->step();
     stacker->take_events();
@@ -433,7 +421,7 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
   for (int step = 0; step < 20 * 60 && route.size() < 8; ++step) {
     const robot::TrafficRoute r = stacker->traffic_route();
     if (r.points.size() >= 2) {
-      stacker->set_traffic_grant(all_it_asks_for(r));
+      stacker->set_traffic_grant(test::all_it_asks_for(r));
       // On the aisle, out of its bay: the route ahead.
       if (geometry::distance(stacker->truth().position(), bay) > 3.0) route = r.points;
     }
@@ -461,7 +449,7 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
   std::optional<geometry::Vec2> docked_from;
   for (int step = 0; step < 20 * 300 && lifted < 0; ++step) {
     const robot::TrafficRoute r = stacker->traffic_route();
-    if (r.points.size() >= 2 || !r.work_area.empty()) stacker->set_traffic_grant(all_it_asks_for(r));
+    if (r.points.size() >= 2 || !r.work_area.empty()) stacker->set_traffic_grant(test::all_it_asks_for(r));
     stacker->step();
     if (!docked_from && stacker->task_state() == "DOCKING") docked_from = stacker->rear_axle().position();
     for (const auto& e : stacker->take_events()) {
@@ -487,7 +475,7 @@ TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt
   for (int step = 0; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
     const robot::TrafficRoute r = stacker->traffic_route();
     if (r.points.size() >= 2) {
-      stacker->set_traffic_grant(all_it_asks_for(r));
+      stacker->set_traffic_grant(test::all_it_asks_for(r));
       arrival = r.arrival_area;
     }
     stacker->step();
