@@ -19,6 +19,10 @@ namespace {
 constexpr double kProjectionWindow = 0.5;  // metres
 // A turn sharper than this between consecutive segments is a cusp (about 145 degrees).
 constexpr double kCuspAngle = 2.5;  // rad
+// A final heading this far from the last segment's direction or further points back along it.
+constexpr double kFacingBack = 2.36;  // rad, 135 degrees
+// Segments within this of the last one's direction belong to the same straight stretch.
+constexpr double kStraight = 0.09;  // rad, 5 degrees
 
 double clamp_abs(double v, double limit) {
   return std::clamp(v, -limit, limit);
@@ -37,6 +41,7 @@ FollowerParams FollowerParams::regulated() {
   p.regulate_obstacles = true;
   p.limit_acceleration = true;
   p.shortest_first_leg = 0.25;
+  p.back_in_up_to = 0.5;
   return p;
 }
 
@@ -80,7 +85,7 @@ void PathFollower::reset_controller() {
   debug_ = {};
 }
 
-void PathFollower::set_path(std::vector<Pose2> path) {
+void PathFollower::set_path(std::vector<Pose2> path, bool may_back_in) {
   if (path.empty()) throw std::invalid_argument("follower: empty path");
   // Drop repeated points: a zero-length segment has no direction.
   std::vector<Pose2> cleaned;
@@ -108,6 +113,8 @@ void PathFollower::set_path(std::vector<Pose2> path) {
     if (turn > kCuspAngle) leg_ends_.push_back(i);
   }
   leg_ends_.push_back(path_.size() - 1);
+  backwards_leg_ = leg_ends_.size();
+  if (may_back_in && !pose_target_ && params_.back_in_up_to > 0.0) split_off_back_in();
   status_ = FollowerStatus::kTracking;
   reset_controller();
   if (leg_ends_.size() > 1 && cum_[leg_ends_.front()] < params_.shortest_first_leg) {
@@ -116,6 +123,37 @@ void PathFollower::set_path(std::vector<Pose2> path) {
     progress_ = leg_start();
     target_index_ = progress_;
   }
+}
+
+void PathFollower::split_off_back_in() {
+  const std::size_t last = path_.size() - 1;
+  const Vec2 along = path_[last].position() - path_[last - 1].position();
+  const double direction = std::atan2(along.y, along.x);
+  if (std::abs(angle_diff(path_[last].yaw, direction)) < kFacingBack) return;
+  const std::size_t leg_begin = leg_ends_.size() > 1 ? leg_ends_[leg_ends_.size() - 2] : 0;
+  std::size_t start = last - 1;
+  while (start > leg_begin) {
+    const Vec2 before = path_[start].position() - path_[start - 1].position();
+    if (std::abs(angle_diff(std::atan2(before.y, before.x), direction)) > kStraight) break;
+    --start;
+  }
+  if (cum_[last] - cum_[start] > params_.back_in_up_to) {
+    // A long stretch: the turn comes back_in_up_to short of the end, on the stretch itself.
+    const double s = cum_[last] - params_.back_in_up_to;
+    std::size_t i = start;
+    while (cum_[i + 1] <= s) ++i;
+    const Vec2 turn_at = path_[i].position() +
+                         ((s - cum_[i]) / (cum_[i + 1] - cum_[i])) * (path_[i + 1].position() - path_[i].position());
+    if (s - cum_[i] > 1e-6) {
+      path_.insert(path_.begin() + static_cast<std::ptrdiff_t>(i) + 1, Pose2{turn_at.x, turn_at.y, direction});
+      cum_.insert(cum_.begin() + static_cast<std::ptrdiff_t>(i) + 1, s);
+      ++i;
+      ++leg_ends_.back();
+    }
+    start = i;
+  }
+  if (start > leg_begin) leg_ends_.insert(leg_ends_.end() - 1, start);
+  backwards_leg_ = leg_ends_.size() - 1;
 }
 
 void PathFollower::set_pose_target(const Pose2& target) {
@@ -245,8 +283,12 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     if (remaining <= params_.goal_tolerance) {
       status_ = FollowerStatus::kAligning;
     } else {
+      // Backing in, the rear leads: h is the heading of the rear, and the speed is negated below.
+      const bool backwards = leg_ == backwards_leg_;
+      const double heading = backwards ? normalize_angle(in.pose.yaw + M_PI) : in.pose.yaw;
+      const double last_vx = backwards ? -last_cmd_.vx : last_cmd_.vx;
       // beta = h - atan2(yd - y, xd - x) [Forklift thesis, eq. 6.3].
-      const double beta = normalize_angle(in.pose.yaw - std::atan2(target.y - p.y, target.x - p.x));
+      const double beta = normalize_angle(heading - std::atan2(target.y - p.y, target.x - p.x));
       debug_.beta = beta;
       double derivative = 0.0;
       if (in.dt > 0.0) {
@@ -293,8 +335,9 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
         const double v_stop =
             std::sqrt(v_end * v_end + 2.0 * a_brake * std::max(remaining - params_.goal_tolerance, 0.0));
         cmd.vx = std::min(cmd.vx, v_stop);
-        cmd.vx = step_towards(last_cmd_.vx, cmd.vx, params_.max_linear_accel * in.dt);
+        cmd.vx = step_towards(last_vx, cmd.vx, params_.max_linear_accel * in.dt);
       }
+      if (backwards) cmd.vx = -cmd.vx;
       last_cmd_ = cmd;
       return cmd;
     }

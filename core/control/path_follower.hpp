@@ -47,6 +47,11 @@ struct FollowerParams {
   /// robot standing a few centimetres past the road point its route begins at does not turn
   /// round to touch it and turn back, sweeping its body through the room beside it, m.
   double shortest_first_leg = 0.0;
+  /// A path whose final heading points back along its last straight stretch is driven backwards
+  /// over at most this much of that stretch, when set_path is asked to back in: the robot turns
+  /// where the stretch starts (on the road) instead of at its end (in a parking stall between
+  /// others). 0 never backs in, m.
+  double back_in_up_to = 0.0;
 
   /// The settings with every extension switched on.
   static FollowerParams regulated();
@@ -99,8 +104,10 @@ class PathFollower {
   /// Follows `path` (at least one pose). Headings of the inner poses are ignored; the last
   /// pose's heading is the one to finish with. A path that turns back on itself is split at the
   /// cusp: the robot drives to the cusp, turns in place and goes on; a first leg shorter than
-  /// `shortest_first_leg` is skipped. Resets the PID and the progress along the path.
-  void set_path(std::vector<geometry::Pose2> path);
+  /// `shortest_first_leg` is skipped. With `may_back_in`, a final heading that points back along
+  /// the last straight stretch makes the stretch's last `back_in_up_to` metres a leg of its own,
+  /// driven backwards. Resets the PID and the progress along the path.
+  void set_path(std::vector<geometry::Pose2> path, bool may_back_in = false);
 
   /// Pose-target mode (section 6.1: "path with single point and heading"): drive to the point,
   /// then turn to the heading.
@@ -130,6 +137,7 @@ class PathFollower {
   geometry::Vec2 seed_target(geometry::Vec2 p, std::size_t& index);
   BodyTwist limit_turn(BodyTwist cmd, double dt);
   void reset_controller();
+  void split_off_back_in();
   std::size_t leg_end() const { return leg_ends_[leg_]; }
   std::size_t leg_start() const { return leg_ == 0 ? 0 : leg_ends_[leg_ - 1]; }
 
@@ -138,6 +146,7 @@ class PathFollower {
   std::vector<double> cum_;            ///< arc length at each path point
   std::vector<std::size_t> leg_ends_;  ///< path indices of the cusps, then the last point
   std::size_t leg_ = 0;                ///< index into leg_ends_ of the leg being followed
+  std::size_t backwards_leg_ = 0;      ///< the leg driven backwards; leg_ends_.size() when none
   bool pose_target_ = false;
   FollowerStatus status_ = FollowerStatus::kIdle;
   std::size_t progress_ = 0;      ///< segment the robot was last projected onto (monotonic)

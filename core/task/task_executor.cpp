@@ -270,7 +270,8 @@ void TaskExecutor::path_received(std::uint64_t request_id, std::vector<Pose2> pa
       b.yaw = std::atan2(b.y - a.y, b.x - a.x);
     }
   }
-  follower_.set_path(std::move(path));
+  // Home is often a stall between others: the robot backs in rather than turn round in it.
+  follower_.set_path(std::move(path), active_purpose_ == PlanPurpose::kHome);
   have_path_ = true;
   waiting_for_plan_ = false;
   if (machine_.state() == State::kWaiting && !blocked_) fire(Event::kUnblocked);

@@ -223,6 +223,64 @@ TEST(PathFollower, DoesNotTurnRoundToTouchARoadPointJustBehindIt) {
   }
 }
 
+TEST(PathFollower, BacksIntoAStallWhoseHeadingPointsOutOfIt) {
+  // Along a lane, then up a 0.4 m stall to a home that faces back out of it, as parking stalls
+  // side by side do. Turning round at the stall's end sweeps the body into the stalls beside it.
+  std::vector<Pose2> path;
+  for (int i = 0; i <= 10; ++i) path.push_back({0.1 * i, 0.0, 0.0});
+  for (int i = 1; i <= 4; ++i) path.push_back({1.0, 0.1 * i, std::numbers::pi / 2});
+  path.back().yaw = -std::numbers::pi / 2;
+  for (const bool back_in : {false, true}) {
+    PathFollower f(FollowerParams::regulated());
+    f.set_path(path, back_in);
+    Pose2 pose{0.0, 0.0, 0.0};
+    double most_turned_in_stall = 0.0;
+    bool reversed = false;
+    for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+      const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+      reversed = reversed || cmd.vx < -1e-3;
+      pose = integrate_twist(pose, cmd, kDt);
+      if (pose.y > 0.1) {
+        most_turned_in_stall =
+            std::max(most_turned_in_stall, std::abs(geometry::angle_diff(pose.yaw, -std::numbers::pi / 2)));
+      }
+    }
+    ASSERT_TRUE(f.arrived()) << "back_in=" << back_in;
+    EXPECT_NEAR(pose.x, 1.0, 0.03) << "back_in=" << back_in;
+    EXPECT_NEAR(pose.y, 0.4, 0.03) << "back_in=" << back_in;
+    EXPECT_NEAR(geometry::angle_diff(pose.yaw, -std::numbers::pi / 2), 0.0, 0.03) << "back_in=" << back_in;
+    EXPECT_EQ(reversed, back_in);
+    if (back_in) {
+      EXPECT_LT(most_turned_in_stall, 0.2);
+    } else {
+      EXPECT_GT(most_turned_in_stall, 3.0) << "without backing in it turns round at the end";
+    }
+  }
+}
+
+TEST(PathFollower, BacksOnlyTheLastStretchOfALongStraightOne) {
+  // A 2 m straight run to a pose facing back along it: the turn comes back_in_up_to (0.5 m)
+  // short of the end, and the rest is driven backwards.
+  std::vector<Pose2> path = line_path(2.0, 0.1);
+  path.back().yaw = std::numbers::pi;
+  PathFollower f(FollowerParams::regulated());
+  f.set_path(path, true);
+  Pose2 pose{0.0, 0.0, 0.0};
+  double first_reversed_at = -1.0;
+  double furthest = 0.0;
+  for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    if (cmd.vx < -1e-3 && first_reversed_at < 0.0) first_reversed_at = pose.x;
+    pose = integrate_twist(pose, cmd, kDt);
+    furthest = std::max(furthest, pose.x);
+  }
+  ASSERT_TRUE(f.arrived());
+  EXPECT_NEAR(first_reversed_at, 1.5, 0.05);
+  EXPECT_LT(furthest, 2.03);
+  EXPECT_NEAR(pose.x, 2.0, 0.03);
+  EXPECT_NEAR(std::abs(pose.yaw), std::numbers::pi, 0.03);
+}
+
 TEST(PathFollower, ObstacleRegulationSlowsAndStops) {
   FollowerParams p = FollowerParams::regulated();
   p.limit_acceleration = false;

@@ -296,3 +296,54 @@ TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
   while (robot->time() < stopped_at + 3.5) step();
   EXPECT_EQ(robot->traffic_route().stopped_for, std::vector<std::string>{"pk9"}) << robot->detail();
 }
+
+TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStall) {
+  // Seen in the plant soak: fk2 came home up its stall's spur facing the wall and turned round at
+  // the end to the home heading, between fk1 and fk3 parked 1.2 m either side. Half way round its
+  // corners came within the safety gap of theirs; it stood there, and fk1, sent out, waited for it.
+  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const config::FleetSpec& fleet = config.fleets.front();
+  const geometry::Pose2 home = site->site.find_home("PF2")->pose;
+  auto robot = robot::make_robot(fleet, config, site, home, 1, 1);
+  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  std::vector<robot::Neighbour> parked;
+  std::vector<geometry::Polygon> parked_bodies;
+  for (const char* id : {"PF1", "PF3"}) {
+    parked.push_back({id, site->site.find_home(id)->pose, {1.2, 0.8}, 0.0, 0.1});
+    parked_bodies.push_back(geometry::footprint_polygon(parked.back().pose, parked.back().footprint));
+  }
+  const auto step = [&] {
+    test::grant_everything(*robot);
+    robot->set_neighbours(parked);
+    robot->set_true_neighbours(parked_bodies);
+    robot->step();
+  };
+  while (robot->time() < 1.0) step();
+  ASSERT_TRUE(robot->submit({"61", "PS2", site->site.find_area("PS2")->pose, "EX6", site->site.find_area("EX6")->pose},
+                            nullptr));
+  // Out of the stall and a few metres along the lane, then the order is taken away: home again.
+  while (robot->time() < 30.0 && geometry::distance(robot->truth().position(), home.position()) < 4.0) step();
+  ASSERT_GE(geometry::distance(robot->truth().position(), home.position()), 4.0) << robot->detail();
+  ASSERT_TRUE(robot->withdraw());
+  bool home_reached = false;
+  double most_turned_in_stall = 0.0;
+  double closest = std::numeric_limits<double>::infinity();
+  const double stall_mouth = home.y - 0.9;
+  while (robot->time() < 90.0 && !home_reached) {
+    step();
+    for (const auto& e : robot->take_events()) home_reached = home_reached || e.kind == RobotEvent::Kind::kHome;
+    const geometry::Polygon body = geometry::footprint_polygon(robot->truth(), robot->footprint());
+    for (const auto& other : parked_bodies)
+      closest = std::min(closest, geometry::convex_polygons_distance(body, other));
+    if (robot->truth().y > stall_mouth) {
+      most_turned_in_stall =
+          std::max(most_turned_in_stall, std::abs(geometry::angle_diff(robot->truth().yaw, home.yaw)));
+    }
+  }
+  EXPECT_TRUE(home_reached) << robot->task_state() << " (" << robot->detail() << ") at " << robot->truth().x << ", "
+                            << robot->truth().y << ", yaw " << robot->truth().yaw;
+  EXPECT_LT(most_turned_in_stall, 0.3);
+  EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
+  EXPECT_LT(geometry::distance(robot->truth().position(), home.position()), 0.1);
+}
