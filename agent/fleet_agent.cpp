@@ -131,6 +131,11 @@ void FleetAgent::handle_orders() {
       if (is_current && assignment.update_id >= order_->assignment.update_id) {
         if (robot_->withdraw()) {
           log_->warn("order {} withdrawn by the server", assignment.order_id);
+          // Its last report is latched: a restarted server would hear the order running here
+          // still and withdraw it again, from a robot long on other orders.
+          model::OrderReport instance;
+          instance.order_id = assignment.order_id;
+          report_writer_.unregister(instance);
           order_.reset();
         } else {
           // Withdrawn while it was lost, the order was re-queued; the robot lifted the pallet

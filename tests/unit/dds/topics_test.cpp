@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "dds/environment.hpp"
 #include "dds/qos.hpp"
@@ -124,4 +125,32 @@ TEST(Topics, NeighbourViewComesBackWithItsRobotsAndTrueBodiesInTheRobotsPartitio
   EXPECT_DOUBLE_EQ(taken->bodies[0].footprint.length, 0.6);
   EXPECT_TRUE(taken->bodies[0].carrying_pallet);
   EXPECT_DOUBLE_EQ(taken->bodies[0].sim_time, 12.45);
+}
+
+TEST(Topics, AnOrderReportItsWriterUnregistersIsNotReplayedToAServerThatJoinsLater) {
+  // An agent unregisters the report of an order the server withdrew from it: a restarted server
+  // hears the reports it still latches, and not that order running on it.
+  dds::use_fleet_dds_config();
+  dds::Participant participant(kDomain);
+  dds::Writer<model::OrderReport> writer(participant, dds::qos::latched_state());
+  model::OrderReport withdrawn;
+  withdrawn.order_id = 14;
+  withdrawn.robot_id = "rt3";
+  withdrawn.status = "TO_PICK";
+  model::OrderReport done = withdrawn;
+  done.order_id = 21;
+  done.status = "DONE";
+  ASSERT_TRUE(writer.write(withdrawn));
+  ASSERT_TRUE(writer.write(done));
+  model::OrderReport key;
+  key.order_id = 14;
+  writer.unregister(key);
+  dds::Reader<model::OrderReport> late(participant, dds::qos::latched_state());
+  std::vector<std::int64_t> heard;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (std::chrono::steady_clock::now() < end) {
+    late.take_data([&](model::OrderReport&& report) { heard.push_back(report.order_id); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(heard, std::vector<std::int64_t>{21});
 }
