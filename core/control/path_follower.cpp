@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -285,7 +286,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     } else {
       // Backing in, the rear leads: h is the heading of the rear, and the speed is negated below.
       const bool backwards = leg_ == backwards_leg_;
-      const double heading = backwards ? normalize_angle(in.pose.yaw + M_PI) : in.pose.yaw;
+      const double heading = backwards ? normalize_angle(in.pose.yaw + std::numbers::pi) : in.pose.yaw;
       const double last_vx = backwards ? -last_cmd_.vx : last_cmd_.vx;
       // beta = h - atan2(yd - y, xd - x) [Forklift thesis, eq. 6.3].
       const double beta = normalize_angle(heading - std::atan2(target.y - p.y, target.x - p.x));

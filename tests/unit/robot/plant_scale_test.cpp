@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "config/fleet_config.hpp"
 #include "road_to_itself.hpp"
@@ -309,8 +310,8 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
   if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
   std::vector<robot::Neighbour> parked;
   std::vector<geometry::Polygon> parked_bodies;
-  for (const char* id : {"PF1", "PF3"}) {
-    parked.push_back({id, site->site.find_home(id)->pose, {1.2, 0.8}, 0.0, 0.1});
+  for (const auto& [robot_id, stall] : {std::pair{"fk1", "PF1"}, std::pair{"fk3", "PF3"}}) {
+    parked.push_back({robot_id, site->site.find_home(stall)->pose, {1.2, 0.8}, 0.0, 0.1});
     parked_bodies.push_back(geometry::footprint_polygon(parked.back().pose, parked.back().footprint));
   }
   const auto step = [&] {
