@@ -34,6 +34,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
           *fleet_, options_.config, options_.site,
           options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
           options_.seed, robot_stream(options_.robot_id))),
+      map_loader_(options_.config, *fleet_, maps_dir()),
       step_lag_(robot_->step_period()),
       participant_(options_.domain),
       state_writer_(participant_, dds::qos::robot_state()),
@@ -196,9 +197,11 @@ void FleetAgent::handle_orders() {
 
 void FleetAgent::handle_site_inputs() {
   map_reader_.take_data([&](model::MapAssignment&& assignment) {
-    if (assignment.robot_id != options_.robot_id || assignment.map_id == map_id_) return;
-    switch_map(assignment.map_id);
+    if (assignment.robot_id != options_.robot_id) return;
+    if (assignment.map_id == map_id_ && map_loader_.pending().empty()) return;
+    map_loader_.request(assignment.map_id);
   });
+  if (auto loaded = map_loader_.take()) switch_map(std::move(*loaded));
   control_reader_.take_data([&](model::RobotControl&& control) {
     if (control.robot_id != options_.robot_id || control.paused == paused_) return;
     paused_ = control.paused;
@@ -236,21 +239,21 @@ void FleetAgent::handle_site_inputs() {
   }
 }
 
-void FleetAgent::switch_map(const std::string& map_id) {
+void FleetAgent::switch_map(LoadedMap loaded) {
   // [Forklift thesis, section 3]: the map is assigned by the server at the start and whenever the user
   // changes it. Only a revision of the same site can be driven without moving the robot.
-  std::shared_ptr<const map::SiteMap> next;
-  try {
-    next = std::make_shared<const map::SiteMap>(map::load_site_map(map::site_path(maps_dir(), map_id)));
-  } catch (const std::exception& e) {
-    log_->error("map '{}' assigned but cannot be loaded, staying on '{}': {}", map_id, map_id_, e.what());
+  const std::string& map_id = loaded.map_id;
+  if (map_id == map_id_) return;  // switched back before the other map was read
+  if (!loaded.site) {
+    log_->error("map '{}' assigned but cannot be loaded, staying on '{}': {}", map_id, map_id_, loaded.error);
     return;
   }
+  const auto& next = loaded.site;
   if (const std::string why = map::revision_mismatch(robot_->site().site, next->site); !why.empty()) {
     log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
     return;
   }
-  robot_->set_site(next, robot::route_graph_for(options_.config, *fleet_, *next));
+  robot_->set_site(next, std::move(loaded.route_graph));
   log_->info("map switched from '{}' to '{}': {} graph points; replanning", map_id_, map_id,
              next->graph.graph.points.size());
   map_id_ = map_id;

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "agent/map_loader.hpp"
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "common/step_lag.hpp"
@@ -55,7 +56,8 @@ class FleetAgent {
   /// Simulation only: the other robots' true bodies for the simulated sensors, from the latest
   /// view (null when none came this time) or, while views stay away, from SimTruth itself.
   void take_true_bodies(std::optional<model::NeighbourView>& latest);
-  void switch_map(const std::string& map_id);
+  /// Drives on `loaded` from now on: the map the server assigned, read by map_loader_.
+  void switch_map(LoadedMap loaded);
   void handle_events();
   /// Writes an OrderReport on the current order; nothing when there is none.
   std::optional<model::OrderReport> report(const std::string& status, const std::string& reason = "",
@@ -77,6 +79,7 @@ class FleetAgent {
   SimClock clock_;
   const config::FleetSpec* fleet_ = nullptr;
   std::unique_ptr<robot::Robot> robot_;
+  MapLoader map_loader_;
   StepLagMeter step_lag_;  ///< how late the control steps run (reported in RobotState)
   std::string map_id_;
   std::optional<CurrentOrder> order_;
