@@ -16,7 +16,7 @@ using orders::TransitionResult;
 void FleetServer::handle_robot_states() {
   robot_state_reader_.take([&](model::RobotState&& state, const dds::SampleInfo& info) {
     if (!info.valid_data) {
-      // DDS liveliness: the robot's writer is gone (its participant's 1 s lease expired or it
+      // DDS liveliness: the robot's writer is gone (its 1 s liveliness lease lapsed or it
       // left). Only the key is valid in such a sample.
       auto it = robots_.find(state.robot_id);
       if (!info.alive && it != robots_.end() && it->second.registered && !it->second.lost) {
