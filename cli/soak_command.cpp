@@ -131,6 +131,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   dds::Reader<model::FleetView> view_reader(client.participant(), dds::qos::live_state());
   dds::Reader<model::OrderReport> report_reader(client.participant(), dds::qos::latched_state());
   std::map<std::string, bool> lost;
+  std::vector<monitor::RobotLoss> losses;                 // every time the server took a robot for lost
   std::map<std::int64_t, std::set<std::string>> done_by;  // order -> robots that reported DONE
 
   // A fault carried out by the server (obstacles, maps): a refusal is logged, the run goes on.
@@ -202,6 +203,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       for (const auto& r : view.robots) {
         const bool is_lost = r.task_state == "LOST";
         if (is_lost && !lost[r.robot_id]) {
+          losses.push_back({r.robot_id, now_wall, elapsed_sim});
           for (auto& f : faults) {
             if (f.target == r.robot_id && !f.detected &&
                 (f.kind == monitor::FaultKind::kKillAgent || f.kind == monitor::FaultKind::kStallAgent)) {
@@ -389,6 +391,16 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     if (f.recovered) j["recovered_s"] = round_to(*f.recovered, 0.001);
     fault_list.push_back(j);
   }
+  // A robot lost with no fault behind it: a process that stood still or a link that broke.
+  std::vector<monitor::InjectedFault> injected;
+  for (const auto& f : faults) injected.push_back({f.kind, f.target, f.at_wall});
+  constexpr double kLossAfterFaultWall = kKillPauseWall + kStallWall + 5.0;
+  nlohmann::json unexplained = nlohmann::json::array();
+  std::vector<std::string> unexplained_text;
+  for (const auto& loss : monitor::unexplained_losses(losses, injected, kLossAfterFaultWall)) {
+    unexplained.push_back({{"robot", loss.robot_id}, {"sim_s", round_to(loss.at_sim, 0.1)}});
+    unexplained_text.push_back(fmt::format("{} at {:.0f} s sim", loss.robot_id, loss.at_sim));
+  }
   // Memory growth over the second half (the worst process of each type, and how many were
   // measured) and CPU over the run, per process type.
   std::map<std::string, double> growth, cpu_s, alive_s;
@@ -490,6 +502,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"time_scale", options.time_scale},
                          {"faults_injected", faults.size()},
                          {"faults_undetected", undetected},
+                         {"robots_lost_without_a_fault", unexplained},
                          {"detect_latency_p95_s", round_to(monitor::percentile(detect, 0.95), 0.001)},
                          {"recovery_p95_s", round_to(monitor::percentile(recover, 0.95), 0.001)},
                          {"rss_growth_pct", growth_json},
@@ -511,6 +524,7 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
     failures.push_back(std::to_string(run.progress().deadlocks().size()) + " deadlocks");
   if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
   if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
+  if (!unexplained_text.empty()) failures.push_back("lost with no fault: " + model::join(unexplained_text, ", "));
   if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
   // In real time only: at a higher time scale the host runs every agent that many times faster
   // than its robot would, and the figures say how far it falls short, not whether a robot would.
@@ -536,7 +550,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
         << "  pickers sharing an aisle: " << aisle_share.dump() << "\n"
         << "  collisions: " << run.collisions().size() << ", deadlocks: " << run.progress().deadlocks().size() << "\n"
         << "  faults: " << faults.size() << " injected, detection p95 " << summary["detect_latency_p95_s"]
-        << " s, recovery p95 " << summary["recovery_p95_s"] << " s\n"
+        << " s, recovery p95 " << summary["recovery_p95_s"] << " s; robots lost with no fault: " << unexplained.size()
+        << "\n"
         << "  memory growth (second half): " << growth_json.dump() << " % over " << measured_json.dump()
         << " processes, CPU: " << cpu_json.dump() << " % of a core\n"
         << "  control lag (worst agent, sim s): " << control_lag.dump() << "\n"

@@ -67,4 +67,19 @@ std::vector<ScheduledFault> plan_faults(const std::vector<FaultKind>& kinds, dou
   return plan;
 }
 
+std::vector<RobotLoss> unexplained_losses(const std::vector<RobotLoss>& losses,
+                                          const std::vector<InjectedFault>& faults, double window_wall) {
+  std::vector<RobotLoss> out;
+  for (const RobotLoss& loss : losses) {
+    const bool explained = std::any_of(faults.begin(), faults.end(), [&](const InjectedFault& f) {
+      const bool hits =
+          f.kind == FaultKind::kKillServer ||
+          ((f.kind == FaultKind::kKillAgent || f.kind == FaultKind::kStallAgent) && f.robot_id == loss.robot_id);
+      return hits && loss.at_wall >= f.at_wall && loss.at_wall - f.at_wall <= window_wall;
+    });
+    if (!explained) out.push_back(loss);
+  }
+  return out;
+}
+
 }  // namespace fleet::monitor

@@ -27,4 +27,24 @@ struct ScheduledFault {
 std::vector<ScheduledFault> plan_faults(const std::vector<FaultKind>& kinds, double duration_sim_s, double period_s,
                                         double quiet_tail_s, int agents, int obstacles, std::uint64_t seed);
 
+/// A fault as it was injected: its kind, the robot it hit (agent faults) and when, wall seconds.
+struct InjectedFault {
+  FaultKind kind = FaultKind::kKillAgent;
+  std::string robot_id;  ///< agent faults only
+  double at_wall = 0.0;
+};
+
+/// A robot the server took for lost, and when (wall and sim seconds of the run).
+struct RobotLoss {
+  std::string robot_id;
+  double at_wall = 0.0;
+  double at_sim = 0.0;
+};
+
+/// The losses no injected fault accounts for: a robot is expected lost within `window_wall`
+/// seconds after its own agent was killed or stopped, and any robot after the server was killed.
+/// Any other loss means a process that stood still or a link that broke with nothing injected.
+std::vector<RobotLoss> unexplained_losses(const std::vector<RobotLoss>& losses,
+                                          const std::vector<InjectedFault>& faults, double window_wall);
+
 }  // namespace fleet::monitor

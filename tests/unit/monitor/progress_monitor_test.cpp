@@ -111,6 +111,26 @@ TEST(FaultPlan, ParsesListsAndNamesAnUnknownFault) {
   }
 }
 
+TEST(FaultPlan, ALossIsExplainedOnlyByAFaultOfThatRobotOrOfTheServerJustBefore) {
+  const std::vector<InjectedFault> faults{{FaultKind::kKillAgent, "fl2", 100.0},
+                                          {FaultKind::kStallAgent, "fl1", 200.0},
+                                          {FaultKind::kMapSwitch, "", 300.0},
+                                          {FaultKind::kKillServer, "", 400.0}};
+  const std::vector<RobotLoss> losses{
+      {"fl2", 101.0, 1010.0},  // its agent killed a second before
+      {"fl1", 201.0, 2010.0},  // its agent stopped
+      {"fl3", 101.5, 1015.0},  // another robot's agent was killed: not this one's
+      {"fl1", 230.0, 2300.0},  // long after its stall ended
+      {"fl4", 300.8, 3008.0},  // right after a map switch: nothing stops a robot there
+      {"fl4", 401.0, 4010.0},  // the server restarted
+      {"fl2", 99.0, 990.0},    // before its kill
+  };
+  const auto left = unexplained_losses(losses, faults, 10.0);
+  std::vector<double> at;
+  for (const auto& l : left) at.push_back(l.at_sim);
+  EXPECT_EQ(at, (std::vector<double>{1015.0, 2300.0, 3008.0, 990.0}));
+}
+
 TEST(FaultPlan, IsReproducibleUsesEveryKindEachRoundAndKeepsTheTailQuiet) {
   const auto kinds = parse_fault_list("kill-agent,stall-agent,kill-server,obstacles");
   const auto a = plan_faults(kinds, 1800.0, 120.0, 200.0, 4, 4, 7);

@@ -200,11 +200,7 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
   if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
   const robot::Neighbour parked{"fk4", {41.5582, 29.0320, -1.5694}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
-  const auto step = [&] {
-    robot->set_neighbours({parked});
-    robot->set_true_neighbours({parked_body});
-    robot->step();
-  };
+  const auto step = [&] { test::step_among(*robot, {parked}, {parked_body}); };
   while (robot->time() < 1.0) step();
   ASSERT_TRUE(robot->submit({"38", "WA2", site->site.find_area("WA2")->pose, "EX4", site->site.find_area("EX4")->pose},
                             nullptr));
@@ -233,11 +229,7 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   const geometry::Pose2 next_home = site->site.find_home("PF2")->pose;
   const robot::Neighbour parked{"fk2", {next_home.x, next_home.y - 0.04, next_home.yaw}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
-  const auto step = [&] {
-    robot->set_neighbours({parked});
-    robot->set_true_neighbours({parked_body});
-    robot->step();
-  };
+  const auto step = [&] { test::step_among(*robot, {parked}, {parked_body}); };
   while (robot->time() < 1.0) step();
   ASSERT_TRUE(robot->submit({"19", "WA2", site->site.find_area("WA2")->pose, "EN1", site->site.find_area("EN1")->pose},
                             nullptr));
@@ -316,9 +308,7 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
   }
   const auto step = [&] {
     test::grant_everything(*robot);
-    robot->set_neighbours(parked);
-    robot->set_true_neighbours(parked_bodies);
-    robot->step();
+    test::step_among(*robot, parked, parked_bodies);
   };
   while (robot->time() < 1.0) step();
   ASSERT_TRUE(robot->submit({"61", "PS2", site->site.find_area("PS2")->pose, "EX6", site->site.find_area("EX6")->pose},

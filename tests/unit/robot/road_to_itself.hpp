@@ -1,5 +1,8 @@
 #pragma once
 
+#include <vector>
+
+#include "geometry/polygon.hpp"
 #include "robot/robot.hpp"
 
 namespace fleet::test {
@@ -24,6 +27,15 @@ inline void grant_everything(robot::Robot& robot) {
   all_of_it.granted_index = 1000;
   all_of_it.granted_distance = 1e9;
   robot.set_traffic_grant(all_of_it);
+}
+
+/// One control step among robots standing still: the robot hears of them (`neighbours`) and its
+/// simulated sensors see their bodies.
+inline void step_among(robot::Robot& robot, const std::vector<robot::Neighbour>& neighbours,
+                       const std::vector<geometry::Polygon>& bodies) {
+  robot.set_neighbours(neighbours);
+  robot.set_true_neighbours(bodies);
+  robot.step();
 }
 
 }  // namespace fleet::test
