@@ -35,6 +35,7 @@ TEST(Soak, FourAgentsUnderEveryFaultLoseNothingRunNothingTwiceCollideNeverAndDet
   EXPECT_EQ(summary["orders_duplicated"], 0);
   EXPECT_TRUE(summary["crashed"].empty()) << summary["crashed"].dump();
   EXPECT_EQ(summary["faults_undetected"], 0);
+  EXPECT_TRUE(summary["robots_lost_without_a_fault"].empty()) << summary["robots_lost_without_a_fault"].dump();
   EXPECT_LE(summary["detect_latency_p95_s"].get<double>(), 1.5);
   for (const auto& [type, growth] : summary["rss_growth_pct"].items()) EXPECT_LE(growth.get<double>(), 10.0) << type;
   EXPECT_GT(summary["orders_done"].get<int>(), 0);
