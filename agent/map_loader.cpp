@@ -48,7 +48,6 @@ void MapLoader::request(const std::string& map_id) {
 }
 
 void MapLoader::start(const std::string& map_id) {
-  reading_ = map_id;
   task_ = std::async(std::launch::async, read_map, std::cref(config_), std::cref(fleet_), maps_dir_, map_id);
 }
 

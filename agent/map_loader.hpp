@@ -43,8 +43,7 @@ class MapLoader {
   const config::FleetConfig& config_;
   const config::FleetSpec& fleet_;
   std::string maps_dir_;
-  std::string wanted_;   ///< the newest map asked for and not yet taken
-  std::string reading_;  ///< the map the background task reads
+  std::string wanted_;  ///< the newest map asked for and not yet taken
   std::future<LoadedMap> task_;
 };
 
