@@ -1,13 +1,15 @@
 // Traffic: cost of the manager's cycle with 12 robots on table_a, of precomputing the
-// conflict zones, and the evaluation figure: trips completed in 30 simulated minutes by 1, 4, 8
-// and 12 robots on table_a and table_b in the core simulator (counters; no time is asserted).
-// Reads maps/ from the source tree.
+// conflict zones (table_a; the plant with and without the stackers' drives through its bends), and the evaluation
+// figure: trips completed in 30 simulated minutes by 1, 4, 8 and 12 robots on table_a and table_b in the core simulator
+// (counters; no time is asserted). Reads maps/ from the source tree.
 
 #include <benchmark/benchmark.h>
 
 #include <string>
 
+#include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace {
@@ -42,6 +44,23 @@ void BM_ConflictZonesTableA(benchmark::State& state) {
   state.counters["places"] = static_cast<double>(traffic::ConflictZones(g).place_count());
 }
 BENCHMARK(BM_ConflictZonesTableA)->Unit(benchmark::kMillisecond);
+
+// The plant's zones for its four fleets, without (0) and with (1) the stackers' drives through
+// every bend (what the server's traffic manager builds at start and at every map switch).
+void BM_ConflictZonesPlant(benchmark::State& state) {
+  static const map::SiteMap plant = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/plant.yaml");
+  traffic::ResourceParams resources =
+      traffic::configuration_from(config::load_fleet_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml"))
+          .resources;
+  if (state.range(0) == 0) {
+    for (auto& type : resources.vehicle_types) type.drive = nullptr;
+  }
+  for (auto _ : state) {
+    traffic::ConflictZones zones(plant.graph.graph, resources);
+    benchmark::DoNotOptimize(zones.place_count());
+  }
+}
+BENCHMARK(BM_ConflictZonesPlant)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // One TrafficManager::update with 12 robots mid-run on table_a (2 simulated minutes in, so routes,
 // grants, waits and reservations are realistic). Progress is not reported between calls, so

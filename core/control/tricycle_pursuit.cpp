@@ -19,13 +19,16 @@ Projection project(const std::vector<geometry::Vec2>& path, geometry::Vec2 p) {
   double best_distance = std::numeric_limits<double>::infinity();
   double cumulative = 0.0;
   double total = 0.0;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) total += geometry::distance(path[i], path[i + 1]);
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const geometry::Vec2 ab = path[i + 1] - path[i];
+    total += std::sqrt(geometry::dot(ab, ab));
+  }
   for (std::size_t i = 0; i + 1 < path.size(); ++i) {
     const geometry::Vec2 ab = path[i + 1] - path[i];
     const double len2 = geometry::dot(ab, ab);
     const double t = len2 > 0.0 ? std::clamp(geometry::dot(p - path[i], ab) / len2, 0.0, 1.0) : 0.0;
-    const geometry::Vec2 q = path[i] + t * ab;
-    const double d = geometry::distance(p, q);
+    const geometry::Vec2 pq = p - (path[i] + t * ab);
+    const double d = std::sqrt(geometry::dot(pq, pq));
     if (d < best_distance - 1e-9) {
       best_distance = d;
       best.segment = i;

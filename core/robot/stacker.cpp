@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "control/tricycle_sweep.hpp"
 #include "planning/dynamic_grid.hpp"
 
 namespace fleet::robot {
@@ -36,18 +37,10 @@ planning::StaticGrid make_static_grid(const StackerConfig& c, const map::SiteMap
 
 StackerConfig StackerConfig::for_vehicle(const vehicle::VehicleProfile& profile) {
   StackerConfig c;
-  c.pursuit.max_speed = profile.max_speed;
-  c.pursuit.acceleration = std::min(profile.max_acceleration, c.body.max_wheel_acceleration);
-  if (profile.wheelbase > 0.0) c.body.geometry.wheelbase = profile.wheelbase;
-  // The fork tips are the footprint's back end: the rear axle stands that far ahead of them.
-  const geometry::Footprint extent = profile.extent();
-  if (profile.rear_axle_x < 0.0 && profile.rear_axle_x > -extent.length / 2.0) {
-    c.body.geometry.rear_overhang = profile.rear_axle_x + extent.length / 2.0;
-  }
-  // +-pi/2 is the pivot [Stacker thesis, section 5.2]; a profile's rounded 1.5708 means it.
-  if (profile.max_steering_angle > 0.0) {
-    c.body.max_steer_angle = std::min(profile.max_steering_angle, std::numbers::pi / 2);
-  }
+  const control::TricycleDrive drive = control::tricycle_drive_for(profile);
+  c.body = drive.body;
+  c.pursuit = drive.pursuit;
+  c.control_rate_hz = 1.0 / drive.control_period;
   return c;
 }
 
@@ -292,24 +285,19 @@ double Stacker::clearance_ahead() const {
   const double c = centre_offset(config_.body.geometry);
   sim::Tricycle ghost = body_;
   ghost.move_to(estimate_);
-  // Steps of the sweep: one body pose per clearance_sample at top speed, and a bound on the steps
-  // for a pivot, which turns the body without moving the rear axle.
-  const double dt = config_.clearance_sample / config_.pursuit.max_speed;
-  const int max_steps = static_cast<int>(std::ceil(3.0 * config_.clearance_lookahead / config_.clearance_sample));
+  Vec2 before = estimate_.position();
   double travelled = 0.0;
-  for (int k = 0; k < max_steps && travelled < config_.clearance_lookahead; ++k) {
-    const control::TricyclePursuitOutput out =
-        control::pursue(ghost.pose(), path, std::numeric_limits<double>::infinity(), ghost.state().theta_steer,
-                        config_.pursuit, config_.body.geometry.wheelbase);
-    if (out.arrived) break;
-    const Vec2 before = ghost.pose().position();
-    ghost.step(out.command, dt);
+  // One body pose per clearance_sample at top speed.
+  const double period = config_.clearance_sample / config_.pursuit.max_speed;
+  for (const Pose2& rear : control::roll_forward(ghost, path, config_.pursuit, config_.body.geometry.wheelbase, period,
+                                                 config_.clearance_lookahead)) {
     const geometry::Polygon swept =
-        geometry::footprint_polygon(geometry::body_pose_to_map(ghost.pose(), {c, 0.0, 0.0}), footprint_);
+        geometry::footprint_polygon(geometry::body_pose_to_map(rear, {c, 0.0, 0.0}), footprint_);
     for (const auto& o : others) {
       if (geometry::convex_polygons_overlap(swept, o)) return travelled;
     }
-    travelled += geometry::distance(before, ghost.pose().position());
+    travelled += geometry::distance(before, rear.position());
+    before = rear.position();
   }
   return std::numeric_limits<double>::infinity();
 }

@@ -56,8 +56,46 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
-// A convex counter-clockwise polygon with every edge moved out by `grow` (mitred corners): a
-// rectangle grows by `grow` on every side, as geometry::footprint_polygon grows it.
+Polygon placed(const Polygon& body, const geometry::Pose2& pose) {
+  Polygon out;
+  out.reserve(body.size());
+  for (const Vec2& v : body) out.push_back(geometry::body_to_map(pose, v));
+  return out;
+}
+
+bool boxes_overlap(const geometry::Bounds& a, const geometry::Bounds& b) {
+  return a.min_x <= b.max_x && b.min_x <= a.max_x && a.min_y <= b.max_y && b.min_y <= a.max_y;
+}
+
+// A region's polygons with their bounding boxes: a place that reserves a swept turn holds many
+// polygons, most of them far from a given one of another place's.
+struct BoxedRegion {
+  const std::vector<Polygon>* polygons = nullptr;
+  std::vector<geometry::Bounds> boxes;
+};
+
+std::vector<BoxedRegion> boxed(const std::vector<std::vector<Polygon>>& regions) {
+  std::vector<BoxedRegion> out(regions.size());
+  for (std::size_t p = 0; p < regions.size(); ++p) {
+    out[p].polygons = &regions[p];
+    for (const Polygon& polygon : regions[p]) out[p].boxes.push_back(geometry::bounding_box(polygon));
+  }
+  return out;
+}
+
+bool regions_overlap(const BoxedRegion& a, const BoxedRegion& b) {
+  for (std::size_t i = 0; i < a.boxes.size(); ++i) {
+    for (std::size_t k = 0; k < b.boxes.size(); ++k) {
+      if (boxes_overlap(a.boxes[i], b.boxes[k]) &&
+          geometry::convex_polygons_overlap((*a.polygons)[i], (*b.polygons)[k]))
+        return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 Polygon grown(const Polygon& convex, double grow) {
   const std::size_t n = convex.size();
   std::vector<Vec2> normal(n);
@@ -74,24 +112,6 @@ Polygon grown(const Polygon& convex, double grow) {
   }
   return out;
 }
-
-Polygon placed(const Polygon& body, const geometry::Pose2& pose) {
-  Polygon out;
-  out.reserve(body.size());
-  for (const Vec2& v : body) out.push_back(geometry::body_to_map(pose, v));
-  return out;
-}
-
-bool regions_overlap(const std::vector<Polygon>& a, const std::vector<Polygon>& b) {
-  for (const Polygon& ra : a) {
-    for (const Polygon& rb : b) {
-      if (geometry::convex_polygons_overlap(ra, rb)) return true;
-    }
-  }
-  return false;
-}
-
-}  // namespace
 
 ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& params) : params_(params) {
   if (!(params.margin >= 0.0)) {
@@ -160,24 +180,46 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
   for (std::size_t p = 0; p < places; ++p) branch_[p] = neighbours_[p].size() >= 3 ? 1 : 0;
   build_corridors();
   // Directed place adjacency: which branch places every way through passes one corridor.
-  std::vector<std::vector<int>> successors(places), predecessors(places);
+  const PlaceLinks links = place_links(graph);
+  build_stoppable(links.successors, links.predecessors);
+  // What a type's own drive sweeps through the bends joins its regions after stoppability: a
+  // robot may wait where a turning one would sweep, as traffic never grants the turn while it
+  // stands there (the places conflict), and a tight turn a type could take but never does would
+  // otherwise keep everyone from waiting on the lanes beside it.
+  std::vector<std::uint8_t> driven(types, 0);
+  for (std::size_t t = 0; t < types; ++t) {
+    if (!types_[t].drive) continue;
+    driven[t] = 1;
+    add_driven_bodies(graph, grown(convex_hull(types_[t].footprint), params_.margin / 2.0), t);
+    update_reach(t);
+  }
+  for (std::size_t a = 0; a < types; ++a) {
+    for (std::size_t b = a; b < types; ++b) {
+      if (driven[a] || driven[b]) build_conflicts(a, b);
+    }
+  }
+  build_opposite_lanes(graph, members);
+}
+
+ConflictZones::PlaceLinks ConflictZones::place_links(const map::RoadGraph& graph) const {
+  const std::size_t places = position_.size();
+  PlaceLinks links{std::vector<std::vector<int>>(places), std::vector<std::vector<int>>(places)};
   for (std::size_t i = 0; i < graph.points.size(); ++i) {
     const int a = place_of_[i];
     for (int j : graph.successors[i]) {
       const int b = place_of_[static_cast<std::size_t>(j)];
       if (a == b) continue;
-      successors[static_cast<std::size_t>(a)].push_back(b);
-      predecessors[static_cast<std::size_t>(b)].push_back(a);
+      links.successors[static_cast<std::size_t>(a)].push_back(b);
+      links.predecessors[static_cast<std::size_t>(b)].push_back(a);
     }
   }
-  for (auto* list : {&successors, &predecessors}) {
+  for (auto* list : {&links.successors, &links.predecessors}) {
     for (auto& l : *list) {
       std::sort(l.begin(), l.end());
       l.erase(std::unique(l.begin(), l.end()), l.end());
     }
   }
-  build_stoppable(successors, predecessors);
-  build_opposite_lanes(graph, members);
+  return links;
 }
 
 void ConflictZones::build_places(const map::RoadGraph& graph, std::vector<std::vector<int>>& members) {
@@ -250,8 +292,13 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
     }
   }
   if (tracking_x != 0.0) add_tracked_bodies(graph, adjacent, body, -tracking_x, type);
-  for (std::size_t p = 0; p < places; ++p) {
-    for (const Polygon& poly : region[p]) {
+  update_reach(type);
+}
+
+void ConflictZones::update_reach(std::size_t type) {
+  auto& reach = reach_[type];
+  for (std::size_t p = 0; p < position_.size(); ++p) {
+    for (const Polygon& poly : region_[type][p]) {
       for (const Vec2& v : poly) reach[p] = std::max(reach[p], geometry::distance(v, position_[p]));
     }
   }
@@ -326,8 +373,8 @@ void ConflictZones::build_conflicts(std::size_t type_a, std::size_t type_b) {
   if (!same) ba.assign(places, {});
   const auto& reach_a = reach_[type_a];
   const auto& reach_b = reach_[type_b];
-  const auto& region_a = region_[type_a];
-  const auto& region_b = region_[type_b];
+  const std::vector<BoxedRegion> region_a = boxed(region_[type_a]);
+  const std::vector<BoxedRegion> region_b = boxed(region_[type_b]);
   double max_reach = 0.0;
   for (std::size_t p = 0; p < places; ++p) max_reach = std::max({max_reach, reach_a[p], reach_b[p]});
   std::vector<int> order(places);

@@ -2,10 +2,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "geometry/polygon.hpp"
+#include "geometry/pose.hpp"
 #include "map/road_graph.hpp"
 
 namespace fleet::traffic {
@@ -19,6 +21,11 @@ struct VehicleType {
   /// keeps its centre on the route). Ahead of a point behind the centre, the body swings out of
   /// a curve: a place reserves the body with its centre there and with this point there.
   double tracking_x = 0.0;
+  /// The footprint-centre poses of the vehicle driving a path from its first point, heading along
+  /// its first segment, from rest or `at_speed`, as its own controller and body model drive it (a
+  /// tricycle cuts inside a bend with its rear axle and swings its front wide). Unset: the body
+  /// keeps its tracking point on the route. A place reserves these bodies through every bend.
+  std::function<std::vector<geometry::Pose2>(const std::vector<geometry::Vec2>& path, bool at_speed)> drive = {};
 };
 
 /// The rectangle `footprint` centred on the body origin, counter-clockwise, in the body frame.
@@ -70,7 +77,9 @@ struct OppositeLane {
 /// behind its centre (`tracking_x`, a tricycle's rear axle) has that point on the route: in a
 /// curve its centre leaves the route on the outside and its front swings wide. That body, placed
 /// with the tracking point on each route point, joins the region of the place nearest its centre
-/// forward along the road, where the robot's progress puts it.
+/// forward along the road, where the robot's progress puts it. A type that gives its own
+/// `drive` has that drive rolled through every bend, from rest and at speed, and each place
+/// reserves the bodies nearest it.
 ///
 /// Two derived facts drive the traffic rules:
 /// - a *branch* place has three or more neighbouring places (a junction arm end); a place is not
@@ -132,11 +141,18 @@ class ConflictZones {
   std::size_t pair_index(int type, int other_type) const {
     return static_cast<std::size_t>(type) * types_.size() + static_cast<std::size_t>(other_type);
   }
+  /// Directed adjacency of places (coincident hand-over points are one place), sorted.
+  struct PlaceLinks {
+    std::vector<std::vector<int>> successors, predecessors;
+  };
+  PlaceLinks place_links(const map::RoadGraph& graph) const;
   void build_places(const map::RoadGraph& graph, std::vector<std::vector<int>>& members);
   void build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
                      const std::vector<std::vector<int>>& members, std::size_t type);
   void add_tracked_bodies(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
                           const geometry::Polygon& body, double lead, std::size_t type);
+  void update_reach(std::size_t type);
+  void add_driven_bodies(const map::RoadGraph& graph, const geometry::Polygon& body, std::size_t type);
   void build_conflicts(std::size_t type_a, std::size_t type_b);
   void build_stoppable(const std::vector<std::vector<int>>& successors,
                        const std::vector<std::vector<int>>& predecessors);
@@ -161,6 +177,10 @@ class ConflictZones {
   std::vector<int> corridor_size_;
   std::vector<std::uint8_t> corridor_loop_;
 };
+
+/// A convex counter-clockwise polygon with every edge moved out by `grow` (mitred corners): a
+/// rectangle grows by `grow` on every side, as geometry::footprint_polygon grows it.
+geometry::Polygon grown(const geometry::Polygon& convex, double grow);
 
 /// Convex hull (Andrew's monotone chain), counter-clockwise, without collinear points.
 geometry::Polygon convex_hull(std::vector<geometry::Vec2> points);

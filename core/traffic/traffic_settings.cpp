@@ -5,12 +5,25 @@
 #include <limits>
 #include <map>
 
+#include "control/tricycle_sweep.hpp"
 #include "map/road_graph_builder.hpp"
 #include "traffic/one_way.hpp"
 #include "traffic/vehicle_lanes.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 namespace fleet::traffic {
+
+namespace {
+
+// The lanes and the one-way plan do not depend on what a type sweeps through bends (they are
+// made of corridors, stoppable places and footprints), and driving every bend is most of the
+// zones' cost.
+ResourceParams without_drives(ResourceParams resources) {
+  for (VehicleType& type : resources.vehicle_types) type.drive = nullptr;
+  return resources;
+}
+
+}  // namespace
 
 geometry::Polygon footprint_polygon_of(const config::FleetSpec& fleet) {
   return fleet.profile.footprint;
@@ -25,8 +38,20 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
     c.resources.footprint.width = std::max(c.resources.footprint.width, fleet.footprint.width);
     const int type = static_cast<int>(c.resources.vehicle_types.size());
     const bool tricycle = fleet.profile.kinematics == vehicle::Kinematics::kTricycle;
-    c.resources.vehicle_types.push_back(
-        {fleet.id, footprint_polygon_of(fleet), tricycle ? fleet.profile.rear_axle_x : 0.0});
+    VehicleType vehicle{fleet.id, footprint_polygon_of(fleet), tricycle ? fleet.profile.rear_axle_x : 0.0};
+    if (tricycle) {
+      // Places reserve what the stacker's own pursuit sweeps through the bends, at the speed its
+      // agent drives (robot_factory's stacker_config).
+      control::TricycleDrive drive = control::tricycle_drive_for(fleet.profile);
+      drive.pursuit.max_speed = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+      // Coarser than the agent's body model (0.005 s): within a millimetre over a bend, and the
+      // site's every bend is driven when its places are built.
+      drive.body.max_substep = 0.02;
+      vehicle.drive = [drive](const std::vector<geometry::Vec2>& path, bool at_speed) {
+        return control::drive_along(drive, path, at_speed);
+      };
+    }
+    c.resources.vehicle_types.push_back(std::move(vehicle));
     for (const auto& robot : fleet.robots) c.robot_vehicle_types[robot.id] = type;
   }
   const auto& s = config.settings;
@@ -47,7 +72,7 @@ int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_
 }
 
 map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration, int type) {
-  const ConflictZones zones(graph, configuration.resources);
+  const ConflictZones zones(graph, without_drives(configuration.resources));
   const VehicleType& vehicle = zones.vehicle_types().at(static_cast<std::size_t>(type));
   const double width = footprint_width(vehicle.footprint);
   if (!configuration.one_way) return lane_graph_for(graph, width, configuration.resources.margin);
@@ -58,7 +83,7 @@ std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, 
   const TrafficConfiguration configuration = configuration_from(config);
   const bool one_way = config.settings.get_bool("traffic.enabled") && configuration.one_way;
   const map::RoadGraph base =
-      one_way ? one_way_plan(graph, ConflictZones(graph, configuration.resources)).graph : graph;
+      one_way ? one_way_plan(graph, ConflictZones(graph, without_drives(configuration.resources))).graph : graph;
   std::map<std::string, map::RoadGraph> graphs;
   for (const auto& fleet : config.fleets) {
     graphs.emplace(fleet.id,

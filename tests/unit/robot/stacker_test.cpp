@@ -6,12 +6,14 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "outside_regions.hpp"
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker_job.hpp"
@@ -403,6 +405,52 @@ TEST(Stacker, TurnsIntoAnAislePastARobotWaitingAtItsJunction) {
   EXPECT_TRUE(passes_reach_truck_at_the_junction(0.0, &why)) << why;
   EXPECT_TRUE(passes_reach_truck_at_the_junction(0.65, &why)) << why;
   EXPECT_FALSE(passes_reach_truck_at_the_junction(1.5, &why)) << "a robot silent for 1.5 s was passed";
+}
+
+// Its pursuit cuts inside the tight bend from the aisle into the corridor and swings its front
+// past the bend over the corridor's other lane; traffic reserves what that drive sweeps.
+TEST(Stacker, TurningOutOfAnAisleItsBodyStaysInsideThePlacesTrafficReservesForIt) {
+  const auto closed =
+      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant_middle_closed.yaml"));
+  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  config.settings.set("traffic.enabled", "true", "stacker_test");
+  const auto& fleet =
+      *std::find_if(config.fleets.begin(), config.fleets.end(), [](const auto& f) { return f.id == "stackers"; });
+  // In aisle 3, southbound.
+  auto stacker = make_robot(fleet, config, closed, {29.13, 22.0, -std::numbers::pi / 2}, 3, 1);
+  stacker->set_site(closed, route_graph_for(config, fleet, *closed));
+  task::TaskOrder home;
+  home.order_id = "8";
+  home.kind = orders::OrderKind::kMove;
+  home.drop_area_id = "PT3";
+  home.drop_area = closed->site.find_home("PT3")->pose;
+  std::string why;
+  ASSERT_TRUE(stacker->submit(home, &why)) << why;
+  const traffic::ConflictZones zones(closed->graph.graph, traffic::configuration_from(config).resources);
+  const int type = traffic::vehicle_type_of(config, "stackers");
+  std::vector<const geometry::Polygon*> reserved;
+  double worst = 0.0;
+  int turning = 0;
+  for (int i = 0; i < 20 * 120 && stacker->truth().x > 24.0; ++i) {
+    const robot::TrafficRoute route = stacker->traffic_route();
+    if (reserved.empty() && route.points.size() >= 2) {
+      for (int point : route.points) {
+        for (const auto& region : zones.region(type, zones.place_of(point))) reserved.push_back(&region);
+      }
+    }
+    stacker->set_traffic_grant(test::all_it_asks_for(route));
+    stacker->step();
+    stacker->take_events();
+    // Through the turn from the aisle (x = 29.13) into the north lane (y = 17.85).
+    const geometry::Pose2 at = stacker->truth();
+    if (reserved.empty() || at.x < 26.0 || at.x > 30.0 || at.y > 19.5) continue;
+    ++turning;
+    const geometry::Polygon body = geometry::footprint_polygon(at, stacker->footprint());
+    worst = std::max(worst, test::outside(body, reserved));
+  }
+  EXPECT_LT(stacker->truth().x, 24.0) << stacker->task_state() << ": " << stacker->detail();
+  EXPECT_GT(turning, 20);
+  EXPECT_LT(worst, 0.01) << "the stacker's body left the places of its route by " << worst << " m";
 }
 
 }  // namespace fleet::robot
