@@ -79,7 +79,7 @@ void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon
   const auto& next = links.successors;
   const auto& previous = links.predecessors;
   const auto at = [&](int place) { return position_[static_cast<std::size_t>(place)]; };
-  // Whether the road into p (from before) and on to q turns.
+  // Whether the road runs straight into p and on to q (or starts at p).
   const auto straight_into = [&](int p, int q) {
     const auto& before = previous[static_cast<std::size_t>(p)];
     return before.empty() || std::any_of(before.begin(), before.end(),
