@@ -16,7 +16,7 @@ struct TricycleDrive {
   double control_period = 0.05;  ///< s: the pursuit's rate, 20 Hz
 
   /// The footprint's centre ahead of the rear-axle midpoint, metres.
-  double centre_offset() const { return 0.5 * (body.geometry.front_x() + body.geometry.fork_tip_x()); }
+  double centre_offset() const { return body.geometry.centre_x(); }
 };
 
 /// The body and pursuit of `profile`: its wheelbase, rear axle, steering range, top speed and

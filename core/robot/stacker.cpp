@@ -24,11 +24,6 @@ constexpr double kLaneAlongRow = 0.35;
 // A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
 constexpr double kSameEnd = 0.05;
 
-/// The body's centre (the footprint's) ahead of the rear-axle midpoint, metres.
-double centre_offset(const sim::TricycleGeometry& g) {
-  return 0.5 * (g.front_x() + g.fork_tip_x());
-}
-
 planning::StaticGrid make_static_grid(const StackerConfig& c, const map::SiteMap& site) {
   return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
 }
@@ -52,7 +47,7 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
       footprint_{config.body.geometry.length, config.body.geometry.width},
       body_(config.body,
             [&] {
-              const Vec2 rear = home.position() - centre_offset(config.body.geometry) * heading_of(home.yaw);
+              const Vec2 rear = home.position() - config.body.geometry.centre_x() * heading_of(home.yaw);
               return Pose2{rear.x, rear.y, home.yaw};
             }()),
       rng_(seed * 0x9e3779b97f4a7c15ULL + stream),
@@ -78,18 +73,18 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
   estimate_ = body_.pose();
   update_centre();
   // The centre, where traffic places the robot, comes to stand on its route's end.
-  config_.pursuit.stop_short = centre_offset(config_.body.geometry);
+  config_.pursuit.stop_short = config_.body.geometry.centre_x();
   // At start, not at the first order: the planners' tables for the whole site are the bulk of
   // the agent's memory, which then stays flat while it works.
   hand_grid_to_planners();
 }
 
 void Stacker::update_centre() {
-  truth_centre_ = geometry::body_pose_to_map(body_.pose(), {centre_offset(config_.body.geometry), 0.0, 0.0});
+  truth_centre_ = geometry::body_pose_to_map(body_.pose(), {config_.body.geometry.centre_x(), 0.0, 0.0});
 }
 
 Pose2 Stacker::estimate() const {
-  return geometry::body_pose_to_map(estimate_, {centre_offset(config_.body.geometry), 0.0, 0.0});
+  return geometry::body_pose_to_map(estimate_, {config_.body.geometry.centre_x(), 0.0, 0.0});
 }
 
 std::array<double, 9> Stacker::covariance() const {
@@ -282,7 +277,7 @@ double Stacker::clearance_ahead() const {
     if (!geometry::convex_polygons_overlap(p, here)) others.push_back(std::move(p));
   }
   if (others.empty()) return std::numeric_limits<double>::infinity();
-  const double c = centre_offset(config_.body.geometry);
+  const double c = config_.body.geometry.centre_x();
   sim::Tricycle ghost = body_;
   ghost.move_to(estimate_);
   Vec2 before = estimate_.position();
@@ -385,7 +380,7 @@ void Stacker::update_sensors() {
 void Stacker::apply(const sim::TricycleCommand& wanted) {
   sim::TricycleCommand command = wanted;
   const sim::TricycleRates rates = sim::forward_kinematics(command, config_.body.geometry.wheelbase);
-  const double c = centre_offset(config_.body.geometry);
+  const double c = config_.body.geometry.centre_x();
   const control::BodyTwist twist{rates.v, rates.yaw_rate * c, rates.yaw_rate};
   if (!(twist == control::BodyTwist{}) && safety_.moves_too_close(twist, estimate(), neighbours_)) {
     // The last line of defence: stand, the wheel kept where it points.

@@ -31,6 +31,8 @@ struct TricycleGeometry {
   double fork_tip_x() const { return -rear_overhang; }
   double chassis_back_x() const { return -rear_overhang + fork_length; }
   double drive_wheel_x() const { return wheelbase; }
+  /// The footprint's centre, ahead of the rear axle.
+  double centre_x() const { return 0.5 * (front_x() + fork_tip_x()); }
 };
 
 /// Actuator limits. The drive and the steering answer a held command with a first-order lag, bounded by an

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/tricycle.hpp"
+
 namespace fleet::traffic {
 
 using geometry::Polygon;
@@ -54,13 +56,6 @@ int find_root(std::vector<int>& parent, int i) {
     i = parent[static_cast<std::size_t>(i)];
   }
   return i;
-}
-
-Polygon placed(const Polygon& body, const geometry::Pose2& pose) {
-  Polygon out;
-  out.reserve(body.size());
-  for (const Vec2& v : body) out.push_back(geometry::body_to_map(pose, v));
-  return out;
 }
 
 bool boxes_overlap(const geometry::Bounds& a, const geometry::Bounds& b) {
@@ -279,8 +274,8 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
         const Vec2 b = pos(static_cast<std::size_t>(j));
         const double heading = std::atan2(b.y - a.y, b.x - a.x);
         const Vec2 mid = 0.5 * (a + b);
-        Polygon corners = placed(body, {a.x, a.y, heading});
-        const Polygon far = placed(body, {mid.x, mid.y, heading});
+        Polygon corners = sim::polygon_in_map({a.x, a.y, heading}, body);
+        const Polygon far = sim::polygon_in_map({mid.x, mid.y, heading}, body);
         corners.insert(corners.end(), far.begin(), far.end());
         region[p].push_back(convex_hull(std::move(corners)));
       }
@@ -288,7 +283,7 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
     if (region[p].empty()) {
       // An isolated place: the robot may stand there at any heading.
       const Vec2 a = position_[p];
-      for (double heading : {0.0, std::acos(0.0)}) region[p].push_back(placed(body, {a.x, a.y, heading}));
+      for (double heading : {0.0, std::acos(0.0)}) region[p].push_back(sim::polygon_in_map({a.x, a.y, heading}, body));
     }
   }
   if (tracking_x != 0.0) add_tracked_bodies(graph, adjacent, body, -tracking_x, type);
@@ -356,7 +351,8 @@ void ConflictZones::add_tracked_bodies(const map::RoadGraph& graph, const std::v
         }
       }
       if (off_road < kOnRoute) continue;
-      tracked.emplace_back(place_of_[static_cast<std::size_t>(nearest)], placed(body, {centre.x, centre.y, heading}));
+      tracked.emplace_back(place_of_[static_cast<std::size_t>(nearest)],
+                           sim::polygon_in_map({centre.x, centre.y, heading}, body));
     }
   }
   for (auto& [place, polygon] : tracked) region[static_cast<std::size_t>(place)].push_back(std::move(polygon));

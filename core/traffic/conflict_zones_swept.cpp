@@ -7,6 +7,7 @@
 #include <map>
 #include <utility>
 
+#include "sim/tricycle.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/vehicle_lanes.hpp"
 
@@ -59,13 +60,6 @@ Polygon simplified(const Polygon& hull, double tolerance) {
     }
   }
   return kept.size() >= 3 ? grown(kept, tolerance) : hull;
-}
-
-Polygon placed_body(const Polygon& body, const geometry::Pose2& pose) {
-  Polygon out;
-  out.reserve(body.size());
-  for (const Vec2& v : body) out.push_back(geometry::body_to_map(pose, v));
-  return out;
 }
 
 }  // namespace
@@ -156,7 +150,7 @@ void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon
       }
       if (covered) continue;
       auto& points = off_route[way[nearest]];
-      const Polygon placed = placed_body(body, centre);
+      const Polygon placed = sim::polygon_in_map(centre, body);
       points.insert(points.end(), placed.begin(), placed.end());
     }
   };
