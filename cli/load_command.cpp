@@ -111,7 +111,7 @@ EmulatedFleetOptions fleet_options(const config::FleetConfig& config, const map:
   o.fleet_id = fleet->id;
   o.map_id = site.site.name;
   o.body = fleet->profile.footprint;
-  o.params.speed = std::min(config.settings.get_double("agent.max_speed"), fleet->profile.max_speed);
+  o.params.speed = config.top_speed(*fleet);
   o.state_hz = config.settings.get_double("agent.state_hz");
   o.traffic_period_wall_s = 0.05 / options.time_scale;
   for (int i = 0; i < options.robots; ++i) {

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -137,6 +138,10 @@ std::optional<std::pair<const FleetSpec*, const RobotSpec*>> FleetConfig::find_r
     }
   }
   return std::nullopt;
+}
+
+double FleetConfig::top_speed(const FleetSpec& fleet) const {
+  return std::min(settings.get_double("agent.max_speed"), fleet.profile.max_speed);
 }
 
 void assign_homes(FleetConfig& config, const std::vector<std::string>& site_homes, const std::string& site_name) {

@@ -39,6 +39,9 @@ struct FleetConfig {
   std::vector<std::pair<const FleetSpec*, const RobotSpec*>> all_robots() const;
   /// The fleet a robot belongs to, or nothing.
   std::optional<std::pair<const FleetSpec*, const RobotSpec*>> find_robot(const std::string& robot_id) const;
+  /// The speed a fleet's robots drive at: the software's `agent.max_speed`, within what the
+  /// fleet's vehicle can do.
+  double top_speed(const FleetSpec& fleet) const;
 
   /// Robot id -> (fleet index, robot index), made by parse_fleet_config: the server looks robots
   /// up for every message, among hundreds. Positions, not pointers, so copies stay right; a

@@ -16,6 +16,9 @@ DynamicGrid::DynamicGrid(const DynamicGridConfiguration& configuration) : config
       configuration.stale_after < 0.0 || configuration.max_reach < 0.0) {
     throw std::invalid_argument("dynamic grid: radii, margin, speeds and times must be >= 0");
   }
+  if (!(configuration.reported_tolerance >= 0.0)) {
+    throw std::invalid_argument("dynamic grid: reported_tolerance must be >= 0");
+  }
 }
 
 geometry::Polygon DynamicGrid::occupied_region(const Neighbour& n) const {
@@ -37,6 +40,11 @@ void DynamicGrid::update(const OccupancyGrid& static_grid, std::span<const Neigh
     dynamic_.clear();
   } else {
     dynamic_ = OccupancyGrid(static_grid.bounds(), static_grid.resolution(), OccupancyGrid::kFree);
+  }
+  if (sensed != nullptr && configuration_.reported_tolerance > 0.0) {
+    for (const Neighbour& n : neighbours) {
+      dynamic_.fill_polygon(geometry::footprint_polygon(n.pose, n.footprint, configuration_.reported_tolerance), false);
+    }
   }
   for (const Neighbour& n : neighbours) dynamic_.fill_polygon(occupied_region(n), true);
   // Grow everything by our own radius: the path is then checked as a line of points.

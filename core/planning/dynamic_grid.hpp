@@ -25,6 +25,9 @@ struct DynamicGridConfiguration {
   double stale_after = 0.5;     ///< s; beyond it a neighbour may have sped up to max_speed
   double max_speed = 0.5;       ///< m/s a robot can reach; bounds where a stale one may be
   double max_reach = 3.0;       ///< metres; caps how far a neighbour's body grows
+  /// Metres round a neighbour's reported footprint within which the sensed layer is taken to be
+  /// that neighbour, and left to its report (0: the sensed layer is kept whole).
+  double reported_tolerance = 0.0;
 };
 
 /// How far a robot last seen `age` seconds ago at `speed` may have moved since: at the speed it
@@ -36,6 +39,12 @@ double distance_since_seen(double speed, double age, double stale_after, double 
 
 /// The dynamic occupancy grid [Forklift thesis, section 5.3]: the static grid plus the other robots
 /// and what the lidar sees, all grown by our robot's radius so a path point is checked as a point.
+///
+/// A neighbour is judged by its report, not by how the lidar saw it: the OctoMap holds the scans
+/// filed under where the robot believed it was at each, so a body seen from a drifting estimate
+/// lies smeared over cells beside it. Sensed cells within `reported_tolerance` of a neighbour's
+/// reported footprint are cleared before the neighbours are drawn; the reports are what traffic
+/// keeps apart, and the sensed layer still holds everything nobody reports.
 ///
 /// Neighbours occupy their footprint grown by the margin and by how far they may have moved since
 /// their pose was measured (distance_since_seen, capped at `max_reach`): stale data slows us,

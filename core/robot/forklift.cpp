@@ -55,6 +55,7 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         d.stale_after = config.stale_after;
         d.max_speed = config.neighbour_max_speed;
         d.max_reach = config.neighbour_max_reach;
+        d.reported_tolerance = config.reported_tolerance;
         return d;
       }()),
       lidar_(config.lidar),

@@ -90,6 +90,9 @@ struct ForkliftConfig {
   /// A safety stop is the same stop while the robot stays within this of where it began.
   double stop_moved = 0.05;          ///< metres
   double neighbour_max_reach = 3.0;  ///< metres: caps a stale neighbour's disc
+  /// Metres round a neighbour's reported body within which what the lidar saw is that neighbour
+  /// (planning::DynamicGridConfiguration::reported_tolerance).
+  double reported_tolerance = 0.06;
   double uwb_shadow_reach = 0.15;    ///< metres from the tag within which a robot shadows anchors
   double siding_end_margin = 0.03;   ///< metres short of a siding's end the robot stops
 

@@ -125,6 +125,7 @@ ForkliftConfig ForkliftConfig::for_vehicle(const vehicle::VehicleProfile& profil
   c.neighbour_margin *= s;
   c.neighbour_max_speed *= kv;
   c.neighbour_max_reach *= kv;
+  c.reported_tolerance *= s;
   c.robot_height *= s;
   if (c.anchor_shadow_margin >= 0.0) c.anchor_shadow_margin *= s;
   // The path is checked at least as far ahead as the follower starts slowing down.

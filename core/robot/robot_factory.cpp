@@ -20,6 +20,14 @@ std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig&
 
 namespace {
 
+/// Traffic grants two robots places only where their bodies stay `traffic.margin` apart. A robot
+/// that refused to drive on beside another at that gap would wait for it with the road granted to
+/// both, and the other likewise. The look ahead therefore keeps half of it to the bodies other
+/// robots report: the other half is for both robots' estimates being off.
+double lookahead_gap(const config::FleetConfig& config) {
+  return config.settings.get_double("traffic.margin") / 2.0;
+}
+
 robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
                                       const map::SiteMap& site) {
   // Sizes, tolerances, gaps and manoeuvre speeds follow the fleet's vehicle (see docs/control.md).
@@ -29,10 +37,17 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
   for (const auto& other : config.fleets) {
     c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
   }
-  // The software's speed setting, within what the fleet's vehicle can do.
-  c.task.follower.v_max = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+  c.task.follower.v_max = config.top_speed(fleet);
   c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
   c.traffic = config.settings.get_bool("traffic.enabled");
+  if (c.traffic) {
+    // What the look ahead keeps to the bodies other robots report, within what traffic keeps
+    // between the robots it grants places to (see lookahead_gap).
+    const double gap = lookahead_gap(config);
+    c.clearance_margin = std::min(c.clearance_margin, gap / 2.0);
+    c.neighbour_margin = std::min(c.neighbour_margin, gap - c.clearance_margin);
+    c.safety_gap = std::min(c.safety_gap, gap / 2.0);
+  }
   c.route_graph = route_graph_for(config, fleet, site);
   return c;
 }
@@ -40,11 +55,15 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
 robot::StackerConfig stacker_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
                                     const map::SiteMap& site) {
   robot::StackerConfig c = robot::StackerConfig::for_vehicle(fleet.profile);
-  c.pursuit.max_speed = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+  c.pursuit.max_speed = config.top_speed(fleet);
   for (const auto& other : config.fleets) {
     c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
   }
   c.traffic = config.settings.get_bool("traffic.enabled");
+  if (c.traffic) {
+    c.clearance_margin = std::min(c.clearance_margin, lookahead_gap(config));
+    c.safety_gap = std::min(c.safety_gap, lookahead_gap(config) / 2.0);
+  }
   // Only the lanes a stacker fits, traffic or not: its bays are no lanes to drive along, and a
   // stacker cannot turn where its body does not fit.
   c.route_graph = std::make_shared<const map::RoadGraph>(traffic::planning_graph(

@@ -50,6 +50,7 @@ struct StackerConfig {
   int max_dock_attempts = 3;
   // The safety stop and the look ahead along the path (other robots' published footprints).
   double safety_gap = 0.10;                            ///< metres
+  double work_area_margin = 0.10;                      ///< metres round the bodies a docking sweeps
   double stale_after = 0.5;                            ///< sim seconds
   double neighbour_max_speed = 1.2;                    ///< m/s
   double safety_scan_range = 2.2;                      ///< metres: the S300's protective field at the plant's speeds

@@ -103,10 +103,8 @@ void Stacker::start_docking() {
 }
 
 void Stacker::add_swept_body(std::vector<Vec2>& corners, Vec2 rear, double yaw) const {
-  const sim::TricycleGeometry& g = config_.body.geometry;
-  const double c = 0.5 * (g.front_x() + g.fork_tip_x());  // the centre ahead of the rear axle
-  const Vec2 centre = rear + c * heading_of(yaw);
-  const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.safety_gap);
+  const Vec2 centre = rear + config_.body.geometry.centre_x() * heading_of(yaw);
+  const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.work_area_margin);
   corners.insert(corners.end(), body.begin(), body.end());
 }
 

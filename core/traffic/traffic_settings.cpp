@@ -43,7 +43,7 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
       // Places reserve what the stacker's own pursuit sweeps through the bends, at the speed its
       // agent drives (robot_factory's stacker_config).
       control::TricycleDrive drive = control::tricycle_drive_for(fleet.profile);
-      drive.pursuit.max_speed = std::min(config.settings.get_double("agent.max_speed"), fleet.profile.max_speed);
+      drive.pursuit.max_speed = config.top_speed(fleet);
       // Coarser than the agent's body model (0.005 s): within a millimetre over a bend, and the
       // site's every bend is driven when its places are built.
       drive.body.max_substep = 0.02;

@@ -93,6 +93,7 @@ std::vector<double> scaled_values(const ForkliftConfig& c) {
           c.neighbour_margin,
           c.neighbour_max_speed,
           c.neighbour_max_reach,
+          c.reported_tolerance,
           c.robot_height,
           c.anchor_shadow_margin,
           c.clearance_lookahead,
