@@ -86,10 +86,8 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
   }
-  if (options_.config.settings.get_bool("traffic.enabled")) {
-    traffic_ = std::make_unique<TrafficControl>(options_.site_map->graph.graph, options_.site.name,
-                                                traffic::configuration_from(options_.config), participant_, log_);
-  } else {
+  adopt(derive_site(options_.site_map, options_.config));
+  if (!traffic_) {
     log_->info("traffic control off: robots avoid each other only locally (the Forklift thesis's behaviour)");
   }
   if (options_.maps.empty()) options_.maps = {options_.site.name};
@@ -97,7 +95,6 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   started_wall_ = SimClock::wall_now();
   restore_pallets();
   for (const auto& [fleet, robot] : options_.config.all_robots()) parked_at_[robot->id] = robot->home;
-  build_fleet_graphs(*options_.site_map);
   restore_orders();
   publish_site_state();
   publish_server_info();
@@ -171,56 +168,79 @@ void FleetServer::reset_obstacles() {
     obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
 }
 
-std::string FleetServer::switch_map(const std::string& map_id) {
-  std::shared_ptr<const map::SiteMap> next;
-  try {
-    next = std::make_shared<const map::SiteMap>(
-        map::load_site_map((std::filesystem::path(options_.site.file).parent_path() / (map_id + ".yaml")).string()));
-  } catch (const std::exception& e) {
-    return std::string("map '") + map_id + "' cannot be loaded: " + e.what();
-  }
-  if (std::string why = map::revision_mismatch(options_.site, next->site); !why.empty()) return why;
+std::string FleetServer::begin_map_switch(const model::Command& command, Answer answer) {
+  if (map_switch_) return "the switch to map '" + map_switch_->map_id + "' is under way: send it again once it is done";
+  // Copies: the derivation runs on its own thread while the loop goes on with the current ones.
+  map_switch_ = MapSwitch{command.request_id, command.value,
+                          std::async(std::launch::async, load_revision, options_.site, command.value, options_.config),
+                          std::move(answer)};
+  log_->info("switching to map '{}': deriving its graphs and traffic zones", command.value);
+  return "";
+}
+
+std::string FleetServer::robot_on_closed_road(const map::SiteMap& next, const std::string& map_id) const {
   // A robot standing on a road the new map closes would be off its graph with no way back onto
   // it: it waited there until the map was switched back. Refused, as an obstacle over a robot is.
-  if (options_.site_map) {
-    constexpr double kOnRoadM = 0.15;     // half a lane: the robot stands on that road
-    constexpr double kSamePointM = 0.02;  // a point the new graph has too
-    const auto& old_points = options_.site_map->graph.graph.points;
-    const auto& new_points = next->graph.graph.points;
-    for (const auto& [id, robot] : robots_) {
-      if (!robot.registered) continue;
-      const geometry::Vec2 at = robot.last.pose.position();
-      for (const auto& p : old_points) {
-        if (geometry::distance(at, {p.x, p.y}) > kOnRoadM) continue;
-        const bool kept = std::any_of(new_points.begin(), new_points.end(), [&](const auto& q) {
-          return geometry::distance({p.x, p.y}, {q.x, q.y}) <= kSamePointM;
-        });
-        if (!kept) {
-          return fmt::format("robot {} stands at ({:.2f}, {:.2f}) on a road map '{}' closes: switch once it has left",
-                             id, at.x, at.y, map_id);
-        }
+  if (!options_.site_map) return "";
+  constexpr double kOnRoadM = 0.15;     // half a lane: the robot stands on that road
+  constexpr double kSamePointM = 0.02;  // a point the new graph has too
+  const auto& old_points = options_.site_map->graph.graph.points;
+  const auto& new_points = next.graph.graph.points;
+  for (const auto& [id, robot] : robots_) {
+    if (!robot.registered) continue;
+    const geometry::Vec2 at = robot.last.pose.position();
+    for (const auto& p : old_points) {
+      if (geometry::distance(at, {p.x, p.y}) > kOnRoadM) continue;
+      const bool kept = std::any_of(new_points.begin(), new_points.end(), [&](const auto& q) {
+        return geometry::distance({p.x, p.y}, {q.x, q.y}) <= kSamePointM;
+      });
+      if (!kept) {
+        return fmt::format("robot {} stands at ({:.2f}, {:.2f}) on a road map '{}' closes: switch once it has left", id,
+                           at.x, at.y, map_id);
       }
     }
   }
-  const std::string previous = options_.site.name;
-  options_.site_map = next;
-  options_.site = next->site;
-  build_fleet_graphs(*next);
-  if (traffic_) {
-    // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
-    traffic_.reset();
-    traffic_ = std::make_unique<TrafficControl>(next->graph.graph, next->site.name,
-                                                traffic::configuration_from(options_.config), participant_, log_);
-    // Where every robot stands, before any of them enters the new graph.
-    for (const auto& [id, robot] : robots_) {
-      if (robot.registered) traffic_->set_body(id, body_of(robot));  // lost ones too: still there
-    }
-  }
-  reset_obstacles();
-  publish_map_and_obstacles();
-  publish_server_info();
-  log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
   return "";
+}
+
+void FleetServer::adopt(SiteDerivation derived) {
+  options_.site_map = std::move(derived.site_map);
+  options_.site = options_.site_map->site;
+  known_names_ = std::move(derived.known_names);
+  travel_ = std::move(derived.travel);
+  // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
+  traffic_.reset();
+  if (derived.traffic) {
+    traffic_ = std::make_unique<TrafficControl>(std::move(derived.traffic), options_.site.name, participant_, log_);
+  }
+}
+
+void FleetServer::finish_map_switch() {
+  if (!map_switch_ || map_switch_->derived.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  MapSwitch done = std::move(*map_switch_);
+  map_switch_.reset();
+  std::string error;
+  try {
+    SiteDerivation derived = done.derived.get();
+    // Where the robots stand now, not when the switch was asked for.
+    error = robot_on_closed_road(*derived.site_map, done.map_id);
+    if (error.empty()) {
+      const std::string previous = options_.site.name;
+      adopt(std::move(derived));
+      // Where every robot stands, before any of them enters the new graph.
+      for (const auto& [id, robot] : robots_) {
+        if (traffic_ && robot.registered) traffic_->set_body(id, body_of(robot));  // lost ones too: still there
+      }
+      reset_obstacles();
+      publish_map_and_obstacles();
+      publish_server_info();
+      log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
+    }
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!error.empty()) log_->warn("command map {} refused: {}", done.map_id, error);
+  done.answer({done.request_id, error.empty(), 0, error});
 }
 
 void FleetServer::run(const std::atomic<bool>& stop) {
@@ -234,6 +254,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     stages.start();
     handle_order_requests();
     handle_commands();
+    finish_map_switch();
     stages.lap("requests");
     handle_robot_states();
     handle_robot_paths();
@@ -323,19 +344,6 @@ const orders::KnownNames& FleetServer::known_names() const {
   return known_names_;
 }
 
-void FleetServer::build_fleet_graphs(const map::SiteMap& site) {
-  // What orders may name and what each fleet can do change only with the site: computed here
-  // once, not for every request and dispatch cycle.
-  travel_.clear();
-  known_names_ = orders::known_names(options_.config, site.site);
-  const auto graphs = traffic::fleet_graphs(site.graph.graph, options_.config);
-  for (auto& ability : known_names_.abilities) {
-    const map::RoadGraph& graph = graphs.at(ability.fleet_id);
-    travel_.emplace(ability.fleet_id, planning::RoadDistances(graph));
-    ability.out_of_reach = traffic::fleet_places_out_of_reach(site, graph, options_.config, ability.fleet_id);
-  }
-}
-
 void FleetServer::fill_steps(Order& order) const {
   const auto& names = known_names();
   order.steps = orders::steps_of(
@@ -365,7 +373,13 @@ void FleetServer::handle_robot_paths() {
 void FleetServer::handle_web_requests() {
   if (!bridge_) return;
   for (auto& pending : bridge_->drain()) {
-    pending.reply.set_value(std::visit([&](const auto& request) { return execute(request); }, pending.request));
+    if (const auto* command = std::get_if<model::Command>(&pending.request)) {
+      // A map switch answers later: the promise goes with the answer.
+      auto promise = std::make_shared<std::promise<model::RequestReply>>(std::move(pending.reply));
+      execute(*command, [promise](const model::RequestReply& reply) { promise->set_value(reply); });
+    } else {
+      pending.reply.set_value(execute(std::get<model::OrderRequest>(pending.request)));
+    }
   }
 }
 

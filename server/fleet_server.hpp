@@ -1,6 +1,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,6 +27,7 @@
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
 #include "server/server_load.hpp"
+#include "server/site_derivation.hpp"
 #include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
 
@@ -76,8 +79,18 @@ class FleetServer {
   void publish_map_and_obstacles();
   /// The current map's obstacles as its site file sets them at the start.
   void reset_obstacles();
-  /// Every robot onto `map_id` (a revision of the site): returns why not, empty when done.
-  std::string switch_map(const std::string& map_id);
+  using Answer = std::function<void(const model::RequestReply&)>;
+  /// Starts deriving map `command.value` (a revision of the site) off the loop; `answer` hears
+  /// of it once finish_map_switch() has switched every robot onto it, or refused. Returns why
+  /// not, empty when started.
+  std::string begin_map_switch(const model::Command& command, Answer answer);
+  /// Switches every robot onto the map begin_map_switch() derived, once it is ready (call every
+  /// loop): the map, the fleets' graphs and a new traffic manager.
+  void finish_map_switch();
+  /// Why no switch onto `next` now: a robot stands on a road it closes (empty: none does).
+  std::string robot_on_closed_road(const map::SiteMap& next, const std::string& map_id) const;
+  /// Takes a derived site as the server's own (at the start and on a map switch).
+  void adopt(SiteDerivation derived);
   void publish_server_info();
   void handle_order_requests();
   void handle_commands();
@@ -121,7 +134,8 @@ class FleetServer {
   void reply(const model::RequestReply& answer);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
-  model::RequestReply execute(const model::Command& command);
+  /// A command's reply goes to `answer`: at once, or when a map switch it started is done.
+  void execute(const model::Command& command, const Answer& answer);
   /// A pick request with its pick list: checked whole, then one pick order per tour.
   /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
   /// has packing stations and an order changed since it last looked.
@@ -183,9 +197,16 @@ class FleetServer {
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
   std::map<std::string, planning::RoadDistances> travel_;
   /// What orders may name on the site served, with each fleet's abilities and the places it
-  /// cannot reach (build_fleet_graphs).
+  /// cannot reach (server::derive_site).
   orders::KnownNames known_names_;
-  void build_fleet_graphs(const map::SiteMap& site);
+  /// A map switch under way: its derivation runs off the loop.
+  struct MapSwitch {
+    std::string request_id;
+    std::string map_id;
+    std::future<SiteDerivation> derived;
+    Answer answer;
+  };
+  std::optional<MapSwitch> map_switch_;
   SimClock clock_;
   std::mt19937_64 rng_;
   std::unique_ptr<orders::DispatchPolicy> policy_;

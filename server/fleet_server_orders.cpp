@@ -67,10 +67,12 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
 }
 
 void FleetServer::handle_commands() {
-  command_reader_.take_data([&](model::Command&& command) { reply(execute(command)); });
+  command_reader_.take_data([&](model::Command&& command) {
+    execute(command, [this](const model::RequestReply& answer) { reply(answer); });
+  });
 }
 
-model::RequestReply FleetServer::execute(const model::Command& command) {
+void FleetServer::execute(const model::Command& command, const Answer& answer) {
   std::string error;
   if (command.verb == "cancel-order") {
     std::int64_t id = 0;
@@ -130,7 +132,8 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
       map_writer_.write({command.target, command.value});
       log_->info("robot {} switched to map '{}'", command.target, command.value);
     } else if (command.value != options_.site.name) {
-      error = switch_map(command.value);
+      error = begin_map_switch(command, answer);
+      if (error.empty()) return;  // answered once the switch is done
     }
   } else if (command.verb == "auto-orders") {
     if (command.value != "on" && command.value != "off") {
@@ -153,7 +156,7 @@ model::RequestReply FleetServer::execute(const model::Command& command) {
     error = "unknown command '" + command.verb + "' (cancel-order, obstacle, map, auto-orders, pause, resume)";
   }
   if (!error.empty()) log_->warn("command {} {} {} refused: {}", command.verb, command.target, command.value, error);
-  return {command.request_id, error.empty(), 0, error};
+  answer({command.request_id, error.empty(), 0, error});
 }
 
 bool FleetServer::robot_is_free(const RobotEntry& robot) const {

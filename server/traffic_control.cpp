@@ -43,12 +43,18 @@ bool same_grant(const model::TrafficGrant& a, const model::TrafficGrant& b) {
 TrafficControl::TrafficControl(const map::RoadGraph& graph, std::string map_id,
                                const traffic::TrafficConfiguration& configuration, dds::Participant& participant,
                                Logger log)
-    : manager_(graph, configuration),
+    : TrafficControl(std::make_unique<traffic::TrafficManager>(graph, configuration), std::move(map_id), participant,
+                     std::move(log)) {}
+
+TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id,
+                               dds::Participant& participant, Logger log)
+    : manager_(std::move(manager)),
       map_id_(std::move(map_id)),
       log_(std::move(log)),
       grant_writers_(participant, dds::qos::live_state()),
       request_reader_(participant, dds::qos::live_state()) {
-  log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_.zones().place_count(),
+  const auto& configuration = manager_->configuration();
+  log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_->zones().place_count(),
              configuration.lookahead, configuration.one_way ? "on" : "off");
 }
 
@@ -59,8 +65,8 @@ int TrafficControl::number_of(const std::string& robot_id) {
   numbers_[robot_id] = number;
   names_[number] = robot_id;
   // Its fleet's vehicle type: which places conflict with its body, which lanes it fits.
-  const auto& types = manager_.configuration().robot_vehicle_types;
-  if (const auto type = types.find(robot_id); type != types.end()) manager_.set_robot_type(number, type->second);
+  const auto& types = manager_->configuration().robot_vehicle_types;
+  if (const auto type = types.find(robot_id); type != types.end()) manager_->set_robot_type(number, type->second);
   return number;
 }
 
@@ -88,11 +94,11 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
     other_map_.erase(request.robot_id);
     heard_.insert(request.robot_id);
     const auto bad_point = std::find_if(request.points.begin(), request.points.end(), [&](int point) {
-      return point < 0 || static_cast<std::size_t>(point) >= manager_.zones().point_count();
+      return point < 0 || static_cast<std::size_t>(point) >= manager_->zones().point_count();
     });
     if (bad_point != request.points.end()) {
       log_->warn("traffic request from '{}' ignored: graph point {} does not exist ({} points)", request.robot_id,
-                 *bad_point, manager_.zones().point_count());
+                 *bad_point, manager_->zones().point_count());
       return;
     }
     const int id = number_of(request.robot_id);
@@ -101,34 +107,34 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // the places its body touches, so nobody is granted up to it (a robot stopped there by the
       // agents' safety check would hold the entry it needs to leave by). Parked at a home, clear
       // of the lanes, it holds nothing.
-      manager_.drop_entry(id);
+      manager_->drop_entry(id);
       status_.erase(request.robot_id);
       if (!request.work_area.empty()) {
         work_beside_roads(request, id, now_sim, now_wall);
         return;
       }
       working_.erase(request.robot_id);
-      const bool was_on_roads = manager_.has_robot(id);
+      const bool was_on_roads = manager_->has_robot(id);
       if (stand_where_it_is(request.robot_id, id, now_sim)) {
         log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
-                    manager_.held_places(id).size());
+                    manager_->held_places(id).size());
       } else if (was_on_roads) {
         log_->debug("{} left the roads", request.robot_id);
       }
       return;
     }
     working_.erase(request.robot_id);
-    bool standing = manager_.frozen(id);
-    bool enter = !manager_.has_robot(id) || standing;
-    if (!enter && request.version > manager_.version(id)) {
+    bool standing = manager_->frozen(id);
+    bool enter = !manager_->has_robot(id) || standing;
+    if (!enter && request.version > manager_->version(id)) {
       // A new route from where it is. It starts somewhere it does not hold when it drove off the
       // graph and came back elsewhere, or replanned beside the road before it set off (an
       // obstacle toggled): then it enters afresh there. Its old route is void: kept, it would go
       // on being granted while the robot waits to enter, and hold others up for a route nobody
       // drives. The robot stands where its body is until it is let in, as one beside the road.
-      const auto result = manager_.submit_route({id, request.version, request.points}, now_sim);
+      const auto result = manager_->submit_route({id, request.version, request.points}, now_sim);
       if (result == traffic::SubmitStatus::kInvalid) {
-        const std::uint64_t dropped = manager_.version(id);
+        const std::uint64_t dropped = manager_->version(id);
         standing = stand_where_it_is(request.robot_id, id, now_sim, /*keep_turn=*/true);
         enter = true;
         log_->debug("traffic: {} route {} starts where it does not stand; route {} dropped, it enters afresh",
@@ -145,7 +151,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // lost and came back) enters where it is: the points behind it are cut off, and its
       // progress and grants are shifted by what was cut (trims_).
       traffic::RouteRequest route{id, request.version, request.points};
-      const auto [skip, offset] = manager_.entry_point(id, request.points, request.progress);
+      const auto [skip, offset] = manager_->entry_point(id, request.points, request.progress);
       route.points.erase(route.points.begin(), route.points.begin() + static_cast<std::ptrdiff_t>(skip));
       if (skip > 0) {
         trims_[request.robot_id] = {request.version, static_cast<int>(skip), offset};
@@ -157,26 +163,26 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       // the road (granted_index -1), keeping what its body stands on.
       // Part-way along its route it stands on the road: its body holding the entry's place is enough.
       const bool already_there = standing && (stands_at(request.robot_id, id, route.points.front()) ||
-                                              (skip > 0 && manager_.holds_place_of(id, route.points.front())));
+                                              (skip > 0 && manager_->holds_place_of(id, route.points.front())));
       if (!already_there) {
-        const auto entry = manager_.entry_for(route.points.front(), id, now_sim);
+        const auto entry = manager_->entry_for(route.points.front(), id, now_sim);
         const auto& holders = entry.blockers;
         if (!holders.empty()) {
-          manager_.claim_entry(id, route.points.front(), now_sim);
+          manager_->claim_entry(id, route.points.front(), now_sim);
           std::vector<std::string> blockers;
           for (int h : holders) blockers.push_back(names_[h]);
           wait_to_enter(request, std::move(blockers), now_sim, now_wall);
           return;
         }
-        if (!entry.as_standing) manager_.remove_robot(id, now_sim);
+        if (!entry.as_standing) manager_->remove_robot(id, now_sim);
       }
-      const auto result = manager_.submit_route(route, now_sim);
+      const auto result = manager_->submit_route(route, now_sim);
       if (result != traffic::SubmitStatus::kAccepted) {
         log_->warn("route {} of {} refused ({} points from {})", request.version, request.robot_id,
                    request.points.size(), request.points.front());
         return;
       }
-      manager_.drop_entry(id);
+      manager_->drop_entry(id);
       held_bodies_.erase(request.robot_id);
       if (standing) {
         log_->debug("traffic: {} enters at {:.2f} m along route {} from where it stands", request.robot_id,
@@ -184,7 +190,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       }
     }
     log_->debug("traffic request {} v{} {} points progress {:.3f} (manager v{})", request.robot_id, request.version,
-                request.points.size(), request.progress, manager_.version(id));
+                request.points.size(), request.progress, manager_->version(id));
     double progress = request.progress;
     if (auto t = trims_.find(request.robot_id); t != trims_.end() && t->second.version == request.version) {
       progress -= t->second.offset;
@@ -195,9 +201,9 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
         stopped_for.push_back(known->second);
       }
     }
-    manager_.report_progress({id, request.version, progress, std::move(stopped_for)}, now_sim);
+    manager_->report_progress({id, request.version, progress, std::move(stopped_for)}, now_sim);
     // Turning off its route's end into a place beside the road, it sweeps more than the lane.
-    manager_.set_arrival_area(
+    manager_->set_arrival_area(
         id, request.points.back(),
         request.arrival_area.empty() ? geometry::Polygon{} : traffic::convex_hull(request.arrival_area));
   });
@@ -211,11 +217,11 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
   const bool manoeuvring = working_.contains(robot_id) && held != held_bodies_.end();
   const geometry::Polygon kept = manoeuvring ? held->second : body;
   auto it = numbers_.find(robot_id);
-  if (it != numbers_.end()) manager_.drop_entry(it->second);
-  if (it != numbers_.end() && manager_.freeze_robot(it->second, kept, now_sim)) {
+  if (it != numbers_.end()) manager_->drop_entry(it->second);
+  if (it != numbers_.end() && manager_->freeze_robot(it->second, kept, now_sim)) {
     held_bodies_[robot_id] = kept;
     log_->warn("traffic: {} lost; it keeps the places its {} ({}), the rest is freed", robot_id,
-               manoeuvring ? "manoeuvre sweeps" : "body stands on", manager_.held_places(it->second).size());
+               manoeuvring ? "manoeuvre sweeps" : "body stands on", manager_->held_places(it->second).size());
   }
   status_.erase(robot_id);
   // Its next grant goes out at once when it is back: it stands until one comes.
@@ -226,7 +232,7 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
 bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) const {
   // Its body holds the point's place, and it stands on the point, not merely beside its region.
   constexpr double kOnPointM = 0.15;
-  if (!manager_.holds_place_of(id, point)) return false;
+  if (!manager_->holds_place_of(id, point)) return false;
   auto body = bodies_.find(robot_id);
   if (body == bodies_.end() || body->second.empty()) return false;
   geometry::Vec2 centre{0.0, 0.0};
@@ -234,7 +240,7 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
     centre.x += v.x / static_cast<double>(body->second.size());
     centre.y += v.y / static_cast<double>(body->second.size());
   }
-  const auto& at = manager_.route_graph().points[static_cast<std::size_t>(point)];
+  const auto& at = manager_->route_graph().points[static_cast<std::size_t>(point)];
   return geometry::distance(centre, {at.x, at.y}) <= kOnPointM;
 }
 
@@ -253,8 +259,8 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   if (!working_.contains(request.robot_id)) {
     const std::vector<int> blockers = robots_in_area(id, swept);
     if (!blockers.empty()) {
-      if (!manager_.frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
-      manager_.wait_for_area(id, blockers);
+      if (!manager_->frozen(id)) stand_where_it_is(request.robot_id, id, now_sim);
+      manager_->wait_for_area(id, blockers);
       answer.status = "AREA_WAITING";
       for (int b : blockers) answer.blocked_by.push_back(names_[b]);
       // Known as waiting for them: a robot whose way out onto the road it stands in goes first.
@@ -263,10 +269,10 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
       return;
     }
     working_.insert(request.robot_id);
-    manager_.wait_for_area(id, {});
+    manager_->wait_for_area(id, {});
     log_->debug("traffic: {} manoeuvres beside the roads", request.robot_id);
   }
-  if (manager_.has_robot(id) && !manager_.frozen(id)) manager_.remove_robot(id, now_sim);
+  if (manager_->has_robot(id) && !manager_->frozen(id)) manager_->remove_robot(id, now_sim);
   hold_body(request.robot_id, id, area, now_sim);
   answer.status = "AREA_CLEAR";
   publish(std::move(answer), now_wall);
@@ -300,10 +306,10 @@ std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon&
     const auto number = numbers_.find(name);
     if (number == numbers_.end()) continue;
     const auto held = held_bodies_.find(name);
-    const bool standing = manager_.frozen(number->second) && held != held_bodies_.end();
+    const bool standing = manager_->frozen(number->second) && held != held_bodies_.end();
     bodies[number->second] = standing ? held->second : polygon;
   }
-  return manager_.holders_in_area(id, area, bodies);
+  return manager_->holders_in_area(id, area, bodies);
 }
 
 bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall) {
@@ -322,7 +328,7 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
       blocker_ids.push_back(b);
     }
   }
-  manager_.wait_for_area(id, blocker_ids);
+  manager_->wait_for_area(id, blocker_ids);
   if (!blockers.empty()) {
     wait_to_enter(request, std::move(blockers), now_sim, now_wall);
     return false;
@@ -346,14 +352,14 @@ bool TrafficControl::hold_body(const std::string& robot_id, int id, const geomet
                                         std::logical_or<>(), [](const geometry::Vec2& a, const geometry::Vec2& b) {
                                           return geometry::distance(a, b) > kMovedM;
                                         });
-  if (!moved && manager_.has_robot(id) == manager_.frozen(id)) return manager_.frozen(id);
+  if (!moved && manager_->has_robot(id) == manager_->frozen(id)) return manager_->frozen(id);
   held_bodies_[robot_id] = body;
-  return manager_.hold_body(id, body, now_sim);
+  return manager_->hold_body(id, body, now_sim);
 }
 
 bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, double now_sim, bool keep_turn) {
-  const geometry::Polygon turn = keep_turn ? manager_.turn_area(id) : geometry::Polygon{};
-  manager_.remove_robot(id, now_sim);
+  const geometry::Polygon turn = keep_turn ? manager_->turn_area(id) : geometry::Polygon{};
+  manager_->remove_robot(id, now_sim);
   held_bodies_.erase(robot_id);  // held anew from where it stands now
   const auto body = bodies_.find(robot_id);
   if (body == bodies_.end()) return false;
@@ -372,9 +378,9 @@ void TrafficControl::update(double now_sim, double now_wall) {
   for (const auto& [robot_id, body] : bodies_) {
     const int id = number_of(robot_id);
     if (heard_.contains(robot_id) && working_.contains(robot_id)) continue;
-    if (!heard_.contains(robot_id) || manager_.frozen(id)) hold_body(robot_id, id, body, now_sim);
+    if (!heard_.contains(robot_id) || manager_->frozen(id)) hold_body(robot_id, id, body, now_sim);
   }
-  const traffic::UpdateResult result = manager_.update(now_sim);
+  const traffic::UpdateResult result = manager_->update(now_sim);
   for (const auto& e : result.events) {
     std::string others;
     for (int o : e.others) others += (others.empty() ? "" : ", ") + names_[o];
@@ -387,12 +393,12 @@ void TrafficControl::update(double now_sim, double now_wall) {
         log_->info("traffic: {} re-routed around {}", robot, others);
         break;
       case traffic::TrafficEvent::Kind::kSidingSent: {
-        const auto& route = manager_.route(e.robot_id);
+        const auto& route = manager_->route(e.robot_id);
         if (route.empty()) {
           log_->info("traffic: {} yields on a siding to {}", robot, others);
           break;
         }
-        const auto& zones = manager_.zones();
+        const auto& zones = manager_->zones();
         const auto from = zones.position(zones.place_of(route.front()));
         const auto to = zones.position(zones.place_of(route.back()));
         log_->info("traffic: {} yields on a siding to {}: from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})", robot, others,
@@ -410,12 +416,12 @@ void TrafficControl::update(double now_sim, double now_wall) {
       case traffic::TrafficEvent::Kind::kUnresolvedDeadlock: {
         std::string members;
         for (int o : e.others) {
-          const auto& route = manager_.route(o);
+          const auto& route = manager_->route(o);
           if (route.empty()) continue;
-          const auto from = manager_.zones().position(manager_.zones().place_of(route.front()));
-          const auto to = manager_.zones().position(manager_.zones().place_of(route.back()));
+          const auto from = manager_->zones().position(manager_->zones().place_of(route.front()));
+          const auto to = manager_->zones().position(manager_->zones().place_of(route.back()));
           members += fmt::format(" {}: ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}), {} points, holds {};", names_[o], from.x,
-                                 from.y, to.x, to.y, route.size(), manager_.held_places(o).size());
+                                 from.y, to.x, to.y, route.size(), manager_->held_places(o).size());
         }
         log_->debug("traffic: wait cycle [{}] has no way out yet:{}", others, members);
         break;
@@ -424,13 +430,13 @@ void TrafficControl::update(double now_sim, double now_wall) {
   }
   for (const traffic::Grant& g : result.grants) {
     const std::string& robot = names_[g.robot_id];
-    if (manager_.frozen(g.robot_id)) {
+    if (manager_->frozen(g.robot_id)) {
       // Standing where it is (parked, lost, or not admitted yet): nothing to grant, its places shown.
       auto& status = status_[robot];
       // Waiting to enter or for its work area: keeps who it waits for.
       if (status.status == "WAITING" || status.status == "AREA_WAITING") continue;
       status = {"STANDING", 0.0, {}, {}};
-      for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
+      for (int place : manager_->held_places(g.robot_id)) status.held.push_back(manager_->zones().position(place));
       continue;
     }
     model::TrafficGrant grant;
@@ -454,7 +460,7 @@ void TrafficControl::update(double now_sim, double now_wall) {
     status.waited_s = grant.waited_s;
     status.blocked_by = grant.blocked_by;
     status.held.clear();
-    for (int place : manager_.held_places(g.robot_id)) status.held.push_back(manager_.zones().position(place));
+    for (int place : manager_->held_places(g.robot_id)) status.held.push_back(manager_->zones().position(place));
     publish(std::move(grant), now_wall);
   }
 }

@@ -28,6 +28,9 @@ class TrafficControl {
   /// `map_id` names the map whose road graph `graph` is: requests for another map are ignored.
   TrafficControl(const map::RoadGraph& graph, std::string map_id, const traffic::TrafficConfiguration& configuration,
                  dds::Participant& participant, Logger log);
+  /// The same with a manager already built (a map switch builds it off the server loop).
+  TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id, dds::Participant& participant,
+                 Logger log);
 
   /// Reads the agents' routes and progress (call every loop).
   void handle_requests(double now_sim, double now_wall);
@@ -70,7 +73,7 @@ class TrafficControl {
   bool way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
   void publish(model::TrafficGrant grant, double now_wall);
 
-  traffic::TrafficManager manager_;
+  std::unique_ptr<traffic::TrafficManager> manager_;
   std::string map_id_;
   std::set<std::string> other_map_;  ///< robots whose last request was for another map (logged once)
   Logger log_;

@@ -220,7 +220,7 @@ std::vector<std::string> job_assumptions(const JobCycleResult& j) {
 }
 
 /// How the picker gets from place to place: the server's travel planner for its fleet
-/// (FleetServer::build_fleet_graphs: its fleet graph, only the lanes its vehicle fits), where it
+/// (server::derive_site: its fleet graph, only the lanes its vehicle fits), where it
 /// stands beside a place, and a leg's time at its profile.
 class PickerRoads {
  public:

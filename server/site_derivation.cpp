@@ -1,0 +1,38 @@
+#include "server/site_derivation.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "traffic/traffic_settings.hpp"
+
+namespace fleet::server {
+
+SiteDerivation derive_site(std::shared_ptr<const map::SiteMap> site_map, const config::FleetConfig& config) {
+  SiteDerivation d;
+  d.known_names = orders::known_names(config, site_map->site);
+  const auto graphs = traffic::fleet_graphs(site_map->graph.graph, config);
+  for (auto& ability : d.known_names.abilities) {
+    const map::RoadGraph& graph = graphs.at(ability.fleet_id);
+    d.travel.emplace(ability.fleet_id, planning::RoadDistances(graph));
+    ability.out_of_reach = traffic::fleet_places_out_of_reach(*site_map, graph, config, ability.fleet_id);
+  }
+  if (config.settings.get_bool("traffic.enabled")) {
+    d.traffic = std::make_unique<traffic::TrafficManager>(site_map->graph.graph, traffic::configuration_from(config));
+  }
+  d.site_map = std::move(site_map);
+  return d;
+}
+
+SiteDerivation load_revision(const map::Site& current, const std::string& map_id, const config::FleetConfig& config) {
+  std::shared_ptr<const map::SiteMap> next;
+  try {
+    next = std::make_shared<const map::SiteMap>(
+        map::load_site_map((std::filesystem::path(current.file).parent_path() / (map_id + ".yaml")).string()));
+  } catch (const std::exception& e) {
+    throw std::runtime_error("map '" + map_id + "' cannot be loaded: " + e.what());
+  }
+  if (std::string why = map::revision_mismatch(current, next->site); !why.empty()) throw std::runtime_error(why);
+  return derive_site(std::move(next), config);
+}
+
+}  // namespace fleet::server

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "orders/order_request_check.hpp"
+#include "planning/road_travel.hpp"
+#include "traffic/traffic_manager.hpp"
+
+namespace fleet::server {
+
+/// What the server derives from a site map: the names orders may use with what each fleet can
+/// reach, each fleet's road distances, and the traffic manager with the site's conflict zones.
+/// On the plant it takes the best part of a second, so a map switch derives it off the server
+/// loop and adopts it on the loop once it is ready.
+struct SiteDerivation {
+  std::shared_ptr<const map::SiteMap> site_map;
+  orders::KnownNames known_names;
+  std::map<std::string, planning::RoadDistances> travel;
+  std::unique_ptr<traffic::TrafficManager> traffic;  ///< null when traffic.enabled is false
+};
+
+/// Derives `site_map` for the fleets of `config`.
+SiteDerivation derive_site(std::shared_ptr<const map::SiteMap> site_map, const config::FleetConfig& config);
+
+/// Loads map `map_id` from the folder of `current`'s file, checks that it is a revision of the
+/// same site (map::revision_mismatch) and derives it. Throws std::runtime_error with the reason
+/// for the operator.
+SiteDerivation load_revision(const map::Site& current, const std::string& map_id, const config::FleetConfig& config);
+
+}  // namespace fleet::server

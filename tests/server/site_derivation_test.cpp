@@ -1,0 +1,51 @@
+#include "server/site_derivation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+using namespace fleet;
+
+namespace {
+
+std::string refusal(const map::Site& current, const std::string& map_id, const config::FleetConfig& config) {
+  try {
+    server::load_revision(current, map_id, config);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
+  const map::SiteMap table_a = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  config.settings.set("traffic.enabled", "true", "site_derivation_test");
+  const server::SiteDerivation closed = server::load_revision(table_a.site, "table_a_north_closed", config);
+  ASSERT_NE(closed.site_map, nullptr);
+  EXPECT_EQ(closed.site_map->site.name, "table_a_north_closed");
+  EXPECT_LT(closed.site_map->graph.graph.points.size(), table_a.graph.graph.points.size());
+  ASSERT_NE(closed.traffic, nullptr);
+  EXPECT_GT(closed.traffic->zones().place_count(), 0);
+  for (const auto& fleet : config.fleets) EXPECT_TRUE(closed.travel.contains(fleet.id)) << fleet.id;
+  EXPECT_FALSE(closed.known_names.abilities.empty());
+
+  config.settings.set("traffic.enabled", "false", "site_derivation_test");
+  EXPECT_EQ(server::derive_site(closed.site_map, config).traffic, nullptr);
+}
+
+TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
+  const map::SiteMap table_a = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const std::string missing = refusal(table_a.site, "table_z", config);
+  EXPECT_NE(missing.find("map 'table_z' cannot be loaded"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("table_z.yaml"), std::string::npos) << missing;
+  const std::string other_site = refusal(table_a.site, "table_b", config);
+  EXPECT_FALSE(other_site.empty());
+  EXPECT_EQ(other_site,
+            map::revision_mismatch(table_a.site, map::load_site_map(FLEET_SOURCE_DIR "/maps/table_b.yaml").site));
+}
