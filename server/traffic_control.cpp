@@ -370,7 +370,41 @@ bool TrafficControl::stand_where_it_is(const std::string& robot_id, int id, doub
   return hold_body(robot_id, id, traffic::convex_hull(std::move(corners)), now_sim);
 }
 
+void TrafficControl::note_stuck_cycle(const traffic::TrafficEvent& e, const std::string& others, double now_sim) {
+  // A wait cycle the manager cannot break in this long is worth a warning: the soak counts its
+  // robots as deadlocked after 60 s, and the log then says who waits for whom, along which routes.
+  constexpr double kReportStuckCycleAfter = 30.0;  // sim s
+  std::string members;
+  for (int o : e.others) {
+    const auto& route = manager_->route(o);
+    if (route.empty()) continue;
+    const auto from = manager_->zones().position(manager_->zones().place_of(route.front()));
+    const auto to = manager_->zones().position(manager_->zones().place_of(route.back()));
+    std::string waits_for;
+    if (const auto status = status_.find(names_[o]); status != status_.end()) {
+      for (const auto& b : status->second.blocked_by) waits_for += (waits_for.empty() ? "" : " ") + b;
+    }
+    members += fmt::format(" {}: ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}), {} points, holds {}, waits for [{}];", names_[o],
+                           from.x, from.y, to.x, to.y, route.size(), manager_->held_places(o).size(), waits_for);
+  }
+  // Members sorted: the same cycle found from another member is the same cycle.
+  std::vector<std::string> sorted;
+  for (int o : e.others) sorted.push_back(names_[o]);
+  std::sort(sorted.begin(), sorted.end());
+  std::string key;
+  for (const auto& name : sorted) key += (key.empty() ? "" : ", ") + name;
+  StuckCycle& cycle = stuck_cycles_.try_emplace(key, StuckCycle{now_sim, now_sim, false}).first->second;
+  cycle.last_seen = now_sim;
+  if (!cycle.reported && now_sim - cycle.since >= kReportStuckCycleAfter) {
+    cycle.reported = true;
+    log_->warn("traffic: wait cycle [{}] has had no way out for {:.0f} s:{}", others, now_sim - cycle.since, members);
+  } else {
+    log_->debug("traffic: wait cycle [{}] has no way out yet:{}", others, members);
+  }
+}
+
 void TrafficControl::update(double now_sim, double now_wall) {
+  constexpr double kForgetCycleAfter = 5.0;  // sim s without a stuck cycle: broken, or other members
   // Robots not heard from yet (the manager just started among them) hold what their bodies
   // stand on, before anyone is granted more; so do lost ones (robot_lost). A robot working
   // beside the roads holds the area of its manoeuvre, renewed by its requests: held as its body
@@ -413,21 +447,12 @@ void TrafficControl::update(double now_sim, double now_wall) {
         break;
       case traffic::TrafficEvent::Kind::kRobotRemoved:
         break;
-      case traffic::TrafficEvent::Kind::kUnresolvedDeadlock: {
-        std::string members;
-        for (int o : e.others) {
-          const auto& route = manager_->route(o);
-          if (route.empty()) continue;
-          const auto from = manager_->zones().position(manager_->zones().place_of(route.front()));
-          const auto to = manager_->zones().position(manager_->zones().place_of(route.back()));
-          members += fmt::format(" {}: ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}), {} points, holds {};", names_[o], from.x,
-                                 from.y, to.x, to.y, route.size(), manager_->held_places(o).size());
-        }
-        log_->debug("traffic: wait cycle [{}] has no way out yet:{}", others, members);
+      case traffic::TrafficEvent::Kind::kUnresolvedDeadlock:
+        note_stuck_cycle(e, others, now_sim);
         break;
-      }
     }
   }
+  std::erase_if(stuck_cycles_, [&](const auto& entry) { return now_sim - entry.second.last_seen > kForgetCycleAfter; });
   for (const traffic::Grant& g : result.grants) {
     const std::string& robot = names_[g.robot_id];
     if (manager_->frozen(g.robot_id)) {

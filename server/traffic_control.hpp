@@ -72,6 +72,9 @@ class TrafficControl {
   /// it. Otherwise the robot is answered WAITING for those in it.
   bool way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
   void publish(model::TrafficGrant grant, double now_wall);
+  /// A wait cycle the manager found no way out of (TrafficEvent kUnresolvedDeadlock, `others` its
+  /// members): logged at debug, and once as a warning when it lasts (stuck_cycles_).
+  void note_stuck_cycle(const traffic::TrafficEvent& e, const std::string& others, double now_sim);
 
   std::unique_ptr<traffic::TrafficManager> manager_;
   std::string map_id_;
@@ -83,6 +86,14 @@ class TrafficControl {
   std::set<std::string> working_;  ///< robots holding their work area
   std::map<std::string, double> sent_wall_;
   std::map<std::string, TrafficStatus> status_;
+  /// Wait cycles the manager finds no way out of, by their members: a cycle that lasts is
+  /// reported once as a warning, naming each member's route (see update()).
+  struct StuckCycle {
+    double since = 0.0;      ///< sim s, first seen
+    double last_seen = 0.0;  ///< sim s
+    bool reported = false;
+  };
+  std::map<std::string, StuckCycle> stuck_cycles_;
   struct Trim {
     std::uint64_t version = 0;
     int skipped = 0;      ///< route points cut off behind the robot when it entered
