@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "common/process_memory.hpp"
 #include "model/names.hpp"
@@ -12,7 +11,6 @@
 #include "monitor/robot_health.hpp"
 #include "orders/order_request_check.hpp"
 #include "traffic/conflict_zones.hpp"
-#include "traffic/traffic_settings.hpp"
 
 namespace fleet::server {
 

@@ -5,6 +5,8 @@
 #include <functional>
 #include <numeric>
 
+#include "model/names.hpp"
+
 namespace fleet::server {
 
 namespace {
@@ -39,12 +41,6 @@ bool same_grant(const model::TrafficGrant& a, const model::TrafficGrant& b) {
          a.blocked_by == b.blocked_by && a.instruction == b.instruction && a.route == b.route;
 }
 }  // namespace
-
-TrafficControl::TrafficControl(const map::RoadGraph& graph, std::string map_id,
-                               const traffic::TrafficConfiguration& configuration, dds::Participant& participant,
-                               Logger log)
-    : TrafficControl(std::make_unique<traffic::TrafficManager>(graph, configuration), std::move(map_id), participant,
-                     std::move(log)) {}
 
 TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id,
                                dds::Participant& participant, Logger log)
@@ -374,28 +370,27 @@ void TrafficControl::note_stuck_cycle(const traffic::TrafficEvent& e, const std:
   // A wait cycle the manager cannot break in this long is worth a warning: the soak counts its
   // robots as deadlocked after 60 s, and the log then says who waits for whom, along which routes.
   constexpr double kReportStuckCycleAfter = 30.0;  // sim s
+  // Members sorted: the same cycle found from another member is the same cycle.
+  std::vector<std::string> sorted;
+  for (int o : e.others) sorted.push_back(names_[o]);
+  std::sort(sorted.begin(), sorted.end());
+  StuckCycle& cycle = stuck_cycles_.try_emplace(model::join(sorted), StuckCycle{now_sim, now_sim, false}).first->second;
+  cycle.last_seen = now_sim;
+  const bool report = !cycle.reported && now_sim - cycle.since >= kReportStuckCycleAfter;
+  // Found again every cycle while it lasts: described only when it is logged.
+  if (!report && !log_->should_log(spdlog::level::debug)) return;
   std::string members;
   for (int o : e.others) {
     const auto& route = manager_->route(o);
     if (route.empty()) continue;
     const auto from = manager_->zones().position(manager_->zones().place_of(route.front()));
     const auto to = manager_->zones().position(manager_->zones().place_of(route.back()));
-    std::string waits_for;
-    if (const auto status = status_.find(names_[o]); status != status_.end()) {
-      for (const auto& b : status->second.blocked_by) waits_for += (waits_for.empty() ? "" : " ") + b;
-    }
+    const auto status = status_.find(names_[o]);
+    const std::string waits_for = status != status_.end() ? model::join(status->second.blocked_by, " ") : "";
     members += fmt::format(" {}: ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}), {} points, holds {}, waits for [{}];", names_[o],
                            from.x, from.y, to.x, to.y, route.size(), manager_->held_places(o).size(), waits_for);
   }
-  // Members sorted: the same cycle found from another member is the same cycle.
-  std::vector<std::string> sorted;
-  for (int o : e.others) sorted.push_back(names_[o]);
-  std::sort(sorted.begin(), sorted.end());
-  std::string key;
-  for (const auto& name : sorted) key += (key.empty() ? "" : ", ") + name;
-  StuckCycle& cycle = stuck_cycles_.try_emplace(key, StuckCycle{now_sim, now_sim, false}).first->second;
-  cycle.last_seen = now_sim;
-  if (!cycle.reported && now_sim - cycle.since >= kReportStuckCycleAfter) {
+  if (report) {
     cycle.reported = true;
     log_->warn("traffic: wait cycle [{}] has had no way out for {:.0f} s:{}", others, now_sim - cycle.since, members);
   } else {

@@ -25,10 +25,8 @@ struct TrafficStatus {
 /// traffic::TrafficManager, its grants out as TrafficGrant, one update per cycle.
 class TrafficControl {
  public:
-  /// `map_id` names the map whose road graph `graph` is: requests for another map are ignored.
-  TrafficControl(const map::RoadGraph& graph, std::string map_id, const traffic::TrafficConfiguration& configuration,
-                 dds::Participant& participant, Logger log);
-  /// The same with a manager already built (a map switch builds it off the server loop).
+  /// `manager` is built on the road graph of map `map_id` (server::derive_site, off the server
+  /// loop on a map switch): requests for another map are ignored.
   TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id, dds::Participant& participant,
                  Logger log);
 
