@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -107,10 +108,54 @@ void TrafficManager::install_route(Robot& robot, std::vector<int> points, std::u
   robot.kept_out_by.clear();
   robot.stopped_for.clear();
   robot.giving_way_to.clear();
+  robot.trail_ahead.clear();
   // Previous holdings stay until the robot is past the first edge of the new route.
   std::size_t k = 0;
   while (k + 1 < n && robot.places[k + 1] == robot.places[0]) ++k;
   robot.trail_release = robot.release_at[k];
+}
+
+void TrafficManager::change_route(Robot& robot, std::vector<int> points, std::uint64_t version, bool sent) {
+  const int start = zones_->place_of(points.front());
+  if (!sent) {
+    // A route of its own making may start from wherever it has driven to since its last report:
+    // all it held stays until it is past the new route's first edge.
+    std::vector<int> held = held_places(robot.id);
+    held.erase(std::remove(held.begin(), held.end(), start), held.end());
+    install_route(robot, std::move(points), version);
+    robot.trail = std::move(held);
+    return;
+  }
+  // Sent a route while it waits, it stands where it last reported: its old trail and the places
+  // of its old route up to there (and on to the new route's start, when that lies ahead) are
+  // where it is. Granted beyond that: places it may still drive into until it drives the new
+  // route, held until it reports that it does.
+  std::vector<int> ahead = robot.trail_ahead;
+  sort_unique(ahead);
+  std::vector<int> behind;
+  for (int p : robot.trail) {
+    if (!std::binary_search(ahead.begin(), ahead.end(), p)) behind.push_back(p);
+  }
+  int kept = reached_index(robot);
+  for (int k = kept; k <= robot.grant_end; ++k) {
+    if (robot.places[static_cast<std::size_t>(k)] == start) kept = k;
+  }
+  // A robot stopped for a body drives on once the body has gone: until the new route reaches it,
+  // it may have crept on. Its body's reach further along stays held as well.
+  const double crept = robot.cum[static_cast<std::size_t>(kept)] + footprint_reach(robot.type);
+  while (kept < robot.grant_end && robot.cum[static_cast<std::size_t>(kept) + 1] <= crept) ++kept;
+  for (int k = robot.first_held; k <= kept; ++k) behind.push_back(robot.places[static_cast<std::size_t>(k)]);
+  for (int k = kept + 1; k <= robot.grant_end; ++k) ahead.push_back(robot.places[static_cast<std::size_t>(k)]);
+  behind.push_back(start);
+  sort_unique(behind);
+  sort_unique(ahead);
+  std::vector<int> only_ahead;
+  std::set_difference(ahead.begin(), ahead.end(), behind.begin(), behind.end(), std::back_inserter(only_ahead));
+  behind.erase(std::remove(behind.begin(), behind.end(), start), behind.end());
+  install_route(robot, std::move(points), version);
+  robot.trail.clear();
+  std::merge(behind.begin(), behind.end(), only_ahead.begin(), only_ahead.end(), std::back_inserter(robot.trail));
+  robot.trail_ahead = std::move(only_ahead);
 }
 
 void TrafficManager::wait_for_area(int robot_id, std::vector<int> blockers) {
@@ -151,13 +196,10 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   Robot& robot = it->second;
   // A standing robot (frozen, or holding its body) has no route version to be newer than.
   if (!robot.frozen && request.version <= robot.version) return SubmitStatus::kStale;
-  std::vector<int> held = held_places(robot.id);
-  const int start = zones_->place_of(points.front());
-  if (!std::binary_search(held.begin(), held.end(), start)) return SubmitStatus::kInvalid;
-  held.erase(std::remove(held.begin(), held.end(), start), held.end());
+  const std::vector<int> held = held_places(robot.id);
+  if (!std::binary_search(held.begin(), held.end(), zones_->place_of(points.front()))) return SubmitStatus::kInvalid;
   const bool was_standing = robot.frozen;
-  install_route(robot, points, request.version);
-  robot.trail = std::move(held);
+  change_route(robot, points, request.version, /*sent=*/false);
   robot.pending = Instruction::kNone;
   robot.in_siding = false;
   robot.yield_to.clear();
@@ -182,6 +224,13 @@ void TrafficManager::report_progress(const ProgressReport& report, double now) {
   Robot& robot = it->second;
   if (report.version != robot.version) return;
   robot.pending = Instruction::kNone;  // the robot drives this version: the instruction arrived
+  if (!robot.trail_ahead.empty()) {
+    std::vector<int> kept;
+    std::set_difference(robot.trail.begin(), robot.trail.end(), robot.trail_ahead.begin(), robot.trail_ahead.end(),
+                        std::back_inserter(kept));
+    robot.trail = std::move(kept);
+    robot.trail_ahead.clear();
+  }
   robot.stopped_for.clear();
   for (int other : report.stopped_for) {
     if (other != robot.id && robots_.count(other) != 0) robot.stopped_for.push_back(other);
@@ -302,6 +351,7 @@ void TrafficManager::release_passed(Robot& robot) {
   }
   if (robot.progress > robot.trail_release) {
     robot.trail.clear();
+    robot.trail_ahead.clear();
     robot.body_reach.clear();
     robot.body_polygon.clear();
     robot.reach_of_turn = false;
@@ -324,135 +374,17 @@ std::vector<int> TrafficManager::held_places(int robot_id) const {
   return held;
 }
 
+double TrafficManager::footprint_reach(int type) const {
+  double reach = 0.0;
+  for (const auto& corner : zones_->vehicle_types()[static_cast<std::size_t>(type)].footprint) {
+    reach = std::max(reach, std::hypot(corner.x, corner.y));
+  }
+  return reach;
+}
+
 bool TrafficManager::holds_place_of(int robot_id, int point) const {
   const std::vector<int> held = held_places(robot_id);
   return std::binary_search(held.begin(), held.end(), zones_->place_of(point));
-}
-
-TrafficManager::EntryPoint TrafficManager::entry_point(int robot_id, const std::vector<int>& points,
-                                                       double progress) const {
-  std::vector<double> cum(points.size(), 0.0);
-  for (std::size_t k = 1; k < points.size(); ++k) cum[k] = cum[k - 1] + search_->edge_length(points[k - 1], points[k]);
-  std::size_t skip = 0;
-  while (skip + 1 < points.size() && cum[skip + 1] <= progress) ++skip;
-  const std::vector<int> held = held_places(robot_id);
-  const auto holds = [&](std::size_t k) {
-    return std::binary_search(held.begin(), held.end(), zones_->place_of(points[k]));
-  };
-  if (held.empty() || holds(skip)) return {skip, cum[skip]};
-  double reach = 0.0;
-  for (const auto& corner : zones_->vehicle_types()[static_cast<std::size_t>(type_of(robot_id))].footprint) {
-    reach = std::max(reach, std::hypot(corner.x, corner.y));
-  }
-  for (std::size_t k = skip + 1; k < points.size() && cum[k] <= cum[skip] + reach; ++k) {
-    if (holds(k)) return {k, cum[k]};
-  }
-  return {skip, cum[skip]};
-}
-
-void TrafficManager::claim_entry(int robot_id, int point, double now) {
-  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return;
-  const int place = zones_->place_of(point);
-  auto it = entries_.find(robot_id);
-  if (it == entries_.end() || it->second.place != place) {
-    entries_[robot_id] = {place, now};
-    return;
-  }
-  EntryClaim& claim = it->second;
-  if (claim_active(robot_id, claim, now) && claim_waits_on_itself(robot_id, claim)) {
-    claim.lifted_until = now + configuration_.priority_wait;
-  }
-}
-
-bool TrafficManager::claim_in_line(int robot_id, const EntryClaim& claim, double now) const {
-  // A robot the manager knows (standing at a loading area) is already on the roads' edge: it
-  // claims no place in line.
-  return robots_.count(robot_id) == 0 && now - claim.since >= configuration_.priority_wait;
-}
-
-bool TrafficManager::claim_active(int robot_id, const EntryClaim& claim, double now) const {
-  return claim_in_line(robot_id, claim, now) && now >= claim.lifted_until;
-}
-
-bool TrafficManager::claim_waits_on_itself(int robot_id, const EntryClaim& claim) const {
-  // Depth-first over who waits for whom: a robot on the roads waits for the robots it is blocked
-  // by and the entrants whose claims keep it out; an entrant waits for the holders of its entry.
-  std::vector<int> stack = holders_of(claim.place, robot_id);
-  std::vector<int> seen;
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
-    if (id == robot_id) return true;
-    if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
-    seen.push_back(id);
-    if (auto robot = robots_.find(id); robot != robots_.end()) {
-      stack.insert(stack.end(), robot->second.blocked_by.begin(), robot->second.blocked_by.end());
-      stack.insert(stack.end(), robot->second.kept_out_by.begin(), robot->second.kept_out_by.end());
-    } else if (auto entrant = entries_.find(id); entrant != entries_.end()) {
-      const std::vector<int> holders = holders_of(entrant->second.place, id);
-      stack.insert(stack.end(), holders.begin(), holders.end());
-    }
-  }
-  return false;
-}
-
-void TrafficManager::drop_entry(int robot_id) {
-  entries_.erase(robot_id);
-}
-
-std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, double now) const {
-  std::vector<int> out;
-  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return out;
-  const int place = zones_->place_of(point);
-  const auto mine = entries_.find(robot_id);
-  const auto self = robots_.find(robot_id);
-  for (const auto& [id, claim] : entries_) {
-    if (id == robot_id || !claim_in_line(id, claim, now)) continue;
-    if (mine != entries_.end() &&
-        (mine->second.since < claim.since || (mine->second.since == claim.since && robot_id < id))) {
-      continue;
-    }
-    if (!zones_->conflict(type_of(robot_id), place, type_of(id), claim.place)) continue;
-    if (self != robots_.end() && closes(self->second, claim.place, type_of(id))) continue;
-    out.push_back(id);
-  }
-  return out;
-}
-
-TrafficManager::Entry TrafficManager::entry_for(int point, int robot_id, double now) const {
-  Entry entry;
-  entry.blockers = holders_in_conflict(point, robot_id);
-  const auto self = robots_.find(robot_id);
-  if (!entry.blockers.empty() && self != robots_.end() && self->second.frozen) {
-    if (holds_place_of(robot_id, point)) {
-      const auto waits_for_it = [&](int id) {
-        const Robot& holder = robots_.at(id);
-        return !holder.frozen && holder.wait_since >= 0.0 &&
-               std::binary_search(holder.blocked_by.begin(), holder.blocked_by.end(), robot_id);
-      };
-      if (std::all_of(entry.blockers.begin(), entry.blockers.end(), waits_for_it)) {
-        entry.blockers.clear();
-        entry.as_standing = true;
-        return entry;
-      }
-    }
-  }
-  if (entry.blockers.empty()) entry.blockers = earlier_entry_claims(point, robot_id, now);
-  return entry;
-}
-
-std::vector<int> TrafficManager::holders_in_conflict(int point, int robot_id) const {
-  if (point < 0 || static_cast<std::size_t>(point) >= graph_.points.size()) return {};
-  return holders_of(zones_->place_of(point), robot_id);
-}
-
-std::vector<int> TrafficManager::holders_of(int place, int robot_id) const {
-  std::vector<int> out;
-  const int type = type_of(robot_id);
-  for (const auto& [id, robot] : robots_) {
-    if (id != robot_id && closes(robot, place, type)) out.push_back(id);
-  }
-  return out;
 }
 
 const std::vector<int>& TrafficManager::route(int robot_id) const {

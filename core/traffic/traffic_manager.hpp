@@ -343,6 +343,9 @@ class TrafficManager {
     int first_held = 0;
     int grant_end = 0;
     std::vector<int> trail;      ///< places of a previous route still held
+    /// The part of `trail` granted on that route beyond where the robot stood when it was sent a
+    /// new one: it may still drive into them until it reports driving the new route.
+    std::vector<int> trail_ahead;
     double trail_release = 0.0;  ///< progress past which `trail` is freed
     double wait_since = -1.0;
     double last_reroute = -std::numeric_limits<double>::infinity();
@@ -378,6 +381,12 @@ class TrafficManager {
   };
 
   void install_route(Robot& robot, std::vector<int> points, std::uint64_t version);
+  /// Installs a new route for a robot on the roads; what it held before becomes its trail. A
+  /// route the manager `sent` (a re-route, a siding) keeps the old grant beyond where the robot
+  /// stood only until the robot reports driving the new route.
+  void change_route(Robot& robot, std::vector<int> points, std::uint64_t version, bool sent);
+  /// The farthest corner of a vehicle type's footprint from its reference point, metres.
+  double footprint_reach(int type) const;
   /// A new route: a held arrival area stays held as the body's reach until the robot is past the
   /// new route's first edge (its way out of where it turned in); the area asked for is dropped.
   void leave_arrival(Robot& robot);

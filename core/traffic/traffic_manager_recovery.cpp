@@ -123,11 +123,7 @@ int TrafficManager::slot_of(int robot_id) const {
 }
 
 void TrafficManager::replace_route(Robot& robot, std::vector<int> points, Instruction instruction, double now) {
-  std::vector<int> held = held_places(robot.id);
-  const int start = zones_->place_of(points.front());
-  held.erase(std::remove(held.begin(), held.end(), start), held.end());
-  install_route(robot, std::move(points), robot.version + 1);
-  robot.trail = std::move(held);
+  change_route(robot, std::move(points), robot.version + 1, /*sent=*/true);
   leave_arrival(robot);
   robot.pending = instruction;
   robot.last_reroute = now;
