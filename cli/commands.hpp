@@ -43,5 +43,6 @@ int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err
 int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // dock-eval
 int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // pick-eval
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
+int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // mapf-eval
 
 }  // namespace fleet::cli

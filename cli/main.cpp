@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     if (name == "pick-eval") return pick_eval_command(command, out, err);
     if (name == "fleets") return fleets_command(command, out, err);
     if (name == "traffic-eval") return traffic_eval_command(command, out, err);
+    if (name == "mapf-eval") return mapf_eval_command(command, out, err);
     if (name == "config") {
       if (!command.args.empty() && command.args[0] == "keys") {
         Args keys_args(std::vector<std::string>(command.args.begin() + 1, command.args.end()));

@@ -1,0 +1,224 @@
+#include "coordination/lifelong_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace fleet::coordination {
+
+LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSettings& settings)
+    : instance_(instance),
+      settings_(settings),
+      distances_(instance.map),
+      planner_(instance.map, distances_, settings.seed),
+      graph_(instance.map.cells(), static_cast<int>(instance.starts.size())),
+      delay_rng_(settings.seed * 0x9E3779B97F4A7C15ULL + 1) {
+  const std::size_t n = instance.starts.size();
+  robots_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) robots_[i] = {instance.starts[i], 0, -1};
+  assigned_.resize(n);
+  handed_out_.assign(n, 0);
+  delay_left_.assign(n, 0);
+  still_for_.assign(n, 0);
+  result_.actions.resize(n);
+  result_.events.resize(n);
+  hand_out_errands();
+}
+
+void LifelongGridRun::hand_out_errands() {
+  const int team = static_cast<int>(robots_.size());
+  const int tasks = static_cast<int>(instance_.tasks.size());
+  for (int r = 0; r < team; ++r) {
+    while (static_cast<int>(assigned_[r].size()) < instance_.tasks_revealed) {
+      const long line = static_cast<long>(handed_out_[r]) * team + r;
+      const ErrandRecord errand{next_errand_id_++, instance_.tasks[static_cast<std::size_t>(line % tasks)]};
+      assigned_[r].push_back(errand);
+      result_.errands.push_back(errand);
+      result_.events[r].push_back({errand.id, step_, false});
+      ++handed_out_[r];
+    }
+    robots_[r].goal = assigned_[r].front().cell;
+  }
+}
+
+void LifelongGridRun::plan_and_load() {
+  const auto cells = planner_.plan(robots_, settings_.window);
+  std::vector<PlannedRoute> routes(robots_.size());
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    PlannedRoute& route = routes[r];
+    for (std::size_t t = 0; t < cells[r].size(); ++t) {
+      if (route.places.empty() || route.places.back() != cells[r][t]) {
+        route.places.push_back(cells[r][t]);
+        route.entry_steps.push_back(static_cast<int>(t));
+      }
+    }
+  }
+  graph_.load(routes);
+}
+
+GridAction LifelongGridRun::turn_towards(int robot, int heading) const {
+  const int d = (heading - robots_[robot].heading + kHeadings) % kHeadings;
+  if (d == 0) return GridAction::kWait;
+  return d == 3 ? GridAction::kCounterClockwise : GridAction::kClockwise;
+}
+
+GridAction LifelongGridRun::best_turn_in_place(int robot) {
+  // Waiting anyway: face the way that leaves the fewest actions to the goal.
+  const GridRobot& r = robots_[robot];
+  const int here = distances_.to(r.goal, r.cell, r.heading);
+  const int right = distances_.to(r.goal, r.cell, clockwise(r.heading));
+  const int left = distances_.to(r.goal, r.cell, counter_clockwise(r.heading));
+  if (right < here && right <= left) return GridAction::kClockwise;
+  if (left < here) return GridAction::kCounterClockwise;
+  return GridAction::kWait;
+}
+
+std::vector<bool> LifelongGridRun::draw_delays() {
+  std::vector<bool> stalled(robots_.size(), false);
+  const DelayModel& model = settings_.delays;
+  if (model.probability <= 0.0) return stalled;
+  std::uniform_real_distribution<double> chance(0.0, 1.0);
+  std::uniform_int_distribution<int> length(model.min_steps, model.max_steps);
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    if (delay_left_[r] == 0 && chance(delay_rng_) < model.probability) delay_left_[r] = length(delay_rng_);
+    if (delay_left_[r] > 0) {
+      stalled[r] = true;
+      --delay_left_[r];
+      ++result_.delayed_robot_steps;
+    }
+  }
+  return stalled;
+}
+
+std::vector<GridAction> LifelongGridRun::decide_actions(const std::vector<bool>& stalled) {
+  const int n = static_cast<int>(robots_.size());
+  std::vector<GridAction> actions(n, GridAction::kWait);
+  std::vector<int> ready;  // robots facing their next cell, free to go once the graph lets them
+  for (int r = 0; r < n; ++r) {
+    if (stalled[r]) continue;
+    const int next = graph_.next_place(r);
+    if (next < 0) {
+      actions[r] = best_turn_in_place(r);
+      continue;
+    }
+    const int heading = instance_.map.heading_between(robots_[r].cell, next);
+    if (heading != robots_[r].heading) {
+      actions[r] = turn_towards(r, heading);
+    } else {
+      ready.push_back(r);
+    }
+  }
+  // Robots enter in the graph's order: one whose visit comes first goes; a follower goes once the
+  // one ahead has left, in the same step. A robot left in `ready` waits for one that stays.
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (auto& r : ready) {
+      if (r < 0 || graph_.waits_for(r) >= 0) continue;
+      graph_.advance(r);
+      actions[r] = GridAction::kForward;
+      r = -1;
+      moved = true;
+    }
+  }
+  return actions;
+}
+
+void LifelongGridRun::apply(const std::vector<GridAction>& actions) {
+  const GridMap& map = instance_.map;
+  std::vector<int> before(robots_.size());
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    GridRobot& robot = robots_[r];
+    before[r] = robot.cell;
+    switch (actions[r]) {
+      case GridAction::kForward:
+        robot.cell = map.step(robot.cell, robot.heading);
+        break;
+      case GridAction::kClockwise:
+        robot.heading = clockwise(robot.heading);
+        break;
+      case GridAction::kCounterClockwise:
+        robot.heading = counter_clockwise(robot.heading);
+        break;
+      case GridAction::kWait:
+        break;
+    }
+    result_.actions[r].push_back(static_cast<char>(actions[r]));
+  }
+  // The competition's own rules, checked on every step: on the map, one robot a cell, no swaps.
+  std::vector<int> at(static_cast<std::size_t>(map.cells()), -1);
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    const int cell = robots_[r].cell;
+    if (cell < 0) {
+      result_.errors.push_back("robot " + std::to_string(r) + " drove off the map or into a wall at step " +
+                               std::to_string(step_));
+      robots_[r].cell = before[r];
+      continue;
+    }
+    if (at[cell] >= 0) {
+      result_.errors.push_back("robots " + std::to_string(at[cell]) + " and " + std::to_string(r) + " both in cell " +
+                               map.describe(cell) + " at step " + std::to_string(step_));
+    }
+    at[cell] = static_cast<int>(r);
+  }
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    const int other = at[before[r]];
+    if (other >= 0 && static_cast<std::size_t>(other) != r && robots_[r].cell == before[other]) {
+      if (static_cast<std::size_t>(other) > r) {
+        result_.errors.push_back("robots " + std::to_string(r) + " and " + std::to_string(other) +
+                                 " swapped cells at step " + std::to_string(step_));
+      }
+    }
+  }
+}
+
+bool LifelongGridRun::step() {
+  if (step_ >= settings_.steps) return false;
+  const std::vector<bool> stalled = draw_delays();
+  const auto start = std::chrono::steady_clock::now();
+  plan_and_load();
+  std::vector<GridAction> actions = decide_actions(stalled);
+  result_.planning_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  if (!graph_.wait_cycle().empty()) ++result_.wait_cycles;
+  std::vector<int> before(robots_.size());
+  for (std::size_t r = 0; r < robots_.size(); ++r) before[r] = robots_[r].cell;
+  ++step_;
+  apply(actions);
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    still_for_[r] = robots_[r].cell == before[r] ? still_for_[r] + 1 : 0;
+    result_.longest_standstill = std::max(result_.longest_standstill, still_for_[r]);
+    if (robots_[r].cell == assigned_[r].front().cell) {
+      result_.events[r].push_back({assigned_[r].front().id, step_, true});
+      assigned_[r].erase(assigned_[r].begin());
+      ++result_.finished;
+      planner_.reached_goal(static_cast<int>(r));
+    }
+  }
+  hand_out_errands();
+  result_.steps = step_;
+  return true;
+}
+
+LifelongFigures figures_of(const LifelongResult& result) {
+  LifelongFigures f;
+  if (result.steps > 0) f.throughput = static_cast<double>(result.finished) / result.steps;
+  std::vector<double> ms;
+  for (double s : result.planning_s) ms.push_back(s * 1e3);
+  if (ms.empty()) return f;
+  std::sort(ms.begin(), ms.end());
+  auto rank = [&](double q) {
+    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(ms.size())));
+    return ms[std::min(ms.size() - 1, k > 0 ? k - 1 : 0)];
+  };
+  f.planning_ms_p50 = rank(0.5);
+  f.planning_ms_p99 = rank(0.99);
+  f.planning_ms_max = ms.back();
+  return f;
+}
+
+const LifelongResult& LifelongGridRun::run() {
+  while (step()) {
+  }
+  return result_;
+}
+
+}  // namespace fleet::coordination
