@@ -152,10 +152,11 @@ std::vector<CommandSpec> make_table() {
       {Group::kOffline,
        "map",
        "check",
-       "SITE.yaml ...",
+       "SITE.yaml|GRID.map ...",
        true,
        {on_off("--strict")},
        "validate sites: roads, graph, loading areas and their reachability;\n"
+       "a grid site (GRID.map): free cells, components, dead ends;\n"
        "--strict: the road network's warnings are errors"},
       {Group::kOffline,
        "map",

@@ -1,5 +1,7 @@
-// fleetctl map check|sample|render: wiring only; the work is done in core/map.
+// fleetctl map check|sample|render: wiring only; the work is done in core/map (and
+// core/coordination for grid sites).
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -10,6 +12,7 @@
 
 #include "commands.hpp"
 #include "common/args.hpp"
+#include "coordination/grid_map.hpp"
 #include "map/reference_samples.hpp"
 #include "map/site_map.hpp"
 #include "map/svg_render.hpp"
@@ -20,7 +23,7 @@ namespace fleet::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: fleetctl map check SITE.yaml|NAME ... [--strict]\n"
+    "usage: fleetctl map check SITE.yaml|NAME|GRID.map ... [--strict]\n"
     "       fleetctl map sample FILE.xodr [--step METRES] [--max-rows N] [--tolerance METRES] [--strict]\n"
     "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points] [--tracks TRACKS.csv [--since S]]\n";
 
@@ -50,6 +53,26 @@ bool warnings_pass(const std::vector<std::string>& warnings, bool strict, std::o
   return !strict || warnings.empty();
 }
 
+/// A grid site (MovingAI .map): its size, free cells, components and dead ends.
+int check_grid(const std::string& path, std::ostream& out, std::ostream& err, std::string& json) {
+  if (json.size() > 1) json += ",";
+  try {
+    const coordination::GridReport report = coordination::check_grid_map(coordination::load_grid_map(path));
+    out << coordination::format_grid_report(report, path);
+    json += "{\"site\":\"" + json_escape(path) +
+            "\",\"usable\":true,\"kind\":\"grid\",\"rows\":" + std::to_string(report.rows) +
+            ",\"cols\":" + std::to_string(report.cols) + ",\"free_cells\":" + std::to_string(report.free_cells) +
+            ",\"components\":" + std::to_string(report.components) +
+            ",\"largest_component\":" + std::to_string(report.largest_component) +
+            ",\"dead_ends\":" + std::to_string(report.dead_ends) + "}";
+    return kExitOk;
+  } catch (const InputError& e) {
+    err << e.what() << "\n";
+    json += "{\"site\":\"" + json_escape(path) + "\",\"usable\":false,\"error\":\"" + json_escape(e.what()) + "\"}";
+    return kExitBadInput;
+  }
+}
+
 int check(const CommandArgs& args, const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
   std::vector<std::string> sites;
   bool strict = false;
@@ -75,6 +98,10 @@ int check(const CommandArgs& args, const std::vector<std::string>& words, std::o
           << "site name), which names its network under 'opendrive'. To read the network alone: fleetctl map sample "
           << name << "\n";
       code = kExitBadInput;
+      continue;
+    }
+    if (name.ends_with(".map")) {
+      code = std::max(code, check_grid(name, out, err, json));
       continue;
     }
     const std::string path = resolve_site(args, name);

@@ -1,5 +1,6 @@
 #include "coordination/grid_map.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -74,6 +75,49 @@ int GridMap::heading_between(int from, int to) const {
 
 std::string GridMap::describe(int cell) const {
   return "(row " + std::to_string(cell / cols) + ", column " + std::to_string(cell % cols) + ")";
+}
+
+GridReport check_grid_map(const GridMap& map) {
+  GridReport report{map.rows, map.cols, map.free_cells(), 0, 0, 0};
+  std::vector<int> component(static_cast<std::size_t>(map.cells()), -1);
+  std::vector<int> stack;
+  for (int start = 0; start < map.cells(); ++start) {
+    if (!map.is_free(start)) continue;
+    int exits = 0;
+    for (int h = 0; h < kHeadings; ++h) exits += map.step(start, h) >= 0 ? 1 : 0;
+    report.dead_ends += exits == 1 ? 1 : 0;
+    if (component[start] >= 0) continue;
+    int size = 0;
+    component[start] = report.components;
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      const int cell = stack.back();
+      stack.pop_back();
+      ++size;
+      for (int h = 0; h < kHeadings; ++h) {
+        const int next = map.step(cell, h);
+        if (next >= 0 && component[next] < 0) {
+          component[next] = report.components;
+          stack.push_back(next);
+        }
+      }
+    }
+    report.largest_component = std::max(report.largest_component, size);
+    ++report.components;
+  }
+  return report;
+}
+
+std::string format_grid_report(const GridReport& report, const std::string& name) {
+  std::ostringstream out;
+  out << name << ": grid site, " << report.rows << " x " << report.cols << " cells, " << report.free_cells << " free, "
+      << report.components << (report.components == 1 ? " component" : " components") << " (largest "
+      << report.largest_component << " cells), " << report.dead_ends << " dead ends\n";
+  if (report.components > 1) {
+    out << "  " << report.free_cells - report.largest_component
+        << " free cells cannot be reached from the largest component: a robot or errand there stays apart\n";
+  }
+  return out.str();
 }
 
 GridMap parse_grid_map(std::istream& in, const std::string& source) {

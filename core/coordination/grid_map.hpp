@@ -43,6 +43,20 @@ struct GridMap {
   std::string describe(int cell) const;
 };
 
+/// What `fleetctl map check` tells of a grid site: its free cells, how they hang together (four
+/// neighbours), and the dead ends (one free neighbour), where robots have to make room for each
+/// other.
+struct GridReport {
+  int rows = 0;
+  int cols = 0;
+  int free_cells = 0;
+  int components = 0;         ///< sets of free cells connected by moves
+  int largest_component = 0;  ///< free cells in the largest
+  int dead_ends = 0;
+};
+GridReport check_grid_map(const GridMap& map);
+std::string format_grid_report(const GridReport& report, const std::string& name);
+
 /// Reads a MovingAI map (`type octile`, `height`, `width`, `map`, then rows of `.`, `E`, `S`, `G`
 /// free and `@`, `T`, `O`, `W` blocked). InputError naming the file and line on anything else.
 GridMap load_grid_map(const std::string& path);

@@ -122,6 +122,13 @@ void GridPibt::plan_one_step(bool keep_commitments) {
   std::fill(next_.begin(), next_.end(), -1);
   planned_.assign(robots_.size(), -1);
   for (std::size_t i = 0; i < robots_.size(); ++i) now_[robots_[i].cell] = static_cast<int>(i);
+  // A held robot stays: the others plan round it rather than queue behind it or push it.
+  for (std::size_t i = 0; i < robots_.size(); ++i) {
+    if (robots_[i].held) {
+      planned_[i] = robots_[i].cell;
+      next_[robots_[i].cell] = static_cast<int>(i);
+    }
+  }
   order_.resize(robots_.size());
   std::iota(order_.begin(), order_.end(), 0);
   auto rank = [&](int r) {

@@ -13,7 +13,8 @@ namespace fleet::coordination {
 struct GridRobot {
   int cell = 0;
   int heading = 0;
-  int goal = -1;  ///< -1: no errand, the robot only keeps out of the way
+  int goal = -1;      ///< -1: no errand, the robot only keeps out of the way
+  bool held = false;  ///< it stood still last step though told to move: planned to stay where it is
 };
 
 /// Priority inheritance with backtracking [Okumura 2022, Algorithm 1], planning every robot's next

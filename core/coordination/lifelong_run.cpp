@@ -20,6 +20,7 @@ LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSet
   handed_out_.assign(n, 0);
   delay_left_.assign(n, 0);
   still_for_.assign(n, 0);
+  held_last_step_.assign(n, false);
   result_.actions.resize(n);
   result_.events.resize(n);
   hand_out_errands();
@@ -173,7 +174,9 @@ void LifelongGridRun::apply(const std::vector<GridAction>& actions) {
 
 bool LifelongGridRun::step() {
   if (step_ >= settings_.steps) return false;
+  for (std::size_t r = 0; r < robots_.size(); ++r) robots_[r].held = held_last_step_[r];
   const std::vector<bool> stalled = draw_delays();
+  held_last_step_ = stalled;
   const auto start = std::chrono::steady_clock::now();
   plan_and_load();
   std::vector<GridAction> actions = decide_actions(stalled);

@@ -93,6 +93,7 @@ class LifelongGridRun {
   std::vector<int> handed_out_;                      ///< per robot: errands handed out so far
   std::vector<int> delay_left_;
   std::vector<int> still_for_;
+  std::vector<bool> held_last_step_;  ///< robots seen standing still though told to move
   int next_errand_id_ = 0;
   int step_ = 0;
   LifelongResult result_;

@@ -1,7 +1,9 @@
-// fleetctl fleets, traffic-eval and pick-eval's flags through the entry points fleetctl calls.
+// fleetctl fleets, traffic-eval, pick-eval and mapf-eval through the entry points fleetctl calls.
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -98,4 +100,48 @@ TEST(SiteConfig, ASiteWithFleetsOfItsOwnBringsThemUnlessAConfigIsGiven) {
   EXPECT_EQ(args.peek("site"), "plant");
   EXPECT_EQ(args.peek("agents"), "2");
   EXPECT_EQ(args.remaining().size(), 4u);  // peeking takes nothing away
+}
+
+namespace {
+
+/// A League of Robot Runners instance of a small room, in a folder of its own.
+std::filesystem::path write_room_instance(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / name;
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "room.map") << "type octile\nheight 3\nwidth 5\nmap\n.....\n.@.@.\n.....\n";
+  std::ofstream(dir / "room.agents") << "2\n0\n14\n";
+  std::ofstream(dir / "room.tasks") << "4\n14\n0\n2\n12\n";
+  std::ofstream(dir / "room.json") << R"({"mapFile": "room.map", "agentFile": "room.agents", "teamSize": 2,
+      "taskFile": "room.tasks", "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"})";
+  return dir;
+}
+
+}  // namespace
+
+TEST(MapfEval, RunsAnInstanceAndWritesTheCompetitionsOutputFile) {
+  const auto dir = write_room_instance("fleet_mapf_eval_test");
+  const std::string output = (dir / "out.json").string();
+  const auto r = run(mapf_eval_command,
+                     {"--instance", (dir / "room.json").string(), "--steps", "40", "--output", output}, "fleet.yaml");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto summary = nlohmann::json::parse(r.out.substr(r.out.rfind('{')));
+  EXPECT_EQ(summary["robots"], 2);
+  EXPECT_EQ(summary["steps"], 40);
+  EXPECT_TRUE(summary["valid"].get<bool>());
+  EXPECT_GE(summary["finished"].get<int>(), 4);
+  std::ifstream in(output);
+  const auto doc = nlohmann::json::parse(in);
+  EXPECT_EQ(doc["numTaskFinished"], summary["finished"]);
+  EXPECT_EQ(doc["Planner Paths"].size(), 2u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MapfEval, BadFlagsAndFilesAreBadInput) {
+  const auto dir = write_room_instance("fleet_mapf_eval_bad_test");
+  const std::string instance = (dir / "room.json").string();
+  EXPECT_THROW(run(mapf_eval_command, {"--instance", instance, "--delay", "0.5,3"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(mapf_eval_command, {"--instance", instance, "--delay", "2,1,3"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(mapf_eval_command, {"--steps", "10"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(mapf_eval_command, {"--instance", (dir / "none.json").string()}, "fleet.yaml"), fleet::InputError);
+  std::filesystem::remove_all(dir);
 }

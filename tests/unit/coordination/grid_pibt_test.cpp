@@ -105,5 +105,19 @@ TEST(GridPibt, TheRobotInADeadEndGetsOutPastOneThatWantsItsCell) {
   EXPECT_TRUE(swapped) << "robot 0 at " << state[0].cell << ", robot 1 at " << state[1].cell;
 }
 
+TEST(GridPibt, AHeldRobotStaysInThePlanAndNoOneIsPlannedIntoItsCell) {
+  // A corridor of five cells with a loop above: robot 0, held in the middle, is in robot 1's way.
+  const GridMap map = parse(".....\n.@@@.\n.....\n", 3, 5);
+  HeadingDistances distances(map);
+  GridPibt planner(map, distances, 1);
+  const std::vector<GridRobot> state{{12, 0, 14, true}, {11, 0, 14, false}, {13, 2, 10, false}};
+  const auto cells = planner.plan(state, 3);
+  for (int step = 1; step <= 3; ++step) {
+    EXPECT_EQ(cells[0][step], 12) << "step " << step;
+    EXPECT_NE(cells[1][step], 12) << "step " << step;
+    EXPECT_NE(cells[2][step], 12) << "step " << step;
+  }
+}
+
 }  // namespace
 }  // namespace fleet::coordination

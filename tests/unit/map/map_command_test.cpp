@@ -193,3 +193,23 @@ TEST(MapCommand, CheckGivenARoadNetworkSaysItWantsASiteFile) {
   EXPECT_NE(r.err.find("is an OpenDRIVE road network; map check reads a site file"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("fleetctl map sample"), std::string::npos) << r.err;
 }
+
+TEST(MapCommand, AGridSiteIsReportedWithItsComponentsAndDeadEnds) {
+  const auto dir = std::filesystem::temp_directory_path() / ("fleet_map_check_grid_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "room.map") << "type octile\nheight 3\nwidth 5\nmap\n.....\n.@.@.\n.....\n";
+  std::ofstream(dir / "split.map") << "type octile\nheight 2\nwidth 4\nmap\n.@..\n.@.@\n";
+  const CommandRun r = run({"check", (dir / "room.map").string(), (dir / "split.map").string()}, true);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("room.map: grid site, 3 x 5 cells, 13 free, 1 component"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("split.map: grid site, 2 x 4 cells, 5 free, 2 components (largest 3 cells), 4 dead ends"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("2 free cells cannot be reached from the largest component"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"kind\":\"grid\""), std::string::npos) << r.out;
+  std::ofstream(dir / "bad.map") << "type octile\nheight 2\nwidth 2\nmap\n..\n";
+  const CommandRun bad = run({"check", (dir / "bad.map").string()});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("bad.map: has 1 rows of cells, its height says 2"), std::string::npos) << bad.err;
+  std::filesystem::remove_all(dir);
+}
