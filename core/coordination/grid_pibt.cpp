@@ -29,7 +29,7 @@ void GridPibt::reached_goal(int robot) {
   }
 }
 
-int GridPibt::candidate_cost(int robot, int cell) const {
+int GridPibt::candidate_cost(int robot, int cell, int heading) const {
   const GridRobot& r = robots_[robot];
   if (r.goal < 0) return 0;
   if (cell == r.cell) {
@@ -39,7 +39,6 @@ int GridPibt::candidate_cost(int robot, int cell) const {
     best = std::min(best, distances_.to(r.goal, r.cell, counter_clockwise(r.heading)));
     return best >= HeadingDistances::kUnreachable ? kFarAway : 1 + best;
   }
-  const int heading = map_.heading_between(r.cell, cell);
   const int rest = distances_.to(r.goal, cell, heading);
   return rest >= HeadingDistances::kUnreachable ? kFarAway : quarter_turns(r.heading, heading) + 1 + rest;
 }
@@ -68,7 +67,7 @@ bool GridPibt::plan_robot(int robot, int pusher) {
   int count = 0;
   auto add = [&](int cell) {
     const int heading = cell == r.cell ? r.heading : map_.heading_between(r.cell, cell);
-    candidates[count++] = {cell, candidate_cost(robot, cell), quarter_turns(r.heading, heading),
+    candidates[count++] = {cell, candidate_cost(robot, cell, heading), quarter_turns(r.heading, heading),
                            now_[cell] >= 0 && now_[cell] != robot ? 1 : 0, static_cast<unsigned>(rng_())};
   };
   add(r.cell);

@@ -46,7 +46,8 @@ class GridPibt {
 
  private:
   bool plan_robot(int robot, int pusher);
-  int candidate_cost(int robot, int cell) const;
+  /// Actions left to the goal by way of `cell`, entered facing `heading`.
+  int candidate_cost(int robot, int cell, int heading) const;
   bool closes_cycle(int robot, int cell) const;
   void plan_one_step(bool keep_commitments);
   void commit(const std::vector<GridRobot>& robots);

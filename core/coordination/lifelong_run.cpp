@@ -124,12 +124,10 @@ std::vector<GridAction> LifelongGridRun::decide_actions(const std::vector<bool>&
   return actions;
 }
 
-void LifelongGridRun::apply(const std::vector<GridAction>& actions) {
+void LifelongGridRun::apply(const std::vector<GridAction>& actions, const std::vector<int>& before) {
   const GridMap& map = instance_.map;
-  std::vector<int> before(robots_.size());
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     GridRobot& robot = robots_[r];
-    before[r] = robot.cell;
     switch (actions[r]) {
       case GridAction::kForward:
         robot.cell = map.step(robot.cell, robot.heading);
@@ -185,7 +183,7 @@ bool LifelongGridRun::step() {
   std::vector<int> before(robots_.size());
   for (std::size_t r = 0; r < robots_.size(); ++r) before[r] = robots_[r].cell;
   ++step_;
-  apply(actions);
+  apply(actions, before);
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     still_for_[r] = robots_[r].cell == before[r] ? still_for_[r] + 1 : 0;
     result_.longest_standstill = std::max(result_.longest_standstill, still_for_[r]);

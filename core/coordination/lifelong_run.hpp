@@ -80,7 +80,7 @@ class LifelongGridRun {
   GridAction turn_towards(int robot, int heading) const;
   GridAction best_turn_in_place(int robot);
   std::vector<bool> draw_delays();
-  void apply(const std::vector<GridAction>& actions);
+  void apply(const std::vector<GridAction>& actions, const std::vector<int>& before);
 
   const LorrInstance& instance_;
   LifelongSettings settings_;
