@@ -10,6 +10,7 @@
 #include "common/args.hpp"
 #include "common/paths.hpp"
 #include "config/fleet_config.hpp"
+#include "coordination/place_sim.hpp"
 #include "map/site_map.hpp"
 #include "model/names.hpp"
 #include "traffic/traffic_settings.hpp"
@@ -24,11 +25,41 @@ struct EvalSpec {
   double duration_s = 1800.0;
   double dwell_s = 10.0;
   std::uint64_t seed = 1;
-  std::vector<std::string> place_prefixes;  ///< trips only between places whose ids start so; empty: all
-  bool verbose = false;                     ///< list every deadlock: who stalled where, waiting on whom
+  std::vector<std::string> place_prefixes;    ///< trips only between places whose ids start so; empty: all
+  bool verbose = false;                       ///< list every deadlock: who stalled where, waiting on whom
+  std::vector<std::string> cores{"manager"};  ///< "manager" (TrafficManager), "pibt" (PlacePibt), or both
 };
 
-nlohmann::json run_site(const std::string& site_name, const config::FleetConfig& config, const EvalSpec& spec) {
+/// The same trips coordinated by the place planner (coordination::PlaceSim) instead of the manager.
+nlohmann::json run_place_planner(const std::string& site_name, const map::SiteMap& site,
+                                 const traffic::ConflictZones& zones, const traffic::SimParams& params,
+                                 const traffic::SimScenario& scenario, const EvalSpec& spec) {
+  coordination::PlaceSimParams place_params;
+  place_params.speed = params.speed;
+  place_params.dwell = params.dwell;
+  place_params.deadlock_timeout = params.deadlock_timeout;
+  place_params.robot_types = params.robot_types;
+  place_params.seed = params.seed;
+  coordination::PlaceSim sim(site.graph.graph, zones, place_params, scenario.goal_points, scenario.start_points);
+  const coordination::PlaceSimReport& r = sim.run_until(spec.duration_s);
+  return {{"site", site_name},
+          {"core", "pibt"},
+          {"trips", r.trips},
+          {"mean_trip_s", r.mean_trip_s},
+          {"collisions", r.collisions},
+          {"deadlocks", r.deadlocks},
+          {"max_wait_s", r.max_wait_s},
+          {"plan_conflicts", r.plan_conflicts},
+          {"planning_ms_mean", r.planning_ms_mean},
+          {"planning_ms_max", r.planning_ms_max},
+          {"first_collision", r.first_collision},
+          {"first_plan_conflict", r.first_plan_conflict},
+          {"reroutes", 0},
+          {"stalls", spec.verbose ? nlohmann::json(r.stall_notes) : nlohmann::json::array()}};
+}
+
+nlohmann::json run_site(const std::string& site_name, const std::string& core, const config::FleetConfig& config,
+                        const EvalSpec& spec) {
   map::SiteMap site = map::load_site_map(map::site_path(maps_dir(), site_name));
   if (!spec.place_prefixes.empty()) {
     std::erase_if(site.site.loading_areas, [&](const map::LoadingArea& area) {
@@ -55,9 +86,11 @@ nlohmann::json run_site(const std::string& site_name, const config::FleetConfig&
   }
   for (int i = 0; i < spec.robots; ++i) params.robot_types.push_back(i % static_cast<int>(config.fleets.size()));
   params.footprint = config.fleets.front().footprint;
+  if (core == "pibt") return run_place_planner(site_name, site, zones, params, scenario, spec);
   traffic::TrafficSim sim(site.graph.graph, configuration, params, scenario.goal_points, scenario.start_points);
   const traffic::SimReport& r = sim.run_until(spec.duration_s);
   return {{"site", site_name},
+          {"core", "manager"},
           {"trips", r.trips},
           {"mean_trip_s", r.mean_trip_s},
           {"collisions", r.collisions},
@@ -89,14 +122,25 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
     }
     if (!rest.empty()) spec.place_prefixes.push_back(rest);
   }
+  if (const auto core = flags.value("core")) {
+    if (*core == "both") {
+      spec.cores = {"manager", "pibt"};
+    } else if (*core == "manager" || *core == "pibt") {
+      spec.cores = {*core};
+    } else {
+      throw ArgError("--core: '" + *core + "' is none of manager, pibt, both");
+    }
+  }
+  if (against && spec.cores.size() > 1) throw ArgError("--core both compares cores on one site: drop --against");
   if (const auto rest = flags.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   for (const auto& name : against ? std::vector<std::string>{site, *against} : std::vector<std::string>{site}) {
     if (!std::filesystem::exists(map::site_path(maps_dir(), name))) {
       throw ArgError(model::unknown_name_message("site", name, map::site_names(maps_dir())));
     }
   }
-  nlohmann::json runs = nlohmann::json::array({run_site(site, config, spec)});
-  if (against) runs.push_back(run_site(*against, config, spec));
+  nlohmann::json runs = nlohmann::json::array();
+  for (const auto& core : spec.cores) runs.push_back(run_site(site, core, config, spec));
+  if (against) runs.push_back(run_site(*against, spec.cores.front(), config, spec));
   nlohmann::json doc{{"config", config.source},
                      {"robots", spec.robots},
                      {"duration_s", spec.duration_s},
@@ -107,23 +151,30 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
   if (against) {
     const double b = runs[1]["trips"].get<double>();
     doc["trips_ratio"] = b > 0.0 ? runs[0]["trips"].get<double>() / b : 0.0;
+  } else if (runs.size() == 2) {
+    const double manager = runs[0]["trips"].get<double>();
+    doc["pibt_over_manager"] = manager > 0.0 ? runs[1]["trips"].get<double>() / manager : 0.0;
   }
   if (args.json) {
     out << doc.dump() << "\n";
     return kExitOk;
   }
   out << "traffic-eval: " << spec.robots << " robots of " << config.source << ", " << spec.duration_s << " s sim, seed "
-      << spec.seed << " (kinematic robots under the real traffic manager)\n";
+      << spec.seed << " (kinematic robots, a load generator, under the real coordination)\n";
   for (const auto& r : runs) {
-    out << "  " << std::left << std::setw(18) << r["site"].get<std::string>() << r["trips"].get<long>() << " trips, "
-        << r["collisions"].get<long>() << " collisions, " << r["deadlocks"].get<long>() << " deadlocks, longest wait "
-        << std::fixed << std::setprecision(1) << r["max_wait_s"].get<double>() << " s, " << r["reroutes"].get<long>()
+    out << "  " << std::left << std::setw(18) << r["site"].get<std::string>() << std::setw(9)
+        << r["core"].get<std::string>() << r["trips"].get<long>() << " trips, " << r["collisions"].get<long>()
+        << " collisions, " << r["deadlocks"].get<long>() << " deadlocks, longest wait " << std::fixed
+        << std::setprecision(1) << r["max_wait_s"].get<double>() << " s, " << r["reroutes"].get<long>()
         << " re-routes\n";
     for (const auto& note : r["stalls"]) out << "    " << note.get<std::string>() << "\n";
   }
-  if (against)
+  if (against) {
     out << "  trips ratio " << site << " / " << *against << ": " << std::setprecision(2)
         << doc["trips_ratio"].get<double>() << "\n";
+  } else if (runs.size() == 2) {
+    out << "  trips ratio pibt / manager: " << std::setprecision(2) << doc["pibt_over_manager"].get<double>() << "\n";
+  }
   return kExitOk;
 }
 

@@ -70,7 +70,28 @@ TEST(TrafficEval, ComparesTheSameTripsOnTwoSitesWithoutCollisions) {
   EXPECT_GT(doc["trips_ratio"].get<double>(), 0.0);
 }
 
+TEST(TrafficEval, ComparesTheManagerAndThePlacePlannerOnTheSameTrips) {
+  const auto r = run(traffic_eval_command,
+                     {"--site", "table_a", "--robots", "8", "--duration", "300", "--core", "both"}, "fleet.yaml");
+  ASSERT_EQ(r.code, 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["runs"].size(), 2u);
+  EXPECT_EQ(doc["runs"][0]["core"], "manager");
+  EXPECT_EQ(doc["runs"][1]["core"], "pibt");
+  for (const auto& run : doc["runs"]) {
+    EXPECT_EQ(run["collisions"], 0) << run;
+    EXPECT_EQ(run["deadlocks"], 0) << run;
+    EXPECT_GT(run["trips"].get<int>(), 0) << run;
+  }
+  EXPECT_EQ(doc["runs"][1]["plan_conflicts"], 0);
+  EXPECT_GT(doc["pibt_over_manager"].get<double>(), 0.0);
+}
+
 TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
+  EXPECT_THROW(run(traffic_eval_command, {"--core", "rmf"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plant_one_lane", "--core", "both"},
+                   "sites/plant.yaml"),
+               fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plantt"}, "sites/plant.yaml"),
                fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);

@@ -1,0 +1,162 @@
+#include "coordination/place_pibt.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace fleet::coordination {
+
+PlacePibt::PlacePibt(PlaceGraph& graph, std::uint64_t seed)
+    : graph_(graph),
+      rng_(seed),
+      standing_(static_cast<std::size_t>(graph.place_count()), -1),
+      planned_at_(static_cast<std::size_t>(graph.place_count()), -1) {}
+
+void PlacePibt::reached_goal(int robot) {
+  if (robot < static_cast<int>(priority_.size())) {
+    priority_[static_cast<std::size_t>(robot)] = std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
+  }
+}
+
+double PlacePibt::candidate_cost(int robot, int place) const {
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  return r.goal < 0 ? 0.0 : graph_.distance(r.type, place, r.goal);
+}
+
+PlacePibt::Check PlacePibt::check(int robot, int place, std::vector<int>& blockers) const {
+  blockers.clear();
+  const auto& zones = graph_.zones();
+  const int type = robots_[static_cast<std::size_t>(robot)].type;
+  for (int other_type = 0; other_type < graph_.type_count(); ++other_type) {
+    for (const int q : zones.conflicts(type, place, other_type)) {
+      const int planned = planned_at_[static_cast<std::size_t>(q)];
+      if (planned >= 0 && planned != robot && robots_[static_cast<std::size_t>(planned)].type == other_type) {
+        return Check::kTaken;
+      }
+      const int standing = standing_[static_cast<std::size_t>(q)];
+      if (standing < 0 || standing == robot || robots_[static_cast<std::size_t>(standing)].type != other_type) continue;
+      const auto s = static_cast<std::size_t>(standing);
+      if (pushing_[s]) return Check::kTaken;  // it waits for a chain that leads here: a cycle
+      if (planned_[s] >= 0) {
+        if (planned_[s] == robots_[s].place) return Check::kTaken;  // it stays
+        continue;                                                   // it moves on: follow it
+      }
+      if (std::find(blockers.begin(), blockers.end(), standing) == blockers.end()) blockers.push_back(standing);
+    }
+  }
+  return blockers.empty() ? Check::kFree : Check::kBlocked;
+}
+
+void PlacePibt::take(int robot, int place) {
+  planned_[static_cast<std::size_t>(robot)] = place;
+  planned_at_[static_cast<std::size_t>(place)] = robot;
+}
+
+bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  const bool pushed = pusher >= 0;
+  const int pusher_type = pushed ? robots_[static_cast<std::size_t>(pusher)].type : 0;
+  struct Candidate {
+    int place;
+    int stays_in_the_way;  ///< pushed: 1 when the place still conflicts with the one the pusher wants
+    double cost;
+    int blocked;
+    unsigned tie;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<int> blockers;
+  auto add = [&](int place) {
+    const Check c = check(robot, place, blockers);
+    if (c == Check::kTaken) return;
+    int in_the_way = 0;
+    if (pushed && graph_.zones().conflict(r.type, place, pusher_type, wanted)) {
+      // A body spans several places, so one move may not clear the way; a move that at least
+      // gets farther from it does, over the next steps, while the pusher keeps pushing.
+      const auto here = graph_.zones().position(r.place);
+      const auto there = graph_.zones().position(place);
+      const auto target = graph_.zones().position(wanted);
+      if (geometry::distance(there, target) <= geometry::distance(here, target)) return;
+      in_the_way = 1;
+    }
+    candidates.push_back(
+        {place, in_the_way, candidate_cost(robot, place), c == Check::kBlocked ? 1 : 0, static_cast<unsigned>(rng_())});
+  };
+  if (!pushed) add(r.place);
+  for (const int next : graph_.successors(r.type, r.place)) add(next);
+  if (pushed) {
+    // Backing up along its lane makes room where the lanes run one way only.
+    for (const int back : graph_.predecessors(r.type, r.place)) {
+      const auto& forward = graph_.successors(r.type, r.place);
+      if (std::find(forward.begin(), forward.end(), back) == forward.end()) add(back);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.stays_in_the_way != b.stays_in_the_way) return a.stays_in_the_way < b.stays_in_the_way;
+    if (a.cost != b.cost) return a.cost < b.cost;
+    if (a.blocked != b.blocked) return a.blocked < b.blocked;
+    return a.tie < b.tie;
+  });
+  const auto self = static_cast<std::size_t>(robot);
+  for (const Candidate& candidate : candidates) {
+    if (candidate.place == r.place) {
+      take(robot, r.place);
+      return false;
+    }
+    if (check(robot, candidate.place, blockers) == Check::kTaken) continue;
+    // Ask every robot standing in the way to move out of it (or at least away from it).
+    pushing_[self] = 1;
+    const std::vector<int> in_the_way = blockers;
+    for (const int other : in_the_way) {
+      if (planned_[static_cast<std::size_t>(other)] < 0) plan_robot(other, robot, candidate.place);
+    }
+    pushing_[self] = 0;
+    if (check(robot, candidate.place, blockers) == Check::kFree) {
+      take(robot, candidate.place);
+      return true;
+    }
+  }
+  // No move is free: the robot stays. Standing is always free (no robot plans into a place
+  // conflicting with where an unplanned or in-progress robot stands), so a pusher that cannot
+  // get its place tries its next candidate and at worst stays too.
+  take(robot, r.place);
+  return false;
+}
+
+std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
+  robots_ = robots;
+  const std::size_t n = robots.size();
+  while (priority_.size() < n) priority_.push_back(std::uniform_real_distribution<double>(0.0, 1.0)(rng_));
+  planned_.assign(n, -1);
+  pushing_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int place = robots[i].place;
+    if (place < 0 || place >= graph_.place_count()) {
+      throw std::invalid_argument("place planner: robot " + std::to_string(i) + " stands at unknown place " +
+                                  std::to_string(place));
+    }
+    standing_[static_cast<std::size_t>(place)] = static_cast<int>(i);
+    if (robots[i].goal >= 0 && robots[i].goal != place && !robots[i].held) priority_[i] += 1.0;
+  }
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const auto& ra = robots[static_cast<std::size_t>(a)];
+    const auto& rb = robots[static_cast<std::size_t>(b)];
+    if (ra.held != rb.held) return ra.held;
+    return priority_[static_cast<std::size_t>(a)] > priority_[static_cast<std::size_t>(b)];
+  });
+  for (const int robot : order) {
+    if (robots[static_cast<std::size_t>(robot)].held) take(robot, robots[static_cast<std::size_t>(robot)].place);
+  }
+  for (const int robot : order) {
+    if (planned_[static_cast<std::size_t>(robot)] < 0) plan_robot(robot, -1, -1);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    standing_[static_cast<std::size_t>(robots[i].place)] = -1;
+    planned_at_[static_cast<std::size_t>(planned_[i])] = -1;
+  }
+  return planned_;
+}
+
+}  // namespace fleet::coordination

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "coordination/place_graph.hpp"
+
+namespace fleet::coordination {
+
+/// A robot on a road site as the planner sees it.
+struct PlaceRobot {
+  int type = 0;
+  int place = 0;
+  int goal = -1;      ///< -1: no errand, the robot only keeps out of the way
+  bool held = false;  ///< working at a place (a pick, a drop) or stopped: planned to stay, never pushed
+};
+
+/// Priority inheritance with backtracking [Okumura 2022, Algorithm 1] on places that conflict
+/// with their neighbours: a robot's body covers more than its place, so a place is free for a
+/// robot only when no other robot stands or is planned at a place conflicting with it for their
+/// two vehicle types (traffic::ConflictZones). Every robot's next place is planned together, one
+/// move at a time; the robot that has waited longest since its last goal goes first, robots
+/// held at a place before all. A robot's candidates are its place and its type's successors,
+/// nearest its goal first. A robot that wants a place conflicting with where others stand lends
+/// each of them its priority: each moves out of the way, or at least farther from the wanted
+/// place (a body spans several places, so clearing the way can take several moves, the pusher
+/// pushing again each step), backing up against its lane's direction if it must. When the way
+/// is not clear, the pusher tries its next candidate.
+///
+/// What a plan step guarantees, for every two robots i and j moving from p to q (p = q when
+/// standing):
+/// - q_i and q_j do not conflict, nor do p_i and p_j (where they stand);
+/// - when q_i conflicts with p_j, j moves (i follows j) and j does not follow i, directly or along
+///   a chain: the robots one follows form no cycle. A robot that pushes others is "in progress"
+///   until they have moved, and no robot may plan into a place conflicting with an in-progress
+///   robot's place; every other follow goes to a robot already planned to move, so the follow
+///   relation is built in planning order and cannot close a cycle.
+/// Robots moving a step together pass the midpoints of their moves at once; before it each body
+/// is inside its p's region, after it inside its q's, so no two bodies overlap (the regions are
+/// the zones'). coordination::PlaceSim moves its robots in lock-step so.
+class PlacePibt {
+ public:
+  PlacePibt(PlaceGraph& graph, std::uint64_t seed);
+
+  /// Every robot's place after one move: its own or one of its type's successors. The robots'
+  /// places must not conflict with one another.
+  std::vector<int> plan(const std::vector<PlaceRobot>& robots);
+  /// Tells the planner that a robot reached its goal: its priority starts over.
+  void reached_goal(int robot);
+
+ private:
+  enum class Check { kFree, kTaken, kBlocked };
+  /// Plans one robot; `pusher` (-1 when none) wants place `wanted`, which conflicts with where it stands.
+  bool plan_robot(int robot, int pusher, int wanted);
+  /// Whether robot may plan into place: kTaken when a planned or in-progress robot rules it out,
+  /// kBlocked when unplanned robots stand in the way (then listed in `blockers`).
+  Check check(int robot, int place, std::vector<int>& blockers) const;
+  double candidate_cost(int robot, int place) const;
+  void take(int robot, int place);
+
+  PlaceGraph& graph_;
+  std::mt19937_64 rng_;
+  std::vector<double> priority_;
+  std::vector<PlaceRobot> robots_;     ///< the state being planned from
+  std::vector<int> standing_;          ///< per place: the robot standing there, -1
+  std::vector<int> planned_at_;        ///< per place: the robot planned there, -1
+  std::vector<int> planned_;           ///< per robot: its next place, -1 while not planned
+  std::vector<std::uint8_t> pushing_;  ///< per robot: in progress, waiting for the robots it pushes
+};
+
+}  // namespace fleet::coordination

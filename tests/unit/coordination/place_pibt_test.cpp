@@ -1,0 +1,145 @@
+#include "coordination/place_pibt.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "../traffic/test_graphs.hpp"
+#include "coordination/place_sim.hpp"
+#include "map/site_map.hpp"
+#include "traffic/traffic_sim.hpp"
+
+namespace fleet::coordination {
+namespace {
+
+traffic::ResourceParams forklift_params() {
+  traffic::ResourceParams params;
+  params.footprint = {0.25, 0.16};
+  return params;
+}
+
+/// The rules of a plan step (PlacePibt's class comment), or what broke them.
+std::string broken_rule(const traffic::ConflictZones& zones, const std::vector<PlaceRobot>& robots,
+                        const std::vector<int>& next) {
+  const std::size_t n = robots.size();
+  std::vector<std::vector<std::size_t>> follows(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (robots[i].held && next[i] != robots[i].place) return "held robot " + std::to_string(i) + " moved";
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      if (zones.conflict(robots[i].type, next[i], robots[j].type, next[j])) return "conflicting next places";
+      if (!zones.conflict(robots[i].type, next[i], robots[j].type, robots[j].place)) continue;
+      if (next[j] == robots[j].place) return "robot " + std::to_string(i) + " plans into a standing robot";
+      follows[i].push_back(j);
+    }
+  }
+  // Follows form no cycle: repeatedly drop robots that follow nobody left.
+  std::vector<std::uint8_t> gone(n, 0);
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (gone[i]) continue;
+      bool leads_only_gone = true;
+      for (const std::size_t j : follows[i]) leads_only_gone = leads_only_gone && gone[j];
+      if (leads_only_gone) gone[i] = 1, dropped = true;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!gone[i]) return "robots follow one another in a cycle";
+  }
+  return "";
+}
+
+TEST(PlaceGraph, DistancesFollowTheLanesOneWay) {
+  traffic::testing::GraphBuilder b;
+  const std::vector<int> lane = b.one_way_road(0.0, 0.0, 1.0, 0.0);
+  const traffic::ConflictZones zones(b.graph(), forklift_params());
+  PlaceGraph graph(b.graph(), zones);
+  const int first = zones.place_of(lane.front());
+  const int last = zones.place_of(lane.back());
+  EXPECT_NEAR(graph.distance(0, first, last), 1.0, 1e-9);
+  EXPECT_EQ(graph.distance(0, last, first), PlaceGraph::kUnreachable);
+  EXPECT_EQ(graph.successors(0, last).size(), 0u);
+  EXPECT_EQ(graph.predecessors(0, last).size(), 1u);
+}
+
+// Two robots meet head-on in a single-lane corridor with a siding: the one pushed backs into the
+// siding and both get through.
+TEST(PlacePibt, HeadOnInACorridorOneStepsIntoTheSiding) {
+  const map::RoadGraph road = traffic::testing::corridor_with_siding();
+  const traffic::ConflictZones zones(road, forklift_params());
+  PlaceGraph graph(road, zones);
+  PlacePibt planner(graph, 1);
+  const int west = zones.place_of(traffic::testing::point_at(road, 0.0, 0.0));
+  const int east = zones.place_of(traffic::testing::point_at(road, 2.0, 0.0));
+  std::vector<PlaceRobot> robots{{0, west, east, false}, {0, east, west, false}};
+  int steps = 0;
+  for (; steps < 200 && (robots[0].place != east || robots[1].place != west); ++steps) {
+    const std::vector<int> next = planner.plan(robots);
+    ASSERT_EQ(broken_rule(zones, robots, next), "") << "step " << steps;
+    for (std::size_t i = 0; i < robots.size(); ++i) robots[i].place = next[i];
+  }
+  EXPECT_EQ(robots[0].place, east);
+  EXPECT_EQ(robots[1].place, west);
+  EXPECT_LT(steps, 80);
+}
+
+// The planner's rules hold whatever the robots do: random goals, and robots held (working or
+// delayed) at random steps, on a junction with two ways round and on table_a.
+TEST(PlacePibt, RandomGoalsAndHoldsNeverBreakTheRules) {
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::two_ways_between_junctions(), 3},
+                                                                  {site.graph.graph, 8}};
+  for (const auto& [road, team] : cases) {
+    const traffic::ConflictZones zones(road, forklift_params());
+    PlaceGraph graph(road, zones);
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      std::mt19937_64 rng(seed);
+      std::uniform_int_distribution<int> any_place(0, graph.place_count() - 1);
+      std::vector<PlaceRobot> robots;
+      for (int tries = 0; tries < 1000 && robots.size() < team; ++tries) {
+        const int place = any_place(rng);
+        bool apart = true;
+        for (const auto& r : robots) apart = apart && !zones.conflict(r.place, place);
+        if (apart) robots.push_back({0, place, any_place(rng), false});
+      }
+      PlacePibt planner(graph, seed);
+      std::size_t goals = 0;
+      for (int step = 0; step < 400; ++step) {
+        for (auto& r : robots) r.held = std::uniform_real_distribution<double>(0.0, 1.0)(rng) < 0.05;
+        const std::vector<int> next = planner.plan(robots);
+        ASSERT_EQ(broken_rule(zones, robots, next), "") << "seed " << seed << " step " << step;
+        for (std::size_t i = 0; i < robots.size(); ++i) {
+          robots[i].place = next[i];
+          if (robots[i].place == robots[i].goal) {
+            ++goals;
+            robots[i].goal = any_place(rng);
+            planner.reached_goal(static_cast<int>(i));
+          }
+        }
+      }
+      EXPECT_GT(goals, 5u) << "seed " << seed;
+    }
+  }
+}
+
+// Eight forklifts on random trips on table_a for ten simulated minutes: every footprint apart,
+// nobody stuck, and trips done.
+TEST(PlaceSim, EightForkliftsOnTableATripWithoutCollisionOrDeadlock) {
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const traffic::ConflictZones zones(site.graph.graph, forklift_params());
+  const auto scenario = traffic::site_scenario(site, zones, 8, site.site.approach_distance);
+  PlaceSimParams params;
+  params.speed = 0.2;
+  params.dwell = 10.0;
+  PlaceSim sim(site.graph.graph, zones, params, scenario.goal_points, scenario.start_points);
+  const PlaceSimReport& report = sim.run_until(600.0);
+  EXPECT_EQ(report.collisions, 0u) << report.first_collision;
+  EXPECT_EQ(report.plan_conflicts, 0u) << report.first_plan_conflict;
+  EXPECT_EQ(report.deadlocks, 0u);
+  EXPECT_GT(report.trips, 30u);
+}
+
+}  // namespace
+}  // namespace fleet::coordination
