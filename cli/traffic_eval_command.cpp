@@ -73,7 +73,6 @@ nlohmann::json run_site(const std::string& site_name, const std::string& core, c
   }
   traffic::TrafficConfiguration configuration = traffic::configuration_from(config);
   const traffic::ConflictZones zones(site.graph.graph, configuration.resources);
-  const auto scenario = traffic::site_scenario(site, zones, spec.robots, site.site.approach_distance);
   traffic::SimParams params;
   params.seed = spec.seed;
   params.dwell = spec.dwell_s;
@@ -86,6 +85,8 @@ nlohmann::json run_site(const std::string& site_name, const std::string& core, c
   }
   for (int i = 0; i < spec.robots; ++i) params.robot_types.push_back(i % static_cast<int>(config.fleets.size()));
   params.footprint = config.fleets.front().footprint;
+  const auto scenario =
+      traffic::site_scenario(site, zones, spec.robots, site.site.approach_distance, params.robot_types);
   if (core == "pibt") return run_place_planner(site_name, site, zones, params, scenario, spec);
   traffic::TrafficSim sim(site.graph.graph, configuration, params, scenario.goal_points, scenario.start_points);
   const traffic::SimReport& r = sim.run_until(spec.duration_s);

@@ -11,7 +11,8 @@ PlacePibt::PlacePibt(PlaceGraph& graph, std::uint64_t seed)
     : graph_(graph),
       rng_(seed),
       standing_(static_cast<std::size_t>(graph.place_count()), -1),
-      planned_at_(static_cast<std::size_t>(graph.place_count()), -1) {}
+      planned_at_(static_cast<std::size_t>(graph.place_count()), -1),
+      search_depth_(static_cast<std::size_t>(graph.place_count()), kFar) {}
 
 void PlacePibt::reached_goal(int robot) {
   if (robot < static_cast<int>(priority_.size())) {
@@ -48,6 +49,41 @@ PlacePibt::Check PlacePibt::check(int robot, int place, std::vector<int>& blocke
   return blockers.empty() ? Check::kFree : Check::kBlocked;
 }
 
+int PlacePibt::moves_out(int robot, int from, int pusher, int wanted) {
+  // Breadth-first over the robot's moves either way (forward or backing up), through places
+  // neither the pusher's body nor a planned robot rules out, to the nearest place clear of the
+  // place the pusher wants; bounded to the reach of a body or two.
+  constexpr int kReach = 16;
+  const auto& zones = graph_.zones();
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  const PlaceRobot& p = robots_[static_cast<std::size_t>(pusher)];
+  std::vector<int> blockers;
+  int found = kFar;
+  search_depth_[static_cast<std::size_t>(from)] = 0;
+  search_touched_.push_back(from);
+  for (std::size_t next = 0; next < search_touched_.size() && found == kFar; ++next) {
+    const int at = search_touched_[next];
+    const int depth = search_depth_[static_cast<std::size_t>(at)];
+    if (!zones.conflict(r.type, at, p.type, wanted)) {
+      found = depth;
+      break;
+    }
+    if (depth >= kReach) continue;
+    for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
+      for (const int place : *moves) {
+        auto& d = search_depth_[static_cast<std::size_t>(place)];
+        if (d != kFar) continue;
+        if (zones.conflict(r.type, place, p.type, p.place) || check(robot, place, blockers) == Check::kTaken) continue;
+        d = depth + 1;
+        search_touched_.push_back(place);
+      }
+    }
+  }
+  for (const int place : search_touched_) search_depth_[static_cast<std::size_t>(place)] = kFar;
+  search_touched_.clear();
+  return found;
+}
+
 void PlacePibt::take(int robot, int place) {
   planned_[static_cast<std::size_t>(robot)] = place;
   planned_at_[static_cast<std::size_t>(place)] = robot;
@@ -66,17 +102,15 @@ bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   };
   std::vector<Candidate> candidates;
   std::vector<int> blockers;
+  // A body spans several places, so one move may not clear the way: a pushed robot takes a move
+  // that clears it, or else one on a shortest way out of it, the pusher pushing again each step.
+  const int way_out = pushed ? moves_out(robot, r.place, pusher, wanted) : 0;
   auto add = [&](int place) {
     const Check c = check(robot, place, blockers);
     if (c == Check::kTaken) return;
     int in_the_way = 0;
     if (pushed && graph_.zones().conflict(r.type, place, pusher_type, wanted)) {
-      // A body spans several places, so one move may not clear the way; a move that at least
-      // gets farther from it does, over the next steps, while the pusher keeps pushing.
-      const auto here = graph_.zones().position(r.place);
-      const auto there = graph_.zones().position(place);
-      const auto target = graph_.zones().position(wanted);
-      if (geometry::distance(there, target) <= geometry::distance(here, target)) return;
+      if (way_out >= kFar || moves_out(robot, place, pusher, wanted) >= way_out) return;
       in_the_way = 1;
     }
     candidates.push_back(

@@ -23,9 +23,10 @@ struct PlaceRobot {
 /// move at a time; the robot that has waited longest since its last goal goes first, robots
 /// held at a place before all. A robot's candidates are its place and its type's successors,
 /// nearest its goal first. A robot that wants a place conflicting with where others stand lends
-/// each of them its priority: each moves out of the way, or at least farther from the wanted
-/// place (a body spans several places, so clearing the way can take several moves, the pusher
-/// pushing again each step), backing up against its lane's direction if it must. When the way
+/// each of them its priority: each moves out of the way or, as a body spans several places and
+/// one move may not clear it, one move along a shortest way out of it (forward or backing up
+/// against its lane's direction, never through where the pusher's body is), the pusher pushing
+/// again each step. When the way
 /// is not clear, the pusher tries its next candidate.
 ///
 /// What a plan step guarantees, for every two robots i and j moving from p to q (p = q when
@@ -58,14 +59,21 @@ class PlacePibt {
   Check check(int robot, int place, std::vector<int>& blockers) const;
   double candidate_cost(int robot, int place) const;
   void take(int robot, int place);
+  /// Moves robot needs from `from` to a place clear of `wanted`, which `pusher` wants, without
+  /// passing where the pusher's body is or a planned robot rules out; kFar when none is near.
+  int moves_out(int robot, int from, int pusher, int wanted);
+
+  static constexpr int kFar = 1 << 20;
 
   PlaceGraph& graph_;
   std::mt19937_64 rng_;
   std::vector<double> priority_;
-  std::vector<PlaceRobot> robots_;     ///< the state being planned from
-  std::vector<int> standing_;          ///< per place: the robot standing there, -1
-  std::vector<int> planned_at_;        ///< per place: the robot planned there, -1
-  std::vector<int> planned_;           ///< per robot: its next place, -1 while not planned
+  std::vector<PlaceRobot> robots_;  ///< the state being planned from
+  std::vector<int> standing_;       ///< per place: the robot standing there, -1
+  std::vector<int> planned_at_;     ///< per place: the robot planned there, -1
+  std::vector<int> planned_;        ///< per robot: its next place, -1 while not planned
+  std::vector<int> search_depth_;   ///< per place: moves from the search's start, kFar when not reached
+  std::vector<int> search_touched_;
   std::vector<std::uint8_t> pushing_;  ///< per robot: in progress, waiting for the robots it pushes
 };
 

@@ -9,7 +9,9 @@
 
 namespace fleet::traffic {
 
-SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, int robots, double approach_distance) {
+SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, int robots, double approach_distance,
+                          const std::vector<int>& robot_types) {
+  const auto type_of = [&](std::size_t robot) { return robot < robot_types.size() ? robot_types[robot] : 0; };
   const map::RoadGraph& graph = site.graph.graph;
   SimScenario scenario;
   for (const auto& area : site.site.loading_areas) {
@@ -34,10 +36,11 @@ SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, 
     for (int p : candidates) {
       if (static_cast<int>(scenario.start_points.size()) >= robots) break;
       const int place = zones.place_of(p);
+      const std::size_t robot = scenario.start_points.size();
       if (pass == 0 && !zones.stoppable(place)) continue;
       bool free = true;
-      for (int q : scenario.start_points) {
-        if (zones.conflict(place, zones.place_of(q))) {
+      for (std::size_t other = 0; other < scenario.start_points.size(); ++other) {
+        if (zones.conflict(type_of(robot), place, type_of(other), zones.place_of(scenario.start_points[other]))) {
           free = false;
           break;
         }

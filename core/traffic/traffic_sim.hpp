@@ -63,9 +63,10 @@ struct SimScenario {
 
 /// Goals: the graph point nearest each loading area's approach position (`approach_distance` in
 /// front of the pallet). Starts: for each robot the graph point nearest a home (cycling through
-/// the homes, then the goal points) that conflicts with no start chosen before.
+/// the homes, then the goal points) that conflicts with no start chosen before, for the two
+/// robots' vehicle types (`robot_types[i]` for robot i, type 0 beyond the list).
 SimScenario site_scenario(const map::SiteMap& site, const ConflictZones& zones, int robots,
-                          double approach_distance = 0.30);
+                          double approach_distance = 0.30, const std::vector<int>& robot_types = {});
 
 class TrafficSim {
  public:
