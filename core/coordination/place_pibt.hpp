@@ -26,8 +26,7 @@ struct PlaceRobot {
 /// each of them its priority: each moves out of the way or, as a body spans several places and
 /// one move may not clear it, one move along a shortest way out of it (forward or backing up
 /// against its lane's direction, never through where the pusher's body is), the pusher pushing
-/// again each step. When the way
-/// is not clear, the pusher tries its next candidate.
+/// again each step. When the way is not clear, the pusher tries its next candidate.
 ///
 /// What a plan step guarantees, for every two robots i and j moving from p to q (p = q when
 /// standing):
