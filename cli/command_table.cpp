@@ -98,6 +98,14 @@ std::vector<CommandSpec> make_table() {
        "table of the robots that reported: fleet, state, pose, order, localization score, health;\n"
        "--all adds the configured robots not seen"},
       {Group::kServer,
+       "traffic",
+       "show",
+       "[ROBOT]",
+       false,
+       {},
+       "every robot's traffic grant (status, how far, how long it waited) and whom it\n"
+       "waits for; with ROBOT its chain of waits and the route points granted"},
+      {Group::kServer,
        "stats",
        "",
        "",

@@ -101,6 +101,22 @@ TEST(Fleetctl, ObstaclesPauseResumeAndMapsReachTheFleet) {
   const auto maps = fleet.fleetctl({"--json", "map", "list"}, 30);
   ASSERT_EQ(maps.exit_code, 0) << maps.err;
   EXPECT_EQ(last_json_line(maps.out)["site"], "table_a");
+
+  // traffic show: once the robot drives an order, its grant and the route points granted.
+  ASSERT_EQ(fleet.fleetctl({"order", "add", "--from", "A1", "--to", "A2"}, 30).exit_code, 0);
+  json shown;
+  for (int i = 0; i < 40 && !shown.contains("granted_points"); ++i) {
+    const auto traffic = fleet.fleetctl({"--json", "traffic", "show", "fl1"}, 30);
+    ASSERT_EQ(traffic.exit_code, 0) << traffic.err;
+    shown = last_json_line(traffic.out);
+  }
+  ASSERT_TRUE(shown.contains("granted_points")) << shown;
+  EXPECT_FALSE(shown["granted_points"].empty());
+  EXPECT_EQ(shown["wait_chain"], "fl1 waits for nobody");
+  const auto table = fleet.fleetctl({"traffic", "show"}, 30);
+  EXPECT_NE(table.out.find("fl1"), std::string::npos) << table.out;
+  EXPECT_EQ(fleet.fleetctl({"traffic", "show", "fl99"}, 30).exit_code, 2);
+  EXPECT_EQ(fleet.fleetctl({"traffic", "list"}, 30).exit_code, 2);
 }
 
 // ---- order watch, inject and completion (DDS domains 80-89) ----
