@@ -239,6 +239,7 @@
     if (toggles.paths) for (const [, r] of robots) robotsLayer.drawPath(r);
     if (toggles.paths) for (const [, r] of robots) robotsLayer.drawLocalPlan(r);
     if (toggles.paths) for (const [, r] of robots) robotsLayer.drawReservations(r);
+    if (toggles.paths) robotsLayer.drawWaits(robots);
     for (let i = robots.length - 1; i >= 0; i--) robotsLayer.drawRobot(robots[i][0], robots[i][1]);
     // Over the bodies: a stacker docking passes over its targets and forks into the pallet.
     for (const [, r] of robots) robotsLayer.drawDocking(r);
@@ -317,7 +318,7 @@
     parts.push(`<span><span class="dot" data-colour="${LOST_COLOUR}"></span>lost</span>`);
     parts.push(`<span><span class="dot" data-colour="${GLOBAL_PLAN}"></span>planned path</span>`);
     parts.push(`<span><span class="dot" data-colour="${LOCAL_PLAN}"></span>local plan (next ${LOCAL_PLAN_LENGTH} m)</span>`);
-    parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting)</span>`);
+    parts.push(`<span><span class="dot" data-colour="${RESERVATION}"></span>traffic reservation (hollow: waiting; dashed arrow: waits for)</span>`);
     if (site && site.robots.some((r) => r.forks)) {
       parts.push(`<span><span class="dot" data-colour="${DOCKING_TARGET}"></span>docking targets 1 and 2</span>`);
       parts.push(`<span><span class="dot" data-colour="${DETECTED_PALLET}"></span>pallet the cameras detect (dashed)</span>`);

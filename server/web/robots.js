@@ -1,4 +1,4 @@
-// The robots on the web view's canvas: planned paths, local plans, traffic reservations,
+// The robots on the web view's canvas: planned paths, local plans, traffic reservations and waits,
 // covariance ellipses, bodies (a stacker's with its forks) and the docking a stacker is in.
 // app.js makes one painter over its canvas; shapes.js gives the geometry.
 'use strict';
@@ -96,6 +96,29 @@ globalThis.fleetRobots = (() => {
         ctx.beginPath();
         ctx.arc(X(x), Y(y), Math.max(2, 0.03 * view.scale), 0, 2 * Math.PI);
         if (waiting) ctx.stroke(); else ctx.fill();
+      }
+    }
+
+    // Who waits for whom: a dashed arrow from each waiting robot to each robot it waits for.
+    function drawWaits(robots) {
+      ctx.strokeStyle = RESERVATION;
+      ctx.fillStyle = RESERVATION;
+      ctx.lineWidth = 2;
+      for (const { a, b } of shapes.waitArrows(robots, 0.12)) {
+        const [ax, ay, bx, by] = [X(a[0]), Y(a[1]), X(b[0]), Y(b[1])];
+        ctx.setLineDash([5, 3]);
+        ctx.beginPath();
+        ctx.moveTo(ax, ay);
+        ctx.lineTo(bx, by);
+        ctx.stroke();
+        ctx.setLineDash([]);
+        const angle = Math.atan2(by - ay, bx - ax), head = 7;
+        ctx.beginPath();
+        ctx.moveTo(bx, by);
+        ctx.lineTo(bx - head * Math.cos(angle - 0.4), by - head * Math.sin(angle - 0.4));
+        ctx.lineTo(bx - head * Math.cos(angle + 0.4), by - head * Math.sin(angle + 0.4));
+        ctx.closePath();
+        ctx.fill();
       }
     }
 
@@ -249,7 +272,7 @@ globalThis.fleetRobots = (() => {
       }
     }
 
-    return { colourOf, drawPath, drawLocalPlan, drawReservations, drawRobot, drawDocking };
+    return { colourOf, drawPath, drawLocalPlan, drawReservations, drawWaits, drawRobot, drawDocking };
   }
 
   return {

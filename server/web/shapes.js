@@ -56,7 +56,27 @@
     return { outline: rectangle(x, y, yaw, EPAL.depth, EPAL.width), face: placed(x, y, yaw, [[d, w], [d, -w]]) };
   }
 
-  const api = { EPAL, placed, rectangle, clipAhead, bodyParts, palletOnForks, detectedPallet };
+  // Who waits for whom in traffic: for every robot whose grant is WAITING, one segment from it to
+  // each robot it waits for that is on the view, stopping short of both bodies' centres by
+  // `inset` metres so the arrow sits between them. `robots` is a list of [id, robot] pairs as
+  // GET /api/state gives them.
+  function waitArrows(robots, inset = 0.0) {
+    const where = new Map(robots.map(([id, r]) => [id, r]));
+    const arrows = [];
+    for (const [id, r] of robots) {
+      if (!r.traffic || r.traffic.status !== 'WAITING' || r.health === 'lost') continue;
+      for (const other of r.traffic.waiting_for || []) {
+        const o = where.get(other);
+        if (!o || other === id) continue;
+        const dx = o.x - r.x, dy = o.y - r.y, d = Math.hypot(dx, dy);
+        const k = d > 2 * inset ? inset / d : 0;
+        arrows.push({ from: id, to: other, a: [r.x + k * dx, r.y + k * dy], b: [o.x - k * dx, o.y - k * dy] });
+      }
+    }
+    return arrows;
+  }
+
+  const api = { EPAL, placed, rectangle, clipAhead, bodyParts, palletOnForks, detectedPallet, waitArrows };
   if (typeof module !== 'undefined' && module.exports) module.exports = api;
   else globalThis.fleetShapes = api;
 })();

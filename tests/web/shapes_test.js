@@ -87,6 +87,18 @@ test('a detected pallet is a 1.2 x 0.8 outline at its pose with its entry face a
   nearPoints(face, [[1.4, 0.6], [1.4, 1.4]], 'face');
 });
 
+test('a waiting robot points at each robot it waits for on the view, and no other robot points', () => {
+  const robots = [
+    ['fl1', { x: 0, y: 0, traffic: { status: 'WAITING', waiting_for: ['fl2', 'fl9'] } }],
+    ['fl2', { x: 1, y: 0, traffic: { status: 'MOVING', waiting_for: ['fl1'] } }],
+    ['fl3', { x: 0, y: 1, health: 'lost', traffic: { status: 'WAITING', waiting_for: ['fl1'] } }],
+  ];
+  const arrows = shapes.waitArrows(robots, 0.1);
+  assert.strictEqual(arrows.length, 1, JSON.stringify(arrows));
+  assert.deepStrictEqual([arrows[0].from, arrows[0].to], ['fl1', 'fl2']);
+  nearPoints([arrows[0].a, arrows[0].b], [[0.1, 0], [0.9, 0]], 'arrow between the two, short of both centres');
+});
+
 if (failures) {
   console.log(`${failures} failed`);
   process.exit(1);
