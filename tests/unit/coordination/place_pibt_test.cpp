@@ -6,8 +6,10 @@
 #include <string>
 
 #include "../traffic/test_graphs.hpp"
+#include "config/fleet_config.hpp"
 #include "coordination/place_sim.hpp"
 #include "map/site_map.hpp"
+#include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace fleet::coordination {
@@ -139,6 +141,30 @@ TEST(PlaceSim, EightForkliftsOnTableATripWithoutCollisionOrDeadlock) {
   EXPECT_EQ(report.plan_conflicts, 0u) << report.first_plan_conflict;
   EXPECT_EQ(report.deadlocks, 0u);
   EXPECT_GT(report.trips, 30u);
+}
+
+// The plant's four fleets, two robots each (forklifts, reach trucks, stackers, pickers: bodies
+// of 0.65 m to 1.7 m on 0.5 m places), on random trips between its finished-goods, picking and
+// expedition places: every footprint apart and every step's rules kept, for every pair of types.
+TEST(PlaceSim, ThePlantsFourVehicleTypesKeepTheirBodiesApart) {
+  const auto config = config::load_fleet_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/plant.yaml");
+  std::erase_if(site.site.loading_areas, [](const map::LoadingArea& area) {
+    return !area.id.starts_with("FG") && !area.id.starts_with("PK") && !area.id.starts_with("EX");
+  });
+  const traffic::TrafficConfiguration configuration = traffic::configuration_from(config);
+  const traffic::ConflictZones zones(site.graph.graph, configuration.resources);
+  ASSERT_EQ(zones.type_count(), 4u);
+  PlaceSimParams params;
+  params.speed = 1.0;
+  params.dwell = 10.0;
+  for (int i = 0; i < 8; ++i) params.robot_types.push_back(i % 4);
+  const auto scenario = traffic::site_scenario(site, zones, 8, site.site.approach_distance, params.robot_types);
+  PlaceSim sim(site.graph.graph, zones, params, scenario.goal_points, scenario.start_points);
+  const PlaceSimReport& report = sim.run_until(600.0);
+  EXPECT_EQ(report.collisions, 0u) << report.first_collision;
+  EXPECT_EQ(report.plan_conflicts, 0u) << report.first_plan_conflict;
+  EXPECT_GT(report.trips, 0u);
 }
 
 }  // namespace
