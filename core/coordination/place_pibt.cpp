@@ -89,7 +89,7 @@ void PlacePibt::take(int robot, int place) {
   planned_at_[static_cast<std::size_t>(place)] = robot;
 }
 
-bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
+void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
   const bool pushed = pusher >= 0;
   const int pusher_type = pushed ? robots_[static_cast<std::size_t>(pusher)].type : 0;
@@ -120,8 +120,8 @@ bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   for (const int next : graph_.successors(r.type, r.place)) add(next);
   if (pushed) {
     // Backing up along its lane makes room where the lanes run one way only.
+    const auto& forward = graph_.successors(r.type, r.place);
     for (const int back : graph_.predecessors(r.type, r.place)) {
-      const auto& forward = graph_.successors(r.type, r.place);
       if (std::find(forward.begin(), forward.end(), back) == forward.end()) add(back);
     }
   }
@@ -135,7 +135,7 @@ bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   for (const Candidate& candidate : candidates) {
     if (candidate.place == r.place) {
       take(robot, r.place);
-      return false;
+      return;
     }
     if (check(robot, candidate.place, blockers) == Check::kTaken) continue;
     // Ask every robot standing in the way to move out of it (or at least away from it).
@@ -147,14 +147,13 @@ bool PlacePibt::plan_robot(int robot, int pusher, int wanted) {
     pushing_[self] = 0;
     if (check(robot, candidate.place, blockers) == Check::kFree) {
       take(robot, candidate.place);
-      return true;
+      return;
     }
   }
   // No move is free: the robot stays. Standing is always free (no robot plans into a place
   // conflicting with where an unplanned or in-progress robot stands), so a pusher that cannot
   // get its place tries its next candidate and at worst stays too.
   take(robot, r.place);
-  return false;
 }
 
 std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
@@ -191,6 +190,43 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
     planned_at_[static_cast<std::size_t>(planned_[i])] = -1;
   }
   return planned_;
+}
+
+std::string broken_step_rule(const traffic::ConflictZones& zones, const std::vector<PlaceRobot>& robots,
+                             const std::vector<int>& next) {
+  const std::size_t n = robots.size();
+  std::vector<std::vector<std::size_t>> follows(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string robot = "robot " + std::to_string(i);
+    if (robots[i].held && next[i] != robots[i].place) return robot + " is held but moved";
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      const PlaceRobot& a = robots[i];
+      const PlaceRobot& b = robots[j];
+      if (zones.conflict(a.type, a.place, b.type, b.place))
+        return robot + " stands at a place conflicting with another's";
+      if (zones.conflict(a.type, next[i], b.type, next[j])) return robot + " is planned into conflicting places";
+      if (!zones.conflict(a.type, next[i], b.type, b.place)) continue;
+      if (next[j] == b.place) return robot + " is planned into a place conflicting with one that stays";
+      follows[i].push_back(j);
+    }
+  }
+  // Follows form no cycle: peel off robots that follow nobody left until none is left.
+  std::vector<std::uint8_t> gone(n, 0);
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (gone[i]) continue;
+      bool leads_only_gone = true;
+      for (const std::size_t j : follows[i]) leads_only_gone = leads_only_gone && gone[j];
+      if (leads_only_gone) {
+        gone[i] = 1;
+        dropped = true;
+      }
+    }
+  }
+  if (std::find(gone.begin(), gone.end(), 0) != gone.end()) return "robots follow one another in a cycle";
+  return "";
 }
 
 }  // namespace fleet::coordination

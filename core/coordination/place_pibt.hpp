@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "coordination/place_graph.hpp"
@@ -52,7 +53,7 @@ class PlacePibt {
  private:
   enum class Check { kFree, kTaken, kBlocked };
   /// Plans one robot; `pusher` (-1 when none) wants place `wanted`, which conflicts with where it stands.
-  bool plan_robot(int robot, int pusher, int wanted);
+  void plan_robot(int robot, int pusher, int wanted);
   /// Whether robot may plan into place: kTaken when a planned or in-progress robot rules it out,
   /// kBlocked when unplanned robots stand in the way (then listed in `blockers`).
   Check check(int robot, int place, std::vector<int>& blockers) const;
@@ -75,5 +76,12 @@ class PlacePibt {
   std::vector<int> search_touched_;
   std::vector<std::uint8_t> pushing_;  ///< per robot: in progress, waiting for the robots it pushes
 };
+
+/// Which rule of a plan step (PlacePibt's class comment) a step from `robots` to `next` breaks,
+/// naming the robot by its index, or "" when it keeps them all: a held robot stays, no two robots
+/// stand or are planned at conflicting places, no robot is planned into a place conflicting with
+/// one that stays, and the robots that follow one another form no cycle.
+std::string broken_step_rule(const traffic::ConflictZones& zones, const std::vector<PlaceRobot>& robots,
+                             const std::vector<int>& next);
 
 }  // namespace fleet::coordination

@@ -58,47 +58,15 @@ geometry::Pose2 PlaceSim::pose_at(const Body& body, int next, double fraction) c
   return pose;
 }
 
-void PlaceSim::check_plan(const std::vector<int>& next) {
-  // The rules of a plan step (PlacePibt): places apart before and after, and who follows whom
-  // moves on and forms no cycle.
-  const std::size_t n = bodies_.size();
-  std::vector<std::vector<std::size_t>> follows(n);
-  std::string broken;
-  for (std::size_t i = 0; i < n && broken.empty(); ++i) {
-    for (std::size_t j = 0; j < n && broken.empty(); ++j) {
-      if (i == j) continue;
-      const Body& a = bodies_[i];
-      const Body& b = bodies_[j];
-      if (i < j && zones_.conflict(a.type, next[i], b.type, next[j])) broken = "planned into conflicting places";
-      if (i < j && zones_.conflict(a.type, a.place, b.type, b.place)) broken = "standing at conflicting places";
-      if (!zones_.conflict(a.type, next[i], b.type, b.place)) continue;
-      if (next[j] == b.place) broken = "planned into a place conflicting with one that stays";
-      follows[i].push_back(j);
-    }
-    if (!broken.empty()) {
-      std::ostringstream out;
-      out << "t=" << time_ << " s: robot " << i + 1 << " " << broken;
-      broken = out.str();
-    }
-  }
-  // A cycle in the follow relation: depth-first search with colours.
-  std::vector<int> colour(n, 0);
-  bool cycle = false;
-  auto visit = [&](auto&& self, std::size_t i) -> void {
-    colour[i] = 1;
-    for (const std::size_t j : follows[i]) {
-      if (colour[j] == 1) cycle = true;
-      if (colour[j] == 0) self(self, j);
-    }
-    colour[i] = 2;
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (colour[i] == 0) visit(visit, i);
-  }
-  if (cycle && broken.empty()) broken = "t=" + std::to_string(time_) + " s: robots follow one another in a cycle";
+void PlaceSim::check_plan(const std::vector<PlaceRobot>& robots, const std::vector<int>& next) {
+  const std::string broken = broken_step_rule(zones_, robots, next);
   if (broken.empty()) return;
   ++report_.plan_conflicts;
-  if (report_.first_plan_conflict.empty()) report_.first_plan_conflict = broken;
+  if (report_.first_plan_conflict.empty()) {
+    std::ostringstream out;
+    out << "t=" << time_ << " s: " << broken;
+    report_.first_plan_conflict = out.str();
+  }
 }
 
 void PlaceSim::check_collisions(const std::vector<int>& next, double dt) {
@@ -196,7 +164,7 @@ void PlaceSim::step() {
   report_.planning_ms_max = std::max(report_.planning_ms_max, ms);
   planning_ms_sum_ += ms;
   report_.planning_ms_mean = planning_ms_sum_ / static_cast<double>(++plans_);
-  check_plan(next);
+  check_plan(robots, next);
   double longest = 0.0;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     longest = std::max(longest, graph_.step_length(bodies_[i].place, next[i]));

@@ -73,7 +73,7 @@ class PlaceSim {
 
   void start_next_goal(Body& body);
   std::string stall_note(std::size_t robot) const;
-  void check_plan(const std::vector<int>& next);
+  void check_plan(const std::vector<PlaceRobot>& robots, const std::vector<int>& next);
   void check_collisions(const std::vector<int>& next, double dt);
   geometry::Pose2 pose_at(const Body& body, int next, double fraction) const;
   void arrive(std::size_t robot, int next);

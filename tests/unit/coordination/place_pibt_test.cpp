@@ -21,38 +21,6 @@ traffic::ResourceParams forklift_params() {
   return params;
 }
 
-/// The rules of a plan step (PlacePibt's class comment), or what broke them.
-std::string broken_rule(const traffic::ConflictZones& zones, const std::vector<PlaceRobot>& robots,
-                        const std::vector<int>& next) {
-  const std::size_t n = robots.size();
-  std::vector<std::vector<std::size_t>> follows(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (robots[i].held && next[i] != robots[i].place) return "held robot " + std::to_string(i) + " moved";
-    for (std::size_t j = 0; j < n; ++j) {
-      if (i == j) continue;
-      if (zones.conflict(robots[i].type, next[i], robots[j].type, next[j])) return "conflicting next places";
-      if (!zones.conflict(robots[i].type, next[i], robots[j].type, robots[j].place)) continue;
-      if (next[j] == robots[j].place) return "robot " + std::to_string(i) + " plans into a standing robot";
-      follows[i].push_back(j);
-    }
-  }
-  // Follows form no cycle: repeatedly drop robots that follow nobody left.
-  std::vector<std::uint8_t> gone(n, 0);
-  for (bool dropped = true; dropped;) {
-    dropped = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (gone[i]) continue;
-      bool leads_only_gone = true;
-      for (const std::size_t j : follows[i]) leads_only_gone = leads_only_gone && gone[j];
-      if (leads_only_gone) gone[i] = 1, dropped = true;
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!gone[i]) return "robots follow one another in a cycle";
-  }
-  return "";
-}
-
 TEST(PlaceGraph, DistancesFollowTheLanesOneWay) {
   traffic::testing::GraphBuilder b;
   const std::vector<int> lane = b.one_way_road(0.0, 0.0, 1.0, 0.0);
@@ -79,7 +47,7 @@ TEST(PlacePibt, HeadOnInACorridorOneStepsIntoTheSiding) {
   int steps = 0;
   for (; steps < 200 && (robots[0].place != east || robots[1].place != west); ++steps) {
     const std::vector<int> next = planner.plan(robots);
-    ASSERT_EQ(broken_rule(zones, robots, next), "") << "step " << steps;
+    ASSERT_EQ(broken_step_rule(zones, robots, next), "") << "step " << steps;
     for (std::size_t i = 0; i < robots.size(); ++i) robots[i].place = next[i];
   }
   EXPECT_EQ(robots[0].place, east);
@@ -111,7 +79,7 @@ TEST(PlacePibt, RandomGoalsAndHoldsNeverBreakTheRules) {
       for (int step = 0; step < 400; ++step) {
         for (auto& r : robots) r.held = std::uniform_real_distribution<double>(0.0, 1.0)(rng) < 0.05;
         const std::vector<int> next = planner.plan(robots);
-        ASSERT_EQ(broken_rule(zones, robots, next), "") << "seed " << seed << " step " << step;
+        ASSERT_EQ(broken_step_rule(zones, robots, next), "") << "seed " << seed << " step " << step;
         for (std::size_t i = 0; i < robots.size(); ++i) {
           robots[i].place = next[i];
           if (robots[i].place == robots[i].goal) {
