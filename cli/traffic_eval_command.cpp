@@ -28,6 +28,9 @@ struct EvalSpec {
   std::vector<std::string> place_prefixes;    ///< trips only between places whose ids start so; empty: all
   bool verbose = false;                       ///< list every deadlock: who stalled where, waiting on whom
   std::vector<std::string> cores{"manager"};  ///< "manager" (TrafficManager), "pibt" (PlacePibt), or both
+  double delay_probability = 0.0;             ///< --delay P,MIN,MAX: per move, seconds
+  double delay_min_s = 0.0;
+  double delay_max_s = 0.0;
 };
 
 /// The same trips coordinated by the place planner (coordination::PlaceSim) instead of the manager.
@@ -40,6 +43,9 @@ nlohmann::json run_place_planner(const std::string& site_name, const map::SiteMa
   place_params.deadlock_timeout = params.deadlock_timeout;
   place_params.robot_types = params.robot_types;
   place_params.seed = params.seed;
+  place_params.delay_probability = spec.delay_probability;
+  place_params.delay_min_s = spec.delay_min_s;
+  place_params.delay_max_s = spec.delay_max_s;
   coordination::PlaceSim sim(site.graph.graph, zones, place_params, scenario.goal_points, scenario.start_points);
   const coordination::PlaceSimReport& r = sim.run_until(spec.duration_s);
   return {{"site", site_name},
@@ -50,6 +56,9 @@ nlohmann::json run_place_planner(const std::string& site_name, const map::SiteMa
           {"deadlocks", r.deadlocks},
           {"max_wait_s", r.max_wait_s},
           {"plan_conflicts", r.plan_conflicts},
+          {"wait_cycles", r.wait_cycles},
+          {"first_wait_cycle", r.first_wait_cycle},
+          {"delays", r.delays},
           {"planning_ms_mean", r.planning_ms_mean},
           {"planning_ms_max", r.planning_ms_max},
           {"first_collision", r.first_collision},
@@ -132,6 +141,28 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
       throw ArgError("--core: '" + *core + "' is none of manager, pibt, both");
     }
   }
+  if (const auto delay = flags.value("delay")) {
+    std::vector<std::string> parts{""};
+    for (const char c : *delay) {
+      if (c == ',') {
+        parts.emplace_back();
+      } else {
+        parts.back().push_back(c);
+      }
+    }
+    const auto p = parts.size() == 3 ? parse_finite(parts[0]) : std::nullopt;
+    const auto lo = parts.size() == 3 ? parse_finite(parts[1]) : std::nullopt;
+    const auto hi = parts.size() == 3 ? parse_finite(parts[2]) : std::nullopt;
+    if (!p || !lo || !hi || *p < 0.0 || *p > 1.0 || *lo < 0.0 || *hi < *lo || *hi > 3600.0) {
+      throw ArgError("--delay '" + *delay + "': expected P,MIN,MAX with 0 <= P <= 1 and 0 <= MIN <= MAX (seconds)");
+    }
+    if (spec.cores != std::vector<std::string>{"pibt"}) {
+      throw ArgError("--delay: only the coordination core's runs model delays (--core pibt)");
+    }
+    spec.delay_probability = *p;
+    spec.delay_min_s = *lo;
+    spec.delay_max_s = *hi;
+  }
   if (against && spec.cores.size() > 1) throw ArgError("--core both compares cores on one site: drop --against");
   if (const auto rest = flags.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   for (const auto& name : against ? std::vector<std::string>{site, *against} : std::vector<std::string>{site}) {
@@ -148,6 +179,7 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
                      {"seed", spec.seed},
                      {"dwell_s", spec.dwell_s},
                      {"places", spec.place_prefixes},
+                     {"delay", {spec.delay_probability, spec.delay_min_s, spec.delay_max_s}},
                      {"runs", runs}};
   if (against) {
     const double b = runs[1]["trips"].get<double>();

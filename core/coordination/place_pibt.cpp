@@ -100,6 +100,7 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
     int blocked;
     unsigned tie;
   };
+  if (!pushed && give_way(robot)) return;
   std::vector<Candidate> candidates;
   std::vector<int> blockers;
   // A body spans several places, so one move may not clear the way: a pushed robot takes a move
@@ -156,10 +157,150 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   take(robot, r.place);
 }
 
+int PlacePibt::best_move(int robot) const {
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  if (r.goal < 0) return -1;
+  int best = -1;
+  double best_cost = candidate_cost(robot, r.place);
+  for (const int next : graph_.successors(r.type, r.place)) {
+    if (const double cost = candidate_cost(robot, next); cost < best_cost) {
+      best = next;
+      best_cost = cost;
+    }
+  }
+  return best;
+}
+
+bool PlacePibt::give_way(int robot) {
+  // The robot's way on is blocked by one that wants to pass where it stands and cannot get out of
+  // its way (a dead end, or robots boxed in behind it): pushing it back is futile, the two must
+  // swap, and only the robot outside can make room. It backs off along a shortest way to a place
+  // clear of the other's next places, the other following it, until it can step aside and let it
+  // pass [Okumura 2023, section 5, the swap].
+  const auto self = static_cast<std::size_t>(robot);
+  const PlaceRobot& r = robots_[self];
+  const int giving_way_to = giving_way_to_[self];
+  giving_way_to_[self] = -1;
+  const int wanted = best_move(robot);
+  if (wanted < 0) return false;
+  const auto& zones = graph_.zones();
+  if (giving_way_to >= 0) {
+    // Once backing off for it, the robot keeps off the other's way until it has passed.
+    const PlaceRobot& o = robots_[static_cast<std::size_t>(giving_way_to)];
+    const std::vector<int> its_way = path_ahead(giving_way_to, o.place);
+    // A robot that does not take the room it is given (it waits in turn) ends the holding off.
+    const bool moving = standing_plans_[static_cast<std::size_t>(giving_way_to)] < kStandingBeforeSwap;
+    if (o.goal >= 0 && !o.held && moving &&
+        std::any_of(its_way.begin(), its_way.end(), [&](int p) { return zones.conflict(r.type, wanted, o.type, p); })) {
+      giving_way_to_[self] = giving_way_to;
+      if (!back_off(robot, giving_way_to)) take(robot, r.place);
+      return true;
+    }
+  }
+  if (standing_plans_[self] < kStandingBeforeSwap) return false;
+  std::vector<int> blockers;
+  if (check(robot, wanted, blockers) != Check::kBlocked) return false;
+  for (const int other : blockers) {
+    const PlaceRobot& o = robots_[static_cast<std::size_t>(other)];
+    const int its_move = best_move(other);
+    if (o.held || its_move < 0 || !zones.conflict(o.type, its_move, r.type, r.place)) continue;
+    if (first_move_off(other, robot, path_ahead(robot, wanted), true) >= 0) continue;  // it can be pushed clear
+    if (!back_off(robot, other)) return false;
+    giving_way_to_[self] = other;
+    return true;
+  }
+  return false;
+}
+
+bool PlacePibt::back_off(int robot, int other) {
+  const auto& zones = graph_.zones();
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  const PlaceRobot& o = robots_[static_cast<std::size_t>(other)];
+  const int its_move = best_move(other);
+  if (its_move < 0 || !zones.conflict(o.type, its_move, r.type, r.place)) return false;
+  std::vector<int> blockers;
+  const int move = first_move_off(robot, other, path_ahead(other, its_move), true);
+  if (move < 0 || check(robot, move, blockers) != Check::kFree) return false;
+  take(robot, move);
+  // The other follows at once, before robots of lower priority can take the place.
+  if (planned_[static_cast<std::size_t>(other)] < 0 && check(other, its_move, blockers) == Check::kFree) {
+    take(other, its_move);
+  }
+  return true;
+}
+
+std::vector<int> PlacePibt::path_ahead(int robot, int from) const {
+  constexpr std::size_t kPlaces = 12;
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  std::vector<int> path{from};
+  while (r.goal >= 0 && path.size() < kPlaces && path.back() != r.goal) {
+    int next = -1;
+    double cost = graph_.distance(r.type, path.back(), r.goal);
+    for (const int candidate : graph_.successors(r.type, path.back())) {
+      if (const double c = graph_.distance(r.type, candidate, r.goal); c < cost) {
+        next = candidate;
+        cost = c;
+      }
+    }
+    if (next < 0) break;
+    path.push_back(next);
+  }
+  return path;
+}
+
+int PlacePibt::first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing) {
+  // Breadth-first over the robot's moves either way, never through the other's body nor where a
+  // planned robot (or, around_standing, any other robot standing) rules out, to the nearest place
+  // clear of the path.
+  constexpr int kReach = 24;
+  const auto& zones = graph_.zones();
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  const PlaceRobot& o = robots_[static_cast<std::size_t>(other)];
+  auto clear = [&](int place) {
+    return std::none_of(path.begin(), path.end(), [&](int p) { return zones.conflict(r.type, place, o.type, p); });
+  };
+  std::vector<int> blockers;
+  int found = -1;
+  search_depth_[static_cast<std::size_t>(r.place)] = 0;
+  search_touched_.push_back(r.place);
+  search_first_.resize(static_cast<std::size_t>(graph_.place_count()), -1);
+  for (std::size_t next = 0; next < search_touched_.size() && found < 0; ++next) {
+    const int at = search_touched_[next];
+    const int depth = search_depth_[static_cast<std::size_t>(at)];
+    if (at != r.place && clear(at)) {
+      found = search_first_[static_cast<std::size_t>(at)];
+      break;
+    }
+    if (depth >= kReach) continue;
+    for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
+      for (const int place : *moves) {
+        auto& d = search_depth_[static_cast<std::size_t>(place)];
+        if (d != kFar || zones.conflict(r.type, place, o.type, o.place)) continue;
+        const Check c = check(robot, place, blockers);
+        if (c == Check::kTaken) continue;
+        if (around_standing && c == Check::kBlocked &&
+            std::any_of(blockers.begin(), blockers.end(), [&](int b) { return b != other; })) {
+          continue;
+        }
+        d = depth + 1;
+        search_first_[static_cast<std::size_t>(place)] =
+            at == r.place ? place : search_first_[static_cast<std::size_t>(at)];
+        search_touched_.push_back(place);
+      }
+    }
+  }
+  for (const int place : search_touched_) search_depth_[static_cast<std::size_t>(place)] = kFar;
+  search_touched_.clear();
+  return found;
+}
+
 std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
   robots_ = robots;
   const std::size_t n = robots.size();
   while (priority_.size() < n) priority_.push_back(std::uniform_real_distribution<double>(0.0, 1.0)(rng_));
+  last_place_.resize(n, -1);
+  giving_way_to_.resize(n, -1);
+  standing_plans_.resize(n, 0);
   planned_.assign(n, -1);
   pushing_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -170,6 +311,7 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
     }
     standing_[static_cast<std::size_t>(place)] = static_cast<int>(i);
     if (robots[i].goal >= 0 && robots[i].goal != place && !robots[i].held) priority_[i] += 1.0;
+    if (robots[i].place != last_place_[i] || robots[i].held || robots[i].goal < 0) standing_plans_[i] = 0;
   }
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -188,6 +330,10 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
   for (std::size_t i = 0; i < n; ++i) {
     standing_[static_cast<std::size_t>(robots[i].place)] = -1;
     planned_at_[static_cast<std::size_t>(planned_[i])] = -1;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    last_place_[i] = robots[i].place;
+    if (planned_[i] == robots[i].place) ++standing_plans_[i];
   }
   return planned_;
 }

@@ -27,7 +27,9 @@ struct PlaceRobot {
 /// each of them its priority: each moves out of the way or, as a body spans several places and
 /// one move may not clear it, one move along a shortest way out of it (forward or backing up
 /// against its lane's direction, never through where the pusher's body is), the pusher pushing
-/// again each step. When the way is not clear, the pusher tries its next candidate.
+/// again each step. When the way is not clear, the pusher tries its next candidate. A robot
+/// whose way is blocked by one that must pass where it stands and cannot be pushed clear (in a
+/// spur, or boxed in) backs off for it instead, the other following [Okumura 2023, section 5].
 ///
 /// What a plan step guarantees, for every two robots i and j moving from p to q (p = q when
 /// standing):
@@ -58,22 +60,41 @@ class PlacePibt {
   /// kBlocked when unplanned robots stand in the way (then listed in `blockers`).
   Check check(int robot, int place, std::vector<int>& blockers) const;
   double candidate_cost(int robot, int place) const;
+  /// The robot's move nearest its goal, -1 when staying is as near (or it has no goal).
+  int best_move(int robot) const;
+  /// A robot that stays backs off for one in its way that must pass where it stands; whether it does.
+  bool give_way(int robot);
+  /// Robot takes one move off the way of `other`, which wants to pass where it stands, and other
+  /// follows it; whether it could.
+  bool back_off(int robot, int other);
+  /// The robot's next places from `from` on, each its nearest to its goal.
+  std::vector<int> path_ahead(int robot, int from) const;
+  /// The first of robot's moves on a shortest way to a place clear of `path` (other's), not
+  /// through other's body nor (around_standing) through robots standing; -1 when none is near.
+  int first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing);
   void take(int robot, int place);
   /// Moves robot needs from `from` to a place clear of `wanted`, which `pusher` wants, without
   /// passing where the pusher's body is or a planned robot rules out; kFar when none is near.
   int moves_out(int robot, int from, int pusher, int wanted);
 
   static constexpr int kFar = 1 << 20;
+  /// Plans a robot with an errand stays put before it backs off for a robot that must pass it:
+  /// pushing sorts most meetings out, and backing off too early turns crowds into shuffles.
+  static constexpr int kStandingBeforeSwap = 4;
 
   PlaceGraph& graph_;
   std::mt19937_64 rng_;
   std::vector<double> priority_;
-  std::vector<PlaceRobot> robots_;  ///< the state being planned from
-  std::vector<int> standing_;       ///< per place: the robot standing there, -1
-  std::vector<int> planned_at_;     ///< per place: the robot planned there, -1
-  std::vector<int> planned_;        ///< per robot: its next place, -1 while not planned
-  std::vector<int> search_depth_;   ///< per place: moves from the search's start, kFar when not reached
+  std::vector<int> last_place_;      ///< per robot: its place at the last plan
+  std::vector<int> standing_plans_;  ///< per robot: plans in a row it stayed at its place with an errand
+  std::vector<int> giving_way_to_;   ///< per robot: the robot it backed off for at the last plan, -1
+  std::vector<PlaceRobot> robots_;   ///< the state being planned from
+  std::vector<int> standing_;        ///< per place: the robot standing there, -1
+  std::vector<int> planned_at_;      ///< per place: the robot planned there, -1
+  std::vector<int> planned_;         ///< per robot: its next place, -1 while not planned
+  std::vector<int> search_depth_;    ///< per place: moves from the search's start, kFar when not reached
   std::vector<int> search_touched_;
+  std::vector<int> search_first_;      ///< per place: the first move of the way found to it
   std::vector<std::uint8_t> pushing_;  ///< per robot: in progress, waiting for the robots it pushes
 };
 

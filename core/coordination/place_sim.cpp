@@ -16,6 +16,9 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
     const int place = zones.place_of(point);
     if (std::find(goal_places_.begin(), goal_places_.end(), place) == goal_places_.end()) goal_places_.push_back(place);
   }
+  for (const auto& type : zones.vehicle_types()) {
+    for (const auto& v : type.footprint) reach_ = std::max(reach_, 2.0 * std::hypot(v.x, v.y));
+  }
   double length_sum = 0.0;
   int lengths = 0;
   for (int place = 0; place < graph_.place_count(); ++place) {
@@ -24,14 +27,15 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
       ++lengths;
     }
   }
-  if (lengths > 0) idle_step_s_ = length_sum / lengths / params_.speed;
+  if (lengths > 0) plan_period_s_ = length_sum / lengths / params_.speed;
   for (std::size_t i = 0; i < start_points.size(); ++i) {
     Body body;
     body.type = i < params_.robot_types.size() ? params_.robot_types[i] : 0;
-    body.place = zones.place_of(start_points[i]);
+    body.visits.push_back({zones.place_of(start_points[i]), 0});
     // A robot stands along its lane, not across it.
-    if (const auto& next = graph_.successors(body.type, body.place); !next.empty()) {
-      const geometry::Vec2 d = zones.position(next.front()) - zones.position(body.place);
+    const int at = body.visits.front().place;
+    if (const auto& next = graph_.successors(body.type, at); !next.empty()) {
+      const geometry::Vec2 d = zones.position(next.front()) - zones.position(at);
       body.yaw = std::atan2(d.y, d.x);
     }
     bodies_.push_back(body);
@@ -43,59 +47,152 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
 void PlaceSim::start_next_goal(Body& body) {
   if (goal_places_.size() < 2) return;
   std::uniform_int_distribution<std::size_t> pick(0, goal_places_.size() - 1);
-  int next = body.place;
-  while (next == body.place) next = goal_places_[pick(rng_)];
+  const int at = body.visits.front().place;
+  int next = at;
+  while (next == at) next = goal_places_[pick(rng_)];
   if (!body.carrying) body.trip_start = time_;
   body.goal = next;
   body.still_since = time_;
 }
 
-geometry::Pose2 PlaceSim::pose_at(const Body& body, int next, double fraction) const {
-  const geometry::Vec2 a = zones_.position(body.place);
-  const geometry::Vec2 b = zones_.position(next);
-  geometry::Pose2 pose{a.x + fraction * (b.x - a.x), a.y + fraction * (b.y - a.y), body.yaw};
-  if (next != body.place) pose.yaw = std::atan2(b.y - a.y, b.x - a.x);
-  return pose;
+int PlaceSim::place(int robot) const {
+  const Body& body = bodies_[static_cast<std::size_t>(robot)];
+  return past_midpoint(body) ? body.visits[1].place : body.visits[0].place;
 }
 
-void PlaceSim::check_plan(const std::vector<PlaceRobot>& robots, const std::vector<int>& next) {
+geometry::Pose2 PlaceSim::pose_of(const Body& body) const {
+  const geometry::Vec2 a = zones_.position(body.visits[0].place);
+  if (body.visits.size() < 2 || body.length <= 0.0) return {a.x, a.y, body.yaw};
+  const geometry::Vec2 b = zones_.position(body.visits[1].place);
+  const double f = std::min(1.0, body.progress / body.length);
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
+}
+
+void PlaceSim::plan_step() {
+  // The plan runs ahead of the robots: each is planned from the last place planned for it.
+  std::vector<PlaceRobot> robots;
+  for (const Body& body : bodies_) {
+    const int planned = body.visits.back().place;
+    const bool behind = static_cast<int>(body.visits.size()) - 1 >= params_.plan_ahead;
+    const bool errand = body.goal >= 0 && planned != body.goal;
+    robots.push_back({body.type, planned, errand ? body.goal : -1, !errand || behind});
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<int> next = planner_.plan(robots);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  report_.planning_ms_max = std::max(report_.planning_ms_max, ms);
+  planning_ms_sum_ += ms;
+  report_.planning_ms_mean = planning_ms_sum_ / static_cast<double>(++report_.plan_steps);
   const std::string broken = broken_step_rule(zones_, robots, next);
-  if (broken.empty()) return;
-  ++report_.plan_conflicts;
-  if (report_.first_plan_conflict.empty()) {
+  if (!broken.empty() && report_.plan_conflicts++ == 0) {
     std::ostringstream out;
     out << "t=" << time_ << " s: " << broken;
     report_.first_plan_conflict = out.str();
   }
+  ++plan_step_;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body& body = bodies_[i];
+    if (next[i] == robots[i].place) continue;
+    body.visits.push_back({next[i], plan_step_});
+    if (body.visits.size() == 2) begin_move(body);
+    if (next[i] == body.goal) planner_.reached_goal(static_cast<int>(i));
+  }
 }
 
-void PlaceSim::check_collisions(const std::vector<int>& next, double dt) {
+void PlaceSim::begin_move(Body& body) {
+  body.progress = 0.0;
+  body.length = graph_.step_length(body.visits[0].place, body.visits[1].place);
+  body.pause_at = -1.0;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  if (params_.delay_probability > 0.0 && unit(rng_) < params_.delay_probability) {
+    body.pause_at = unit(rng_) * body.length;
+    body.pause_s = params_.delay_min_s + unit(rng_) * (params_.delay_max_s - params_.delay_min_s);
+    ++report_.delays;
+  }
+}
+
+int PlaceSim::waits_for(std::size_t robot) const {
+  const Body& body = bodies_[robot];
+  if (body.visits.size() < 2) return -1;
+  const Visit& next = body.visits[1];
+  for (std::size_t j = 0; j < bodies_.size(); ++j) {
+    if (j == robot) continue;
+    const Body& other = bodies_[j];
+    // Its visits not ended (the one it leaves has ended once it is past the midpoint), those the
+    // plan has it begin before this robot's.
+    for (std::size_t k = past_midpoint(other) ? 1 : 0; k < other.visits.size() && other.visits[k].step < next.step;
+         ++k) {
+      if (zones_.conflict(body.type, next.place, other.type, other.visits[k].place)) return static_cast<int>(j);
+    }
+  }
+  return -1;
+}
+
+void PlaceSim::drive(std::size_t robot) {
+  Body& body = bodies_[robot];
+  if (body.visits.size() < 2) return;
+  double step = params_.speed * params_.dt;
+  if (body.pause_at >= 0.0 && body.progress + step >= body.pause_at) {
+    if (body.progress < body.pause_at) {
+      step = body.pause_at - body.progress;
+    } else if (body.pause_s > 0.0) {
+      body.pause_s -= params_.dt;
+      return;
+    }
+  }
+  const double midpoint = 0.5 * body.length;
+  if (!past_midpoint(body) && body.progress + step >= midpoint && waits_for(robot) >= 0) {
+    body.progress = std::max(body.progress, std::nextafter(midpoint, 0.0));
+    return;
+  }
+  body.progress = std::min(body.length, body.progress + step);
+  if (body.progress >= body.length) arrive(robot);
+}
+
+void PlaceSim::note_wait_cycle() {
+  // The monitor of the execution graph's promise: robots never wait for one another in a cycle.
+  const std::size_t n = bodies_.size();
+  std::vector<int> waiting_for(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!past_midpoint(bodies_[i])) waiting_for[i] = waits_for(i);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    int at = static_cast<int>(i);
+    for (std::size_t hops = 0; hops <= n && at >= 0; ++hops) at = waiting_for[static_cast<std::size_t>(at)];
+    if (at < 0) continue;
+    if (report_.wait_cycles++ == 0) {
+      std::ostringstream out;
+      out << "t=" << time_ << " s: robot " << i + 1 << " waits in a cycle";
+      report_.first_wait_cycle = out.str();
+    }
+    return;
+  }
+}
+
+void PlaceSim::check_collisions() {
   const std::size_t n = bodies_.size();
   const auto& types = zones_.vehicle_types();
-  std::vector<geometry::Polygon> bodies(n);
-  for (const double fraction : {0.25, 0.5, 0.75, 1.0}) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const geometry::Pose2 pose = pose_at(bodies_[i], next[i], fraction);
-      bodies[i].clear();
-      for (const auto& v : types[static_cast<std::size_t>(bodies_[i].type)].footprint) {
-        bodies[i].push_back(geometry::body_to_map(pose, v));
-      }
+  std::vector<geometry::Pose2> poses(n);
+  for (std::size_t i = 0; i < n; ++i) poses[i] = pose_of(bodies_[i]);
+  auto body = [&](std::size_t i) {
+    geometry::Polygon polygon;
+    for (const auto& v : types[static_cast<std::size_t>(bodies_[i].type)].footprint) {
+      polygon.push_back(geometry::body_to_map(poses[i], v));
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const bool overlap = geometry::polygons_overlap(bodies[i], bodies[j]);
-        auto& was = overlapping_[i * n + j];
-        if (overlap && !was) {
-          ++report_.collisions;
-          if (report_.first_collision.empty()) {
-            std::ostringstream out;
-            out << "t=" << time_ + fraction * dt << " s: robots " << i + 1 << " and " << j + 1 << " at places "
-                << bodies_[i].place << " -> " << next[i] << " and " << bodies_[j].place << " -> " << next[j];
-            report_.first_collision = out.str();
-          }
-        }
-        was = overlap ? 1 : 0;
+    return polygon;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      auto& was = overlapping_[i * n + j];
+      const bool near = std::hypot(poses[i].x - poses[j].x, poses[i].y - poses[j].y) < reach_;
+      const bool overlap = near && geometry::polygons_overlap(body(i), body(j));
+      if (overlap && !was && report_.collisions++ == 0) {
+        std::ostringstream out;
+        out << "t=" << time_ << " s: robots " << i + 1 << " and " << j + 1 << " at places "
+            << place(static_cast<int>(i)) << " and " << place(static_cast<int>(j));
+        report_.first_collision = out.str();
       }
+      was = overlap ? 1 : 0;
     }
   }
 }
@@ -106,41 +203,38 @@ std::string PlaceSim::stall_note(std::size_t robot) const {
   out.setf(std::ios::fixed);
   out.precision(2);
   out << "t=" << time_ << " s:";
-  const geometry::Vec2 at = zones_.position(bodies_[robot].place);
+  const geometry::Vec2 at = zones_.position(place(static_cast<int>(robot)));
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const Body& b = bodies_[i];
-    const geometry::Vec2 p = zones_.position(b.place);
+    const geometry::Vec2 p = zones_.position(place(static_cast<int>(i)));
     if (geometry::distance(p, at) > 2.0) continue;
-    out << "\n      robot " << i + 1 << " (type " << b.type << ") at place " << b.place << " (" << p.x << ", " << p.y
-        << ")";
+    out << "\n      robot " << i + 1 << " (type " << b.type << ") at place " << place(static_cast<int>(i)) << " ("
+        << p.x << ", " << p.y << ")";
     if (b.goal >= 0) {
       const geometry::Vec2 g = zones_.position(b.goal);
       out << " to place " << b.goal << " (" << g.x << ", " << g.y << "), still for " << time_ - b.still_since << " s";
     } else {
       out << " working";
     }
+    if (b.visits.size() > 1) {
+      out << ", planned on to place";
+      for (std::size_t k = past_midpoint(b) ? 2 : 1; k < b.visits.size(); ++k) out << " " << b.visits[k].place;
+      if (const int other = waits_for(i); other >= 0) out << ", waits for robot " << other + 1;
+    }
   }
   return out.str();
 }
 
-void PlaceSim::arrive(std::size_t robot, int next) {
+void PlaceSim::arrive(std::size_t robot) {
   Body& body = bodies_[robot];
-  if (next != body.place) {
-    body.yaw = pose_at(body, next, 1.0).yaw;
-    body.place = next;
-    body.still_since = time_;
-    body.deadlocked = false;
-  } else if (body.goal >= 0) {
-    report_.max_wait_s = std::max(report_.max_wait_s, time_ - body.still_since);
-    if (!body.deadlocked && time_ - body.still_since >= params_.deadlock_timeout) {
-      body.deadlocked = true;
-      ++report_.deadlocks;
-      report_.stall_notes.push_back(stall_note(robot));
-    }
-  }
-  if (body.goal >= 0 && body.place == body.goal) {
+  body.yaw = pose_of(body).yaw;
+  body.visits.pop_front();
+  if (body.visits.size() > 1) begin_move(body);
+  body.still_since = time_;
+  body.deadlocked = false;
+  ++report_.moves;
+  if (body.goal >= 0 && body.visits.size() == 1 && body.visits.front().place == body.goal) {
     ++report_.goals_reached;
-    planner_.reached_goal(static_cast<int>(robot));
     if (body.carrying) {
       ++report_.trips;
       trip_time_sum_ += time_ + params_.dwell - body.trip_start;
@@ -152,33 +246,35 @@ void PlaceSim::arrive(std::size_t robot, int next) {
   }
 }
 
+void PlaceSim::note_stall(std::size_t robot) {
+  Body& body = bodies_[robot];
+  if (body.goal < 0) return;
+  report_.max_wait_s = std::max(report_.max_wait_s, time_ - body.still_since);
+  if (!body.deadlocked && time_ - body.still_since >= params_.deadlock_timeout) {
+    body.deadlocked = true;
+    ++report_.deadlocks;
+    report_.stall_notes.push_back(stall_note(robot));
+  }
+}
+
 void PlaceSim::step() {
   for (Body& body : bodies_) {
-    if (body.goal < 0 && time_ >= body.dwell_until) start_next_goal(body);
+    if (body.goal < 0 && body.visits.size() == 1 && time_ >= body.dwell_until) start_next_goal(body);
   }
-  std::vector<PlaceRobot> robots;
-  for (const Body& body : bodies_) robots.push_back({body.type, body.place, body.goal, body.goal < 0});
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<int> next = planner_.plan(robots);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  report_.planning_ms_max = std::max(report_.planning_ms_max, ms);
-  planning_ms_sum_ += ms;
-  report_.planning_ms_mean = planning_ms_sum_ / static_cast<double>(++plans_);
-  check_plan(robots, next);
-  double longest = 0.0;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    longest = std::max(longest, graph_.step_length(bodies_[i].place, next[i]));
+  if (time_ + 1e-9 >= next_plan_) {
+    plan_step();
+    next_plan_ += plan_period_s_;
   }
-  const double dt = longest > 0.0 ? longest / params_.speed : idle_step_s_;
-  if (longest > 0.0) ++report_.moves;
-  check_collisions(next, dt);
-  time_ += dt;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) arrive(i, next[i]);
+  note_wait_cycle();
+  time_ += params_.dt;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) drive(i);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) note_stall(i);
+  check_collisions();
   report_.sim_seconds = time_;
 }
 
 const PlaceSimReport& PlaceSim::run_until(double seconds) {
-  while (time_ < seconds) step();
+  while (time_ + 0.5 * params_.dt < seconds) step();
   return report_;
 }
 

@@ -84,7 +84,23 @@ TEST(TrafficEval, ComparesTheManagerAndThePlacePlannerOnTheSameTrips) {
     EXPECT_GT(run["trips"].get<int>(), 0) << run;
   }
   EXPECT_EQ(doc["runs"][1]["plan_conflicts"], 0);
+  EXPECT_EQ(doc["runs"][1]["wait_cycles"], 0);
   EXPECT_GT(doc["pibt_over_manager"].get<double>(), 0.0);
+}
+
+TEST(TrafficEval, DelayedMovesKeepThePlacePlannersRobotsApartAndOutOfWaitCycles) {
+  const auto r =
+      run(traffic_eval_command,
+          {"--site", "table_a", "--robots", "8", "--duration", "300", "--core", "pibt", "--delay", "0.05,2,8"},
+          "fleet.yaml");
+  ASSERT_EQ(r.code, 0);
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& run_doc = doc["runs"][0];
+  EXPECT_GT(run_doc["delays"].get<int>(), 0) << run_doc;
+  EXPECT_EQ(run_doc["collisions"], 0) << run_doc;
+  EXPECT_EQ(run_doc["wait_cycles"], 0) << run_doc;
+  EXPECT_EQ(run_doc["plan_conflicts"], 0) << run_doc;
+  EXPECT_GT(run_doc["trips"].get<int>(), 0) << run_doc;
 }
 
 TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
@@ -95,6 +111,8 @@ TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--against", "plantt"}, "sites/plant.yaml"),
                fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--core", "pibt", "--delay", "2,1,3"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--core", "both", "--delay", "0.1,1,3"}, "fleet.yaml"), fleet::ArgError);
 }
 
 TEST(PickEval, AFlagItDoesNotKnowOrASeedThatIsNoNumberIsBadInput) {

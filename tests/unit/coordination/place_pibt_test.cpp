@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 #include <string>
 
@@ -53,6 +55,35 @@ TEST(PlacePibt, HeadOnInACorridorOneStepsIntoTheSiding) {
   EXPECT_EQ(robots[0].place, east);
   EXPECT_EQ(robots[1].place, west);
   EXPECT_LT(steps, 80);
+}
+
+// A robot wants into the siding, deeper than the robot standing at its end, which wants out: it
+// cannot push that one anywhere, so it backs out of the siding, the other following, steps aside
+// and goes in once the other has passed.
+TEST(PlacePibt, ARobotGoingIntoASpurBacksOffForOneComingOut) {
+  const map::RoadGraph road = traffic::testing::corridor_with_siding();
+  const traffic::ConflictZones zones(road, forklift_params());
+  PlaceGraph graph(road, zones);
+  PlacePibt planner(graph, 2);
+  const auto at = [&](double x, double y) { return zones.place_of(traffic::testing::point_at(road, x, y)); };
+  const std::vector<int> goals{at(0.5, 0.4), at(0.9, 0.0)};
+  std::vector<PlaceRobot> robots{{0, at(0.5, 0.2), goals[0], false}, {0, at(0.5, 0.6), goals[1], false}};
+  std::vector<int> reached_at(2, -1);
+  for (int step = 0; step < 100 && (reached_at[0] < 0 || reached_at[1] < 0); ++step) {
+    const std::vector<int> next = planner.plan(robots);
+    ASSERT_EQ(broken_step_rule(zones, robots, next), "") << "step " << step;
+    for (std::size_t i = 0; i < robots.size(); ++i) {
+      robots[i].place = next[i];
+      if (robots[i].place == goals[i] && reached_at[i] < 0) {
+        reached_at[i] = step;
+        robots[i].goal = -1;
+        robots[i].held = true;
+      }
+    }
+  }
+  EXPECT_GE(reached_at[0], 0) << "the robot going in never got there";
+  EXPECT_GE(reached_at[1], 0) << "the robot coming out never got there";
+  EXPECT_LT(reached_at[1], reached_at[0]) << "the robot coming out passes first";
 }
 
 // The planner's rules hold whatever the robots do: random goals, and robots held (working or
@@ -107,7 +138,8 @@ TEST(PlaceSim, EightForkliftsOnTableATripWithoutCollisionOrDeadlock) {
   const PlaceSimReport& report = sim.run_until(600.0);
   EXPECT_EQ(report.collisions, 0u) << report.first_collision;
   EXPECT_EQ(report.plan_conflicts, 0u) << report.first_plan_conflict;
-  EXPECT_EQ(report.deadlocks, 0u);
+  EXPECT_EQ(report.wait_cycles, 0u) << report.first_wait_cycle;
+  EXPECT_EQ(report.deadlocks, 0u) << (report.stall_notes.empty() ? "" : report.stall_notes.front());
   EXPECT_GT(report.trips, 30u);
 }
 
@@ -132,7 +164,60 @@ TEST(PlaceSim, ThePlantsFourVehicleTypesKeepTheirBodiesApart) {
   const PlaceSimReport& report = sim.run_until(600.0);
   EXPECT_EQ(report.collisions, 0u) << report.first_collision;
   EXPECT_EQ(report.plan_conflicts, 0u) << report.first_plan_conflict;
+  EXPECT_EQ(report.wait_cycles, 0u) << report.first_wait_cycle;
   EXPECT_GT(report.trips, 0u);
+}
+
+// Graph points whose places are pairwise apart, taken in a random order: where robots may start.
+std::vector<int> points_apart(const map::RoadGraph& road, const traffic::ConflictZones& zones, std::size_t count,
+                              std::mt19937_64& rng) {
+  std::vector<int> points(road.points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = static_cast<int>(i);
+  std::shuffle(points.begin(), points.end(), rng);
+  std::vector<int> apart;
+  for (const int point : points) {
+    bool clear = true;
+    for (const int other : apart) clear = clear && !zones.conflict(zones.place_of(point), zones.place_of(other));
+    if (clear && apart.size() < count) apart.push_back(point);
+  }
+  return apart;
+}
+
+// Robots run late at random (a move in five stops for up to four times the plan step, a move in
+// fifty for up to twenty) on small graphs and on table_a: the order of visits keeps every body
+// apart and no robot ever waits for one that waits for it, whatever the delays.
+TEST(PlaceSim, RandomDelaysNeverCollideNorWaitInACycle) {
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::corridor_with_siding(), 2},
+                                                                  {traffic::testing::two_ways_between_junctions(), 3},
+                                                                  {traffic::testing::plus_junction(), 3},
+                                                                  {site.graph.graph, 8}};
+  const std::vector<std::array<double, 3>> delays{{0.2, 0.0, 2.0}, {0.02, 2.0, 10.0}};
+  for (const auto& [road, team] : cases) {
+    const traffic::ConflictZones zones(road, forklift_params());
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      std::mt19937_64 rng(seed);
+      const std::vector<int> starts = points_apart(road, zones, team, rng);
+      std::vector<int> goals(road.points.size());
+      for (std::size_t i = 0; i < goals.size(); ++i) goals[i] = static_cast<int>(i);
+      PlaceSimParams params;
+      params.dwell = 1.0;
+      params.seed = seed;
+      const auto& delay = delays[seed % delays.size()];
+      params.delay_probability = delay[0];
+      params.delay_min_s = delay[1];
+      params.delay_max_s = delay[2];
+      PlaceSim sim(road, zones, params, goals, starts);
+      const PlaceSimReport& report = sim.run_until(300.0);
+      const std::string run = std::to_string(team) + " robots, seed " + std::to_string(seed);
+      EXPECT_EQ(report.collisions, 0u) << run << ": " << report.first_collision;
+      EXPECT_EQ(report.plan_conflicts, 0u) << run << ": " << report.first_plan_conflict;
+      EXPECT_EQ(report.wait_cycles, 0u) << run << ": " << report.first_wait_cycle;
+      EXPECT_GT(report.delays, 0u) << run;
+      EXPECT_GT(report.goals_reached, 3u) << run << " moves " << report.moves << " max wait " << report.max_wait_s
+                                          << (report.stall_notes.empty() ? "" : report.stall_notes[0]);
+    }
+  }
 }
 
 }  // namespace
