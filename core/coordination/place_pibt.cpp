@@ -119,6 +119,22 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   };
   if (!pushed) add(r.place);
   for (const int next : graph_.successors(r.type, r.place)) add(next);
+  const auto self = static_cast<std::size_t>(robot);
+  if (!pushed && r.goal >= 0 && standing_plans_[self] >= kStandingBeforeBackingUp) {
+    // Robots that box one another in where each has one way on stand for ever unless one backs
+    // up: a robot that has stood this long backs up along its lane where that is free at once,
+    // rather than stand.
+    const auto& forward = graph_.successors(r.type, r.place);
+    for (const int back : graph_.predecessors(r.type, r.place)) {
+      if (std::find(forward.begin(), forward.end(), back) == forward.end() &&
+          check(robot, back, blockers) == Check::kFree) {
+        add(back);
+      }
+    }
+    for (Candidate& candidate : candidates) {
+      if (candidate.place == r.place) candidate.stays_in_the_way = 1;
+    }
+  }
   if (pushed) {
     // Backing up along its lane makes room where the lanes run one way only.
     const auto& forward = graph_.successors(r.type, r.place);
@@ -132,7 +148,6 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
     if (a.blocked != b.blocked) return a.blocked < b.blocked;
     return a.tie < b.tie;
   });
-  const auto self = static_cast<std::size_t>(robot);
   for (const Candidate& candidate : candidates) {
     if (candidate.place == r.place) {
       take(robot, r.place);

@@ -81,6 +81,8 @@ class PlacePibt {
   /// Plans a robot with an errand stays put before it backs off for a robot that must pass it:
   /// pushing sorts most meetings out, and backing off too early turns crowds into shuffles.
   static constexpr int kStandingBeforeSwap = 4;
+  /// Plans a robot with an errand stays put before it backs up, where that is free, rather than stand.
+  static constexpr int kStandingBeforeBackingUp = 12;
 
   PlaceGraph& graph_;
   std::mt19937_64 rng_;

@@ -207,7 +207,7 @@ std::string PlaceSim::stall_note(std::size_t robot) const {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const Body& b = bodies_[i];
     const geometry::Vec2 p = zones_.position(place(static_cast<int>(i)));
-    if (geometry::distance(p, at) > 2.0) continue;
+    if (geometry::distance(p, at) > 4.0) continue;
     out << "\n      robot " << i + 1 << " (type " << b.type << ") at place " << place(static_cast<int>(i)) << " ("
         << p.x << ", " << p.y << ")";
     if (b.goal >= 0) {
@@ -220,6 +220,17 @@ std::string PlaceSim::stall_note(std::size_t robot) const {
       out << ", planned on to place";
       for (std::size_t k = past_midpoint(b) ? 2 : 1; k < b.visits.size(); ++k) out << " " << b.visits[k].place;
       if (const int other = waits_for(i); other >= 0) out << ", waits for robot " << other + 1;
+    }
+  }
+  // What keeps the stalled robot from each of its moves: the robots whose bodies are in the way.
+  const Body& stalled = bodies_[robot];
+  const int from = place(static_cast<int>(robot));
+  for (const int next : graph_.successors(stalled.type, from)) {
+    out << "\n      move to place " << next << ":";
+    for (std::size_t j = 0; j < bodies_.size(); ++j) {
+      const Body& b = bodies_[j];
+      if (j != robot && zones_.conflict(stalled.type, next, b.type, place(static_cast<int>(j))))
+        out << " robot " << j + 1;
     }
   }
   return out.str();
