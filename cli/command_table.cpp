@@ -232,14 +232,16 @@ std::vector<CommandSpec> make_table() {
        false,
        {value("--site", "NAME"), value("--against", "SITE"), value("--robots", "N"), value("--duration", "S"),
         value("--dwell", "S"), value("--seed", "S"), value("--places", "P1,P2"),
-        choice("--core", {"manager", "pibt", "both"}), value("--delay", "P,MIN,MAX"), on_off("--verbose")},
+        choice("--core", {"manager", "pibt", "both"}), choice("--lanes", {"both", "one-way"}),
+        value("--delay", "P,MIN,MAX"), on_off("--verbose")},
        "the traffic manager with the fleets' vehicle types on a site, robots driven\n"
        "kinematically (a load generator) on random trips (--places FG,EX: only between\n"
        "places whose ids start so); --against SITE runs the same on a revision and\n"
        "prints the ratio of trips; --core pibt coordinates the same trips with the\n"
        "coordination core's place planner, --core both runs both and prints the ratio;\n"
-       "--delay P,MIN,MAX (--core pibt) stops each move with probability P for MIN..MAX\n"
-       "seconds; --verbose lists each stall with its chain of waits"},
+       "--lanes one-way has the planner drive the manager's one-way corridors (default\n"
+       "both ways); --delay P,MIN,MAX (--core pibt) stops each move with probability P\n"
+       "for MIN..MAX seconds; --verbose lists each stall with its chain of waits"},
       {Group::kOffline,
        "mapf-eval",
        "",

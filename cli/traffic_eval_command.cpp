@@ -13,6 +13,7 @@
 #include "coordination/place_sim.hpp"
 #include "map/site_map.hpp"
 #include "model/names.hpp"
+#include "traffic/one_way.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
 
@@ -28,7 +29,8 @@ struct EvalSpec {
   std::vector<std::string> place_prefixes;    ///< trips only between places whose ids start so; empty: all
   bool verbose = false;                       ///< list every deadlock: who stalled where, waiting on whom
   std::vector<std::string> cores{"manager"};  ///< "manager" (TrafficManager), "pibt" (PlacePibt), or both
-  double delay_probability = 0.0;             ///< --delay P,MIN,MAX: per move, seconds
+  bool one_way = false;            ///< --lanes one-way: the planner on the one-way corridors the manager drives
+  double delay_probability = 0.0;  ///< --delay P,MIN,MAX: per move, seconds
   double delay_min_s = 0.0;
   double delay_max_s = 0.0;
 };
@@ -46,10 +48,13 @@ nlohmann::json run_place_planner(const std::string& site_name, const map::SiteMa
   place_params.delay_probability = spec.delay_probability;
   place_params.delay_min_s = spec.delay_min_s;
   place_params.delay_max_s = spec.delay_max_s;
-  coordination::PlaceSim sim(site.graph.graph, zones, place_params, scenario.goal_points, scenario.start_points);
+  // --lanes one-way: the corridors on cycles driven one way, as the traffic manager drives them.
+  const map::RoadGraph lanes = spec.one_way ? traffic::one_way_plan(site.graph.graph, zones).graph : site.graph.graph;
+  coordination::PlaceSim sim(lanes, zones, place_params, scenario.goal_points, scenario.start_points);
   const coordination::PlaceSimReport& r = sim.run_until(spec.duration_s);
   return {{"site", site_name},
           {"core", "pibt"},
+          {"lanes", spec.one_way ? "one-way" : "both"},
           {"trips", r.trips},
           {"mean_trip_s", r.mean_trip_s},
           {"collisions", r.collisions},
@@ -140,6 +145,13 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
     } else {
       throw ArgError("--core: '" + *core + "' is none of manager, pibt, both");
     }
+  }
+  if (const auto lanes = flags.value("lanes")) {
+    if (*lanes != "both" && *lanes != "one-way") throw ArgError("--lanes: '" + *lanes + "' is none of both, one-way");
+    if (*lanes == "one-way" && spec.cores == std::vector<std::string>{"manager"}) {
+      throw ArgError("--lanes one-way: the traffic manager drives its own one-way plan; give --core pibt or both");
+    }
+    spec.one_way = *lanes == "one-way";
   }
   if (const auto delay = flags.value("delay")) {
     std::vector<std::string> parts{""};

@@ -88,14 +88,25 @@ TEST(TrafficEval, ComparesTheManagerAndThePlacePlannerOnTheSameTrips) {
   EXPECT_GT(doc["pibt_over_manager"].get<double>(), 0.0);
 }
 
+/// The place planner's run on table_a, 8 robots, 300 s, with `more` flags.
+nlohmann::json place_planner_run(std::vector<std::string> more) {
+  std::vector<std::string> args{"--site", "table_a", "--robots", "8", "--duration", "300", "--core", "pibt"};
+  args.insert(args.end(), more.begin(), more.end());
+  const auto r = run(traffic_eval_command, args, "fleet.yaml");
+  EXPECT_EQ(r.code, 0);
+  return nlohmann::json::parse(r.out)["runs"][0];
+}
+
+TEST(TrafficEval, ThePlacePlannerDrivesTheOneWayCorridorsWhenAsked) {
+  const auto run_doc = place_planner_run({"--lanes", "one-way"});
+  EXPECT_EQ(run_doc["lanes"], "one-way");
+  EXPECT_EQ(run_doc["collisions"], 0) << run_doc;
+  EXPECT_EQ(run_doc["deadlocks"], 0) << run_doc;
+  EXPECT_GT(run_doc["trips"].get<int>(), 0) << run_doc;
+}
+
 TEST(TrafficEval, DelayedMovesKeepThePlacePlannersRobotsApartAndOutOfWaitCycles) {
-  const auto r =
-      run(traffic_eval_command,
-          {"--site", "table_a", "--robots", "8", "--duration", "300", "--core", "pibt", "--delay", "0.05,2,8"},
-          "fleet.yaml");
-  ASSERT_EQ(r.code, 0);
-  const auto doc = nlohmann::json::parse(r.out);
-  const auto& run_doc = doc["runs"][0];
+  const auto run_doc = place_planner_run({"--delay", "0.05,2,8"});
   EXPECT_GT(run_doc["delays"].get<int>(), 0) << run_doc;
   EXPECT_EQ(run_doc["collisions"], 0) << run_doc;
   EXPECT_EQ(run_doc["wait_cycles"], 0) << run_doc;
@@ -113,6 +124,8 @@ TEST(TrafficEval, UnknownSiteAndPlacesAreBadInput) {
   EXPECT_THROW(run(traffic_eval_command, {"--site", "plant", "--places", "ZZ"}, "sites/plant.yaml"), fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--core", "pibt", "--delay", "2,1,3"}, "fleet.yaml"), fleet::ArgError);
   EXPECT_THROW(run(traffic_eval_command, {"--core", "both", "--delay", "0.1,1,3"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--core", "pibt", "--lanes", "sideways"}, "fleet.yaml"), fleet::ArgError);
+  EXPECT_THROW(run(traffic_eval_command, {"--core", "manager", "--lanes", "one-way"}, "fleet.yaml"), fleet::ArgError);
 }
 
 TEST(PickEval, AFlagItDoesNotKnowOrASeedThatIsNoNumberIsBadInput) {
