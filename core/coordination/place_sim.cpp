@@ -11,7 +11,12 @@ namespace fleet::coordination {
 
 PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zones, const PlaceSimParams& params,
                    const std::vector<int>& goal_points, const std::vector<int>& start_points)
-    : zones_(zones), graph_(graph, zones), planner_(graph_, params.seed), params_(params), rng_(params.seed) {
+    : zones_(zones),
+      graph_(graph, zones),
+      planner_(graph_, params.seed),
+      order_(zones),
+      params_(params),
+      rng_(params.seed) {
   for (const int point : goal_points) {
     const int place = zones.place_of(point);
     if (std::find(goal_places_.begin(), goal_places_.end(), place) == goal_places_.end()) goal_places_.push_back(place);
@@ -31,9 +36,9 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
   for (std::size_t i = 0; i < start_points.size(); ++i) {
     Body body;
     body.type = i < params_.robot_types.size() ? params_.robot_types[i] : 0;
-    body.visits.push_back({zones.place_of(start_points[i]), 0});
+    const int at = zones.place_of(start_points[i]);
+    order_.add_robot(body.type, at);
     // A robot stands along its lane, not across it.
-    const int at = body.visits.front().place;
     if (const auto& next = graph_.successors(body.type, at); !next.empty()) {
       const geometry::Vec2 d = zones.position(next.front()) - zones.position(at);
       body.yaw = std::atan2(d.y, d.x);
@@ -44,10 +49,11 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
   report_.robots = static_cast<int>(bodies_.size());
 }
 
-void PlaceSim::start_next_goal(Body& body) {
+void PlaceSim::start_next_goal(std::size_t robot) {
   if (goal_places_.size() < 2) return;
+  Body& body = bodies_[robot];
   std::uniform_int_distribution<std::size_t> pick(0, goal_places_.size() - 1);
-  const int at = body.visits.front().place;
+  const int at = order_.current(static_cast<int>(robot));
   int next = at;
   while (next == at) next = goal_places_[pick(rng_)];
   if (!body.carrying) body.trip_start = time_;
@@ -55,15 +61,12 @@ void PlaceSim::start_next_goal(Body& body) {
   body.still_since = time_;
 }
 
-int PlaceSim::place(int robot) const {
-  const Body& body = bodies_[static_cast<std::size_t>(robot)];
-  return past_midpoint(body) ? body.visits[1].place : body.visits[0].place;
-}
-
-geometry::Pose2 PlaceSim::pose_of(const Body& body) const {
-  const geometry::Vec2 a = zones_.position(body.visits[0].place);
-  if (body.visits.size() < 2 || body.length <= 0.0) return {a.x, a.y, body.yaw};
-  const geometry::Vec2 b = zones_.position(body.visits[1].place);
+geometry::Pose2 PlaceSim::pose_of(std::size_t robot) const {
+  const Body& body = bodies_[robot];
+  const int next = order_.next(static_cast<int>(robot));
+  const geometry::Vec2 a = zones_.position(order_.current(static_cast<int>(robot)));
+  if (next < 0 || body.length <= 0.0) return {a.x, a.y, body.yaw};
+  const geometry::Vec2 b = zones_.position(next);
   const double f = std::min(1.0, body.progress / body.length);
   return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
 }
@@ -71,9 +74,10 @@ geometry::Pose2 PlaceSim::pose_of(const Body& body) const {
 void PlaceSim::plan_step() {
   // The plan runs ahead of the robots: each is planned from the last place planned for it.
   std::vector<PlaceRobot> robots;
-  for (const Body& body : bodies_) {
-    const int planned = body.visits.back().place;
-    const bool behind = static_cast<int>(body.visits.size()) - 1 >= params_.plan_ahead;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const Body& body = bodies_[i];
+    const int planned = order_.last_planned(static_cast<int>(i));
+    const bool behind = order_.pending(static_cast<int>(i)) >= params_.plan_ahead;
     const bool errand = body.goal >= 0 && planned != body.goal;
     robots.push_back({body.type, planned, errand ? body.goal : -1, !errand || behind});
   }
@@ -91,17 +95,17 @@ void PlaceSim::plan_step() {
   }
   ++plan_step_;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    Body& body = bodies_[i];
     if (next[i] == robots[i].place) continue;
-    body.visits.push_back({next[i], plan_step_});
-    if (body.visits.size() == 2) begin_move(body);
-    if (next[i] == body.goal) planner_.reached_goal(static_cast<int>(i));
+    order_.plan(static_cast<int>(i), next[i], plan_step_);
+    if (order_.pending(static_cast<int>(i)) == 1) begin_move(i);
+    if (next[i] == bodies_[i].goal) planner_.reached_goal(static_cast<int>(i));
   }
 }
 
-void PlaceSim::begin_move(Body& body) {
+void PlaceSim::begin_move(std::size_t robot) {
+  Body& body = bodies_[robot];
   body.progress = 0.0;
-  body.length = graph_.step_length(body.visits[0].place, body.visits[1].place);
+  body.length = graph_.step_length(order_.current(static_cast<int>(robot)), order_.next(static_cast<int>(robot)));
   body.pause_at = -1.0;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   if (params_.delay_probability > 0.0 && unit(rng_) < params_.delay_probability) {
@@ -111,26 +115,10 @@ void PlaceSim::begin_move(Body& body) {
   }
 }
 
-int PlaceSim::waits_for(std::size_t robot) const {
-  const Body& body = bodies_[robot];
-  if (body.visits.size() < 2) return -1;
-  const Visit& next = body.visits[1];
-  for (std::size_t j = 0; j < bodies_.size(); ++j) {
-    if (j == robot) continue;
-    const Body& other = bodies_[j];
-    // Its visits not ended (the one it leaves has ended once it is past the midpoint), those the
-    // plan has it begin before this robot's.
-    for (std::size_t k = past_midpoint(other) ? 1 : 0; k < other.visits.size() && other.visits[k].step < next.step;
-         ++k) {
-      if (zones_.conflict(body.type, next.place, other.type, other.visits[k].place)) return static_cast<int>(j);
-    }
-  }
-  return -1;
-}
-
 void PlaceSim::drive(std::size_t robot) {
   Body& body = bodies_[robot];
-  if (body.visits.size() < 2) return;
+  const int self = static_cast<int>(robot);
+  if (order_.next(self) < 0) return;
   double step = params_.speed * params_.dt;
   if (body.pause_at >= 0.0 && body.progress + step >= body.pause_at) {
     if (body.progress < body.pause_at) {
@@ -140,40 +128,35 @@ void PlaceSim::drive(std::size_t robot) {
       return;
     }
   }
+  // Up to the midpoint the body is inside the place it leaves; past it, inside the next one.
   const double midpoint = 0.5 * body.length;
-  if (!past_midpoint(body) && body.progress + step >= midpoint && waits_for(robot) >= 0) {
-    body.progress = std::max(body.progress, std::nextafter(midpoint, 0.0));
-    return;
+  if (!order_.has_left(self) && body.progress + step >= midpoint) {
+    if (order_.waits_for(self) >= 0) {
+      body.progress = std::max(body.progress, std::nextafter(midpoint, 0.0));
+      return;
+    }
+    order_.leave(self);
   }
   body.progress = std::min(body.length, body.progress + step);
   if (body.progress >= body.length) arrive(robot);
 }
 
 void PlaceSim::note_wait_cycle() {
-  // The monitor of the execution graph's promise: robots never wait for one another in a cycle.
-  const std::size_t n = bodies_.size();
-  std::vector<int> waiting_for(n, -1);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!past_midpoint(bodies_[i])) waiting_for[i] = waits_for(i);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    int at = static_cast<int>(i);
-    for (std::size_t hops = 0; hops <= n && at >= 0; ++hops) at = waiting_for[static_cast<std::size_t>(at)];
-    if (at < 0) continue;
-    if (report_.wait_cycles++ == 0) {
-      std::ostringstream out;
-      out << "t=" << time_ << " s: robot " << i + 1 << " waits in a cycle";
-      report_.first_wait_cycle = out.str();
-    }
-    return;
-  }
+  // The monitor of the order's promise: robots never wait for one another in a cycle.
+  const std::vector<int> cycle = order_.wait_cycle();
+  if (cycle.empty() || report_.wait_cycles++ > 0) return;
+  std::ostringstream out;
+  out << "t=" << time_ << " s: robots";
+  for (const int robot : cycle) out << " " << robot + 1;
+  out << " wait in a cycle";
+  report_.first_wait_cycle = out.str();
 }
 
 void PlaceSim::check_collisions() {
   const std::size_t n = bodies_.size();
   const auto& types = zones_.vehicle_types();
   std::vector<geometry::Pose2> poses(n);
-  for (std::size_t i = 0; i < n; ++i) poses[i] = pose_of(bodies_[i]);
+  for (std::size_t i = 0; i < n; ++i) poses[i] = pose_of(i);
   auto body = [&](std::size_t i) {
     geometry::Polygon polygon;
     for (const auto& v : types[static_cast<std::size_t>(bodies_[i].type)].footprint) {
@@ -216,10 +199,10 @@ std::string PlaceSim::stall_note(std::size_t robot) const {
     } else {
       out << " working";
     }
-    if (b.visits.size() > 1) {
+    if (const std::vector<int> ahead = order_.places_ahead(static_cast<int>(i)); ahead.size() > 1) {
       out << ", planned on to place";
-      for (std::size_t k = past_midpoint(b) ? 2 : 1; k < b.visits.size(); ++k) out << " " << b.visits[k].place;
-      if (const int other = waits_for(i); other >= 0) out << ", waits for robot " << other + 1;
+      for (std::size_t k = 1; k < ahead.size(); ++k) out << " " << ahead[k];
+      if (const int other = order_.waits_for(static_cast<int>(i)); other >= 0) out << ", waits for robot " << other + 1;
     }
   }
   // What keeps the stalled robot from each of its moves: the robots whose bodies are in the way.
@@ -238,13 +221,14 @@ std::string PlaceSim::stall_note(std::size_t robot) const {
 
 void PlaceSim::arrive(std::size_t robot) {
   Body& body = bodies_[robot];
-  body.yaw = pose_of(body).yaw;
-  body.visits.pop_front();
-  if (body.visits.size() > 1) begin_move(body);
+  const int self = static_cast<int>(robot);
+  body.yaw = pose_of(robot).yaw;
+  order_.arrive(self);
+  if (order_.pending(self) > 0) begin_move(robot);
   body.still_since = time_;
   body.deadlocked = false;
   ++report_.moves;
-  if (body.goal >= 0 && body.visits.size() == 1 && body.visits.front().place == body.goal) {
+  if (body.goal >= 0 && order_.pending(self) == 0 && order_.current(self) == body.goal) {
     ++report_.goals_reached;
     if (body.carrying) {
       ++report_.trips;
@@ -269,8 +253,9 @@ void PlaceSim::note_stall(std::size_t robot) {
 }
 
 void PlaceSim::step() {
-  for (Body& body : bodies_) {
-    if (body.goal < 0 && body.visits.size() == 1 && time_ >= body.dwell_until) start_next_goal(body);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const Body& body = bodies_[i];
+    if (body.goal < 0 && order_.pending(static_cast<int>(i)) == 0 && time_ >= body.dwell_until) start_next_goal(i);
   }
   if (time_ + 1e-9 >= next_plan_) {
     plan_step();

@@ -1,12 +1,12 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "coordination/place_pibt.hpp"
+#include "coordination/visit_order.hpp"
 #include "geometry/pose.hpp"
 #include "map/road_graph.hpp"
 #include "traffic/conflict_zones.hpp"
@@ -59,7 +59,7 @@ struct PlaceSimReport {
 /// pace, through the order the plan gives its visits of places. Up to the midpoint of a move a
 /// robot's body is inside the region of the place it leaves, past it inside the region of the
 /// place it goes to; it passes the midpoint into a place only once every visit of a place
-/// conflicting with it that the plan has begin earlier has ended. The visits so ordered form an
+/// conflicting with it that the plan begins earlier has ended. The visits so ordered form an
 /// action dependency graph, acyclic as every dependency points to an earlier plan step, or, within
 /// one step, along the robots' follow relation, which PlacePibt keeps acyclic: however late any
 /// robot runs, some robot can always move and no two bodies meet [Hönig 2019, section IV]. Moves
@@ -82,17 +82,12 @@ class PlaceSim {
   double time() const { return time_; }
   /// The place robot i's body is in: where it stands, or the place it moves to once past the
   /// move's midpoint.
-  int place(int robot) const;
+  int place(int robot) const { return order_.place(robot); }
 
  private:
-  struct Visit {
-    int place = 0;
-    std::size_t step = 0;  ///< the plan step at which the robot enters the place
-  };
   struct Body {
     int type = 0;
-    std::deque<Visit> visits;  ///< the place it is at (or leaves), then those planned; never empty
-    double progress = 0.0;     ///< metres along the move from visits[0] to visits[1]
+    double progress = 0.0;  ///< metres along the move from its current visit's place to its next's
     double length = 0.0;
     double pause_at = -1.0;  ///< metres along the move where a delay stops it, -1: none
     double pause_s = 0.0;
@@ -105,24 +100,21 @@ class PlaceSim {
     bool deadlocked = false;
   };
 
-  void start_next_goal(Body& body);
+  void start_next_goal(std::size_t robot);
   void plan_step();
-  void begin_move(Body& body);
-  bool past_midpoint(const Body& body) const { return body.visits.size() > 1 && 2.0 * body.progress >= body.length; }
-  /// A robot whose visit, begun before robot i's next one in the plan and of a place conflicting
-  /// with it, has not ended; -1 when none (robot i may pass its midpoint).
-  int waits_for(std::size_t robot) const;
+  void begin_move(std::size_t robot);
   void drive(std::size_t robot);
   void note_wait_cycle();
   std::string stall_note(std::size_t robot) const;
   void check_collisions();
-  geometry::Pose2 pose_of(const Body& body) const;
+  geometry::Pose2 pose_of(std::size_t robot) const;
   void arrive(std::size_t robot);
   void note_stall(std::size_t robot);
 
   const traffic::ConflictZones& zones_;
   PlaceGraph graph_;
   PlacePibt planner_;
+  VisitOrder order_;
   PlaceSimParams params_;
   std::vector<int> goal_places_;
   std::vector<Body> bodies_;

@@ -10,6 +10,7 @@
 #include "../traffic/test_graphs.hpp"
 #include "config/fleet_config.hpp"
 #include "coordination/place_sim.hpp"
+#include "forklift_places.hpp"
 #include "map/site_map.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
@@ -17,11 +18,7 @@
 namespace fleet::coordination {
 namespace {
 
-traffic::ResourceParams forklift_params() {
-  traffic::ResourceParams params;
-  params.footprint = {0.25, 0.16};
-  return params;
-}
+using testing::forklift_params;
 
 TEST(PlaceGraph, DistancesFollowTheLanesOneWay) {
   traffic::testing::GraphBuilder b;

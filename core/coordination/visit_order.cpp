@@ -1,0 +1,99 @@
+#include "coordination/visit_order.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace fleet::coordination {
+
+int VisitOrder::add_robot(int type, int place) {
+  Robot robot;
+  robot.type = type;
+  robot.visits.push_back({place, 0});
+  robots_.push_back(std::move(robot));
+  return static_cast<int>(robots_.size()) - 1;
+}
+
+void VisitOrder::plan(int robot, int place, std::size_t step) {
+  Robot& r = robots_[static_cast<std::size_t>(robot)];
+  if (step <= r.visits.back().step) {
+    throw std::invalid_argument("visit order: robot " + std::to_string(robot) + " planned at step " +
+                                std::to_string(step) + ", not after its last visit's");
+  }
+  r.visits.push_back({place, step});
+}
+
+int VisitOrder::place(int robot) const {
+  const Robot& r = at(robot);
+  return r.left ? r.visits[1].place : r.visits[0].place;
+}
+
+int VisitOrder::next(int robot) const {
+  const Robot& r = at(robot);
+  return r.visits.size() > 1 ? r.visits[1].place : -1;
+}
+
+std::vector<int> VisitOrder::places_ahead(int robot) const {
+  std::vector<int> places;
+  const Robot& r = at(robot);
+  for (std::size_t k = r.left ? 1 : 0; k < r.visits.size(); ++k) places.push_back(r.visits[k].place);
+  return places;
+}
+
+int VisitOrder::waits_for(int robot) const {
+  const Robot& r = at(robot);
+  if (r.visits.size() < 2) return -1;
+  const Visit& next = r.visits[1];
+  for (std::size_t j = 0; j < robots_.size(); ++j) {
+    if (static_cast<int>(j) == robot) continue;
+    const Robot& other = robots_[j];
+    // Its visits not ended (the one it is leaving has ended once it has left), those the plan
+    // has it begin before this robot's next one.
+    for (std::size_t k = other.left ? 1 : 0; k < other.visits.size() && other.visits[k].step < next.step; ++k) {
+      if (zones_.conflict(r.type, next.place, other.type, other.visits[k].place)) return static_cast<int>(j);
+    }
+  }
+  return -1;
+}
+
+void VisitOrder::leave(int robot) {
+  Robot& r = robots_[static_cast<std::size_t>(robot)];
+  if (r.left) return;
+  if (r.visits.size() < 2) throw std::logic_error("visit order: robot " + std::to_string(robot) + " has nowhere to go");
+  if (const int other = waits_for(robot); other >= 0) {
+    throw std::logic_error("visit order: robot " + std::to_string(robot) + " would pass robot " +
+                           std::to_string(other) + "'s earlier visit");
+  }
+  r.left = true;
+}
+
+void VisitOrder::arrive(int robot) {
+  leave(robot);
+  Robot& r = robots_[static_cast<std::size_t>(robot)];
+  r.visits.pop_front();
+  r.left = false;
+}
+
+std::vector<int> VisitOrder::wait_cycle() const {
+  const std::size_t n = robots_.size();
+  std::vector<int> waiting_for(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!robots_[i].left) waiting_for[i] = waits_for(static_cast<int>(i));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    // Walking the waits from any robot of a cycle comes back to it within n steps.
+    int at_robot = static_cast<int>(i);
+    for (std::size_t hops = 0; hops < n && at_robot >= 0; ++hops) {
+      at_robot = waiting_for[static_cast<std::size_t>(at_robot)];
+      if (at_robot == static_cast<int>(i)) {
+        std::vector<int> cycle{static_cast<int>(i)};
+        for (int k = waiting_for[i]; k != static_cast<int>(i); k = waiting_for[static_cast<std::size_t>(k)]) {
+          cycle.push_back(k);
+        }
+        return cycle;
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace fleet::coordination
