@@ -71,6 +71,9 @@ TricyclePursuitOutput pursue(const geometry::Pose2& rear, const std::vector<geom
   const geometry::Vec2 target = point_at(path, here.along + params.lookahead);
   const geometry::Vec2 local = geometry::map_to_body(rear, target);
   const double bearing = std::atan2(local.y, local.x);
+  // Held (no room granted, or none clear): it stands, not even pivoting, as its front sweeps far
+  // round the rear axle into places traffic has not granted it.
+  if (room <= 0.0) return out;
   if (std::abs(bearing) > params.pivot_above) {
     // The route leads off behind or beside the stacker: turn about the rear axle first [Stacker
     // thesis, section 5.2], theta_steer = +-pi/2.

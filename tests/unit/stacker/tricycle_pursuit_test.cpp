@@ -39,5 +39,21 @@ TEST(TricyclePursuit, StopsAtTheEndOrShortOfItByTheCentresLead) {
   EXPECT_NEAR(short_of_end.y, 0.0, 0.02);
 }
 
+// A route leading off behind the stacker makes it pivot about its rear axle, its front sweeping
+// round: only once it has room to go, never while traffic holds it.
+TEST(TricyclePursuit, PivotsTowardsARouteBehindOnlyWithRoomToGo) {
+  const std::vector<geometry::Vec2> behind{{0.0, 0.0}, {-3.0, 0.0}};
+  const TricyclePursuitParams params;
+  const sim::TricycleParams body;
+  const geometry::Pose2 rear{0.0, 0.0, 0.0};
+  for (const double held : {0.0, -1.0}) {
+    const TricyclePursuitOutput out = pursue(rear, behind, held, 0.0, params, body.geometry.wheelbase);
+    EXPECT_EQ(out.command.v_steer, 0.0) << "room " << held;
+    EXPECT_EQ(out.command.theta_steer, 0.0) << "room " << held;
+  }
+  const TricyclePursuitOutput go = pursue(rear, behind, 1.0, 0.0, params, body.geometry.wheelbase);
+  EXPECT_NEAR(std::abs(go.command.theta_steer), M_PI / 2.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace fleet::control
