@@ -12,7 +12,8 @@ PlacePibt::PlacePibt(PlaceGraph& graph, std::uint64_t seed)
       rng_(seed),
       standing_(static_cast<std::size_t>(graph.place_count()), -1),
       planned_at_(static_cast<std::size_t>(graph.place_count()), -1),
-      search_depth_(static_cast<std::size_t>(graph.place_count()), kFar) {}
+      search_depth_(static_cast<std::size_t>(graph.place_count()), kFar),
+      search_first_(static_cast<std::size_t>(graph.place_count()), -1) {}
 
 void PlacePibt::reached_goal(int robot) {
   if (robot < static_cast<int>(priority_.size())) {
@@ -49,32 +50,41 @@ PlacePibt::Check PlacePibt::check(int robot, int place, std::vector<int>& blocke
   return blockers.empty() ? Check::kFree : Check::kBlocked;
 }
 
-int PlacePibt::moves_out(int robot, int from, int pusher, int wanted) {
-  // Breadth-first over the robot's moves either way (forward or backing up), through places
-  // neither the pusher's body nor a planned robot rules out, to the nearest place clear of the
-  // place the pusher wants; bounded to the reach of a body or two.
-  constexpr int kReach = 16;
+template <typename Clear>
+PlacePibt::WayOut PlacePibt::search_way(int robot, int from, int other, int reach, bool around_standing,
+                                        const Clear& clear) {
+  // Breadth-first over the robot's moves either way (forward or backing up), never through the
+  // other's body nor where a planned robot (or, around_standing, any other robot standing) rules
+  // out, to the nearest place `clear` accepts; bounded to `reach` moves.
   const auto& zones = graph_.zones();
   const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
-  const PlaceRobot& p = robots_[static_cast<std::size_t>(pusher)];
+  const PlaceRobot& o = robots_[static_cast<std::size_t>(other)];
   std::vector<int> blockers;
-  int found = kFar;
+  WayOut found;
   search_depth_[static_cast<std::size_t>(from)] = 0;
+  search_first_[static_cast<std::size_t>(from)] = -1;
   search_touched_.push_back(from);
-  for (std::size_t next = 0; next < search_touched_.size() && found == kFar; ++next) {
+  for (std::size_t next = 0; next < search_touched_.size(); ++next) {
     const int at = search_touched_[next];
     const int depth = search_depth_[static_cast<std::size_t>(at)];
-    if (!zones.conflict(r.type, at, p.type, wanted)) {
-      found = depth;
+    if (clear(at)) {
+      found = {depth, search_first_[static_cast<std::size_t>(at)]};
       break;
     }
-    if (depth >= kReach) continue;
+    if (depth >= reach) continue;
     for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
       for (const int place : *moves) {
         auto& d = search_depth_[static_cast<std::size_t>(place)];
-        if (d != kFar) continue;
-        if (zones.conflict(r.type, place, p.type, p.place) || check(robot, place, blockers) == Check::kTaken) continue;
+        if (d != kFar || zones.conflict(r.type, place, o.type, o.place)) continue;
+        const Check c = check(robot, place, blockers);
+        if (c == Check::kTaken) continue;
+        if (around_standing && c == Check::kBlocked &&
+            std::any_of(blockers.begin(), blockers.end(), [&](int b) { return b != other; })) {
+          continue;
+        }
         d = depth + 1;
+        search_first_[static_cast<std::size_t>(place)] =
+            at == from ? place : search_first_[static_cast<std::size_t>(at)];
         search_touched_.push_back(place);
       }
     }
@@ -82,6 +92,17 @@ int PlacePibt::moves_out(int robot, int from, int pusher, int wanted) {
   for (const int place : search_touched_) search_depth_[static_cast<std::size_t>(place)] = kFar;
   search_touched_.clear();
   return found;
+}
+
+int PlacePibt::moves_out(int robot, int from, int pusher, int wanted) {
+  // Bounded to the reach of a body or two.
+  constexpr int kReach = 16;
+  const auto& zones = graph_.zones();
+  const int type = robots_[static_cast<std::size_t>(robot)].type;
+  const int pusher_type = robots_[static_cast<std::size_t>(pusher)].type;
+  return search_way(robot, from, pusher, kReach, false,
+                    [&](int place) { return !zones.conflict(type, place, pusher_type, wanted); })
+      .moves;
 }
 
 void PlacePibt::take(int robot, int place) {
@@ -264,49 +285,17 @@ std::vector<int> PlacePibt::path_ahead(int robot, int from) const {
 }
 
 int PlacePibt::first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing) {
-  // Breadth-first over the robot's moves either way, never through the other's body nor where a
-  // planned robot (or, around_standing, any other robot standing) rules out, to the nearest place
-  // clear of the path.
   constexpr int kReach = 24;
   const auto& zones = graph_.zones();
   const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
-  const PlaceRobot& o = robots_[static_cast<std::size_t>(other)];
-  auto clear = [&](int place) {
-    return std::none_of(path.begin(), path.end(), [&](int p) { return zones.conflict(r.type, place, o.type, p); });
-  };
-  std::vector<int> blockers;
-  int found = -1;
-  search_depth_[static_cast<std::size_t>(r.place)] = 0;
-  search_touched_.push_back(r.place);
-  search_first_.resize(static_cast<std::size_t>(graph_.place_count()), -1);
-  for (std::size_t next = 0; next < search_touched_.size() && found < 0; ++next) {
-    const int at = search_touched_[next];
-    const int depth = search_depth_[static_cast<std::size_t>(at)];
-    if (at != r.place && clear(at)) {
-      found = search_first_[static_cast<std::size_t>(at)];
-      break;
-    }
-    if (depth >= kReach) continue;
-    for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
-      for (const int place : *moves) {
-        auto& d = search_depth_[static_cast<std::size_t>(place)];
-        if (d != kFar || zones.conflict(r.type, place, o.type, o.place)) continue;
-        const Check c = check(robot, place, blockers);
-        if (c == Check::kTaken) continue;
-        if (around_standing && c == Check::kBlocked &&
-            std::any_of(blockers.begin(), blockers.end(), [&](int b) { return b != other; })) {
-          continue;
-        }
-        d = depth + 1;
-        search_first_[static_cast<std::size_t>(place)] =
-            at == r.place ? place : search_first_[static_cast<std::size_t>(at)];
-        search_touched_.push_back(place);
-      }
-    }
-  }
-  for (const int place : search_touched_) search_depth_[static_cast<std::size_t>(place)] = kFar;
-  search_touched_.clear();
-  return found;
+  const int other_type = robots_[static_cast<std::size_t>(other)].type;
+  return search_way(robot, r.place, other, kReach, around_standing,
+                    [&](int place) {
+                      return place != r.place && std::none_of(path.begin(), path.end(), [&](int p) {
+                               return zones.conflict(r.type, place, other_type, p);
+                             });
+                    })
+      .first;
 }
 
 std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {

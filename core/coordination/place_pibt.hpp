@@ -76,8 +76,16 @@ class PlacePibt {
   /// Moves robot needs from `from` to a place clear of `wanted`, which `pusher` wants, without
   /// passing where the pusher's body is or a planned robot rules out; kFar when none is near.
   int moves_out(int robot, int from, int pusher, int wanted);
-
   static constexpr int kFar = 1 << 20;
+  struct WayOut {
+    int moves = kFar;  ///< moves from the start to the place found, kFar when none
+    int first = -1;    ///< the first of them, -1 when none or the start itself was accepted
+  };
+  /// The shortest way of robot's moves from `from` to a place `clear(place)` accepts, within
+  /// `reach` moves, never through `other`'s body (moves_out and first_move_off).
+  template <typename Clear>
+  WayOut search_way(int robot, int from, int other, int reach, bool around_standing, const Clear& clear);
+
   /// Plans a robot with an errand stays put before it backs off for a robot that must pass it:
   /// pushing sorts most meetings out, and backing off too early turns crowds into shuffles.
   static constexpr int kStandingBeforeSwap = 4;
