@@ -30,6 +30,10 @@ PlacePibt::Check PlacePibt::check(int robot, int place, std::vector<int>& blocke
   blockers.clear();
   const auto& zones = graph_.zones();
   const int type = robots_[static_cast<std::size_t>(robot)].type;
+  if (closed_ != nullptr && place != robots_[static_cast<std::size_t>(robot)].place &&
+      (*closed_)[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] != 0) {
+    return Check::kTaken;
+  }
   for (int other_type = 0; other_type < graph_.type_count(); ++other_type) {
     for (const int q : zones.conflicts(type, place, other_type)) {
       const int planned = planned_at_[static_cast<std::size_t>(q)];
@@ -135,8 +139,10 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
       if (way_out >= kFar || moves_out(robot, place, pusher, wanted) >= way_out) return;
       in_the_way = 1;
     }
-    candidates.push_back(
-        {place, in_the_way, candidate_cost(robot, place), c == Check::kBlocked ? 1 : 0, static_cast<unsigned>(rng_())});
+    // Equally near, the route's own next place first: the robot drives on without a new route.
+    const auto drawn = static_cast<unsigned>(rng_());
+    const unsigned tie = place == r.preferred ? 0U : drawn;
+    candidates.push_back({place, in_the_way, candidate_cost(robot, place), c == Check::kBlocked ? 1 : 0, tie});
   };
   if (!pushed) add(r.place);
   for (const int next : graph_.successors(r.type, r.place)) add(next);
@@ -298,8 +304,9 @@ int PlacePibt::first_move_off(int robot, int other, const std::vector<int>& path
       .first;
 }
 
-std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
+std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const ClosedPlaces* closed) {
   robots_ = robots;
+  closed_ = closed;
   const std::size_t n = robots.size();
   while (priority_.size() < n) priority_.push_back(std::uniform_real_distribution<double>(0.0, 1.0)(rng_));
   last_place_.resize(n, -1);
@@ -307,18 +314,19 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
   standing_plans_.resize(n, 0);
   planned_.assign(n, -1);
   pushing_.assign(n, 0);
+  std::vector<int> order;
   for (std::size_t i = 0; i < n; ++i) {
     const int place = robots[i].place;
-    if (place < 0 || place >= graph_.place_count()) {
+    if (place < 0) continue;
+    if (place >= graph_.place_count()) {
       throw std::invalid_argument("place planner: robot " + std::to_string(i) + " stands at unknown place " +
                                   std::to_string(place));
     }
+    order.push_back(static_cast<int>(i));
     standing_[static_cast<std::size_t>(place)] = static_cast<int>(i);
     if (robots[i].goal >= 0 && robots[i].goal != place && !robots[i].held) priority_[i] += 1.0;
     if (robots[i].place != last_place_[i] || robots[i].held || robots[i].goal < 0) standing_plans_[i] = 0;
   }
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     const auto& ra = robots[static_cast<std::size_t>(a)];
     const auto& rb = robots[static_cast<std::size_t>(b)];
@@ -331,14 +339,16 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots) {
   for (const int robot : order) {
     if (planned_[static_cast<std::size_t>(robot)] < 0) plan_robot(robot, -1, -1);
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const int robot : order) {
+    const auto i = static_cast<std::size_t>(robot);
     standing_[static_cast<std::size_t>(robots[i].place)] = -1;
     planned_at_[static_cast<std::size_t>(planned_[i])] = -1;
   }
   for (std::size_t i = 0; i < n; ++i) {
     last_place_[i] = robots[i].place;
-    if (planned_[i] == robots[i].place) ++standing_plans_[i];
+    if (robots[i].place >= 0 && planned_[i] == robots[i].place) ++standing_plans_[i];
   }
+  closed_ = nullptr;
   return planned_;
 }
 
@@ -348,9 +358,10 @@ std::string broken_step_rule(const traffic::ConflictZones& zones, const std::vec
   std::vector<std::vector<std::size_t>> follows(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::string robot = "robot " + std::to_string(i);
+    if (robots[i].place < 0) continue;
     if (robots[i].held && next[i] != robots[i].place) return robot + " is held but moved";
     for (std::size_t j = 0; j < n; ++j) {
-      if (i == j) continue;
+      if (i == j || robots[j].place < 0) continue;
       const PlaceRobot& a = robots[i];
       const PlaceRobot& b = robots[j];
       if (zones.conflict(a.type, a.place, b.type, b.place))

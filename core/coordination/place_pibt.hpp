@@ -12,10 +12,16 @@ namespace fleet::coordination {
 /// A robot on a road site as the planner sees it.
 struct PlaceRobot {
   int type = 0;
-  int place = 0;
-  int goal = -1;      ///< -1: no errand, the robot only keeps out of the way
-  bool held = false;  ///< working at a place (a pick, a drop) or stopped: planned to stay, never pushed
+  int place = 0;       ///< -1: not on the roads (not planned, planned -1)
+  int goal = -1;       ///< -1: no errand, the robot only keeps out of the way
+  bool held = false;   ///< working at a place (a pick, a drop) or stopped: planned to stay, never pushed
+  int preferred = -1;  ///< the next place of the route it drives: first among equally near candidates
 };
+
+/// Places no robot may plan into, by vehicle type and place (non-zero: closed): where bodies
+/// standing beside the roads, which the planner does not move, reach. A robot standing at a
+/// closed place may stay.
+using ClosedPlaces = std::vector<std::vector<std::uint8_t>>;
 
 /// Priority inheritance with backtracking [Okumura 2022, Algorithm 1] on places that conflict
 /// with their neighbours: a robot's body covers more than its place, so a place is free for a
@@ -46,9 +52,9 @@ class PlacePibt {
  public:
   PlacePibt(PlaceGraph& graph, std::uint64_t seed);
 
-  /// Every robot's place after one move: its own or one of its type's successors. The robots'
-  /// places must not conflict with one another.
-  std::vector<int> plan(const std::vector<PlaceRobot>& robots);
+  /// Every robot's place after one move: its own or one of its type's successors (-1 for a robot
+  /// not on the roads). The robots' places must not conflict with one another.
+  std::vector<int> plan(const std::vector<PlaceRobot>& robots, const ClosedPlaces* closed = nullptr);
   /// Tells the planner that a robot reached its goal: its priority starts over.
   void reached_goal(int robot);
 
@@ -99,10 +105,11 @@ class PlacePibt {
   std::vector<int> standing_plans_;  ///< per robot: plans in a row it stayed at its place with an errand
   std::vector<int> giving_way_to_;   ///< per robot: the robot it backed off for at the last plan, -1
   std::vector<PlaceRobot> robots_;   ///< the state being planned from
-  std::vector<int> standing_;        ///< per place: the robot standing there, -1
-  std::vector<int> planned_at_;      ///< per place: the robot planned there, -1
-  std::vector<int> planned_;         ///< per robot: its next place, -1 while not planned
-  std::vector<int> search_depth_;    ///< per place: moves from the search's start, kFar when not reached
+  const ClosedPlaces* closed_ = nullptr;
+  std::vector<int> standing_;      ///< per place: the robot standing there, -1
+  std::vector<int> planned_at_;    ///< per place: the robot planned there, -1
+  std::vector<int> planned_;       ///< per robot: its next place, -1 while not planned
+  std::vector<int> search_depth_;  ///< per place: moves from the search's start, kFar when not reached
   std::vector<int> search_touched_;
   std::vector<int> search_first_;      ///< per place: the first move of the way found to it
   std::vector<std::uint8_t> pushing_;  ///< per robot: in progress, waiting for the robots it pushes

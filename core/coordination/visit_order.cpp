@@ -1,5 +1,6 @@
 #include "coordination/visit_order.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -13,8 +14,24 @@ int VisitOrder::add_robot(int type, int place) {
   return static_cast<int>(robots_.size()) - 1;
 }
 
+void VisitOrder::stand(int robot, int place) {
+  Robot& r = robots_[static_cast<std::size_t>(robot)];
+  r.visits.clear();
+  r.left = false;
+  if (place >= 0) r.visits.push_back({place, 0});
+}
+
+void VisitOrder::drop_from(int robot, int k) {
+  Robot& r = robots_[static_cast<std::size_t>(robot)];
+  const std::size_t keep = std::max<std::size_t>(static_cast<std::size_t>(std::max(k, 0)), r.left ? 2 : 1);
+  if (r.visits.size() > keep) r.visits.resize(keep);
+}
+
 void VisitOrder::plan(int robot, int place, std::size_t step) {
   Robot& r = robots_[static_cast<std::size_t>(robot)];
+  if (r.visits.empty()) {
+    throw std::invalid_argument("visit order: robot " + std::to_string(robot) + " is planned but off the roads");
+  }
   if (step <= r.visits.back().step) {
     throw std::invalid_argument("visit order: robot " + std::to_string(robot) + " planned at step " +
                                 std::to_string(step) + ", not after its last visit's");
@@ -24,6 +41,7 @@ void VisitOrder::plan(int robot, int place, std::size_t step) {
 
 int VisitOrder::place(int robot) const {
   const Robot& r = at(robot);
+  if (r.visits.empty()) return -1;
   return r.left ? r.visits[1].place : r.visits[0].place;
 }
 
@@ -39,15 +57,15 @@ std::vector<int> VisitOrder::places_ahead(int robot) const {
   return places;
 }
 
-int VisitOrder::waits_for(int robot) const {
+int VisitOrder::waits_for(int robot, int visit) const {
   const Robot& r = at(robot);
-  if (r.visits.size() < 2) return -1;
-  const Visit& next = r.visits[1];
+  if (visit < 1 || static_cast<std::size_t>(visit) >= r.visits.size()) return -1;
+  const Visit& next = r.visits[static_cast<std::size_t>(visit)];
   for (std::size_t j = 0; j < robots_.size(); ++j) {
     if (static_cast<int>(j) == robot) continue;
     const Robot& other = robots_[j];
     // Its visits not ended (the one it is leaving has ended once it has left), those the plan
-    // has it begin before this robot's next one.
+    // has it begin before this robot's visit.
     for (std::size_t k = other.left ? 1 : 0; k < other.visits.size() && other.visits[k].step < next.step; ++k) {
       if (zones_.conflict(r.type, next.place, other.type, other.visits[k].place)) return static_cast<int>(j);
     }

@@ -26,23 +26,38 @@ class VisitOrder {
   int robots() const { return static_cast<int>(robots_.size()); }
   /// Plans the robot's next visit after its last: of `place`, beginning at plan step `step`.
   void plan(int robot, int place, std::size_t step);
-  /// The place the robot's body is in: its current visit's, or the next one's once it has left.
+  /// The robot stands at `place` from now on, its plan dropped: its visit there begins before any
+  /// other's, so every visit planned of a place conflicting with it waits until it leaves. Place -1:
+  /// it is off the roads and in nobody's way (it has no visits until it stands somewhere again).
+  void stand(int robot, int place);
+  /// Drops the robot's visits from its `k`-th on (0: the current one; at least the one it is in
+  /// is kept).
+  void drop_from(int robot, int k);
+  /// Whether the robot is on the roads (has a visit).
+  bool present(int robot) const { return !at(robot).visits.empty(); }
+  /// The place the robot's body is in: its current visit's, or the next one's once it has left;
+  /// -1 off the roads.
   int place(int robot) const;
   /// The place of its current visit (the one it leaves while moving).
-  int current(int robot) const { return at(robot).visits.front().place; }
+  int current(int robot) const { return present(robot) ? at(robot).visits.front().place : -1; }
   /// The place of its next visit, -1 when none is planned.
   int next(int robot) const;
   /// The place of its last planned visit (its current one when none is planned).
-  int last_planned(int robot) const { return at(robot).visits.back().place; }
+  int last_planned(int robot) const { return present(robot) ? at(robot).visits.back().place : -1; }
   /// Visits planned after its current one.
-  int pending(int robot) const { return static_cast<int>(at(robot).visits.size()) - 1; }
+  int pending(int robot) const { return present(robot) ? static_cast<int>(at(robot).visits.size()) - 1 : 0; }
   /// The places of its visits from the one it is in on.
   std::vector<int> places_ahead(int robot) const;
   /// Whether the robot has left its current visit (passed the midpoint into the next).
   bool has_left(int robot) const { return at(robot).left; }
   /// A robot whose visit of a place conflicting with robot's next one, planned to begin earlier,
   /// has not ended; -1 when none (robot may pass into its next visit) or when none is planned.
-  int waits_for(int robot) const;
+  int waits_for(int robot) const { return waits_for(robot, 1); }
+  /// The same for its `visit`-th visit (1: the next): a robot whose visit this one must wait for,
+  /// -1 when none. Visits ended stay ended, so a visit waiting for none may be granted ahead.
+  int waits_for(int robot, int visit) const;
+  /// The place of its `k`-th visit (0: the current one).
+  int visit_place(int robot, int k) const { return at(robot).visits[static_cast<std::size_t>(k)].place; }
   /// The robot passed into its next visit: its current one has ended. std::logic_error when it
   /// waits for a robot or has no next visit.
   void leave(int robot);
@@ -59,7 +74,7 @@ class VisitOrder {
   };
   struct Robot {
     int type = 0;
-    std::deque<Visit> visits;  ///< never empty
+    std::deque<Visit> visits;  ///< empty only off the roads
     bool left = false;
   };
   const Robot& at(int robot) const { return robots_[static_cast<std::size_t>(robot)]; }

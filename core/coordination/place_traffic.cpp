@@ -1,0 +1,272 @@
+#include "coordination/place_traffic.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fleet::coordination {
+
+namespace {
+
+geometry::Vec2 centroid(const geometry::Polygon& polygon) {
+  geometry::Vec2 c{0.0, 0.0};
+  for (const auto& v : polygon) c = c + v;
+  const double n = static_cast<double>(std::max<std::size_t>(polygon.size(), 1));
+  return {c.x / n, c.y / n};
+}
+
+bool same_body(const geometry::Polygon& a, const geometry::Polygon& b) {
+  // A robot standing still reports its body with a little noise: a change under this is none.
+  constexpr double kSameM = 0.02;
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (geometry::distance(a[i], b[i]) > kSameM) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZones& zones,
+                           const PlaceTrafficParams& params)
+    : graph_(graph),
+      zones_(zones),
+      params_(params),
+      places_(graph, zones),
+      planner_(places_, params.seed),
+      order_(zones),
+      points_of_place_(zones.place_count()),
+      reach_(zones.type_count(), std::vector<double>(zones.place_count(), 0.0)),
+      closed_(zones.type_count(), std::vector<std::uint8_t>(zones.place_count(), 0)) {
+  for (std::size_t point = 0; point < zones.point_count(); ++point) {
+    points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
+        static_cast<int>(point));
+  }
+  for (std::size_t type = 0; type < zones.type_count(); ++type) {
+    for (std::size_t place = 0; place < zones.place_count(); ++place) {
+      const geometry::Vec2 at = zones.position(static_cast<int>(place));
+      for (const auto& polygon : zones.region(static_cast<int>(type), static_cast<int>(place))) {
+        for (const auto& v : polygon) reach_[type][place] = std::max(reach_[type][place], geometry::distance(at, v));
+      }
+    }
+  }
+}
+
+int PlaceTraffic::add_robot(int type) {
+  const int number = order_.add_robot(type, 0);
+  order_.stand(number, -1);
+  Robot robot;
+  robot.type = type;
+  robots_.push_back(std::move(robot));
+  return number;
+}
+
+void PlaceTraffic::set_route(Robot& r, std::uint64_t version, const std::vector<int>& points) const {
+  r.version = version;
+  r.points = points;
+  r.point_s.assign(points.size(), 0.0);
+  r.places.clear();
+  r.place_point.clear();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (i > 0) {
+      const auto& a = graph_.points[static_cast<std::size_t>(points[i - 1])];
+      const auto& b = graph_.points[static_cast<std::size_t>(points[i])];
+      r.point_s[i] = r.point_s[i - 1] + std::hypot(b.x - a.x, b.y - a.y);
+    }
+    const int place = zones_.place_of(points[i]);
+    if (r.places.empty() || r.places.back() != place) {
+      r.places.push_back(place);
+      r.place_point.push_back(static_cast<int>(i));
+    } else {
+      r.place_point.back() = static_cast<int>(i);
+    }
+  }
+}
+
+int PlaceTraffic::index_at(const Robot& r, double progress) const {
+  // Past the midpoint of a move the body is inside the place it drives to.
+  std::size_t i = 0;
+  while (i + 1 < r.places.size() && progress >= 0.5 * (place_s(r, i) + place_s(r, i + 1))) ++i;
+  return static_cast<int>(i);
+}
+
+double PlaceTraffic::place_s(const Robot& r, std::size_t index) const {
+  return r.point_s[static_cast<std::size_t>(r.place_point[index])];
+}
+
+bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress) {
+  if (points.empty() || !std::isfinite(progress)) return false;
+  for (const int point : points) {
+    if (point < 0 || static_cast<std::size_t>(point) >= zones_.point_count()) return false;
+  }
+  Robot& r = at(robot);
+  r.progress = progress;
+  const bool routed = r.mode == Mode::kDriving || r.mode == Mode::kWaitingToEnter;
+  if (routed && version < r.version) return true;  // sent before its latest route reached it
+  if (r.mode == Mode::kDriving && version == r.version) {
+    // The route it was handed, as it drives it (joined from where it is): its places count.
+    if (!r.adopted && points != r.points) {
+      take_route(robot, version, points, progress);
+      return true;
+    }
+    r.adopted = true;
+    follow_progress(robot, progress);
+    return true;
+  }
+  if (r.mode == Mode::kWaitingToEnter && version == r.version) return true;
+  take_route(robot, version, points, progress);
+  return true;
+}
+
+void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vector<int>& points, double progress) {
+  Robot& r = at(robot);
+  set_route(r, version, points);
+  r.adopted = true;
+  const int here = index_at(r, progress);
+  if (!order_.present(robot)) {
+    r.mode = Mode::kWaitingToEnter;
+    try_to_enter(robot);
+    return;
+  }
+  r.mode = Mode::kDriving;
+  // The route goes on from the place its current visit is of, near where it is along it.
+  const int current = order_.current(robot);
+  int start = -1;
+  for (int i = std::min(here, static_cast<int>(r.places.size()) - 1); i >= 0 && start < 0; --i) {
+    if (r.places[static_cast<std::size_t>(i)] == current) start = i;
+  }
+  if (start < 0) {
+    // Somewhere its visits do not say (the robot went its own way): it stands where it is.
+    place_robot(robot, r.places[static_cast<std::size_t>(here)]);
+    r.at = here;
+    follow_progress(robot, progress);
+    return;
+  }
+  r.at = start;
+  // Visits planned along another way than the new route's are dropped (one it has begun is kept:
+  // its body is in that place already).
+  for (int k = 1; k <= order_.pending(robot); ++k) {
+    const std::size_t index = static_cast<std::size_t>(start + k);
+    if (index >= r.places.size() || order_.visit_place(robot, k) != r.places[index]) {
+      if (k == 1 && order_.has_left(robot)) {
+        place_robot(robot, order_.visit_place(robot, 1));
+        r.at = std::min(here, static_cast<int>(r.places.size()) - 1);
+        return;
+      }
+      order_.drop_from(robot, k);
+      break;
+    }
+  }
+  follow_progress(robot, progress);
+}
+
+void PlaceTraffic::try_to_enter(int robot) {
+  Robot& r = at(robot);
+  const int here = index_at(r, r.progress);
+  const int place = r.places[static_cast<std::size_t>(here)];
+  r.entry_blockers.clear();
+  for (int other = 0; other < robots(); ++other) {
+    if (other == robot) continue;
+    const Robot& o = at(other);
+    bool in_the_way = false;
+    for (const int visit : order_.places_ahead(other)) {
+      in_the_way = in_the_way || zones_.conflict(r.type, place, o.type, visit);
+    }
+    in_the_way = in_the_way || (o.mode == Mode::kStanding && body_reaches(o.body, r.type, place));
+    if (in_the_way) r.entry_blockers.push_back(other);
+  }
+  if (!r.entry_blockers.empty()) return;
+  r.mode = Mode::kDriving;
+  if (!r.body.empty()) closed_stale_ = true;
+  r.body.clear();
+  place_robot(robot, place);
+  r.at = here;
+  follow_progress(robot, r.progress);
+}
+
+void PlaceTraffic::place_robot(int robot, int place) {
+  order_.stand(robot, place);
+  const int type = at(robot).type;
+  drop_visits_into(robot, [&](int other_type, int q) { return zones_.conflict(other_type, q, type, place); });
+}
+
+template <typename Conflicts>
+void PlaceTraffic::drop_visits_into(int robot, const Conflicts& conflicts) {
+  for (int other = 0; other < robots(); ++other) {
+    if (other == robot || !order_.present(other)) continue;
+    for (int k = order_.has_left(other) ? 2 : 1; k <= order_.pending(other); ++k) {
+      if (conflicts(at(other).type, order_.visit_place(other, k))) {
+        order_.drop_from(other, k);
+        break;
+      }
+    }
+  }
+}
+
+bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int place) const {
+  if (body.empty()) return false;
+  const geometry::Vec2 c = centroid(body);
+  double radius = 0.0;
+  for (const auto& v : body) radius = std::max(radius, geometry::distance(c, v));
+  const auto t = static_cast<std::size_t>(type);
+  const auto p = static_cast<std::size_t>(place);
+  if (geometry::distance(c, zones_.position(place)) > radius + reach_[t][p]) return false;
+  for (const auto& polygon : zones_.region(type, place)) {
+    if (geometry::convex_polygons_overlap(body, polygon)) return true;
+  }
+  return false;
+}
+
+void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
+  Robot& r = at(robot);
+  if (order_.present(robot)) order_.stand(robot, -1);
+  r.points.clear();
+  r.places.clear();
+  r.place_point.clear();
+  r.entry_blockers.clear();
+  r.adopted = true;
+  r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
+  if (same_body(body, r.body)) return;
+  r.body = body;
+  closed_stale_ = true;
+  if (body.empty()) return;
+  // Plans made before it stood here may lead into its body: those visits go, not yet begun.
+  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, type, place); });
+}
+
+void PlaceTraffic::rebuild_closed() {
+  for (auto& by_place : closed_) std::fill(by_place.begin(), by_place.end(), 0);
+  for (const Robot& r : robots_) {
+    if (r.mode != Mode::kStanding) continue;
+    for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
+      for (int place = 0; place < static_cast<int>(zones_.place_count()); ++place) {
+        if (body_reaches(r.body, type, place))
+          closed_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = 1;
+      }
+    }
+  }
+  closed_stale_ = false;
+}
+
+void PlaceTraffic::follow_progress(int robot, double progress) {
+  // The robot reports where it is; its visits end as it drives through them. A robot stops at
+  // the end of its grant a little short of the point: that close counts as arrived (well past the
+  // move's midpoint however short the move).
+  constexpr double kArrivedM = 0.05;
+  Robot& r = at(robot);
+  if (r.mode != Mode::kDriving || !r.adopted) return;
+  while (static_cast<std::size_t>(r.at) + 1 < r.places.size()) {
+    const auto i = static_cast<std::size_t>(r.at);
+    if (order_.next(robot) != r.places[i + 1]) break;
+    const double from = place_s(r, i);
+    const double to = place_s(r, i + 1);
+    if (!order_.has_left(robot)) {
+      if (progress < 0.5 * (from + to) || order_.waits_for(robot) >= 0) break;
+      order_.leave(robot);
+    }
+    if (progress < to - std::min(kArrivedM, 0.25 * (to - from))) break;
+    order_.arrive(robot);
+    ++r.at;
+  }
+}
+
+}  // namespace fleet::coordination

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "coordination/place_graph.hpp"
+#include "coordination/place_pibt.hpp"
+#include "coordination/visit_order.hpp"
+#include "geometry/polygon.hpp"
+#include "map/road_graph.hpp"
+#include "traffic/conflict_zones.hpp"
+
+namespace fleet::coordination {
+
+struct PlaceTrafficParams {
+  /// Sim seconds between plan steps: about the time a robot takes for a typical move.
+  double plan_period_s = 1.0;
+  /// Moves a robot's plan may run ahead of where it is: one this far behind is held in the plan.
+  int plan_ahead = 2;
+  std::uint64_t seed = 1;
+};
+
+/// What traffic grants a robot on the roads.
+struct PlaceGrant {
+  std::uint64_t version = 0;  ///< the route the grant is for
+  /// The last point of that route the robot may drive to; -1: it stands where it is (it waits to
+  /// be let onto the roads).
+  int granted_index = -1;
+  double granted_distance = 0.0;  ///< metres along the route to that point
+  /// Non-empty: the robot drives these graph points instead of its own route, as `version`.
+  std::vector<int> route;
+  std::vector<int> waits_for;  ///< robots whose visits it waits for
+  bool arrived = false;        ///< at its route's end
+};
+
+/// The road-site coordination core as the live fleet drives it: robots report the routes they
+/// drive (road graph points) and how far along they are, or where their bodies stand beside the
+/// roads; PlacePibt plans every robot's next places together each plan step, from its last planned
+/// place towards its route's end, and the VisitOrder of those plans says how far each robot may
+/// drive [Hönig 2019, section IV]: up to the last of its planned visits none of whose earlier
+/// conflicting visits is still open. A plan that leaves a robot's route hands it a new route (its
+/// visits, then a shortest way on to its route's end). A robot standing without a route (working
+/// beside the roads, lost) closes the places its body reaches to new plans. A robot enters the
+/// roads where its route starts once no other robot's open or planned visit conflicts with that
+/// place. Free of DDS: server::TrafficControl carries its grants out.
+class PlaceTraffic {
+ public:
+  PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZones& zones, const PlaceTrafficParams& params);
+
+  /// A robot of vehicle type `type` (the zones' numbering); returns its number (0, 1, ...).
+  int add_robot(int type);
+  int robots() const { return static_cast<int>(robots_.size()); }
+  /// The robot drives route `version` along road graph `points`, `progress` metres from its first.
+  /// Versions older than the robot's current one are ignored. False (nothing changes) when a
+  /// point is not on the graph or the route is empty.
+  bool drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress);
+  /// The robot stands without a route with body `body` (a convex polygon, map frame; empty when
+  /// unknown or off the roads): it holds the places its body reaches until it drives again.
+  void stand(int robot, const geometry::Polygon& body);
+  /// One cycle at sim time `now`: a plan step when one is due, then every robot's grant.
+  void update(double now);
+
+  const PlaceGrant& grant(int robot) const { return at(robot).grant; }
+  /// Whether the robot is on the roads in the plan (driving a route it was let onto).
+  bool on_roads(int robot) const { return order_.present(robot); }
+  /// The places its visits are of, from the one its body is in on.
+  std::vector<int> places_ahead(int robot) const { return order_.places_ahead(robot); }
+  /// Robots of a wait-for cycle among the visits, empty when none (the order's promise: none).
+  std::vector<int> wait_cycle() const { return order_.wait_cycle(); }
+  std::size_t plan_steps() const { return plan_step_; }
+  const traffic::ConflictZones& zones() const { return zones_; }
+
+ private:
+  enum class Mode { kOff, kStanding, kWaitingToEnter, kDriving };
+  struct Robot {
+    int type = 0;
+    Mode mode = Mode::kOff;
+    std::uint64_t version = 0;
+    std::vector<int> points;
+    std::vector<double> point_s;      ///< metres along the route at each point
+    std::vector<int> places;          ///< the route's places, consecutive repeats merged
+    std::vector<int> place_point;     ///< per entry of `places`: the index of its last point
+    int at = 0;                       ///< index into `places` of the robot's current visit
+    double progress = 0.0;            ///< metres along the route, as last reported
+    bool adopted = true;              ///< it drives `version` (false: a new route is on its way to it)
+    geometry::Polygon body;           ///< standing without a route
+    std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
+    PlaceGrant grant;
+  };
+  Robot& at(int robot) { return robots_[static_cast<std::size_t>(robot)]; }
+  const Robot& at(int robot) const { return robots_[static_cast<std::size_t>(robot)]; }
+
+  void set_route(Robot& r, std::uint64_t version, const std::vector<int>& points) const;
+  /// Takes a route the robot drives now (or waits to enter the roads by).
+  void take_route(int robot, std::uint64_t version, const std::vector<int>& points, double progress);
+  /// Lets a robot waiting beside the roads onto them where its route continues, when free.
+  void try_to_enter(int robot);
+  /// The index into r.places of the place its body is in `progress` metres along its route.
+  int index_at(const Robot& r, double progress) const;
+  /// Metres along r's route to its `index`-th place.
+  double place_s(const Robot& r, std::size_t index) const;
+  /// Whether a body (convex, map frame) reaches into the region of `place` for vehicle `type`.
+  bool body_reaches(const geometry::Polygon& body, int type, int place) const;
+  /// The robot stands at `place` in the order: others' plans into places conflicting with it go.
+  void place_robot(int robot, int place);
+  /// Drops the visits other robots have planned, not begun, into places `conflicts` accepts.
+  template <typename Conflicts>
+  void drop_visits_into(int robot, const Conflicts& conflicts);
+  /// Ends visits the robot's progress shows it has driven through.
+  void follow_progress(int robot, double progress);
+  void plan_step();
+  /// The plan moved the robot off its route: a new route through its visits to the route's end.
+  void reroute(int robot);
+  /// Graph points along consecutive places, starting at `from_point` (a point of places[0]).
+  std::vector<int> points_along(int from_point, const std::vector<int>& places) const;
+  void update_grant(int robot);
+  void rebuild_closed();
+
+  const map::RoadGraph& graph_;
+  const traffic::ConflictZones& zones_;
+  PlaceTrafficParams params_;
+  PlaceGraph places_;
+  PlacePibt planner_;
+  VisitOrder order_;
+  std::vector<Robot> robots_;
+  std::vector<std::vector<int>> points_of_place_;
+  std::vector<std::vector<double>> reach_;  ///< by type, by place: metres from its position its region reaches
+  ClosedPlaces closed_;
+  bool closed_stale_ = false;
+  double next_plan_ = -1.0;
+  std::size_t plan_step_ = 0;
+};
+
+}  // namespace fleet::coordination

@@ -1,0 +1,143 @@
+// PlaceTraffic's plan steps, re-routes and grants.
+#include <algorithm>
+
+#include "coordination/place_traffic.hpp"
+
+namespace fleet::coordination {
+
+void PlaceTraffic::update(double now) {
+  if (closed_stale_) rebuild_closed();
+  for (int robot = 0; robot < robots(); ++robot) {
+    if (at(robot).mode == Mode::kWaitingToEnter) try_to_enter(robot);
+  }
+  if (now >= next_plan_) {
+    plan_step();
+    next_plan_ = now + params_.plan_period_s;
+  }
+  for (int robot = 0; robot < robots(); ++robot) update_grant(robot);
+}
+
+void PlaceTraffic::plan_step() {
+  // The plan runs ahead of the robots: each is planned from the last place planned for it,
+  // along its route where the route leads on.
+  std::vector<PlaceRobot> planned(robots_.size());
+  for (int robot = 0; robot < robots(); ++robot) {
+    const Robot& r = at(robot);
+    PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
+    p.type = r.type;
+    if (r.mode != Mode::kDriving || !order_.present(robot)) {
+      p.place = -1;
+      continue;
+    }
+    p.place = order_.last_planned(robot);
+    p.goal = r.places.back();
+    const auto last = static_cast<std::size_t>(r.at + order_.pending(robot));
+    p.preferred = last + 1 < r.places.size() ? r.places[last + 1] : -1;
+    // Behind its plan, waiting for a new route to reach it, or at its route's end (where it turns
+    // off the road): planned to stay, never pushed.
+    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead || p.place == p.goal;
+  }
+  const std::vector<int> next = planner_.plan(planned, &closed_);
+  ++plan_step_;
+  for (int robot = 0; robot < robots(); ++robot) {
+    const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
+    const int to = next[static_cast<std::size_t>(robot)];
+    if (p.place < 0 || to == p.place) continue;
+    order_.plan(robot, to, plan_step_);
+    if (to == p.goal) planner_.reached_goal(robot);
+    if (to != p.preferred) reroute(robot);
+  }
+}
+
+void PlaceTraffic::reroute(int robot) {
+  Robot& r = at(robot);
+  std::vector<int> places;
+  for (int k = 0; k <= order_.pending(robot); ++k) places.push_back(order_.visit_place(robot, k));
+  // On from the last planned place along a shortest way to the route's end.
+  const int goal = r.places.back();
+  for (int guard = 0; places.back() != goal && guard < static_cast<int>(zones_.place_count()); ++guard) {
+    const int from = places.back();
+    int best = -1;
+    double best_metres = PlaceGraph::kUnreachable;
+    for (const int next : places_.successors(r.type, from)) {
+      const double metres = places_.step_length(from, next) + places_.distance(r.type, next, goal);
+      if (metres < best_metres) {
+        best_metres = metres;
+        best = next;
+      }
+    }
+    if (best < 0) break;
+    places.push_back(best);
+  }
+  const int from_point = r.points[static_cast<std::size_t>(r.place_point[static_cast<std::size_t>(r.at)])];
+  const std::vector<int> points = points_along(from_point, places);
+  if (points.empty()) return;
+  set_route(r, r.version + 1, points);
+  r.at = 0;
+  r.adopted = false;
+}
+
+std::vector<int> PlaceTraffic::points_along(int from_point, const std::vector<int>& places) const {
+  // Between two places an edge of the road graph either way (a robot pushed backs up against its
+  // lane), from the point reached or one coincident with it (a road hand-over).
+  std::vector<int> points{from_point};
+  for (std::size_t k = 1; k < places.size(); ++k) {
+    const auto& here = points_of_place_[static_cast<std::size_t>(places[k - 1])];
+    const auto& there = points_of_place_[static_cast<std::size_t>(places[k])];
+    auto linked = [&](int a, int b) {
+      const auto& out = graph_.successors[static_cast<std::size_t>(a)];
+      return std::find(out.begin(), out.end(), b) != out.end();
+    };
+    int via = -1;
+    int to = -1;
+    for (const int u : here) {
+      for (const int v : there) {
+        if (linked(u, v) || linked(v, u)) {
+          const bool better = via < 0 || (u == points.back() && via != points.back());
+          if (better) {
+            via = u;
+            to = v;
+          }
+        }
+      }
+    }
+    if (to < 0) return {};
+    if (via != points.back()) points.push_back(via);
+    points.push_back(to);
+  }
+  return points;
+}
+
+void PlaceTraffic::update_grant(int robot) {
+  Robot& r = at(robot);
+  PlaceGrant& g = r.grant;
+  g.version = r.version;
+  g.waits_for.clear();
+  g.arrived = false;
+  g.granted_index = -1;
+  g.granted_distance = 0.0;
+  g.route.clear();
+  if (r.mode == Mode::kWaitingToEnter) {
+    g.waits_for = r.entry_blockers;
+    return;
+  }
+  if (r.mode != Mode::kDriving) return;
+  // Up to the last visit none of whose earlier conflicting visits is open: those that ended stay
+  // ended, so the robot may drive on through them without stopping.
+  int k = order_.has_left(robot) ? 1 : 0;
+  while (k < order_.pending(robot)) {
+    const int other = order_.waits_for(robot, k + 1);
+    if (other >= 0) {
+      g.waits_for.push_back(other);
+      break;
+    }
+    ++k;
+  }
+  const auto index = static_cast<std::size_t>(r.at + k);
+  g.granted_index = r.place_point[index];
+  g.granted_distance = r.point_s[static_cast<std::size_t>(g.granted_index)];
+  g.arrived = static_cast<std::size_t>(r.at) + 1 == r.places.size();
+  if (!r.adopted) g.route = r.points;
+}
+
+}  // namespace fleet::coordination

@@ -1,0 +1,295 @@
+#include "coordination/place_traffic.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "../traffic/test_graphs.hpp"
+#include "forklift_places.hpp"
+#include "map/site_map.hpp"
+#include "traffic/route_search.hpp"
+#include "traffic/traffic_sim.hpp"
+
+namespace fleet::coordination {
+namespace {
+
+using testing::forklift_params;
+
+/// Robots as the live fleet drives them through PlaceTraffic: each plans its own shortest route
+/// to a random goal point, reports it and its progress, drives at its own speed up to its grant,
+/// takes the routes traffic hands it, stands at its goal a while (its body holding the places it
+/// reaches) and sets off again. Moves stop at random. Kinematic points with the forklift's body.
+class FollowingRobots {
+ public:
+  FollowingRobots(const map::RoadGraph& road, const traffic::ConflictZones& zones, std::vector<int> starts,
+                  std::uint64_t seed)
+      : road_(road), zones_(zones), search_(road, zones), traffic_(road, zones, {0.6, 2, seed}), rng_(seed) {
+    for (const int start : starts) {
+      Robot r;
+      r.number = traffic_.add_robot(0);
+      r.point = start;
+      r.speed = std::uniform_real_distribution<double>(0.15, 0.3)(rng_);
+      r.version = 2;
+      robots_.push_back(r);
+      traffic_.stand(r.number, body_at(start));
+    }
+  }
+
+  void run(double seconds) {
+    constexpr double kDt = 0.05;
+    for (; time_ < seconds; time_ += kDt) {
+      for (Robot& r : robots_) act(r, kDt);
+      traffic_.update(time_);
+      check();
+      if (!traffic_.wait_cycle().empty()) ++wait_cycles;
+    }
+  }
+
+  std::size_t errands = 0;
+  std::size_t wait_cycles = 0;
+  std::size_t reroutes = 0;
+  std::size_t delays = 0;
+  double longest_still_s = 0.0;
+  std::string first_overlap;
+
+ private:
+  struct Robot {
+    int number = 0;
+    int point = 0;  ///< where it stands while it has no route
+    std::uint64_t version = 0;
+    std::vector<int> route;
+    std::vector<double> route_s;
+    double progress = 0.0;
+    double speed = 0.2;
+    double stand_until = 0.0;
+    bool dwelling = false;
+    double pause_until = 0.0;
+    double still_since = 0.0;
+    double last_progress = 0.0;
+  };
+
+  geometry::Polygon body_at(int point, double yaw = 0.0) const {
+    const auto& p = road_.points[static_cast<std::size_t>(point)];
+    return geometry::footprint_polygon({p.x, p.y, yaw}, zones_.params().footprint);
+  }
+
+  void set_route(Robot& r, std::vector<int> route) {
+    r.route = std::move(route);
+    r.route_s.assign(r.route.size(), 0.0);
+    for (std::size_t i = 1; i < r.route.size(); ++i) {
+      r.route_s[i] = r.route_s[i - 1] + search_.edge_length(r.route[i - 1], r.route[i]);
+    }
+  }
+
+  geometry::Pose2 pose(const Robot& r) const {
+    if (r.route.size() < 2) {
+      const auto& p = road_.points[static_cast<std::size_t>(r.point)];
+      return {p.x, p.y, 0.0};
+    }
+    std::size_t i = 0;
+    while (i + 2 < r.route.size() && r.route_s[i + 1] <= r.progress) ++i;
+    const auto& a = road_.points[static_cast<std::size_t>(r.route[i])];
+    const auto& b = road_.points[static_cast<std::size_t>(r.route[std::min(i + 1, r.route.size() - 1)])];
+    const double length = r.route_s[std::min(i + 1, r.route.size() - 1)] - r.route_s[i];
+    const double f = length > 0.0 ? std::clamp((r.progress - r.route_s[i]) / length, 0.0, 1.0) : 0.0;
+    return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
+  }
+
+  void act(Robot& r, double dt) {
+    if (r.dwelling && time_ >= r.stand_until) {
+      r.dwelling = false;
+      r.route.clear();
+    }
+    if (r.dwelling) {
+      traffic_.drive(r.number, r.version, r.route, r.progress);
+      return;
+    }
+    if (r.route.empty()) {
+      int goal = r.point;
+      while (zones_.place_of(goal) == zones_.place_of(r.point)) {
+        goal = std::uniform_int_distribution<int>(0, static_cast<int>(road_.points.size()) - 1)(rng_);
+      }
+      std::vector<int> route = search_.shortest(r.point, goal);
+      if (route.size() < 2) {
+        r.stand_until = time_ + 1.0;
+        return;
+      }
+      set_route(r, std::move(route));
+      r.version += 2;
+      r.progress = 0.0;
+      r.still_since = time_;
+    }
+    const PlaceGrant& grant = traffic_.grant(r.number);
+    if (grant.version > r.version && !grant.route.empty()) {
+      // A route handed over begins at the place of the robot's current visit, behind or at it.
+      // A route may pass a point twice (back and forth): it is the last passing not ahead of it
+      // (it may be a little short of it: arrived within PlaceTraffic's tolerance).
+      double offset = 0.0;
+      for (std::size_t i = 0; i < r.route.size(); ++i) {
+        if (r.route[i] == grant.route.front() && r.route_s[i] <= r.progress + 0.06) offset = r.route_s[i];
+      }
+      r.progress = std::max(0.0, r.progress - offset);
+      set_route(r, grant.route);
+      r.version = grant.version;
+      ++reroutes;
+    }
+    const double room = grant.version == r.version && grant.granted_index >= 0 ? grant.granted_distance : -1.0;
+    if (time_ >= r.pause_until && r.progress < room) {
+      if (std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < 0.002) {
+        r.pause_until = time_ + std::uniform_real_distribution<double>(1.0, 6.0)(rng_);
+        ++delays;
+      } else {
+        r.progress = std::min(room, r.progress + r.speed * dt);
+      }
+    }
+    if (r.progress > r.last_progress + 1e-9) {
+      r.still_since = time_;
+      r.last_progress = r.progress;
+    }
+    longest_still_s = std::max(longest_still_s, time_ - r.still_since);
+    if (r.progress >= r.route_s.back() - 1e-9 && grant.arrived) {
+      // At its goal it works a while on the road, as at a pick, reporting its route all along.
+      r.point = r.route.back();
+      r.last_progress = 0.0;
+      r.stand_until = time_ + 2.0;
+      r.dwelling = true;
+      ++errands;
+    }
+    traffic_.drive(r.number, r.version, r.route, r.progress);
+  }
+
+  void check() {
+    if (!first_overlap.empty()) return;
+    std::vector<geometry::Polygon> bodies;
+    for (const Robot& r : robots_) bodies.push_back(geometry::footprint_polygon(pose(r), zones_.params().footprint));
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+        if (geometry::convex_polygons_overlap(bodies[i], bodies[j])) {
+          first_overlap =
+              "robots " + std::to_string(i) + " and " + std::to_string(j) + " at " + std::to_string(time_) + " s";
+        }
+      }
+    }
+  }
+
+  const map::RoadGraph& road_;
+  const traffic::ConflictZones& zones_;
+  traffic::RouteSearch search_;
+  PlaceTraffic traffic_;
+  std::mt19937_64 rng_;
+  std::vector<Robot> robots_;
+  double time_ = 0.0;
+};
+
+std::vector<int> points_apart(const map::RoadGraph& road, const traffic::ConflictZones& zones, std::size_t count,
+                              std::mt19937_64& rng) {
+  std::vector<int> points;
+  for (int tries = 0; points.size() < count && tries < 10000; ++tries) {
+    const int p = std::uniform_int_distribution<int>(0, static_cast<int>(road.points.size()) - 1)(rng);
+    const bool apart = std::none_of(points.begin(), points.end(),
+                                    [&](int q) { return zones.conflict(zones.place_of(p), zones.place_of(q)); });
+    if (apart) points.push_back(p);
+  }
+  return points;
+}
+
+// Robots that drive their own routes at their own speeds, stop at random, stand at their goals
+// and set off again, on small graphs and on table_a: no two bodies ever overlap, no robot waits
+// for one that waits for it, and errands get done. (How long a robot may stand in a knot is the
+// planner's: docs/known-limits.md.)
+TEST(PlaceTraffic, RobotsDrivingTheirOwnRoutesKeepApartAndGetThrough) {
+  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::corridor_with_siding(), 2},
+                                                                  {traffic::testing::two_ways_between_junctions(), 3},
+                                                                  {traffic::testing::plus_junction(), 3},
+                                                                  {site.graph.graph, 8}};
+  for (const auto& [road, team] : cases) {
+    const traffic::ConflictZones zones(road, forklift_params());
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      std::mt19937_64 rng(seed);
+      FollowingRobots robots(road, zones, points_apart(road, zones, team, rng), seed);
+      robots.run(400.0);
+      const std::string run = std::to_string(team) + " robots, seed " + std::to_string(seed);
+      EXPECT_EQ(robots.first_overlap, "") << run;
+      EXPECT_EQ(robots.wait_cycles, 0u) << run;
+      EXPECT_GT(robots.errands, 3 * team) << run << ", longest still " << robots.longest_still_s << " s";
+    }
+  }
+}
+
+/// A robot driving a route through PlaceTraffic one cycle at a time, as far as it is granted at
+/// once, taking the routes it is handed.
+struct Driver {
+  int number = 0;
+  std::uint64_t version = 2;
+  std::vector<int> route;
+  double progress = 0.0;
+
+  void cycle(PlaceTraffic& traffic, double now) {
+    traffic.update(now);
+    const PlaceGrant& grant = traffic.grant(number);
+    if (grant.version > version && !grant.route.empty()) {
+      route = grant.route;  // it begins where the robot stands
+      version = grant.version;
+      progress = 0.0;
+    }
+    if (grant.version == version && grant.granted_index >= 0) progress = std::max(progress, grant.granted_distance);
+    traffic.drive(number, version, route, progress);
+  }
+  /// Where its body is along the corridor.
+  double x(const PlaceTraffic& traffic) const {
+    return traffic.zones().position(traffic.places_ahead(number).front()).x;
+  }
+};
+
+// A body standing on the corridor (a robot at work, or lost) closes the places it reaches: a robot
+// driving through is granted up to short of it, and on once it has gone. A robot waiting to enter
+// the roads where another drives through is let on once that one is clear of it.
+TEST(PlaceTraffic, StandingBodiesCloseTheirPlacesAndRobotsEnterWhenClear) {
+  const map::RoadGraph road = traffic::testing::corridor_with_siding();
+  const traffic::ConflictZones zones(road, forklift_params());
+  traffic::RouteSearch search(road, zones);
+  PlaceTraffic traffic(road, zones, {0.5, 2, 1});
+  const int worker = traffic.add_robot(0);
+  Driver driver;
+  driver.number = traffic.add_robot(0);
+  const int newcomer = traffic.add_robot(0);
+  const auto& middle = road.points[static_cast<std::size_t>(traffic::testing::point_at(road, 1.2, 0.0))];
+  traffic.stand(worker, geometry::footprint_polygon({middle.x, middle.y, 0.0}, zones.params().footprint));
+  driver.route =
+      search.shortest(traffic::testing::point_at(road, 0.0, 0.0), traffic::testing::point_at(road, 2.0, 0.0));
+  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, 0.0));
+  double furthest = 0.0;
+  double t = 0.0;
+  for (; t < 30.0; t += 0.5) {
+    driver.cycle(traffic, t);
+    furthest = std::max(furthest, driver.x(traffic));
+  }
+  EXPECT_GT(furthest, 0.3);
+  EXPECT_LT(furthest, 1.2 - 0.125 - 0.1) << "granted into the standing body";
+
+  traffic.stand(worker, {});  // the worker drives off the roads
+  for (; t < 60.0 && driver.x(traffic) < 1.3; t += 0.5) driver.cycle(traffic, t);
+  EXPECT_GE(driver.x(traffic), 1.3) << "the driver drives on once the body has gone";
+
+  // The newcomer asks onto the corridor at 1.6 m, where the driver is about to pass: it waits.
+  const std::vector<int> way_in =
+      search.shortest(traffic::testing::point_at(road, 1.6, 0.0), traffic::testing::point_at(road, 2.0, 0.0));
+  ASSERT_TRUE(traffic.drive(newcomer, 2, way_in, 0.0));
+  traffic.update(t);
+  EXPECT_FALSE(traffic.on_roads(newcomer));
+  EXPECT_EQ(traffic.grant(newcomer).granted_index, -1);
+  EXPECT_EQ(traffic.grant(newcomer).waits_for, std::vector<int>{driver.number});
+  for (; t < 90.0 && driver.x(traffic) < 2.0 - 1e-6; t += 0.5) driver.cycle(traffic, t);
+  EXPECT_NEAR(driver.x(traffic), 2.0, 1e-6) << "the driver got through";
+  // The driver stands at the corridor's end, clear of 1.6 m: the newcomer is let on.
+  traffic.update(t);
+  EXPECT_TRUE(traffic.on_roads(newcomer));
+  EXPECT_GE(traffic.grant(newcomer).granted_index, 0);
+}
+
+}  // namespace
+}  // namespace fleet::coordination
