@@ -210,6 +210,8 @@ void FleetServer::adopt(SiteDerivation derived) {
   traffic_.reset();
   if (derived.traffic) {
     traffic_ = std::make_unique<TrafficControl>(std::move(derived.traffic), options_.site.name, participant_, log_);
+  } else if (derived.places) {
+    traffic_ = std::make_unique<PlaceTrafficControl>(std::move(derived.places), options_.site.name, participant_, log_);
   }
 }
 

@@ -26,6 +26,7 @@
 #include "planning/road_planner.hpp"
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
+#include "server/place_traffic_control.hpp"
 #include "server/server_load.hpp"
 #include "server/site_derivation.hpp"
 #include "server/traffic_control.hpp"
@@ -255,7 +256,7 @@ class FleetServer {
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::WaitSet waitset_;
   ServerLoadMeter load_meter_;
-  std::unique_ptr<TrafficControl> traffic_;  ///< null when traffic.enabled is false
+  std::unique_ptr<TrafficService> traffic_;  ///< null when traffic.enabled is false
   double next_traffic_sim_ = 0.0;
   double last_traffic_wall_ = 0.0;
 };

@@ -17,7 +17,11 @@ SiteDerivation derive_site(std::shared_ptr<const map::SiteMap> site_map, const c
     ability.out_of_reach = traffic::fleet_places_out_of_reach(*site_map, graph, config, ability.fleet_id);
   }
   if (config.settings.get_bool("traffic.enabled")) {
-    d.traffic = std::make_unique<traffic::TrafficManager>(site_map->graph.graph, traffic::configuration_from(config));
+    if (config.settings.get_string("traffic.core") == "places") {
+      d.places = std::make_unique<PlaceTrafficSite>(site_map, config);
+    } else {
+      d.traffic = std::make_unique<traffic::TrafficManager>(site_map->graph.graph, traffic::configuration_from(config));
+    }
   }
   d.site_map = std::move(site_map);
   return d;

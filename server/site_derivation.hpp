@@ -8,19 +8,23 @@
 #include "map/site_map.hpp"
 #include "orders/order_request_check.hpp"
 #include "planning/road_travel.hpp"
+#include "server/place_traffic_control.hpp"
 #include "traffic/traffic_manager.hpp"
 
 namespace fleet::server {
 
 /// What the server derives from a site map: the names orders may use with what each fleet can
-/// reach, each fleet's road distances, and the traffic manager with the site's conflict zones.
+/// reach, each fleet's road distances, and the traffic core with the site's conflict zones.
 /// On the plant it takes the best part of a second, so a map switch derives it off the server
 /// loop and adopts it on the loop once it is ready.
 struct SiteDerivation {
   std::shared_ptr<const map::SiteMap> site_map;
   orders::KnownNames known_names;
   std::map<std::string, planning::RoadDistances> travel;
-  std::unique_ptr<traffic::TrafficManager> traffic;  ///< null when traffic.enabled is false
+  /// The traffic manager (`traffic.core: manager`); null when traffic.enabled is false.
+  std::unique_ptr<traffic::TrafficManager> traffic;
+  /// The coordination core (`traffic.core: places`); null unless traffic is on with that core.
+  std::unique_ptr<PlaceTrafficSite> places;
 };
 
 /// Derives `site_map` for the fleets of `config`.

@@ -10,8 +10,6 @@
 namespace fleet::server {
 
 namespace {
-constexpr double kGrantRepeatWall = 1.0;  // seconds: unchanged grants are repeated for late joiners
-
 const char* status_name(traffic::GrantStatus s) {
   switch (s) {
     case traffic::GrantStatus::kMoving:
@@ -36,10 +34,6 @@ const char* instruction_name(traffic::Instruction i) {
   return "";
 }
 
-bool same_grant(const model::TrafficGrant& a, const model::TrafficGrant& b) {
-  return a.version == b.version && a.granted_index == b.granted_index && a.status == b.status &&
-         a.blocked_by == b.blocked_by && a.instruction == b.instruction && a.route == b.route;
-}
 }  // namespace
 
 TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id,
@@ -47,7 +41,7 @@ TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager,
     : manager_(std::move(manager)),
       map_id_(std::move(map_id)),
       log_(std::move(log)),
-      grant_writers_(participant, dds::qos::live_state()),
+      grants_(participant, log_),
       request_reader_(participant, dds::qos::live_state()) {
   const auto& configuration = manager_->configuration();
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_->zones().place_count(),
@@ -221,7 +215,7 @@ void TrafficControl::robot_lost(const std::string& robot_id, const geometry::Pol
   }
   status_.erase(robot_id);
   // Its next grant goes out at once when it is back: it stands until one comes.
-  sent_.erase(robot_id);
+  grants_.forget(robot_id);
   if (!manoeuvring) working_.erase(robot_id);
 }
 
@@ -261,7 +255,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
       for (int b : blockers) answer.blocked_by.push_back(names_[b]);
       // Known as waiting for them: a robot whose way out onto the road it stands in goes first.
       status_[request.robot_id] = {"AREA_WAITING", 0.0, answer.blocked_by, {}};
-      publish(std::move(answer), now_wall);
+      grants_.publish(std::move(answer), now_wall);
       return;
     }
     working_.insert(request.robot_id);
@@ -271,7 +265,7 @@ void TrafficControl::work_beside_roads(const model::TrafficRequest& request, int
   if (manager_->has_robot(id) && !manager_->frozen(id)) manager_->remove_robot(id, now_sim);
   hold_body(request.robot_id, id, area, now_sim);
   answer.status = "AREA_CLEAR";
-  publish(std::move(answer), now_wall);
+  grants_.publish(std::move(answer), now_wall);
 }
 
 geometry::Polygon TrafficControl::area_with_body(const model::TrafficRequest& request) const {
@@ -292,7 +286,7 @@ void TrafficControl::wait_to_enter(const model::TrafficRequest& request, std::ve
   wait.blocked_by = blockers;
   wait.sim_time = now_sim;
   status_[request.robot_id] = {"WAITING", 0.0, std::move(blockers), {}};
-  publish(std::move(wait), now_wall);
+  grants_.publish(std::move(wait), now_wall);
 }
 
 std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon& area) const {
@@ -335,7 +329,7 @@ bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id,
 
 void TrafficControl::set_body(const std::string& robot_id, const geometry::Polygon& body) {
   const auto [known, first] = bodies_.try_emplace(robot_id);
-  if (first) grant_writers_.open(model::robot_partition(robot_id));
+  if (first) grants_.open(robot_id);
   known->second = body;
 }
 
@@ -481,30 +475,8 @@ void TrafficControl::update(double now_sim, double now_wall) {
     status.blocked_by = grant.blocked_by;
     status.held.clear();
     for (int place : manager_->held_places(g.robot_id)) status.held.push_back(manager_->zones().position(place));
-    publish(std::move(grant), now_wall);
+    grants_.publish(std::move(grant), now_wall);
   }
-}
-
-void TrafficControl::publish(model::TrafficGrant grant, double now_wall) {
-  // Written when it changed, and repeated now and then for an agent that (re)started.
-  auto sent = sent_.find(grant.robot_id);
-  if (sent != sent_.end() && same_grant(sent->second, grant) &&
-      now_wall - sent_wall_[grant.robot_id] < kGrantRepeatWall) {
-    return;
-  }
-  if (log_->should_log(spdlog::level::debug) &&
-      (sent == sent_.end() || sent->second.status != grant.status || sent->second.blocked_by != grant.blocked_by)) {
-    // Who waits for whom, as it changes: what a jam is read back from.
-    std::string blockers;
-    for (const auto& b : grant.blocked_by) blockers += (blockers.empty() ? "" : ", ") + b;
-    log_->debug("traffic: {} {} v{} up to point {} ({:.2f} m){}{}", grant.robot_id, grant.status, grant.version,
-                grant.granted_index, grant.granted_distance, blockers.empty() ? "" : ", waits for ", blockers);
-  }
-  // Into the robot's own partition: its agent alone hears it (and the watchers of every robot),
-  // not every agent every other robot's grant.
-  grant_writers_.write(model::robot_partition(grant.robot_id), grant);
-  sent_wall_[grant.robot_id] = now_wall;
-  sent_[grant.robot_id] = std::move(grant);
 }
 
 }  // namespace fleet::server

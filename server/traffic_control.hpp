@@ -9,21 +9,15 @@
 #include "common/logging.hpp"
 #include "dds/topics.hpp"
 #include "map/road_graph.hpp"
+#include "server/grant_publisher.hpp"
+#include "server/traffic_service.hpp"
 #include "traffic/traffic_manager.hpp"
 
 namespace fleet::server {
 
-/// What the web view shows of a robot's traffic state.
-struct TrafficStatus {
-  std::string status;  ///< MOVING, WAITING, ARRIVED
-  double waited_s = 0.0;
-  std::vector<std::string> blocked_by;
-  std::vector<geometry::Vec2> held;  ///< where the places the robot holds are
-};
-
 /// The server side of traffic control: agents' TrafficRequests into a
 /// traffic::TrafficManager, its grants out as TrafficGrant, one update per cycle.
-class TrafficControl {
+class TrafficControl : public TrafficService {
  public:
   /// `manager` is built on the road graph of map `map_id` (server::derive_site, off the server
   /// loop on a map switch): requests for another map are ignored.
@@ -31,18 +25,18 @@ class TrafficControl {
                  Logger log);
 
   /// Reads the agents' routes and progress (call every loop).
-  void handle_requests(double now_sim, double now_wall);
+  void handle_requests(double now_sim, double now_wall) override;
   /// One manager cycle and the grants that changed (call at the control rate).
-  void update(double now_sim, double now_wall);
+  void update(double now_sim, double now_wall) override;
   /// The robot is lost: it keeps the places its body (last footprint) stands on, the rest of
   /// what it held is freed at once.
-  void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim);
+  void robot_lost(const std::string& robot_id, const geometry::Polygon& body, double now_sim) override;
   /// Where a robot that answers stands now (its footprint at its reported pose). A robot without
   /// a route — parked, or not admitted yet — holds the places its body overlaps. A robot's first
   /// body opens the writer of its grants, so that its reader has matched by the first grant.
-  void set_body(const std::string& robot_id, const geometry::Polygon& body);
+  void set_body(const std::string& robot_id, const geometry::Polygon& body) override;
 
-  const std::map<std::string, TrafficStatus>& status() const { return status_; }
+  const std::map<std::string, TrafficStatus>& status() const override { return status_; }
 
  private:
   int number_of(const std::string& robot_id);
@@ -69,7 +63,6 @@ class TrafficControl {
   /// A standing robot's way out onto the road (its request's work_area) is free: it is held for
   /// it. Otherwise the robot is answered WAITING for those in it.
   bool way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall);
-  void publish(model::TrafficGrant grant, double now_wall);
   /// A wait cycle the manager found no way out of (TrafficEvent kUnresolvedDeadlock, `others` its
   /// members): logged at debug, and once as a warning when it lasts (stuck_cycles_).
   void note_stuck_cycle(const traffic::TrafficEvent& e, const std::string& others, double now_sim);
@@ -80,9 +73,7 @@ class TrafficControl {
   Logger log_;
   std::map<std::string, int> numbers_;  ///< robot id -> the manager's integer id
   std::map<int, std::string> names_;
-  std::map<std::string, model::TrafficGrant> sent_;
   std::set<std::string> working_;  ///< robots holding their work area
-  std::map<std::string, double> sent_wall_;
   std::map<std::string, TrafficStatus> status_;
   /// Wait cycles the manager finds no way out of, by their members: a cycle that lasts is
   /// reported once as a warning, naming each member's route (see update()).
@@ -102,8 +93,7 @@ class TrafficControl {
   double settle_until_wall_ = -1.0;                       ///< requests wait until then: robots' bodies are learnt first
   std::map<std::string, geometry::Polygon> bodies_;       ///< last known footprint of each robot
   std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
-  /// One per robot, each in the robot's own partition (model::robot_partition).
-  dds::PartitionWriters<model::TrafficGrant> grant_writers_;
+  GrantPublisher grants_;
   dds::Reader<model::TrafficRequest> request_reader_;
 };
 

@@ -89,7 +89,12 @@ std::vector<KeySpec> make_schema() {
       number("traffic.margin", 0.03, "m", 0.0, 1.0,
              "gap kept between the regions of reservations; larger values make junction zones swallow whole "
              "corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its own distance"),
-      flag("traffic.one_way", true, "give corridors on cycles of the road network one driving direction"),
+      flag("traffic.one_way", true,
+           "give corridors on cycles of the road network one driving direction (the manager only: the places "
+           "core drives every lane both ways)"),
+      choice("traffic.core", "manager", {"manager", "places"},
+             "what grants the roads: the traffic manager, or the coordination core's planner and order of "
+             "visits (docs/coordination.md)"),
 
       // Fault injection (soak tests only; everything off by default)
       number("faults.pose_delay_ms", 0.0, "ms", 0.0, 10000.0,

@@ -36,6 +36,18 @@ double PlaceGraph::step_length(int from, int to) const {
   return geometry::distance(zones_.position(from), zones_.position(to));
 }
 
+double PlaceGraph::mean_move_length() const {
+  double metres = 0.0;
+  int moves = 0;
+  for (int place = 0; place < place_count(); ++place) {
+    for (const int next : successors(0, place)) {
+      metres += step_length(place, next);
+      ++moves;
+    }
+  }
+  return moves > 0 ? metres / moves : 0.0;
+}
+
 double PlaceGraph::distance(int type, int place, int goal) {
   return distances_to(type, goal)[static_cast<std::size_t>(place)];
 }

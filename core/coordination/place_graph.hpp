@@ -34,6 +34,8 @@ class PlaceGraph {
   }
   /// Metres between two places' positions.
   double step_length(int from, int to) const;
+  /// The mean length of a move of vehicle type 0 between neighbouring places, 0 without moves.
+  double mean_move_length() const;
   /// Metres a robot of `type` drives from `place` to `goal` on its lanes, kUnreachable when it
   /// cannot get there. Computed once per type and goal (Dijkstra backwards from the goal).
   double distance(int type, int place, int goal);

@@ -24,15 +24,7 @@ PlaceSim::PlaceSim(const map::RoadGraph& graph, const traffic::ConflictZones& zo
   for (const auto& type : zones.vehicle_types()) {
     for (const auto& v : type.footprint) reach_ = std::max(reach_, 2.0 * std::hypot(v.x, v.y));
   }
-  double length_sum = 0.0;
-  int lengths = 0;
-  for (int place = 0; place < graph_.place_count(); ++place) {
-    for (const int next : graph_.successors(0, place)) {
-      length_sum += graph_.step_length(place, next);
-      ++lengths;
-    }
-  }
-  if (lengths > 0) plan_period_s_ = length_sum / lengths / params_.speed;
+  if (const double move = graph_.mean_move_length(); move > 0.0) plan_period_s_ = move / params_.speed;
   for (std::size_t i = 0; i < start_points.size(); ++i) {
     Body body;
     body.type = i < params_.robot_types.size() ? params_.robot_types[i] : 0;

@@ -41,6 +41,10 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
   }
+  if (params_.plan_period_s <= 0.0) {
+    const double move = places_.mean_move_length();
+    params_.plan_period_s = move > 0.0 && params_.speed > 0.0 ? move / params_.speed : 1.0;
+  }
   for (std::size_t type = 0; type < zones.type_count(); ++type) {
     for (std::size_t place = 0; place < zones.place_count(); ++place) {
       const geometry::Vec2 at = zones.position(static_cast<int>(place));
@@ -214,6 +218,18 @@ bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int pla
     if (geometry::convex_polygons_overlap(body, polygon)) return true;
   }
   return false;
+}
+
+std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon& area) const {
+  std::vector<int> found;
+  for (int other = 0; other < robots(); ++other) {
+    if (other == robot) continue;
+    const Robot& o = at(other);
+    bool inside = o.mode == Mode::kStanding && !o.body.empty() && geometry::convex_polygons_overlap(o.body, area);
+    for (const int place : order_.places_ahead(other)) inside = inside || body_reaches(area, o.type, place);
+    if (inside) found.push_back(other);
+  }
+  return found;
 }
 
 void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {

@@ -13,8 +13,10 @@
 namespace fleet::coordination {
 
 struct PlaceTrafficParams {
-  /// Sim seconds between plan steps: about the time a robot takes for a typical move.
-  double plan_period_s = 1.0;
+  /// Sim seconds between plan steps: about the time a robot takes for a typical move. 0: the mean
+  /// move between neighbouring places at `speed`.
+  double plan_period_s = 0.0;
+  double speed = 0.2;  ///< m/s, the robots' cruising speed (for plan_period_s 0)
   /// Moves a robot's plan may run ahead of where it is: one this far behind is held in the plan.
   int plan_ahead = 2;
   std::uint64_t seed = 1;
@@ -57,6 +59,10 @@ class PlaceTraffic {
   /// The robot stands without a route with body `body` (a convex polygon, map frame; empty when
   /// unknown or off the roads): it holds the places its body reaches until it drives again.
   void stand(int robot, const geometry::Polygon& body);
+  /// Robots other than `robot` whose visits, begun or planned, are of places `area` (convex, map
+  /// frame) reaches for their vehicle type, or whose standing bodies overlap it: those a
+  /// manoeuvre sweeping `area` beside the roads must wait for.
+  std::vector<int> robots_in_area(int robot, const geometry::Polygon& area) const;
   /// One cycle at sim time `now`: a plan step when one is due, then every robot's grant.
   void update(double now);
 
@@ -68,6 +74,7 @@ class PlaceTraffic {
   /// Robots of a wait-for cycle among the visits, empty when none (the order's promise: none).
   std::vector<int> wait_cycle() const { return order_.wait_cycle(); }
   std::size_t plan_steps() const { return plan_step_; }
+  double plan_period_s() const { return params_.plan_period_s; }
   const traffic::ConflictZones& zones() const { return zones_; }
 
  private:

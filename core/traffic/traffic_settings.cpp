@@ -60,7 +60,8 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
   c.priority_wait = s.get_double("traffic.priority_wait_s");
   c.reroute_wait = s.get_double("traffic.reroute_wait_s");
   c.lost_reroute_wait = s.get_double("traffic.lost_reroute_wait_s");
-  c.one_way = s.get_bool("traffic.one_way");
+  // The coordination core plans robots both ways along every lane and makes room by pushing.
+  c.one_way = s.get_bool("traffic.one_way") && s.get_string("traffic.core") != "places";
   return c;
 }
 

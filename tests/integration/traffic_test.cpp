@@ -49,19 +49,19 @@ std::vector<std::int64_t> send_crossing_orders(cli::FleetClient& client, const s
   return ids;
 }
 
-}  // namespace
-
-TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
-  FleetHarness fleet(74, 10.0);
-  fleet.start_server();
-  const std::vector<std::string> robots{"fl1", "fl2", "fl3", "fl4"};
-  for (const auto& r : robots) fleet.start_agent(r);
+/// Agents `robots` (up to four) sent across one another (send_crossing_orders) under traffic
+/// control with `extra` settings for every process: every order ends DONE, no footprints overlap.
+void cross_the_table(int domain, const std::vector<std::string>& robots, const std::vector<std::string>& extra,
+                     const std::string& core_log) {
+  FleetHarness fleet(domain, 10.0);
+  fleet.start_server(extra);
+  for (const auto& r : robots) fleet.start_agent(r, extra);
   ASSERT_TRUE(fleet.wait_for_robots(robots));
 
   // The agents publish before the server is up on a loaded host: its log is read once it answers.
   cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
   ASSERT_TRUE(client.find_server(5000ms));
-  EXPECT_NE(fleet.log_of("fleet-server").find("traffic control on"), std::string::npos);
+  EXPECT_NE(fleet.log_of("fleet-server").find(core_log), std::string::npos);
   dds::Reader<model::SimTruth> truths(client.participant(), dds::qos::live_state());
   const std::vector<std::int64_t> ids = send_crossing_orders(client, robots, "traffic-test-");
   ASSERT_EQ(ids.size(), robots.size());
@@ -86,6 +86,19 @@ TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
   EXPECT_TRUE(collisions.collisions().empty())
       << collisions.collisions().size() << " collisions, the first between " << collisions.collisions().front().robot_a
       << " and " << collisions.collisions().front().robot_b;
+}
+
+}  // namespace
+
+TEST(Traffic, FourRobotsSentAcrossOneAnotherAllFinishWithoutCollision) {
+  cross_the_table(74, {"fl1", "fl2", "fl3", "fl4"}, {}, "traffic control on:");
+}
+
+// The coordination core in the server (traffic.core places): requests, grants and the driving
+// they allow cross the wire; two robots on their way across the table (four head-on meet in
+// knots the live core does not untangle yet: docs/known-limits.md).
+TEST(Traffic, UnderTheCoordinationCoreRobotsCrossTheTable) {
+  cross_the_table(79, {"fl1", "fl3"}, {"--set", "traffic.core=places"}, "traffic control on (coordination core)");
 }
 
 // Regression: a robot paused while it waited for traffic and resumed after the road was granted

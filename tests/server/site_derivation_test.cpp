@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "traffic/traffic_settings.hpp"
+
 using namespace fleet;
 
 namespace {
@@ -36,6 +38,22 @@ TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
 
   config.settings.set("traffic.enabled", "false", "site_derivation_test");
   EXPECT_EQ(server::derive_site(closed.site_map, config).traffic, nullptr);
+}
+
+// traffic.core places derives the coordination core instead of the traffic manager, and every
+// robot's agent plans on the lanes both ways (no one-way plan).
+TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
+  const auto table_a = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
+  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  config.settings.set("traffic.enabled", "true", "site_derivation_test");
+  config.settings.set("traffic.core", "places", "site_derivation_test");
+  const server::SiteDerivation derived = server::derive_site(table_a, config);
+  EXPECT_EQ(derived.traffic, nullptr);
+  ASSERT_NE(derived.places, nullptr);
+  EXPECT_GT(derived.places->zones.place_count(), 0u);
+  EXPECT_EQ(derived.places->robot_types.size(), config.all_robots().size());
+  EXPECT_FALSE(traffic::configuration_from(config).one_way);
+  EXPECT_GT(derived.places->traffic.plan_period_s(), 0.0);
 }
 
 TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
