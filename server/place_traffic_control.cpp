@@ -23,10 +23,15 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
 }  // namespace
 
 PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map, const config::FleetConfig& config)
+    : PlaceTrafficSite(std::move(map), traffic::configuration_from(config), params_for(config)) {}
+
+PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
+                                   const traffic::TrafficConfiguration& configuration,
+                                   const coordination::PlaceTrafficParams& params)
     : site_map(std::move(map)),
-      zones(site_map->graph.graph, traffic::configuration_from(config).resources),
-      traffic(site_map->graph.graph, zones, params_for(config)),
-      robot_types(traffic::configuration_from(config).robot_vehicle_types) {}
+      zones(site_map->graph.graph, configuration.resources),
+      traffic(site_map->graph.graph, zones, params),
+      robot_types(configuration.robot_vehicle_types) {}
 
 PlaceTrafficControl::PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site, std::string map_id,
                                          dds::Participant& participant, Logger log)

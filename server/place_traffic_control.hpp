@@ -14,6 +14,7 @@
 #include "server/grant_publisher.hpp"
 #include "server/traffic_service.hpp"
 #include "traffic/conflict_zones.hpp"
+#include "traffic/traffic_manager.hpp"
 
 namespace fleet::server {
 
@@ -22,6 +23,8 @@ namespace fleet::server {
 /// core on them.
 struct PlaceTrafficSite {
   PlaceTrafficSite(std::shared_ptr<const map::SiteMap> site_map, const config::FleetConfig& config);
+  PlaceTrafficSite(std::shared_ptr<const map::SiteMap> site_map, const traffic::TrafficConfiguration& configuration,
+                   const coordination::PlaceTrafficParams& params);
 
   std::shared_ptr<const map::SiteMap> site_map;  ///< keeps the road graph the core refers to
   traffic::ConflictZones zones;

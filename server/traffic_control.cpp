@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <numeric>
 
 #include "model/names.hpp"
 
@@ -225,11 +223,7 @@ bool TrafficControl::stands_at(const std::string& robot_id, int id, int point) c
   if (!manager_->holds_place_of(id, point)) return false;
   auto body = bodies_.find(robot_id);
   if (body == bodies_.end() || body->second.empty()) return false;
-  geometry::Vec2 centre{0.0, 0.0};
-  for (const auto& v : body->second) {
-    centre.x += v.x / static_cast<double>(body->second.size());
-    centre.y += v.y / static_cast<double>(body->second.size());
-  }
+  const geometry::Vec2 centre = geometry::vertex_centroid(body->second);
   const auto& at = manager_->route_graph().points[static_cast<std::size_t>(point)];
   return geometry::distance(centre, {at.x, at.y}) <= kOnPointM;
 }
@@ -337,11 +331,7 @@ bool TrafficControl::hold_body(const std::string& robot_id, int id, const geomet
   // Finding the places under a body costs a pass over every place: only when it moved.
   constexpr double kMovedM = 0.01;
   auto held = held_bodies_.find(robot_id);
-  const bool moved = held == held_bodies_.end() || held->second.size() != body.size() ||
-                     std::inner_product(held->second.begin(), held->second.end(), body.begin(), false,
-                                        std::logical_or<>(), [](const geometry::Vec2& a, const geometry::Vec2& b) {
-                                          return geometry::distance(a, b) > kMovedM;
-                                        });
+  const bool moved = held == held_bodies_.end() || !geometry::same_polygon(held->second, body, kMovedM);
   if (!moved && manager_->has_robot(id) == manager_->frozen(id)) return manager_->frozen(id);
   held_bodies_[robot_id] = body;
   return manager_->hold_body(id, body, now_sim);

@@ -6,24 +6,8 @@
 namespace fleet::coordination {
 
 namespace {
-
-geometry::Vec2 centroid(const geometry::Polygon& polygon) {
-  geometry::Vec2 c{0.0, 0.0};
-  for (const auto& v : polygon) c = c + v;
-  const double n = static_cast<double>(std::max<std::size_t>(polygon.size(), 1));
-  return {c.x / n, c.y / n};
-}
-
-bool same_body(const geometry::Polygon& a, const geometry::Polygon& b) {
-  // A robot standing still reports its body with a little noise: a change under this is none.
-  constexpr double kSameM = 0.02;
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (geometry::distance(a[i], b[i]) > kSameM) return false;
-  }
-  return true;
-}
-
+// A robot standing still reports its body with a little noise: a change under this is none.
+constexpr double kSameBodyM = 0.02;
 }  // namespace
 
 PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZones& zones,
@@ -206,14 +190,21 @@ void PlaceTraffic::drop_visits_into(int robot, const Conflicts& conflicts) {
   }
 }
 
+PlaceTraffic::Circle PlaceTraffic::circle_around(const geometry::Polygon& body) {
+  Circle circle{geometry::vertex_centroid(body), 0.0};
+  for (const auto& v : body) circle.radius = std::max(circle.radius, geometry::distance(circle.centre, v));
+  return circle;
+}
+
 bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int place) const {
+  return body_reaches(body, circle_around(body), type, place);
+}
+
+bool PlaceTraffic::body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const {
   if (body.empty()) return false;
-  const geometry::Vec2 c = centroid(body);
-  double radius = 0.0;
-  for (const auto& v : body) radius = std::max(radius, geometry::distance(c, v));
   const auto t = static_cast<std::size_t>(type);
   const auto p = static_cast<std::size_t>(place);
-  if (geometry::distance(c, zones_.position(place)) > radius + reach_[t][p]) return false;
+  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + reach_[t][p]) return false;
   for (const auto& polygon : zones_.region(type, place)) {
     if (geometry::convex_polygons_overlap(body, polygon)) return true;
   }
@@ -221,12 +212,13 @@ bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int pla
 }
 
 std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon& area) const {
+  const Circle around = circle_around(area);
   std::vector<int> found;
   for (int other = 0; other < robots(); ++other) {
     if (other == robot) continue;
     const Robot& o = at(other);
     bool inside = o.mode == Mode::kStanding && !o.body.empty() && geometry::convex_polygons_overlap(o.body, area);
-    for (const int place : order_.places_ahead(other)) inside = inside || body_reaches(area, o.type, place);
+    for (const int place : order_.places_ahead(other)) inside = inside || body_reaches(area, around, o.type, place);
     if (inside) found.push_back(other);
   }
   return found;
@@ -241,21 +233,23 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
   r.entry_blockers.clear();
   r.adopted = true;
   r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
-  if (same_body(body, r.body)) return;
+  if (geometry::same_polygon(body, r.body, kSameBodyM)) return;
   r.body = body;
   closed_stale_ = true;
   if (body.empty()) return;
   // Plans made before it stood here may lead into its body: those visits go, not yet begun.
-  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, type, place); });
+  const Circle around = circle_around(body);
+  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
 }
 
 void PlaceTraffic::rebuild_closed() {
   for (auto& by_place : closed_) std::fill(by_place.begin(), by_place.end(), 0);
   for (const Robot& r : robots_) {
     if (r.mode != Mode::kStanding) continue;
+    const Circle around = circle_around(r.body);
     for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
       for (int place = 0; place < static_cast<int>(zones_.place_count()); ++place) {
-        if (body_reaches(r.body, type, place))
+        if (body_reaches(r.body, around, type, place))
           closed_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = 1;
       }
     }

@@ -106,8 +106,16 @@ class PlaceTraffic {
   int index_at(const Robot& r, double progress) const;
   /// Metres along r's route to its `index`-th place.
   double place_s(const Robot& r, std::size_t index) const;
+  /// A circle round a body: places farther than it reaches are skipped without a polygon test.
+  struct Circle {
+    geometry::Vec2 centre;
+    double radius = 0.0;
+  };
+  static Circle circle_around(const geometry::Polygon& body);
   /// Whether a body (convex, map frame) reaches into the region of `place` for vehicle `type`.
   bool body_reaches(const geometry::Polygon& body, int type, int place) const;
+  /// The same with the body's circle computed once for many places.
+  bool body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const;
   /// The robot stands at `place` in the order: others' plans into places conflicting with it go.
   void place_robot(int robot, int place);
   /// Drops the visits other robots have planned, not begun, into places `conflicts` accepts.

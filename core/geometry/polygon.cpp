@@ -41,8 +41,8 @@ int orientation(Vec2 a, Vec2 b, Vec2 c) {
   return v > eps ? 1 : (v < -eps ? -1 : 0);
 }
 bool on_segment(Vec2 a, Vec2 b, Vec2 p) {
-  return std::min(a.x, b.x) - 1e-12 <= p.x && p.x <= std::max(a.x, b.x) + 1e-12 &&
-         std::min(a.y, b.y) - 1e-12 <= p.y && p.y <= std::max(a.y, b.y) + 1e-12;
+  return std::min(a.x, b.x) - 1e-12 <= p.x && p.x <= std::max(a.x, b.x) + 1e-12 && std::min(a.y, b.y) - 1e-12 <= p.y &&
+         p.y <= std::max(a.y, b.y) + 1e-12;
 }
 }  // namespace
 
@@ -89,6 +89,22 @@ bool has_separating_axis(const Polygon& p, const Polygon& q) {
   return false;
 }
 }  // namespace
+
+bool same_polygon(const Polygon& a, const Polygon& b, double tolerance) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (distance(a[i], b[i]) > tolerance) return false;
+  }
+  return true;
+}
+
+Vec2 vertex_centroid(const Polygon& polygon) {
+  if (polygon.empty()) return {0.0, 0.0};
+  Vec2 sum{0.0, 0.0};
+  for (const Vec2& v : polygon) sum = sum + v;
+  const double n = static_cast<double>(polygon.size());
+  return {sum.x / n, sum.y / n};
+}
 
 bool convex_polygons_overlap(const Polygon& a, const Polygon& b) {
   if (a.empty() || b.empty()) return false;

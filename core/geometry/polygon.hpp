@@ -32,6 +32,13 @@ bool segment_intersects_polygon(Vec2 a, Vec2 b, const Polygon& polygon);
 /// Overlap test for two convex polygons by the separating axis theorem.
 bool convex_polygons_overlap(const Polygon& a, const Polygon& b);
 
+/// Whether two polygons have as many vertices and each lies within `tolerance` metres of its
+/// counterpart: a body reported again from about where it stood.
+bool same_polygon(const Polygon& a, const Polygon& b, double tolerance);
+
+/// The mean of the polygon's vertices ({0, 0} for an empty one).
+Vec2 vertex_centroid(const Polygon& polygon);
+
 /// Overlap test for any two simple polygons: an edge of one crosses an edge of the other, or one
 /// lies inside the other.
 bool polygons_overlap(const Polygon& a, const Polygon& b);

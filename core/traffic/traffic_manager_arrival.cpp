@@ -14,11 +14,7 @@ namespace {
 
 bool same_area(const geometry::Polygon& a, const geometry::Polygon& b) {
   constexpr double kMovedM = 0.01;
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (geometry::distance(a[i], b[i]) > kMovedM) return false;
-  }
-  return true;
+  return geometry::same_polygon(a, b, kMovedM);
 }
 
 }  // namespace
