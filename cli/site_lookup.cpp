@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "commands.hpp"  // as map_command.cpp: the map tests compile both from cli/
+#include "commands.hpp"
 #include "common/errors.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"

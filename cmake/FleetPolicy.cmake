@@ -41,10 +41,6 @@ endfunction()
 function(fleet_unit_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main fleet_warnings)
-  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
-  target_compile_definitions(${name} PRIVATE
-    FLEET_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    FLEET_DEFAULT_TEST_DATA="${FLEET_DEFAULT_TEST_DATA}")
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} fleet_test_paths GTest::gtest_main fleet_warnings)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
 endfunction()

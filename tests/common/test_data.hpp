@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace fleet::test {
 
 inline std::string opendrive_test_data_dir() {
   if (const char* dir = std::getenv("FLEET_TEST_DATA"); dir && *dir) return dir;
-  return FLEET_DEFAULT_TEST_DATA;
+  return default_opendrive_data();
 }
 
 inline std::string opendrive_test_file(const std::string& name) {

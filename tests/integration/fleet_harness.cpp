@@ -18,10 +18,13 @@
 
 #include "cli/client.hpp"
 #include "dds/environment.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::testing {
 
-std::string bin(const std::string& name) { return std::string(FLEET_BIN_DIR) + "/" + name; }
+std::string bin(const std::string& name) {
+  return fleet::test::bin_dir() + "/" + name;
+}
 
 namespace {
 std::string slurp(const std::string& path) {
@@ -81,8 +84,8 @@ CommandResult run_command(const std::vector<std::string>& argv, double timeout_s
 FleetHarness::FleetHarness(int domain, double time_scale, std::string site)
     : domain_(domain), time_scale_(time_scale), site_(std::move(site)) {
   dds::use_fleet_dds_config();  // the test process may be a DDS participant too
-  log_dir_ = std::filesystem::temp_directory_path() / ("fleet-test-" + std::to_string(getpid()) + "-" +
-                                                       std::to_string(domain));
+  log_dir_ = std::filesystem::temp_directory_path() /
+             ("fleet-test-" + std::to_string(getpid()) + "-" + std::to_string(domain));
   std::filesystem::remove_all(log_dir_);
   std::filesystem::create_directories(log_dir_);
 }
@@ -106,8 +109,8 @@ nlohmann::json last_json_line(const std::string& text) {
 }
 
 std::vector<std::string> FleetHarness::common_args() const {
-  return {"--config", config_path_, "--domain", std::to_string(domain_),
-          "--site", site_, "--time-scale", std::to_string(time_scale_)};
+  return {"--config", config_path_, "--domain",     std::to_string(domain_),
+          "--site",   site_,        "--time-scale", std::to_string(time_scale_)};
 }
 
 void FleetHarness::start_server(const std::vector<std::string>& extra) {
@@ -147,6 +150,8 @@ bool FleetHarness::wait_for_robots(const std::vector<std::string>& robot_ids, do
   return false;
 }
 
-std::string FleetHarness::log_of(const std::string& name) const { return slurp(log_dir_ + "/" + name + ".log"); }
+std::string FleetHarness::log_of(const std::string& name) const {
+  return slurp(log_dir_ + "/" + name + ".log");
+}
 
 }  // namespace fleet::testing

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/processes.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::testing {
 
@@ -44,7 +45,7 @@ class FleetHarness {
   int domain() const { return domain_; }
 
  private:
-  std::string config_path_ = std::string(FLEET_SOURCE_DIR) + "/config/fleet.yaml";
+  std::string config_path_ = fleet::test::source_dir() + "/config/fleet.yaml";
   std::vector<std::string> common_args() const;
   int domain_;
   double time_scale_;

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "fleet_harness.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::testing;
 using nlohmann::json;
@@ -98,7 +99,7 @@ TEST(MultiFleet, OrdersGoToFleetsThatCanDoThemAndOthersAreBadInput) {
 // and lines the places cannot give are refused before anything is stored.
 TEST(MultiFleet, APickerDrivesAPickListsTourAndBadLinesAreNamed) {
   FleetHarness fleet(94, 10.0, "plant");
-  fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
   fleet.start_server();
   fleet.start_agent("pk1");
   ASSERT_TRUE(fleet.wait_for_robots({"pk1"}));
@@ -150,7 +151,7 @@ TEST(MultiFleet, APickerFillsAPackingPalletAndAStackerTakesItToExpeditionAndBrin
   // packaging corridor to PS9, and the stacker, docking from the aisle, drives both [Picker thesis,
   // section 4.3.3.1: pickers load, transporters carry]. A tour asked for meanwhile goes on to PS10.
   FleetHarness fleet(95, 10.0, "plant");
-  fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
   fleet.start_server();
   for (const char* robot : {"pk1", "st1"}) fleet.start_agent(robot);
   ASSERT_TRUE(fleet.wait_for_robots({"pk1", "st1"}));

@@ -14,6 +14,7 @@
 #include "fleet_harness.hpp"
 #include "map/road_graph_builder.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
 
@@ -163,8 +164,8 @@ struct ScriptedFleet {
 /// table_a's roads as the server's traffic manager grants them under config/fleet.yaml, for
 /// scripting routes it accepts.
 struct TableARoutes {
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
-  map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
+  map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/table_a.yaml"));
   traffic::TrafficManager manager{site.graph.graph, traffic::configuration_from(config)};
 
   const map::RoadGraph& graph() const { return manager.route_graph(); }

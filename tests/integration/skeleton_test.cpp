@@ -11,6 +11,7 @@
 
 #include "fleet_harness.hpp"
 #include "map/site.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::testing;
 using nlohmann::json;
@@ -56,7 +57,7 @@ TEST(Skeleton, OrderGoesThroughItsLifecycleAndTheRobotEndsAtTheDropPose) {
   // At DONE the robot stands at area A2's service pose: 0.30 m out from the pallet along the
   // area's yaw (maps/table_a.yaml).
   const auto& done = order["history"].back();
-  const auto site = fleet::map::load_site(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = fleet::map::load_site(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto* a2 = site.find_area("A2");
   ASSERT_NE(a2, nullptr);
   const double sx = a2->pose.x + 0.30 * std::cos(a2->pose.yaw);

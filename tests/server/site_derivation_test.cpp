@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "test_paths.hpp"
 #include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
@@ -24,8 +25,8 @@ std::string refusal(const map::Site& current, const std::string& map_id, const c
 }  // namespace
 
 TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
-  const map::SiteMap table_a = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const map::SiteMap table_a = map::load_site_map(fleet::test::source_path("/maps/table_a.yaml"));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config.settings.set("traffic.enabled", "true", "site_derivation_test");
   const server::SiteDerivation closed = server::load_revision(table_a.site, "table_a_north_closed", config);
   ASSERT_NE(closed.site_map, nullptr);
@@ -43,8 +44,9 @@ TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
 // traffic.core places derives the coordination core instead of the traffic manager, and every
 // robot's agent plans on the lanes both ways (no one-way plan).
 TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
-  const auto table_a = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const auto table_a =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/table_a.yaml")));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config.settings.set("traffic.enabled", "true", "site_derivation_test");
   config.settings.set("traffic.core", "places", "site_derivation_test");
   const server::SiteDerivation derived = server::derive_site(table_a, config);
@@ -57,13 +59,13 @@ TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
 }
 
 TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
-  const map::SiteMap table_a = map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml");
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const map::SiteMap table_a = map::load_site_map(fleet::test::source_path("/maps/table_a.yaml"));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   const std::string missing = refusal(table_a.site, "table_z", config);
   EXPECT_NE(missing.find("map 'table_z' cannot be loaded"), std::string::npos) << missing;
   EXPECT_NE(missing.find("table_z.yaml"), std::string::npos) << missing;
   const std::string other_site = refusal(table_a.site, "table_b", config);
   EXPECT_FALSE(other_site.empty());
-  EXPECT_EQ(other_site,
-            map::revision_mismatch(table_a.site, map::load_site_map(FLEET_SOURCE_DIR "/maps/table_b.yaml").site));
+  EXPECT_EQ(other_site, map::revision_mismatch(
+                            table_a.site, map::load_site_map(fleet::test::source_path("/maps/table_b.yaml")).site));
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fleet_harness.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::testing;
 
@@ -50,7 +51,7 @@ TEST(Soak, FourAgentsUnderEveryFaultLoseNothingRunNothingTwiceCollideNeverAndDet
 // figures every run must print.
 TEST(Load, TwentyEmulatedRobotsAreServedAndMeasured) {
   FleetHarness fleet(76, 10.0);
-  fleet.use_config(FLEET_SOURCE_DIR "/config/sites/big_warehouse.yaml");
+  fleet.use_config(fleet::test::source_path("/config/sites/big_warehouse.yaml"));
   const auto run = fleet.fleetctl({"--json", "load", "--robots", "20", "--site", "big_warehouse", "--duration", "20",
                                    "--warmup", "5", "--time-scale", "5"},
                                   120.0);
@@ -74,7 +75,7 @@ TEST(Load, TwentyEmulatedRobotsAreServedAndMeasured) {
 
 TEST(Load, MoreRobotsThanTheFleetDeclaresIsBadInput) {
   FleetHarness fleet(77, 10.0);
-  fleet.use_config(FLEET_SOURCE_DIR "/config/sites/big_warehouse.yaml");
+  fleet.use_config(fleet::test::source_path("/config/sites/big_warehouse.yaml"));
   const auto run = fleet.fleetctl({"load", "--robots", "601", "--site", "big_warehouse"}, 60.0);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("declares 600 robots"), std::string::npos) << run.err;

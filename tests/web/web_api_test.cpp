@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "../integration/fleet_harness.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::testing;
 using nlohmann::json;
@@ -337,7 +338,7 @@ TEST(WebApiStacker, ADockingStackerShowsItsTargetsAndTheDetectedPallet) {
   constexpr int kStackerDomain = 192;
   constexpr int kStackerPort = 18192;
   FleetHarness fleet(kStackerDomain, 5.0, "plant");
-  fleet.use_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
+  fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
   fleet.start_server({"--http-port", std::to_string(kStackerPort), "--api-token", kToken});
   fleet.start_agent("st2");
   httplib::Client http("127.0.0.1", kStackerPort);

@@ -10,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "common/paths.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::cli;
 
@@ -25,8 +26,8 @@ CommandRun run(Command command, std::vector<std::string> args, const std::string
   CommandArgs a;
   a.args = std::move(args);
   a.json = true;
-  a.config_file = std::string(FLEET_SOURCE_DIR) + "/config/" + config;
-  a.source_dir = FLEET_SOURCE_DIR;
+  a.config_file = fleet::test::source_dir() + "/config/" + config;
+  a.source_dir = fleet::test::source_dir();
   std::ostringstream out, err;
   CommandRun r;
   r.code = command(a, out, err);

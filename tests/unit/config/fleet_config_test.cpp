@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "config/schema.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::config;
 
@@ -31,7 +32,7 @@ std::string message_of(const std::string& yaml) {
 }  // namespace
 
 TEST(FleetConfig, ShippedDefaultsLoad) {
-  const FleetConfig config = load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const FleetConfig config = load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   ASSERT_FALSE(config.fleets.empty());
   EXPECT_EQ(config.fleets[0].robot_type, "forklift");
   EXPECT_EQ(config.settings.get_string("server.dispatch_policy"), "ascending-id");
@@ -81,7 +82,7 @@ TEST(Schema, EveryKeyHasADescriptionAndAValidDefault) {
 }
 
 TEST(FleetConfig, CommonFlagsOverrideTheFileAndAreChecked) {
-  FleetConfig config = load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  FleetConfig config = load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   fleet::Args args({"--domain", "42", "--time-scale=5", "--site", "table_b", "--id", "fl1"});
   apply_common_flags(args, config);
   EXPECT_EQ(config.settings.get_int("dds.domain"), 42);
@@ -100,7 +101,7 @@ TEST(FleetConfig, CommonFlagsOverrideTheFileAndAreChecked) {
 // docs/configuration.md is what `fleetctl config keys --markdown` prints; a key added, removed or
 // changed in the schema without re-making the page fails here.
 TEST(ConfigurationPage, CommittedPageMatchesTheSchema) {
-  const std::string path = FLEET_SOURCE_DIR "/docs/configuration.md";
+  const std::string path = fleet::test::source_path("/docs/configuration.md");
   std::ifstream file(path);
   ASSERT_TRUE(file) << path << " is missing: build/bin/fleetctl config keys --markdown > docs/configuration.md";
   std::stringstream committed;

@@ -12,6 +12,7 @@
 #include "coordination/place_sim.hpp"
 #include "forklift_places.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
 
@@ -86,7 +87,7 @@ TEST(PlacePibt, ARobotGoingIntoASpurBacksOffForOneComingOut) {
 // The planner's rules hold whatever the robots do: random goals, and robots held (working or
 // delayed) at random steps, on a junction with two ways round and on table_a.
 TEST(PlacePibt, RandomGoalsAndHoldsNeverBreakTheRules) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::two_ways_between_junctions(), 3},
                                                                   {site.graph.graph, 8}};
   for (const auto& [road, team] : cases) {
@@ -125,7 +126,7 @@ TEST(PlacePibt, RandomGoalsAndHoldsNeverBreakTheRules) {
 // Eight forklifts on random trips on table_a for ten simulated minutes: every footprint apart,
 // nobody stuck, and trips done.
 TEST(PlaceSim, EightForkliftsOnTableATripWithoutCollisionOrDeadlock) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const traffic::ConflictZones zones(site.graph.graph, forklift_params());
   const auto scenario = traffic::site_scenario(site, zones, 8, site.site.approach_distance);
   PlaceSimParams params;
@@ -144,8 +145,8 @@ TEST(PlaceSim, EightForkliftsOnTableATripWithoutCollisionOrDeadlock) {
 // of 0.65 m to 1.7 m on 0.5 m places), on random trips between its finished-goods, picking and
 // expedition places: every footprint apart and every step's rules kept, for every pair of types.
 TEST(PlaceSim, ThePlantsFourVehicleTypesKeepTheirBodiesApart) {
-  const auto config = config::load_fleet_config(std::string(FLEET_SOURCE_DIR) + "/config/sites/plant.yaml");
-  auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/plant.yaml");
+  const auto config = config::load_fleet_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
+  auto site = map::load_site_map(fleet::test::source_dir() + "/maps/plant.yaml");
   std::erase_if(site.site.loading_areas, [](const map::LoadingArea& area) {
     return !area.id.starts_with("FG") && !area.id.starts_with("PK") && !area.id.starts_with("EX");
   });
@@ -184,7 +185,7 @@ std::vector<int> points_apart(const map::RoadGraph& road, const traffic::Conflic
 // fifty for up to twenty) on small graphs and on table_a: the order of visits keeps every body
 // apart and no robot ever waits for one that waits for it, whatever the delays.
 TEST(PlaceSim, RandomDelaysNeverCollideNorWaitInACycle) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::corridor_with_siding(), 2},
                                                                   {traffic::testing::two_ways_between_junctions(), 3},
                                                                   {traffic::testing::plus_junction(), 3},

@@ -10,6 +10,7 @@
 #include "../traffic/test_graphs.hpp"
 #include "forklift_places.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 #include "traffic/route_search.hpp"
 #include "traffic/traffic_sim.hpp"
 
@@ -26,7 +27,11 @@ class FollowingRobots {
  public:
   FollowingRobots(const map::RoadGraph& road, const traffic::ConflictZones& zones, std::vector<int> starts,
                   std::uint64_t seed)
-      : road_(road), zones_(zones), search_(road, zones), traffic_(road, zones, {.plan_period_s = 0.6, .plan_ahead = 2, .seed = seed}), rng_(seed) {
+      : road_(road),
+        zones_(zones),
+        search_(road, zones),
+        traffic_(road, zones, {.plan_period_s = 0.6, .plan_ahead = 2, .seed = seed}),
+        rng_(seed) {
     for (const int start : starts) {
       Robot r;
       r.number = traffic_.add_robot(0);
@@ -201,7 +206,7 @@ std::vector<int> points_apart(const map::RoadGraph& road, const traffic::Conflic
 // for one that waits for it, and errands get done. (How long a robot may stand in a knot is the
 // planner's: docs/known-limits.md.)
 TEST(PlaceTraffic, RobotsDrivingTheirOwnRoutesKeepApartAndGetThrough) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const std::vector<std::pair<map::RoadGraph, std::size_t>> cases{{traffic::testing::corridor_with_siding(), 2},
                                                                   {traffic::testing::two_ways_between_junctions(), 3},
                                                                   {traffic::testing::plus_junction(), 3},

@@ -7,6 +7,7 @@
 
 #include "geometry/polygon.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::emulation {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 using geometry::Pose2;
 
 const map::SiteMap& warehouse() {
-  static const map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/warehouse.yaml");
+  static const map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/warehouse.yaml"));
   return site;
 }
 

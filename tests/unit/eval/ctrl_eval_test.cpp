@@ -4,10 +4,12 @@
 
 #include <string>
 
+#include "test_paths.hpp"
+
 namespace fleet::eval {
 namespace {
 
-const std::string kSite = std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml";
+const std::string kSite = fleet::test::source_dir() + "/maps/table_a.yaml";
 
 TEST(CtrlEval, DistanceToPath) {
   const std::vector<geometry::Pose2> path{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};

@@ -19,6 +19,7 @@
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "orders/pick_lines.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::eval {
 namespace {
@@ -27,7 +28,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 PickEvalParams plant_params() {
   PickEvalParams p;
-  p.files = plant_pick_eval_files(FLEET_SOURCE_DIR);
+  p.files = plant_pick_eval_files(fleet::test::source_dir());
   p.pick_trials = 72;  // three per stock of the plant: enough for the rates, quick
   return p;
 }
@@ -49,7 +50,7 @@ class PickEval : public ::testing::Test {
 PickEvalResult* PickEval::result_ = nullptr;
 
 TEST(PickList, ThePlantsStandardListPassesTheOrderChecksAndMakesSeveralTours) {
-  const PickEvalFiles files = plant_pick_eval_files(FLEET_SOURCE_DIR);
+  const PickEvalFiles files = plant_pick_eval_files(fleet::test::source_dir());
   const map::SiteMap site = map::load_site_map(files.site);
   const config::FleetConfig config = config::load_fleet_config(files.config);
   std::ifstream in(files.pick_list);

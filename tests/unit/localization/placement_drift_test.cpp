@@ -7,12 +7,13 @@
 #include <string>
 
 #include "eval/ctrl_eval.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 TEST(PlacementDrift, DefaultFilterMeetsThePlacementTargetsOnSeed1) {
   fleet::eval::CtrlEvalParams params;
-  params.site_file = std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml";
+  params.site_file = fleet::test::source_dir() + "/maps/table_a.yaml";
   params.seed = 1;
   params.runs = 60;  // long enough for the bias to wander (about 20 minutes of simulated shift)
   const fleet::eval::CtrlEvalResult r = fleet::eval::run_ctrl_eval(params);

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "test_data.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::cli;
 
@@ -24,7 +25,7 @@ CommandRun run(std::vector<std::string> args, bool json = false) {
   CommandArgs a;
   a.args = std::move(args);
   a.json = json;
-  a.source_dir = FLEET_SOURCE_DIR;
+  a.source_dir = fleet::test::source_dir();
   std::ostringstream out, err;
   CommandRun r;
   r.code = map_command(a, out, err);
@@ -37,7 +38,7 @@ CommandRun run(std::vector<std::string> args, bool json = false) {
 
 TEST(MapCommand, CheckShippedMapsExitsZero) {
   for (const char* name : {"table_a", "table_b", "warehouse", "plant"}) {
-    const CommandRun r = run({"check", std::string(FLEET_SOURCE_DIR "/maps/") + name + ".yaml"});
+    const CommandRun r = run({"check", std::string(fleet::test::source_path("/maps/")) + name + ".yaml"});
     EXPECT_EQ(r.code, kExitOk) << r.out << r.err;
     EXPECT_NE(r.out.find("usable: yes"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("graph edges: "), std::string::npos);
@@ -54,8 +55,8 @@ TEST(MapCommand, CheckOfABrokenSiteExitsTwoWithTheReason) {
   const auto dir = std::filesystem::temp_directory_path() / "fleet_map_command_test";
   std::filesystem::create_directories(dir);
   const auto path = (dir / "broken.yaml").string();
-  std::ofstream(path) << "opendrive: " FLEET_SOURCE_DIR
-                         "/maps/table_a.xodr\n"
+  std::ofstream(path) << "opendrive: " << fleet::test::source_path("/maps/table_a.xodr")
+                      << "\n"
                          "bounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n"
                          "loading_areas:\n  - {id: A1, x: 0.15, y: 0.975, yaw: 3.1415927}\n";
   const CommandRun r = run({"check", path});
@@ -188,7 +189,7 @@ TEST(MapCommand, WarningsAreToldAndStrictMakesThemErrors) {
 }
 
 TEST(MapCommand, CheckGivenARoadNetworkSaysItWantsASiteFile) {
-  const CommandRun r = run({"check", FLEET_SOURCE_DIR "/maps/table_a.xodr"});
+  const CommandRun r = run({"check", fleet::test::source_path("/maps/table_a.xodr")});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("is an OpenDRIVE road network; map check reads a site file"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("fleetctl map sample"), std::string::npos) << r.err;

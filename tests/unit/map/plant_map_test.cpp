@@ -13,6 +13,7 @@
 
 #include "geometry/polygon.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::map;
 using fleet::geometry::Footprint;
@@ -31,7 +32,7 @@ const Footprint kReachTruck{1.6, 0.9};  // the largest vehicle that parks at a h
 const Footprint kStacker{1.7, 0.748};   // parks in its own bay
 
 const SiteMap& plant() {
-  static const SiteMap map = load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  static const SiteMap map = load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   return map;
 }
 

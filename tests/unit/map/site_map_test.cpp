@@ -15,6 +15,7 @@
 #include "map/reference_samples.hpp"
 #include "map/svg_render.hpp"
 #include "test_data.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet::map;
 
@@ -23,14 +24,14 @@ namespace {
 const char* const kShipped[] = {"table_a", "table_b", "warehouse", "plant", "big_warehouse"};
 
 std::string shipped(const std::string& name) {
-  return FLEET_SOURCE_DIR "/maps/" + name + ".yaml";
+  return fleet::test::source_path("/maps/") + name + ".yaml";
 }
 
 /// Writes a site file next to a copy of table_a.xodr in a fresh temporary folder.
 std::string write_site(const std::string& name, const std::string& yaml) {
   const auto dir = std::filesystem::temp_directory_path() / ("fleet_site_map_test_" + name);
   std::filesystem::create_directories(dir);
-  std::filesystem::copy_file(FLEET_SOURCE_DIR "/maps/table_a.xodr", dir / "table_a.xodr",
+  std::filesystem::copy_file(fleet::test::source_path("/maps/table_a.xodr"), dir / "table_a.xodr",
                              std::filesystem::copy_options::overwrite_existing);
   const auto path = dir / (name + ".yaml");
   std::ofstream(path) << yaml;

@@ -4,6 +4,8 @@
 
 #include <numbers>
 
+#include "test_paths.hpp"
+
 using namespace fleet::map;
 
 namespace {
@@ -19,7 +21,7 @@ const std::string kBounds = "bounds: {min_x: 0, min_y: 0, max_x: 3, max_y: 3}\n"
 }  // namespace
 
 TEST(Site, ShippedTableALoads) {
-  const Site site = load_site(FLEET_SOURCE_DIR "/maps/table_a.yaml");
+  const Site site = load_site(fleet::test::source_path("/maps/table_a.yaml"));
   EXPECT_EQ(site.name, "table_a");
   EXPECT_GE(site.loading_areas.size(), 6u);
   EXPECT_GE(site.homes.size(), 4u);
@@ -147,9 +149,9 @@ namespace fleet::map {
 namespace {
 
 TEST(SiteRevision, TableAWithARoadClosedIsARevisionTableBIsNot) {
-  const Site a = load_site(FLEET_SOURCE_DIR "/maps/table_a.yaml");
-  const Site closed = load_site(FLEET_SOURCE_DIR "/maps/table_a_north_closed.yaml");
-  const Site b = load_site(FLEET_SOURCE_DIR "/maps/table_b.yaml");
+  const Site a = load_site(fleet::test::source_path("/maps/table_a.yaml"));
+  const Site closed = load_site(fleet::test::source_path("/maps/table_a_north_closed.yaml"));
+  const Site b = load_site(fleet::test::source_path("/maps/table_b.yaml"));
   EXPECT_EQ(revision_mismatch(a, closed), "");
   EXPECT_EQ(revision_mismatch(closed, a), "");
   const std::string why = revision_mismatch(a, b);
@@ -165,12 +167,12 @@ TEST(SiteRevision, TableAWithARoadClosedIsARevisionTableBIsNot) {
 // The plant's switchable maps are its closures; the one-lane corridor is another design of it,
 // measured against it, which no server switches its robots to.
 TEST(SiteRevision, ADesignVariantIsNeverARevision) {
-  const Site plant = load_site(FLEET_SOURCE_DIR "/maps/plant.yaml");
-  const Site one_lane = load_site(FLEET_SOURCE_DIR "/maps/plant_one_lane.yaml");
+  const Site plant = load_site(fleet::test::source_path("/maps/plant.yaml"));
+  const Site one_lane = load_site(fleet::test::source_path("/maps/plant_one_lane.yaml"));
   EXPECT_EQ(one_lane.variant_of, "plant");
   EXPECT_EQ(revision_mismatch(plant, one_lane), "");  // the same places: comparable run for run
   EXPECT_EQ(site_revisions(plant), (std::vector<std::string>{"plant", "plant_middle_closed"}));
-  EXPECT_EQ(site_revisions(load_site(FLEET_SOURCE_DIR "/maps/table_a.yaml")),
+  EXPECT_EQ(site_revisions(load_site(fleet::test::source_path("/maps/table_a.yaml"))),
             (std::vector<std::string>{"table_a", "table_a_north_closed"}));
 }
 

@@ -5,6 +5,7 @@
 
 #include "common/errors.hpp"
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::orders {
 namespace {
@@ -41,7 +42,7 @@ TEST(PickLines, ALineItCannotReadIsNamedWithItsFileAndNumber) {
 }
 
 struct Plant {
-  map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   std::vector<std::string> places = site.site.area_ids();
   std::map<std::string, map::BoxStock> stock = declared_boxes(site.site);
   std::map<std::string, geometry::Pose2> poses = place_poses(site.site);

@@ -8,6 +8,7 @@
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "orders/order_request_check.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
@@ -15,8 +16,8 @@ using namespace fleet;
 namespace {
 
 struct Plant {
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
-  map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   orders::KnownNames names;
 
   Plant() {

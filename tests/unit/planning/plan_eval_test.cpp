@@ -8,12 +8,13 @@
 #include "planning/road_planner.hpp"
 #include "planning/route_planner.hpp"
 #include "planning/static_grid.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::planning {
 namespace {
 
 map::SiteMap load(const std::string& name) {
-  return map::load_site_map_unchecked(map::site_path(std::string(FLEET_SOURCE_DIR) + "/maps", name));
+  return map::load_site_map_unchecked(map::site_path(fleet::test::source_dir() + "/maps", name));
 }
 
 TEST(PlanEval, Percentile) {

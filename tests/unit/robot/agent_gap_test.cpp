@@ -14,6 +14,7 @@
 #include "map/site_map.hpp"
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet;
 
@@ -47,8 +48,9 @@ std::optional<Stretch> straight_stretch(const std::vector<geometry::Vec2>& path)
 /// standing one within a minute; `closest` is the least gap between their real bodies meanwhile.
 bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, double gap, std::uint64_t seed, double& closest,
                                          std::string* why) {
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   config.settings.set("traffic.enabled", "true", "agent_gap_test");
   const auto& fleet =
       *std::find_if(config.fleets.begin(), config.fleets.end(), [&](const auto& f) { return f.id == fleet_id; });
@@ -96,8 +98,8 @@ bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, double gap
 }  // namespace
 
 TEST(AgentGap, EveryFleetDrivesPastARobotStandingTheTrafficMarginBesideItsLane) {
-  const double margin =
-      config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml").settings.get_double("traffic.margin");
+  const double margin = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"))
+                            .settings.get_double("traffic.margin");
   for (const char* fleet : {"forklifts", "reach_trucks", "stackers", "pickers"}) {
     for (std::uint64_t seed : {1, 2, 3}) {
       std::string why;

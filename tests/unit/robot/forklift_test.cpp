@@ -7,6 +7,7 @@
 #include <string>
 
 #include "control/pallet_place.hpp"
+#include "test_paths.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/one_way.hpp"
 
@@ -17,7 +18,7 @@ namespace {
 
 std::shared_ptr<const map::SiteMap> table_a() {
   static const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/table_a.yaml")));
   return site;
 }
 

@@ -5,6 +5,7 @@
 #include "road_to_itself.hpp"
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet;
 using robot::RobotEvent;
@@ -12,7 +13,8 @@ using robot::RobotEvent;
 namespace {
 
 std::shared_ptr<const map::SiteMap> table(const std::string& name) {
-  return std::make_shared<const map::SiteMap>(map::load_site_map(map::site_path(FLEET_SOURCE_DIR "/maps", name)));
+  return std::make_shared<const map::SiteMap>(
+      map::load_site_map(map::site_path(fleet::test::source_path("/maps"), name)));
 }
 
 TEST(MapSwitch, ARobotOnARoadTheNewMapClosesDrivesBackOntoTheRoadsAndDoesItsOrder) {
@@ -20,7 +22,7 @@ TEST(MapSwitch, ARobotOnARoadTheNewMapClosesDrivesBackOntoTheRoadsAndDoesItsOrde
   // cross north when the server switched to table_a_north_closed, which has no cross north. On
   // the new map the ground under it was no free space, so no route could start there: it stood
   // with "no route" until the map was switched back.
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config::apply_set_flag(config, "traffic.enabled=true");
   const config::FleetSpec& fleet = config.fleets.front();
   const auto before = table("table_a");

@@ -11,6 +11,7 @@
 #include "road_to_itself.hpp"
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet;
 using robot::RobotEvent;
@@ -19,8 +20,8 @@ namespace {
 
 struct PlantPicker {
   std::shared_ptr<const map::SiteMap> site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
 
   const config::FleetSpec& pickers() const {
     const auto it = std::find_if(config.fleets.begin(), config.fleets.end(),

@@ -10,6 +10,7 @@
 #include "robot/forklift.hpp"
 #include "robot/robot_factory.hpp"
 #include "sim/mecanum.hpp"
+#include "test_paths.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 using namespace fleet;
@@ -158,7 +159,8 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
   // Built from the table's defaults, this forklift could not drive faster than 0.3 m/s while its
   // filter believed the commanded 1.2 m/s, and its 10 cm lookahead sat inside the estimate's
   // error: it turned on the spot on open road.
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
   ForkliftConfig c = ForkliftConfig::for_vehicle(plant_forklift());
   c.task.follower.v_max = 1.2;
   c.task.follower.omega_max = 1.0;
@@ -193,8 +195,9 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
   // Seen in the plant soak: fk3 stood 0.15 m off its stall's centre, yawed 3 degrees, with fk4
   // parked in the next stall. Its route starts with a short diagonal to the stall's road node;
   // swept along that diagonal its body's corner met fk4's, so it never left.
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   const config::FleetSpec& fleet = config.fleets.front();
   ASSERT_EQ(fleet.id, "forklifts");
   auto robot = robot::make_robot(fleet, config, site, {40.2455, 28.8761, -1.5152}, 1, 1);
@@ -221,8 +224,9 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   // every route out starts. It turned round to touch that point and back again; beside fk2,
   // parked in the next stall, its corners met fk2's body half way round and it stood there,
   // facing the wall, until fk2 left.
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   const config::FleetSpec& fleet = config.fleets.front();
   const geometry::Pose2 home = site->site.find_home("PF1")->pose;
   auto robot = robot::make_robot(fleet, config, site, {home.x + 0.02, home.y - 0.07, home.yaw}, 1, 1);
@@ -253,8 +257,9 @@ TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
   // grown cells, about a metre from the picker's body; named from where it stood it reported
   // "an obstacle ahead", traffic never learnt whom it waited for, and the picker, waiting in turn
   // for the road the truck held, stood there with it for good.
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
                                   [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
   ASSERT_NE(fleet, config.fleets.end());
@@ -295,8 +300,9 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
   // Seen in the plant soak: fk2 came home up its stall's spur facing the wall and turned round at
   // the end to the home heading, between fk1 and fk3 parked 1.2 m either side. Half way round its
   // corners came within the safety gap of theirs; it stood there, and fk1, sent out, waited for it.
-  const auto site = std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   const config::FleetSpec& fleet = config.fleets.front();
   const geometry::Pose2 home = site->site.find_home("PF2")->pose;
   auto robot = robot::make_robot(fleet, config, site, home, 1, 1);

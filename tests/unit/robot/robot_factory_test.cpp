@@ -4,17 +4,19 @@
 
 #include <stdexcept>
 
+#include "test_paths.hpp"
+
 namespace fleet::robot {
 namespace {
 
 std::shared_ptr<const map::SiteMap> table_a() {
   static const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/table_a.yaml"));
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/table_a.yaml")));
   return site;
 }
 
 TEST(RobotFactory, BuildsTheRobotOfTheFleetsTypeWithItsProfile) {
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config::FleetSpec fleet = config.fleets.front();
   ASSERT_EQ(fleet.robot_type, "forklift");
   fleet.footprint = {0.30, 0.20};
@@ -30,7 +32,7 @@ TEST(RobotFactory, BuildsTheRobotOfTheFleetsTypeWithItsProfile) {
 }
 
 TEST(RobotFactory, AnUnknownTypeIsNamedWithTheKnownOnes) {
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/fleet.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config::FleetSpec fleet = config.fleets.front();
   fleet.robot_type = "crane";
   try {

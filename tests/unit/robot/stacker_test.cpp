@@ -17,6 +17,7 @@
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker_job.hpp"
+#include "test_paths.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
@@ -83,7 +84,7 @@ TEST(StackerJob, WalksATransportFromItsBayBackToItsBay) {
 
 struct PlantStacker {
   std::shared_ptr<const map::SiteMap> site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
   std::map<int, geometry::Pose2> loads;
   std::map<std::string, int> load_at;
 
@@ -99,7 +100,7 @@ struct PlantStacker {
   /// The stacker of config/sites/plant.yaml's `stackers` fleet, as the agent builds it. Without
   /// `traffic` no traffic manager grants here, so traffic control is off (the lanes stay one-way).
   std::unique_ptr<Stacker> make(const std::string& home_id, bool traffic = false) const {
-    config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+    config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
     config.settings.set("traffic.enabled", traffic ? "true" : "false", "stacker_test");
     const auto* fleet =
         &*std::find_if(config.fleets.begin(), config.fleets.end(), [](const auto& f) { return f.id == "stackers"; });
@@ -345,7 +346,7 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   const geometry::Polygon parked =
       geometry::footprint_polygon(plant.site->site.find_home("PT2")->pose, stacker->footprint());
   ASSERT_GT(geometry::convex_polygons_distance(way_out, parked), 0.3);
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   traffic::TrafficManager traffic(plant.site->graph.graph, traffic::configuration_from(config));
   const int stackers = traffic::vehicle_type_of(config, "stackers");
   traffic.set_robot_type(2, stackers);
@@ -410,9 +411,9 @@ TEST(Stacker, TurnsIntoAnAislePastARobotWaitingAtItsJunction) {
 // Its pursuit cuts inside the tight bend from the aisle into the corridor and swings its front
 // past the bend over the corridor's other lane; traffic reserves what that drive sweeps.
 TEST(Stacker, TurningOutOfAnAisleItsBodyStaysInsideThePlacesTrafficReservesForIt) {
-  const auto closed =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant_middle_closed.yaml"));
-  config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+  const auto closed = std::make_shared<const map::SiteMap>(
+      map::load_site_map(fleet::test::source_path("/maps/plant_middle_closed.yaml")));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   config.settings.set("traffic.enabled", "true", "stacker_test");
   const auto& fleet =
       *std::find_if(config.fleets.begin(), config.fleets.end(), [](const auto& f) { return f.id == "stackers"; });

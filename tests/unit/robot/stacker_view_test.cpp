@@ -13,6 +13,7 @@
 #include "map/site_map.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker.hpp"
+#include "test_paths.hpp"
 
 using namespace fleet;
 using robot::RobotEvent;
@@ -23,9 +24,9 @@ namespace {
 /// puts them at the start; traffic control off.
 struct Plant {
   std::shared_ptr<const map::SiteMap> site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml"));
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
   config::FleetConfig config = [] {
-    config::FleetConfig c = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
+    config::FleetConfig c = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
     c.settings.set("traffic.enabled", "false", "stacker_view_test");
     return c;
   }();

@@ -1,10 +1,12 @@
+#include "traffic/conflict_zones.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "map/site_map.hpp"
 #include "test_graphs.hpp"
-#include "traffic/conflict_zones.hpp"
+#include "test_paths.hpp"
 
 namespace fleet::traffic {
 namespace {
@@ -33,7 +35,8 @@ TEST(ConflictZones, NearbyParallelRoadsConflictAndDistantOnesDoNot) {
   const ConflictZones zones(b.graph());
   const int low = zones.place_of(point_at(b.graph(), 0.5, 0.0));
   EXPECT_TRUE(zones.conflict(low, zones.place_of(point_at(b.graph(), 0.5, 0.15))));
-  EXPECT_FALSE(zones.conflict(zones.place_of(point_at(b.graph(), 0.5, 0.15)), zones.place_of(point_at(b.graph(), 0.5, 0.45))));
+  EXPECT_FALSE(
+      zones.conflict(zones.place_of(point_at(b.graph(), 0.5, 0.15)), zones.place_of(point_at(b.graph(), 0.5, 0.45))));
 }
 
 TEST(ConflictZones, CoincidentPointsAreOnePlace) {
@@ -80,7 +83,7 @@ TEST(ConflictZones, RejectsBadParams) {
 }
 
 TEST(ConflictZones, TableAJunctionsCoverTheirWholeCrossing) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   const ConflictZones zones(g);
   std::size_t branches = 0, stoppable = 0;

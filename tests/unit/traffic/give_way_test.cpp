@@ -9,6 +9,7 @@
 #include "map/site_map.hpp"
 #include "test_grants.hpp"
 #include "test_graphs.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
 
@@ -74,8 +75,8 @@ TEST(GiveWay, ARobotStoppedByABodyGivesItsRoadToTheRobotWaitingForIt) {
 // report, so the cycle came back every 3 s, for minutes). It gives its road back instead: the
 // second drives out first, then the first follows.
 TEST(GiveWay, ARobotStoppedInItsStallByItsNeighbourLetsTheNeighbourOutFirst) {
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
-  const map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   TrafficManager m(site.graph.graph, configuration_from(config));
   const int trucks = vehicle_type_of(config, "reach_trucks");
   m.set_robot_type(1, trucks);

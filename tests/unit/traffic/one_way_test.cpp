@@ -1,3 +1,5 @@
+#include "traffic/one_way.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -5,7 +7,7 @@
 
 #include "map/site_map.hpp"
 #include "test_graphs.hpp"
-#include "traffic/one_way.hpp"
+#include "test_paths.hpp"
 #include "traffic/route_search.hpp"
 
 namespace fleet::traffic {
@@ -13,7 +15,7 @@ namespace {
 
 TEST(OneWay, DemoTablesStayStronglyConnectedWithOneWayCorridors) {
   for (const char* name : {"table_a", "table_b"}) {
-    const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/" + name + ".yaml");
+    const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/" + name + ".yaml");
     const auto& g = site.graph.graph;
     const ConflictZones zones(g);
     const OneWayPlan plan = one_way_plan(g, zones);
@@ -25,7 +27,8 @@ TEST(OneWay, DemoTablesStayStronglyConnectedWithOneWayCorridors) {
     RouteSearch search(plan.graph, zones);
     std::vector<int> goals;
     for (const auto& area : site.site.loading_areas) {
-      goals.push_back(map::nearest_point(g, area.pose.x + 0.3 * std::cos(area.pose.yaw), area.pose.y + 0.3 * std::sin(area.pose.yaw)));
+      goals.push_back(map::nearest_point(g, area.pose.x + 0.3 * std::cos(area.pose.yaw),
+                                         area.pose.y + 0.3 * std::sin(area.pose.yaw)));
     }
     for (int a : goals) {
       for (int b : goals) {

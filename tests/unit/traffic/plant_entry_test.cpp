@@ -9,6 +9,7 @@
 #include "geometry/polygon.hpp"
 #include "map/site_map.hpp"
 #include "test_grants.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
 
@@ -32,8 +33,8 @@ geometry::Polygon placed(const geometry::Polygon& footprint, const geometry::Pos
 // first waited for its body: both for good. The robot at PK9 enters now, keeping the places under
 // its body, and drives off ahead; the first follows.
 TEST(PlantEntry, ARobotBesideTheRoadEntersAheadOfARobotThatWaitsForItsBody) {
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
-  const map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   const TrafficConfiguration configuration = configuration_from(config);
   TrafficManager m(site.graph.graph, configuration);
   const int forklift = 0;
@@ -84,8 +85,8 @@ TEST(PlantEntry, ARobotBesideTheRoadEntersAheadOfARobotThatWaitsForItsBody) {
 
 // Robots that do not wait for it keep it out as before.
 TEST(PlantEntry, ARobotDrivingPastKeepsARobotBesideTheRoadOut) {
-  const config::FleetConfig config = config::load_fleet_config(FLEET_SOURCE_DIR "/config/sites/plant.yaml");
-  const map::SiteMap site = map::load_site_map(FLEET_SOURCE_DIR "/maps/plant.yaml");
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
   const TrafficConfiguration configuration = configuration_from(config);
   TrafficManager m(site.graph.graph, configuration);
   const auto& footprint = configuration.resources.vehicle_types[0].footprint;

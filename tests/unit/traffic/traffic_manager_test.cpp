@@ -7,6 +7,7 @@
 #include "map/site_map.hpp"
 #include "test_grants.hpp"
 #include "test_graphs.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace fleet::traffic {
@@ -680,7 +681,7 @@ TEST(TrafficManager, ARobotBackFromBeingLostIsWaitedForUpToTheBoundAgain) {
 // on southwards. The places under each body must leave the other free to move: were each to hold
 // every place its body touches, each would wait for the other for good.
 TEST(TrafficManager, RobotsStandingCloseInACorridorBothDriveOnAfterARestart) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   for (int order = 0; order < 2; ++order) {
     TrafficManager m(g);
@@ -718,7 +719,7 @@ TEST(TrafficManager, RobotsStandingOneBodyApartAfterARestartDriveOnOneAfterTheOt
   // driving east. Each body touches several places (no one place's region holds it), and the
   // places ahead of the front robot conflict with places under the rear one's body. The front
   // robot drives on, as its footprint stays clear of the rear body; then the rear one follows.
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   for (double front_yaw : {1.5708, 0.8, 0.0}) {
     for (double rear_yaw : {0.0, 0.5, 1.0, 1.5708}) {
@@ -751,7 +752,7 @@ TEST(TrafficManager, RobotsStandingOneBodyApartAfterARestartDriveOnOneAfterTheOt
 // the lost robot's body; when the lost robot is heard from again, it re-enters from where it
 // stands (the points behind it cut off) and drives on ahead, and the follower after it.
 TEST(TrafficManager, ARobotBackFromBeingLostDrivesOnAheadOfTheRobotThatCameUpBehindIt) {
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   for (double lost_at : {0.6, 0.9, 1.2, 1.5, 1.8, 2.1}) {
     TrafficManager m(g);

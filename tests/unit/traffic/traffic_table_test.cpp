@@ -3,6 +3,7 @@
 #include <string>
 
 #include "map/site_map.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_sim.hpp"
 
 namespace fleet::traffic {
@@ -19,7 +20,7 @@ class TrafficTable : public ::testing::TestWithParam<TableCase> {};
 // overlaps another, nobody stands still with a task for 60 s, and every robot completes trips.
 TEST_P(TrafficTable, ThirtyMinutesWithoutCollisionOrDeadlock) {
   const TableCase c = GetParam();
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/" + c.site + ".yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/" + c.site + ".yaml");
   const TrafficConfiguration config;
   const ConflictZones zones(site.graph.graph, config.resources);
   const SimScenario scenario = site_scenario(site, zones, c.robots);

@@ -9,6 +9,7 @@
 
 #include "map/site_map.hpp"
 #include "test_graphs.hpp"
+#include "test_paths.hpp"
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_settings.hpp"
 #include "traffic/traffic_sim.hpp"
@@ -244,7 +245,7 @@ TEST(VehicleTypes, ARobotIsNeverRoutedIntoALaneItsTypeDoesNotFit) {
 TEST(VehicleTypes, GraphPointsCarryTheirLaneWidthFromOpenDrive) {
   // table_a's lanes are 0.3 m wide (<width a="0.3">): a 0.16 m robot with 0.03 m margin fits them
   // all, a 0.3 m one none.
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   for (const auto& p : g.points) ASSERT_DOUBLE_EQ(p.lane_width, 0.3) << "point " << p.id;
   EXPECT_EQ(lane_graph_for(g, 0.16, 0.03).successors, g.successors);
@@ -255,7 +256,7 @@ TEST(VehicleTypes, OneTypeGivesTheConflictsOfTheFootprintRectangle) {
   // The regions as the single-footprint zones define them, computed here from the rectangle
   // directly: for every edge at a place, the hull of the footprint at the place and at the
   // edge's midpoint, grown by margin / 2.
-  const auto site = map::load_site_map(std::string(FLEET_SOURCE_DIR) + "/maps/table_a.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const auto& g = site.graph.graph;
   ResourceParams rectangle;
   rectangle.footprint = {0.25, 0.16};
