@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "eval/dock_eval.hpp"
+#include "geometry/pose.hpp"
 
 namespace fleet::cli {
 
@@ -19,7 +20,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: fleetctl dock-eval [--runs N] [--seed S] [--pose-noise CM,DEG] [--no-sweeps] [--plot FILE.svg] [--json]\n";
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 nlohmann::json run_json(const eval::DockRun& run) {
   const auto& r = run.result;

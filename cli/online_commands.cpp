@@ -15,6 +15,7 @@
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "common/paths.hpp"
+#include "common/percentile.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "model/names.hpp"
@@ -435,8 +436,8 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
       throw CommandExit{kExitFailed, "no robot poses on DDS domain " + std::to_string(connection.domain) + " within " +
                                          std::to_string(seconds) + " s"};
     }
-    const double d50 = monitor::percentile(direct_ms, 0.5), d95 = monitor::percentile(direct_ms, 0.95);
-    const double r50 = monitor::percentile(routed_ms, 0.5), r95 = monitor::percentile(routed_ms, 0.95);
+    const double d50 = common::percentile(direct_ms, 0.5), d95 = common::percentile(direct_ms, 0.95);
+    const double r50 = common::percentile(routed_ms, 0.5), r95 = common::percentile(routed_ms, 0.95);
     const nlohmann::json doc{{"direct_samples", direct_ms.size()},  {"routed_samples", routed_ms.size()},
                              {"direct_age_median_ms", d50},         {"direct_age_p95_ms", d95},
                              {"routed_age_median_ms", r50},         {"routed_age_p95_ms", r95},

@@ -13,13 +13,14 @@
 #include "common/args.hpp"
 #include "common/errors.hpp"
 #include "eval/pick_eval.hpp"
+#include "geometry/pose.hpp"
 
 namespace fleet::cli {
 
 namespace {
 
 constexpr const char* kUsage = "usage: fleetctl pick-eval [--seed S] [--drop PLACE] [--json]\n";
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 const char* met(bool ok) {
   return ok ? "met" : "MISSED";

@@ -21,6 +21,7 @@
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "common/paths.hpp"
+#include "common/percentile.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
 #include "monitor/fault_plan.hpp"
@@ -503,8 +504,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                          {"faults_injected", faults.size()},
                          {"faults_undetected", undetected},
                          {"robots_lost_without_a_fault", unexplained},
-                         {"detect_latency_p95_s", round_to(monitor::percentile(detect, 0.95), 0.001)},
-                         {"recovery_p95_s", round_to(monitor::percentile(recover, 0.95), 0.001)},
+                         {"detect_latency_p95_s", round_to(common::percentile(detect, 0.95), 0.001)},
+                         {"recovery_p95_s", round_to(common::percentile(recover, 0.95), 0.001)},
                          {"rss_growth_pct", growth_json},
                          {"rss_measured_processes", measured_json},
                          {"cpu_pct", cpu_json},

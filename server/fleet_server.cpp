@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/percentile.hpp"
 #include "common/process_memory.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
@@ -435,7 +436,7 @@ void FleetServer::publish_web_snapshot() {
     snap.orders.push_back(info_of(*ended[i]));
   }
   // The same p95 as `fleetctl stats`, so the page and the CLI agree.
-  snap.order_time_p95_s = monitor::percentile(std::move(durations), 0.95);
+  snap.order_time_p95_s = common::percentile(std::move(durations), 0.95);
   const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
   snap.obstacle_enabled = obstacle_enabled_;

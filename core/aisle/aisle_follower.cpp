@@ -7,8 +7,8 @@ namespace fleet::aisle {
 
 namespace {
 
-/// One step of the discretised first-order lag of [eq. 4.26]: x_n = τ/(T+τ)·x_{n−1} + T/(T+τ)·target, with the
-/// static gain k = 1 because the commands are already in m/s and rad/s [section 4.3.3.4].
+/// One step of the discretised first-order lag of [Picker thesis, eq. 4.26]: x_n = τ/(T+τ)·x_{n−1} + T/(T+τ)·target,
+/// with the static gain k = 1 because the commands are already in m/s and rad/s [Picker thesis, section 4.3.3.4].
 double first_order(double previous, double target, double tau, double dt) {
   return tau / (dt + tau) * previous + dt / (dt + tau) * target;
 }
@@ -42,16 +42,17 @@ AisleErrors aisle_errors(const RackLinePair& pair, double distance_to_go, const 
   AisleErrors e;
   e.along = distance_to_go;
   if (!pair.found()) return e;
-  // [eq. 4.24]: e_θ = θ_line − θ_ref with θ_ref = 0, the base parallel to the racks.
+  // [Picker thesis, eq. 4.24]: e_θ = θ_line − θ_ref with θ_ref = 0, the base parallel to the racks.
   e.heading = pair.heading;
-  // [eq. 4.24] writes e_y = d_ref − (X_m,line − W_rack/2), a distance taken through the aisle centre in range-image
-  // pixels. Measured here straight from the chosen face's line, so that an aisle wider or narrower than W_rack does
-  // not move the picker off d_ref; the sign makes e_y the body-y displacement that brings the base to d_ref.
+  // [Picker thesis, eq. 4.24] writes e_y = d_ref − (X_m,line − W_rack/2), a distance taken through the aisle centre in
+  // range-image pixels. Measured here straight from the chosen face's line, so that an aisle wider or narrower than
+  // W_rack does not move the picker off d_ref; the sign makes e_y the body-y displacement that brings the base to
+  // d_ref.
   const HoughLine& face = params.side == RackSide::kRight ? pair.right : pair.left;
   e.side_distance = std::abs(face.rho);
   e.lateral = params.side == RackSide::kRight ? params.reference_distance - e.side_distance
                                               : e.side_distance - params.reference_distance;
-  // Validity limits [section 4.3.3.4]: |e_θ| ≤ π/3 and |e_y| ≤ w_R / cos(e_θ).
+  // Validity limits [Picker thesis, section 4.3.3.4]: |e_θ| ≤ π/3 and |e_y| ≤ w_R / cos(e_θ).
   if (std::abs(e.heading) > params.max_heading_error) {
     e.status = AisleErrorStatus::kHeadingOutside;
   } else if (std::abs(e.lateral) > params.rack_width / std::cos(e.heading)) {
@@ -85,8 +86,8 @@ void AisleFollower::start(double distance) {
 
 sim::BodyTwist AisleFollower::update(const RackLinePair& pair, const sim::BodyTwist& odometry, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) return command_;
-  // X_R of [eq. 4.24]: the lines give no position along the aisle, so the wheel odometry of the last period is
-  // projected on the aisle's direction (cos e_θ, sin e_θ) in the body frame.
+  // X_R of [Picker thesis, eq. 4.24]: the lines give no position along the aisle, so the wheel odometry of the last
+  // period is projected on the aisle's direction (cos e_θ, sin e_θ) in the body frame.
   travelled_ += (odometry.vx * std::cos(heading_) + odometry.vy * std::sin(heading_)) * dt;
   errors_ = aisle_errors(pair, distance_to_go(), params_);
 
@@ -94,12 +95,12 @@ sim::BodyTwist AisleFollower::update(const RackLinePair& pair, const sim::BodyTw
   if (errors_.valid()) {
     heading_ = errors_.heading;
     const double c = std::cos(errors_.heading);
-    // [eq. 4.33]: (1 − |e_y/w_R|) as in 4.33; eq. 4.30 prints y_A (an axis, not a length) in its place and puts
-    // cos(e_θ) inside the bracket.
+    // [Picker thesis, eq. 4.33]: (1 − |e_y/w_R|) as in 4.33; eq. 4.30 prints y_A (an axis, not a length) in its place
+    // and puts cos(e_θ) inside the bracket.
     target.vx = params_.forward_speed * sigmoid(errors_.along, params_.lambda_x) *
                 (1.0 - std::abs(errors_.lateral / params_.rack_width)) * c;
-    target.vy = params_.lateral_speed * sigmoid(errors_.lateral, params_.lambda_y) * c;  // [eq. 4.34]
-    target.omega = params_.yaw_rate * sigmoid(errors_.heading, params_.lambda_theta);    // [eq. 4.35]
+    target.vy = params_.lateral_speed * sigmoid(errors_.lateral, params_.lambda_y) * c;  // [Picker thesis, eq. 4.34]
+    target.omega = params_.yaw_rate * sigmoid(errors_.heading, params_.lambda_theta);    // [Picker thesis, eq. 4.35]
   }
   command_.vx = first_order(command_.vx, target.vx, params_.tau_u, dt);
   command_.vy = first_order(command_.vy, target.vy, params_.tau_v, dt);

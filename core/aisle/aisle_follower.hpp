@@ -14,20 +14,23 @@ enum class RackSide { kLeft, kRight };
 
 std::string_view to_string(RackSide side);
 
-/// The aisle follower's parameters. The seed gives λ = 5, τ = 0.02 s and k = 1 (section 4.3.3.4), the rack width
-/// and d_ref (Tables 7-9); it leaves u0, v0 and r0 open ("below the maxima").
+/// The aisle follower's parameters. The seed gives λ = 5, τ = 0.02 s and k = 1 (Picker thesis, section 4.3.3.4), the
+/// rack width and d_ref (Picker thesis, Tables 7-9); it leaves u0, v0 and r0 open ("below the maxima").
 struct AisleFollowerParams {
   RackSide side = RackSide::kRight;
-  double reference_distance = 1.0;                    ///< d_ref: base centre to the chosen face, metres [Tables 7-9]
+  double reference_distance = 1.0;                    ///< d_ref: base centre to the chosen face, metres
+                                                      ///< [Picker thesis, Tables 7-9]
   double rack_width = 3.0;                            ///< w_R of eq. 4.33 and of the validity limit on e_y, metres
-  double max_heading_error = std::numbers::pi / 3.0;  ///< validity limit on e_θ [hyp e_θ, section 4.3.3.4]
-  double forward_speed = 0.3;  ///< u0, m/s: the test speed [section 3.1] and the seed's forward peak (Fig. 4.55)
+  double max_heading_error = std::numbers::pi / 3.0;  ///< validity limit on e_θ
+                                                      ///< [Picker thesis, hyp e_θ, section 4.3.3.4]
+  double forward_speed = 0.3;  ///< u0, m/s: the test speed [Picker thesis, section 3.1] and the seed's forward peak
+                               ///< (Picker thesis, Fig. 4.55)
   double lateral_speed = 0.3;  ///< v0, m/s
   double yaw_rate = 0.6;       ///< r0, rad/s
-  double lambda_x = 5.0;       ///< sigmoid slopes [eq. 4.33-4.35], "5 after various trials"
+  double lambda_x = 5.0;       ///< sigmoid slopes [Picker thesis, eq. 4.33-4.35], "5 after various trials"
   double lambda_y = 5.0;
   double lambda_theta = 5.0;
-  double tau_u = 0.02;  ///< first-order filter time constants [eq. 4.26-4.29], seconds
+  double tau_u = 0.02;  ///< first-order filter time constants [Picker thesis, eq. 4.26-4.29], seconds
   double tau_v = 0.02;
   double tau_r = 0.02;
 };

@@ -38,8 +38,8 @@ void measure_pair(RackLinePair& pair) {
   pair.width = (pair.left.lateral_offset() - pair.right.lateral_offset()) * std::cos(pair.heading);
 }
 
-/// Returns lying between the two faces, each face's own noise band excluded. [Algorithm 3, lines 36-41] tests the
-/// x-coordinates against both lines; the signed distances below are the same test in metres.
+/// Returns lying between the two faces, each face's own noise band excluded. [Picker thesis, Algorithm 3, lines 36-41]
+/// tests the x-coordinates against both lines; the signed distances below are the same test in metres.
 int count_between(const HoughLine& left, const HoughLine& right, std::span<const Vec2> points, double margin) {
   int count = 0;
   for (const Vec2& p : points) {
@@ -71,8 +71,9 @@ std::vector<Vec2> virtual_range_image(std::span<const planning::LidarScan> scans
       if (!std::isfinite(r) || r < mount.min_range || r > mount.max_range) continue;
       const double beam = geometry::normalize_angle(scan.angle_min + static_cast<double>(i) * scan.angle_increment);
       if (std::abs(beam) > 0.5 * mount.field_of_view + 1e-9) continue;
-      // [eq. 4.20] in the sensor frame, then [eq. 4.21] into the base frame; the seed's image offsets (w/2, h/2) and
-      // pixel scale are left out: the image here is metric with the base centre at the origin.
+      // [Picker thesis, eq. 4.20] in the sensor frame, then [Picker thesis, eq. 4.21] into the base frame; the seed's
+      // image offsets (w/2, h/2) and pixel scale are left out: the image here is metric with the base centre at the
+      // origin.
       const Vec2 p = geometry::body_to_map(mount.pose, {r * std::cos(beam), r * std::sin(beam)});
       if (std::abs(p.x) <= extent.half_length && std::abs(p.y) <= extent.half_width) points.push_back(p);
     }
@@ -126,7 +127,7 @@ void HoughAccumulator::vote(std::span<const Vec2> points) {
     const double s = sin_[static_cast<std::size_t>(t)] * per_cell;
     int* row = cells_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(rho_bins_);
     for (const Vec2& p : points) {
-      const double cell = p.x * c + p.y * s + offset;  // [eq. 4.19] in cells
+      const double cell = p.x * c + p.y * s + offset;  // [Picker thesis, eq. 4.19] in cells
       if (cell >= 0.0 && cell < rho_bins_) ++row[static_cast<std::size_t>(cell)];
     }
   }
@@ -212,7 +213,7 @@ RackLinePair select_rack_pair(std::span<const HoughLine> lines, std::span<const 
   bool any_in_width = false;
   double best_criterion = std::numeric_limits<double>::infinity();
   for (const HoughLine& left : lines) {
-    if (left.lateral_offset() <= 0.0) continue;  // [Algorithm 3, lines 28-29]: one line each side
+    if (left.lateral_offset() <= 0.0) continue;  // [Picker thesis, Algorithm 3, lines 28-29]: one line each side
     for (const HoughLine& right : lines) {
       if (right.lateral_offset() >= 0.0) continue;
       RackLinePair pair;
@@ -224,9 +225,10 @@ RackLinePair select_rack_pair(std::span<const HoughLine> lines, std::span<const 
       if (pair.width < min_width || pair.width > max_width) continue;
       any_in_width = true;
       if (std::abs(left.direction() - right.direction()) > params.max_parallel_error) continue;
-      // [eq. 4.23]; the determinant of [Algorithm 3, line 33] is the difference of the two lines' lateral runs over
-      // the image length, here in metres (the seed's pixels have no stated size). In ρ cells a 1° difference between
-      // two faces, which the 1° θ step gives by itself, would weigh more than hundreds of returns between them.
+      // [Picker thesis, eq. 4.23]; the determinant of [Picker thesis, Algorithm 3, line 33] is the difference of the
+      // two lines' lateral runs over the image length, here in metres (the seed's pixels have no stated size). In ρ
+      // cells a 1° difference between two faces, which the 1° θ step gives by itself, would weigh more than hundreds of
+      // returns between them.
       const double determinant = image_length * (std::tan(left.direction()) - std::tan(right.direction()));
       pair.points_between = count_between(left, right, points, params.between_margin);
       pair.criterion =

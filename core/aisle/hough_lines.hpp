@@ -56,13 +56,14 @@ struct HoughLine {
 
 /// The Hough transform's parameters [Picker thesis, section 4.3.3.3.2, Algorithm 3].
 struct HoughParams {
-  double angle_step = std::numbers::pi / 180.0;  ///< θ from 0 to 180° in 1° steps [Algorithm 3, line 10]
+  double angle_step = std::numbers::pi / 180.0;  ///< θ from 0 to 180° in 1° steps [Picker thesis, Algorithm 3, line 10]
   double rho_step = 0.05;  ///< metres per ρ cell; the seed counts range-image pixels of unstated size
-  /// A cell becomes a line when it holds more votes than this [Algorithm 3, line 18]; the seed uses 20 and 40
-  /// (Fig. 4.42) and fixes it by hand.
+  /// A cell becomes a line when it holds more votes than this [Picker thesis, Algorithm 3, line 18]; the seed uses 20
+  /// and 40 (Picker thesis, Fig. 4.42) and fixes it by hand.
   int vote_limit = 40;
-  /// A peak must hold the most votes within this many cells in θ and ρ ("local peaks", section 4.3.3.2.2), so that
-  /// one rack face gives one line and not the whole neighbourhood of its peak.
+  /// A peak must hold the most votes within this many cells in θ and ρ
+  /// ("local peaks", Picker thesis, section 4.3.3.2.2), so that one rack face gives one line and not the whole
+  /// neighbourhood of its peak.
   int peak_window = 2;
   std::size_t max_lines = 40;  ///< the strongest peaks kept; bounds the pair search
   /// Lines turned further than this from body x cannot be rack faces: the validity limit on e_θ of eq. 4.24.
@@ -75,8 +76,9 @@ class HoughAccumulator {
   /// `max_rho`: the largest |ρ| a voting point can produce (the range image's half-diagonal).
   HoughAccumulator(const HoughParams& params, double max_rho);
 
-  /// Clears the counts and lets every point vote once per θ [Algorithm 3, lines 7-15]. Only the θ rows that can hold
-  /// a peak (the heading limit plus the peak window) are voted: the others could never become a rack face.
+  /// Clears the counts and lets every point vote once per θ [Picker thesis, Algorithm 3, lines 7-15]. Only the θ rows
+  /// that can hold a peak (the heading limit plus the peak window) are voted: the others could never become a rack
+  /// face.
   void vote(std::span<const geometry::Vec2> points);
   /// Local peaks above the vote limit within the heading limit, strongest first, at most max_lines.
   std::vector<HoughLine> peaks() const;
@@ -103,9 +105,9 @@ class HoughAccumulator {
 
 /// The line-pair selection [Picker thesis, section 4.3.3.3.2.2-3, eq. 4.23].
 struct PairParams {
-  double rack_width = 3.0;        ///< face to face [section 4.3.3.3.2.2]
-  double width_tolerance = 0.10;  ///< ±10 % of the rack width [Algorithm 3, lines 30-31]
-  /// Largest angle between the two lines of a pair ("parallel, det ≈ 0", section 4.3.3.3.2.3).
+  double rack_width = 3.0;        ///< face to face [Picker thesis, section 4.3.3.3.2.2]
+  double width_tolerance = 0.10;  ///< ±10 % of the rack width [Picker thesis, Algorithm 3, lines 30-31]
+  /// Largest angle between the two lines of a pair ("parallel, det ≈ 0", Picker thesis, section 4.3.3.3.2.3).
   double max_parallel_error = 3.0 * std::numbers::pi / 180.0;
   /// Points nearer a line than this count as that face, not as lying between the faces. Without it the lidar noise
   /// puts half of each face's own returns between the lines and the criterion pushes both lines outwards.
@@ -143,7 +145,7 @@ struct RackLinePair {
   /// face the other picker hides counts less.
   double heading = 0.0;
   int points_between = 0;      ///< returns between the faces (the other robot, a stray box)
-  double criterion = 0.0;      ///< [eq. 4.23] of the chosen pair
+  double criterion = 0.0;      ///< [Picker thesis, eq. 4.23] of the chosen pair
   std::size_t candidates = 0;  ///< lines that entered the pair search
 
   bool found() const { return status == PairStatus::kFound; }

@@ -135,7 +135,7 @@ PickerLidars::PickerLidars(const std::array<LidarMount, 2>& mounts, double range
     : mounts_(mounts),
       range_sigma_(range_sigma),
       rng_(rng),
-      // 0.25° steps: 1440 beams a turn, of which the 1081 in the 270° field of view are kept [Table 6].
+      // 0.25° steps: 1440 beams a turn, of which the 1081 in the 270° field of view are kept [Picker thesis, Table 6].
       lidar_(planning::LidarConfiguration{1440, std::max(mounts[0].max_range, mounts[1].max_range), 0.0}) {
   if (!(range_sigma >= 0.0)) throw std::invalid_argument("PickerLidars: range_sigma must be >= 0");
 }

@@ -22,14 +22,15 @@ struct ArmMount {
 struct PickMotionConfig {
   /// The pose the arm rests in between picks, the cups facing down (θ2 + θ3 + θ4 = 0). The thesis
   /// shows it in Fig. 4.74 without values; this one keeps every joint 20° or more inside its
-  /// [Table 10] range, the cups 0.16 m above the arm base, 0.38 m to its left and 0.11 m behind.
+  /// [Picker thesis, Table 10] range, the cups 0.16 m above the arm base, 0.38 m to its left and 0.11 m behind.
   JointVector home{-90.0 * kDeg, -70.0 * kDeg, 90.0 * kDeg, -20.0 * kDeg, -90.0 * kDeg, 0.0};
-  double approach_height = 0.20;  ///< m above the grip, "20 cm above the package" [section 5.3.3.1.2]
-  /// Waypoint spacing: the largest of |Δx|, |Δy|, |Δz| over this sets the count [eq. 4.44]. The
+  double approach_height = 0.20;  ///< m above the grip, "20 cm above the package" [Picker thesis, section 5.3.3.1.2]
+  /// Waypoint spacing: the largest of |Δx|, |Δy|, |Δz| over this sets the count [Picker thesis, eq. 4.44]. The
   /// thesis leaves "res" unvalued.
   double linear_resolution = 0.005;         ///< m
   double angular_resolution = 1.0 * kDeg;   ///< rad per waypoint on a circular move
-  double circular_threshold = 60.0 * kDeg;  ///< circular move above this yaw change [Algorithm 4, step 7]
+  double circular_threshold = 60.0 * kDeg;  ///< circular move above this yaw change
+                                            ///< [Picker thesis, Algorithm 4, step 7]
   /// A joint that turns more than this between two neighbouring waypoints means the inverse jumped
   /// to another branch (a wrist or elbow flip), which the arm would not follow along the path.
   double max_joint_step = 10.0 * kDeg;  ///< rad
@@ -58,7 +59,8 @@ struct CartesianWaypoint {
 struct MotionSegment {
   std::string name;
   SegmentKind kind = SegmentKind::kMove;
-  bool circular = false;                     ///< moved on a circle about the arm base axis [Algorithm 4, step 8]
+  bool circular = false;                     ///< moved on a circle about the arm base axis
+                                             ///< [Picker thesis, Algorithm 4, step 8]
   bool carrying = false;                     ///< a box hangs from the cups
   std::vector<CartesianWaypoint> waypoints;  ///< the start excluded
   std::vector<JointVector> joints;           ///< one per waypoint (a dwell: the joints it holds)

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/pose.hpp"
+
 namespace fleet::arm {
 
 inline constexpr int kJointCount = 6;
@@ -15,7 +17,7 @@ inline constexpr int kJointCount = 6;
 /// [Picker thesis, Table 1]: all zero is the arm stretched horizontally along the base's -x.
 using JointVector = std::array<double, kJointCount>;
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
+using geometry::kDeg;
 
 /// UR5 link lengths in metres, standard (distal) DH [Picker thesis, Table 1]. The twists are fixed
 /// by the UR geometry (α = π/2, 0, 0, π/2, -π/2, 0) because the analytic inverse relies on them.
@@ -29,11 +31,11 @@ struct Ur5Geometry {
   double d6 = 0.0823;
 };
 
-/// Where the cups sit on the flange. The thesis draws the gripper (Fig. 3.12) without its mounting;
+/// Where the cups sit on the flange. The thesis draws the gripper (Picker thesis, Fig. 3.12) without its mounting;
 /// Table 10 fits only a gripper whose cups face at right angles to the flange axis: θ6 ≠ 0 "breaks
 /// the box away" only if turning about the flange axis tilts the box, i.e. if that axis is
 /// horizontal while the cups face down; and only so does the arm reach 0.5 m below its base with
-/// the box upright [section 4.4.1]. The tool frame: origin at the centre of the cups' lips, z the
+/// the box upright [Picker thesis, section 4.4.1]. The tool frame: origin at the centre of the cups' lips, z the
 /// way the cups face (-y of the flange), x along the plate's length (x of the flange), y along the
 /// flange axis.
 struct ToolMount {

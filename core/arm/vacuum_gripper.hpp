@@ -21,28 +21,28 @@ struct VacuumGripperConfig {
   /// Outline of the cups' lips on the plate; the gripped face must cover it or the outer cups leak.
   double plate_length = 0.12;  ///< m
   double plate_width = 0.08;   ///< m
-  double gravity = 9.81;       ///< m/s² [eq. 3.10]
+  double gravity = 9.81;       ///< m/s² [Picker thesis, eq. 3.10]
   /// Acceleration of the system while carrying a box. The thesis does not state it; its 103.1 N
-  /// for 5 kg at s = 2 [eq. 3.11] gives 0.5 m/s². Motions that carry a box respect it.
+  /// for 5 kg at s = 2 [Picker thesis, eq. 3.11] gives 0.5 m/s². Motions that carry a box respect it.
   double acceleration = 0.5;   ///< m/s²
-  double friction = 0.5;       ///< μ between cup and box [eq. 3.12]
-  double safety_factor = 2.0;  ///< s, "2.0 for grabbing from the top" [section 3.3.3]
-  double atmospheric = 1.013;  ///< bar [eq. 3.16]
-  double max_mass = 5.0;       ///< kg: the UR5's payload, the thesis's box limit [section 3.2.5]
-  double min_side = 0.10;      ///< m: smallest box of the product analysis [section 3.2.5]
-  double max_side = 0.40;      ///< m: largest box picked in the experiments [section 3.2.5]
+  double friction = 0.5;       ///< μ between cup and box [Picker thesis, eq. 3.12]
+  double safety_factor = 2.0;  ///< s, "2.0 for grabbing from the top" [Picker thesis, section 3.3.3]
+  double atmospheric = 1.013;  ///< bar [Picker thesis, eq. 3.16]
+  double max_mass = 5.0;       ///< kg: the UR5's payload, the thesis's box limit [Picker thesis, section 3.2.5]
+  double min_side = 0.10;      ///< m: smallest box of the product analysis [Picker thesis, section 3.2.5]
+  double max_side = 0.40;      ///< m: largest box picked in the experiments [Picker thesis, section 3.2.5]
   /// Vacuum the source holds at the cups, bar below atmospheric. Empty: the source is sized for the
-  /// design case (a box of max_mass), as in [section 3.3.4]; the thesis names no pump rating.
+  /// design case (a box of max_mass), as in [Picker thesis, section 3.3.4]; the thesis names no pump rating.
   std::optional<double> source_vacuum;
 };
 
 /// The forces and pressures of eq. 3.10-3.16 for one box.
 struct GripForces {
-  double lift = 0.0;               ///< N, m(g + a)s [eq. 3.10]
-  double hold = 0.0;               ///< N, m(g + a/μ)s [eq. 3.12]
-  double per_cup = 0.0;            ///< N, the larger of the two shared by the cups [eq. 3.14]
-  double vacuum = 0.0;             ///< bar below atmospheric, per_cup / cup area [eq. 3.15]
-  double absolute_pressure = 0.0;  ///< bar, atmospheric - vacuum [eq. 3.16]
+  double lift = 0.0;               ///< N, m(g + a)s [Picker thesis, eq. 3.10]
+  double hold = 0.0;               ///< N, m(g + a/μ)s [Picker thesis, eq. 3.12]
+  double per_cup = 0.0;            ///< N, the larger of the two shared by the cups [Picker thesis, eq. 3.14]
+  double vacuum = 0.0;             ///< bar below atmospheric, per_cup / cup area [Picker thesis, eq. 3.15]
+  double absolute_pressure = 0.0;  ///< bar, atmospheric - vacuum [Picker thesis, eq. 3.16]
 };
 
 /// Whether a box can be lifted and held, and if not why.

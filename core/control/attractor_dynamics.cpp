@@ -63,13 +63,15 @@ ObstacleField obstacle_field(std::span<const Sector> sectors, const AttractorPar
   for (const Sector& s : sectors) {
     if (!(s.clearance <= params.sensor_range)) continue;
     field.min_clearance = std::min(field.min_clearance, s.clearance);
-    const double lambda = params.beta1 * std::exp(-s.clearance / params.beta2);  // [eq. 3.6]
-    // [eq. 3.7]: the thesis's L + d_i is the distance from the reference point to the obstacle.
+    const double lambda = params.beta1 * std::exp(-s.clearance / params.beta2);  // [Stacker thesis, eq. 3.6]
+    // [Stacker thesis, eq. 3.7]: the thesis's L + d_i is the distance from the reference point to the obstacle.
     const double sigma = std::atan(std::tan(half_sector) + params.robot_half_width / (s.reach + s.clearance));
     const double offset = -s.bearing;  // phi - psi_i, with psi_i = phi + theta_i
     const double gauss = std::exp(-offset * offset / (2.0 * sigma * sigma));
-    field.force += lambda * offset * gauss;                                                   // [eq. 3.5, 3.8]
-    field.potential += lambda * sigma * sigma * gauss - lambda * sigma * sigma * inv_sqrt_e;  // [eq. 3.14]
+    // [Stacker thesis, eq. 3.5, 3.8]
+    field.force += lambda * offset * gauss;
+    // [Stacker thesis, eq. 3.14]
+    field.potential += lambda * sigma * sigma * gauss - lambda * sigma * sigma * inv_sqrt_e;
   }
   return field;
 }
@@ -100,19 +102,20 @@ AttractorOutput AttractorNavigator::update(const geometry::Pose2& pose, const At
   out.heading = geometry::normalize_angle(pose.yaw + (dir < 0 ? std::numbers::pi : 0.0));
   const geometry::Vec2 to_target = goal.target - pose.position();
   out.target_distance = geometry::norm(to_target);
-  out.psi_tar = std::atan2(to_target.y, to_target.x);                      // [eq. 3.3]
-  out.f_tar = target_force(out.heading, out.psi_tar, params_.lambda_tar);  // [eq. 3.4]
+  out.psi_tar = std::atan2(to_target.y, to_target.x);                      // [Stacker thesis, eq. 3.3]
+  out.f_tar = target_force(out.heading, out.psi_tar, params_.lambda_tar);  // [Stacker thesis, eq. 3.4]
   const std::vector<Sector> sectors = frontal_sectors(obstacles, dir < 0 ? std::numbers::pi : 0.0, geometry_, params_);
   const ObstacleField field = obstacle_field(sectors, params_);
   out.f_obs = field.force;
   if (params_.noise_variance > 0.0) {
-    out.f_stoch = std::sqrt(params_.noise_variance) * std::normal_distribution<double>(0.0, 1.0)(rng_);  // [eq. 3.10]
+    // [Stacker thesis, eq. 3.10]
+    out.f_stoch = std::sqrt(params_.noise_variance) * std::normal_distribution<double>(0.0, 1.0)(rng_);
   }
   out.heading_rate = std::clamp(out.f_obs + out.f_tar + out.f_stoch, -params_.max_heading_rate,
-                                params_.max_heading_rate);  // [eq. 3.11]
+                                params_.max_heading_rate);  // [Stacker thesis, eq. 3.11]
 
-  // Speed [eq. 3.12-3.17]. With nothing in range d_min is the sensor range; v_obs is capped at v_des so that
-  // obstacles can only slow the stacker down (the thesis leaves v_obs open when no obstacle is seen).
+  // Speed [Stacker thesis, eq. 3.12-3.17]. With nothing in range d_min is the sensor range; v_obs is capped at v_des so
+  // that obstacles can only slow the stacker down (the thesis leaves v_obs open when no obstacle is seen).
   out.potential = field.potential;
   out.alpha = speed_threshold(field.potential, params_.c);
   out.min_clearance = field.min_clearance;
@@ -125,7 +128,7 @@ AttractorOutput AttractorNavigator::update(const geometry::Pose2& pose, const At
     speed_ = settled + (speed_ - settled) * std::exp(-c_sum * dt);
   }
   out.speed = speed_;
-  // [Algorithm 3] with the inverse kinematics [eq. 5.17] on the signed speed dir * v.
+  // [Stacker thesis, Algorithm 3] with the inverse kinematics [Stacker thesis, eq. 5.17] on the signed speed dir * v.
   out.command = sim::inverse_kinematics({dir * speed_, out.heading_rate}, geometry_.wheelbase);
   return out;
 }

@@ -18,9 +18,10 @@ constexpr std::array kTable = {
     // The two-target approach [Stacker thesis, section 6.3.2].
     DockingTransition{P::kToTarget1, E::kNearTarget1, P::kReverseToTarget2},
     DockingTransition{P::kReverseToTarget2, E::kTarget2Reached, P::kPivot},
-    // Pivot about the rear axle until the rear faces the pallet [section 5.2, 6.3].
+    // Pivot about the rear axle until the rear faces the pallet [Stacker thesis, section 5.2, 6.3].
     DockingTransition{P::kPivot, E::kPivotDone, P::kFinalApproach},
-    // The final law: beyond the threshold by eq. 6.5 at -0.25 m/s, inside it in place by eq. 6.4 [section 6.3.3].
+    // The final law: beyond the threshold by eq. 6.5 at -0.25 m/s, inside it in place by eq. 6.4 [Stacker thesis,
+    // section 6.3.3].
     DockingTransition{P::kFinalApproach, E::kThresholdAligned, P::kFinalAlign},
     DockingTransition{P::kFinalAlign, E::kAligned, P::kForkIn},
     DockingTransition{P::kForkIn, E::kForksIn, P::kDone},
@@ -139,8 +140,8 @@ DockingLaw::DockingLaw(const DockingParams& params, const geometry::Pose2& palle
     throw std::invalid_argument("DockingParams: target2_tolerance, lookahead, k1, k2, final_speed, pocket_depth > 0");
   }
   // Target 1 lies beyond target 2 as seen from the start, so that the stacker drives past the pallet forwards and
-  // reverses back to target 2 still parallel to the row [section 6.3.1: "depending on the starting position"].
-  // Right in front of the pallet, the heading decides.
+  // reverses back to target 2 still parallel to the row [Stacker thesis, section 6.3.1: "depending on the starting
+  // position"]. Right in front of the pallet, the heading decides.
   const Vec2 row{-std::sin(prior_.yaw), std::cos(prior_.yaw)};
   const double along = geometry::dot(start.position() - prior_.position(), row);
   const double heading = geometry::dot({std::cos(start.yaw), std::sin(start.yaw)}, row);
@@ -209,7 +210,7 @@ DockingLaw::AxisFrame DockingLaw::axis_frame(const geometry::Pose2& vehicle) con
 
 std::array<Vec2, 2> DockingLaw::targets() const {
   const AxisFrame a = axis_frame(start_);
-  const Vec2 target2 = a.face + params_.target2_standoff * a.axis;  // [eq. 6.1-6.2]
+  const Vec2 target2 = a.face + params_.target2_standoff * a.axis;  // [Stacker thesis, eq. 6.1-6.2]
   return {target2 + side_ * params_.target1_offset * a.normal + params_.target1_extra_standoff * a.axis, target2};
 }
 
@@ -317,7 +318,8 @@ sim::TricycleCommand DockingLaw::pivot(const DockingInput& in, DockingOutput& ou
     fire(E::kPivotDone, out);
     return {0.0, in.steer_angle};
   }
-  // theta_steer = +-pi/2 puts the ICR on the rear-axle midpoint [eq. 5.2]; phi' = v_steer sin(theta) / L.
+  // theta_steer = +-pi/2 puts the ICR on the rear-axle midpoint [Stacker thesis, eq. 5.2];
+  // phi' = v_steer sin(theta) / L.
   const double theta = turn_sign_ * std::numbers::pi / 2.0;
   const double v = std::clamp(params_.pivot_gain * error * params_.vehicle.wheelbase * turn_sign_,
                               -params_.max_pivot_wheel_speed, params_.max_pivot_wheel_speed);
@@ -328,7 +330,7 @@ sim::TricycleCommand DockingLaw::final_approach(const DockingInput& in, DockingO
   const AxisFrame a = axis_frame(in.vehicle);
   if (a.s <= params_.threshold_standoff) {
     if (detections_ == 0 && !params_.place_on_prior) {
-      // Never seen where logistics put it: fork nothing in blind [section 6.3].
+      // Never seen where logistics put it: fork nothing in blind [Stacker thesis, section 6.3].
       failure_ = "pallet not found: no detection inside the expected docking area";
       fire(E::kGiveUp, out);
       return {0.0, in.steer_angle};
@@ -346,17 +348,19 @@ sim::TricycleCommand DockingLaw::final_approach(const DockingInput& in, DockingO
     }
     return {0.0, in.steer_angle};
   }
-  // [eq. 6.3] e = sigma - theta. theta: bearing of the pallet midpoint in the rear camera's image (positive to the
-  // image's right). sigma: the bearing it would have if the rear pointed at the pallet axis `lookahead` ahead, so
-  // that the lateral offset decays along the way instead of the stacker arriving at the midpoint askew (the thesis
-  // aims at the midpoint itself, sigma fixed). The thesis's |theta| loses the side; the sign is kept here.
+  // [Stacker thesis, eq. 6.3] e = sigma - theta. theta: bearing of the pallet midpoint in the rear camera's image
+  // (positive to the image's right). sigma: the bearing it would have if the rear pointed at the pallet axis
+  // `lookahead` ahead, so that the lateral offset decays along the way instead of the stacker arriving at the midpoint
+  // askew (the thesis aims at the midpoint itself, sigma fixed). The thesis's |theta| loses the side; the sign is kept
+  // here.
   const Vec2 midpoint = geometry::map_to_body(in.vehicle, a.face);
   const double theta = std::atan2(midpoint.y, -midpoint.x);
   const double psi_wanted = std::atan(a.l / params_.lookahead);
   const double sigma = theta + geometry::angle_diff(psi_wanted, a.psi);
   const double e = sigma - theta;
   out.final_error = e;
-  // [eq. 6.5] theta_steer = -K2 e at the thesis's constant -0.25 m/s, slowing for the last metres (beyond the thesis).
+  // [Stacker thesis, eq. 6.5] theta_steer = -K2 e at the thesis's constant -0.25 m/s, slowing for the last metres
+  // (beyond the thesis).
   const double steer = std::clamp(-params_.k2 * e, -params_.max_final_steer, params_.max_final_steer);
   const double speed = ramped_speed(a.s - params_.threshold_standoff, params_.final_slow_distance, params_.final_speed,
                                     params_.final_slow_speed);
@@ -364,9 +368,9 @@ sim::TricycleCommand DockingLaw::final_approach(const DockingInput& in, DockingO
 }
 
 sim::TricycleCommand DockingLaw::final_align(const DockingInput& in, DockingOutput& out) {
-  // Inside the threshold [section 6.3.3]: theta_steer = +-pi/2 by the sign of e, v_steer = K1 e [eq. 6.4]; with the
-  // rear on the axis, e is the orientation error to the pallet. The side is chosen once, so an overshoot is
-  // corrected by the wheel's direction rather than a half turn of the steering.
+  // Inside the threshold [Stacker thesis, section 6.3.3]: theta_steer = +-pi/2 by the sign of e, v_steer = K1 e
+  // [Stacker thesis, eq. 6.4]; with the rear on the axis, e is the orientation error to the pallet. The side is chosen
+  // once, so an overshoot is corrected by the wheel's direction rather than a half turn of the steering.
   const double e = geometry::angle_diff(out.pallet_estimate.yaw, in.vehicle.yaw);
   out.final_error = e;
   if (!steer_settled_) {
@@ -404,8 +408,8 @@ sim::TricycleCommand DockingLaw::realign(const DockingInput& in, DockingOutput& 
 }
 
 sim::TricycleCommand DockingLaw::fork_in(const DockingInput& in, DockingOutput& out) {
-  // Straight in, in reverse, until the fork tips are at the pocket depth [section 6.3.3 "fork the pallet"];
-  // "straight" holds the yaw on the pallet's, which a steering offset or lag would otherwise turn.
+  // Straight in, in reverse, until the fork tips are at the pocket depth [Stacker thesis, section 6.3.3 "fork the
+  // pallet"]; "straight" holds the yaw on the pallet's, which a steering offset or lag would otherwise turn.
   const AxisFrame a = axis_frame(in.vehicle);
   const double remaining = params_.pocket_depth - a.tip_depth;
   if (remaining <= 0.002) {

@@ -23,9 +23,9 @@ struct PalletGeometry {
 };
 
 /// Docking phases: the two-target approach [Stacker thesis, sections 6.3.1-6.3.2], the pivot about the rear axle
-/// [section 5.2], the final law beyond (kFinalApproach) and inside (kFinalAlign) its threshold distance
-/// [section 6.3.3], then the forks go in. kRealign is beyond the thesis: when the fork tips arrive at the threshold
-/// off the pocket centres, the stacker drives out along the pallet axis and reverses in again.
+/// [Stacker thesis, section 5.2], the final law beyond (kFinalApproach) and inside (kFinalAlign) its threshold distance
+/// [Stacker thesis, section 6.3.3], then the forks go in. kRealign is beyond the thesis: when the fork tips arrive at
+/// the threshold off the pocket centres, the stacker drives out along the pallet axis and reverses in again.
 enum class DockingPhase {
   kToTarget1,
   kReverseToTarget2,
@@ -39,13 +39,13 @@ enum class DockingPhase {
 };
 
 enum class DockingEvent {
-  kNearTarget1,          ///< within 0.63 m of target 1 [section 6.3.2]
-  kTarget2Reached,       ///< within 0.05 m of target 2 [section 6.3.2]
-  kPivotDone,            ///< rear roughly facing the pallet [section 6.3]
+  kNearTarget1,          ///< within 0.63 m of target 1 [Stacker thesis, section 6.3.2]
+  kTarget2Reached,       ///< within 0.05 m of target 2 [Stacker thesis, section 6.3.2]
+  kPivotDone,            ///< rear roughly facing the pallet [Stacker thesis, section 6.3]
   kThresholdAligned,     ///< at the threshold distance with the fork tips on the pockets
   kThresholdMisaligned,  ///< at the threshold distance with the fork tips off the pockets
   kRealigned,            ///< back out at the realignment stand-off
-  kAligned,              ///< orientation error below the tolerance [section 6.3.3]
+  kAligned,              ///< orientation error below the tolerance [Stacker thesis, section 6.3.3]
   kForksIn,              ///< fork tips at the pocket depth
   kGiveUp,               ///< too many realignments
   kTimeout,              ///< the manoeuvre took longer than its limit (any active phase)
@@ -74,7 +74,7 @@ struct DockingParams {
   sim::TricycleGeometry vehicle;
   AttractorParams attractor;
 
-  // Targets [eq. 6.1-6.2, sections 6.3.1-6.3.2].
+  // Targets [Stacker thesis, eq. 6.1-6.2, sections 6.3.1-6.3.2].
   double target2_standoff = 0.7;          ///< rear axle from the pallet face at target 2 (1.3 m from its centre), m
   double target1_offset = 1.5;            ///< target 1 along the pallet row from target 2, m
   double target1_extra_standoff = 0.5;    ///< target 1 further from the face than target 2, m (chosen)
@@ -85,14 +85,14 @@ struct DockingParams {
   double arrival_gain = 0.8;              ///< v_des <= gain * distance near a target, 1/s (chosen, beyond the thesis)
   double min_arrival_speed = 0.04;        ///< m/s (chosen)
 
-  // Pivot [section 5.2]: theta_steer = +-pi/2.
+  // Pivot [Stacker thesis, section 5.2]: theta_steer = +-pi/2.
   double pivot_gain = 1.2;               ///< yaw rate per rad of orientation error, 1/s (chosen)
   double max_pivot_wheel_speed = 0.35;   ///< m/s (chosen)
   double pivot_tolerance = 0.0175;       ///< rad (1 deg; the thesis's threshold is not given)
   double steer_settle_tolerance = 0.05;  ///< the wheel waits for the steering this close before rolling, rad
 
-  // Final law [eq. 6.3-6.5, section 6.3.3].
-  double final_speed = 0.25;          ///< |v| beyond the threshold, m/s [section 6.3.3]
+  // Final law [Stacker thesis, eq. 6.3-6.5, section 6.3.3].
+  double final_speed = 0.25;          ///< |v| beyond the threshold, m/s [Stacker thesis, section 6.3.3]
   double final_slow_speed = 0.08;     ///< |v| just before the threshold, m/s (chosen)
   double final_slow_distance = 0.15;  ///< m (chosen)
   double k1 = 1.5;                    ///< eq. 6.4, m/s per rad (chosen)
@@ -164,7 +164,7 @@ class DockingLaw {
   DockingPhase phase() const { return phase_; }
   /// The pallet pose the law steers by: the mean of the accepted detections, or the prior before the first.
   geometry::Pose2 pallet_estimate() const;
-  /// Where the rear axle is steered to before the final approach: targets 1 and 2 [eq. 6.1-6.2],
+  /// Where the rear axle is steered to before the final approach: targets 1 and 2 [Stacker thesis, eq. 6.1-6.2],
   /// from the current pallet estimate.
   std::array<geometry::Vec2, 2> targets() const;
   int realignments() const { return realignments_; }

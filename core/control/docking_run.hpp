@@ -22,7 +22,7 @@ using PalletDetector = std::function<std::optional<geometry::Pose2>(const geomet
 /// A stand-in for the thesis's ToF and RealSense pallet detection [Stacker thesis, sections 5.4, 6.2]: it sees the
 /// pallets of a row within a range of the rear axle and returns the one nearest the expected pose if it lies in
 /// the region of interest, with Gaussian noise. Neighbours in the row make a large logistics error dock at the
-/// wrong pallet, as in [section 7.2.3].
+/// wrong pallet, as in [Stacker thesis, section 7.2.3].
 struct SimulatedDetectorParams {
   double position_noise = 0.0;   ///< std of x and y, m
   double yaw_noise = 0.0;        ///< std, rad
@@ -56,8 +56,8 @@ struct DockingRunParams {
   DockingParams law;
   sim::TricycleParams vehicle;
   SimulatedDetectorParams detector;
-  /// Logistics error of the pallet position along the row (the thesis's y error [section 7.2.3]), m. The law starts
-  /// from the pallet shifted by this much to the left of its entry axis.
+  /// Logistics error of the pallet position along the row (the thesis's y error [Stacker thesis, section 7.2.3]), m.
+  /// The law starts from the pallet shifted by this much to the left of its entry axis.
   double prior_error = 0.0;
   /// The law works in the odometry frame anchored where the pose sensor puts the vehicle when
   /// docking starts: the sensor's error shifts only where the logistics pallet is looked for,

@@ -9,9 +9,9 @@ namespace fleet::control {
 
 /// Settings of the placing controller [Forklift thesis, section 6.3, eq. 6.5].
 struct PlaceParams {
-  double a = 1.5;                   ///< heading gain, 1/s (eq. 6.5: omega = -a d_h)
-  double b = 1.5;                   ///< lateral gain, 1/s (eq. 6.5: v_y = -b d_x)
-  double c = 1.2;                   ///< longitudinal gain, 1/s (eq. 6.5: v_x = -c d_y)
+  double a = 1.5;                   ///< heading gain, 1/s (Forklift thesis, eq. 6.5: omega = -a d_h)
+  double b = 1.5;                   ///< lateral gain, 1/s (Forklift thesis, eq. 6.5: v_y = -b d_x)
+  double c = 1.2;                   ///< longitudinal gain, 1/s (Forklift thesis, eq. 6.5: v_x = -c d_y)
   double heading_tol = 0.012;       ///< rad
   double lateral_tol = 0.003;       ///< m
   double longitudinal_tol = 0.003;  ///< m
@@ -39,7 +39,7 @@ const char* to_string(PlaceStatus status);
 
 /// Places the carried pallet on a loading area using the localization estimate
 /// [Forklift thesis, section 6.3]: the heading error, then the lateral error, then the longitudinal error are
-/// driven to zero one after another (eq. 6.5), so that the forklift faces the area and then
+/// driven to zero one after another (Forklift thesis, eq. 6.5), so that the forklift faces the area and then
 /// drives straight into it without sweeping over its neighbours. Then lowers and backs out.
 class PalletPlace {
  public:

@@ -33,7 +33,7 @@ const char* to_string(SearchStatus status);
 
 /// Pallet search [Forklift thesis, section 6.1]: go to a local target in front of the pallet with the
 /// follower's pose-target mode, then turn until the marker is in view. No marker after a full
-/// sweep means the area is empty (section 6.4: the area is reported empty).
+/// sweep means the area is empty (Forklift thesis, section 6.4: the area is reported empty).
 class PalletSearch {
  public:
   explicit PalletSearch(SearchParams params = {}, ForkliftGeometry geometry = {});

@@ -345,7 +345,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
   }
 
   // Aligning: the thesis's controller does not stop by itself; it is stopped once the heading
-  // error to the final pose is near zero (section 6.1).
+  // error to the final pose is near zero (Forklift thesis, section 6.1).
   const double dh = angle_diff(goal.yaw, in.pose.yaw);
   debug_.beta = -dh;
   if (std::abs(dh) <= params_.heading_tolerance) {

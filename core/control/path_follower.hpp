@@ -15,9 +15,9 @@ namespace fleet::control {
 struct FollowerParams {
   // --- [Forklift thesis, section 6.1] ---
   double v_max = 0.20;              ///< forward speed at omega = 0, m/s
-  double omega_max = 2.0;           ///< angular speed limit, rad/s; forward speed is 0 there (eq. 6.2)
+  double omega_max = 2.0;           ///< angular speed limit, rad/s; forward speed is 0 there (Forklift thesis, eq. 6.2)
   double lookahead = 0.10;          ///< minimum distance to the target point on the path, metres
-  double kp = 4.0;                  ///< PID on the turning error beta (eq. 6.3), 1/s
+  double kp = 4.0;                  ///< PID on the turning error beta (Forklift thesis, eq. 6.3), 1/s
   double ki = 0.0;                  ///< 1/s^2
   double kd = 0.05;                 ///< dimensionless
   double integral_limit = 0.3;      ///< anti-windup clamp on the integral of beta, rad s
@@ -29,7 +29,7 @@ struct FollowerParams {
   // --- beyond the thesis: switchable ---
   /// Target moves continuously along the path (interpolated at `lookahead` arc length ahead of
   /// the robot's projection) instead of jumping from one path point to the next; removes the
-  /// command jumps the thesis reports when the target switches (section 6.1, Fig. 6.4b).
+  /// command jumps the thesis reports when the target switches (Forklift thesis, section 6.1, Fig. 6.4b).
   bool smooth_lookahead = false;
   /// Slow down where the arc to the target is tight (Nav2 Regulated Pure Pursuit).
   bool regulate_curvature = false;
@@ -90,7 +90,7 @@ struct FollowerDebug {
 double speed_law(double omega, double v_max, double omega_max);
 
 /// Path follower [Forklift thesis, section 6.1, Fig. 6.3]: a target point on the path at least
-/// `lookahead` away, turning error beta = h - atan2(yd - y, xd - x) (eq. 6.3) through a PID to
+/// `lookahead` away, turning error beta = h - atan2(yd - y, xd - x) (Forklift thesis, eq. 6.3) through a PID to
 /// omega, clamped to omega_max, forward speed from eq. 6.2, differential mode (vy = 0). At the
 /// end it turns in place until the heading error is near zero, then stops.
 ///
@@ -109,7 +109,7 @@ class PathFollower {
   /// driven backwards. Resets the PID and the progress along the path.
   void set_path(std::vector<geometry::Pose2> path, bool may_back_in = false);
 
-  /// Pose-target mode (section 6.1: "path with single point and heading"): drive to the point,
+  /// Pose-target mode (Forklift thesis, section 6.1: "path with single point and heading"): drive to the point,
   /// then turn to the heading.
   void set_pose_target(const geometry::Pose2& target);
 

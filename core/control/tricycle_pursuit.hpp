@@ -10,7 +10,7 @@ namespace fleet::control {
 /// Settings of the stacker's route following. The thesis drives its corridor by the attractor
 /// dynamics towards one target at a time [Stacker thesis, Ch. 3, 6.1]; on the plant's roads the
 /// route is a polyline granted piece by piece by the traffic manager, and pure pursuit of the rear
-/// axle along it keeps the stacker on its lane's centre line (keeping right, Fig. 5.5).
+/// axle along it keeps the stacker on its lane's centre line (keeping right, Stacker thesis, Fig. 5.5).
 struct TricyclePursuitParams {
   double max_speed = 1.2;             ///< m/s of the rear axle
   double acceleration = 0.5;          ///< for braking towards the end of the path or the grant, m/s^2

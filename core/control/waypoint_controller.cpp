@@ -18,10 +18,10 @@ WaypointErrors waypoint_errors(const geometry::Pose2& robot, geometry::Vec2 wayp
   e.y_wr = -s * dx + c * dy;
   e.d = std::hypot(e.x_wr, e.y_wr);
   e.alpha = e.d > 0.0 ? std::atan2(e.y_wr, e.x_wr) : 0.0;
-  // [eq. 4.12]; d·cos α = X_WR and d·sin α = Y_WR.
+  // [Picker thesis, eq. 4.12]; d·cos α = X_WR and d·sin α = Y_WR.
   e.e_x = e.d * std::cos(e.alpha) - look_ahead;
   e.e_y = e.d * std::sin(e.alpha);
-  e.ge = std::hypot(e.e_x, e.e_y);  // [eq. 4.17]
+  e.ge = std::hypot(e.e_x, e.e_y);  // [Picker thesis, eq. 4.17]
   return e;
 }
 
@@ -75,7 +75,7 @@ BodyTwist WaypointController::update(const geometry::Pose2& pose) {
   const double target_u =
       speed_saturation(errors_.e_x, params_.max_speed, params_.decel_distance) * turn_speed_scale(errors_.alpha);
   u_ = params_.tau_u / (T + params_.tau_u) * u_ + T / (T + params_.tau_u) * target_u;
-  // [eq. 4.16], K_Y·d capped at the largest allowed yaw rate (text after eq. 4.16).
+  // [Picker thesis, eq. 4.16], K_Y·d capped at the largest allowed yaw rate (Picker thesis, text after eq. 4.16).
   const double gain = std::min(params_.k_y * errors_.d, params_.max_omega);
   const double target_omega = gain * std::sin(errors_.alpha);
   omega_ = params_.tau_r / (T + params_.tau_r) * omega_ + T / (T + params_.tau_r) * target_omega;

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "common/percentile.hpp"
+
 namespace fleet::coordination {
 
 LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSettings& settings)
@@ -205,14 +207,9 @@ LifelongFigures figures_of(const LifelongResult& result) {
   std::vector<double> ms;
   for (double s : result.planning_s) ms.push_back(s * 1e3);
   if (ms.empty()) return f;
-  std::sort(ms.begin(), ms.end());
-  auto rank = [&](double q) {
-    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(ms.size())));
-    return ms[std::min(ms.size() - 1, k > 0 ? k - 1 : 0)];
-  };
-  f.planning_ms_p50 = rank(0.5);
-  f.planning_ms_p99 = rank(0.99);
-  f.planning_ms_max = ms.back();
+  f.planning_ms_p50 = common::percentile(ms, 0.5);
+  f.planning_ms_p99 = common::percentile(ms, 0.99);
+  f.planning_ms_max = *std::max_element(ms.begin(), ms.end());
   return f;
 }
 

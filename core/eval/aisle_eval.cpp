@@ -8,13 +8,14 @@
 #include "aisle/hough_lines.hpp"
 #include "aisle/rack_aisle_sim.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/pose.hpp"
 
 namespace fleet::eval {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using ::fleet::geometry::kDeg;
 constexpr double kNotStated = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
@@ -130,15 +131,16 @@ PickerSetup seed_aisle_setup(const std::string& name, geometry::Pose2 start, dou
 
 std::vector<SeedAisleCase> seed_aisle_cases() {
   std::vector<SeedAisleCase> cases;
-  // [Table 7]: parallel to the racks, 1 m off d_ref, no travel along the aisle; the plots show the
-  // lateral error of 1 m converging with lateral motion only [Figs 4.48-4.50].
+  // [Picker thesis, Table 7]: parallel to the racks, 1 m off d_ref, no travel along the aisle; the plots show the
+  // lateral error of 1 m converging with lateral motion only [Picker thesis, Figs 4.48-4.50].
   cases.push_back({"I", "Table 7", seed_aisle_setup("I (1 m lateral shift)", {0.0, 2.0, 0.0}, 0.0), 8.0, 101,
                    "lateral motion only, converges (plots)", kNotStated});
-  // [Table 8]: (-2.5, 1.5) -> (2.5, 1.0), parallel; lateral ~0.2 m/s for ~4 s, forward up to 0.3 m/s [Fig. 4.55].
+  // [Picker thesis, Table 8]: (-2.5, 1.5) -> (2.5, 1.0), parallel; lateral ~0.2 m/s for ~4 s, forward up to 0.3 m/s
+  // [Picker thesis, Fig. 4.55].
   cases.push_back({"II", "Table 8", seed_aisle_setup("II (-2.5,1.5)->(2.5,1.0)", {-2.5, 1.5, 0.0}, 5.0), 22.0, 202,
                    "lateral 0.2 m/s ~4 s, forward to 0.3 m/s", 4.0});
-  // [Table 9]: as II turned 25 deg; orientation and lateral converged in under 5 s [Figs 4.63-4.64]. The
-  // thesis ran one sense; both are run here.
+  // [Picker thesis, Table 9]: as II turned 25 deg; orientation and lateral converged in under 5 s
+  // [Picker thesis, Figs 4.63-4.64]. The thesis ran one sense; both are run here.
   for (const double yaw : {25.0, -25.0}) {
     const std::string name = yaw > 0 ? "III +25" : "III -25";
     const std::string label = yaw > 0 ? "III (+25 deg)" : "III (-25 deg)";

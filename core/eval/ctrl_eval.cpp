@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/percentile.hpp"
 #include "control/pallet_search.hpp"
 #include "map/site_map.hpp"
 #include "perception/pallet_world.hpp"
@@ -44,16 +45,9 @@ robot::SimulatedForklift make_robot(const CtrlEvalParams& p, const map::Site& si
 Percentiles percentiles(std::vector<double> v) {
   Percentiles p;
   if (v.empty()) return p;
-  std::sort(v.begin(), v.end());
-  auto at = [&](double q) {
-    const double pos = q * static_cast<double>(v.size() - 1);
-    const std::size_t i = static_cast<std::size_t>(std::floor(pos));
-    const std::size_t j = std::min(i + 1, v.size() - 1);
-    return v[i] + (pos - static_cast<double>(i)) * (v[j] - v[i]);
-  };
-  p.p50 = at(0.50);
-  p.p95 = at(0.95);
-  p.max = v.back();
+  p.p50 = common::percentile(v, 0.50);
+  p.p95 = common::percentile(v, 0.95);
+  p.max = *std::max_element(v.begin(), v.end());
   return p;
 }
 

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <optional>
 
+#include "common/percentile.hpp"
+#include "geometry/pose.hpp"
 #include "perception/pallet_detector.hpp"
 #include "perception/stacker_cameras.hpp"
 #include "sim/depth_camera.hpp"
@@ -17,11 +19,11 @@ namespace fleet::eval {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 // The finished-goods row: pallets on the 0.30 m limiter [Stacker thesis, section 4.1.3], entry
 // faces on the limiter's edge (y = 0). The thesis gives no pitch. Its tolerance of logistics errors
-// up to 0.66 m before docking at the neighbour [section 7.2.3] implies at least 1.32 m with its
+// up to 0.66 m before docking at the neighbour [Stacker thesis, section 7.2.3] implies at least 1.32 m with its
 // exact pose; the pose sensor's 3 cm can add up to 9 cm (3 sigma) to where the pallet is looked
 // for, hence 1.50 m (0.70 m between pallets).
 constexpr double kRowBase = 0.30;
@@ -41,15 +43,6 @@ sim::DepthScene row_scene(const geometry::Pose2& row, double pitch, std::optiona
   return scene;
 }
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double at = q * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(at));
-  const auto hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
 DockSummary summarize(const std::vector<DockRun>& runs) {
   DockSummary s;
   s.runs = static_cast<int>(runs.size());
@@ -64,14 +57,14 @@ DockSummary summarize(const std::vector<DockRun>& runs) {
     path.push_back(r.result.path_length);
   }
   s.success_rate = s.runs > 0 ? static_cast<double>(s.successes) / s.runs : 0.0;
-  s.lateral_p95 = quantile(lateral, 0.95);
+  s.lateral_p95 = common::percentile(lateral, 0.95);
   s.lateral_max = lateral.empty() ? 0.0 : *std::max_element(lateral.begin(), lateral.end());
-  s.yaw_p95 = quantile(yaw, 0.95);
+  s.yaw_p95 = common::percentile(yaw, 0.95);
   s.yaw_max = yaw.empty() ? 0.0 : *std::max_element(yaw.begin(), yaw.end());
-  s.depth_p95 = quantile(depth, 0.95);
-  s.time_median = quantile(time, 0.5);
-  s.time_p95 = quantile(time, 0.95);
-  s.path_median = quantile(path, 0.5);
+  s.depth_p95 = common::percentile(depth, 0.95);
+  s.time_median = common::percentile(time, 0.5);
+  s.time_p95 = common::percentile(time, 0.95);
+  s.path_median = common::percentile(path, 0.5);
   for (double e : dock_prior_errors()) {
     const double size = std::abs(e);
     const bool all = std::all_of(runs.begin(), runs.end(), [&](const DockRun& r) {
@@ -120,7 +113,7 @@ std::vector<DockSweep> run_sweeps(std::uint64_t seed) {
 
 std::vector<DockStart> dock_starts() {
   // Nominal [Stacker thesis, section 7.2.1]: driving along the corridor at 0 deg close to the
-  // limiter, or at -180 deg on the far side. Off-nominal [section 7.2.2]: the thesis's (x, y, phi)
+  // limiter, or at -180 deg on the far side. Off-nominal [Stacker thesis, section 7.2.2]: the thesis's (x, y, phi)
   // has x across the corridor and y along it, with x up to 3.40 m in a 2.98 m corridor; the
   // mapping along = y, across = x - 0.78, heading = -phi is the one offset and sense that keeps
   // all four bodies inside the corridor, each heading towards the pallet.
@@ -188,7 +181,7 @@ DockEvalResult run_dock_eval(const DockEvalParams& params) {
                                         params.seed * 1000003ULL + static_cast<std::uint64_t>(i), &frame_ms));
   }
   result.summary = summarize(result.runs);
-  result.detect_ms_median = quantile(frame_ms, 0.5);
+  result.detect_ms_median = common::percentile(frame_ms, 0.5);
   if (params.sweeps) result.sweeps = run_sweeps(params.seed);
   return result;
 }

@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/percentile.hpp"
 #include "control/waypoint_controller.hpp"
 #include "localization/marker_localizer.hpp"
 #include "sim/forklift_body.hpp"
@@ -40,12 +41,10 @@ struct ErrorSamples {
     double hsum2 = 0.0;
     for (double p : position) sum2 += p * p;
     for (double h : heading) hsum2 += h * h;
-    std::vector<double> sorted = position;
-    std::sort(sorted.begin(), sorted.end());
     const double to_deg = 180.0 / std::numbers::pi;
     e.rmse_cm = 100.0 * std::sqrt(sum2 / static_cast<double>(position.size()));
-    e.p95_cm = 100.0 * sorted[static_cast<std::size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
-    e.max_cm = 100.0 * sorted.back();
+    e.p95_cm = 100.0 * common::percentile(position, 0.95);
+    e.max_cm = 100.0 * *std::max_element(position.begin(), position.end());
     e.heading_rmse_deg = to_deg * std::sqrt(hsum2 / static_cast<double>(heading.size()));
     e.heading_max_deg = to_deg * *std::max_element(heading.begin(), heading.end());
     return e;

@@ -43,7 +43,7 @@ struct MarkerLocErrors {
 
 struct MarkerLocEvalResult {
   MarkerLocErrors ekf;                    ///< the filter: odometry and markers
-  MarkerLocErrors odometry;               ///< wheel odometry alone (eq. 3.7) from the same start
+  MarkerLocErrors odometry;               ///< wheel odometry alone (Picker thesis, eq. 3.7) from the same start
   int sightings = 0;                      ///< markers detected by either camera
   int sightings_fused = 0;                ///< accepted by the filter
   int sightings_gated = 0;                ///< rejected by the filter's gate

@@ -12,6 +12,7 @@
 #include "arm/pick_motion.hpp"
 #include "arm/ur5.hpp"
 #include "common/errors.hpp"
+#include "common/percentile.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "orders/pick_lines.hpp"
@@ -42,10 +43,10 @@ constexpr std::uint64_t kPickStream = 1000;
 constexpr std::uint64_t kJobStream = 2000000;
 
 double median(const std::vector<double>& v) {
-  return planning::percentile(v, 0.5);
+  return common::percentile(v, 0.5);
 }
 double p95(const std::vector<double>& v) {
-  return planning::percentile(v, 0.95);
+  return common::percentile(v, 0.95);
 }
 
 /// The plant as the picker's software sees it: the site, the fleets, the pickers' fleet and the

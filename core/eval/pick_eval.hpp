@@ -20,13 +20,13 @@ namespace fleet::eval {
 /// it, at each distance.
 struct MarkerSweepParams {
   double from = 1.0;  ///< m
-  double to = 10.0;   ///< m: the thesis moved the robot 10 m away from the wall [Table 3]
+  double to = 10.0;   ///< m: the thesis moved the robot 10 m away from the wall [Picker thesis, Table 3]
   double step = 0.5;  ///< m
   /// Distinct markers per distance, each with its own systematic error (its print and placement):
   /// one marker's error repeats from frame to frame, so one alone would show one draw of it.
   int markers = 20;
   int frames = 10;     ///< frames of each marker
-  double speed = 0.3;  ///< m/s, the thesis's standard speed in Experiment 1 [Table 3]
+  double speed = 0.3;  ///< m/s, the thesis's standard speed in Experiment 1 [Picker thesis, Table 3]
 };
 
 struct MarkerErrorRow {

@@ -5,6 +5,9 @@
 
 namespace fleet::geometry {
 
+/// One degree in radians: an angle given in degrees is written `20.0 * kDeg`.
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+
 struct Vec2 {
   double x = 0.0;
   double y = 0.0;

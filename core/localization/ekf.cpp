@@ -21,7 +21,7 @@ void symmetrize(StateCovariance& p) {
   p = 0.5 * (p + p.transpose()).eval();
 }
 
-/// Linear Kalman update z = H x + v, v ~ N(0, diag(var)), on the whole state (eqs. 4.3-4.5).
+/// Linear Kalman update z = H x + v, v ~ N(0, diag(var)), on the whole state (Forklift thesis, eqs. 4.3-4.5).
 template <int M>
 void linear_update(StateVector& x, StateCovariance& p, const Eigen::Matrix<double, M, kStateSize>& h,
                    const Eigen::Matrix<double, M, 1>& z, const Eigen::Matrix<double, M, 1>& var) {

@@ -38,12 +38,12 @@ struct EkfParams {
   std::array<double, 6> process_noise{1e-5, 1e-5, 1e-4, 1e-8, 1e-3, 1e-6};
   double nominal_dt = 1.0 / 70.0;
 
-  /// Q_t. The seed's values (eq. 4.18) are not legible in the text; with use_fix_covariance the
+  /// Q_t. The seed's values (Forklift thesis, eq. 4.18) are not legible in the text; with use_fix_covariance the
   /// solver's covariance is used, floored at uwb_std^2, otherwise Q_t = uwb_std^2 I.
   double uwb_std = 0.05;  ///< metres
   bool use_fix_covariance = false;
 
-  /// Sigma_0 of the initialisation (eq. 4.14); the thesis gives none. With use_fix_covariance the
+  /// Sigma_0 of the initialisation (Forklift thesis, eq. 4.14); the thesis gives none. With use_fix_covariance the
   /// first fix's Q_t is added to the position block, so that a fix spoiled by NLOS does not pin
   /// the filter to the wrong place.
   double init_position_std = 0.05;  ///< metres
@@ -69,7 +69,7 @@ struct EkfParams {
   std::array<double, 3> commanded_velocity_std{0.02, 0.02, 0.10};  ///< m/s, m/s, rad/s
   std::array<double, 3> encoder_velocity_std{0.01, 0.01, 0.05};
 
-  /// 3. Heading initialisation from motion: the first fix sets the position (eq. 4.14); the
+  /// 3. Heading initialisation from motion: the first fix sets the position (Forklift thesis, eq. 4.14); the
   /// heading stays unresolved (not corrected, velocity updates withheld) until the robot has
   /// moved heading_init_distance. It is then the rotation that best aligns the dead-reckoned
   /// antenna track (gyro + velocities, in the start frame) with the fixes (2-D Procrustes,
@@ -101,8 +101,8 @@ struct EkfParams {
   static EkfParams seed();
   /// Every beyond-thesis feature on, noise tuned to the simulated sensors (see the README).
   static EkfParams tuned();
-  /// The picker's filter: wheel odometry (eq. 3.7) for the velocities and, standing in for a gyro, the yaw
-  /// rate; marker sightings for the pose [Picker thesis, section 4.2.9]; started at a known pose, gated.
+  /// The picker's filter: wheel odometry (Picker thesis, eq. 3.7) for the velocities and, standing in for a gyro, the
+  /// yaw rate; marker sightings for the pose [Picker thesis, section 4.2.9]; started at a known pose, gated.
   static EkfParams picker();
 };
 
@@ -131,8 +131,9 @@ enum class UpdateStatus {
 };
 
 /// The forklift's localization filter, the loop of [Forklift thesis, chapter 4, Fig. 4.3]:
-///   on a UWB fix:  initialise if needed (eq. 4.14), else update (eqs. 4.10-4.13, 4.17, 4.3-4.5);
-///   on a gyro reading: predict (eqs. 4.8, 4.15, 4.16, 4.1-4.2) and publish the pose.
+///   on a UWB fix:  initialise if needed (Forklift thesis, eq. 4.14),
+///                  else update (Forklift thesis, eqs. 4.10-4.13, 4.17, 4.3-4.5);
+///   on a gyro reading: predict (Forklift thesis, eqs. 4.8, 4.15, 4.16, 4.1-4.2) and publish the pose.
 /// Every input is checked: a NaN or infinity is rejected and leaves the state untouched.
 /// Not thread-safe.
 class Ekf {

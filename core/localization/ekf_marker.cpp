@@ -38,7 +38,7 @@ EkfParams EkfParams::picker() {
   // Per 70 Hz step: the mecanum base moves sideways as readily as forwards, so vy gets vx's noise.
   p.process_noise = {1e-6, 1e-6, 2e-6, 2e-5, 2e-5, 1e-4};
   p.velocity_source = VelocitySource::kEncoders;
-  p.encoder_velocity_std = {0.01, 0.01, 0.02};  // eq. 3.7 with roller slip
+  p.encoder_velocity_std = {0.01, 0.01, 0.02};  // [Picker thesis, eq. 3.7] with roller slip
   p.gating = true;
   p.init_position_std = 0.05;
   p.init_heading_std = 0.02;

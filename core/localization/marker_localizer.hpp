@@ -33,8 +33,8 @@ struct MarkerLocalizerParams {
 };
 
 /// The picker's localization [Picker thesis, section 4.2.9] as its software runs it: wheel encoders into odometry
-/// (eq. 3.7), the two Axis PTZ cameras aimed at the nearest marker they can decode, and the EKF fusing both
-/// (EkfParams::picker, Ekf::update_marker). The cameras and encoders are simulated from the body's truth.
+/// (Picker thesis, eq. 3.7), the two Axis PTZ cameras aimed at the nearest marker they can decode, and the EKF fusing
+/// both (EkfParams::picker, Ekf::update_marker). The cameras and encoders are simulated from the body's truth.
 /// Not thread-safe: one owner steps it.
 class MarkerLocalizer {
  public:

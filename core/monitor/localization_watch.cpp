@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/percentile.hpp"
 #include "monitor/order_accounting.hpp"
 
 namespace fleet::monitor {
@@ -55,7 +56,7 @@ std::map<std::string, ErrorFigures> error_figures(const std::map<std::string, st
   std::map<std::string, ErrorFigures> figures;
   for (const auto& [group, values] : grouped) {
     if (values.empty()) continue;
-    figures[group] = {percentile(values, 0.95), *std::max_element(values.begin(), values.end()),
+    figures[group] = {common::percentile(values, 0.95), *std::max_element(values.begin(), values.end()),
                       static_cast<long>(values.size())};
   }
   return figures;

@@ -4,16 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include "common/percentile.hpp"
 #include "orders/order.hpp"
 
 namespace fleet::monitor {
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double rank = std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size()));
-  return values[static_cast<std::size_t>(std::max(1.0, rank)) - 1];
-}
 
 OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, double now) {
   OrderStats stats;
@@ -52,7 +46,7 @@ OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, d
     double sum = 0.0;
     for (double d : durations) sum += d;
     stats.order_time_mean_s = sum / static_cast<double>(durations.size());
-    stats.order_time_p95_s = percentile(durations, 0.95);
+    stats.order_time_p95_s = common::percentile(durations, 0.95);
   }
   return stats;
 }

@@ -10,18 +10,15 @@ namespace fleet::monitor {
 
 /// Order counts of a run, from the server's OrderInfo records.
 struct OrderTally {
-  long created = 0;    ///< ids first..last: every id handed out in the run
+  long created = 0;  ///< ids first..last: every id handed out in the run
   long done = 0;
   long failed = 0;
   long cancelled = 0;
-  long open = 0;       ///< QUEUED, ASSIGNED or ACTIVE
-  long lost = 0;       ///< created but neither open nor ended: an id with no record, or a record gone bad
+  long open = 0;  ///< QUEUED, ASSIGNED or ACTIVE
+  long lost = 0;  ///< created but neither open nor ended: an id with no record, or a record gone bad
   std::int64_t first_id = 0;
   std::int64_t last_id = 0;
 };
-
-/// The q-quantile (0..1) of `values` by the nearest-rank method; 0 for none.
-double percentile(std::vector<double> values, double q);
 
 /// What `fleetctl stats` reports.
 struct OrderStats {

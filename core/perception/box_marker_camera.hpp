@@ -30,8 +30,8 @@ struct BoxSighting {
 };
 
 /// One Orbbec Astra on its boom [Picker thesis, section 3.1.1]: 0.6-8 m, 60° x 49.5°, 640 x 480 at 30 fps, on a
-/// pan-tilt unit at the top of a 1.5 m boom at the base's front. Experiment 1 [section 4.2.9.2.1] read markers
-/// with it to 6.5 m at 0.3 m/s and to about 3 m at 1.0 m/s.
+/// pan-tilt unit at the top of a 1.5 m boom at the base's front. Experiment 1 [Picker thesis, section 4.2.9.2.1] read
+/// markers with it to 6.5 m at 0.3 m/s and to about 3 m at 1.0 m/s.
 struct DepthMarkerCameraParams {
   double rate_hz = 30.0;
   Eigen::Vector3d mount{0.25, -0.20, 1.50};  ///< the pan-tilt unit on the right boom, base frame, m

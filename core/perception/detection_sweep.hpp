@@ -59,9 +59,9 @@ struct SweepResult {
 geometry::Pose2 pallet_ahead_of_camera(const DepthCameraModel& camera, double distance, double angle,
                                        double pallet_length = 1.2);
 
-/// Sweeps the distance with the pallet square to the camera (Tables 7.1 and 7.2, first rows).
+/// Sweeps the distance with the pallet square to the camera (Stacker thesis, Tables 7.1 and 7.2, first rows).
 SweepResult sweep_distance(const SweepSetup& setup, SweepAxis distances);
-/// Sweeps the pallet's angle at a fixed distance (Tables 7.1 and 7.2, other rows). The detector
+/// Sweeps the pallet's angle at a fixed distance (Stacker thesis, Tables 7.1 and 7.2, other rows). The detector
 /// expects the pallet square to the camera, as a logistics position would have it.
 SweepResult sweep_angle(const SweepSetup& setup, double distance, SweepAxis angles);
 

@@ -39,8 +39,8 @@ MarkerCameraParams MarkerCameraParams::axis_ptz() {
   p.range_min = 0.5;             // Experiment 1 began seeing the wall marker at 2.4 m only because of its tilt
   p.range_max = 10.5;            // "still able to detect the marker beyond the distance of 10 meters"
   p.max_view_angle = 1.2;
-  // Distance error: ~0 up to 4 m, < 30 cm to 5.5 m, ~1 m near 10 m (Fig. 4.7), read as 3 sigma. The curve
-  // drifts away from the truth smoothly rather than jittering, so most of it is systematic: per frame
+  // Distance error: ~0 up to 4 m, < 30 cm to 5.5 m, ~1 m near 10 m (Picker thesis, Fig. 4.7), read as 3 sigma. The
+  // curve drifts away from the truth smoothly rather than jittering, so most of it is systematic: per frame
   // 1 cm + 0.001 d^2, per marker k d^2 with k of 0.003 /m (1 sigma): together 10 cm at 5.5 m and 33 cm at 10 m.
   p.sigma_d = 0.01;
   p.sigma_d_rel = 0.0;
@@ -50,7 +50,7 @@ MarkerCameraParams MarkerCameraParams::axis_ptz() {
   p.sigma_alpha_bias = 0.005;  // the marker's placement on its pillar, about 1 cm at 2 m
   p.sigma_gamma = 0.05;        // a marker's orientation at range is poor; the filter does not use it
   p.miss_rate = 0.05;
-  p.miss_rate_per_speed = 0.25;  // detection "stops at some intervals" at 1.0 m/s (Fig. 4.8)
+  p.miss_rate_per_speed = 0.25;  // detection "stops at some intervals" at 1.0 m/s (Picker thesis, Fig. 4.8)
   return p;
 }
 
@@ -106,7 +106,7 @@ bool MarkerCamera::ideal_measurement(const Pose2& robot_truth, const Marker& mar
   if (d < params_.range_min || d > params_.range_max) return false;
   const double alpha = std::atan2(rel.y, rel.x);
   if (rel.x <= 0.0 || std::abs(alpha) > params_.half_fov) return false;
-  // Fig. 6.6: gamma is zero when the optical axis points straight into the printed face.
+  // [Forklift thesis, Fig. 6.6]: gamma is zero when the optical axis points straight into the printed face.
   const double gamma = angle_diff(marker.pose.yaw + std::numbers::pi, cam.yaw);
   if (std::abs(gamma) > params_.max_view_angle) return false;
   // A marker seen from behind its face cannot be decoded: the face normal must point at the camera.

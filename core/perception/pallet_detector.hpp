@@ -29,7 +29,8 @@ struct PalletFaceModel {
 /// accepted only inside the expected docking area].
 struct DockingArea {
   double depth_half = 0.30;    ///< along the face normal, metres
-  double lateral_half = 0.50;  ///< along the face, metres (logistics errs by up to 0.5 m [section 5.3.1])
+  double lateral_half = 0.50;  ///< along the face, metres (logistics errs by up to 0.5 m
+                               ///< [Stacker thesis, section 5.3.1])
   double yaw_half = 20.0 * std::numbers::pi / 180.0;  ///< rad
 };
 
@@ -38,7 +39,7 @@ struct PalletExpectation {
   /// Expected pallet footprint centre; yaw along the pallet's length. The detector looks at
   /// whichever 800 mm face turns towards the camera.
   geometry::Pose2 pallet;
-  double base_height = 0.0;  ///< height of what it stands on (0.30 m on the limiter [section 4.1.3])
+  double base_height = 0.0;  ///< height of what it stands on (0.30 m on the limiter [Stacker thesis, section 4.1.3])
   DockingArea area;
   /// When tracking, the last detected pallet pose: the region of interest is centred on it
   /// instead of on `pallet` [Stacker thesis, section 6.2.1]; the docking area stays on `pallet`.

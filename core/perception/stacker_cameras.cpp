@@ -5,10 +5,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/pose.hpp"
+
 namespace fleet::perception {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 }  // namespace
 
 sim::DepthCameraParams stacker_tof(const sim::TricycleGeometry& g) {

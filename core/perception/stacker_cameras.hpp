@@ -40,9 +40,9 @@ struct StackerDetectorParams {
 
 /// The camera-based pallet detector of one docking: each call at the detection rate renders the
 /// camera that faces the expected pallet (the RealSense when the pallet is behind, else the ToF
-/// panned towards it [Stacker thesis, section 6.3]) and searches the frame [sections 5.4, 6.2];
+/// panned towards it [Stacker thesis, section 6.3]) and searches the frame [Stacker thesis, sections 5.4, 6.2];
 /// in between it reports nothing. The region of interest follows the last detection while it is
-/// the pallet the law expects [section 6.2.1].
+/// the pallet the law expects [Stacker thesis, section 6.2.1].
 class StackerCameraDetector {
  public:
   StackerCameraDetector(const sim::TricycleGeometry& geometry, PalletRow row, const StackerDetectorParams& params,

@@ -36,7 +36,7 @@ struct LocalStep {
 ///
 /// The next stretch of the global plan is checked against the dynamic layer; on a predicted
 /// collision a temporary static obstacle goes into the static grid there and the road planner
-/// replans around it (or up to it, Fig. 5.11). A temporary obstacle is removed once its area has
+/// replans around it (or up to it, Forklift thesis, Fig. 5.11). A temporary obstacle is removed once its area has
 /// been seen free for `clear_cycles` cycles, and the plan is made again. Any change of the static
 /// grid (an operator's obstacle, too) triggers a replan.
 ///

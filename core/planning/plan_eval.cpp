@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/percentile.hpp"
 #include "map/road_graph_builder.hpp"
 #include "planning/grassfire_planner.hpp"
 #include "planning/grid_astar.hpp"
@@ -44,14 +45,6 @@ const PlannerStats* PlanEvalReport::find(const std::string& name) const {
     if (p.name == name) return &p;
   }
   return nullptr;
-}
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double rank = std::ceil(q * static_cast<double>(values.size()));
-  const std::size_t i = static_cast<std::size_t>(std::clamp(rank, 1.0, static_cast<double>(values.size()))) - 1;
-  return values[i];
 }
 
 PlanEvalReport run_plan_eval(const map::Site& site, const map::RoadGraph& graph, const PlanEvalConfiguration& c) {
@@ -174,9 +167,9 @@ PlanEvalReport run_plan_eval(const map::Site& site, const map::RoadGraph& graph,
       s.max_length_ratio = std::max(s.max_length_ratio, r);
     }
     s.success = static_cast<double>(s.successes) / s.queries;
-    s.median_ms = percentile(times, 0.5);
-    s.p95_ms = percentile(times, 0.95);
-    s.max_ms = percentile(times, 1.0);
+    s.median_ms = common::percentile(times, 0.5);
+    s.p95_ms = common::percentile(times, 0.95);
+    s.max_ms = common::percentile(times, 1.0);
     s.length_ratio = s.successes > 0 ? ratio_sum / s.successes : 0.0;
     report.planners.push_back(s);
   }

@@ -57,7 +57,4 @@ struct PlanEvalReport {
 PlanEvalReport run_plan_eval(const map::Site& site, const map::RoadGraph& graph,
                              const PlanEvalConfiguration& configuration);
 
-/// Nearest-rank percentile (q in [0, 1]) of `values`; 0 for none.
-double percentile(std::vector<double> values, double q);
-
 }  // namespace fleet::planning

@@ -291,7 +291,7 @@ RoadPlan RoadPlanner::plan_from(const std::vector<std::pair<int, double>>& start
   const double w_d = configuration_.w_d;
   const double w_h = configuration_.w_h;
   const double obs = configuration_.obstacle_cost;
-  // Euclidean heuristic (Fig. 5.7, 5.8), scaled by w_d so it never overestimates eq. 5.5.
+  // Euclidean heuristic (Forklift thesis, Fig. 5.7, 5.8), scaled by w_d so it never overestimates eq. 5.5.
   auto h = [&](int i) { return w_d * std::hypot(xs_[i] - gx, ys_[i] - gy); };
   auto touch = [&](int i) {
     if (stamp_[i] != query_) {

@@ -45,7 +45,7 @@ class RoadPlanner {
   /// other can be reached (what is left of a lane the vehicle does not fit, cut out of its
   /// graph, is no place to start or end a route).
   enum class PointUse { kAny, kRoute };
-  /// Graph point nearest `p` by Euclidean distance (Fig. 5.6); -1 when there is none.
+  /// Graph point nearest `p` by Euclidean distance (Forklift thesis, Fig. 5.6); -1 when there is none.
   int nearest_point(geometry::Vec2 p, PointUse use = PointUse::kAny) const;
   /// The nearest route point (kRoute) with an edge leaving it within `tolerance` of `heading` or
   /// of its opposite: a point on a lane along that axis, not on a junction's connecting road
@@ -54,7 +54,7 @@ class RoadPlanner {
 
   /// Start and goal states are the graph points nearest the poses; the start's cost-to-come is
   /// its distance from the start pose. When the cheapest route crosses a blocked point, the plan
-  /// ends at the last free point before it and the status is kBlockedPartial (Fig. 5.11).
+  /// ends at the last free point before it and the status is kBlockedPartial (Forklift thesis, Fig. 5.11).
   RoadPlan plan(const geometry::Pose2& start, const geometry::Pose2& goal, const PlanOptions& options = {});
   /// The same between graph points, with C(x_S) = `start_cost`.
   RoadPlan plan_between(int start_point, int goal_point, double start_cost, const PlanOptions& options = {});

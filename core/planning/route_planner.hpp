@@ -40,7 +40,7 @@ std::vector<geometry::Pose2> poses_along(const std::vector<geometry::Vec2>& poin
 /// Road A* between the graph points nearest the poses, with grid legs where a pose lies off the
 /// graph: from the road's end to a loading area and back (after [Forklift thesis, Fig. 5.1]).
 /// The grid planner must hold the static grid (inflated). When the road plan is blocked
-/// (Fig. 5.11) the route ends at the last free road point and no goal leg is planned.
+/// (Forklift thesis, Fig. 5.11) the route ends at the last free road point and no goal leg is planned.
 class RoutePlanner {
  public:
   RoutePlanner(RoadPlanner& road, GridPlanner& grid, const RoutePlannerConfiguration& configuration = {});

@@ -30,12 +30,12 @@ StaticGrid::StaticGrid(const StaticGridConfiguration& configuration, const map::
   if (configuration.obstacle_inflation < 0.0)
     throw std::invalid_argument("static grid: obstacle_inflation must be >= 0");
   // "Setting the values of map points with a square of side equal to road width" [Forklift thesis,
-  // section 5.3]; the points are close enough that the squares join into roads (Fig. 5.9a).
+  // section 5.3]; the points are close enough that the squares join into roads (Forklift thesis, Fig. 5.9a).
   const double h = road_width_ / 2.0;
   for (const auto& p : graph.points) {
     map_layer_.fill_polygon({{p.x - h, p.y - h}, {p.x + h, p.y - h}, {p.x + h, p.y + h}, {p.x - h, p.y + h}}, false);
   }
-  // Loading areas sit beside the roads (Fig. 5.1): free a square on the area and a corridor to the
+  // Loading areas sit beside the roads (Forklift thesis, Fig. 5.1): free a square on the area and a corridor to the
   // nearest graph point, so the grid planner can leave the road to pick or drop.
   const double w = configuration.loading_area_width > 0.0 ? configuration.loading_area_width : road_width_;
   // Homes are parking places beside the roads as well: free them the same way.

@@ -45,7 +45,7 @@ class StaticGrid {
   /// Map layer + obstacles without the temporaries: what local planning checks against, so a
   /// temporary obstacle never keeps itself alive.
   const OccupancyGrid& permanent_grid();
-  /// The road and loading-area layer alone (Fig. 5.9a).
+  /// The road and loading-area layer alone (Forklift thesis, Fig. 5.9a).
   const OccupancyGrid& map_layer() const { return map_layer_; }
 
   /// Grows by one on every change of the obstacles.

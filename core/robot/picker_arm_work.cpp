@@ -12,7 +12,7 @@ arm::Box box_of(const map::BoxStock& stock) {
 namespace {
 
 /// Locating a box: the camera's frames until it reads the marker, at most `limit` s. The thesis's
-/// localization scans take about 5 s per camera rotation and 5 s to extract [section 5.3.3.1.3].
+/// localization scans take about 5 s per camera rotation and 5 s to extract [Picker thesis, section 5.3.3.1.3].
 bool locate(perception::DepthMarkerCamera& camera, const perception::BoxMarker& marker, double& t, double limit,
             perception::BoxSighting& seen) {
   camera.look_at(marker.top_centre);
@@ -46,7 +46,7 @@ perception::BoxMarker PickerArmWork::marker_at(const map::BoxStock& stock, int k
 
 std::vector<Eigen::Vector2d> PickerArmWork::base_moves(double box_x) const {
   // Where it stands first; then the box slid in front of the arm; then that and a step away from
-  // the pallet, for a box too low to reach close by (the elbow keeps 60 degrees [Table 10]).
+  // the pallet, for a box too low to reach close by (the elbow keeps 60 degrees [Picker thesis, Table 10]).
   std::vector<Eigen::Vector2d> moves{{0.0, 0.0}};
   for (double away : {0.0, 0.05, 0.10}) {
     if (std::abs(box_x) > 1e-9 || away > 0.0) moves.push_back({box_x, away});
@@ -62,7 +62,7 @@ std::string PickerArmWork::tray_refusal(int quantity, const std::vector<map::Box
 
 bool PickerArmWork::pick_box(const map::BoxStock& stock, const perception::BoxMarker& truth,
                              std::vector<map::BoxStock>& tray, double& t, ArmWork& work) {
-  constexpr double kLocateLimit = 10.0;  // s: one scan and one extraction [section 5.3.3.1.3]
+  constexpr double kLocateLimit = 10.0;  // s: one scan and one extraction [Picker thesis, section 5.3.3.1.3]
   const std::string which = "box " + std::to_string(work.boxes + 1) + " of " + stock.item;
   arm::MotionPlan picked;
   picked.reason = "its marker was not read within " + std::to_string(static_cast<int>(kLocateLimit)) + " s";

@@ -6,13 +6,15 @@
 #include <numbers>
 #include <utility>
 
+#include "geometry/pose.hpp"
+
 namespace fleet::sim {
 
 using perception::Vec3;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 Box3 make_box(double x0, double x1, double y0, double y1, double z0, double z1) {
   return {{x0, y0, z0}, {x1, y1, z1}};

@@ -9,7 +9,7 @@ ForkliftParams summit_xls_body_params() {
   p.mecanum.wheel_radius = 0.127;
   p.mecanum.half_wheelbase = 0.195;
   p.mecanum.half_track = 0.20;
-  p.mecanum.max_wheel_speed = SummitXlsSpeeds::kTop / p.mecanum.wheel_radius;  // 3 m/s [section 3.1.1]
+  p.mecanum.max_wheel_speed = SummitXlsSpeeds::kTop / p.mecanum.wheel_radius;  // 3 m/s [Picker thesis, section 3.1.1]
   p.footprint = {0.65, 0.50};
   p.wheel_time_constant = 0.075;  // Fig. 4.27's ~0.3 s step response, see the header
   return p;

@@ -18,7 +18,7 @@ struct Timestamps {
 };
 
 // Simulates the SDS-TWR message sequence of [Forklift thesis, Fig. 2.4] in true time, then reads each
-// interval with the measuring device's clock. TWR (Fig. 2.3) is its first half.
+// interval with the measuring device's clock. TWR (Forklift thesis, Fig. 2.3) is its first half.
 Timestamps exchange(const RangingExchange& ex, const TimestampNoise& noise, std::mt19937_64& rng) {
   double j_a_resp = 0.0;   // jitter of A's reception of B's response
   double j_b_poll = 0.0;   // jitter of B's reception of A's poll

@@ -11,7 +11,7 @@ using E = PickerNavigationEvent;
 using T = PickerNavigationTransition;
 
 // [Picker thesis, section 5.3.3.1.3, Fig. 5.13]. The figure's arcs are not in the text; each row
-// follows the transition's label and the simulation's walk (Figs. 5.14-5.18).
+// follows the transition's label and the simulation's walk (Picker thesis, Figs. 5.14-5.18).
 constexpr std::array kTable{
     T{S::kStart, E::kStartOk, S::kWaitForJob, 1},
     T{S::kWaitForJob, E::kDisable, S::kStart, 2},
@@ -52,7 +52,7 @@ constexpr std::array kTable{
     T{S::kDrop, E::kArmAsksMoveForDrop, S::kMoveForDrop, 29},
     T{S::kDrop, E::kArmFailed, S::kFailed, 0},
     // T32 leads to Hough navigation in the simulation, but the real run dealigns after the pick
-    // (section 5.3.3.2): the robot leaves the pallet before it drives on.
+    // (Picker thesis, section 5.3.3.2): the robot leaves the pallet before it drives on.
     T{S::kPick, E::kItemPicked, S::kDealign, 32},
     T{S::kPick, E::kItemNotPicked, S::kLocalize, 33},
     T{S::kPick, E::kArmAsksMoveForPick, S::kMoveForPick, 34},

@@ -45,7 +45,7 @@ RobotType stacker() {
   p.load = {"pallet", 2000.0, 1.6};
   p.actions = t.possible_actions;
   // Target 1 of the docking lies 1.8 m out from the pallet's centre and the pivot swings the
-  // chassis front 1.6 m from the rear axle: the thesis's 2.98 m corridor [section 4.1.2] is room
+  // chassis front 1.6 m from the rear axle: the thesis's 2.98 m corridor [Stacker thesis, section 4.1.2] is room
   // enough, a single lane is not.
   t.handling_road_width = 2.9;
   return t;
@@ -63,10 +63,11 @@ RobotType picker() {
   VehicleProfile& p = t.defaults;
   p.footprint = rectangle(0.65, 0.50);  // Robotnik Summit-XLS [Picker thesis, section 3.1.1]
   p.kinematics = Kinematics::kOmni;
-  p.max_speed = 1.0;  // the fastest the thesis tested markers and the controller at [sections 4.2.9, 4.3.2]
+  p.max_speed = 1.0;  // the fastest the thesis tested markers and the controller at
+                      // [Picker thesis, sections 4.2.9, 4.3.2]
   p.max_acceleration = 0.5;
   p.max_yaw_rate = 1.0;
-  // Boxes of at most 5 kg [sections 3.2-3.3]; the UR5's base stands 0.80 m above the floor and reaches
+  // Boxes of at most 5 kg [Picker thesis, sections 3.2-3.3]; the UR5's base stands 0.80 m above the floor and reaches
   // about 0.85 m, so boxes up to about 1.5 m.
   p.load = {"box", 5.0, 1.5};
   p.actions = t.possible_actions;

@@ -11,6 +11,7 @@
 
 #include "aisle/hough_lines.hpp"
 #include "eval/aisle_eval.hpp"
+#include "geometry/pose.hpp"
 #include "sim/forklift_body.hpp"
 
 using namespace fleet::aisle;
@@ -20,7 +21,7 @@ using fleet::sim::BodyTwist;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using ::fleet::geometry::kDeg;
 constexpr double kPeriod = 1.0 / 40.0;  // one control step per UST-10LX scan (40 Hz) [Picker thesis, Table 6]
 
 /// A pair of rack lines as the detector would report it, parallel to the body x axis turned by `heading`.

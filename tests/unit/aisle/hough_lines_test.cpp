@@ -12,6 +12,7 @@
 
 #include "aisle/rack_aisle_sim.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/pose.hpp"
 
 using namespace fleet::aisle;
 using fleet::geometry::Polygon;
@@ -21,7 +22,7 @@ using fleet::geometry::Vec2;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using ::fleet::geometry::kDeg;
 
 /// `n` points evenly along the segment a-b.
 void add_segment(std::vector<Vec2>& points, Vec2 a, Vec2 b, int n) {

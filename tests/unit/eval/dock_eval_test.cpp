@@ -8,12 +8,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/pose.hpp"
 #include "sim/tricycle.hpp"
 
 namespace fleet::eval {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 TEST(DockEval, TheMatrixIsTheThesisSixStartsByNinePalletErrors) {
   const auto starts = dock_starts();

@@ -9,6 +9,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "geometry/pose.hpp"
 #include "localization/marker_localizer.hpp"
 #include "sim/summit_xls.hpp"
 
@@ -50,7 +51,7 @@ double heading_error_standing(localization::MarkerLocalizerParams params, double
   return worst;
 }
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 TEST(MarkerLocalizer, AStandingPickerKeepsItsHeadingOnTwoMarkers) {
   // Ten minutes waiting for traffic in the aisle, a gyro bias three times the typical residual. The two

@@ -17,6 +17,7 @@
 
 #include "common/errors.hpp"
 #include "config/fleet_config.hpp"
+#include "geometry/pose.hpp"
 #include "map/site_map.hpp"
 #include "orders/pick_lines.hpp"
 #include "test_paths.hpp"
@@ -24,7 +25,7 @@
 namespace fleet::eval {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 PickEvalParams plant_params() {
   PickEvalParams p;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "geometry/pose.hpp"
 #include "sim/imu.hpp"
 
 using namespace fleet::localization;
@@ -18,7 +19,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 StateVector some_state(double theta) {
   StateVector x;

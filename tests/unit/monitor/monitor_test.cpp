@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/percentile.hpp"
 #include "monitor/aisle_share.hpp"
 #include "monitor/collision_monitor.hpp"
 #include "monitor/localization_watch.hpp"
@@ -205,11 +206,19 @@ TEST(OrderStats, CountsRatesTimesAndUtilisation) {
   EXPECT_DOUBLE_EQ(s.utilisation.at("fl2"), 50.0 / 200.0);
 }
 
-TEST(OrderStats, PercentileByNearestRank) {
-  EXPECT_DOUBLE_EQ(percentile({}, 0.5), 0.0);
-  EXPECT_DOUBLE_EQ(percentile({3, 1, 2}, 0.5), 2.0);
-  EXPECT_DOUBLE_EQ(percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.95), 10.0);
-  EXPECT_DOUBLE_EQ(percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.0), 1.0);
+// The one percentile every printed median, p95 and p99 is: nearest rank, never interpolated.
+TEST(Percentile, IsTheValueOfNearestRankNeverInterpolated) {
+  EXPECT_DOUBLE_EQ(common::percentile({}, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(common::percentile({3, 1, 2}, 0.5), 2.0);
+  EXPECT_DOUBLE_EQ(common::percentile({4, 1, 3, 2}, 0.5), 2.0);  // the lower middle of an even count
+  EXPECT_DOUBLE_EQ(common::percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.95), 10.0);
+  EXPECT_DOUBLE_EQ(common::percentile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.0), 1.0);
+  std::vector<double> hundred;
+  for (int i = 100; i >= 1; --i) hundred.push_back(i);
+  EXPECT_DOUBLE_EQ(common::percentile(hundred, 0.95), 95.0);
+  EXPECT_DOUBLE_EQ(common::percentile(hundred, 0.99), 99.0);
+  EXPECT_DOUBLE_EQ(common::percentile(hundred, 1.0), 100.0);
+  EXPECT_DOUBLE_EQ(common::percentile(hundred, 1.5), 100.0);  // q is clamped to 0..1
 }
 
 TEST(TrackRecorder, KeepsTheWindowAtItsRateAndWritesItFromTheRunStart) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/pose.hpp"
+
 using fleet::geometry::Pose2;
 using fleet::perception::DepthCameraModel;
 using fleet::perception::DepthImage;
@@ -14,7 +16,7 @@ using namespace fleet::sim;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 // A level camera with a narrow view, its optical centre `height` above the floor at the body
 // origin, looking along +x.

@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include "geometry/pose.hpp"
 #include "pallet_scene.hpp"
 #include "sim/depth_camera.hpp"
 
@@ -13,7 +14,7 @@ using perception::SweepResult;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 perception::SweepSetup setup_for(sim::DepthCamera& camera) {
   perception::SweepSetup setup;

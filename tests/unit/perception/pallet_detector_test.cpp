@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/pose.hpp"
 #include "pallet_scene.hpp"
 #include "sim/depth_camera.hpp"
 
@@ -17,7 +18,7 @@ using namespace fleet;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using ::fleet::geometry::kDeg;
 
 // The truth the detector should report for a pallet: the face midpoint towards `camera_xy` and
 // the yaw out of that face.

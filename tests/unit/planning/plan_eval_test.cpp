@@ -17,16 +17,6 @@ map::SiteMap load(const std::string& name) {
   return map::load_site_map_unchecked(map::site_path(fleet::test::source_dir() + "/maps", name));
 }
 
-TEST(PlanEval, Percentile) {
-  EXPECT_EQ(percentile({}, 0.5), 0.0);
-  EXPECT_EQ(percentile({3.0, 1.0, 2.0}, 0.5), 2.0);
-  std::vector<double> v;
-  for (int i = 1; i <= 100; ++i) v.push_back(i);
-  EXPECT_EQ(percentile(v, 0.95), 95.0);
-  EXPECT_EQ(percentile(v, 1.0), 100.0);
-  EXPECT_EQ(percentile(v, 0.0), 1.0);
-}
-
 TEST(PlanEval, TableARoadAStarAlwaysSucceeds) {
   const map::SiteMap s = load("table_a");
   PlanEvalConfiguration c;

@@ -12,6 +12,7 @@
 
 #include "control/docking_run.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/pose.hpp"
 #include "sim/tricycle.hpp"
 
 using namespace fleet::control;
@@ -20,7 +21,7 @@ using fleet::geometry::Pose2;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+using ::fleet::geometry::kDeg;
 
 // Corridor frame: x along the 2.98 m finished-goods corridor [Stacker thesis, section 4.1.2], y across it; the
 // limiter with the pallet faces on y = 0, the corridor between y = 0 and y = 2.98. The target pallet's centre is
