@@ -1,6 +1,7 @@
 // The web API's calls that change something: orders, obstacles, maps, robots, automatic
-// orders. Each needs the token, checks its input as fleetctl does (one check, in core/orders for
-// orders) and hands the request to the server loop through the bridge.
+// orders.
+
+#include "server/web_api.hpp"
 
 #include <httplib.h>
 #include <unistd.h>
@@ -13,17 +14,17 @@
 #include "orders/order_request_check.hpp"
 #include "orders/pick_lines.hpp"
 #include "server/web_http.hpp"
-#include "server/web_server.hpp"
 
 namespace fleet::server {
 
+using httplib::Request;
+using httplib::Response;
 using nlohmann::json;
 
-void WebServer::api_routes() {
-  using httplib::Request;
-  using httplib::Response;
-  httplib::Server& http = *http_;
+WebApi::WebApi(const WebOptions& options, WebBridge& bridge, const WebSiteInfo& site, Logger log)
+    : options_(options), bridge_(bridge), site_(site), log_(std::move(log)) {}
 
+void WebApi::install(httplib::Server& http) {
   // A POST or DELETE that announces no body (curl -X POST without -d) would keep cpp-httplib
   // reading until the client hangs up. Such a request is routed here, before any body is read,
   // and answered as if its body were empty: at once, with the handler's own answer.
@@ -33,8 +34,9 @@ void WebServer::api_routes() {
     httplib::Server::Handler handler;
   };
   auto without_body = std::make_shared<std::vector<RouteWithoutBody>>();
-  auto route = [&http, without_body](const std::string& method, const std::string& pattern,
-                                     httplib::Server::Handler handler) {
+  auto route = [&http, without_body, this](const std::string& method, const std::string& pattern,
+                                           void (WebApi::*call)(const Request&, Response&)) {
+    httplib::Server::Handler handler = [this, call](const Request& req, Response& res) { (this->*call)(req, res); };
     if (method == "POST") {
       http.Post(pattern, handler);
     } else {
@@ -56,208 +58,214 @@ void WebServer::api_routes() {
     send_error(res, 404, "", "no such resource");
     return httplib::Server::HandlerResponse::Handled;
   });
+  route("POST", "/api/orders", &WebApi::add_order);
+  route("DELETE", R"(/api/orders/([^/]+))", &WebApi::cancel_order);
+  route("POST", R"(/api/obstacles/([^/]+))", &WebApi::switch_obstacle);
+  route("POST", "/api/map", &WebApi::switch_map);
+  route("POST", R"(/api/robots/([^/]+)/(pause|resume))", &WebApi::pause_or_resume);
+  route("POST", "/api/auto-orders", &WebApi::switch_auto_orders);
+}
 
-  // ---- changing: every call needs the token ----
-  auto authorized = [this](const Request& req, Response& res) {
-    std::string given;
-    const std::string header = req.get_header_value("Authorization");
-    if (header.rfind("Bearer ", 0) == 0) {
-      given = header.substr(7);
-    } else if (req.has_param("token")) {
-      given = req.get_param_value("token");
+bool WebApi::authorized(const Request& req, Response& res) const {
+  std::string given;
+  const std::string header = req.get_header_value("Authorization");
+  if (header.rfind("Bearer ", 0) == 0) {
+    given = header.substr(7);
+  } else if (req.has_param("token")) {
+    given = req.get_param_value("token");
+  }
+  if (given.empty()) {
+    res.set_header("WWW-Authenticate", "Bearer");
+    send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
+    return false;
+  }
+  if (!same_token(given, options_.token)) {
+    send_error(res, 403, "token", "wrong token");
+    return false;
+  }
+  return true;
+}
+
+WebApi::Reply WebApi::ask(WebRequest request, Response& res) {
+  // A request that times out stays queued and may still be carried out; the 503 says only that
+  // no answer came in time.
+  auto reply = bridge_.submit(std::move(request));
+  if (reply.wait_for(std::chrono::duration<double>(options_.reply_timeout_s)) != std::future_status::ready) {
+    send_error(
+        res, 503, "",
+        "the server loop did not answer within " + std::to_string(static_cast<int>(options_.reply_timeout_s)) + " s");
+    return std::nullopt;
+  }
+  return reply.get();
+}
+
+std::string WebApi::next_request_id() {
+  return "web-" + std::to_string(::getpid()) + "-" + std::to_string(++request_counter_);
+}
+
+std::vector<std::string> WebApi::robot_ids() const {
+  std::vector<std::string> ids;
+  for (const auto& [fleet, robot] : site_.config->all_robots()) ids.push_back(robot->id);
+  return ids;
+}
+
+WebApi::Reply WebApi::command(Response& res, std::string verb, std::string target, std::string value) {
+  model::Command c;
+  c.request_id = next_request_id();
+  c.verb = std::move(verb);
+  c.target = std::move(target);
+  c.value = std::move(value);
+  log_->info("web: {} {} {} ({})", c.verb, c.target, c.value, c.request_id);
+  return ask(c, res);
+}
+
+void WebApi::done(Response& res, const model::RequestReply& reply, json extra) {
+  extra["accepted"] = true;
+  extra["request_id"] = reply.request_id;
+  send_json(res, 200, extra);
+}
+
+void WebApi::add_order(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const auto body = body_object(req, res);
+  if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority", "lines"}, res)) return;
+  const auto kind = string_field(*body, "kind", false, res);
+  if (!kind) return;
+  const auto lines = string_field(*body, "lines", false, res);
+  if (!lines) return;
+  if (!lines->empty() && *kind != "pick") return send_error(res, 400, "lines", "lines are for kind pick");
+  // A move has no pick area; a pick list names its places in its lines.
+  auto from = string_field(*body, "from", *kind != "move" && lines->empty(), res);
+  if (!from) return;
+  std::vector<orders::PickLine> pick_lines;
+  if (!lines->empty()) {
+    try {
+      pick_lines = orders::parse_pick_lines(*lines, "lines");
+    } catch (const InputError& e) {
+      return send_error(res, 400, "lines", e.what());
     }
-    if (given.empty()) {
-      res.set_header("WWW-Authenticate", "Bearer");
-      send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
-      return false;
-    }
-    if (!same_token(given, options_.token)) {
-      send_error(res, 403, "token", "wrong token");
-      return false;
-    }
-    return true;
-  };
-  // Hands a request to the server loop and waits for its answer (the same execute() as fleetctl's
-  // requests over DDS). A request that times out stays queued and may still be carried out; the
-  // 503 says only that no answer came in time.
-  auto ask = [this](WebRequest request, Response& res) -> std::optional<model::RequestReply> {
-    auto reply = bridge_.submit(std::move(request));
-    if (reply.wait_for(std::chrono::duration<double>(options_.reply_timeout_s)) != std::future_status::ready) {
-      send_error(
-          res, 503, "",
-          "the server loop did not answer within " + std::to_string(static_cast<int>(options_.reply_timeout_s)) + " s");
-      return std::nullopt;
-    }
-    return reply.get();
-  };
-  auto next_request_id = [this] {
-    return "web-" + std::to_string(::getpid()) + "-" + std::to_string(++request_counter_);
-  };
-  auto robot_ids = [this] {
+    *from = pick_lines.front().place;
+  }
+  const auto to = string_field(*body, "to", true, res);
+  if (!to) return;
+  const auto robot = string_field(*body, "robot", false, res);
+  if (!robot) return;
+  const auto fleet = string_field(*body, "fleet", false, res);
+  if (!fleet) return;
+  long priority = 0;
+  if (const auto it = body->find("priority"); it != body->end()) {
+    if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
+    priority = it->get<long>();
+  }
+  const orders::KnownNames names = orders::known_names(*site_.config, site_.site_map->site);
+  if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, names)) {
+    return send_error(res, 400, problem->field, problem->message);
+  }
+  if (const auto why = pick_lines.empty()
+                           ? std::nullopt
+                           : orders::check_pick_lines(pick_lines, site_.site_map->site.area_ids(),
+                                                      orders::declared_boxes(site_.site_map->site),
+                                                      orders::max_pickable_mass(*site_.config), "lines")) {
+    return send_error(res, 400, "lines", *why);
+  }
+  model::OrderRequest request;
+  request.lines = *lines;
+  request.request_id = next_request_id();
+  request.kind = *kind;
+  request.pick_area = *from;
+  request.drop_area = *to;
+  request.robot_id = *robot;
+  request.fleet_id = *fleet;
+  request.priority = static_cast<int>(priority);
+  const auto reply = ask(request, res);
+  if (!reply) return;
+  if (!reply->accepted) {
+    log_->info("web: order {} -> {} refused: {}", *from, *to, reply->error);
+    return send_error(res, 409, "", reply->error);
+  }
+  log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
+  nlohmann::json ids = nlohmann::json::array();
+  for (int k = 0; k < std::max(1, reply->order_count); ++k) ids.push_back(reply->order_id + k);
+  send_json(res, 201,
+            {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}, {"order_ids", ids}});
+}
+
+void WebApi::cancel_order(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const std::string id = req.matches[1];
+  if (id.empty() || id.size() > 18 || !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return send_error(res, 400, "id", "order id '" + id + "' is not a number");
+  }
+  const auto reply = command(res, "cancel-order", id, "");
+  if (!reply) return;
+  if (!reply->accepted)
+    return send_error(res, reply->error.rfind("unknown order", 0) == 0 ? 404 : 409, "", reply->error);
+  done(res, *reply, {{"order_id", std::stoll(id)}, {"state", "CANCELLED"}});
+}
+
+void WebApi::switch_obstacle(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const std::string id = req.matches[1];
+  const map::Site& site = site_.site_map->site;
+  if (!site.find_obstacle(id)) {
     std::vector<std::string> ids;
-    for (const auto& [fleet, robot] : site_.config->all_robots()) ids.push_back(robot->id);
-    return ids;
-  };
-  auto command = [this, ask, next_request_id](Response& res, std::string verb, std::string target,
-                                              std::string value) -> std::optional<model::RequestReply> {
-    model::Command c;
-    c.request_id = next_request_id();
-    c.verb = std::move(verb);
-    c.target = std::move(target);
-    c.value = std::move(value);
-    log_->info("web: {} {} {} ({})", c.verb, c.target, c.value, c.request_id);
-    return ask(c, res);
-  };
-  auto ok = [](Response& res, const model::RequestReply& reply, json extra = json::object()) {
-    extra["accepted"] = true;
-    extra["request_id"] = reply.request_id;
-    send_json(res, 200, extra);
-  };
+    for (const auto& o : site.static_obstacles) ids.push_back(o.id);
+    return send_error(res, 404, "id", model::unknown_name_message("obstacle", id, ids));
+  }
+  const auto body = body_object(req, res);
+  if (!body || !only_fields(*body, {"enabled"}, res)) return;
+  const auto enabled = bool_field(*body, "enabled", res);
+  if (!enabled) return;
+  const auto reply = command(res, "obstacle", id, *enabled ? "on" : "off");
+  if (!reply) return;
+  if (!reply->accepted) return send_error(res, 409, "", reply->error);
+  done(res, *reply, {{"obstacle", id}, {"enabled", *enabled}});
+}
 
-  route("POST", "/api/orders", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority", "lines"}, res)) return;
-    const auto kind = string_field(*body, "kind", false, res);
-    if (!kind) return;
-    const auto lines = string_field(*body, "lines", false, res);
-    if (!lines) return;
-    if (!lines->empty() && *kind != "pick") return send_error(res, 400, "lines", "lines are for kind pick");
-    // A move has no pick area; a pick list names its places in its lines.
-    auto from = string_field(*body, "from", *kind != "move" && lines->empty(), res);
-    if (!from) return;
-    std::vector<orders::PickLine> pick_lines;
-    if (!lines->empty()) {
-      try {
-        pick_lines = orders::parse_pick_lines(*lines, "lines");
-      } catch (const InputError& e) {
-        return send_error(res, 400, "lines", e.what());
-      }
-      *from = pick_lines.front().place;
-    }
-    const auto to = string_field(*body, "to", true, res);
-    if (!to) return;
-    const auto robot = string_field(*body, "robot", false, res);
-    if (!robot) return;
-    const auto fleet = string_field(*body, "fleet", false, res);
-    if (!fleet) return;
-    long priority = 0;
-    if (const auto it = body->find("priority"); it != body->end()) {
-      if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
-      priority = it->get<long>();
-    }
-    const orders::KnownNames names = orders::known_names(*site_.config, site_.site_map->site);
-    if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, names)) {
-      return send_error(res, 400, problem->field, problem->message);
-    }
-    if (const auto why = pick_lines.empty()
-                             ? std::nullopt
-                             : orders::check_pick_lines(pick_lines, site_.site_map->site.area_ids(),
-                                                        orders::declared_boxes(site_.site_map->site),
-                                                        orders::max_pickable_mass(*site_.config), "lines")) {
-      return send_error(res, 400, "lines", *why);
-    }
-    model::OrderRequest request;
-    request.lines = *lines;
-    request.request_id = next_request_id();
-    request.kind = *kind;
-    request.pick_area = *from;
-    request.drop_area = *to;
-    request.robot_id = *robot;
-    request.fleet_id = *fleet;
-    request.priority = static_cast<int>(priority);
-    const auto reply = ask(request, res);
-    if (!reply) return;
-    if (!reply->accepted) {
-      log_->info("web: order {} -> {} refused: {}", *from, *to, reply->error);
-      return send_error(res, 409, "", reply->error);
-    }
-    log_->info("web: order {} created: {} -> {}", reply->order_id, *from, *to);
-    nlohmann::json ids = nlohmann::json::array();
-    for (int k = 0; k < std::max(1, reply->order_count); ++k) ids.push_back(reply->order_id + k);
-    send_json(
-        res, 201,
-        {{"accepted", true}, {"request_id", reply->request_id}, {"order_id", reply->order_id}, {"order_ids", ids}});
-  });
+void WebApi::switch_map(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const auto body = body_object(req, res);
+  if (!body || !only_fields(*body, {"map", "robot"}, res)) return;
+  const auto map_id = string_field(*body, "map", true, res);
+  if (!map_id) return;
+  const auto robot = string_field(*body, "robot", false, res);
+  if (!robot) return;
+  if (std::find(site_.maps.begin(), site_.maps.end(), *map_id) == site_.maps.end()) {
+    return send_error(res, 400, "map", model::unknown_name_message("map", *map_id, site_.maps));
+  }
+  if (!robot->empty() && !site_.config->find_robot(*robot)) {
+    return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
+  }
+  // Empty target: every robot.
+  const auto reply = command(res, "map", *robot, *map_id);
+  if (!reply) return;
+  if (!reply->accepted) return send_error(res, 409, "", reply->error);
+  done(res, *reply, {{"map", *map_id}, {"robot", *robot}});
+}
 
-  route("DELETE", R"(/api/orders/([^/]+))", [=](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    if (id.empty() || id.size() > 18 ||
-        !std::all_of(id.begin(), id.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      return send_error(res, 400, "id", "order id '" + id + "' is not a number");
-    }
-    const auto reply = command(res, "cancel-order", id, "");
-    if (!reply) return;
-    if (!reply->accepted)
-      return send_error(res, reply->error.rfind("unknown order", 0) == 0 ? 404 : 409, "", reply->error);
-    ok(res, *reply, {{"order_id", std::stoll(id)}, {"state", "CANCELLED"}});
-  });
+void WebApi::pause_or_resume(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const std::string id = req.matches[1];
+  const std::string verb = req.matches[2];
+  if (!site_.config->find_robot(id)) {
+    return send_error(res, 404, "id", model::unknown_name_message("robot", id, robot_ids()));
+  }
+  const auto reply = command(res, verb, id, "");
+  if (!reply) return;
+  if (!reply->accepted) return send_error(res, 409, "", reply->error);
+  done(res, *reply, {{"robot", id}, {"paused", verb == "pause"}});
+}
 
-  route("POST", R"(/api/obstacles/([^/]+))", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    const map::Site& site = site_.site_map->site;
-    if (!site.find_obstacle(id)) {
-      std::vector<std::string> ids;
-      for (const auto& o : site.static_obstacles) ids.push_back(o.id);
-      return send_error(res, 404, "id", model::unknown_name_message("obstacle", id, ids));
-    }
-    const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"enabled"}, res)) return;
-    const auto enabled = bool_field(*body, "enabled", res);
-    if (!enabled) return;
-    const auto reply = command(res, "obstacle", id, *enabled ? "on" : "off");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"obstacle", id}, {"enabled", *enabled}});
-  });
-
-  route("POST", "/api/map", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"map", "robot"}, res)) return;
-    const auto map_id = string_field(*body, "map", true, res);
-    if (!map_id) return;
-    const auto robot = string_field(*body, "robot", false, res);
-    if (!robot) return;
-    if (std::find(site_.maps.begin(), site_.maps.end(), *map_id) == site_.maps.end()) {
-      return send_error(res, 400, "map", model::unknown_name_message("map", *map_id, site_.maps));
-    }
-    if (!robot->empty() && !site_.config->find_robot(*robot)) {
-      return send_error(res, 400, "robot", model::unknown_name_message("robot", *robot, robot_ids()));
-    }
-    // Empty target: every robot.
-    const auto reply = command(res, "map", *robot, *map_id);
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"map", *map_id}, {"robot", *robot}});
-  });
-
-  route("POST", R"(/api/robots/([^/]+)/(pause|resume))", [=, this](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const std::string id = req.matches[1];
-    const std::string verb = req.matches[2];
-    if (!site_.config->find_robot(id)) {
-      return send_error(res, 404, "id", model::unknown_name_message("robot", id, robot_ids()));
-    }
-    const auto reply = command(res, verb, id, "");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"robot", id}, {"paused", verb == "pause"}});
-  });
-
-  route("POST", "/api/auto-orders", [=](const Request& req, Response& res) {
-    if (!authorized(req, res)) return;
-    const auto body = body_object(req, res);
-    if (!body || !only_fields(*body, {"enabled"}, res)) return;
-    const auto enabled = bool_field(*body, "enabled", res);
-    if (!enabled) return;
-    const auto reply = command(res, "auto-orders", "", *enabled ? "on" : "off");
-    if (!reply) return;
-    if (!reply->accepted) return send_error(res, 409, "", reply->error);
-    ok(res, *reply, {{"auto_orders", *enabled}});
-  });
+void WebApi::switch_auto_orders(const Request& req, Response& res) {
+  if (!authorized(req, res)) return;
+  const auto body = body_object(req, res);
+  if (!body || !only_fields(*body, {"enabled"}, res)) return;
+  const auto enabled = bool_field(*body, "enabled", res);
+  if (!enabled) return;
+  const auto reply = command(res, "auto-orders", "", *enabled ? "on" : "off");
+  if (!reply) return;
+  if (!reply->accepted) return send_error(res, 409, "", reply->error);
+  done(res, *reply, {{"auto_orders", *enabled}});
 }
 
 }  // namespace fleet::server

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "model/names.hpp"
+#include "server/web_api.hpp"
 #include "server/web_http.hpp"
 #include "server/web_json.hpp"
 
@@ -538,7 +539,8 @@ void WebServer::routes() {
         [this](bool) { --stream_clients_; });
   });
 
-  api_routes();
+  api_ = std::make_unique<WebApi>(options_, bridge_, site_, log_);
+  api_->install(*http_);
 }
 
 }  // namespace fleet::server

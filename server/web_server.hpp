@@ -26,6 +26,8 @@ class Server;
 
 namespace fleet::server {
 
+class WebApi;
+
 struct WebOptions {
   std::string host = "127.0.0.1";  ///< loopback unless configured otherwise
   int port = 8080;                 ///< 0: any free port (see WebServer::port())
@@ -108,7 +110,6 @@ class WebServer {
  private:
   struct Frame;
   void routes();
-  void api_routes();  ///< the calls that change something (web_api.cpp)
   void pump();
   std::shared_ptr<const Frame> wait_frame(std::uint64_t after, double timeout_s);
 
@@ -119,6 +120,7 @@ class WebServer {
   std::string site_body_;  ///< GET /api/site, serialized once per map
   std::mutex site_mutex_;  ///< site_body_ and site_.site_map, replaced when the map is switched
   std::vector<std::shared_ptr<const map::SiteMap>> maps_seen_;
+  std::unique_ptr<WebApi> api_;  ///< the calls that change something (web_api.hpp)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::thread listener_;
@@ -126,7 +128,6 @@ class WebServer {
   std::atomic<bool> stopping_{false};
   std::atomic<int> stream_clients_{0};
   std::atomic<std::uint64_t> frames_built_{0};
-  std::atomic<std::uint64_t> request_counter_{0};
 
   std::mutex frame_mutex_;
   std::condition_variable frame_cv_;
