@@ -76,22 +76,9 @@ std::string rotated_rect(const Canvas& cv, const geometry::Pose2& pose, double l
   return pts;
 }
 
-}  // namespace
-
-std::string render_svg(const SiteMap& map, const RenderOptions& o) {
+/// Lanes as outlines between their borders.
+void draw_lanes(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/, double /*font*/) {
   const Site& site = map.site;
-  const Canvas cv(site.bounds, o);
-  const RoadGraph& graph = map.graph.graph;
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(cv.width()) << "\" height=\""
-      << num(cv.height() + 30.0) << "\" viewBox=\"0 0 " << num(cv.width()) << " " << num(cv.height() + 30.0)
-      << "\" font-family=\"sans-serif\">\n";
-  svg << "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
-  svg << "<rect x=\"" << num(cv.X(site.bounds.min_x)) << "\" y=\"" << num(cv.Y(site.bounds.max_y)) << "\" width=\""
-      << num(cv.len(site.bounds.max_x - site.bounds.min_x)) << "\" height=\""
-      << num(cv.len(site.bounds.max_y - site.bounds.min_y))
-      << "\" fill=\"#f4f1e8\" stroke=\"#555\" stroke-width=\"2\"/>\n";
-
   // Lanes as filled outlines between their inner and outer borders (exact for any width
   // profile): drivable dark, others light. Sampled at half the graph spacing.
   const double step = std::max(site.graph_spacing * 0.5, 1e-3);
@@ -122,7 +109,12 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
     }
   }
   svg << "</g>\n";
+}
 
+/// Every road's reference line.
+void draw_reference_lines(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/,
+                          double /*font*/) {
+  const double step = std::max(map.site.graph_spacing * 0.5, 1e-3);
   // Reference lines, thin and dashed, so a person sees where each road starts and runs.
   svg << "<g id=\"reference\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"1\" stroke-dasharray=\"4 4\">\n";
   for (const Road& road : map.network.roads) {
@@ -135,7 +127,11 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
     svg << "<polyline points=\"" << pts << "\"/>\n";
   }
   svg << "</g>\n";
+}
 
+/// The road graph's edges and, when asked, its points.
+void draw_graph(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& o, double /*font*/) {
+  const RoadGraph& graph = map.graph.graph;
   svg << "<g id=\"graph-edges\" stroke=\"#2060c0\" stroke-width=\"1\">\n";
   for (std::size_t i = 0; i < graph.points.size(); ++i) {
     const GraphPoint& a = graph.points[i];
@@ -153,7 +149,11 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
     }
     svg << "</g>\n";
   }
+}
 
+/// Racks.
+void draw_racks(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/, double /*font*/) {
+  const Site& site = map.site;
   svg << "<g id=\"racks\" font-size=\"12\">\n";
   for (const Rack& rack : site.racks) {
     std::string pts;
@@ -161,8 +161,11 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
     svg << "<polygon points=\"" << pts << "\" fill=\"#c9b79c\" stroke=\"#7a6648\" stroke-width=\"1.5\"/>\n";
   }
   svg << "</g>\n";
+}
 
-  const double font = std::clamp(cv.len(0.07), 9.0, 16.0);
+/// The designated static obstacles, on or off at the start.
+void draw_obstacles(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/, double font) {
+  const Site& site = map.site;
   svg << "<g id=\"obstacles\" font-size=\"" << num(font) << "\">\n";
   for (const StaticObstacle& ob : site.static_obstacles) {
     std::string pts;
@@ -179,7 +182,11 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << "\" text-anchor=\"middle\" fill=\"#700000\">" << escape(ob.id) << "</text>\n";
   }
   svg << "</g>\n";
+}
 
+/// Loading areas with their pallets and the way they face.
+void draw_loading_areas(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& o, double font) {
+  const Site& site = map.site;
   svg << "<g id=\"loading-areas\" font-size=\"" << num(font) << "\">\n";
   // Pallets scale with the roads: 0.12 m on the 0.30 m demo tables.
   const double pallet = o.pallet_size > 0.0 ? o.pallet_size : 0.4 * site.road_width;
@@ -203,7 +210,11 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << "\" text-anchor=\"middle\" fill=\"#4a2e0e\" font-weight=\"bold\">" << escape(a.id) << "</text>\n";
   }
   svg << "</g>\n";
+}
 
+/// Homes as robot footprints.
+void draw_homes(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& o, double font) {
+  const Site& site = map.site;
   svg << "<g id=\"homes\" font-size=\"" << num(font) << "\">\n";
   for (const Home& h : site.homes) {
     svg << "<polygon points=\"" << rotated_rect(cv, h.pose, o.robot_length, o.robot_width)
@@ -216,7 +227,12 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << "\" text-anchor=\"middle\" fill=\"#104010\">" << escape(h.id) << "</text>\n";
   }
   svg << "</g>\n";
+}
 
+/// AR markers.
+void draw_markers(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/,
+                  double /*font*/) {
+  const Site& site = map.site;
   // AR markers: a small square with a tick the way the marker faces; the id shows on hover.
   svg << "<g id=\"markers\" fill=\"#000\" stroke=\"#000\">\n";
   for (const Marker& m : site.markers) {
@@ -227,7 +243,12 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << "\" y2=\"" << num(y - 8 * std::sin(m.pose.yaw)) << "\" stroke-width=\"1.5\"/>\n";
   }
   svg << "</g>\n";
+}
 
+/// UWB anchors.
+void draw_uwb_anchors(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& /*o*/,
+                      double font) {
+  const Site& site = map.site;
   svg << "<g id=\"uwb-anchors\" font-size=\"" << num(font) << "\" fill=\"#7030a0\">\n";
   for (const UwbAnchor& u : site.uwb_anchors) {
     const double x = cv.X(u.x), y = cv.Y(u.y);
@@ -239,7 +260,10 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
         << (right ? "end" : "start") << "\">" << escape(u.id) << " z=" << num(u.z) << "</text>\n";
   }
   svg << "</g>\n";
+}
 
+/// Recorded tracks.
+void draw_tracks(std::ostream& svg, const Canvas& cv, const SiteMap& /*map*/, const RenderOptions& o, double font) {
   if (!o.tracks.empty()) {
     // Colours far apart in hue, so that eight robots stay apart.
     static const char* kColours[] = {"#e6194b", "#3cb44b", "#4363d8", "#f58231", "#911eb4",
@@ -272,12 +296,38 @@ std::string render_svg(const SiteMap& map, const RenderOptions& o) {
     }
     svg << "</g>\n";
   }
+}
 
+/// The caption under the picture.
+void draw_caption(std::ostream& svg, const Canvas& cv, const SiteMap& map, const RenderOptions& o, double /*font*/) {
+  const Site& site = map.site;
+  const RoadGraph& graph = map.graph.graph;
   svg << "<text x=\"" << num(o.margin) << "\" y=\"" << num(cv.height() + 16.0) << "\" font-size=\"14\" fill=\"#333\">"
       << escape(site.name) << ": " << num(site.bounds.max_x - site.bounds.min_x) << " m x "
       << num(site.bounds.max_y - site.bounds.min_y) << " m, " << map.network.roads.size() << " roads, "
       << graph.points.size() << " graph points, " << graph.edge_count() << " edges, " << site.loading_areas.size()
       << " loading areas, " << site.static_obstacles.size() << " obstacles, " << site.homes.size() << " homes</text>\n";
+}
+
+}  // namespace
+
+std::string render_svg(const SiteMap& map, const RenderOptions& o) {
+  const Site& site = map.site;
+  const Canvas cv(site.bounds, o);
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(cv.width()) << "\" height=\""
+      << num(cv.height() + 30.0) << "\" viewBox=\"0 0 " << num(cv.width()) << " " << num(cv.height() + 30.0)
+      << "\" font-family=\"sans-serif\">\n";
+  svg << "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+  svg << "<rect x=\"" << num(cv.X(site.bounds.min_x)) << "\" y=\"" << num(cv.Y(site.bounds.max_y)) << "\" width=\""
+      << num(cv.len(site.bounds.max_x - site.bounds.min_x)) << "\" height=\""
+      << num(cv.len(site.bounds.max_y - site.bounds.min_y))
+      << "\" fill=\"#f4f1e8\" stroke=\"#555\" stroke-width=\"2\"/>\n";
+  const double font = std::clamp(cv.len(0.07), 9.0, 16.0);
+  for (auto* draw : {draw_lanes, draw_reference_lines, draw_graph, draw_racks, draw_obstacles, draw_loading_areas,
+                     draw_homes, draw_markers, draw_uwb_anchors, draw_tracks, draw_caption}) {
+    draw(svg, cv, map, o, font);
+  }
   svg << "</svg>\n";
   return svg.str();
 }
