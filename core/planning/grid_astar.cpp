@@ -153,6 +153,124 @@ void GridAStar::push(std::int32_t node, float g, std::int32_t parent, std::int32
   }
 }
 
+int GridAStar::pruned_directions(std::int32_t n, int (&dirs)[8][2]) const {
+  int count = 0;
+  const std::int32_t s = stride_;
+  const std::int32_t p = parent_[n];
+  if (p < 0) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
+        dirs[count][0] = dx;
+        dirs[count][1] = dy;
+        ++count;
+      }
+    }
+  } else {
+    const int dx = sign(n % s - p % s);
+    const int dy = sign(n / s - p / s);
+    auto add = [&](int ax, int ay) {
+      dirs[count][0] = ax;
+      dirs[count][1] = ay;
+      ++count;
+    };
+    if (dx != 0 && dy != 0) {
+      const bool side_y = free(n + dy * s);
+      const bool side_x = free(n + dx);
+      if (side_y) add(0, dy);
+      if (side_x) add(dx, 0);
+      if (side_y && side_x) add(dx, dy);
+    } else if (dx != 0) {
+      const bool next = free(n + dx);
+      const bool up = free(n + s);
+      const bool down = free(n - s);
+      if (next) {
+        add(dx, 0);
+        if (up) add(dx, 1);
+        if (down) add(dx, -1);
+      }
+      if (up) add(0, 1);
+      if (down) add(0, -1);
+    } else {
+      const bool next = free(n + dy * s);
+      const bool right = free(n + 1);
+      const bool left = free(n - 1);
+      if (next) {
+        add(0, dy);
+        if (right) add(1, dy);
+        if (left) add(-1, dy);
+      }
+      if (right) add(1, 0);
+      if (left) add(-1, 0);
+    }
+  }
+  return count;
+}
+
+void GridAStar::expand(std::int32_t n, std::int32_t dst, std::uint32_t closed) {
+  const std::int32_t s = stride_;
+  const float gn = g_[n];
+  auto relax = [&](std::int32_t m, float step) {
+    if (stamp_[m] != closed) push(m, gn + step, n, dst);
+  };
+  if (!configuration_.jump_points) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const std::int32_t m = n + dx + dy * s;
+        if (!free(m)) continue;
+        if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
+        relax(m, dx != 0 && dy != 0 ? 1.41421356f : 1.0f);
+      }
+    }
+    return;
+  }
+  // Directions worth following out of n (pruned neighbours of JPS).
+  int dirs[8][2];
+  const int count = pruned_directions(n, dirs);
+  for (int k = 0; k < count; ++k) {
+    const int dx = dirs[k][0];
+    const int dy = dirs[k][1];
+    if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
+    const std::int32_t j = jump(n + dx + dy * s, dx, dy, dst);
+    if (j >= 0) relax(j, heuristic(n, j));
+  }
+}
+
+std::vector<Vec2> GridAStar::path_points(std::int32_t dst, Vec2 start, Vec2 goal) const {
+  std::vector<Vec2> points;
+  // Waypoints: exact start, its cell centre, the jump points (or cells), goal's centre, exact goal.
+  std::vector<std::int32_t> nodes;
+  for (std::int32_t v = dst; v != -1; v = parent_[v]) nodes.push_back(v);
+  std::reverse(nodes.begin(), nodes.end());
+  std::vector<Vec2> raw;
+  raw.reserve(nodes.size() + 2);
+  raw.push_back(start);
+  for (std::int32_t v : nodes) raw.push_back(center(v));
+  raw.push_back(goal);
+  if (configuration_.smooth && raw.size() > 2) {
+    // Greedy line-of-sight shortcuts: keep a waypoint only where the straight line to the next
+    // one would touch an occupied cell.
+    points.push_back(raw.front());
+    std::size_t anchor = 0;
+    for (std::size_t i = 2; i < raw.size(); ++i) {
+      if (!grid_->segment_free(raw[anchor], raw[i])) {
+        anchor = i - 1;
+        points.push_back(raw[anchor]);
+      }
+    }
+    points.push_back(raw.back());
+  } else {
+    points = std::move(raw);
+  }
+  // Drop zero-length steps (start on its cell centre and the like).
+  points.erase(
+      std::unique(points.begin(), points.end(), [](Vec2 a, Vec2 b) { return geometry::distance(a, b) < 1e-9; }),
+      points.end());
+  return points;
+}
+
 GridPath GridAStar::plan(Vec2 start, Vec2 goal, const PlanOptions& options) {
   GridPath result;
   if (!grid_) {
@@ -203,115 +321,14 @@ GridPath GridAStar::plan(Vec2 start, Vec2 goal, const PlanOptions& options) {
       result.status = PlanStatus::kTimeout;
       return result;
     }
-    const float gn = g_[n];
-    auto relax = [&](std::int32_t m, float step) {
-      if (stamp_[m] != closed) push(m, gn + step, n, dst);
-    };
-    if (!configuration_.jump_points) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (dx == 0 && dy == 0) continue;
-          const std::int32_t m = n + dx + dy * s;
-          if (!free(m)) continue;
-          if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
-          relax(m, dx != 0 && dy != 0 ? 1.41421356f : 1.0f);
-        }
-      }
-      continue;
-    }
-    // Directions worth following out of n (pruned neighbours of JPS).
-    int dirs[8][2];
-    int count = 0;
-    const std::int32_t p = parent_[n];
-    if (p < 0) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (dx == 0 && dy == 0) continue;
-          if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
-          dirs[count][0] = dx;
-          dirs[count][1] = dy;
-          ++count;
-        }
-      }
-    } else {
-      const int dx = sign(n % s - p % s);
-      const int dy = sign(n / s - p / s);
-      auto add = [&](int ax, int ay) {
-        dirs[count][0] = ax;
-        dirs[count][1] = ay;
-        ++count;
-      };
-      if (dx != 0 && dy != 0) {
-        const bool side_y = free(n + dy * s);
-        const bool side_x = free(n + dx);
-        if (side_y) add(0, dy);
-        if (side_x) add(dx, 0);
-        if (side_y && side_x) add(dx, dy);
-      } else if (dx != 0) {
-        const bool next = free(n + dx);
-        const bool up = free(n + s);
-        const bool down = free(n - s);
-        if (next) {
-          add(dx, 0);
-          if (up) add(dx, 1);
-          if (down) add(dx, -1);
-        }
-        if (up) add(0, 1);
-        if (down) add(0, -1);
-      } else {
-        const bool next = free(n + dy * s);
-        const bool right = free(n + 1);
-        const bool left = free(n - 1);
-        if (next) {
-          add(0, dy);
-          if (right) add(1, dy);
-          if (left) add(-1, dy);
-        }
-        if (right) add(1, 0);
-        if (left) add(-1, 0);
-      }
-    }
-    for (int k = 0; k < count; ++k) {
-      const int dx = dirs[k][0];
-      const int dy = dirs[k][1];
-      if (dx != 0 && dy != 0 && (!free(n + dx) || !free(n + dy * s))) continue;
-      const std::int32_t j = jump(n + dx + dy * s, dx, dy, dst);
-      if (j >= 0) relax(j, heuristic(n, j));
-    }
+    expand(n, dst, closed);
   }
   if (!found) {
     result.status = PlanStatus::kNoPath;
     return result;
   }
 
-  // Waypoints: exact start, its cell centre, the jump points (or cells), goal's centre, exact goal.
-  std::vector<std::int32_t> nodes;
-  for (std::int32_t v = dst; v != -1; v = parent_[v]) nodes.push_back(v);
-  std::reverse(nodes.begin(), nodes.end());
-  std::vector<Vec2> raw;
-  raw.reserve(nodes.size() + 2);
-  raw.push_back(start);
-  for (std::int32_t v : nodes) raw.push_back(center(v));
-  raw.push_back(goal);
-  if (configuration_.smooth && raw.size() > 2) {
-    // Greedy line-of-sight shortcuts: keep a waypoint only where the straight line to the next
-    // one would touch an occupied cell.
-    result.points.push_back(raw.front());
-    std::size_t anchor = 0;
-    for (std::size_t i = 2; i < raw.size(); ++i) {
-      if (!grid_->segment_free(raw[anchor], raw[i])) {
-        anchor = i - 1;
-        result.points.push_back(raw[anchor]);
-      }
-    }
-    result.points.push_back(raw.back());
-  } else {
-    result.points = std::move(raw);
-  }
-  // Drop zero-length steps (start on its cell centre and the like).
-  result.points.erase(std::unique(result.points.begin(), result.points.end(),
-                                  [](Vec2 a, Vec2 b) { return geometry::distance(a, b) < 1e-9; }),
-                      result.points.end());
+  result.points = path_points(dst, start, goal);
   result.length = path_length(result.points);
   result.status = PlanStatus::kFound;
   return result;

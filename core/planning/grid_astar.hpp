@@ -45,6 +45,14 @@ class GridAStar final : public GridPlanner {
   std::int32_t jump_straight(std::int32_t from, int d, std::int32_t goal) const;
   void build_jump_tables();
   void push(std::int32_t node, float g, std::int32_t parent, std::int32_t goal);
+  /// Pushes the successors of node `n` (all eight neighbours, or JPS's jump points) that are not
+  /// `closed` in this query.
+  void expand(std::int32_t n, std::int32_t dst, std::uint32_t closed);
+  /// The directions worth following out of `n` (the pruned neighbours of JPS); their count.
+  int pruned_directions(std::int32_t n, int (&dirs)[8][2]) const;
+  /// Exact start, its cell centre, the cells (or jump points) to `dst`, the goal's centre and the
+  /// exact goal, smoothed when configured, without zero-length steps.
+  std::vector<geometry::Vec2> path_points(std::int32_t dst, geometry::Vec2 start, geometry::Vec2 goal) const;
   float heuristic(std::int32_t a, std::int32_t b) const;
   geometry::Vec2 center(std::int32_t i) const;
 
