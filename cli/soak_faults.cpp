@@ -40,10 +40,7 @@ SoakFaults::SoakFaults(FleetRun& run, FleetClient& client, Logger log, std::vect
 
 void SoakFaults::robot_lost(const std::string& robot, double now_wall) {
   for (auto& f : faults_) {
-    if (f.target == robot && !f.detected &&
-        (f.kind == monitor::FaultKind::kKillAgent || f.kind == monitor::FaultKind::kStallAgent)) {
-      f.detected = now_wall - f.at_wall;
-    }
+    if (f.target == robot && !f.detected && f.on_agent()) f.detected = now_wall - f.at_wall;
   }
 }
 

@@ -28,6 +28,9 @@ struct FaultRecord {
   std::int64_t order = 0;           ///< the robot's open order when it happened (agent faults)
   std::optional<double> detected;   ///< the server marked the robot lost
   std::optional<double> recovered;  ///< its order re-queued, failed with a reason, or ended
+
+  /// An agent killed or stopped: the server is to find its robot lost.
+  bool on_agent() const { return kind == monitor::FaultKind::kKillAgent || kind == monitor::FaultKind::kStallAgent; }
 };
 
 /// A soak's fault schedule carried out against its fleet: agents killed and stopped, the server
@@ -49,7 +52,6 @@ class SoakFaults {
   /// Undoes every fault still in force (a stopped agent, a server down).
   void undo_all();
   const std::vector<FaultRecord>& records() const { return faults_; }
-  std::size_t planned() const { return plan_.size(); }
 
   static constexpr double kKillPauseWall = 2.0;  ///< a killed agent stays down this long
   static constexpr double kStallWall = 3.0;      ///< a stopped agent stays frozen this long

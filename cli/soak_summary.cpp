@@ -29,8 +29,7 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
   long undetected = 0;
   nlohmann::json list = nlohmann::json::array();
   for (const auto& f : faults) {
-    const bool agent_fault = f.kind == monitor::FaultKind::kKillAgent || f.kind == monitor::FaultKind::kStallAgent;
-    if (agent_fault) {
+    if (f.on_agent()) {
       if (f.detected) {
         detect.push_back(*f.detected);
       } else {
@@ -52,15 +51,17 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
 }
 
 /// Robots lost with no fault behind them: a process that stood still or a link that broke.
-nlohmann::json unexplained_losses(const SoakObservations& seen) {
+std::vector<monitor::RobotLoss> unexplained_losses(const SoakObservations& seen) {
   std::vector<monitor::InjectedFault> injected;
   for (const auto& f : *seen.faults) injected.push_back({f.kind, f.target, f.at_wall});
   constexpr double kLossAfterFaultWall = SoakFaults::kKillPauseWall + SoakFaults::kStallWall + 5.0;
-  nlohmann::json unexplained = nlohmann::json::array();
-  for (const auto& loss : monitor::unexplained_losses(seen.losses, injected, kLossAfterFaultWall)) {
-    unexplained.push_back({{"robot", loss.robot_id}, {"sim_s", round_to(loss.at_sim, 0.1)}});
-  }
-  return unexplained;
+  return monitor::unexplained_losses(seen.losses, injected, kLossAfterFaultWall);
+}
+
+nlohmann::json losses_json(const std::vector<monitor::RobotLoss>& losses) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& loss : losses) list.push_back({{"robot", loss.robot_id}, {"sim_s", round_to(loss.at_sim, 0.1)}});
+  return list;
 }
 
 nlohmann::json collisions_and_deadlocks(const FleetRun& run) {
@@ -121,7 +122,7 @@ nlohmann::json aisle_share_figures(const FleetRun& run) {
 }
 
 std::vector<std::string> failures_of(const FleetRun& run, const RunOptions& options, const nlohmann::json& s,
-                                     double worst_growth) {
+                                     const std::vector<monitor::RobotLoss>& unexplained_losses, double worst_growth) {
   std::vector<std::string> failures;
   const long lost = s["orders_lost"], duplicated = s["orders_duplicated"], undetected = s["faults_undetected"];
   if (lost != 0) failures.push_back(std::to_string(lost) + " orders lost");
@@ -132,9 +133,8 @@ std::vector<std::string> failures_of(const FleetRun& run, const RunOptions& opti
   if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
   if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
   std::vector<std::string> unexplained;
-  for (const auto& loss : s["robots_lost_without_a_fault"]) {
-    unexplained.push_back(
-        fmt::format("{} at {:.0f} s sim", loss["robot"].get<std::string>(), loss["sim_s"].get<double>()));
+  for (const auto& loss : unexplained_losses) {
+    unexplained.push_back(fmt::format("{} at {:.0f} s sim", loss.robot_id, loss.at_sim));
   }
   if (!unexplained.empty()) failures.push_back("lost with no fault: " + model::join(unexplained, ", "));
   if (worst_growth > 10.0) failures.push_back("memory grew " + std::to_string(static_cast<int>(worst_growth)) + " %");
@@ -152,8 +152,9 @@ std::vector<std::string> failures_of(const FleetRun& run, const RunOptions& opti
 
 nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, const SoakObservations& seen) {
   const auto tally = run.tally();
-  const auto stats = monitor::order_stats(run.orders(), run.start_sim() + run.sim_seconds());
   const double now_sim = run.start_sim() + run.sim_seconds();
+  const auto stats = monitor::order_stats(run.orders(), now_sim);
+  const std::vector<monitor::RobotLoss> unexplained = unexplained_losses(seen);
   nlohmann::json lag_by_fleet = nlohmann::json::object();
   for (const auto& [fleet, p99] : run.control_lag_p99_by_fleet()) lag_by_fleet[fleet] = round_to(p99, 0.0001);
   nlohmann::json summary{{"orders_created", tally.created},
@@ -175,7 +176,7 @@ nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, cons
                          {"traffic", seen.traffic},
                          {"seed", options.seed},
                          {"time_scale", options.time_scale},
-                         {"robots_lost_without_a_fault", unexplained_losses(seen)},
+                         {"robots_lost_without_a_fault", losses_json(unexplained)},
                          {"rss_growth_pct", seen.usage.growth_pct},
                          {"rss_measured_processes", seen.usage.measured},
                          {"cpu_pct", seen.usage.cpu_pct},
@@ -187,7 +188,7 @@ nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, cons
   summary.update(fault_figures(*seen.faults));
   summary.update(collisions_and_deadlocks(run));
   summary.update(localization_figures(run));
-  summary["failures"] = failures_of(run, options, summary, seen.usage.worst_growth);
+  summary["failures"] = failures_of(run, options, summary, unexplained, seen.usage.worst_growth);
   return summary;
 }
 
