@@ -248,9 +248,12 @@ std::vector<CommandSpec> make_table() {
        "",
        false,
        {file("--instance", "FILE.json", true), value("--steps", "N"), value("--window", "W"),
-        value("--delay", "P,MIN,MAX"), value("--seed", "S"), file("--output", "OUT.json")},
+        value("--planner", "operations|cells"), value("--delay", "P,MIN,MAX"), value("--seed", "S"),
+        file("--output", "OUT.json")},
        "the coordination core on a League of Robot Runners 2023 instance in the\n"
-       "competition's discrete model (default 1000 steps); --delay holds each robot\n"
+       "competition's discrete model (default 1000 steps); --planner cells plans a\n"
+       "next cell per robot instead of a sequence of actions (window 2, else 3);\n"
+       "--delay holds each robot\n"
        "with probability P for MIN..MAX steps; --output writes the competition's\n"
        "output file; prints errands a step, planning time a step and the longest\n"
        "standstill (exit 1 when a step broke the rules or a wait cycle formed)"},

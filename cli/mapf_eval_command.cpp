@@ -39,6 +39,14 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   coordination::LifelongSettings settings;
   settings.steps = static_cast<int>(flags.integer("steps", 1, 1000000).value_or(settings.steps));
   settings.window = static_cast<int>(flags.integer("window", 1, 50).value_or(settings.window));
+  if (const auto planner = flags.value("planner")) {
+    if (*planner == "cells") {
+      settings.planner = coordination::GridPlanner::kCells;
+    } else if (*planner != "operations") {
+      throw ArgError("--planner '" + *planner + "': expected cells or operations");
+    }
+  }
+  if (settings.window == 0) settings.window = settings.planner == coordination::GridPlanner::kCells ? 2 : 3;
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);
   const auto output = flags.value("output");
@@ -59,6 +67,7 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       {"robots", instance.starts.size()},
       {"steps", result.steps},
       {"window", settings.window},
+      {"planner", settings.planner == coordination::GridPlanner::kCells ? "cells" : "operations"},
       {"seed", settings.seed},
       {"delay", {settings.delays.probability, settings.delays.min_steps, settings.delays.max_steps}},
       {"finished", result.finished},

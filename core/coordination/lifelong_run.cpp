@@ -12,9 +12,11 @@ LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSet
     : instance_(instance),
       settings_(settings),
       distances_(instance.map),
-      planner_(instance.map, distances_, settings.seed),
+      cell_planner_(instance.map, distances_, settings.seed),
+      operation_planner_(instance.map, distances_, settings.seed),
       graph_(instance.map.cells(), static_cast<int>(instance.starts.size())),
       delay_rng_(settings.seed * 0x9E3779B97F4A7C15ULL + 1) {
+  if (settings_.window <= 0) settings_.window = settings_.planner == GridPlanner::kCells ? 2 : 3;
   const std::size_t n = instance.starts.size();
   robots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) robots_[i] = {instance.starts[i], 0, -1};
@@ -45,7 +47,8 @@ void LifelongGridRun::hand_out_errands() {
 }
 
 void LifelongGridRun::plan_and_load() {
-  const auto cells = planner_.plan(robots_, settings_.window);
+  const auto cells = settings_.planner == GridPlanner::kCells ? cell_planner_.plan(robots_, settings_.window)
+                                                              : operation_planner_.plan(robots_, settings_.window);
   std::vector<PlannedRoute> routes(robots_.size());
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     PlannedRoute& route = routes[r];
@@ -193,7 +196,8 @@ bool LifelongGridRun::step() {
       result_.events[r].push_back({assigned_[r].front().id, step_, true});
       assigned_[r].erase(assigned_[r].begin());
       ++result_.finished;
-      planner_.reached_goal(static_cast<int>(r));
+      cell_planner_.reached_goal(static_cast<int>(r));
+      operation_planner_.reached_goal(static_cast<int>(r));
     }
   }
   hand_out_errands();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "coordination/execution_graph.hpp"
+#include "coordination/grid_operation_pibt.hpp"
 #include "coordination/grid_pibt.hpp"
 #include "coordination/heading_distances.hpp"
 #include "coordination/lorr_instance.hpp"
@@ -23,9 +24,16 @@ struct DelayModel {
   int max_steps = 1;
 };
 
+/// How the planner chooses each robot's next steps: a next cell each (GridPibt) or a sequence of
+/// actions each (GridOperationPibt).
+enum class GridPlanner { kCells, kOperations };
+
 struct LifelongSettings {
   int steps = 1000;
-  int window = 2;  ///< steps the planner looks ahead each time it plans (re-planned every step)
+  GridPlanner planner = GridPlanner::kOperations;
+  /// Steps the planner looks ahead each time it plans (re-planned every step); 0: the planner's
+  /// own (2 for cells, 3 for operations).
+  int window = 0;
   DelayModel delays;
   std::uint64_t seed = 1;
 };
@@ -85,7 +93,8 @@ class LifelongGridRun {
   const LorrInstance& instance_;
   LifelongSettings settings_;
   HeadingDistances distances_;
-  GridPibt planner_;
+  GridPibt cell_planner_;
+  GridOperationPibt operation_planner_;
   ExecutionGraph graph_;
   std::mt19937_64 delay_rng_;
   std::vector<GridRobot> robots_;

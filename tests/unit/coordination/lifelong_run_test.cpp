@@ -111,8 +111,9 @@ TEST(LifelongGridRun, RobotsFinishErrandsRoundRobinWithinTheCompetitionsRules) {
 TEST(LifelongGridRun, DelayedRobotsHoldUpOnlyThoseOrderedBehindThem) {
   InstanceFolder folder;
   const LorrInstance instance = load_lorr_instance(folder.path());
-  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     LifelongSettings settings;
+    settings.planner = seed % 2 == 0 ? GridPlanner::kCells : GridPlanner::kOperations;
     settings.steps = 200;
     settings.seed = seed;
     settings.delays = {0.2, 2, 8};
@@ -122,6 +123,31 @@ TEST(LifelongGridRun, DelayedRobotsHoldUpOnlyThoseOrderedBehindThem) {
     EXPECT_EQ(result.wait_cycles, 0) << "seed " << seed;
     EXPECT_GT(result.delayed_robot_steps, 50) << "seed " << seed;
     EXPECT_GE(result.finished, 10) << "seed " << seed;
+  }
+}
+
+TEST(LifelongGridRun, BothPlannersKeepTheRulesWithEveryRobotOfARoomBusy) {
+  // Nine robots in the 4 x 6 room's 20 free cells: most moves push someone.
+  InstanceFolder folder;
+  folder.write("agents/room.agents", "9\n0\n1\n2\n3\n5\n12\n13\n14\n15\n");
+  folder.instance(R"({"mapFile": "maps/room.map", "agentFile": "agents/room.agents", "teamSize": 9,
+                      "taskFile": "tasks/room.tasks", "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"})");
+  const LorrInstance instance = load_lorr_instance(folder.path());
+  for (const GridPlanner planner : {GridPlanner::kCells, GridPlanner::kOperations}) {
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      LifelongSettings settings;
+      settings.steps = 300;
+      settings.seed = seed;
+      settings.planner = planner;
+      settings.delays = {0.05, 1, 4};
+      LifelongGridRun run(instance, settings);
+      const LifelongResult& result = run.run();
+      const std::string which =
+          (planner == GridPlanner::kCells ? "cells, seed " : "operations, seed ") + std::to_string(seed);
+      EXPECT_TRUE(result.errors.empty()) << which << ": " << result.errors.front();
+      EXPECT_EQ(result.wait_cycles, 0) << which;
+      EXPECT_GE(result.finished, 20) << which;
+    }
   }
 }
 
