@@ -14,7 +14,6 @@ namespace {
 constexpr double kMaxSleepWall = 0.02;       // the main loop's longest sleep between control steps
 constexpr double kViewsStaleWall = 0.5;      // wall seconds without a NeighbourView: read SimTruth itself
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
-constexpr std::size_t kKeptReports = 8;      // latched order reports kept for a restarted server
 
 std::uint64_t robot_stream(const std::string& robot_id) {
   // Each robot draws its noise from its own streams of the run's seed.
@@ -84,11 +83,7 @@ void FleetAgent::finish_order(const std::string& status, const std::string& reas
   // Order reports are latched so a restarted server learns how its orders ended; only the most
   // recent ones need to stay, which keeps the writer's history bounded.
   if (auto final_report = report(status, reason, pallet_id, pallet_pose)) {
-    finished_reports_.push_back(std::move(*final_report));
-  }
-  while (finished_reports_.size() > kKeptReports) {
-    report_writer_.unregister(finished_reports_.front());
-    finished_reports_.pop_front();
+    if (const auto dropped = intake_.remember_end(*final_report)) report_writer_.unregister(*dropped);
   }
   order_.reset();
 }
@@ -111,88 +106,85 @@ std::string FleetAgent::item_stops(const model::OrderAssignment& assignment, std
 void FleetAgent::handle_orders() {
   order_reader_.take_data([&](model::OrderAssignment&& assignment) {
     if (assignment.robot_id != options_.robot_id) return;
-    const bool is_current = order_ && order_->assignment.order_id == assignment.order_id;
-    auto seen = seen_updates_.find(assignment.order_id);
-    const bool duplicate = seen != seen_updates_.end() && assignment.update_id <= seen->second;
-    if (duplicate && !assignment.cancelled && !is_current) {
-      // A late duplicate (VDA 5050 style), or the assignment of an order this robot finished,
-      // re-sent by a server that restarted without hearing how it ended: say it again. The
-      // latched report should have told it; this does not depend on that.
-      const auto ended = std::find_if(finished_reports_.begin(), finished_reports_.end(),
-                                      [&](const model::OrderReport& r) { return r.order_id == assignment.order_id; });
-      if (ended != finished_reports_.end()) {
+    std::optional<orders::RunningOrder> running;
+    if (order_) running = orders::RunningOrder{order_->assignment.order_id, order_->assignment.update_id};
+    switch (intake_.classify(assignment, running)) {
+      case orders::IntakeStep::kIgnore:
+        return;
+      case orders::IntakeStep::kRepeatFinalReport: {
+        const model::OrderReport* ended = intake_.final_report(assignment.order_id);
         log_->info("order {} offered again, already {}: repeating the report", assignment.order_id, ended->status);
         report_writer_.write(*ended);
+        return;
       }
-      return;
+      case orders::IntakeStep::kWithdraw:
+        withdraw(assignment.order_id);
+        return;
+      case orders::IntakeStep::kAcknowledgeAgain:
+        // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
+        // and repeat where we are.
+        order_->assignment.update_id = assignment.update_id;
+        report("ACCEPTED");
+        if (!order_->phase.empty()) report(order_->phase);
+        return;
+      case orders::IntakeStep::kConsider:
+        consider(assignment);
+        return;
     }
-    seen_updates_[assignment.order_id] = std::max(assignment.update_id, duplicate ? seen->second : 0u);
-    if (assignment.cancelled) {
-      // A withdrawal older than the assignment we run is a late duplicate.
-      if (is_current && assignment.update_id >= order_->assignment.update_id) {
-        if (robot_->withdraw()) {
-          log_->warn("order {} withdrawn by the server", assignment.order_id);
-          // Its last report is latched: a restarted server would hear the order running here
-          // still and withdraw it again, from a robot long on other orders.
-          model::OrderReport instance;
-          instance.order_id = assignment.order_id;
-          report_writer_.unregister(instance);
-          order_.reset();
-        } else {
-          // Withdrawn while it was lost, the order was re-queued; the robot lifted the pallet
-          // before the withdrawal reached it. It carries the order on and says so: the server
-          // hands the order back to the robot that has the pallet.
-          log_->warn("order {} withdrawn by the server after the pallet was lifted: carrying it on",
-                     assignment.order_id);
-        }
-      }
-      return;
-    }
-    if (is_current) {
-      // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
-      // and repeat where we are.
-      order_->assignment.update_id = assignment.update_id;
-      report("ACCEPTED");
-      if (!order_->phase.empty()) report(order_->phase);
-      return;
-    }
-    std::string why;
-    const auto kind = orders::parse_kind(assignment.kind.empty() ? "transport" : assignment.kind);
-    if (!kind) {
-      why = "unknown order kind '" + assignment.kind + "'";
-    }
-    task::TaskOrder task_order{std::to_string(assignment.order_id),
-                               assignment.pick_area,
-                               assignment.pick_pose,
-                               assignment.drop_area,
-                               assignment.drop_pose,
-                               kind.value_or(orders::OrderKind::kTransport)};
-    if (why.empty() && kind == orders::OrderKind::kPick) why = item_stops(assignment, task_order.items);
-    if (!why.empty()) {
-      // the kind is not one this robot type knows
-    } else if (order_) {
-      why = "busy with order " + std::to_string(order_->assignment.order_id);
-    } else if (const std::string refused = robot_->refusal(*kind); !refused.empty()) {
-      why = refused;
-    } else if (paused_) {
-      why = "paused by the operator";
-    } else if (robot_->submit(task_order, &why)) {
-      order_ = CurrentOrder{assignment, ""};
-      log_->info("order {} accepted: {} -> {}", assignment.order_id, assignment.pick_area, assignment.drop_area);
-      report("ACCEPTED");
-      return;
-    }
-    log_->warn("rejecting order {}: {}", assignment.order_id, why);
-    report_writer_.write({assignment.order_id,
-                          options_.robot_id,
-                          "REJECTED",
-                          why,
-                          assignment.update_id,
-                          clock_.now(),
-                          robot_->carried_load() >= 0,
-                          -1,
-                          {}});
   });
+}
+
+void FleetAgent::withdraw(std::int64_t order_id) {
+  if (robot_->withdraw()) {
+    log_->warn("order {} withdrawn by the server", order_id);
+    // Its last report is latched: a restarted server would hear the order running here still
+    // and withdraw it again, from a robot long on other orders.
+    model::OrderReport instance;
+    instance.order_id = order_id;
+    report_writer_.unregister(instance);
+    order_.reset();
+  } else {
+    // Withdrawn while it was lost, the order was re-queued; the robot lifted the pallet before
+    // the withdrawal reached it. It carries the order on and says so: the server hands the order
+    // back to the robot that has the pallet.
+    log_->warn("order {} withdrawn by the server after the pallet was lifted: carrying it on", order_id);
+  }
+}
+
+void FleetAgent::consider(const model::OrderAssignment& assignment) {
+  const auto kind = orders::parse_kind(assignment.kind.empty() ? "transport" : assignment.kind);
+  task::TaskOrder task_order{std::to_string(assignment.order_id),
+                             assignment.pick_area,
+                             assignment.pick_pose,
+                             assignment.drop_area,
+                             assignment.drop_pose,
+                             kind.value_or(orders::OrderKind::kTransport)};
+  orders::NewOrderChecks checks;
+  if (!kind) {
+    checks.invalid = "unknown order kind '" + assignment.kind + "'";
+  } else if (kind == orders::OrderKind::kPick) {
+    checks.invalid = item_stops(assignment, task_order.items);
+  }
+  if (order_) checks.busy_with = order_->assignment.order_id;
+  if (kind) checks.robot_refusal = robot_->refusal(*kind);
+  checks.paused = paused_;
+  std::string why = orders::AssignmentIntake::refusal_of(checks);
+  if (why.empty() && robot_->submit(task_order, &why)) {
+    order_ = CurrentOrder{assignment, ""};
+    log_->info("order {} accepted: {} -> {}", assignment.order_id, assignment.pick_area, assignment.drop_area);
+    report("ACCEPTED");
+    return;
+  }
+  log_->warn("rejecting order {}: {}", assignment.order_id, why);
+  report_writer_.write({assignment.order_id,
+                        options_.robot_id,
+                        "REJECTED",
+                        why,
+                        assignment.update_id,
+                        clock_.now(),
+                        robot_->carried_load() >= 0,
+                        -1,
+                        {}});
 }
 
 void FleetAgent::handle_site_inputs() {

@@ -15,6 +15,7 @@
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
+#include "orders/assignment_intake.hpp"
 #include "robot/neighbour_memory.hpp"
 #include "robot/robot.hpp"
 #include "robot/robot_factory.hpp"
@@ -51,6 +52,10 @@ class FleetAgent {
   std::string item_stops(const model::OrderAssignment& assignment, std::vector<task::ItemStop>& stops) const;
 
   void handle_orders();
+  /// The server withdraws the order the robot runs.
+  void withdraw(std::int64_t order_id);
+  /// A new order: checked against the intake's rules, then submitted to the robot or rejected.
+  void consider(const model::OrderAssignment& assignment);
   void handle_site_inputs();
   void handle_fleet_view(double now_sim);
   /// Simulation only: the other robots' true bodies for the simulated sensors, from the latest
@@ -83,7 +88,6 @@ class FleetAgent {
   StepLagMeter step_lag_;  ///< how late the control steps run (reported in RobotState)
   std::string map_id_;
   std::optional<CurrentOrder> order_;
-  std::map<std::int64_t, std::uint32_t> seen_updates_;  ///< order id -> newest update id handled
   std::map<std::string, bool> obstacles_;
   std::map<std::pair<std::string, std::string>, bool> obstacle_cache_;  ///< (map, obstacle) -> enabled
   std::map<int, model::PalletTruth> pallets_;
@@ -91,9 +95,9 @@ class FleetAgent {
   std::unique_ptr<dds::Reader<model::SimTruth>> direct_truths_;  ///< only while no view comes
   double last_view_wall_ = 0.0;
   robot::NeighbourMemory neighbours_;
-  /// The final reports (DONE or FAILED) of the last kKeptReports orders, oldest first: latched
-  /// for a restarted server, and repeated when it offers one of those orders again.
-  std::deque<model::OrderReport> finished_reports_;
+  /// Which assignments are new, duplicates or withdrawals, and the final reports (DONE or FAILED)
+  /// of the last orders, latched for a restarted server and repeated when it offers one again.
+  orders::AssignmentIntake intake_;
   bool paused_ = false;
   std::string last_state_;
   std::string last_detail_;
