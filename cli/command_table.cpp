@@ -28,7 +28,8 @@ FlagSpec on_off(std::string name) {
 
 const std::vector<std::string> kOrderStates{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
 
-std::vector<CommandSpec> make_table() {
+/// Commands that speak to a running server.
+std::vector<CommandSpec> server_commands() {
   return {
       {Group::kServer,
        "order",
@@ -119,6 +120,12 @@ std::vector<CommandSpec> make_table() {
        false,
        {value("--seconds", "S=10")},
        "a pose's age on arrival, straight from the robot vs routed by the server"},
+  };
+}
+
+/// Commands that start a server and agents of their own.
+std::vector<CommandSpec> fleet_starting_commands() {
+  return {
       {Group::kStartsFleet,
        "demo",
        "",
@@ -157,6 +164,12 @@ std::vector<CommandSpec> make_table() {
        "to it as agents do; prints server CPU and memory, traffic cycle and dispatch\n"
        "times, grant latency, wire rates and orders done; exit 0 when every robot\n"
        "reported and none collided or deadlocked"},
+  };
+}
+
+/// Commands that read files and run the core alone, with no DDS.
+std::vector<CommandSpec> offline_commands() {
+  return {
       {Group::kOffline,
        "map",
        "check",
@@ -279,6 +292,14 @@ std::vector<CommandSpec> make_table() {
        {},
        "a bash completion script: source <(fleetctl completion bash)"},
   };
+}
+
+std::vector<CommandSpec> make_table() {
+  std::vector<CommandSpec> table = server_commands();
+  for (auto* part : {fleet_starting_commands, offline_commands}) {
+    for (CommandSpec& spec : part()) table.push_back(std::move(spec));
+  }
+  return table;
 }
 
 std::vector<FlagSpec> make_global_flags() {
