@@ -181,48 +181,6 @@ std::optional<std::string> Forklift::order_id() const {
   return std::nullopt;
 }
 
-std::vector<geometry::Polygon> Forklift::uwb_blockers() const {
-  std::vector<geometry::Polygon> out;
-  for (const auto& o : site_->site.static_obstacles) {
-    if (obstacles_.at(o.id)) out.push_back(o.polygon);
-  }
-  // A neighbour shadows an anchor only near the tag: the ray from an anchor at height z_a to the
-  // tag at z_t rises above a robot of height h within (h - z_t) / (z_a - z_t) of the horizontal
-  // distance. Anchors stand about 1 m high around the table, 2-4 m away, so only a robot within
-  // a few centimetres to a dozen of our antenna blocks a range; treating its 2D outline as a wall
-  // to every anchor would shadow most of the table.
-  const Vec2 tag = sim_.estimate().position();
-  // metres: (0.15 - 0.10) / (1.0 - 0.10) x 3 m, rounded up, on the table; it scales with the robot.
-  const double reach = config_.uwb_shadow_reach;
-  for (const auto& n : neighbours_) {
-    const auto polygon = geometry::footprint_polygon(n.pose, n.footprint);
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Vec2& corner : polygon) nearest = std::min(nearest, geometry::distance(corner, tag));
-    if (nearest <= reach || geometry::contains(polygon, tag)) out.push_back(polygon);
-  }
-  return out;
-}
-
-std::vector<std::size_t> Forklift::shadowed_anchors() const {
-  std::vector<std::size_t> out;
-  if (config_.anchor_shadow_margin < 0.0) return out;
-  const auto& anchors = site_->site.uwb_anchors;
-  const Vec2 tag = geometry::body_to_map(sim_.estimate(), config_.sim.uwb.antenna_offset);
-  for (std::size_t i = 0; i < anchors.size(); ++i) {
-    const Vec2 anchor{anchors[i].x, anchors[i].y};
-    for (const auto& o : site_->site.static_obstacles) {
-      if (obstacles_.at(o.id) &&
-          geometry::segment_polygon_distance(anchor, tag, o.polygon) <= config_.anchor_shadow_margin) {
-        out.push_back(i);
-        break;
-      }
-    }
-  }
-  // Three ranges fix a position; with fewer left, a biased fix still beats none for long.
-  if (anchors.size() - out.size() < 3) out.clear();
-  return out;
-}
-
 namespace {
 /// Calls `visit(index)` for each occupied cell of `layer` inside the footprint at `pose`, grown by
 /// `margin`, index y * width + x in ascending order, until it returns true; true when one did.

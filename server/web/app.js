@@ -13,6 +13,8 @@
   // robots.js draws the robots; the legend and the loading areas share its colours.
   const { STATE_COLOURS, LOST_COLOUR, GLOBAL_PLAN, RESERVATION, LOCAL_PLAN, LOCAL_PLAN_LENGTH, PALLET, FLEET_COLOURS,
     DOCKING_TARGET, DETECTED_PALLET } = globalThis.fleetRobots;
+  const { centroid, inside } = globalThis.fleetShapes;
+  const { fmtAge, esc } = globalThis.fleetText;
 
   const el = (id) => document.getElementById(id);
   const canvas = el('map');
@@ -246,16 +248,6 @@
   }
 
   // ---- tables and figures ----
-  function fmtAge(s) {
-    if (s === undefined || s === null || !isFinite(s)) return '–';
-    s = Math.max(0, s);
-    if (s < 60) return `${s.toFixed(s < 10 ? 1 : 0)} s`;
-    const m = Math.floor(s / 60);
-    if (m < 60) return `${m} m ${String(Math.floor(s % 60)).padStart(2, '0')} s`;
-    return `${Math.floor(m / 60)} h ${String(m % 60).padStart(2, '0')} m`;
-  }
-
-  const esc = (v) => String(v ?? '').replace(/[&<>"']/g, (ch) => `&#${ch.charCodeAt(0)};`);
   const OPEN = new Set(['QUEUED', 'ASSIGNED', 'ACTIVE']);
 
   function updateTables() {
@@ -365,21 +357,6 @@
       throw new Error(data.error || res.statusText);
     }
     return data;
-  }
-
-  function centroid(polygon) {
-    let x = 0, y = 0;
-    for (const [px, py] of polygon) { x += px; y += py; }
-    return { x: x / polygon.length, y: y / polygon.length };
-  }
-
-  function inside(polygon, p) {
-    let hit = false;
-    for (let i = 0, j = polygon.length - 1; i < polygon.length; j = i++) {
-      const [xi, yi] = polygon[i], [xj, yj] = polygon[j];
-      if ((yi > p.y) !== (yj > p.y) && p.x < ((xj - xi) * (p.y - yi)) / (yj - yi) + xi) hit = !hit;
-    }
-    return hit;
   }
 
   function setHint(text) {

@@ -76,7 +76,26 @@
     return arrows;
   }
 
-  const api = { EPAL, placed, rectangle, clipAhead, bodyParts, palletOnForks, detectedPallet, waitArrows };
+  // The mean of a polygon's corners, {x, y}.
+  function centroid(polygon) {
+    let x = 0, y = 0;
+    for (const [px, py] of polygon) { x += px; y += py; }
+    return { x: x / polygon.length, y: y / polygon.length };
+  }
+
+  // Whether point p ({x, y}) lies inside the polygon (even-odd rule).
+  function inside(polygon, p) {
+    let hit = false;
+    for (let i = 0, j = polygon.length - 1; i < polygon.length; j = i++) {
+      const [xi, yi] = polygon[i], [xj, yj] = polygon[j];
+      if ((yi > p.y) !== (yj > p.y) && p.x < ((xj - xi) * (p.y - yi)) / (yj - yi) + xi) hit = !hit;
+    }
+    return hit;
+  }
+
+  const api = {
+    EPAL, placed, rectangle, clipAhead, bodyParts, palletOnForks, detectedPallet, waitArrows, centroid, inside,
+  };
   if (typeof module !== 'undefined' && module.exports) module.exports = api;
   else globalThis.fleetShapes = api;
 })();

@@ -99,6 +99,14 @@ test('a waiting robot points at each robot it waits for on the view, and no othe
   nearPoints([arrows[0].a, arrows[0].b], [[0.1, 0], [0.9, 0]], 'arrow between the two, short of both centres');
 });
 
+test('a click inside an obstacle outline hits it, and its label sits at the corners\' mean', () => {
+  const l = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]];  // an L, concave at (1, 1)
+  assert.ok(shapes.inside(l, { x: 0.5, y: 1.5 }));
+  assert.ok(!shapes.inside(l, { x: 1.5, y: 1.5 }), 'the notch of the L is outside');
+  assert.ok(!shapes.inside(l, { x: 3, y: 0.5 }));
+  assert.deepStrictEqual(shapes.centroid([[0, 0], [2, 0], [2, 2], [0, 2]]), { x: 1, y: 1 });
+});
+
 if (failures) {
   console.log(`${failures} failed`);
   process.exit(1);

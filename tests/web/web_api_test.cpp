@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -120,11 +122,15 @@ TEST_F(WebApi, ServesThePageAndItsFilesWithNothingFromElsewhere) {
   EXPECT_EQ(r->body.find("http://"), std::string::npos) << "the page must not load anything from outside";
   EXPECT_EQ(r->body.find("https://"), std::string::npos);
   EXPECT_NE(r->get_header_value("Content-Security-Policy").find("default-src 'self'"), std::string::npos);
-  for (const char* file : {"/app.js", "/robots.js", "/shapes.js", "/style.css"}) {
+  // Each file whole, as it lies in server/web.
+  for (const char* file : {"/app.js", "/robots.js", "/shapes.js", "/text.js", "/style.css"}) {
     auto f = http_->Get(file);
     ASSERT_TRUE(f) << file;
     EXPECT_EQ(f->status, 200) << file;
-    EXPECT_GT(f->body.size(), 1000u) << file;
+    std::ifstream source(fleet::test::source_path(std::string("/server/web") + file), std::ios::binary);
+    const std::string expected((std::istreambuf_iterator<char>(source)), std::istreambuf_iterator<char>());
+    EXPECT_GT(expected.size(), 500u) << file;
+    EXPECT_EQ(f->body, expected) << file;
   }
   expect_error(http_->Get("/nothing.js"), 404, "no such");
   expect_error(http_->Get("/api/nothing"), 404, "no such");
