@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "cli/commands.hpp"
 #include "model/names.hpp"
 
 namespace fleet::cli {
@@ -546,6 +547,10 @@ nlohmann::json command_table_json() {
   nlohmann::json global = nlohmann::json::array();
   for (const auto& flag : global_flags()) global.push_back(flag_json(flag));
   return {{"commands", commands}, {"global_flags", global}};
+}
+
+bool asks_for_usage(const CommandArgs& args) {
+  return std::find(args.args.begin(), args.args.end(), "-h") != args.args.end();
 }
 
 }  // namespace fleet::cli

@@ -43,11 +43,11 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   std::string site = "table_a";
   std::string plot_file;
   try {
-    Args a(args.args);
-    if (a.flag("help") || a.flag("h")) {
+    if (asks_for_usage(args)) {
       out << kUsage;
       return kExitOk;
     }
+    Args a(args.args);
     json = a.flag("json") || json;
     params.gyro_standstill_calibration = a.flag("gyro-cal");
     if (const auto v = a.value("plot")) plot_file = *v;

@@ -69,55 +69,32 @@ int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   eval::DockEvalParams params;
   std::string plot_file;
   bool json = args.json;
-  const auto& a = args.args;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const std::string& flag = a[i];
-    if (flag == "--json") {
-      json = true;
-      continue;
-    }
-    if (flag == "--no-sweeps") {
-      params.sweeps = false;
-      continue;
-    }
-    if (flag == "--help" || flag == "-h") {
+  try {
+    if (asks_for_usage(args)) {
       out << kUsage;
       return kExitOk;
     }
-    const bool takes_value = flag == "--runs" || flag == "--seed" || flag == "--pose-noise" || flag == "--plot";
-    if (!takes_value) {
-      err << "dock-eval: unknown flag '" << flag << "'\n" << kUsage;
-      return kExitBadInput;
-    }
-    if (i + 1 >= a.size()) {
-      err << "dock-eval: " << flag << " needs a value\n" << kUsage;
-      return kExitBadInput;
-    }
-    const std::string& value = a[++i];
-    const auto bad = [&](const char* what) {
-      err << "dock-eval: " << flag << " '" << value << "' " << what << "\n";
-      return kExitBadInput;
-    };
-    if (flag == "--runs") {
-      const auto runs = parse_u64(value);
-      if (!runs || *runs < 1 || *runs > 10000) return bad("must be a whole number of runs in [1, 10000]");
-      params.runs = static_cast<int>(*runs);
-    } else if (flag == "--seed") {
-      const auto seed = parse_u64(value);
-      if (!seed) return bad("must be a non-negative integer");
-      params.seed = *seed;
-    } else if (flag == "--pose-noise") {
-      const auto comma = value.find(',');
-      const auto cm = comma == std::string::npos ? std::nullopt : parse_finite(value.substr(0, comma));
-      const auto deg = comma == std::string::npos ? std::nullopt : parse_finite(value.substr(comma + 1));
+    Args a(args.args);
+    json = a.flag("json") || json;
+    if (a.flag("no-sweeps")) params.sweeps = false;
+    if (const auto v = a.integer("runs", 1, 10000)) params.runs = static_cast<int>(*v);
+    if (const auto v = a.u64("seed")) params.seed = *v;
+    if (const auto v = a.value("pose-noise")) {
+      const auto comma = v->find(',');
+      const auto cm = comma == std::string::npos ? std::nullopt : parse_finite(v->substr(0, comma));
+      const auto deg = comma == std::string::npos ? std::nullopt : parse_finite(v->substr(comma + 1));
       if (!cm || !deg || *cm < 0.0 || *deg < 0.0 || *cm > 100.0 || *deg > 30.0) {
-        return bad("must be CM,DEG: centimetres in [0, 100] and degrees in [0, 30], e.g. 3,1");
+        throw ArgError("flag --pose-noise: '" + *v +
+                       "' must be CM,DEG: centimetres in [0, 100] and degrees in [0, 30], e.g. 3,1");
       }
       params.pose_noise.position_sigma = *cm / 100.0;
       params.pose_noise.yaw_sigma = *deg * kDeg;
-    } else if (flag == "--plot") {
-      plot_file = value;
     }
+    if (const auto v = a.value("plot")) plot_file = *v;
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+  } catch (const ArgError& e) {
+    err << "dock-eval: " << e.what() << '\n' << kUsage;
+    return kExitBadInput;
   }
   params.trajectories = !plot_file.empty();
 

@@ -46,53 +46,30 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
   bool rack_aisle = false;
   std::string plot_file;
   bool json = args.json;
-  const auto& a = args.args;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const std::string& flag = a[i];
-    if (flag == "--json") {
-      json = true;
-      continue;
-    }
-    if (flag == "--help" || flag == "-h") {
+  try {
+    if (asks_for_usage(args)) {
       out << kUsage;
       return kExitOk;
     }
-    const bool takes_value =
-        flag == "--trajectory" || flag == "--duration" || flag == "--seed" || flag == "--nlos" || flag == "--plot";
-    if (!takes_value) {
-      err << "loc-eval: unknown flag '" << flag << "'\n" << kUsage;
-      return kExitBadInput;
+    Args a(args.args);
+    json = a.flag("json") || json;
+    if (const auto v = a.value("trajectory")) {
+      if (*v == "rack_aisle") {
+        rack_aisle = true;
+      } else if (const auto t = eval::parse_trajectory(*v)) {
+        params.trajectory = *t;
+      } else {
+        throw ArgError("flag --trajectory: '" + *v + "' is not one of square, figure8, table_a_loop, rack_aisle");
+      }
     }
-    if (i + 1 >= a.size()) {
-      err << "loc-eval: " << flag << " needs a value\n" << kUsage;
-      return kExitBadInput;
-    }
-    const std::string& value = a[++i];
-    const auto bad = [&](const char* what) {
-      err << "loc-eval: " << flag << " '" << value << "' " << what << "\n";
-      return kExitBadInput;
-    };
-    if (flag == "--trajectory" && value == "rack_aisle") {
-      rack_aisle = true;
-    } else if (flag == "--trajectory") {
-      const auto t = eval::parse_trajectory(value);
-      if (!t) return bad("is not one of square, figure8, table_a_loop, rack_aisle");
-      params.trajectory = *t;
-    } else if (flag == "--duration") {
-      const auto duration = parse_finite(value);
-      if (!duration || *duration <= 0.0 || *duration > 36000.0) return bad("must be a number of seconds in (0, 36000]");
-      params.duration = *duration;
-    } else if (flag == "--seed") {
-      const auto seed = parse_u64(value);
-      if (!seed) return bad("must be a non-negative integer");
-      params.seed = *seed;
-    } else if (flag == "--nlos") {
-      const auto fraction = parse_finite(value);
-      if (!fraction || *fraction < 0.0 || *fraction > 1.0) return bad("must be a fraction in [0, 1]");
-      params.nlos_fraction = *fraction;
-    } else if (flag == "--plot") {
-      plot_file = value;
-    }
+    if (const auto v = a.number("duration", 1e-3, 36000.0)) params.duration = *v;
+    if (const auto v = a.u64("seed")) params.seed = *v;
+    if (const auto v = a.number("nlos", 0.0, 1.0)) params.nlos_fraction = *v;
+    if (const auto v = a.value("plot")) plot_file = *v;
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+  } catch (const ArgError& e) {
+    err << "loc-eval: " << e.what() << '\n' << kUsage;
+    return kExitBadInput;
   }
 
   if (rack_aisle) {

@@ -29,58 +29,23 @@ int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   planning::PlanEvalConfiguration config;
   std::string site_name;
   bool json = args.json;
-  const auto& a = args.args;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const std::string& flag = a[i];
-    if (flag == "--json") {
-      json = true;
-      continue;
-    }
-    if (flag == "--no-ompl") {
-      config.include_ompl = false;
-      continue;
-    }
-    if (flag == "--help" || flag == "-h") {
+  try {
+    if (asks_for_usage(args)) {
       out << kUsage;
       return kExitOk;
     }
-    const bool takes_value = flag == "--site" || flag == "--queries" || flag == "--seed" || flag == "--resolution" ||
-                             flag == "--optimal-budget-ms";
-    if (!takes_value) {
-      err << "plan-eval: unknown flag '" << flag << "'\n" << kUsage;
-      return kExitBadInput;
-    }
-    if (i + 1 >= a.size()) {
-      err << "plan-eval: " << flag << " needs a value\n";
-      return kExitBadInput;
-    }
-    const std::string& value = a[++i];
-    const auto bad = [&](const char* what) {
-      err << "plan-eval: " << flag << " '" << value << "' " << what << "\n";
-      return kExitBadInput;
-    };
-    if (flag == "--site") {
-      site_name = value;
-    } else if (flag == "--queries") {
-      const auto queries = parse_u64(value);
-      if (!queries || *queries == 0 || *queries > 1000000) return bad("is not a count in [1, 1000000]");
-      config.queries = static_cast<int>(*queries);
-    } else if (flag == "--seed") {
-      const auto seed = parse_u64(value);
-      if (!seed) return bad("is not a non-negative integer");
-      config.seed = *seed;
-    } else if (flag == "--resolution") {
-      const auto resolution = parse_finite(value);
-      if (!resolution || *resolution < 0.005 || *resolution > 1.0) return bad("is not a cell size in [0.005, 1] m");
-      config.resolution = *resolution;
-    } else {
-      const auto budget = parse_finite(value);
-      if (!budget || *budget <= 0.0 || *budget > 60000.0) return bad("is not in (0, 60000]");
-      config.optimal_budget_ms = *budget;
-    }
-  }
-  if (site_name.empty()) {
-    err << "plan-eval: --site is required\n" << kUsage;
+    Args a(args.args);
+    json = a.flag("json") || json;
+    if (a.flag("no-ompl")) config.include_ompl = false;
+    if (const auto v = a.value("site")) site_name = *v;
+    if (const auto v = a.integer("queries", 1, 1000000)) config.queries = static_cast<int>(*v);
+    if (const auto v = a.u64("seed")) config.seed = *v;
+    if (const auto v = a.number("resolution", 0.005, 1.0)) config.resolution = *v;
+    if (const auto v = a.number("optimal-budget-ms", 1e-3, 60000.0)) config.optimal_budget_ms = *v;
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+    if (site_name.empty()) throw ArgError("--site is required");
+  } catch (const ArgError& e) {
+    err << "plan-eval: " << e.what() << '\n' << kUsage;
     return kExitBadInput;
   }
 

@@ -1,4 +1,5 @@
-// fleetctl fleets, traffic-eval, pick-eval and mapf-eval through the entry points fleetctl calls.
+// fleetctl fleets, traffic-eval, pick-eval, mapf-eval and the evaluations' flags through the entry
+// points fleetctl calls.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@ namespace {
 struct CommandRun {
   int code = -1;
   std::string out;
+  std::string err;
 };
 
 template <typename Command>
@@ -32,6 +34,7 @@ CommandRun run(Command command, std::vector<std::string> args, const std::string
   CommandRun r;
   r.code = command(a, out, err);
   r.out = out.str();
+  r.err = err.str();
   return r;
 }
 
@@ -197,4 +200,34 @@ TEST(MapfEval, BadFlagsAndFilesAreBadInput) {
   EXPECT_THROW(run(mapf_eval_command, {"--steps", "10"}, "fleet.yaml"), fleet::ArgError);
   EXPECT_THROW(run(mapf_eval_command, {"--instance", (dir / "none.json").string()}, "fleet.yaml"), fleet::InputError);
   std::filesystem::remove_all(dir);
+}
+
+TEST(OfflineEvals, BadFlagsAreBadInputNamingTheFlagAndDashHShowsTheUsage) {
+  struct Case {
+    int (*command)(const CommandArgs&, std::ostream&, std::ostream&);
+    std::vector<std::string> args;
+    std::string said;
+  };
+  const std::vector<Case> cases{
+      {dock_eval_command, {"--runs", "0"}, "flag --runs: 0 is outside 1 .. 10000"},
+      {dock_eval_command, {"--pose-noise", "3"}, "flag --pose-noise: '3' must be CM,DEG"},
+      {dock_eval_command, {"--bogus"}, "unknown flag '--bogus'"},
+      {loc_eval_command, {"--trajectory", "spiral"}, "flag --trajectory: 'spiral' is not one of square"},
+      {loc_eval_command, {"--nlos", "2"}, "flag --nlos: 2 is outside"},
+      {loc_eval_command, {"--seed"}, "--seed"},
+      {plan_eval_command, {}, "--site is required"},
+      {plan_eval_command, {"--site", "table_a", "--queries", "many"}, "flag --queries: 'many' is not an integer"},
+      {ctrl_eval_command, {"--speed", "5"}, "flag --speed: 5 is outside"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run(c.command, c.args, "fleet.yaml");
+    EXPECT_EQ(r.code, kExitBadInput) << c.said;
+    EXPECT_NE(r.err.find(c.said), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("usage: fleetctl"), std::string::npos) << r.err;
+  }
+  for (auto* command : {dock_eval_command, loc_eval_command, plan_eval_command, ctrl_eval_command}) {
+    const auto r = run(command, {"-h"}, "fleet.yaml");
+    EXPECT_EQ(r.code, kExitOk);
+    EXPECT_EQ(r.out.rfind("usage: fleetctl", 0), 0u) << r.out;
+  }
 }
