@@ -46,7 +46,7 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       throw ArgError("--planner '" + *planner + "': expected cells or operations");
     }
   }
-  if (settings.window == 0) settings.window = settings.planner == coordination::GridPlanner::kCells ? 2 : 3;
+  if (settings.window == 0) settings.window = coordination::default_window(settings.planner);
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);
   const auto output = flags.value("output");

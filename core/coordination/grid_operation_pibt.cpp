@@ -1,8 +1,8 @@
 #include "coordination/grid_operation_pibt.hpp"
 
 #include <algorithm>
-#include <map>
 #include <numeric>
+#include <set>
 #include <tuple>
 
 namespace fleet::coordination {
@@ -38,7 +38,7 @@ std::vector<std::string> GridOperationPibt::operations(int depth) {
   std::stable_sort(all.begin(), all.end(),
                    [](const std::string& a, const std::string& b) { return turns_in(a) < turns_in(b); });
   // The effect on an open plane, from (0, 0) facing east: the cells of every step, the last heading.
-  std::map<std::vector<int>, bool> seen;
+  std::set<std::vector<int>> seen;
   std::vector<std::string> kept;
   for (const std::string& operation : all) {
     std::vector<int> effect;
@@ -60,7 +60,7 @@ std::vector<std::string> GridOperationPibt::operations(int depth) {
       effect.push_back(y);
     }
     effect.push_back(heading);
-    if (seen.emplace(effect, true).second) kept.push_back(operation);
+    if (seen.insert(effect).second) kept.push_back(operation);
   }
   return kept;
 }
@@ -235,13 +235,12 @@ bool GridOperationPibt::plan_robot(int robot, int leave_by) {
     if (!admissible(robot, t, pushed, entry_steps)) continue;
     reserve(robot, t);
     bool cleared = true;
-    const std::vector<int> pushed_at = entry_steps;
     for (std::size_t k = 0; k < pushed.size(); ++k) {
       const int other = pushed[k];
       if (!path_[static_cast<std::size_t>(other)].empty()) continue;  // planned meanwhile, clear of this one
-      if (!plan_robot(other, pushed_at[k])) {
+      if (!plan_robot(other, entry_steps[k])) {
         cannot_leave_by_[static_cast<std::size_t>(other)] =
-            std::max(cannot_leave_by_[static_cast<std::size_t>(other)], pushed_at[k]);
+            std::max(cannot_leave_by_[static_cast<std::size_t>(other)], entry_steps[k]);
         // It cannot get out in time: this robot tries its next operation, which may give it
         // longer (entering later) or go round it. It stays unplanned, standing where it is.
         release(robot);

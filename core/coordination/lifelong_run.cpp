@@ -16,7 +16,7 @@ LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSet
       operation_planner_(instance.map, distances_, settings.seed),
       graph_(instance.map.cells(), static_cast<int>(instance.starts.size())),
       delay_rng_(settings.seed * 0x9E3779B97F4A7C15ULL + 1) {
-  if (settings_.window <= 0) settings_.window = settings_.planner == GridPlanner::kCells ? 2 : 3;
+  if (settings_.window <= 0) settings_.window = default_window(settings_.planner);
   const std::size_t n = instance.starts.size();
   robots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) robots_[i] = {instance.starts[i], 0, -1};
@@ -196,8 +196,11 @@ bool LifelongGridRun::step() {
       result_.events[r].push_back({assigned_[r].front().id, step_, true});
       assigned_[r].erase(assigned_[r].begin());
       ++result_.finished;
-      cell_planner_.reached_goal(static_cast<int>(r));
-      operation_planner_.reached_goal(static_cast<int>(r));
+      if (settings_.planner == GridPlanner::kCells) {
+        cell_planner_.reached_goal(static_cast<int>(r));
+      } else {
+        operation_planner_.reached_goal(static_cast<int>(r));
+      }
     }
   }
   hand_out_errands();

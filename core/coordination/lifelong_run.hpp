@@ -28,6 +28,11 @@ struct DelayModel {
 /// actions each (GridOperationPibt).
 enum class GridPlanner { kCells, kOperations };
 
+/// The window a planner plans when none is given: 2 steps for cells, 3 actions for operations.
+inline int default_window(GridPlanner planner) {
+  return planner == GridPlanner::kCells ? 2 : 3;
+}
+
 struct LifelongSettings {
   int steps = 1000;
   GridPlanner planner = GridPlanner::kOperations;
