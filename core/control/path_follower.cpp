@@ -43,6 +43,7 @@ FollowerParams FollowerParams::regulated() {
   p.limit_acceleration = true;
   p.shortest_first_leg = 0.25;
   p.back_in_up_to = 0.5;
+  p.reverse_legs_up_to = 0.4;
   return p;
 }
 
@@ -115,10 +116,14 @@ void PathFollower::set_path(std::vector<Pose2> path, bool may_back_in) {
   }
   leg_ends_.push_back(path_.size() - 1);
   backwards_leg_ = leg_ends_.size();
+  leg_chosen_ = false;
   if (may_back_in && !pose_target_ && params_.back_in_up_to > 0.0) split_off_back_in();
   status_ = FollowerStatus::kTracking;
   reset_controller();
-  if (leg_ends_.size() > 1 && cum_[leg_ends_.front()] < params_.shortest_first_leg) {
+  // A leg short enough to reverse is driven: it may be a move traffic asked for (backing up out
+  // of another robot's way), and driving it backwards turns nothing round.
+  const double first_leg = cum_[leg_ends_.front()];
+  if (leg_ends_.size() > 1 && first_leg < params_.shortest_first_leg && first_leg > params_.reverse_legs_up_to) {
     // The projection may overshoot a leg's start, so the robot joins the second leg from behind it.
     leg_ = 1;
     progress_ = leg_start();
@@ -155,6 +160,20 @@ void PathFollower::split_off_back_in() {
   }
   if (start > leg_begin) leg_ends_.insert(leg_ends_.end() - 1, start);
   backwards_leg_ = leg_ends_.size() - 1;
+}
+
+bool PathFollower::drives_backwards(const Pose2& pose) {
+  if (leg_ == backwards_leg_) return true;
+  if (!leg_chosen_ || chosen_leg_ != leg_) {
+    chosen_leg_ = leg_;
+    leg_chosen_ = true;
+    const Vec2 to_end = path_[leg_end()].position() - pose.position();
+    const double length = cum_[leg_end()] - cum_[leg_start()];
+    leg_reversed_ = !pose_target_ && params_.reverse_legs_up_to > 0.0 && length <= params_.reverse_legs_up_to &&
+                    geometry::dot(to_end, to_end) > 0.0 &&
+                    std::abs(angle_diff(std::atan2(to_end.y, to_end.x), pose.yaw)) > kFacingBack;
+  }
+  return leg_reversed_;
 }
 
 void PathFollower::set_pose_target(const Pose2& target) {
@@ -285,7 +304,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
       status_ = FollowerStatus::kAligning;
     } else {
       // Backing in, the rear leads: h is the heading of the rear, and the speed is negated below.
-      const bool backwards = leg_ == backwards_leg_;
+      const bool backwards = drives_backwards(in.pose);
       const double heading = backwards ? normalize_angle(in.pose.yaw + std::numbers::pi) : in.pose.yaw;
       const double last_vx = backwards ? -last_cmd_.vx : last_cmd_.vx;
       // beta = h - atan2(yd - y, xd - x) [Forklift thesis, eq. 6.3].

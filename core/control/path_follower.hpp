@@ -43,15 +43,22 @@ struct FollowerParams {
   bool limit_acceleration = false;
   double max_linear_accel = 0.5;   ///< m/s^2
   double max_angular_accel = 6.0;  ///< rad/s^2
-  /// A path whose first leg (up to a cusp) is shorter than this starts on its second leg: a
-  /// robot standing a few centimetres past the road point its route begins at does not turn
-  /// round to touch it and turn back, sweeping its body through the room beside it, m.
+  /// A path whose first leg (up to a cusp) is shorter than this, and longer than
+  /// reverse_legs_up_to, starts on its second leg: a robot standing a few centimetres past the
+  /// road point its route begins at does not turn round to touch it and turn back, sweeping its
+  /// body through the room beside it, m.
   double shortest_first_leg = 0.0;
   /// A path whose final heading points back along its last straight stretch is driven backwards
   /// over at most this much of that stretch, when set_path is asked to back in: the robot turns
   /// where the stretch starts (on the road) instead of at its end (in a parking stall between
   /// others). 0 never backs in, m.
   double back_in_up_to = 0.0;
+  /// A leg (between cusps) no longer than this whose end lies behind the robot as the leg starts
+  /// is driven backwards instead of turning round at both of its ends: a robot that traffic
+  /// pushes back a few places along a lane and then sends on again keeps facing the way it goes
+  /// on, and sweeps no turn into the robots in front of and behind it. For a base that drives
+  /// either way; 0 turns round for every leg, m.
+  double reverse_legs_up_to = 0.0;
 
   /// The settings with every extension switched on.
   static FollowerParams regulated();
@@ -138,6 +145,9 @@ class PathFollower {
   BodyTwist limit_turn(BodyTwist cmd, double dt);
   void reset_controller();
   void split_off_back_in();
+  /// Whether the leg being followed is driven backwards: backed in, or short and behind the robot
+  /// at `pose` when it starts (chosen once per leg).
+  bool drives_backwards(const geometry::Pose2& pose);
   std::size_t leg_end() const { return leg_ends_[leg_]; }
   std::size_t leg_start() const { return leg_ == 0 ? 0 : leg_ends_[leg_ - 1]; }
 
@@ -146,7 +156,11 @@ class PathFollower {
   std::vector<double> cum_;            ///< arc length at each path point
   std::vector<std::size_t> leg_ends_;  ///< path indices of the cusps, then the last point
   std::size_t leg_ = 0;                ///< index into leg_ends_ of the leg being followed
-  std::size_t backwards_leg_ = 0;      ///< the leg driven backwards; leg_ends_.size() when none
+  std::size_t backwards_leg_ = 0;      ///< the leg backed in; leg_ends_.size() when none
+  /// The leg whose direction was last chosen (reverse_legs_up_to) and whether it is reversed.
+  std::size_t chosen_leg_ = 0;
+  bool leg_chosen_ = false;
+  bool leg_reversed_ = false;
   bool pose_target_ = false;
   FollowerStatus status_ = FollowerStatus::kIdle;
   std::size_t progress_ = 0;      ///< segment the robot was last projected onto (monotonic)

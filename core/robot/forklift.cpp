@@ -279,6 +279,8 @@ double Forklift::clearance_ahead(geometry::Pose2& blocked_at) const {
       segment = i;
     }
   }
+  // Backing up and coming back, the path covers the same ground twice: the leg it is on decides.
+  if (const auto on_leg = follower_.segment_on_leg()) segment = *on_leg;
   const Vec2 a = path[segment];
   const Vec2 ab = path[segment + 1] - a;
   const double len2 = geometry::dot(ab, ab);
@@ -361,7 +363,7 @@ double Forklift::follow_traffic(double t, double clearance, const geometry::Pose
   const double room = follower_.room(sim_.estimate().position());
   const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
                        (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
-  const bool blocked = driving && clearance <= config_.stop_distance;
+  const bool blocked = driving && clearance <= stop_distance();
   const bool held = driving && room <= 0.0;
   if (blocked != blocked_by_neighbour_ || held != held_by_traffic_) {
     const bool was_stopped = blocked_by_neighbour_ || held_by_traffic_;
@@ -418,7 +420,8 @@ void Forklift::step() {
   // The end of the grant acts like an obstacle stop_distance beyond it: the follower slows
   // towards it and the robot is held as it gets there.
   const task::TaskOutput out =
-      executor_.step({t, sim_.estimate(), detections, std::min(clearance, room + config_.stop_distance)});
+      executor_.step({t, sim_.estimate(), detections,
+                      std::min(clearance + config_.stop_distance - stop_distance(), room + config_.stop_distance)});
 
   const perception::ForkEvent fork = pallets_.update(0, sim_.truth(), out.fork_up);
   switch (fork.kind) {

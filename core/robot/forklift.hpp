@@ -46,8 +46,13 @@ struct ForkliftConfig {
   double grid_resolution = 0.02;  ///< static grid of the route planner, metres
   /// Another robot closer than this ahead (footprint to footprint) stops this one.
   /// The safety stop keeps at least this gap to every other robot, whatever the task state.
-  double safety_gap = 0.03;        ///< metres
-  double stop_distance = 0.08;     ///< metres: pose latency and the sweep of a turn need a margin
+  double safety_gap = 0.03;     ///< metres
+  double stop_distance = 0.08;  ///< metres: pose latency and the sweep of a turn need a margin
+  /// Under the coordination core (`traffic.core: places`), the clearance ahead at which another
+  /// robot's body stops this one, in place of stop_distance: the core grants only places whose
+  /// bodies keep `traffic.margin` apart, and a robot that stopped short of its place for a body
+  /// the core keeps clear of it would never arrive. Negative: stop_distance, m.
+  double planned_stop_distance = -1.0;
   double neighbour_margin = 0.03;  ///< metres added around other robots' footprints
   /// A neighbour's pose older than this counts as everywhere it could have reached since
   /// (the stale-neighbour rule).
@@ -93,8 +98,8 @@ struct ForkliftConfig {
   /// Metres round a neighbour's reported body within which what the lidar saw is that neighbour
   /// (planning::DynamicGridConfiguration::reported_tolerance).
   double reported_tolerance = 0.06;
-  double uwb_shadow_reach = 0.15;    ///< metres from the tag within which a robot shadows anchors
-  double siding_end_margin = 0.03;   ///< metres short of a siding's end the robot stops
+  double uwb_shadow_reach = 0.15;   ///< metres from the tag within which a robot shadows anchors
+  double siding_end_margin = 0.03;  ///< metres short of a siding's end the robot stops
 
   static ForkliftConfig defaults();
   /// The defaults made for a vehicle of this profile: every length follows the footprint's length
@@ -168,6 +173,10 @@ class Forklift : public Robot {
   /// Stops for what is in the way (met by the path sweep at `blocked_at`) and holds at the end
   /// of the grant; returns the traffic room.
   double follow_traffic(double t, double clearance, const geometry::Pose2& blocked_at);
+  /// The clearance ahead at which another body stops the robot.
+  double stop_distance() const {
+    return config_.planned_stop_distance >= 0.0 ? config_.planned_stop_distance : config_.stop_distance;
+  }
   /// The static grid to the planners, when an obstacle changed it since they last had it.
   void hand_grid_to_planners();
   void answer_plan_requests();

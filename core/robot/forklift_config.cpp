@@ -30,6 +30,7 @@ void scale_follower(control::FollowerParams& f, double length, double speed, dou
   f.lookahead *= length;
   f.goal_tolerance *= length;
   f.back_in_up_to *= length;
+  f.reverse_legs_up_to *= length;
   f.regulate_min_radius *= length;
   f.obstacle_stop_distance *= length;
   f.obstacle_slow_distance = slow_distance;

@@ -14,6 +14,27 @@ std::vector<double> cumulative_lengths(const std::vector<Vec2>& points) {
   for (std::size_t i = 1; i < points.size(); ++i) cum[i] = cum[i - 1] + geometry::distance(points[i - 1], points[i]);
   return cum;
 }
+
+/// Metres along `path` (arc lengths `cum`) of its cusps, where it turns back on itself (a route
+/// that backs up a few places and comes back): the path follower's legs end there.
+std::vector<double> cusp_lengths(const std::vector<Vec2>& path, const std::vector<double>& cum) {
+  constexpr double kCuspAngle = 2.5;  // rad, as the path follower splits legs
+  std::vector<double> cusps;
+  std::size_t before = 0;
+  for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    if (cum[i] - cum[before] < 1e-6) continue;
+    std::size_t after = i + 1;
+    while (after + 1 < path.size() && cum[after] - cum[i] < 1e-6) ++after;
+    const Vec2 in = path[i] - path[before];
+    const Vec2 out = path[after] - path[i];
+    if (geometry::dot(out, out) > 0.0 &&
+        std::abs(std::atan2(geometry::cross(in, out), geometry::dot(in, out))) > kCuspAngle) {
+      cusps.push_back(cum[i]);
+    }
+    before = i;
+  }
+  return cusps;
+}
 }  // namespace
 
 std::uint64_t first_route_version(std::chrono::system_clock::time_point now) {
@@ -34,6 +55,7 @@ TrafficFollower::TrafficFollower(TrafficFollowerParams params, std::uint64_t fir
 void TrafficFollower::adopt_plan(const planning::Route& route) {
   path_ = route.points;
   path_cum_ = cumulative_lengths(path_);
+  path_cusps_ = cusp_lengths(path_, path_cum_);
   path_s_ = 0.0;
   in_siding_ = false;
   siding_held_since_ = -1.0;
@@ -86,6 +108,7 @@ void TrafficFollower::adopt_route(const TrafficPermit& permit, const map::RoadGr
   road_start_ = geometry::distance(here, road[first]) - road_cum_[first];
   if (to_goal) path_.insert(path_.end(), goal_leg_.begin(), goal_leg_.end());
   path_cum_ = cumulative_lengths(path_);
+  path_cusps_ = cusp_lengths(path_, path_cum_);
   path_s_ = 0.0;
   road_points_ = permit.route;
   version_ = permit.version;
@@ -96,6 +119,7 @@ void TrafficFollower::adopt_route(const TrafficPermit& permit, const map::RoadGr
 void TrafficFollower::leave_road() {
   path_.clear();
   path_cum_.clear();
+  path_cusps_.clear();
   road_points_.clear();  // parked beside the road: it holds no road any more
   road_cum_.clear();
 }
@@ -126,13 +150,25 @@ std::optional<TrafficPermit> TrafficFollower::take_route() {
 
 double TrafficFollower::path_position(Vec2 here) const {
   // The projection onto the path near where the robot was last found: a path may pass close to
-  // itself, and progress must not jump.
+  // itself, and progress must not jump. A path that backs up and comes back runs over the same
+  // ground twice: the robot is on the leg between the last cusp it reached and the next one.
+  constexpr double kCuspReached = 0.03;  // metres: the follower ends a leg within its tolerance
   if (path_.size() < 2) return 0.0;
+  double leg_from = 0.0;
+  double leg_to = std::numeric_limits<double>::infinity();
+  for (const double cusp : path_cusps_) {
+    if (cusp <= path_s_ + kCuspReached) {
+      leg_from = cusp;
+    } else {
+      leg_to = cusp;
+      break;
+    }
+  }
   double best_d = std::numeric_limits<double>::infinity();
   double best_s = path_s_;
   for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
-    if (path_cum_[i + 1] < path_s_ - 0.05) continue;
-    if (path_cum_[i] > path_s_ + 0.30) break;
+    if (path_cum_[i + 1] < path_s_ - 0.05 || path_cum_[i] < leg_from - 1e-9) continue;
+    if (path_cum_[i] > path_s_ + 0.30 || path_cum_[i + 1] > leg_to + 1e-9) break;
     const Vec2 a = path_[i];
     const Vec2 ab = path_[i + 1] - a;
     const double len2 = geometry::dot(ab, ab);
@@ -144,6 +180,13 @@ double TrafficFollower::path_position(Vec2 here) const {
     }
   }
   return best_s;
+}
+
+std::optional<std::size_t> TrafficFollower::segment_on_leg() const {
+  if (!params_.traffic || path_cusps_.empty() || path_.size() < 2) return std::nullopt;
+  std::size_t segment = 0;
+  while (segment + 2 < path_.size() && path_cum_[segment + 1] <= path_s_) ++segment;
+  return segment;
 }
 
 double TrafficFollower::room(Vec2 here) {

@@ -79,6 +79,9 @@ class TrafficFollower {
   bool siding_timed_out(double t, bool held);
 
   const std::vector<geometry::Vec2>& path() const { return path_; }
+  /// On a path that backs up and comes back over the same ground, the segment the robot was last
+  /// found on (room()); nothing on a path without cusps, where the nearest segment is the one.
+  std::optional<std::size_t> segment_on_leg() const;
   /// The route for the traffic manager, without `stopped_for` (the safety stop's to add).
   TrafficRoute route() const;
   std::uint64_t version() const { return version_; }
@@ -98,8 +101,9 @@ class TrafficFollower {
 
   TrafficFollowerParams params_;
   std::vector<geometry::Vec2> path_;
-  std::vector<double> path_cum_;  ///< metres from the path's start to each point
-  double path_s_ = 0.0;           ///< where the robot was last found along the path
+  std::vector<double> path_cum_;    ///< metres from the path's start to each point
+  std::vector<double> path_cusps_;  ///< metres from the path's start to each cusp
+  double path_s_ = 0.0;             ///< where the robot was last found along the path
   std::uint64_t version_ = 0;
   std::vector<int> road_points_;
   std::vector<double> road_cum_;

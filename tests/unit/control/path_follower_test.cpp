@@ -204,6 +204,7 @@ TEST(PathFollower, DoesNotTurnRoundToTouchARoadPointJustBehindIt) {
   for (const double shortest : {0.0, 0.25}) {
     FollowerParams p = FollowerParams::regulated();
     p.shortest_first_leg = shortest;
+    p.reverse_legs_up_to = 0.0;
     PathFollower f(p);
     f.set_path(path);
     Pose2 pose{0.0, 0.0, std::numbers::pi};
@@ -256,6 +257,77 @@ TEST(PathFollower, BacksIntoAStallWhoseHeadingPointsOutOfIt) {
       EXPECT_GT(most_turned_in_stall, 3.0) << "without backing in it turns round at the end";
     }
   }
+}
+
+TEST(PathFollower, BacksUpAShortLegBehindItInsteadOfTurningRoundTwice) {
+  // Pushed back two places along a lane by a robot coming the other way, then sent on the way it
+  // faces: turning round at both ends of the short leg sweeps its corners into the robots in
+  // front of it and behind it.
+  std::vector<Pose2> path{{0.0, 0.0, 0.0}, {-0.09, 0.0, 0.0}, {-0.18, 0.0, 0.0}};
+  for (int i = -1; i <= 10; ++i) path.push_back({0.09 * i, 0.0, 0.0});
+  for (const double reverse_up_to : {0.0, 0.4}) {
+    FollowerParams p = FollowerParams::regulated();
+    p.reverse_legs_up_to = reverse_up_to;
+    p.shortest_first_leg = 0.0;
+    PathFollower f(p);
+    f.set_path(path);
+    Pose2 pose{0.0, 0.0, 0.0};
+    double most_turned = 0.0;
+    double min_x = 0.0;
+    for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+      const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+      pose = integrate_twist(pose, cmd, kDt);
+      most_turned = std::max(most_turned, std::abs(geometry::angle_diff(pose.yaw, 0.0)));
+      min_x = std::min(min_x, pose.x);
+    }
+    ASSERT_TRUE(f.arrived()) << "reverse_legs_up_to=" << reverse_up_to;
+    EXPECT_LT(min_x, -0.16) << "it drives the leg behind it to its end";
+    EXPECT_NEAR(pose.x, 0.9, 0.03);
+    if (reverse_up_to > 0.0) {
+      EXPECT_LT(most_turned, 0.1);
+    } else {
+      EXPECT_GT(most_turned, 3.0) << "without reversing it turns round at both ends of the leg";
+    }
+  }
+}
+
+TEST(PathFollower, BacksUpToARoadPointJustBehindItRatherThanSkipIt) {
+  // The same route start as above with the regulated follower's defaults: the point behind is
+  // reached backwards, neither skipped nor turned round for.
+  std::vector<Pose2> path{{0.0, 0.0, std::numbers::pi}, {0.05, 0.0, 0.0}};
+  for (int i = 1; i <= 10; ++i) path.push_back({0.05 - 0.1 * i, 0.0, std::numbers::pi});
+  PathFollower f(FollowerParams::regulated());
+  f.set_path(path);
+  Pose2 pose{0.0, 0.0, std::numbers::pi};
+  double max_x = 0.0;
+  double max_turn = 0.0;
+  for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    pose = integrate_twist(pose, cmd, kDt);
+    max_x = std::max(max_x, pose.x);
+    max_turn = std::max(max_turn, std::abs(geometry::angle_diff(pose.yaw, std::numbers::pi)));
+  }
+  ASSERT_TRUE(f.arrived());
+  EXPECT_GT(max_x, 0.035);
+  EXPECT_LT(max_turn, 0.1);
+  EXPECT_NEAR(pose.x, -0.95, 0.03);
+}
+
+TEST(PathFollower, TurnsRoundForALegBehindItLongerThanItReverses) {
+  std::vector<Pose2> path{{0.0, 0.0, 0.0}};
+  for (int i = 1; i <= 10; ++i) path.push_back({-0.09 * i, 0.0, std::numbers::pi});
+  PathFollower f(FollowerParams::regulated());
+  f.set_path(path);
+  Pose2 pose{0.0, 0.0, 0.0};
+  bool reversed = false;
+  for (int i = 0; i < 70 * 40 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    reversed = reversed || cmd.vx < -1e-3;
+    pose = integrate_twist(pose, cmd, kDt);
+  }
+  ASSERT_TRUE(f.arrived());
+  EXPECT_FALSE(reversed);
+  EXPECT_NEAR(pose.x, -0.9, 0.03);
 }
 
 TEST(PathFollower, BacksOnlyTheLastStretchOfALongStraightOne) {

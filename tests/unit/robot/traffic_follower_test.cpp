@@ -147,6 +147,34 @@ TEST(TrafficFollower, AManagerReRouteReplacesThePathAndTheVersion) {
   EXPECT_FALSE(f.grant({103, 2, 2.0, {}, {1, 2}, false}));
 }
 
+TEST(TrafficFollower, ARouteThatBacksUpAPlaceCountsProgressAlongTheLegBehindFirst) {
+  // Places 0.1 m apart, as on a table: the coordination core pushes a robot standing at point 2
+  // back to point 1 and then sends it on over point 2 again. Standing where it stands, the robot
+  // is on the route's first leg, not on the stretch after the cusp that passes under it too.
+  map::RoadGraph g;
+  for (int i = 0; i < 6; ++i) {
+    map::GraphPoint p;
+    p.id = i;
+    p.x = 0.1 * i;
+    g.points.push_back(p);
+  }
+  g.successors.resize(6);
+  TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
+  ASSERT_TRUE(f.grant({101, 1, 0.1, {}, {2, 1, 2, 3, 4}, false}));
+  const auto permit = f.take_route();
+  ASSERT_TRUE(permit);
+  f.adopt_route(*permit, g, {0.205, 0.0});
+  f.grant({101, 1, 0.1, {}, {}, false});
+  EXPECT_NEAR(f.room({0.205, 0.0}), 0.105, 1e-6) << "the point behind it is still ahead on the route";
+  EXPECT_NEAR(f.route().progress, 0.0, 1e-6);
+  double x = 0.205;
+  for (; x >= 0.1; x -= 0.005) f.room({x, 0.0});
+  EXPECT_NEAR(f.route().progress, 0.1, 0.006) << "backed up to point 1";
+  f.grant({101, 4, 0.4, {}, {}, false});
+  for (; x <= 0.3; x += 0.005) f.room({x, 0.0});
+  EXPECT_NEAR(f.route().progress, 0.3, 0.006) << "on past point 2 to point 3 after the cusp";
+}
+
 TEST(TrafficFollower, NotCalledBackFromASidingItLeavesItAfterTheTimeout) {
   const map::RoadGraph g = straight_road();
   TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
