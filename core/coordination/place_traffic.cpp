@@ -20,7 +20,8 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
       order_(zones),
       points_of_place_(zones.place_count()),
       reach_(zones.type_count(), std::vector<double>(zones.place_count(), 0.0)),
-      closed_(zones.type_count(), std::vector<std::uint8_t>(zones.place_count(), 0)) {
+      closed_(zones.type_count(), std::vector<std::uint8_t>(zones.place_count(), 0)),
+      closed_by_(zones.type_count(), std::vector<int>(zones.place_count(), -1)) {
   for (std::size_t point = 0; point < zones.point_count(); ++point) {
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
@@ -244,13 +245,16 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
 
 void PlaceTraffic::rebuild_closed() {
   for (auto& by_place : closed_) std::fill(by_place.begin(), by_place.end(), 0);
-  for (const Robot& r : robots_) {
+  for (auto& by_place : closed_by_) std::fill(by_place.begin(), by_place.end(), -1);
+  for (int robot = 0; robot < robots(); ++robot) {
+    const Robot& r = at(robot);
     if (r.mode != Mode::kStanding) continue;
     const Circle around = circle_around(r.body);
     for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
       for (int place = 0; place < static_cast<int>(zones_.place_count()); ++place) {
-        if (body_reaches(r.body, around, type, place))
-          closed_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = 1;
+        if (!body_reaches(r.body, around, type, place)) continue;
+        closed_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = 1;
+        closed_by_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = robot;
       }
     }
   }

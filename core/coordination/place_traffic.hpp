@@ -141,6 +141,7 @@ class PlaceTraffic {
   std::vector<std::vector<int>> points_of_place_;
   std::vector<std::vector<double>> reach_;  ///< by type, by place: metres from its position its region reaches
   ClosedPlaces closed_;
+  std::vector<std::vector<int>> closed_by_;  ///< by type, by place: the standing robot that closes it, -1
   bool closed_stale_ = false;
   double next_plan_ = -1.0;
   std::size_t plan_step_ = 0;

@@ -134,6 +134,11 @@ void PlaceTraffic::update_grant(int robot) {
     ++k;
   }
   const auto index = static_cast<std::size_t>(r.at + k);
+  if (g.waits_for.empty() && k == order_.pending(robot) && index + 1 < r.places.size()) {
+    // Its route leads on into a place a standing body closes: it waits for that robot.
+    const int closer = closed_by_[static_cast<std::size_t>(r.type)][static_cast<std::size_t>(r.places[index + 1])];
+    if (closer >= 0 && closer != robot) g.waits_for.push_back(closer);
+  }
   g.granted_index = r.place_point[index];
   g.granted_distance = r.point_s[static_cast<std::size_t>(g.granted_index)];
   g.arrived = static_cast<std::size_t>(r.at) + 1 == r.places.size();

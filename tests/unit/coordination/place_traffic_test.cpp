@@ -275,6 +275,7 @@ TEST(PlaceTraffic, StandingBodiesCloseTheirPlacesAndRobotsEnterWhenClear) {
   }
   EXPECT_GT(furthest, 0.3);
   EXPECT_LT(furthest, 1.2 - 0.125 - 0.1) << "granted into the standing body";
+  EXPECT_EQ(traffic.grant(driver.number).waits_for, std::vector<int>{worker}) << "it tells whom it waits for";
 
   traffic.stand(worker, {});  // the worker drives off the roads
   for (; t < 60.0 && driver.x(traffic) < 1.3; t += 0.5) driver.cycle(traffic, t);
