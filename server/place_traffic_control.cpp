@@ -17,6 +17,7 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
   for (const auto& fleet : config.fleets) speed = std::min(speed, config.top_speed(fleet));
   coordination::PlaceTrafficParams params;
   if (std::isfinite(speed) && speed > 0.0) params.speed = speed;
+  params.plan_ahead = static_cast<int>(config.settings.get_int("traffic.plan_ahead"));
   return params;
 }
 

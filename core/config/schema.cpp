@@ -95,6 +95,9 @@ std::vector<KeySpec> make_schema() {
       choice("traffic.core", "manager", {"manager", "places"},
              "what grants the roads: the traffic manager, or the coordination core's planner and order of "
              "visits (docs/coordination.md)"),
+      integer("traffic.plan_ahead", 2, "moves", 1, 20,
+              "the places core: moves a robot's plan may run ahead of where the robot is, so how far it is "
+              "granted beyond its place"),
 
       // Fault injection (soak tests only; everything off by default)
       number("faults.pose_delay_ms", 0.0, "ms", 0.0, 10000.0,

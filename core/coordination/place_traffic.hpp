@@ -124,6 +124,9 @@ class PlaceTraffic {
   /// Ends visits the robot's progress shows it has driven through.
   void follow_progress(int robot, double progress);
   void plan_step();
+  /// The index into r.places of the end of the route's leg after index `from` (< the last): the
+  /// first place at which the route turns back on itself, or its end.
+  static std::size_t route_leg_end(const Robot& r, std::size_t from);
   /// The plan moved the robot off its route: a new route through its visits to the route's end.
   void reroute(int robot);
   /// Graph points along consecutive places, starting at `from_point` (a point of places[0]).

@@ -18,6 +18,19 @@ void PlaceTraffic::update(double now) {
 }
 
 void PlaceTraffic::plan_step() {
+  // A robot's visits from the first that waits for another robot's on are not granted: planned
+  // again each step from its last granted one, they stay as they were, or the planner sends it
+  // another way or pushes it. Kept, a robot whose plan ran ahead behind another would be held
+  // behind its own plan, and the other could never get past those visits.
+  for (int robot = 0; robot < robots(); ++robot) {
+    if (at(robot).mode != Mode::kDriving || !order_.present(robot)) continue;
+    for (int k = order_.has_left(robot) ? 2 : 1; k <= order_.pending(robot); ++k) {
+      if (order_.waits_for(robot, k) >= 0) {
+        order_.drop_from(robot, k);
+        break;
+      }
+    }
+  }
   // The plan runs ahead of the robots: each is planned from the last place planned for it,
   // along its route where the route leads on.
   std::vector<PlaceRobot> planned(robots_.size());
@@ -30,12 +43,13 @@ void PlaceTraffic::plan_step() {
       continue;
     }
     p.place = order_.last_planned(robot);
-    p.goal = r.places.back();
     const auto last = static_cast<std::size_t>(r.at + order_.pending(robot));
-    p.preferred = last + 1 < r.places.size() ? r.places[last + 1] : -1;
+    const bool at_end = last + 1 >= r.places.size();
+    p.goal = at_end ? r.places.back() : r.places[route_leg_end(r, last)];
+    p.preferred = at_end ? -1 : r.places[last + 1];
     // Behind its plan, waiting for a new route to reach it, or at its route's end (where it turns
     // off the road): planned to stay, never pushed.
-    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead || p.place == p.goal;
+    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead || at_end;
   }
   const std::vector<int> next = planner_.plan(planned, &closed_);
   ++plan_step_;
@@ -44,9 +58,19 @@ void PlaceTraffic::plan_step() {
     const int to = next[static_cast<std::size_t>(robot)];
     if (p.place < 0 || to == p.place) continue;
     order_.plan(robot, to, plan_step_);
+    // The end of each leg is a goal reached: its priority starts over, as at the route's end.
     if (to == p.goal) planner_.reached_goal(robot);
     if (to != p.preferred) reroute(robot);
   }
+}
+
+std::size_t PlaceTraffic::route_leg_end(const Robot& r, std::size_t from) {
+  // A route may turn back on itself (a robot turning round, or pushed back and coming on): where
+  // it does, the place it turns at is the goal of the leg, not the route's end, which may be the
+  // place the robot stands at.
+  std::size_t end = from + 1;
+  while (end + 1 < r.places.size() && r.places[end + 1] != r.places[end - 1]) ++end;
+  return end;
 }
 
 void PlaceTraffic::reroute(int robot) {
