@@ -18,6 +18,7 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
   coordination::PlaceTrafficParams params;
   if (std::isfinite(speed) && speed > 0.0) params.speed = speed;
   params.plan_ahead = static_cast<int>(config.settings.get_int("traffic.plan_ahead"));
+  params.plan_period_s = config.settings.get_double("traffic.plan_period_s");
   return params;
 }
 
@@ -31,7 +32,8 @@ PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
                                    const coordination::PlaceTrafficParams& params)
     : site_map(std::move(map)),
       zones(site_map->graph.graph, configuration.resources),
-      traffic(site_map->graph.graph, zones, params),
+      lanes(traffic::driving_graph(site_map->graph.graph, configuration)),
+      traffic(lanes, zones, params),
       robot_types(configuration.robot_vehicle_types) {}
 
 PlaceTrafficControl::PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site, std::string map_id,

@@ -26,8 +26,9 @@ struct PlaceTrafficSite {
   PlaceTrafficSite(std::shared_ptr<const map::SiteMap> site_map, const traffic::TrafficConfiguration& configuration,
                    const coordination::PlaceTrafficParams& params);
 
-  std::shared_ptr<const map::SiteMap> site_map;  ///< keeps the road graph the core refers to
+  std::shared_ptr<const map::SiteMap> site_map;  ///< keeps the road graph the zones refer to
   traffic::ConflictZones zones;
+  map::RoadGraph lanes;  ///< the graph the robots drive: one way along corridors on cycles with traffic.one_way
   coordination::PlaceTraffic traffic;
   std::map<std::string, int> robot_types;  ///< robot id -> vehicle type (the zones' numbering)
 };

@@ -90,11 +90,14 @@ std::vector<KeySpec> make_schema() {
              "gap kept between the regions of reservations; larger values make junction zones swallow whole "
              "corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its own distance"),
       flag("traffic.one_way", true,
-           "give corridors on cycles of the road network one driving direction (the manager only: the places "
-           "core drives every lane both ways)"),
+           "give corridors on cycles of the road network one driving direction (robots pushed aside by the "
+           "places core still back up against it)"),
       choice("traffic.core", "manager", {"manager", "places"},
              "what grants the roads: the traffic manager, or the coordination core's planner and order of "
              "visits (docs/coordination.md)"),
+      number("traffic.plan_period_s", 0.0, "s", 0.0, 10.0,
+             "the places core: sim seconds between plan steps; 0: a move between neighbouring places at the "
+             "slowest fleet's top speed"),
       integer("traffic.plan_ahead", 2, "moves", 1, 20,
               "the places core: moves a robot's plan may run ahead of where the robot is, so how far it is "
               "granted beyond its place"),

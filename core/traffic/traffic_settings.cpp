@@ -60,8 +60,7 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
   c.priority_wait = s.get_double("traffic.priority_wait_s");
   c.reroute_wait = s.get_double("traffic.reroute_wait_s");
   c.lost_reroute_wait = s.get_double("traffic.lost_reroute_wait_s");
-  // The coordination core plans robots both ways along every lane and makes room by pushing.
-  c.one_way = s.get_bool("traffic.one_way") && s.get_string("traffic.core") != "places";
+  c.one_way = s.get_bool("traffic.one_way");
   return c;
 }
 
@@ -80,11 +79,15 @@ map::RoadGraph planning_graph(const map::RoadGraph& graph, const TrafficConfigur
   return lane_graph_for(one_way_plan(graph, zones).graph, width, configuration.resources.margin);
 }
 
+map::RoadGraph driving_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration) {
+  if (!configuration.one_way) return graph;
+  return one_way_plan(graph, ConflictZones(graph, without_drives(configuration.resources))).graph;
+}
+
 std::map<std::string, map::RoadGraph> fleet_graphs(const map::RoadGraph& graph, const config::FleetConfig& config) {
-  const TrafficConfiguration configuration = configuration_from(config);
-  const bool one_way = config.settings.get_bool("traffic.enabled") && configuration.one_way;
-  const map::RoadGraph base =
-      one_way ? one_way_plan(graph, ConflictZones(graph, without_drives(configuration.resources))).graph : graph;
+  TrafficConfiguration configuration = configuration_from(config);
+  configuration.one_way = configuration.one_way && config.settings.get_bool("traffic.enabled");
+  const map::RoadGraph base = driving_graph(graph, configuration);
   std::map<std::string, map::RoadGraph> graphs;
   for (const auto& fleet : config.fleets) {
     graphs.emplace(fleet.id,

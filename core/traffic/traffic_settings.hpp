@@ -23,6 +23,10 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config);
 /// The vehicle type index of fleet `fleet_id` under configuration_from(config); 0 when unknown.
 int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id);
 
+/// The graph traffic control lets robots drive under `configuration`: with `one_way` set, the
+/// one-way plan's (the corridors on cycles of the road network driven one way), else `graph`.
+map::RoadGraph driving_graph(const map::RoadGraph& graph, const TrafficConfiguration& configuration);
+
 /// The graph robots of vehicle type `type` plan their routes on under `configuration`: the
 /// one-way graph when `one_way` is set, else `graph` itself, with only the lanes the type fits.
 /// Deterministic: equal to TrafficManager::route_graph(type).

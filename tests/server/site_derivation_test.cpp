@@ -41,21 +41,33 @@ TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
   EXPECT_EQ(server::derive_site(closed.site_map, config).traffic, nullptr);
 }
 
-// traffic.core places derives the coordination core instead of the traffic manager, and every
-// robot's agent plans on the lanes both ways (no one-way plan).
+// traffic.core places derives the coordination core instead of the traffic manager; it lets the
+// robots drive the lanes their agents plan on: the corridors on cycles one way with
+// traffic.one_way (the default), every lane both ways without.
 TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
   const auto table_a =
       std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/table_a.yaml")));
   config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
   config.settings.set("traffic.enabled", "true", "site_derivation_test");
   config.settings.set("traffic.core", "places", "site_derivation_test");
+  auto edges = [](const map::RoadGraph& graph) {
+    std::size_t count = 0;
+    for (const auto& out : graph.successors) count += out.size();
+    return count;
+  };
   const server::SiteDerivation derived = server::derive_site(table_a, config);
   EXPECT_EQ(derived.traffic, nullptr);
   ASSERT_NE(derived.places, nullptr);
   EXPECT_GT(derived.places->zones.place_count(), 0u);
   EXPECT_EQ(derived.places->robot_types.size(), config.all_robots().size());
-  EXPECT_FALSE(traffic::configuration_from(config).one_way);
   EXPECT_GT(derived.places->traffic.plan_period_s(), 0.0);
+  EXPECT_TRUE(traffic::configuration_from(config).one_way);
+  EXPECT_LT(edges(derived.places->lanes), edges(table_a->graph.graph)) << "corridors on cycles one way";
+
+  config.settings.set("traffic.one_way", "false", "site_derivation_test");
+  const server::SiteDerivation both_ways = server::derive_site(table_a, config);
+  ASSERT_NE(both_ways.places, nullptr);
+  EXPECT_EQ(edges(both_ways.places->lanes), edges(table_a->graph.graph));
 }
 
 TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
