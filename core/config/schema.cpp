@@ -98,7 +98,7 @@ std::vector<KeySpec> make_schema() {
       number("traffic.plan_period_s", 0.0, "s", 0.0, 10.0,
              "the places core: sim seconds between plan steps; 0: a move between neighbouring places at the "
              "slowest fleet's top speed"),
-      integer("traffic.plan_ahead", 2, "moves", 1, 20,
+      integer("traffic.plan_ahead", 4, "moves", 1, 20,
               "the places core: moves a robot's plan may run ahead of where the robot is, so how far it is "
               "granted beyond its place"),
 

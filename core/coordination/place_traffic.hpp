@@ -18,7 +18,7 @@ struct PlaceTrafficParams {
   double plan_period_s = 0.0;
   double speed = 0.2;  ///< m/s, the robots' cruising speed (for plan_period_s 0)
   /// Moves a robot's plan may run ahead of where it is: one this far behind is held in the plan.
-  int plan_ahead = 2;
+  int plan_ahead = 4;
   std::uint64_t seed = 1;
 };
 

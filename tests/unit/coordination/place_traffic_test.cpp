@@ -33,7 +33,7 @@ class FollowingRobots {
         road_(road),
         zones_(zones),
         search_(road, zones),
-        traffic_(road, zones, {.plan_period_s = 0.6, .plan_ahead = 2, .seed = seed}),
+        traffic_(road, zones, {.plan_period_s = 0.6, .plan_ahead = 4, .seed = seed}),
         rng_(seed) {
     for (const int start : starts) {
       Robot r;
