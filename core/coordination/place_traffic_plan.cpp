@@ -96,7 +96,9 @@ void PlaceTraffic::reroute(int robot) {
   const int from_point = r.points[static_cast<std::size_t>(r.place_point[static_cast<std::size_t>(r.at)])];
   const std::vector<int> points = points_along(from_point, places);
   if (points.empty()) return;
-  set_route(r, r.version + 1, points);
+  // Odd: the robots' own routes take even versions, so a second new route handed before the
+  // robot took the first never gets the version of the robot's next own route.
+  set_route(r, (r.version + 1) | 1U, points);
   r.at = 0;
   r.adopted = false;
 }

@@ -387,3 +387,38 @@ TEST(PlaceTraffic, ARouteThatTurnsRoundBackToItsStartIsDrivenNotTakenAsArrived) 
 
 }  // namespace
 }  // namespace fleet::coordination
+namespace fleet::coordination {
+namespace {
+
+// Traffic hands a robot new routes under odd versions, the robots' own taking even ones: a robot
+// pushed again and again, taking each new route, is never handed the version its next own route
+// will have.
+TEST(PlaceTraffic, NewRoutesHandedOutKeepOddVersionsHoweverMany) {
+  const map::RoadGraph road = traffic::testing::corridor_with_siding();
+  const traffic::ConflictZones zones(road, forklift_params());
+  traffic::RouteSearch search(road, zones);
+  using traffic::testing::point_at;
+  PlaceTraffic traffic(road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1});
+  // Head-on in the corridor: one of the two is pushed back, a place at a time.
+  Driver east;
+  east.number = traffic.add_robot(0);
+  east.route = search.shortest(point_at(road, 0.9, 0.0), point_at(road, 2.0, 0.0));
+  Driver west;
+  west.number = traffic.add_robot(0);
+  west.route = search.shortest(point_at(road, 1.5, 0.0), point_at(road, 0.0, 0.0));
+  ASSERT_TRUE(traffic.drive(east.number, east.version, east.route, 0.0));
+  ASSERT_TRUE(traffic.drive(west.number, west.version, west.route, 0.0));
+  std::vector<std::uint64_t> handed;
+  for (double t = 0.0; t < 30.0; t += 0.25) {
+    for (Driver* driver : {&east, &west}) {
+      const std::uint64_t before = driver->version;
+      driver->cycle(traffic, t);
+      if (driver->version != before) handed.push_back(driver->version);
+    }
+  }
+  ASSERT_GE(handed.size(), 2u) << "pushed back more than once";
+  for (const std::uint64_t version : handed) EXPECT_EQ(version % 2, 1u) << version;
+}
+
+}  // namespace
+}  // namespace fleet::coordination
