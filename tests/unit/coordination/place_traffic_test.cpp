@@ -62,20 +62,9 @@ class FollowingRobots {
       }
       check();
       if (!traffic_.wait_cycle().empty()) ++wait_cycles;
-      if (trace && std::fmod(time_ + 1e-6, 1.0) < kDt - 1e-6) {
-        std::printf("t %.0f", time_);
-        for (const Robot& r : robots_) {
-          const auto pz = pose(r);
-          const auto& g = traffic_.grant(r.number);
-          std::printf(" | %d (%.2f,%.2f) v%lu/%lu s%.0f w%d", r.number, pz.x, pz.y, r.version % 1000, g.version % 1000,
-                      time_ - r.still_since, g.waits_for.empty() ? -1 : g.waits_for[0]);
-        }
-        std::printf("\n");
-      }
     }
   }
 
-  bool trace = false;
   std::size_t errands = 0;
   std::size_t wait_cycles = 0;
   std::size_t reroutes = 0;
