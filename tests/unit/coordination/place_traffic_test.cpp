@@ -325,11 +325,6 @@ TEST(PlaceTraffic, StandingBodiesCloseTheirPlacesAndRobotsEnterWhenClear) {
   EXPECT_GE(traffic.grant(newcomer).granted_index, 0);
 }
 
-}  // namespace
-}  // namespace fleet::coordination
-namespace fleet::coordination {
-namespace {
-
 // Over DDS a report reaches traffic late, and a grant or a new route reaches the robot late (a
 // few cycles of the server and of the agent): 8 robots on table_a whose every message takes
 // 0.2 s sim each way still keep apart, form no wait cycle and get their errands done.
@@ -373,11 +368,6 @@ TEST(PlaceTraffic, ARouteThatTurnsRoundBackToItsStartIsDrivenNotTakenAsArrived) 
   EXPECT_NEAR(furthest, 1.2, 1e-6) << "it drove the loop";
   EXPECT_NEAR(driver.x(traffic), 1.0, 1e-6);
 }
-
-}  // namespace
-}  // namespace fleet::coordination
-namespace fleet::coordination {
-namespace {
 
 // Traffic hands a robot new routes under odd versions, the robots' own taking even ones: a robot
 // pushed again and again, taking each new route, is never handed the version its next own route
