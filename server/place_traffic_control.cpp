@@ -111,7 +111,14 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
     }
     working_.erase(request.robot_id);
     routed_.insert(request.robot_id);
-    traffic_.drive(id, request.version, request.points, request.progress);
+    // A route with a work area starts beside the roads: the area is its way out onto them.
+    const geometry::Polygon way_out =
+        request.work_area.empty() ? geometry::Polygon{} : traffic::convex_hull(request.work_area);
+    traffic_.drive(id, request.version, request.points, request.progress, way_out);
+    if (!traffic_.on_roads(id)) {
+      const auto body = bodies_.find(request.robot_id);
+      if (body != bodies_.end()) traffic_.waiting_body(id, body->second);
+    }
   });
 }
 
@@ -152,6 +159,8 @@ void PlaceTrafficControl::set_body(const std::string& robot_id, const geometry::
   // Standing without a route (parked, not let on yet, working beside the roads without an area):
   // its body holds what it reaches.
   if (!routed_.contains(robot_id) && !working_.contains(robot_id)) traffic_.stand(number_of(robot_id), body);
+  // Routed but not let onto the roads yet: it waits beside them where its body is.
+  if (routed_.contains(robot_id)) traffic_.waiting_body(number_of(robot_id), body);
 }
 
 void PlaceTrafficControl::robot_lost(const std::string& robot_id, const geometry::Polygon& body, double /*now_sim*/) {

@@ -30,10 +30,8 @@ PlacePibt::Check PlacePibt::check(int robot, int place, std::vector<int>& blocke
   blockers.clear();
   const auto& zones = graph_.zones();
   const int type = robots_[static_cast<std::size_t>(robot)].type;
-  if (closed_ != nullptr && place != robots_[static_cast<std::size_t>(robot)].place &&
-      (*closed_)[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] != 0) {
-    return Check::kTaken;
-  }
+  const int from = robots_[static_cast<std::size_t>(robot)].place;
+  if (closed_ != nullptr && place != from && closed_->closer(type, place, robot, from) != kOpen) return Check::kTaken;
   for (int other_type = 0; other_type < graph_.type_count(); ++other_type) {
     for (const int q : zones.conflicts(type, place, other_type)) {
       const int planned = planned_at_[static_cast<std::size_t>(q)];
@@ -79,7 +77,7 @@ PlacePibt::WayOut PlacePibt::search_way(int robot, int from, int other, int reac
     for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
       for (const int place : *moves) {
         auto& d = search_depth_[static_cast<std::size_t>(place)];
-        if (d != kFar || zones.conflict(r.type, place, o.type, o.place)) continue;
+        if (d != kFar || (o.place >= 0 && zones.conflict(r.type, place, o.type, o.place))) continue;
         const Check c = check(robot, place, blockers);
         if (c == Check::kTaken) continue;
         if (around_standing && c == Check::kBlocked &&
@@ -98,14 +96,20 @@ PlacePibt::WayOut PlacePibt::search_way(int robot, int from, int other, int reac
   return found;
 }
 
+bool PlacePibt::in_way_of(int type, int place, int pusher, int wanted) const {
+  const PlaceRobot& p = robots_[static_cast<std::size_t>(pusher)];
+  if (graph_.zones().conflict(type, place, p.type, wanted)) return true;
+  if (p.place >= 0 || closed_ == nullptr) return false;
+  const int area = closed_->by_area[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+  return area == pusher || area == kClosedByMany;
+}
+
 int PlacePibt::moves_out(int robot, int from, int pusher, int wanted) {
   // Bounded to the reach of a body or two.
   constexpr int kReach = 16;
-  const auto& zones = graph_.zones();
   const int type = robots_[static_cast<std::size_t>(robot)].type;
-  const int pusher_type = robots_[static_cast<std::size_t>(pusher)].type;
   return search_way(robot, from, pusher, kReach, false,
-                    [&](int place) { return !zones.conflict(type, place, pusher_type, wanted); })
+                    [&](int place) { return !in_way_of(type, place, pusher, wanted); })
       .moves;
 }
 
@@ -117,7 +121,6 @@ void PlacePibt::take(int robot, int place) {
 void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
   const bool pushed = pusher >= 0;
-  const int pusher_type = pushed ? robots_[static_cast<std::size_t>(pusher)].type : 0;
   struct Candidate {
     int place;
     int stays_in_the_way;  ///< pushed: 1 when the place still conflicts with the one the pusher wants
@@ -135,7 +138,7 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
     const Check c = check(robot, place, blockers);
     if (c == Check::kTaken) return;
     int in_the_way = 0;
-    if (pushed && graph_.zones().conflict(r.type, place, pusher_type, wanted)) {
+    if (pushed && in_way_of(r.type, place, pusher, wanted)) {
       if (way_out >= kFar || moves_out(robot, place, pusher, wanted) >= way_out) return;
       in_the_way = 1;
     }
@@ -335,6 +338,18 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const Cl
   });
   for (const int robot : order) {
     if (robots[static_cast<std::size_t>(robot)].held) take(robot, robots[static_cast<std::size_t>(robot)].place);
+  }
+  // A robot waiting beside the roads to enter them pushes those standing in its way out of it.
+  for (std::size_t entering = 0; entering < n; ++entering) {
+    const PlaceRobot& e = robots[entering];
+    if (e.place >= 0 || e.entering < 0) continue;
+    for (const int robot : order) {
+      const PlaceRobot& b = robots[static_cast<std::size_t>(robot)];
+      if (planned_[static_cast<std::size_t>(robot)] < 0 &&
+          in_way_of(b.type, b.place, static_cast<int>(entering), e.entering)) {
+        plan_robot(robot, static_cast<int>(entering), e.entering);
+      }
+    }
   }
   for (const int robot : order) {
     if (planned_[static_cast<std::size_t>(robot)] < 0) plan_robot(robot, -1, -1);

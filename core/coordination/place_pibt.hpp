@@ -16,12 +16,38 @@ struct PlaceRobot {
   int goal = -1;       ///< -1: no errand, the robot only keeps out of the way
   bool held = false;   ///< working at a place (a pick, a drop) or stopped: planned to stay, never pushed
   int preferred = -1;  ///< the next place of the route it drives: first among equally near candidates
+  /// Off the roads (place -1): the place it waits to enter them at, -1 when none. Robots standing
+  /// in its way (at places conflicting with it, or in its way out, ClosedPlaces::by_area) are
+  /// pushed out of it before anyone else is planned.
+  int entering = -1;
 };
 
-/// Places no robot may plan into, by vehicle type and place (non-zero: closed): where bodies
-/// standing beside the roads, which the planner does not move, reach. A robot standing at a
-/// closed place may stay.
-using ClosedPlaces = std::vector<std::vector<std::uint8_t>>;
+inline constexpr int kOpen = -1;          ///< ClosedPlaces: no robot closes the place
+inline constexpr int kClosedByMany = -2;  ///< ClosedPlaces: several robots close it
+
+/// Places robots may not plan into, by vehicle type and place, each entry naming the robot that
+/// closes it (kOpen, kClosedByMany): a robot's own body or area never closes a place to itself.
+struct ClosedPlaces {
+  /// Where bodies standing beside the roads (or waiting to enter them), which the planner does
+  /// not move, reach.
+  std::vector<std::vector<int>> by_body;
+  /// Where the area a robot sweeps driving out onto the roads reaches: closed to robots outside
+  /// it, and passable for those already in it, so that they can drive out of it.
+  std::vector<std::vector<int>> by_area;
+
+  ClosedPlaces() = default;
+  ClosedPlaces(std::size_t types, std::size_t places)
+      : by_body(types, std::vector<int>(places, kOpen)), by_area(types, std::vector<int>(places, kOpen)) {}
+  /// The robot closing `place` to `robot` (of `type`, standing at `from`), kOpen when none does.
+  int closer(int type, int place, int robot, int from) const {
+    const auto t = static_cast<std::size_t>(type);
+    const int body = by_body[t][static_cast<std::size_t>(place)];
+    if (body != kOpen && body != robot) return body;
+    const int area = by_area[t][static_cast<std::size_t>(place)];
+    const bool inside = from >= 0 && by_area[t][static_cast<std::size_t>(from)] == area;
+    return area != kOpen && area != robot && !inside ? area : kOpen;
+  }
+};
 
 /// Priority inheritance with backtracking [Okumura 2022, Algorithm 1] on places that conflict
 /// with their neighbours: a robot's body covers more than its place, so a place is free for a
@@ -79,6 +105,9 @@ class PlacePibt {
   /// through other's body nor (around_standing) through robots standing; -1 when none is near.
   int first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing);
   void take(int robot, int place);
+  /// Whether a robot of `type` at `place` is in the way of `pusher`, which wants place `wanted`
+  /// (conflicting with it) or, off the roads, to enter them there (ClosedPlaces::by_area too).
+  bool in_way_of(int type, int place, int pusher, int wanted) const;
   /// Moves robot needs from `from` to a place clear of `wanted`, which `pusher` wants, without
   /// passing where the pusher's body is or a planned robot rules out; kFar when none is near.
   int moves_out(int robot, int from, int pusher, int wanted);

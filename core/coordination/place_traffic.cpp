@@ -20,8 +20,7 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
       order_(zones),
       points_of_place_(zones.place_count()),
       reach_(zones.type_count(), std::vector<double>(zones.place_count(), 0.0)),
-      closed_(zones.type_count(), std::vector<std::uint8_t>(zones.place_count(), 0)),
-      closed_by_(zones.type_count(), std::vector<int>(zones.place_count(), -1)) {
+      closed_(zones.type_count(), zones.place_count()) {
   for (std::size_t point = 0; point < zones.point_count(); ++point) {
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
@@ -82,7 +81,8 @@ double PlaceTraffic::place_s(const Robot& r, std::size_t index) const {
   return r.point_s[static_cast<std::size_t>(r.place_point[index])];
 }
 
-bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress) {
+bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress,
+                         const geometry::Polygon& way_out) {
   if (points.empty() || !std::isfinite(progress)) return false;
   for (const int point : points) {
     if (point < 0 || static_cast<std::size_t>(point) >= zones_.point_count()) return false;
@@ -91,6 +91,7 @@ bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int
   r.progress = progress;
   const bool routed = r.mode == Mode::kDriving || r.mode == Mode::kWaitingToEnter;
   if (routed && version < r.version) return true;  // sent before its latest route reached it
+  hold_way_out(robot, way_out);
   if (r.mode == Mode::kDriving && version == r.version) {
     // The route it was handed, as it drives it (joined from where it is): its places count.
     if (!r.adopted && points != r.points) {
@@ -112,6 +113,7 @@ void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vecto
   r.adopted = true;
   const int here = index_at(r, progress);
   if (!order_.present(robot)) {
+    if (r.mode != Mode::kWaitingToEnter) r.waiting_since = ++waits_begun_;
     r.mode = Mode::kWaitingToEnter;
     try_to_enter(robot);
     return;
@@ -149,24 +151,43 @@ void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vecto
 }
 
 void PlaceTraffic::try_to_enter(int robot) {
+  if (closed_stale_) rebuild_closed();
   Robot& r = at(robot);
   const int here = index_at(r, r.progress);
   const int place = r.places[static_cast<std::size_t>(here)];
-  r.entry_blockers.clear();
+  // Nobody's visit, begun or planned, may conflict with where it enters, no body or way out may
+  // close that place, and nobody may be in the way out it sweeps to get there.
+  std::vector<int> blockers = closers_of(robot, r.type, place, -1);
+  if (!r.way_out.empty()) {
+    const std::vector<int> in_area = robots_in_area(robot, r.way_out);
+    blockers.insert(blockers.end(), in_area.begin(), in_area.end());
+  }
+  // Of two robots waiting to enter whose ways out meet, the one that began to wait first goes
+  // first: the other's way out does not hold it up, only its body.
+  std::erase_if(blockers, [&](int other) {
+    const Robot& o = at(other);
+    return o.mode == Mode::kWaitingToEnter && o.waiting_since > r.waiting_since &&
+           !body_reaches(o.body, r.type, place) &&
+           (r.way_out.empty() || o.body.empty() || !geometry::convex_polygons_overlap(o.body, r.way_out));
+  });
   for (int other = 0; other < robots(); ++other) {
     if (other == robot) continue;
     const Robot& o = at(other);
-    bool in_the_way = false;
     for (const int visit : order_.places_ahead(other)) {
-      in_the_way = in_the_way || zones_.conflict(r.type, place, o.type, visit);
+      if (zones_.conflict(r.type, place, o.type, visit)) {
+        blockers.push_back(other);
+        break;
+      }
     }
-    in_the_way = in_the_way || (o.mode == Mode::kStanding && body_reaches(o.body, r.type, place));
-    if (in_the_way) r.entry_blockers.push_back(other);
   }
+  std::sort(blockers.begin(), blockers.end());
+  blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
+  r.entry_blockers = std::move(blockers);
   if (!r.entry_blockers.empty()) return;
   r.mode = Mode::kDriving;
   if (!r.body.empty()) closed_stale_ = true;
   r.body.clear();
+
   place_robot(robot, place);
   r.at = here;
   follow_progress(robot, r.progress);
@@ -198,7 +219,7 @@ PlaceTraffic::Circle PlaceTraffic::circle_around(const geometry::Polygon& body) 
 }
 
 bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int place) const {
-  return body_reaches(body, circle_around(body), type, place);
+  return !body.empty() && body_reaches(body, circle_around(body), type, place);
 }
 
 bool PlaceTraffic::body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const {
@@ -218,7 +239,9 @@ std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon
   for (int other = 0; other < robots(); ++other) {
     if (other == robot) continue;
     const Robot& o = at(other);
-    bool inside = o.mode == Mode::kStanding && !o.body.empty() && geometry::convex_polygons_overlap(o.body, area);
+    const geometry::Polygon& body = closing_body(o);
+    bool inside = (!body.empty() && geometry::convex_polygons_overlap(body, area)) ||
+                  (!o.way_out.empty() && geometry::convex_polygons_overlap(o.way_out, area));
     for (const int place : order_.places_ahead(other)) inside = inside || body_reaches(area, around, o.type, place);
     if (inside) found.push_back(other);
   }
@@ -234,6 +257,8 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
   r.entry_blockers.clear();
   r.adopted = true;
   r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
+  if (!r.way_out.empty()) closed_stale_ = true;
+  r.way_out.clear();
   if (geometry::same_polygon(body, r.body, kSameBodyM)) return;
   r.body = body;
   closed_stale_ = true;
@@ -243,20 +268,62 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
   drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
 }
 
+void PlaceTraffic::waiting_body(int robot, const geometry::Polygon& body) {
+  Robot& r = at(robot);
+  if (r.mode != Mode::kWaitingToEnter || geometry::same_polygon(body, r.body, kSameBodyM)) return;
+  r.body = body;
+  closed_stale_ = true;
+  if (body.empty()) return;
+  const Circle around = circle_around(body);
+  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
+}
+
+void PlaceTraffic::hold_way_out(int robot, const geometry::Polygon& way_out) {
+  // Robots already in the way out may drive on out of it; others' plans keep out of it
+  // (ClosedPlaces::by_area). Visits planned into it before stay: the robot enters once they end.
+  Robot& r = at(robot);
+  if (geometry::same_polygon(way_out, r.way_out, kSameBodyM)) return;
+  r.way_out = way_out;
+  closed_stale_ = true;
+}
+
+const geometry::Polygon& PlaceTraffic::closing_body(const Robot& r) {
+  static const geometry::Polygon kNone;
+  return r.mode == Mode::kStanding || r.mode == Mode::kWaitingToEnter ? r.body : kNone;
+}
+
+std::vector<int> PlaceTraffic::closers_of(int robot, int type, int place, int from) const {
+  std::vector<int> closers;
+  if (closed_.closer(type, place, robot, from) == kOpen) return closers;
+  for (int other = 0; other < robots(); ++other) {
+    if (other == robot) continue;
+    const Robot& o = at(other);
+    const bool inside = from >= 0 && body_reaches(o.way_out, type, from);
+    if (body_reaches(closing_body(o), type, place) || (!inside && body_reaches(o.way_out, type, place))) {
+      closers.push_back(other);
+    }
+  }
+  return closers;
+}
+
 void PlaceTraffic::rebuild_closed() {
-  for (auto& by_place : closed_) std::fill(by_place.begin(), by_place.end(), 0);
-  for (auto& by_place : closed_by_) std::fill(by_place.begin(), by_place.end(), -1);
-  for (int robot = 0; robot < robots(); ++robot) {
-    const Robot& r = at(robot);
-    if (r.mode != Mode::kStanding) continue;
-    const Circle around = circle_around(r.body);
+  for (auto* layer : {&closed_.by_body, &closed_.by_area}) {
+    for (auto& by_place : *layer) std::fill(by_place.begin(), by_place.end(), kOpen);
+  }
+  auto close = [&](std::vector<std::vector<int>>& layer, int robot, const geometry::Polygon& polygon) {
+    if (polygon.empty()) return;
+    const Circle around = circle_around(polygon);
     for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
       for (int place = 0; place < static_cast<int>(zones_.place_count()); ++place) {
-        if (!body_reaches(r.body, around, type, place)) continue;
-        closed_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = 1;
-        closed_by_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] = robot;
+        if (!body_reaches(polygon, around, type, place)) continue;
+        int& closer = layer[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+        closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
       }
     }
+  };
+  for (int robot = 0; robot < robots(); ++robot) {
+    close(closed_.by_body, robot, closing_body(at(robot)));
+    close(closed_.by_area, robot, at(robot).way_out);
   }
   closed_stale_ = false;
 }

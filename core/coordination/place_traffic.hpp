@@ -54,8 +54,14 @@ class PlaceTraffic {
   int robots() const { return static_cast<int>(robots_.size()); }
   /// The robot drives route `version` along road graph `points`, `progress` metres from its first.
   /// Versions older than the robot's current one are ignored. False (nothing changes) when a
-  /// point is not on the graph or the route is empty.
-  bool drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress);
+  /// point is not on the graph or the route is empty. `way_out` (convex, map frame; empty when
+  /// none) is what its body sweeps from beside the roads onto the route's start: it enters once
+  /// no other robot's visit or body is in it, and holds it until it is on the road (sent empty).
+  bool drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress,
+             const geometry::Polygon& way_out = {});
+  /// The body of a robot waiting to enter the roads, as it stands beside them: it closes the
+  /// places it reaches, as a standing body does. Ignored for a robot on the roads or standing.
+  void waiting_body(int robot, const geometry::Polygon& body);
   /// The robot stands without a route with body `body` (a convex polygon, map frame; empty when
   /// unknown or off the roads): it holds the places its body reaches until it drives again.
   void stand(int robot, const geometry::Polygon& body);
@@ -90,7 +96,9 @@ class PlaceTraffic {
     int at = 0;                       ///< index into `places` of the robot's current visit
     double progress = 0.0;            ///< metres along the route, as last reported
     bool adopted = true;              ///< it drives `version` (false: a new route is on its way to it)
-    geometry::Polygon body;           ///< standing without a route
+    geometry::Polygon body;           ///< standing without a route, or waiting to enter
+    geometry::Polygon way_out;        ///< the sweep from beside the roads onto them, held until on the road
+    std::uint64_t waiting_since = 0;  ///< the order in which robots began to wait to enter
     std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
     PlaceGrant grant;
   };
@@ -112,6 +120,13 @@ class PlaceTraffic {
     double radius = 0.0;
   };
   static Circle circle_around(const geometry::Polygon& body);
+  /// Holds (or, empty, releases) the robot's way out onto the roads.
+  void hold_way_out(int robot, const geometry::Polygon& way_out);
+  /// The body that closes places to others: standing or waiting to enter; empty otherwise.
+  static const geometry::Polygon& closing_body(const Robot& r);
+  /// Robots other than `robot` (of `type`, its last planned place `from`, -1 off the roads) whose
+  /// bodies or ways out close `place` to it.
+  std::vector<int> closers_of(int robot, int type, int place, int from) const;
   /// Whether a body (convex, map frame) reaches into the region of `place` for vehicle `type`.
   bool body_reaches(const geometry::Polygon& body, int type, int place) const;
   /// The same with the body's circle computed once for many places.
@@ -144,8 +159,8 @@ class PlaceTraffic {
   std::vector<std::vector<int>> points_of_place_;
   std::vector<std::vector<double>> reach_;  ///< by type, by place: metres from its position its region reaches
   ClosedPlaces closed_;
-  std::vector<std::vector<int>> closed_by_;  ///< by type, by place: the standing robot that closes it, -1
   bool closed_stale_ = false;
+  std::uint64_t waits_begun_ = 0;
   double next_plan_ = -1.0;
   std::size_t plan_step_ = 0;
 };

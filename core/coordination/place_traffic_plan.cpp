@@ -40,6 +40,16 @@ void PlaceTraffic::plan_step() {
     p.type = r.type;
     if (r.mode != Mode::kDriving || !order_.present(robot)) {
       p.place = -1;
+      // A robot waiting to enter with a way out pushes those in it out of it; one without pushes
+      // those in its way once one of them waits for it in turn (its body closes their way on),
+      // and else waits for them to drive on.
+      const bool waited_for = std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), [&](int o) {
+        const auto& waits = at(o).grant.waits_for;
+        return std::find(waits.begin(), waits.end(), robot) != waits.end();
+      });
+      if (r.mode == Mode::kWaitingToEnter && (!r.way_out.empty() || waited_for)) {
+        p.entering = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
+      }
       continue;
     }
     p.place = order_.last_planned(robot);
@@ -161,9 +171,8 @@ void PlaceTraffic::update_grant(int robot) {
   }
   const auto index = static_cast<std::size_t>(r.at + k);
   if (g.waits_for.empty() && k == order_.pending(robot) && index + 1 < r.places.size()) {
-    // Its route leads on into a place a standing body closes: it waits for that robot.
-    const int closer = closed_by_[static_cast<std::size_t>(r.type)][static_cast<std::size_t>(r.places[index + 1])];
-    if (closer >= 0 && closer != robot) g.waits_for.push_back(closer);
+    // Its route leads on into a place a body or a way out closes: it waits for those robots.
+    g.waits_for = closers_of(robot, r.type, r.places[index + 1], r.places[index]);
   }
   g.granted_index = r.place_point[index];
   g.granted_distance = r.point_s[static_cast<std::size_t>(g.granted_index)];

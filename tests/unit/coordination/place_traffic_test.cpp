@@ -18,6 +18,7 @@
 namespace fleet::coordination {
 namespace {
 
+using testing::Driver;
 using testing::forklift_params;
 
 /// Robots as the live fleet drives them through PlaceTraffic: each plans its own shortest route
@@ -255,29 +256,6 @@ TEST(PlaceTraffic, RobotsDrivingTheirOwnRoutesKeepApartAndGetThrough) {
 
 /// A robot driving a route through PlaceTraffic one cycle at a time, as far as it is granted at
 /// once, taking the routes it is handed.
-struct Driver {
-  int number = 0;
-  std::uint64_t version = 2;
-  std::vector<int> route;
-  double progress = 0.0;
-
-  void cycle(PlaceTraffic& traffic, double now) {
-    traffic.update(now);
-    const PlaceGrant& grant = traffic.grant(number);
-    if (grant.version > version && !grant.route.empty()) {
-      route = grant.route;  // it begins where the robot stands
-      version = grant.version;
-      progress = 0.0;
-    }
-    if (grant.version == version && grant.granted_index >= 0) progress = std::max(progress, grant.granted_distance);
-    traffic.drive(number, version, route, progress);
-  }
-  /// Where its body is along the corridor.
-  double x(const PlaceTraffic& traffic) const {
-    return traffic.zones().position(traffic.places_ahead(number).front()).x;
-  }
-};
-
 // A body standing on the corridor (a robot at work, or lost) closes the places it reaches: a robot
 // driving through is granted up to short of it, and on once it has gone. A robot waiting to enter
 // the roads where another drives through is let on once that one is clear of it.
