@@ -13,7 +13,16 @@ PlacePibt::PlacePibt(PlaceGraph& graph, std::uint64_t seed)
       standing_(static_cast<std::size_t>(graph.place_count()), -1),
       planned_at_(static_cast<std::size_t>(graph.place_count()), -1),
       search_depth_(static_cast<std::size_t>(graph.place_count()), kFar),
-      search_first_(static_cast<std::size_t>(graph.place_count()), -1) {}
+      search_first_(static_cast<std::size_t>(graph.place_count()), -1) {
+  for (const auto& type : graph.zones().params().vehicle_types) backs_up_.push_back(type.backs_up ? 1 : 0);
+}
+
+const std::vector<int>& PlacePibt::moves_back(int type, int place) const {
+  static const std::vector<int> kNone;
+  const auto t = static_cast<std::size_t>(type);
+  const bool backs_up = t >= backs_up_.size() || backs_up_[t] != 0;
+  return backs_up ? graph_.predecessors(type, place) : kNone;
+}
 
 void PlacePibt::reached_goal(int robot) {
   if (robot < static_cast<int>(priority_.size())) {
@@ -74,7 +83,7 @@ PlacePibt::WayOut PlacePibt::search_way(int robot, int from, int other, int reac
       break;
     }
     if (depth >= reach) continue;
-    for (const auto* moves : {&graph_.successors(r.type, at), &graph_.predecessors(r.type, at)}) {
+    for (const auto* moves : {&graph_.successors(r.type, at), &moves_back(r.type, at)}) {
       for (const int place : *moves) {
         auto& d = search_depth_[static_cast<std::size_t>(place)];
         if (d != kFar || (o.place >= 0 && zones.conflict(r.type, place, o.type, o.place))) continue;
@@ -155,7 +164,7 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
     // up: a robot that has stood this long backs up along its lane where that is free at once,
     // rather than stand.
     const auto& forward = graph_.successors(r.type, r.place);
-    for (const int back : graph_.predecessors(r.type, r.place)) {
+    for (const int back : moves_back(r.type, r.place)) {
       if (std::find(forward.begin(), forward.end(), back) == forward.end() &&
           check(robot, back, blockers) == Check::kFree) {
         add(back);
@@ -168,7 +177,7 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   if (pushed) {
     // Backing up along its lane makes room where the lanes run one way only.
     const auto& forward = graph_.successors(r.type, r.place);
-    for (const int back : graph_.predecessors(r.type, r.place)) {
+    for (const int back : moves_back(r.type, r.place)) {
       if (std::find(forward.begin(), forward.end(), back) == forward.end()) add(back);
     }
   }

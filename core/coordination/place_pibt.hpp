@@ -127,7 +127,12 @@ class PlacePibt {
   /// Plans a robot with an errand stays put before it backs up, where that is free, rather than stand.
   static constexpr int kStandingBeforeBackingUp = 12;
 
+  /// The places the robot backs up to from `place` along its lane: none for a type that does
+  /// not back up (traffic::VehicleType::backs_up).
+  const std::vector<int>& moves_back(int type, int place) const;
+
   PlaceGraph& graph_;
+  std::vector<std::uint8_t> backs_up_;  ///< by vehicle type
   std::mt19937_64 rng_;
   std::vector<double> priority_;
   std::vector<int> last_place_;      ///< per robot: its place at the last plan

@@ -26,6 +26,10 @@ struct VehicleType {
   /// tricycle cuts inside a bend with its rear axle and swings its front wide). Unset: the body
   /// keeps its tracking point on the route. A place reserves these bodies through every bend.
   std::function<std::vector<geometry::Pose2>(const std::vector<geometry::Vec2>& path, bool at_speed)> drive = {};
+  /// Whether it backs up along its lane when traffic makes room with it: a mecanum or
+  /// differential body reverses in its own track, a tricycle pivots round first, sweeping the
+  /// ground about it, and is only moved forwards.
+  bool backs_up = true;
 };
 
 /// The rectangle `footprint` centred on the body origin, counter-clockwise, in the body frame.

@@ -51,6 +51,7 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
         return control::drive_along(drive, path, at_speed);
       };
     }
+    vehicle.backs_up = !tricycle;
     c.resources.vehicle_types.push_back(std::move(vehicle));
     for (const auto& robot : fleet.robots) c.robot_vehicle_types[robot.id] = type;
   }

@@ -34,6 +34,36 @@ TEST(PlaceGraph, DistancesFollowTheLanesOneWay) {
   EXPECT_EQ(graph.predecessors(0, last).size(), 1u);
 }
 
+// A robot on a one-way lane stands behind one held at its place: a body that backs up tries
+// backing up along the lane after standing a while, a tricycle (which would pivot round first,
+// sweeping the ground about it) is only ever moved forwards, so it waits.
+TEST(PlacePibt, ATypeThatDoesNotBackUpIsNeverMovedBackAlongItsLane) {
+  traffic::testing::GraphBuilder b;
+  b.one_way_road(0.0, 0.0, 2.0, 0.0);
+  traffic::ResourceParams params = forklift_params();
+  const geometry::Polygon body = traffic::rectangle_footprint(params.footprint);
+  params.vehicle_types = {{"forklift", body, 0.0, {}, true}, {"tricycle", body, 0.0, {}, false}};
+  const traffic::ConflictZones zones(b.graph(), params);
+  const auto place_at = [&](double x) { return zones.place_of(traffic::testing::point_at(b.graph(), x, 0.0)); };
+  for (const int type : {0, 1}) {
+    PlaceGraph graph(b.graph(), zones);
+    PlacePibt planner(graph, 1);
+    std::vector<PlaceRobot> robots{{type, place_at(1.0), place_at(2.0), false}, {0, place_at(1.4), -1, true}};
+    double least_x = 1.0;
+    for (int step = 0; step < 20; ++step) {
+      const std::vector<int> next = planner.plan(robots);
+      ASSERT_EQ(broken_step_rule(zones, robots, next), "") << "step " << step;
+      for (std::size_t i = 0; i < robots.size(); ++i) robots[i].place = next[i];
+      least_x = std::min(least_x, zones.position(robots[0].place).x);
+    }
+    if (type == 0) {
+      EXPECT_LT(least_x, 1.0 - 1e-6) << "a forklift backs up along the lane";
+    } else {
+      EXPECT_NEAR(least_x, 1.0, 1e-6) << "a tricycle is never moved against its lane";
+    }
+  }
+}
+
 // Two robots meet head-on in a single-lane corridor with a siding: the one pushed backs into the
 // siding and both get through.
 TEST(PlacePibt, HeadOnInACorridorOneStepsIntoTheSiding) {
