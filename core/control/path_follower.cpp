@@ -193,7 +193,10 @@ PathFollower::Projection PathFollower::project(Vec2 p) {
   Projection best;
   double best_d2 = std::numeric_limits<double>::infinity();
   const std::size_t last_seg = leg_end() - 1;
-  const double s_limit = cum_[progress_] + kProjectionWindow + params_.lookahead;
+  // The window runs on from the end of the segment last projected onto: measured from its start,
+  // a segment longer than the window (a route joined from where the robot stands) would hide the
+  // next one, and the robot at its end would chase a target it stands on.
+  const double s_limit = cum_[std::min(progress_ + 1, last_seg + 1)] + kProjectionWindow + params_.lookahead;
   for (std::size_t i = progress_; i <= last_seg; ++i) {
     if (i > progress_ && cum_[i] > s_limit) break;
     const Vec2 a = path_[i].position();

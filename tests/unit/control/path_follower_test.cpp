@@ -353,6 +353,26 @@ TEST(PathFollower, BacksOnlyTheLastStretchOfALongStraightOne) {
   EXPECT_NEAR(std::abs(pose.yaw), std::numbers::pi, 0.03);
 }
 
+TEST(PathFollower, ALongFirstSegmentBeforeACuspIsFollowedToTheCuspAndOn) {
+  // A route handed by traffic, joined from where the robot stands: one long segment to the route's
+  // first point, a short move on, then back along the lane. The projection must reach past the
+  // long segment's end, or the robot circles a target it stands on for ever.
+  const std::vector<Pose2> path{{0.0, 0.0, 0.0},  {2.8, 0.0, 0.0},  {3.3, 0.0, 0.0},  {2.8, 0.0, 3.14},
+                                {2.3, 0.0, 3.14}, {1.8, 0.0, 3.14}, {1.3, 0.0, 3.14}, {0.8, 0.0, 3.14159}};
+  PathFollower f(FollowerParams::regulated());
+  f.set_path(path);
+  Pose2 pose{0.0, 0.0, 0.0};
+  double max_x = 0.0;
+  for (int i = 0; i < 70 * 60 && !f.arrived(); ++i) {
+    const BodyTwist cmd = f.step({pose, i == 0 ? 0.0 : kDt});
+    pose = integrate_twist(pose, cmd, kDt);
+    max_x = std::max(max_x, pose.x);
+  }
+  ASSERT_TRUE(f.arrived());
+  EXPECT_GT(max_x, 3.2) << "it drives to the cusp";
+  EXPECT_NEAR(pose.x, 0.8, 0.05);
+}
+
 TEST(PathFollower, ObstacleRegulationSlowsAndStops) {
   FollowerParams p = FollowerParams::regulated();
   p.limit_acceleration = false;
