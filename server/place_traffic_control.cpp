@@ -137,7 +137,7 @@ void PlaceTrafficControl::work_beside_roads(const model::TrafficRequest& request
   if (!working_.contains(request.robot_id)) {
     const std::vector<int> blockers = traffic_.robots_in_area(id, swept);
     if (!blockers.empty()) {
-      traffic_.stand(id, body != bodies_.end() ? body->second : geometry::Polygon{});
+      traffic_.stand(id, body != bodies_.end() ? body->second : geometry::Polygon{}, swept);
       answer.status = "AREA_WAITING";
       answer.blocked_by = names_of(blockers);
       status_[request.robot_id] = {"AREA_WAITING", 0.0, answer.blocked_by, {}};

@@ -107,7 +107,7 @@ PlacePibt::WayOut PlacePibt::search_way(int robot, int from, int other, int reac
 
 bool PlacePibt::in_way_of(int type, int place, int pusher, int wanted) const {
   const PlaceRobot& p = robots_[static_cast<std::size_t>(pusher)];
-  if (graph_.zones().conflict(type, place, p.type, wanted)) return true;
+  if (wanted >= 0 && graph_.zones().conflict(type, place, p.type, wanted)) return true;
   if (p.place >= 0 || closed_ == nullptr) return false;
   const int area = closed_->by_area[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
   return area == pusher || area == kClosedByMany;
@@ -348,10 +348,11 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const Cl
   for (const int robot : order) {
     if (robots[static_cast<std::size_t>(robot)].held) take(robot, robots[static_cast<std::size_t>(robot)].place);
   }
-  // A robot waiting beside the roads to enter them pushes those standing in its way out of it.
+  // A robot waiting beside the roads to enter them, or to sweep its area, pushes those standing
+  // in its way out of it.
   for (std::size_t entering = 0; entering < n; ++entering) {
     const PlaceRobot& e = robots[entering];
-    if (e.place >= 0 || e.entering < 0) continue;
+    if (e.place >= 0 || (e.entering < 0 && !e.pushes_from_area)) continue;
     for (const int robot : order) {
       const PlaceRobot& b = robots[static_cast<std::size_t>(robot)];
       if (planned_[static_cast<std::size_t>(robot)] < 0 &&

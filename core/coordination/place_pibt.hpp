@@ -20,6 +20,9 @@ struct PlaceRobot {
   /// in its way (at places conflicting with it, or in its way out, ClosedPlaces::by_area) are
   /// pushed out of it before anyone else is planned.
   int entering = -1;
+  /// Off the roads: robots standing in its area (ClosedPlaces::by_area of it: its way onto the
+  /// roads, a manoeuvre it waits to begin) are pushed out of it, as for `entering`.
+  bool pushes_from_area = false;
 };
 
 inline constexpr int kOpen = -1;          ///< ClosedPlaces: no robot closes the place
@@ -106,7 +109,8 @@ class PlacePibt {
   int first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing);
   void take(int robot, int place);
   /// Whether a robot of `type` at `place` is in the way of `pusher`, which wants place `wanted`
-  /// (conflicting with it) or, off the roads, to enter them there (ClosedPlaces::by_area too).
+  /// (conflicting with it; -1: none) or, off the roads, to enter them there or to sweep its area
+  /// (ClosedPlaces::by_area).
   bool in_way_of(int type, int place, int pusher, int wanted) const;
   /// Moves robot needs from `from` to a place clear of `wanted`, which `pusher` wants, without
   /// passing where the pusher's body is or a planned robot rules out; kFar when none is near.

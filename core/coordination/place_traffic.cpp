@@ -248,7 +248,7 @@ std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon
   return found;
 }
 
-void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
+void PlaceTraffic::stand(int robot, const geometry::Polygon& body, const geometry::Polygon& to_sweep) {
   Robot& r = at(robot);
   if (order_.present(robot)) order_.stand(robot, -1);
   r.points.clear();
@@ -257,8 +257,10 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body) {
   r.entry_blockers.clear();
   r.adopted = true;
   r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
-  if (!r.way_out.empty()) closed_stale_ = true;
-  r.way_out.clear();
+  if (!geometry::same_polygon(to_sweep, r.way_out, kSameBodyM)) {
+    r.way_out = to_sweep;
+    closed_stale_ = true;
+  }
   if (geometry::same_polygon(body, r.body, kSameBodyM)) return;
   r.body = body;
   closed_stale_ = true;

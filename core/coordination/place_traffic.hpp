@@ -64,7 +64,9 @@ class PlaceTraffic {
   void waiting_body(int robot, const geometry::Polygon& body);
   /// The robot stands without a route with body `body` (a convex polygon, map frame; empty when
   /// unknown or off the roads): it holds the places its body reaches until it drives again.
-  void stand(int robot, const geometry::Polygon& body);
+  /// `to_sweep` (convex; empty when none) is the area of a manoeuvre beside the roads it waits to
+  /// begin: held as a way out is, robots in it are pushed out of it.
+  void stand(int robot, const geometry::Polygon& body, const geometry::Polygon& to_sweep = {});
   /// Robots other than `robot` whose visits, begun or planned, are of places `area` (convex, map
   /// frame) reaches for their vehicle type, or whose standing bodies overlap it: those a
   /// manoeuvre sweeping `area` beside the roads must wait for.
@@ -90,14 +92,16 @@ class PlaceTraffic {
     Mode mode = Mode::kOff;
     std::uint64_t version = 0;
     std::vector<int> points;
-    std::vector<double> point_s;      ///< metres along the route at each point
-    std::vector<int> places;          ///< the route's places, consecutive repeats merged
-    std::vector<int> place_point;     ///< per entry of `places`: the index of its last point
-    int at = 0;                       ///< index into `places` of the robot's current visit
-    double progress = 0.0;            ///< metres along the route, as last reported
-    bool adopted = true;              ///< it drives `version` (false: a new route is on its way to it)
-    geometry::Polygon body;           ///< standing without a route, or waiting to enter
-    geometry::Polygon way_out;        ///< the sweep from beside the roads onto them, held until on the road
+    std::vector<double> point_s;   ///< metres along the route at each point
+    std::vector<int> places;       ///< the route's places, consecutive repeats merged
+    std::vector<int> place_point;  ///< per entry of `places`: the index of its last point
+    int at = 0;                    ///< index into `places` of the robot's current visit
+    double progress = 0.0;         ///< metres along the route, as last reported
+    bool adopted = true;           ///< it drives `version` (false: a new route is on its way to it)
+    geometry::Polygon body;        ///< standing without a route, or waiting to enter
+    /// What its body sweeps beside the roads: its way onto them (held until it is on the road), or
+    /// the area of a manoeuvre it waits to begin.
+    geometry::Polygon way_out;
     std::uint64_t waiting_since = 0;  ///< the order in which robots began to wait to enter
     std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
     PlaceGrant grant;

@@ -40,6 +40,8 @@ void PlaceTraffic::plan_step() {
     p.type = r.type;
     if (r.mode != Mode::kDriving || !order_.present(robot)) {
       p.place = -1;
+      // Standing beside the roads, waiting for the area of its manoeuvre: it clears it.
+      p.pushes_from_area = r.mode == Mode::kStanding && !r.way_out.empty();
       // A robot waiting to enter with a way out pushes those in it out of it; one without pushes
       // those in its way once one of them waits for it in turn (its body closes their way on),
       // and else waits for them to drive on.

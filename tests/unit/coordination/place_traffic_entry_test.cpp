@@ -122,5 +122,37 @@ TEST(PlaceTrafficEntry, ARobotInTheWayOutOfOneItWaitsForIsPushedOutOfIt) {
   EXPECT_TRUE(traffic.wait_cycle().empty());
 }
 
+// A robot beside the corridor waits to begin a manoeuvre whose area covers where a driver stands,
+// and its body closes the driver's way on: the driver is pushed out of the area, which then
+// clears, and no robot outside plans into it meanwhile.
+TEST(PlaceTrafficEntry, ARobotWaitingForItsManoeuvresAreaPushesRobotsOutOfIt) {
+  const map::RoadGraph road = traffic::testing::corridor_with_siding();
+  const traffic::ConflictZones zones(road, forklift_params());
+  traffic::RouteSearch search(road, zones);
+  PlaceTraffic traffic(road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1});
+  Driver driver;
+  driver.number = traffic.add_robot(0);
+  driver.route = search.shortest(point_at(road, 1.0, 0.0), point_at(road, 2.0, 0.0));
+  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, 0.0));
+  traffic.update(0.0);
+  const int worker = traffic.add_robot(0);
+  const geometry::Polygon area{{0.8, -0.15}, {1.8, -0.15}, {1.8, 0.15}, {0.8, 0.15}};
+  traffic.stand(worker, body_at(zones, 1.5), area);
+  double t = 0.0;
+  for (; t < 60.0 && !traffic.robots_in_area(worker, area).empty(); t += 0.5) {
+    driver.cycle(traffic, t);
+    traffic.stand(worker, body_at(zones, 1.5), area);
+  }
+  EXPECT_TRUE(traffic.robots_in_area(worker, area).empty()) << "the driver was pushed out of the area";
+  EXPECT_LT(t, 10.0) << "pushed at once, not after standing a while";
+  for (const double until = t + 10.0; t < until; t += 0.5) {
+    driver.cycle(traffic, t);
+    EXPECT_TRUE(traffic.robots_in_area(worker, area).empty()) << "at " << t << " s it plans back into the area";
+  }
+  traffic.stand(worker, {});  // the manoeuvre done, it drives off beside the corridor
+  for (; t < 150.0 && driver.x(traffic) < 2.0 - 1e-6; t += 0.5) driver.cycle(traffic, t);
+  EXPECT_NEAR(driver.x(traffic), 2.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace fleet::coordination
