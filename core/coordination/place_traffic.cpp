@@ -261,21 +261,20 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body, const geometr
     r.way_out = to_sweep;
     closed_stale_ = true;
   }
+  take_body(robot, body);
+}
+
+void PlaceTraffic::waiting_body(int robot, const geometry::Polygon& body) {
+  if (at(robot).mode == Mode::kWaitingToEnter) take_body(robot, body);
+}
+
+void PlaceTraffic::take_body(int robot, const geometry::Polygon& body) {
+  Robot& r = at(robot);
   if (geometry::same_polygon(body, r.body, kSameBodyM)) return;
   r.body = body;
   closed_stale_ = true;
   if (body.empty()) return;
   // Plans made before it stood here may lead into its body: those visits go, not yet begun.
-  const Circle around = circle_around(body);
-  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
-}
-
-void PlaceTraffic::waiting_body(int robot, const geometry::Polygon& body) {
-  Robot& r = at(robot);
-  if (r.mode != Mode::kWaitingToEnter || geometry::same_polygon(body, r.body, kSameBodyM)) return;
-  r.body = body;
-  closed_stale_ = true;
-  if (body.empty()) return;
   const Circle around = circle_around(body);
   drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
 }

@@ -124,6 +124,9 @@ class PlaceTraffic {
     double radius = 0.0;
   };
   static Circle circle_around(const geometry::Polygon& body);
+  /// The body the robot stands with beside the roads (standing or waiting to enter): it closes
+  /// the places it reaches, and visits planned into them that have not begun are dropped.
+  void take_body(int robot, const geometry::Polygon& body);
   /// Holds (or, empty, releases) the robot's way out onto the roads.
   void hold_way_out(int robot, const geometry::Polygon& way_out);
   /// The body that closes places to others: standing or waiting to enter; empty otherwise.

@@ -45,11 +45,12 @@ void PlaceTraffic::plan_step() {
       // A robot waiting to enter with a way out pushes those in it out of it; one without pushes
       // those in its way once one of them waits for it in turn (its body closes their way on),
       // and else waits for them to drive on.
-      const bool waited_for = std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), [&](int o) {
-        const auto& waits = at(o).grant.waits_for;
+      const auto waits_for_it = [&](int other) {
+        const auto& waits = at(other).grant.waits_for;
         return std::find(waits.begin(), waits.end(), robot) != waits.end();
-      });
-      if (r.mode == Mode::kWaitingToEnter && (!r.way_out.empty() || waited_for)) {
+      };
+      if (r.mode == Mode::kWaitingToEnter &&
+          (!r.way_out.empty() || std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), waits_for_it))) {
         p.entering = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
       }
       continue;

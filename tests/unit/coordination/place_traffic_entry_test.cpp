@@ -22,6 +22,20 @@ geometry::Polygon body_at(const traffic::ConflictZones& zones, double x) {
   return geometry::footprint_polygon({x, 0.0, 0.0}, zones.params().footprint);
 }
 
+/// The waiter, on the corridor, drives to its end and off it; the driver follows until it is at
+/// the end too (or 150 s sim have passed).
+void follow_to_the_end(PlaceTraffic& traffic, Driver& waiter, Driver& driver, double& t) {
+  bool gone = false;
+  for (; t < 150.0 && driver.x(traffic) < 2.0 - 1e-6; t += 0.5) {
+    if (!gone) waiter.cycle(traffic, t);
+    if (!gone && waiter.x(traffic) >= 2.0 - 1e-6) {
+      traffic.stand(waiter.number, {});  // off the corridor's end
+      gone = true;
+    }
+    driver.cycle(traffic, t);
+  }
+}
+
 bool overlaps_any_region(const traffic::ConflictZones& zones, const std::vector<int>& places,
                          const geometry::Polygon& body) {
   for (const int place : places) {
@@ -68,15 +82,7 @@ TEST(PlaceTrafficEntry, ARobotWaitingToEnterClosesWhatItsBodyReaches) {
   EXPECT_EQ(traffic.grant(driver.number).waits_for, std::vector<int>{waiter.number}) << "it names the waiter";
 
   traffic.stand(standing.number, {});  // it drives off the corridor's end
-  bool gone = false;
-  for (; t < 150.0 && driver.x(traffic) < 2.0 - 1e-6; t += 0.5) {
-    if (!gone) waiter.cycle(traffic, t);
-    if (!gone && waiter.x(traffic) >= 2.0 - 1e-6) {
-      traffic.stand(waiter.number, {});  // off the corridor's end
-      gone = true;
-    }
-    driver.cycle(traffic, t);
-  }
+  follow_to_the_end(traffic, waiter, driver, t);
   EXPECT_NEAR(driver.x(traffic), 2.0, 1e-6) << "the driver follows once the waiter has gone";
 }
 
@@ -109,15 +115,7 @@ TEST(PlaceTrafficEntry, ARobotInTheWayOutOfOneItWaitsForIsPushedOutOfIt) {
   }
   ASSERT_TRUE(traffic.on_roads(waiter.number)) << "the driver was pushed out of the way out";
   EXPECT_LT(driver.x(traffic), 0.8);
-  bool gone = false;
-  for (; t < 150.0 && driver.x(traffic) < 2.0 - 1e-6; t += 0.5) {
-    if (!gone) waiter.cycle(traffic, t);
-    if (!gone && waiter.x(traffic) >= 2.0 - 1e-6) {
-      traffic.stand(waiter.number, {});  // off the corridor's end
-      gone = true;
-    }
-    driver.cycle(traffic, t);
-  }
+  follow_to_the_end(traffic, waiter, driver, t);
   EXPECT_NEAR(driver.x(traffic), 2.0, 1e-6) << "the driver goes on once the waiter has gone";
   EXPECT_TRUE(traffic.wait_cycle().empty());
 }
