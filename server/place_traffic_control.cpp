@@ -97,6 +97,7 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
   request_reader_.take_data([&](model::TrafficRequest&& request) {
     if (!usable(request)) return;
     const int id = number_of(request.robot_id);
+    waiting_for_area_.erase(request.robot_id);
     if (request.points.empty()) {
       routed_.erase(request.robot_id);
       status_.erase(request.robot_id);
@@ -138,6 +139,7 @@ void PlaceTrafficControl::work_beside_roads(const model::TrafficRequest& request
     const std::vector<int> blockers = traffic_.robots_in_area(id, swept);
     if (!blockers.empty()) {
       traffic_.stand(id, body != bodies_.end() ? body->second : geometry::Polygon{}, swept);
+      waiting_for_area_[request.robot_id] = swept;
       answer.status = "AREA_WAITING";
       answer.blocked_by = names_of(blockers);
       status_[request.robot_id] = {"AREA_WAITING", 0.0, answer.blocked_by, {}};
@@ -156,9 +158,12 @@ void PlaceTrafficControl::set_body(const std::string& robot_id, const geometry::
   const auto [known, first] = bodies_.try_emplace(robot_id);
   if (first) grants_.open(robot_id);
   known->second = body;
-  // Standing without a route (parked, not let on yet, working beside the roads without an area):
-  // its body holds what it reaches.
-  if (!routed_.contains(robot_id) && !working_.contains(robot_id)) traffic_.stand(number_of(robot_id), body);
+  // Standing without a route (parked, not let on yet, working beside the roads without an area,
+  // waiting to begin a manoeuvre): its body holds what it reaches, with the area it waits for.
+  if (!routed_.contains(robot_id) && !working_.contains(robot_id)) {
+    const auto area = waiting_for_area_.find(robot_id);
+    traffic_.stand(number_of(robot_id), body, area != waiting_for_area_.end() ? area->second : geometry::Polygon{});
+  }
   // Routed but not let onto the roads yet: it waits beside them where its body is.
   if (routed_.contains(robot_id)) traffic_.waiting_body(number_of(robot_id), body);
 }
@@ -168,6 +173,7 @@ void PlaceTrafficControl::robot_lost(const std::string& robot_id, const geometry
   // working, as it may go on with it the moment it is heard from again).
   routed_.erase(robot_id);
   status_.erase(robot_id);
+  waiting_for_area_.erase(robot_id);
   grants_.forget(robot_id);
   if (working_.contains(robot_id)) return;
   traffic_.stand(number_of(robot_id), body);

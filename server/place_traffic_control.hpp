@@ -66,6 +66,9 @@ class PlaceTrafficControl : public TrafficService {
   std::map<std::string, geometry::Polygon> bodies_;  ///< last known footprint of each robot
   std::set<std::string> routed_;                     ///< robots whose last request had a route
   std::set<std::string> working_;                    ///< robots holding the area of a manoeuvre
+  /// Robots answered AREA_WAITING, with the area they wait to sweep: held with their body
+  /// whenever it is reported again, until their next request.
+  std::map<std::string, geometry::Polygon> waiting_for_area_;
   std::set<std::string> other_map_;
   std::map<std::string, double> waiting_since_;    ///< sim s each robot began waiting
   std::map<std::string, std::uint64_t> rerouted_;  ///< the last route version handed to each robot
