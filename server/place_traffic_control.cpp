@@ -22,6 +22,13 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
   return params;
 }
 
+// The core grants place by place, so a place holds all a robot does there, a turn on the spot
+// included.
+traffic::ResourceParams with_turn_sweeps(traffic::ResourceParams resources) {
+  resources.turn_sweeps = true;
+  return resources;
+}
+
 }  // namespace
 
 PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map, const config::FleetConfig& config)
@@ -31,7 +38,7 @@ PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
                                    const traffic::TrafficConfiguration& configuration,
                                    const coordination::PlaceTrafficParams& params)
     : site_map(std::move(map)),
-      zones(site_map->graph.graph, configuration.resources),
+      zones(site_map->graph.graph, with_turn_sweeps(configuration.resources)),
       lanes(traffic::driving_graph(site_map->graph.graph, configuration)),
       traffic(lanes, zones, params),
       robot_types(configuration.robot_vehicle_types) {}

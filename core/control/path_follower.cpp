@@ -240,6 +240,21 @@ Vec2 PathFollower::point_at(double s) const {
   return path_[i].position() + t * (path_[i + 1].position() - path_[i].position());
 }
 
+Vec2 PathFollower::granted_target(double s, double granted) const {
+  if (!(granted < params_.lookahead)) return point_at(s + params_.lookahead);
+  // A robot may not drive past the end of its grant, so it steers for the path as far as that
+  // and straight on beyond it: held before a bend, it keeps its heading and does not turn its
+  // body on the spot over ground traffic has not given it.
+  const double held = std::max(granted, 0.0);
+  const Vec2 end = point_at(s + held);
+  constexpr double kBack = 0.05;  // metres along the path that give the direction at the grant end
+  Vec2 direction = end - point_at(std::max(s + held - kBack, 0.0));
+  if (geometry::dot(direction, direction) < 1e-12) direction = point_at(s + held + kBack) - end;
+  const double length = std::hypot(direction.x, direction.y);
+  if (length < 1e-6) return point_at(s + params_.lookahead);
+  return end + ((params_.lookahead - held) / length) * direction;
+}
+
 Vec2 PathFollower::seed_target(Vec2 p, std::size_t& index) {
   // The first path point past the robot that is at least the minimum
   // distance away [Forklift thesis, section 6.1]. The index never goes back, so the target only ever moves forward.
@@ -295,7 +310,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
       }
       debug_.cross_track = proj.cross;
       if (params_.smooth_lookahead) {
-        target = point_at(proj.s + params_.lookahead);
+        target = granted_target(proj.s, in.granted_distance);
         debug_.target_index = proj.segment;
       } else {
         target = seed_target(p, debug_.target_index);

@@ -80,6 +80,9 @@ struct FollowerInput {
   double dt = 0.0;       ///< seconds since the previous step (0 on the first)
   /// Clearance to the nearest obstacle ahead, metres; infinity when none is known.
   double obstacle_distance = std::numeric_limits<double>::infinity();
+  /// Metres the robot may drive along the path from where it is (the end of a traffic grant);
+  /// infinity when the whole path is its to drive.
+  double granted_distance = std::numeric_limits<double>::infinity();
 };
 
 /// Diagnostics of one step, for plots and tests.
@@ -142,6 +145,9 @@ class PathFollower {
   Projection project(geometry::Vec2 p);
   geometry::Vec2 point_at(double s) const;
   geometry::Vec2 seed_target(geometry::Vec2 p, std::size_t& index);
+  /// The lookahead target from `s` metres along the path when the robot may drive `granted`
+  /// metres of it: on the path, or straight on from the grant's end when that is nearer.
+  geometry::Vec2 granted_target(double s, double granted) const;
   BodyTwist limit_turn(BodyTwist cmd, double dt);
   void reset_controller();
   void split_off_back_in();

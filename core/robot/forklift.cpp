@@ -418,10 +418,10 @@ void Forklift::step() {
   std::vector<perception::MarkerDetection> detections;
   if (camera_.frame_due(t)) detections = camera_.capture(t, sim_.truth(), pallets_.markers());
   // The end of the grant acts like an obstacle stop_distance beyond it: the follower slows
-  // towards it and the robot is held as it gets there.
-  const task::TaskOutput out =
-      executor_.step({t, sim_.estimate(), detections,
-                      std::min(clearance + config_.stop_distance - stop_distance(), room + config_.stop_distance)});
+  // towards it, is held as it gets there, and steers as if the path ran straight on past it.
+  const task::TaskOutput out = executor_.step(
+      {t, sim_.estimate(), detections,
+       std::min(clearance + config_.stop_distance - stop_distance(), room + config_.stop_distance), room});
 
   const perception::ForkEvent fork = pallets_.update(0, sim_.truth(), out.fork_up);
   switch (fork.kind) {

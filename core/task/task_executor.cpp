@@ -362,7 +362,7 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
     case State::kTrackPath:
     case State::kGoHome: {
       if (!have_path_) break;
-      out.twist = follower_.step({in.pose, dt, in.obstacle_distance});
+      out.twist = follower_.step({in.pose, dt, in.obstacle_distance, in.granted_distance});
       if (follower_.arrived()) {
         have_path_ = false;
         if (geometry::distance(in.pose.position(), goal_for(active_purpose_).position()) > params_.arrival_tolerance) {

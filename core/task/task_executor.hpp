@@ -82,6 +82,8 @@ struct TaskInput {
   geometry::Pose2 pose;                                     ///< localization estimate
   std::span<const perception::MarkerDetection> detections;  ///< frames since the last step
   double obstacle_distance = std::numeric_limits<double>::infinity();
+  /// Metres along its path the robot may drive (control::FollowerInput::granted_distance).
+  double granted_distance = std::numeric_limits<double>::infinity();
 };
 
 struct TaskOutput {

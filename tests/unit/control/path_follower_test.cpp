@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -371,6 +372,30 @@ TEST(PathFollower, ALongFirstSegmentBeforeACuspIsFollowedToTheCuspAndOn) {
   ASSERT_TRUE(f.arrived());
   EXPECT_GT(max_x, 3.2) << "it drives to the cusp";
   EXPECT_NEAR(pose.x, 0.8, 0.05);
+}
+
+TEST(PathFollower, HeldShortOfABendItKeepsItsHeading) {
+  // Traffic grants the path up to 4 cm short of a right-angle bend: the robot drives there and
+  // stands facing along its lane, its body not turned over the crossing lane it was not granted.
+  const std::vector<Pose2> path{
+      {0.0, 0.0, 0.0}, {0.5, 0.0, 0.0}, {1.0, 0.0, 0.0}, {1.0, 0.5, 1.5708}, {1.0, 1.0, 1.5708}};
+  const auto drive = [&](bool granted) {
+    PathFollower f(FollowerParams::regulated());
+    f.set_path(path);
+    Pose2 pose{0.0, 0.0, 0.0};
+    for (int i = 0; i < 70 * 30; ++i) {
+      const double room = 0.96 - pose.x;
+      if (room <= 0.0) break;  // held: the robot stands, as the task executor waits
+      const BodyTwist cmd =
+          f.step({pose, i == 0 ? 0.0 : kDt, room + 0.08, granted ? room : std::numeric_limits<double>::infinity()});
+      pose = integrate_twist(pose, cmd, kDt);
+    }
+    return pose;
+  };
+  const Pose2 held = drive(true);
+  EXPECT_GT(held.x, 0.9);
+  EXPECT_LT(std::abs(held.yaw), 0.1) << "it faces along its lane";
+  EXPECT_GT(drive(false).yaw, 0.3) << "steering for the path beyond the grant turns it towards the bend";
 }
 
 TEST(PathFollower, ObstacleRegulationSlowsAndStops) {
