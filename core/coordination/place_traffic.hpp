@@ -98,6 +98,7 @@ class PlaceTraffic {
     int at = 0;                    ///< index into `places` of the robot's current visit
     double progress = 0.0;         ///< metres along the route, as last reported
     bool adopted = true;           ///< it drives `version` (false: a new route is on its way to it)
+    bool moved_off_route = false;  ///< its last planned move left the route it had (the plan's choice)
     geometry::Polygon body;        ///< standing without a route, or waiting to enter
     /// What its body sweeps beside the roads: its way onto them (held until it is on the road), or
     /// the area of a manoeuvre it waits to begin.

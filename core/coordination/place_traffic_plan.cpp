@@ -60,9 +60,13 @@ void PlaceTraffic::plan_step() {
     const bool at_end = last + 1 >= r.places.size();
     p.goal = at_end ? r.places.back() : r.places[route_leg_end(r, last)];
     p.preferred = at_end ? -1 : r.places[last + 1];
-    // Behind its plan, waiting for a new route to reach it, or at its route's end (where it turns
-    // off the road): planned to stay, never pushed.
-    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead || at_end;
+    // Behind its plan, waiting for a new route to reach it, not yet where a move off its route
+    // (a push, giving way) puts it, or at its route's end (where it turns off the road): planned
+    // to stay, never pushed. Planned on from a push it has not made, a robot comes straight back
+    // in the next step, before the robot that pushed it has taken the room: each step pushes it
+    // again, and its route shuttles between two places.
+    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead ||
+             (r.moved_off_route && order_.pending(robot) > 0) || at_end;
   }
   const std::vector<int> next = planner_.plan(planned, &closed_);
   ++plan_step_;
@@ -73,6 +77,7 @@ void PlaceTraffic::plan_step() {
     order_.plan(robot, to, plan_step_);
     // The end of each leg is a goal reached: its priority starts over, as at the route's end.
     if (to == p.goal) planner_.reached_goal(robot);
+    at(robot).moved_off_route = to != p.preferred;
     if (to != p.preferred) reroute(robot);
   }
 }

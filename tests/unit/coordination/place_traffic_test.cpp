@@ -70,6 +70,9 @@ class FollowingRobots {
   std::size_t wait_cycles = 0;
   std::size_t reroutes = 0;
   std::size_t delays = 0;
+  /// Routes handed that go back and forth between two places twice (a, b, a, b, a): a robot
+  /// pushed back again before it made the first push.
+  std::size_t shuttles = 0;
   double longest_still_s = 0.0;
   std::string first_overlap;
 
@@ -167,6 +170,7 @@ class FollowingRobots {
       set_route(r, grant.route);
       r.version = grant.version;
       ++reroutes;
+      if (shuttles_between_two_places(grant.route)) ++shuttles;
     }
     const double room = grant.version == r.version && grant.granted_index >= 0 ? grant.granted_distance : -1.0;
     if (time_ >= r.pause_until && r.progress < room) {
@@ -191,6 +195,18 @@ class FollowingRobots {
       ++errands;
     }
     report(r);
+  }
+
+  bool shuttles_between_two_places(const std::vector<int>& route) const {
+    std::vector<int> places;
+    for (const int point : route) {
+      const int place = zones_.place_of(point);
+      if (places.empty() || places.back() != place) places.push_back(place);
+    }
+    for (std::size_t i = 0; i + 4 < places.size(); ++i) {
+      if (places[i] == places[i + 2] && places[i + 1] == places[i + 3] && places[i] == places[i + 4]) return true;
+    }
+    return false;
   }
 
   void check() {
@@ -317,6 +333,9 @@ TEST(PlaceTraffic, RobotsHearingLateKeepApartAndGetThrough) {
     EXPECT_EQ(robots.first_overlap, "") << run;
     EXPECT_EQ(robots.wait_cycles, 0u) << run;
     EXPECT_GT(robots.errands, 8u * 4u) << run << ", longest still " << robots.longest_still_s << " s";
+    // A robot is planned on from a push once it has made it, so a route handed to it never goes
+    // back and forth between two places twice, each leg driven to a stop.
+    EXPECT_EQ(robots.shuttles, 0u) << run << ", of " << robots.reroutes << " routes handed";
   }
 }
 
