@@ -1,6 +1,7 @@
 #include "robot/robot_factory.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "robot/forklift.hpp"
@@ -16,6 +17,39 @@ std::shared_ptr<const map::RoadGraph> route_graph_for(const config::FleetConfig&
   if (!config.settings.get_bool("traffic.enabled")) return nullptr;
   return std::make_shared<const map::RoadGraph>(traffic::planning_graph(
       site.graph.graph, traffic::configuration_from(config), traffic::vehicle_type_of(config, fleet.id)));
+}
+
+control::FollowerParams follower_params(const config::FleetConfig& config, const config::FleetSpec& fleet) {
+  control::FollowerParams f = ForkliftConfig::for_vehicle(fleet.profile).task.follower;
+  f.v_max = config.top_speed(fleet);
+  f.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
+  return f;
+}
+
+std::vector<geometry::Pose2> follower_drive(const control::FollowerParams& params,
+                                            const std::vector<geometry::Vec2>& path) {
+  if (path.size() < 2) return {};
+  std::vector<geometry::Pose2> poses;
+  double length = 0.0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const geometry::Vec2 along = i + 1 < path.size() ? path[i + 1] - path[i] : path[i] - path[i - 1];
+    poses.push_back({path[i].x, path[i].y, std::atan2(along.y, along.x)});
+    if (i + 1 < path.size()) length += geometry::distance(path[i], path[i + 1]);
+  }
+  control::PathFollower follower(params);
+  follower.set_path(poses);
+  geometry::Pose2 pose = poses.front();
+  // Coarser than the agent's 70 Hz: a few centimetres a step at top speed, and a place holds the
+  // hull of the bodies driven through it.
+  constexpr double kDt = 0.05;
+  // Time enough to drive the path at a tenth of top speed, with its turns on the spot.
+  const int steps = static_cast<int>((10.0 * length / std::max(params.v_max, 0.05) + 20.0) / kDt);
+  std::vector<geometry::Pose2> driven{pose};
+  for (int k = 0; k < steps && !follower.arrived(); ++k) {
+    pose = control::integrate_twist(pose, follower.step({pose, k == 0 ? 0.0 : kDt}), kDt);
+    driven.push_back(pose);
+  }
+  return driven;
 }
 
 namespace {
@@ -37,8 +71,7 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
   for (const auto& other : config.fleets) {
     c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
   }
-  c.task.follower.v_max = config.top_speed(fleet);
-  c.task.follower.omega_max = std::min(config.settings.get_double("agent.max_yaw_rate"), fleet.profile.max_yaw_rate);
+  c.task.follower = follower_params(config, fleet);
   c.traffic = config.settings.get_bool("traffic.enabled");
   if (c.traffic) {
     // What the look ahead keeps to the bodies other robots report, within what traffic keeps

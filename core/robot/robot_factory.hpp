@@ -2,8 +2,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "config/fleet_config.hpp"
+#include "control/path_follower.hpp"
 #include "map/site_map.hpp"
 #include "robot/robot.hpp"
 
@@ -23,6 +25,16 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
 /// [Picker thesis]. For whoever needs the picker's parts without the robot (pick-eval).
 ForkliftConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
                                    const map::SiteMap& site);
+
+/// The path follower of a robot of `fleet` with a mecanum or differential base, as make_robot
+/// configures it: scaled to the vehicle, at the fleet's top speed and yaw rate.
+control::FollowerParams follower_params(const config::FleetConfig& config, const config::FleetSpec& fleet);
+
+/// The footprint-centre poses of such a robot following `path` with that follower from its first
+/// point, heading along its first segment, from rest (traffic::VehicleType::drive): it steers for
+/// a point one lookahead on, so it turns before a bend and cuts it.
+std::vector<geometry::Pose2> follower_drive(const control::FollowerParams& params,
+                                            const std::vector<geometry::Vec2>& path);
 
 /// The graph a robot of `fleet` plans on: under traffic, the traffic manager's graph for its
 /// fleet's vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).
