@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "test_paths.hpp"
 
@@ -43,6 +46,31 @@ TEST(RobotFactory, AnUnknownTypeIsNamedWithTheKnownOnes) {
     EXPECT_NE(what.find("'crane'"), std::string::npos) << what;
     EXPECT_NE(what.find("forklift"), std::string::npos) << what;
   }
+}
+
+TEST(RobotFactory, AReachTrucksFollowerCutsABendAsTheCorePlacesItsBody) {
+  // The coordination core's places hold what follower_drive sweeps: the agent's own follower,
+  // which steers for a point one lookahead on and so leaves the route inside a bend.
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
+                                  [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
+  ASSERT_NE(fleet, config.fleets.end());
+  const control::FollowerParams follower = follower_params(config, *fleet);
+  EXPECT_GT(follower.lookahead, 0.5) << "scaled with the 1.6 m body";
+  std::vector<geometry::Vec2> path;
+  for (int i = 0; i <= 6; ++i) path.push_back({0.5 * i, 0.0});
+  for (int i = 1; i <= 6; ++i) path.push_back({3.0, 0.5 * i});
+  const std::vector<geometry::Pose2> driven = follower_drive(follower, path);
+  ASSERT_FALSE(driven.empty());
+  double inside = 0.0, outside = 0.0;
+  for (const geometry::Pose2& pose : driven) {
+    if (pose.x < 3.0 && pose.y > 0.0) inside = std::max(inside, std::min(pose.y, 3.0 - pose.x));
+    outside = std::max({outside, pose.x - 3.0, -pose.y});
+  }
+  EXPECT_GT(inside, 0.05) << "it cuts the bend on the inside";
+  EXPECT_GT(outside, 0.05) << "and swings out past it";
+  EXPECT_LT(std::max(inside, outside), follower.lookahead);
+  EXPECT_LT(geometry::distance(driven.back().position(), path.back()), 0.1) << "and drives to the path's end";
 }
 
 }  // namespace
