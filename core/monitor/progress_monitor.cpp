@@ -7,13 +7,30 @@
 
 namespace fleet::monitor {
 
-ProgressMonitor::ProgressMonitor(double timeout_s, double move_threshold, double queue_bound_s)
-    : timeout_s_(timeout_s), move_threshold_(move_threshold), queue_bound_s_(queue_bound_s) {}
+ProgressMonitor::ProgressMonitor(double timeout_s, double move_threshold, double queue_bound_s, double phase_bound_s)
+    : timeout_s_(timeout_s),
+      move_threshold_(move_threshold),
+      queue_bound_s_(queue_bound_s),
+      phase_bound_s_(phase_bound_s) {}
 
 bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task,
                              double t) {
   auto [it, fresh] = watches_.try_emplace(robot_id);
   Watch& w = it->second;
+  if (fresh || task != w.task || task.empty()) {
+    w.task_since = t;
+    w.task_reported = false;
+  }
+  const auto report = [&](double since) {
+    w.reported = true;
+    w.task_reported = true;
+    const auto waits = waiting_for_.find(robot_id);
+    deadlocks_.push_back(
+        {robot_id, task, since, t, pose, waits == waiting_for_.end() ? std::vector<std::string>{} : waits->second});
+    return true;
+  };
+  // Moving about without getting anywhere: one phase of its order for longer than any takes.
+  if (!task.empty() && !w.task_reported && t - w.task_since >= phase_bound_s_) return report(w.task_since);
   if (fresh || std::hypot(pose.x - w.moved_from.x, pose.y - w.moved_from.y) > move_threshold_) {
     w.moved_from = pose;
     w.moved_at = t;
@@ -31,11 +48,7 @@ bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2&
   w.queue_moved = std::max(w.queue_moved, queue_moved_at(robot_id));
   const double stalled = t - std::max(w.since, w.queue_moved);
   if (w.reported || (stalled < timeout_s_ && t - w.since < queue_bound_s_)) return false;
-  w.reported = true;
-  const auto waits = waiting_for_.find(robot_id);
-  deadlocks_.push_back(
-      {robot_id, task, w.since, t, pose, waits == waiting_for_.end() ? std::vector<std::string>{} : waits->second});
-  return true;
+  return report(w.since);
 }
 
 void ProgressMonitor::note_waiting_for(const std::string& robot_id, std::vector<std::string> robots) {

@@ -22,10 +22,13 @@ struct Deadlock {
 /// neither moved `move_threshold` metres nor changed its order or phase for `timeout_s` sim
 /// seconds counts as deadlocked, once per episode. A robot queued behind robots that move (the
 /// robots it waits for, as traffic reports them, and the ones they wait for) waits its turn: it
-/// counts only after `queue_bound_s` without progress. Also keeps the longest continuous WAITING.
+/// counts only after `queue_bound_s` without progress. A robot whose order stays in one phase for
+/// `phase_bound_s` counts too, however it moves meanwhile (robots pushed back and forth, re-routed
+/// round and round, never getting anywhere). Also keeps the longest continuous WAITING.
 class ProgressMonitor {
  public:
-  explicit ProgressMonitor(double timeout_s = 60.0, double move_threshold = 0.02, double queue_bound_s = 180.0);
+  explicit ProgressMonitor(double timeout_s = 60.0, double move_threshold = 0.02, double queue_bound_s = 180.0,
+                           double phase_bound_s = 900.0);
 
   /// The robot's true pose at sim time `t`; `task` is its open order and phase, empty when it has
   /// none. Returns true when this update detected a new deadlock (see deadlocks()).
@@ -49,7 +52,9 @@ class ProgressMonitor {
     bool reported = false;
     geometry::Pose2 moved_from;  ///< where it was when it last moved, order or not
     double moved_at = 0.0;
-    double queue_moved = 0.0;  ///< the latest move of a robot it waited for since its own progress
+    double queue_moved = 0.0;    ///< the latest move of a robot it waited for since its own progress
+    double task_since = 0.0;     ///< sim time its order entered its current phase
+    bool task_reported = false;  ///< this phase has been counted (standing or getting nowhere)
   };
   /// When a robot that `robot_id` waits for, directly or through others, last moved; -infinity
   /// when it waits for nobody.
@@ -58,6 +63,7 @@ class ProgressMonitor {
   double timeout_s_;
   double move_threshold_;
   double queue_bound_s_;
+  double phase_bound_s_;
   std::map<std::string, Watch> watches_;
   std::map<std::string, std::vector<std::string>> waiting_for_;
   std::map<std::string, double> waiting_since_;

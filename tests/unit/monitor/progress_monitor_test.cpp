@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace fleet::monitor {
 namespace {
 
@@ -66,6 +68,21 @@ TEST(ProgressMonitor, ARobotQueuedBehindRobotsThatMoveWaitsItsTurnUpToTheQueueBo
     if (q.update("fl2", {3.0, 0.0, 0.0}, "2/TO_PICK", s)) reported_at = s;
   }
   EXPECT_DOUBLE_EQ(reported_at, 180.0);
+}
+
+TEST(ProgressMonitor, ARobotMovingAboutInOnePhaseForThePhaseBoundIsOneDeadlock) {
+  // Pushed back and forth, re-routed round and round: it moves, but its order gets nowhere.
+  ProgressMonitor m(60.0, 0.02, 180.0, 900.0);
+  for (double t = 0.0; t <= 2000.0; t += 5.0) {
+    const double x = static_cast<int>(t / 5.0) % 2 == 0 ? 1.0 : 1.3;
+    m.update("fl1", {x, 1.0, 0.0}, "7/TO_PICK", t);
+    // Another robot moves just as much but gets on with its order: a phase every 300 s.
+    m.update("fl2", {x, 2.0, 0.0}, "8/" + std::to_string(static_cast<int>(t / 300.0)), t);
+  }
+  ASSERT_EQ(m.deadlocks().size(), 1u) << "once per phase";
+  EXPECT_EQ(m.deadlocks()[0].robot_id, "fl1");
+  EXPECT_DOUBLE_EQ(m.deadlocks()[0].since, 0.0);
+  EXPECT_DOUBLE_EQ(m.deadlocks()[0].detected, 900.0);
 }
 
 TEST(ProgressMonitor, ForgottenRobotRestartsItsWatch) {
