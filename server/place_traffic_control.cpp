@@ -23,13 +23,6 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
   return params;
 }
 
-// The core grants place by place, so a place holds all a robot does there, a turn on the spot
-// included.
-traffic::ResourceParams with_turn_sweeps(traffic::ResourceParams resources) {
-  resources.turn_sweeps = true;
-  return resources;
-}
-
 // The places of the vehicle types that follow paths with the mecanum or differential follower
 // hold what that follower sweeps through the bends, as a stacker's hold its pursuit's: steering
 // for a point one lookahead on (0.64 m for a reach truck), it turns before a bend and cuts it.
@@ -55,7 +48,7 @@ PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
                                    const traffic::TrafficConfiguration& configuration,
                                    const coordination::PlaceTrafficParams& params)
     : site_map(std::move(map)),
-      zones(site_map->graph.graph, with_turn_sweeps(configuration.resources)),
+      zones(site_map->graph.graph, configuration.resources),
       lanes(traffic::driving_graph(site_map->graph.graph, configuration)),
       traffic(lanes, zones, params),
       robot_types(configuration.robot_vehicle_types) {}

@@ -29,12 +29,12 @@ bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2&
         {robot_id, task, since, t, pose, waits == waiting_for_.end() ? std::vector<std::string>{} : waits->second});
     return true;
   };
-  // Moving about without getting anywhere: one phase of its order for longer than any takes.
-  if (!task.empty() && !w.task_reported && t - w.task_since >= phase_bound_s_) return report(w.task_since);
   if (fresh || std::hypot(pose.x - w.moved_from.x, pose.y - w.moved_from.y) > move_threshold_) {
     w.moved_from = pose;
     w.moved_at = t;
   }
+  // Moving about without getting anywhere: one phase of its order for longer than any takes.
+  if (!task.empty() && !w.task_reported && t - w.task_since >= phase_bound_s_) return report(w.task_since);
   const bool moved = std::hypot(pose.x - w.anchor.x, pose.y - w.anchor.y) > move_threshold_;
   if (fresh || moved || task != w.task || task.empty()) {
     w.anchor = pose;

@@ -177,22 +177,15 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
   // Directed place adjacency: which branch places every way through passes one corridor.
   const PlaceLinks links = place_links(graph);
   build_stoppable(links.successors, links.predecessors);
-  // What a type's own drive sweeps through the bends (or its body turning on the spot at them,
-  // with turn_sweeps) joins its regions after stoppability: a robot may wait where a turning one
-  // would sweep, as traffic never grants the turn while it stands there (the places conflict),
-  // and a tight turn a type could take but never does would otherwise keep everyone from waiting
-  // on the lanes beside it.
+  // What a type's own drive sweeps through the bends joins its regions after stoppability: a
+  // robot may wait where a turning one would sweep, as traffic never grants the turn while it
+  // stands there (the places conflict), and a tight turn a type could take but never does would
+  // otherwise keep everyone from waiting on the lanes beside it.
   std::vector<std::uint8_t> driven(types, 0);
   for (std::size_t t = 0; t < types; ++t) {
-    const Polygon body = grown(convex_hull(types_[t].footprint), params_.margin / 2.0);
-    if (types_[t].drive) {
-      add_driven_bodies(graph, body, t);
-    } else if (params_.turn_sweeps) {
-      add_turn_sweeps(graph, body, t);
-    } else {
-      continue;
-    }
+    if (!types_[t].drive) continue;
     driven[t] = 1;
+    add_driven_bodies(graph, grown(convex_hull(types_[t].footprint), params_.margin / 2.0), t);
     update_reach(t);
   }
   for (std::size_t a = 0; a < types; ++a) {

@@ -48,11 +48,6 @@ struct ResourceParams {
   /// Points closer than this are one physical place (the zero-length hand-over edges between
   /// roads), metres.
   double coincident_distance = 1e-4;
-  /// Whether a place reserves, for a vehicle type without `drive`, what its body sweeps turning on
-  /// the spot between the headings of the edges it arrives and leaves by, where the road turns
-  /// by more than 15 degrees. Without it a place holds the body at those two headings only, and a
-  /// long body turning at a junction swings its corners over the places beside it.
-  bool turn_sweeps = false;
 };
 
 /// Where a stretch of one lane lies in conflict with the opposite lane of the same road (OpenDRIVE
@@ -162,9 +157,6 @@ class ConflictZones {
                           const geometry::Polygon& body, double lead, std::size_t type);
   void update_reach(std::size_t type);
   void add_driven_bodies(const map::RoadGraph& graph, const geometry::Polygon& body, std::size_t type);
-  /// What a body that turns on the spot sweeps at each point where the road turns, between the
-  /// headings it arrives and leaves by (ResourceParams::turn_sweeps).
-  void add_turn_sweeps(const map::RoadGraph& graph, const geometry::Polygon& body, std::size_t type);
   void build_conflicts(std::size_t type_a, std::size_t type_b);
   void build_stoppable(const std::vector<std::vector<int>>& successors,
                        const std::vector<std::vector<int>>& predecessors);

@@ -1,5 +1,5 @@
 // The bodies a vehicle type sweeps through the bends of the roads as its own controller drives
-// them, or turning on the spot at a bend's point, added to the regions of ConflictZones.
+// them, added to the regions of ConflictZones.
 
 #include <algorithm>
 #include <cmath>
@@ -62,41 +62,7 @@ Polygon simplified(const Polygon& hull, double tolerance) {
   return kept.size() >= 3 ? grown(kept, tolerance) : hull;
 }
 
-// A body turns on the spot at a point where the road turns by more than this, rad: a smaller turn
-// is followed along the bodies at the two headings (15 degrees swings a 1.7 m body's corner less
-// than 3 cm beyond them).
-constexpr double kTurnOnTheSpot = 0.26;
-// The bodies of one turn on the spot are taken this far apart, rad.
-constexpr double kTurnStep = 0.13;
-// Above this a turn is the robot reversing out the way it came (it backs up, it does not turn).
-constexpr double kReversal = 2.4;
-
 }  // namespace
-
-void ConflictZones::add_turn_sweeps(const map::RoadGraph& graph, const Polygon& body, std::size_t type) {
-  const PlaceLinks links = place_links(graph);
-  auto& region = region_[type];
-  for (std::size_t p = 0; p < position_.size(); ++p) {
-    const Vec2 here = position_[p];
-    for (int from : links.predecessors[p]) {
-      const Vec2 in = here - position_[static_cast<std::size_t>(from)];
-      const double heading_in = std::atan2(in.y, in.x);
-      for (int to : links.successors[p]) {
-        if (to == from) continue;
-        const Vec2 out = position_[static_cast<std::size_t>(to)] - here;
-        const double turn_by = geometry::angle_diff(std::atan2(out.y, out.x), heading_in);
-        if (std::abs(turn_by) <= kTurnOnTheSpot || std::abs(turn_by) >= kReversal) continue;
-        const int steps = static_cast<int>(std::ceil(std::abs(turn_by) / kTurnStep));
-        std::vector<Vec2> corners;
-        for (int k = 0; k <= steps; ++k) {
-          const Polygon placed = sim::polygon_in_map({here.x, here.y, heading_in + turn_by * k / steps}, body);
-          corners.insert(corners.end(), placed.begin(), placed.end());
-        }
-        region[p].push_back(simplified(convex_hull(std::move(corners)), kSimplify));
-      }
-    }
-  }
-}
 
 void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon& body, std::size_t type) {
   const auto& drive = types_[type].drive;

@@ -2,12 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 #include "map/site_map.hpp"
-#include "sim/tricycle.hpp"
 #include "test_graphs.hpp"
 #include "test_paths.hpp"
 
@@ -105,43 +102,6 @@ TEST(ConflictZones, TableAJunctionsCoverTheirWholeCrossing) {
       }
     }
   }
-}
-
-TEST(ConflictZones, TurnSweepsHoldALongBodyTurningOnTheSpotAtABend) {
-  GraphBuilder b;
-  b.road(0.0, 0.0, 3.0, 0.0);
-  b.road(3.0, 0.0, 3.0, 3.0);
-  ResourceParams params;
-  params.margin = 0.0;
-  params.vehicle_types = {{"reach truck", rectangle_footprint({1.6, 0.9})}};
-  const int bend = ConflictZones(b.graph(), params).place_of(point_at(b.graph(), 3.0, 0.0));
-  // Halfway through its turn from east to north, the body's corners reach 0.92 m from the point.
-  const geometry::Polygon halfway =
-      sim::polygon_in_map({3.0, 0.0, std::acos(0.0) / 2.0}, params.vehicle_types[0].footprint);
-  const auto holds_halfway = [&](const ConflictZones& zones) {
-    const auto& polygons = zones.region(bend);
-    return std::any_of(polygons.begin(), polygons.end(), [&](const geometry::Polygon& held) {
-      return std::all_of(halfway.begin(), halfway.end(), [&](geometry::Vec2 v) { return geometry::contains(held, v); });
-    });
-  };
-  EXPECT_FALSE(holds_halfway(ConflictZones(b.graph(), params)));
-  params.turn_sweeps = true;
-  const ConflictZones zones(b.graph(), params);
-  EXPECT_TRUE(holds_halfway(zones));
-  // A place of a road passing beside the bend, clear of the body at both headings, conflicts with
-  // the bend once the turn is held.
-  GraphBuilder beside = b;
-  beside.road(4.28, -1.0, 4.28, 1.0);
-  const ConflictZones without(beside.graph(), [&] {
-    ResourceParams p = params;
-    p.turn_sweeps = false;
-    return p;
-  }());
-  const ConflictZones with(beside.graph(), params);
-  const int near = with.place_of(point_at(beside.graph(), 4.28, 0.6));
-  const int corner = with.place_of(point_at(beside.graph(), 3.0, 0.0));
-  EXPECT_FALSE(without.conflict(corner, near));
-  EXPECT_TRUE(with.conflict(corner, near));
 }
 
 }  // namespace
