@@ -20,6 +20,9 @@ namespace {
 constexpr double kProjectionWindow = 0.5;  // metres
 // A turn sharper than this between consecutive segments is a cusp (about 145 degrees).
 constexpr double kCuspAngle = 2.5;  // rad
+// A grant must reach this far past a cusp for the next leg to start: more than the robot moves
+// in a step, since the grant is counted from where it stood a step before.
+constexpr double kPastCusp = 0.02;  // metres
 // A final heading this far from the last segment's direction or further points back along it.
 constexpr double kFacingBack = 2.36;  // rad, 135 degrees
 // Segments within this of the last one's direction belong to the same straight stretch.
@@ -297,7 +300,15 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     } else {
       Projection proj = project(p);
       remaining = cum_[leg_end()] - proj.s;
-      if (remaining <= params_.goal_tolerance && leg_ + 1 < leg_ends_.size()) {
+      const bool at_cusp = remaining <= params_.goal_tolerance && leg_ + 1 < leg_ends_.size();
+      if (at_cusp && in.granted_distance <= remaining + kPastCusp) {
+        // The grant ends at the cusp: the robot stands there, on this leg, until it reaches on.
+        // Turned onto the next leg, it would count as driving on past the grant's end.
+        debug_.remaining = remaining;
+        last_cmd_ = {};
+        return cmd;
+      }
+      if (at_cusp) {
         // At a cusp: the next leg starts here and points back the way the robot came. Its target
         // lies behind, so eq. 6.2 turns the robot in place before it drives on.
         progress_ = leg_end();

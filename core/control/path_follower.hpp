@@ -81,7 +81,8 @@ struct FollowerInput {
   /// Clearance to the nearest obstacle ahead, metres; infinity when none is known.
   double obstacle_distance = std::numeric_limits<double>::infinity();
   /// Metres the robot may drive along the path from where it is (the end of a traffic grant);
-  /// infinity when the whole path is its to drive.
+  /// infinity when the whole path is its to drive. At a cusp the next leg starts only once this
+  /// reaches past it.
   double granted_distance = std::numeric_limits<double>::infinity();
 };
 
@@ -128,6 +129,12 @@ class PathFollower {
 
   /// One control step. Returns the body twist to apply until the next step.
   BodyTwist step(const FollowerInput& input);
+
+  /// Metres along the path from its start to where the leg being followed begins (0 on the
+  /// first): on a path that passes over the same ground twice, which pass the robot is on.
+  double leg_start_s() const { return path_.empty() ? 0.0 : cum_[leg_start()]; }
+  /// The path's length, metres.
+  double length() const { return cum_.empty() ? 0.0 : cum_.back(); }
 
   FollowerStatus status() const { return status_; }
   bool arrived() const { return status_ == FollowerStatus::kArrived; }

@@ -360,7 +360,9 @@ double Forklift::follow_traffic(double t, double clearance, const geometry::Pose
   // Another robot in the way: wait (WAITING, with the reason), and after a while plan around it
   // with a temporary obstacle [Forklift thesis, section 5.3]. Under traffic control the robot also
   // stops at the end of its grant; the neighbour check stays underneath as the safety layer.
-  const double room = follower_.room(sim_.estimate().position());
+  const control::PathFollower& controller = executor_.follower();
+  const double room = follower_.room(sim_.estimate().position(),
+                                     TrafficFollower::ControllerLeg{controller.length(), controller.leg_start_s()});
   const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
                        (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
   const bool blocked = driving && clearance <= stop_distance();

@@ -148,27 +148,31 @@ std::optional<TrafficPermit> TrafficFollower::take_route() {
   return out;
 }
 
-double TrafficFollower::path_position(Vec2 here) const {
+double TrafficFollower::path_position(Vec2 here, std::optional<ControllerLeg> leg) const {
   // The projection onto the path near where the robot was last found: a path may pass close to
   // itself, and progress must not jump. A path that backs up and comes back runs over the same
-  // ground twice: the robot is on the leg between the last cusp it reached and the next one.
-  constexpr double kCuspReached = 0.03;  // metres: the follower ends a leg within its tolerance
+  // ground twice: the robot is on the leg between the last cusp it reached and the next one, as
+  // its controller says (it ends a leg within its own tolerance, and may skip a short first one).
+  constexpr double kCuspReached = 0.03;  // metres: without the controller's word
+  constexpr double kSameLength = 1e-6;   // metres
   if (path_.size() < 2) return 0.0;
+  const bool told = leg && std::abs(leg->path_length - path_cum_.back()) < kSameLength;
   double leg_from = 0.0;
   double leg_to = std::numeric_limits<double>::infinity();
   for (const double cusp : path_cusps_) {
-    if (cusp <= path_s_ + kCuspReached) {
+    if (told ? cusp <= leg->leg_start_s + kSameLength : cusp <= path_s_ + kCuspReached) {
       leg_from = cusp;
     } else {
       leg_to = cusp;
       break;
     }
   }
+  const double from_s = std::max(path_s_, leg_from);
   double best_d = std::numeric_limits<double>::infinity();
-  double best_s = path_s_;
+  double best_s = from_s;
   for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
-    if (path_cum_[i + 1] < path_s_ - 0.05 || path_cum_[i] < leg_from - 1e-9) continue;
-    if (path_cum_[i] > path_s_ + 0.30 || path_cum_[i + 1] > leg_to + 1e-9) break;
+    if (path_cum_[i + 1] < from_s - 0.05 || path_cum_[i] < leg_from - 1e-9) continue;
+    if (path_cum_[i] > from_s + 0.30 || path_cum_[i + 1] > leg_to + 1e-9) break;
     const Vec2 a = path_[i];
     const Vec2 ab = path_[i + 1] - a;
     const double len2 = geometry::dot(ab, ab);
@@ -189,9 +193,9 @@ std::optional<std::size_t> TrafficFollower::segment_on_leg() const {
   return segment;
 }
 
-double TrafficFollower::room(Vec2 here) {
+double TrafficFollower::room(Vec2 here, std::optional<ControllerLeg> leg) {
   if (!params_.traffic || road_points_.empty() || path_.size() < 2) return std::numeric_limits<double>::infinity();
-  path_s_ = path_position(here);
+  path_s_ = path_position(here, leg);
   if (permit_.version != version_ || permit_.granted_index < 0) {
     // No grant for this route yet: stand still, not even turning on the spot; beside a lane a
     // turn sweeps the footprint into it. The manager admits the robot once its entry is free.

@@ -68,10 +68,19 @@ class TrafficFollower {
   /// The re-route waiting for the next plan, once.
   std::optional<TrafficPermit> take_route();
 
+  /// Where the controller that drives the path is along it: a path of this length whose leg
+  /// being followed begins `leg_start_s` metres from its start. On a path over the same ground
+  /// twice, the controller decides which pass the robot is on; where it sits says nothing.
+  struct ControllerLeg {
+    double path_length = 0.0;
+    double leg_start_s = 0.0;
+  };
   /// Metres the robot at `here` may still drive along its path before the end of its grant:
   /// infinite when traffic is off, off the road or granted all the way; negative before the
-  /// first grant of a route, so it stands (not even turning) until admitted.
-  double room(geometry::Vec2 here);
+  /// first grant of a route, so it stands (not even turning) until admitted. `leg` (when it is of
+  /// this path) says which leg the robot is on; without it, a cusp counts as passed once the
+  /// robot is within 3 cm of it.
+  double room(geometry::Vec2 here, std::optional<ControllerLeg> leg = std::nullopt);
   /// Once a step with whether the robot stands `held` by traffic at sim time `t`. True when it
   /// has stood on its siding longer than siding_timeout with nobody calling it back (a manager
   /// restarted meanwhile has no record of the siding): it has left the siding, and the caller
@@ -97,7 +106,7 @@ class TrafficFollower {
   const std::vector<std::string>& blocked_by() const { return permit_.blocked_by; }
 
  private:
-  double path_position(geometry::Vec2 here) const;
+  double path_position(geometry::Vec2 here, std::optional<ControllerLeg> leg) const;
 
   TrafficFollowerParams params_;
   std::vector<geometry::Vec2> path_;

@@ -345,3 +345,79 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
   EXPECT_LT(geometry::distance(robot->truth().position(), home.position()), 0.1);
 }
+
+TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGrantEnds) {
+  // Seen in the plant soak under the coordination core: a reach truck was handed a route that
+  // went one place on, one back and on again, granted two places past the turns. Its path
+  // follower ended the first leg a few centimetres short of the cusp, where the count of its
+  // progress along the route had not yet passed it: that count stayed on the first leg, the room
+  // left in the grant never shrank, and the truck drove its whole route, 20 m past its grant.
+  const auto site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
+                                  [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
+  ASSERT_NE(fleet, config.fleets.end());
+  auto robot = robot::make_robot(*fleet, config, site, site->site.find_home("PR1")->pose, 1, 1);
+  if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
+  const auto step = [&] {
+    robot->set_neighbours({});
+    robot->step();
+  };
+  while (robot->time() < 1.0) {
+    test::grant_everything(*robot);
+    step();
+  }
+  ASSERT_TRUE(robot->submit({"7", "FG5", site->site.find_area("FG5")->pose, "RH4", site->site.find_area("RH4")->pose},
+                            nullptr));
+  // On the road and a few metres along its own route.
+  while (robot->time() < 40.0 && robot->traffic_route().progress < 4.0) {
+    test::grant_everything(*robot);
+    step();
+  }
+  const robot::TrafficRoute own = robot->traffic_route();
+  ASSERT_GE(own.progress, 4.0) << robot->detail();
+  const auto& points = site->graph.graph.points;
+  const auto at = [&](int id) {
+    return geometry::Vec2{points[static_cast<std::size_t>(id)].x, points[static_cast<std::size_t>(id)].y};
+  };
+  std::size_t behind = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < own.points.size(); ++k) {
+    const double d =
+        geometry::point_segment_distance(robot->estimate().position(), at(own.points[k]), at(own.points[k + 1]));
+    if (d < best) {
+      best = d;
+      behind = k;
+    }
+  }
+  ASSERT_LT(behind + 8, own.points.size());
+  const auto p = [&](std::size_t k) { return own.points[behind + k]; };
+  // On two points, back one, on again: granted up to the third point past where it stood.
+  const std::vector<int> shuttle{p(0), p(1), p(2), p(1), p(2), p(3), p(4), p(5), p(6), p(7)};
+  constexpr int kGrantedIndex = 5;
+  double granted_m = 0.0;
+  for (int k = 1; k <= kGrantedIndex; ++k) {
+    granted_m +=
+        geometry::distance(at(shuttle[static_cast<std::size_t>(k - 1)]), at(shuttle[static_cast<std::size_t>(k)]));
+  }
+  robot::TrafficPermit handed{own.version + 1, kGrantedIndex, granted_m, {}, shuttle, false};
+  robot->set_traffic_grant(handed);
+  handed.route.clear();
+  const geometry::Vec2 grant_end = at(p(3));
+  const geometry::Vec2 beyond = at(p(4));
+  double farthest_past = -std::numeric_limits<double>::infinity();
+  const double handed_at = robot->time();
+  while (robot->time() < handed_at + 40.0) {
+    robot->set_traffic_grant(handed);
+    step();
+    // How far past the grant's end, along the way on.
+    const geometry::Vec2 along = beyond - grant_end;
+    const double past =
+        geometry::dot(robot->truth().position() - grant_end, along) / geometry::distance(beyond, grant_end);
+    if (robot->traffic_route().version == handed.version) farthest_past = std::max(farthest_past, past);
+  }
+  EXPECT_EQ(robot->traffic_route().version, handed.version);
+  EXPECT_LT(farthest_past, 0.1) << "drove past its grant: " << robot->detail();
+  EXPECT_GT(farthest_past, -0.3) << "never came up to its grant's end: " << robot->detail();
+}
