@@ -292,6 +292,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
   if (status_ == FollowerStatus::kTracking) {
     Vec2 target;
     double remaining = 0.0;
+    bool held_at_cusp = false;
     if (pose_target_) {
       target = goal.position();
       remaining = geometry::distance(p, target);
@@ -301,14 +302,11 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
       Projection proj = project(p);
       remaining = cum_[leg_end()] - proj.s;
       const bool at_cusp = remaining <= params_.goal_tolerance && leg_ + 1 < leg_ends_.size();
-      if (at_cusp && in.granted_distance <= remaining + kPastCusp) {
-        // The grant ends at the cusp: the robot stands there, on this leg, until it reaches on.
-        // Turned onto the next leg, it would count as driving on past the grant's end.
-        debug_.remaining = remaining;
-        last_cmd_ = {};
-        return cmd;
-      }
-      if (at_cusp) {
+      // A grant that ends at the cusp: the robot drives on up to the grant's end, as anywhere
+      // else, and stays on this leg until the grant reaches on. Turned onto the next leg, it
+      // would count as driving on past the grant's end.
+      held_at_cusp = at_cusp && in.granted_distance <= remaining + kPastCusp;
+      if (at_cusp && !held_at_cusp) {
         // At a cusp: the next leg starts here and points back the way the robot came. Its target
         // lies behind, so eq. 6.2 turns the robot in place before it drives on.
         progress_ = leg_end();
@@ -329,7 +327,7 @@ BodyTwist PathFollower::step(const FollowerInput& in) {
     }
     debug_.remaining = remaining;
     debug_.target = target;
-    if (remaining <= params_.goal_tolerance) {
+    if (remaining <= params_.goal_tolerance && !held_at_cusp) {
       status_ = FollowerStatus::kAligning;
     } else {
       // Backing in, the rear leads: h is the heading of the rear, and the speed is negated below.

@@ -74,6 +74,14 @@ void PlaceTraffic::plan_step() {
     const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
     const int to = next[static_cast<std::size_t>(robot)];
     if (p.place < 0 || to == p.place) continue;
+    const int pending = order_.pending(robot);
+    if (pending >= 1 && to == order_.visit_place(robot, pending - 1) && (pending >= 2 || !order_.has_left(robot))) {
+      // Pushed back out of its last planned place before it began that visit: the visit goes,
+      // instead of a move back. Planned as a move, its route would go on, back and on again
+      // over the same ground.
+      order_.drop_from(robot, pending);
+      continue;
+    }
     order_.plan(robot, to, plan_step_);
     // The end of each leg is a goal reached: its priority starts over, as at the route's end.
     if (to == p.goal) planner_.reached_goal(robot);

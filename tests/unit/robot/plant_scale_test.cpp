@@ -393,31 +393,42 @@ TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGr
   }
   ASSERT_LT(behind + 8, own.points.size());
   const auto p = [&](std::size_t k) { return own.points[behind + k]; };
-  // On two points, back one, on again: granted up to the third point past where it stood.
+  // On two points, back one, on again: granted first up to the cusp, then up to the third point
+  // past where it stood.
   const std::vector<int> shuttle{p(0), p(1), p(2), p(1), p(2), p(3), p(4), p(5), p(6), p(7)};
-  constexpr int kGrantedIndex = 5;
-  double granted_m = 0.0;
-  for (int k = 1; k <= kGrantedIndex; ++k) {
-    granted_m +=
-        geometry::distance(at(shuttle[static_cast<std::size_t>(k - 1)]), at(shuttle[static_cast<std::size_t>(k)]));
-  }
-  robot::TrafficPermit handed{own.version + 1, kGrantedIndex, granted_m, {}, shuttle, false};
+  const auto metres_to = [&](int index) {
+    double metres = 0.0;
+    for (std::size_t k = 1; k <= static_cast<std::size_t>(index); ++k) {
+      metres += geometry::distance(at(shuttle[k - 1]), at(shuttle[k]));
+    }
+    return metres;
+  };
+  robot::TrafficPermit handed{own.version + 1, 2, metres_to(2), {}, shuttle, false};
   robot->set_traffic_grant(handed);
   handed.route.clear();
+  const double handed_at = robot->time();
+  while (robot->time() < handed_at + 20.0) {
+    robot->set_traffic_grant(handed);
+    step();
+  }
+  ASSERT_EQ(robot->traffic_route().version, handed.version);
+  // Up to the cusp, close enough for traffic to count it there (within 5 cm), and no further.
+  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->detail();
+  EXPECT_LT(geometry::distance(robot->truth().position(), at(p(2))), 0.1) << "its estimate's error aside";
+  handed.granted_index = 5;
+  handed.granted_distance = metres_to(5);
   const geometry::Vec2 grant_end = at(p(3));
   const geometry::Vec2 beyond = at(p(4));
   double farthest_past = -std::numeric_limits<double>::infinity();
-  const double handed_at = robot->time();
-  while (robot->time() < handed_at + 40.0) {
+  while (robot->time() < handed_at + 60.0) {
     robot->set_traffic_grant(handed);
     step();
     // How far past the grant's end, along the way on.
-    const geometry::Vec2 along = beyond - grant_end;
-    const double past =
-        geometry::dot(robot->truth().position() - grant_end, along) / geometry::distance(beyond, grant_end);
-    if (robot->traffic_route().version == handed.version) farthest_past = std::max(farthest_past, past);
+    const double past = geometry::dot(robot->truth().position() - grant_end, beyond - grant_end) /
+                        geometry::distance(beyond, grant_end);
+    farthest_past = std::max(farthest_past, past);
   }
   EXPECT_EQ(robot->traffic_route().version, handed.version);
-  EXPECT_LT(farthest_past, 0.1) << "drove past its grant: " << robot->detail();
-  EXPECT_GT(farthest_past, -0.3) << "never came up to its grant's end: " << robot->detail();
+  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->detail();
+  EXPECT_LT(farthest_past, 0.05) << "drove past its grant: " << robot->detail();
 }
