@@ -116,6 +116,7 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
     const int id = number_of(request.robot_id);
     waiting_for_area_.erase(request.robot_id);
     if (request.points.empty()) {
+      traffic_.stopped_for(id, {});
       routed_.erase(request.robot_id);
       status_.erase(request.robot_id);
       if (!request.work_area.empty()) {
@@ -129,6 +130,11 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
     }
     working_.erase(request.robot_id);
     routed_.insert(request.robot_id);
+    std::vector<int> stopped_for;
+    for (const std::string& other : request.stopped_for) {
+      if (const auto known = numbers_.find(other); known != numbers_.end()) stopped_for.push_back(known->second);
+    }
+    traffic_.stopped_for(id, std::move(stopped_for));
     // A route with a work area starts beside the roads: the area is its way out onto them.
     const geometry::Polygon way_out =
         request.work_area.empty() ? geometry::Polygon{} : traffic::convex_hull(request.work_area);

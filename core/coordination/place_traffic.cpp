@@ -255,6 +255,7 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body, const geometr
   r.places.clear();
   r.place_point.clear();
   r.entry_blockers.clear();
+  r.stopped_for.clear();
   r.adopted = true;
   r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
   if (!geometry::same_polygon(to_sweep, r.way_out, kSameBodyM)) {
@@ -262,6 +263,11 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body, const geometr
     closed_stale_ = true;
   }
   take_body(robot, body);
+}
+
+void PlaceTraffic::stopped_for(int robot, std::vector<int> others) {
+  std::erase_if(others, [&](int other) { return other == robot || other < 0 || other >= robots(); });
+  at(robot).stopped_for = std::move(others);
 }
 
 void PlaceTraffic::waiting_body(int robot, const geometry::Polygon& body) {

@@ -67,6 +67,11 @@ class PlaceTraffic {
   /// `to_sweep` (convex; empty when none) is the area of a manoeuvre beside the roads it waits to
   /// begin: held as a way out is, robots in it are pushed out of it.
   void stand(int robot, const geometry::Polygon& body, const geometry::Polygon& to_sweep = {});
+  /// The robot's own look-ahead has stopped it for these robots' bodies for a while
+  /// (TrafficRoute::stopped_for; empty when it drives on): whatever its grant, it does not move
+  /// closer to them. It is planned to stay, its visits not yet begun are dropped, so robots whose
+  /// visits wait for those go first, and it waits for the robots named.
+  void stopped_for(int robot, std::vector<int> others);
   /// Robots other than `robot` whose visits, begun or planned, are of places `area` (convex, map
   /// frame) reaches for their vehicle type, or whose standing bodies overlap it: those a
   /// manoeuvre sweeping `area` beside the roads must wait for.
@@ -105,6 +110,7 @@ class PlaceTraffic {
     geometry::Polygon way_out;
     std::uint64_t waiting_since = 0;  ///< the order in which robots began to wait to enter
     std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
+    std::vector<int> stopped_for;     ///< robots its own look-ahead stops it for
     PlaceGrant grant;
   };
   Robot& at(int robot) { return robots_[static_cast<std::size_t>(robot)]; }

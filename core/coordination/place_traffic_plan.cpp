@@ -22,10 +22,12 @@ void PlaceTraffic::plan_step() {
   // again each step from its last granted one, they stay as they were, or the planner sends it
   // another way or pushes it. Kept, a robot whose plan ran ahead behind another would be held
   // behind its own plan, and the other could never get past those visits.
+  // A robot its own look-ahead stops for another's body cannot make its visits: those not begun
+  // go, so that robots whose visits wait for them may go first and take their bodies away.
   for (int robot = 0; robot < robots(); ++robot) {
     if (at(robot).mode != Mode::kDriving || !order_.present(robot)) continue;
     for (int k = order_.has_left(robot) ? 2 : 1; k <= order_.pending(robot); ++k) {
-      if (order_.waits_for(robot, k) >= 0) {
+      if (!at(robot).stopped_for.empty() || order_.waits_for(robot, k) >= 0) {
         order_.drop_from(robot, k);
         break;
       }
@@ -65,7 +67,7 @@ void PlaceTraffic::plan_step() {
     // to stay, never pushed. Planned on from a push it has not made, a robot comes straight back
     // in the next step, before the robot that pushed it has taken the room: each step pushes it
     // again, and its route shuttles between two places.
-    p.held = !r.adopted || order_.pending(robot) >= params_.plan_ahead ||
+    p.held = !r.adopted || !r.stopped_for.empty() || order_.pending(robot) >= params_.plan_ahead ||
              (r.moved_off_route && order_.pending(robot) > 0) || at_end;
   }
   const std::vector<int> next = planner_.plan(planned, &closed_);
@@ -190,6 +192,7 @@ void PlaceTraffic::update_grant(int robot) {
     // Its route leads on into a place a body or a way out closes: it waits for those robots.
     g.waits_for = closers_of(robot, r.type, r.places[index + 1], r.places[index]);
   }
+  if (g.waits_for.empty()) g.waits_for = r.stopped_for;
   g.granted_index = r.place_point[index];
   g.granted_distance = r.point_s[static_cast<std::size_t>(g.granted_index)];
   g.arrived = static_cast<std::size_t>(r.at) + 1 == r.places.size();
