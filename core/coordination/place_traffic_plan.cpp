@@ -60,14 +60,18 @@ void PlaceTraffic::plan_step() {
     p.place = order_.last_planned(robot);
     const auto last = static_cast<std::size_t>(r.at + order_.pending(robot));
     const bool at_end = last + 1 >= r.places.size();
-    p.goal = at_end ? r.places.back() : r.places[route_leg_end(r, last)];
-    p.preferred = at_end ? -1 : r.places[last + 1];
+    // Stopped for another's body, it has no errand for now: it stays, unless a robot that needs
+    // its place pushes it out of the way (its look-ahead lets it drive away from the body it
+    // stopped for, never towards it).
+    const bool stopped = !r.stopped_for.empty();
+    p.goal = stopped ? -1 : at_end ? r.places.back() : r.places[route_leg_end(r, last)];
+    p.preferred = stopped || at_end ? -1 : r.places[last + 1];
     // Behind its plan, waiting for a new route to reach it, not yet where a move off its route
     // (a push, giving way) puts it, or at its route's end (where it turns off the road): planned
     // to stay, never pushed. Planned on from a push it has not made, a robot comes straight back
     // in the next step, before the robot that pushed it has taken the room: each step pushes it
     // again, and its route shuttles between two places.
-    p.held = !r.adopted || !r.stopped_for.empty() || order_.pending(robot) >= params_.plan_ahead ||
+    p.held = !r.adopted || (!stopped && order_.pending(robot) >= params_.plan_ahead) ||
              (r.moved_off_route && order_.pending(robot) > 0) || at_end;
   }
   const std::vector<int> next = planner_.plan(planned, &closed_);

@@ -155,6 +155,7 @@ double TrafficFollower::path_position(Vec2 here, std::optional<ControllerLeg> le
   // its controller says (it ends a leg within its own tolerance, and may skip a short first one).
   constexpr double kCuspReached = 0.03;  // metres: without the controller's word
   constexpr double kSameLength = 1e-6;   // metres
+  constexpr double kLost = 0.15;         // metres off the stretch searched
   if (path_.size() < 2) return 0.0;
   const bool told = leg && std::abs(leg->path_length - path_cum_.back()) < kSameLength;
   double leg_from = 0.0;
@@ -181,6 +182,23 @@ double TrafficFollower::path_position(Vec2 here, std::optional<ControllerLeg> le
     if (d < best_d) {
       best_d = d;
       best_s = path_cum_[i] + u * std::sqrt(len2);
+    }
+  }
+  if (best_d > kLost) {
+    // Lost: far from the stretch where it was last found (a leg its controller skipped, ended
+    // early, or that no one said it had left). The nearest point of the path ahead of that
+    // finds it again, so the room left in its grant shrinks as it drives.
+    for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
+      if (path_cum_[i + 1] < path_s_) continue;
+      const Vec2 a = path_[i];
+      const Vec2 ab = path_[i + 1] - a;
+      const double len2 = geometry::dot(ab, ab);
+      const double u = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
+      const double d = geometry::distance(here, a + u * ab);
+      if (d < best_d) {
+        best_d = d;
+        best_s = std::max(path_s_, path_cum_[i] + u * std::sqrt(len2));
+      }
     }
   }
   return best_s;

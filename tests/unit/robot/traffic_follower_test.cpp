@@ -206,5 +206,29 @@ TEST(TrafficFollower, ArrivedBesideTheRoadItHoldsNoRoad) {
   EXPECT_TRUE(std::isinf(f.room({5.0, 0.5})));
 }
 
+TEST(TrafficFollower, ARobotThatSkipsTheLegBackOfItsRouteIsFoundAgainAndHeldAtItsGrant) {
+  // A route back one place and on again, the robot at the place it backs up from; its controller
+  // skips the short leg back and drives on, and nobody says so. Its progress must follow it, or
+  // the room left in its grant would never shrink.
+  map::RoadGraph g;
+  for (int i = 0; i < 10; ++i) {
+    map::GraphPoint p;
+    p.id = i;
+    p.x = 0.1 * i;
+    g.points.push_back(p);
+  }
+  g.successors.resize(10);
+  TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
+  ASSERT_TRUE(f.grant({101, 4, 0.4, {}, {2, 1, 2, 3, 4, 5, 6, 7, 8, 9}, false}));
+  const auto permit = f.take_route();
+  ASSERT_TRUE(permit);
+  f.adopt_route(*permit, g, {0.2, 0.0});
+  f.grant({101, 4, 0.4, {}, {}, false});
+  double x = 0.2;
+  for (; x < 0.8 && f.room({x, 0.0}) > 0.0; x += 0.005) {
+  }
+  EXPECT_LT(x, 0.4 + 0.16) << "held within the search's reach past the grant's end (x = 0.4)";
+}
+
 }  // namespace
 }  // namespace fleet::robot
