@@ -116,7 +116,6 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
     const int id = number_of(request.robot_id);
     waiting_for_area_.erase(request.robot_id);
     if (request.points.empty()) {
-      traffic_.stopped_for(id, {});
       routed_.erase(request.robot_id);
       status_.erase(request.robot_id);
       if (!request.work_area.empty()) {

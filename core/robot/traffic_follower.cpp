@@ -171,9 +171,9 @@ double TrafficFollower::path_position(Vec2 here, std::optional<ControllerLeg> le
   const double from_s = std::max(path_s_, leg_from);
   double best_d = std::numeric_limits<double>::infinity();
   double best_s = from_s;
-  for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
-    if (path_cum_[i + 1] < from_s - 0.05 || path_cum_[i] < leg_from - 1e-9) continue;
-    if (path_cum_[i] > from_s + 0.30 || path_cum_[i + 1] > leg_to + 1e-9) break;
+  // Takes the point of segment i nearest the robot when it is nearer than the best so far, no
+  // less than `floor` metres along the path.
+  const auto consider = [&](std::size_t i, double floor) {
     const Vec2 a = path_[i];
     const Vec2 ab = path_[i + 1] - a;
     const double len2 = geometry::dot(ab, ab);
@@ -181,24 +181,20 @@ double TrafficFollower::path_position(Vec2 here, std::optional<ControllerLeg> le
     const double d = geometry::distance(here, a + u * ab);
     if (d < best_d) {
       best_d = d;
-      best_s = path_cum_[i] + u * std::sqrt(len2);
+      best_s = std::max(floor, path_cum_[i] + u * std::sqrt(len2));
     }
+  };
+  for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
+    if (path_cum_[i + 1] < from_s - 0.05 || path_cum_[i] < leg_from - 1e-9) continue;
+    if (path_cum_[i] > from_s + 0.30 || path_cum_[i + 1] > leg_to + 1e-9) break;
+    consider(i, -std::numeric_limits<double>::infinity());
   }
   if (best_d > kLost) {
     // Lost: far from the stretch where it was last found (a leg its controller skipped, ended
     // early, or that no one said it had left). The nearest point of the path ahead of that
     // finds it again, so the room left in its grant shrinks as it drives.
     for (std::size_t i = 0; i + 1 < path_.size(); ++i) {
-      if (path_cum_[i + 1] < path_s_) continue;
-      const Vec2 a = path_[i];
-      const Vec2 ab = path_[i + 1] - a;
-      const double len2 = geometry::dot(ab, ab);
-      const double u = len2 > 0.0 ? std::clamp(geometry::dot(here - a, ab) / len2, 0.0, 1.0) : 0.0;
-      const double d = geometry::distance(here, a + u * ab);
-      if (d < best_d) {
-        best_d = d;
-        best_s = std::max(path_s_, path_cum_[i] + u * std::sqrt(len2));
-      }
+      if (path_cum_[i + 1] >= path_s_) consider(i, path_s_);
     }
   }
   return best_s;

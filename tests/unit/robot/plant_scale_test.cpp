@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "config/fleet_config.hpp"
@@ -109,6 +112,24 @@ std::vector<double> scaled_values(const ForkliftConfig& c) {
           c.siding_end_margin};
 }
 
+/// A robot of one of the plant's fleets on the plant's map (maps/plant.yaml,
+/// config/sites/plant.yaml), made as the agent makes it: its fleet's software and route graph.
+struct PlantRobot {
+  std::shared_ptr<const map::SiteMap> site =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  std::unique_ptr<robot::Robot> robot;
+
+  std::unique_ptr<robot::Robot>& make(const std::string& fleet_id, const geometry::Pose2& pose) {
+    const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
+                                    [&](const config::FleetSpec& f) { return f.id == fleet_id; });
+    if (fleet == config.fleets.end()) throw std::runtime_error("the plant has no fleet '" + fleet_id + "'");
+    robot = robot::make_robot(*fleet, config, site, pose, 1, 1);
+    if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
+    return robot;
+  }
+};
+
 }  // namespace
 
 TEST(ForkliftForVehicle, TheTableProfileGivesExactlyTheDefaults) {
@@ -195,13 +216,9 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
   // Seen in the plant soak: fk3 stood 0.15 m off its stall's centre, yawed 3 degrees, with fk4
   // parked in the next stall. Its route starts with a short diagonal to the stall's road node;
   // swept along that diagonal its body's corner met fk4's, so it never left.
-  const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
-  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
-  const config::FleetSpec& fleet = config.fleets.front();
-  ASSERT_EQ(fleet.id, "forklifts");
-  auto robot = robot::make_robot(fleet, config, site, {40.2455, 28.8761, -1.5152}, 1, 1);
-  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  PlantRobot plant;
+  const auto& site = plant.site;
+  auto& robot = plant.make("forklifts", {40.2455, 28.8761, -1.5152});
   const robot::Neighbour parked{"fk4", {41.5582, 29.0320, -1.5694}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
   const auto step = [&] { test::step_among(*robot, {parked}, {parked_body}); };
@@ -224,13 +241,10 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   // every route out starts. It turned round to touch that point and back again; beside fk2,
   // parked in the next stall, its corners met fk2's body half way round and it stood there,
   // facing the wall, until fk2 left.
-  const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
-  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
-  const config::FleetSpec& fleet = config.fleets.front();
+  PlantRobot plant;
+  const auto& site = plant.site;
   const geometry::Pose2 home = site->site.find_home("PF1")->pose;
-  auto robot = robot::make_robot(fleet, config, site, {home.x + 0.02, home.y - 0.07, home.yaw}, 1, 1);
-  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  auto& robot = plant.make("forklifts", {home.x + 0.02, home.y - 0.07, home.yaw});
   const geometry::Pose2 next_home = site->site.find_home("PF2")->pose;
   const robot::Neighbour parked{"fk2", {next_home.x, next_home.y - 0.04, next_home.yaw}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
@@ -257,14 +271,9 @@ TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
   // grown cells, about a metre from the picker's body; named from where it stood it reported
   // "an obstacle ahead", traffic never learnt whom it waited for, and the picker, waiting in turn
   // for the road the truck held, stood there with it for good.
-  const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
-  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
-  const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
-                                  [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
-  ASSERT_NE(fleet, config.fleets.end());
-  auto robot = robot::make_robot(*fleet, config, site, site->site.find_home("PR1")->pose, 1, 1);
-  if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
+  PlantRobot plant;
+  const auto& site = plant.site;
+  auto& robot = plant.make("reach_trucks", site->site.find_home("PR1")->pose);
   std::vector<robot::Neighbour> picker;
   const auto step = [&] {
     test::grant_everything(*robot);
@@ -300,13 +309,10 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
   // Seen in the plant soak: fk2 came home up its stall's spur facing the wall and turned round at
   // the end to the home heading, between fk1 and fk3 parked 1.2 m either side. Half way round its
   // corners came within the safety gap of theirs; it stood there, and fk1, sent out, waited for it.
-  const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
-  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
-  const config::FleetSpec& fleet = config.fleets.front();
+  PlantRobot plant;
+  const auto& site = plant.site;
   const geometry::Pose2 home = site->site.find_home("PF2")->pose;
-  auto robot = robot::make_robot(fleet, config, site, home, 1, 1);
-  if (auto graph = robot::route_graph_for(config, fleet, *site)) robot->set_site(site, graph);
+  auto& robot = plant.make("forklifts", home);
   std::vector<robot::Neighbour> parked;
   std::vector<geometry::Polygon> parked_bodies;
   for (const auto& [robot_id, stall] : {std::pair{"fk1", "PF1"}, std::pair{"fk3", "PF3"}}) {
@@ -352,14 +358,9 @@ TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGr
   // follower ended the first leg a few centimetres short of the cusp, where the count of its
   // progress along the route had not yet passed it: that count stayed on the first leg, the room
   // left in the grant never shrank, and the truck drove its whole route, 20 m past its grant.
-  const auto site =
-      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
-  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
-  const auto fleet = std::find_if(config.fleets.begin(), config.fleets.end(),
-                                  [](const config::FleetSpec& f) { return f.id == "reach_trucks"; });
-  ASSERT_NE(fleet, config.fleets.end());
-  auto robot = robot::make_robot(*fleet, config, site, site->site.find_home("PR1")->pose, 1, 1);
-  if (auto graph = robot::route_graph_for(config, *fleet, *site)) robot->set_site(site, graph);
+  PlantRobot plant;
+  const auto& site = plant.site;
+  auto& robot = plant.make("reach_trucks", site->site.find_home("PR1")->pose);
   const auto step = [&] {
     robot->set_neighbours({});
     robot->step();

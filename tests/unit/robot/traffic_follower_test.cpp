@@ -12,16 +12,21 @@ namespace {
 using geometry::Vec2;
 
 /// Road points 0..5 along y = 0 at x = 1..6 (1 m apart).
-map::RoadGraph straight_road() {
+/// `count` points along y = 0, `spacing` apart from x = `first_x` (no edges: routes name points).
+map::RoadGraph points_along_x(int count, double first_x, double spacing) {
   map::RoadGraph g;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < count; ++i) {
     map::GraphPoint p;
     p.id = i;
-    p.x = 1.0 + i;
+    p.x = first_x + spacing * i;
     g.points.push_back(p);
   }
-  g.successors.resize(6);
+  g.successors.resize(static_cast<std::size_t>(count));
   return g;
+}
+
+map::RoadGraph straight_road() {
+  return points_along_x(6, 1.0, 1.0);
 }
 
 /// An own plan from (0, 0) onto the road at point 0, along it to point `last`, then 0.5 m off it
@@ -151,14 +156,7 @@ TEST(TrafficFollower, ARouteThatBacksUpAPlaceCountsProgressAlongTheLegBehindFirs
   // Places 0.1 m apart, as on a table: the coordination core pushes a robot standing at point 2
   // back to point 1 and then sends it on over point 2 again. Standing where it stands, the robot
   // is on the route's first leg, not on the stretch after the cusp that passes under it too.
-  map::RoadGraph g;
-  for (int i = 0; i < 6; ++i) {
-    map::GraphPoint p;
-    p.id = i;
-    p.x = 0.1 * i;
-    g.points.push_back(p);
-  }
-  g.successors.resize(6);
+  const map::RoadGraph g = points_along_x(6, 0.0, 0.1);
   TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
   ASSERT_TRUE(f.grant({101, 1, 0.1, {}, {2, 1, 2, 3, 4}, false}));
   const auto permit = f.take_route();
@@ -210,14 +208,7 @@ TEST(TrafficFollower, ARobotThatSkipsTheLegBackOfItsRouteIsFoundAgainAndHeldAtIt
   // A route back one place and on again, the robot at the place it backs up from; its controller
   // skips the short leg back and drives on, and nobody says so. Its progress must follow it, or
   // the room left in its grant would never shrink.
-  map::RoadGraph g;
-  for (int i = 0; i < 10; ++i) {
-    map::GraphPoint p;
-    p.id = i;
-    p.x = 0.1 * i;
-    g.points.push_back(p);
-  }
-  g.successors.resize(10);
+  const map::RoadGraph g = points_along_x(10, 0.0, 0.1);
   TrafficFollower f({.traffic = true, .siding_timeout = 30.0}, 100);
   ASSERT_TRUE(f.grant({101, 4, 0.4, {}, {2, 1, 2, 3, 4, 5, 6, 7, 8, 9}, false}));
   const auto permit = f.take_route();
