@@ -87,8 +87,13 @@ std::vector<KeySpec> make_schema() {
       number("traffic.lost_reroute_wait_s", 3.0, "s", 0.1, 3600.0,
              "a robot waiting this long (sim seconds) only on lost robots is re-routed around them"),
       number("traffic.margin", 0.03, "m", 0.0, 1.0,
-             "gap kept between the regions of reservations; larger values make junction zones swallow whole "
-             "corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its own distance"),
+             "the traffic manager: gap kept between the regions of reservations; larger values make junction "
+             "zones swallow whole corridors (0.06 m jams 8 robots on table_a), the agents' safety stop keeps its "
+             "own distance"),
+      number("traffic.places_margin", 0.12, "m", 0.0, 1.0,
+             "the places core: gap kept between the bodies of robots at conflicting places, in place of "
+             "traffic.margin; the agents' look ahead keeps half of it, the other half is for two robots standing "
+             "or driving off the places they are counted at"),
       flag("traffic.one_way", true,
            "give corridors on cycles of the road network one driving direction (robots pushed aside by the "
            "places core still back up against it)"),

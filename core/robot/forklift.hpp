@@ -50,7 +50,7 @@ struct ForkliftConfig {
   double stop_distance = 0.08;  ///< metres: pose latency and the sweep of a turn need a margin
   /// Under the coordination core (`traffic.core: places`), the clearance ahead at which another
   /// robot's body stops this one, in place of stop_distance: the core grants only places whose
-  /// bodies keep `traffic.margin` apart, and a robot that stopped short of its place for a body
+  /// bodies keep `traffic.places_margin` apart, and a robot that stopped short of its place for a body
   /// the core keeps clear of it would never arrive. Negative: stop_distance, m.
   double planned_stop_distance = -1.0;
   double neighbour_margin = 0.03;  ///< metres added around other robots' footprints

@@ -54,12 +54,12 @@ std::vector<geometry::Pose2> follower_drive(const control::FollowerParams& param
 
 namespace {
 
-/// Traffic grants two robots places only where their bodies stay `traffic.margin` apart. A robot
-/// that refused to drive on beside another at that gap would wait for it with the road granted to
-/// both, and the other likewise. The look ahead therefore keeps half of it to the bodies other
-/// robots report: the other half is for both robots' estimates being off.
+/// Traffic grants two robots places only where their bodies stay traffic::reservation_margin
+/// apart. A robot that refused to drive on beside another at that gap would wait for it with the
+/// road granted to both, and the other likewise. The look ahead therefore keeps half of it to the
+/// bodies other robots report: the other half is for both robots' estimates being off.
 double lookahead_gap(const config::FleetConfig& config) {
-  return config.settings.get_double("traffic.margin") / 2.0;
+  return traffic::reservation_margin(config) / 2.0;
 }
 
 robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const config::FleetSpec& fleet,

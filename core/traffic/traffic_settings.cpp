@@ -56,13 +56,19 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
     for (const auto& robot : fleet.robots) c.robot_vehicle_types[robot.id] = type;
   }
   const auto& s = config.settings;
-  c.resources.margin = s.get_double("traffic.margin");
+  c.resources.margin = reservation_margin(config);
   c.lookahead = s.get_double("traffic.lookahead");
   c.priority_wait = s.get_double("traffic.priority_wait_s");
   c.reroute_wait = s.get_double("traffic.reroute_wait_s");
   c.lost_reroute_wait = s.get_double("traffic.lost_reroute_wait_s");
   c.one_way = s.get_bool("traffic.one_way");
   return c;
+}
+
+double reservation_margin(const config::FleetConfig& config) {
+  const auto& s = config.settings;
+  return s.get_string("traffic.core") == "places" ? s.get_double("traffic.places_margin")
+                                                  : s.get_double("traffic.margin");
 }
 
 int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id) {

@@ -20,6 +20,11 @@ geometry::Polygon footprint_polygon_of(const config::FleetSpec& fleet);
 /// graph the manager grants on.
 TrafficConfiguration configuration_from(const config::FleetConfig& config);
 
+/// The gap traffic keeps between the bodies of robots at conflicting places: `traffic.places_margin`
+/// under the coordination core (`traffic.core: places`), else `traffic.margin`. The agents' look
+/// ahead keeps half of it.
+double reservation_margin(const config::FleetConfig& config);
+
 /// The vehicle type index of fleet `fleet_id` under configuration_from(config); 0 when unknown.
 int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id);
 

@@ -15,6 +15,7 @@
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
 #include "test_paths.hpp"
+#include "traffic/traffic_settings.hpp"
 
 using namespace fleet;
 
@@ -46,12 +47,13 @@ std::optional<Stretch> straight_stretch(const std::vector<geometry::Vec2>& path)
 /// and stands a plant forklift beside the first straight stretch of its route, parallel to it,
 /// `gap` metres from the robot's body as the route carries it. Whether the robot gets 3 m past the
 /// standing one within a minute; `closest` is the least gap between their real bodies meanwhile.
-bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, double gap, std::uint64_t seed, double& closest,
-                                         std::string* why) {
+bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, const std::string& core, double gap,
+                                         std::uint64_t seed, double& closest, std::string* why) {
   const auto site =
       std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
   config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   config.settings.set("traffic.enabled", "true", "agent_gap_test");
+  config.settings.set("traffic.core", core, "agent_gap_test");
   const auto& fleet =
       *std::find_if(config.fleets.begin(), config.fleets.end(), [&](const auto& f) { return f.id == fleet_id; });
   auto robot = robot::make_robot(fleet, config, site, site->site.find_home(fleet.robots.front().home)->pose, seed, 1);
@@ -98,13 +100,29 @@ bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, double gap
 }  // namespace
 
 TEST(AgentGap, EveryFleetDrivesPastARobotStandingTheTrafficMarginBesideItsLane) {
-  const double margin = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"))
-                            .settings.get_double("traffic.margin");
+  const double margin =
+      traffic::reservation_margin(config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml")));
   for (const char* fleet : {"forklifts", "reach_trucks", "stackers", "pickers"}) {
     for (std::uint64_t seed : {1, 2, 3}) {
       std::string why;
       double closest = std::numeric_limits<double>::infinity();
-      EXPECT_TRUE(drives_past_a_robot_beside_its_lane(fleet, margin, seed, closest, &why))
+      EXPECT_TRUE(drives_past_a_robot_beside_its_lane(fleet, "manager", margin, seed, closest, &why))
+          << fleet << " (seed " << seed << ") stopped: " << why;
+      EXPECT_GT(closest, 0.0) << fleet << " (seed " << seed << ") touched the robot it passed";
+    }
+  }
+}
+
+TEST(AgentGap, UnderTheCoordinationCoreEveryFleetDrivesPastARobotStandingItsMarginBesideItsLane) {
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  config.settings.set("traffic.core", "places", "agent_gap_test");
+  const double margin = traffic::reservation_margin(config);
+  EXPECT_EQ(margin, config.settings.get_double("traffic.places_margin"));
+  for (const char* fleet : {"forklifts", "reach_trucks", "stackers", "pickers"}) {
+    for (std::uint64_t seed : {1, 2}) {
+      std::string why;
+      double closest = std::numeric_limits<double>::infinity();
+      EXPECT_TRUE(drives_past_a_robot_beside_its_lane(fleet, "places", margin, seed, closest, &why))
           << fleet << " (seed " << seed << ") stopped: " << why;
       EXPECT_GT(closest, 0.0) << fleet << " (seed " << seed << ") touched the robot it passed";
     }
