@@ -256,6 +256,7 @@ void PlaceTraffic::stand(int robot, const geometry::Polygon& body, const geometr
   r.place_point.clear();
   r.entry_blockers.clear();
   r.stopped_for.clear();
+  r.kept_by.clear();
   r.adopted = true;
   r.mode = body.empty() ? Mode::kOff : Mode::kStanding;
   if (!geometry::same_polygon(to_sweep, r.way_out, kSameBodyM)) {

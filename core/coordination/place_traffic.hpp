@@ -31,8 +31,10 @@ struct PlaceGrant {
   double granted_distance = 0.0;  ///< metres along the route to that point
   /// Non-empty: the robot drives these graph points instead of its own route, as `version`.
   std::vector<int> route;
-  std::vector<int> waits_for;  ///< robots whose visits it waits for
-  bool arrived = false;        ///< at its route's end
+  /// The robots it waits for: whose visits are ordered before its next one, whose bodies close
+  /// its way on, whose places the plan keeps it standing for, or whom its look-ahead stops it for.
+  std::vector<int> waits_for;
+  bool arrived = false;  ///< at its route's end
 };
 
 /// The road-site coordination core as the live fleet drives it: robots report the routes they
@@ -111,6 +113,9 @@ class PlaceTraffic {
     std::uint64_t waiting_since = 0;  ///< the order in which robots began to wait to enter
     std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
     std::vector<int> stopped_for;     ///< robots its own look-ahead stops it for
+    /// The last plan kept it standing: the robots standing or planned at places conflicting with
+    /// its route's next place.
+    std::vector<int> kept_by;
     PlaceGrant grant;
   };
   Robot& at(int robot) { return robots_[static_cast<std::size_t>(robot)]; }
@@ -141,6 +146,10 @@ class PlaceTraffic {
   /// Robots other than `robot` (of `type`, its last planned place `from`, -1 off the roads) whose
   /// bodies or ways out close `place` to it.
   std::vector<int> closers_of(int robot, int type, int place, int from) const;
+  /// The robots a plan step that keeps `robot` standing keeps it for: those whose place or next
+  /// place conflicts with the place its route leads on to (none when the plan moves it, or it is
+  /// held, or has no errand).
+  std::vector<int> kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next) const;
   /// Whether a body (convex, map frame) reaches into the region of `place` for vehicle `type`.
   bool body_reaches(const geometry::Polygon& body, int type, int place) const;
   /// The same with the body's circle computed once for many places.

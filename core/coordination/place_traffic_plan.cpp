@@ -76,6 +76,7 @@ void PlaceTraffic::plan_step() {
   }
   const std::vector<int> next = planner_.plan(planned, &closed_);
   ++plan_step_;
+  for (int robot = 0; robot < robots(); ++robot) at(robot).kept_by = kept_by(robot, planned, next);
   for (int robot = 0; robot < robots(); ++robot) {
     const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
     const int to = next[static_cast<std::size_t>(robot)];
@@ -94,6 +95,23 @@ void PlaceTraffic::plan_step() {
     at(robot).moved_off_route = to != p.preferred;
     if (to != p.preferred) reroute(robot);
   }
+}
+
+std::vector<int> PlaceTraffic::kept_by(int robot, const std::vector<PlaceRobot>& planned,
+                                       const std::vector<int>& next) const {
+  const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
+  if (p.place < 0 || p.preferred < 0 || p.held || next[static_cast<std::size_t>(robot)] != p.place) return {};
+  std::vector<int> in_the_way;
+  for (int other = 0; other < robots(); ++other) {
+    const PlaceRobot& o = planned[static_cast<std::size_t>(other)];
+    const int its_next = next[static_cast<std::size_t>(other)];
+    if (other == robot || o.place < 0) continue;
+    if (zones_.conflict(p.type, p.preferred, o.type, o.place) ||
+        (its_next >= 0 && zones_.conflict(p.type, p.preferred, o.type, its_next))) {
+      in_the_way.push_back(other);
+    }
+  }
+  return in_the_way;
 }
 
 std::size_t PlaceTraffic::route_leg_end(const Robot& r, std::size_t from) {
@@ -196,6 +214,8 @@ void PlaceTraffic::update_grant(int robot) {
     // Its route leads on into a place a body or a way out closes: it waits for those robots.
     g.waits_for = closers_of(robot, r.type, r.places[index + 1], r.places[index]);
   }
+  // The plan keeps it standing where its route leads on into robots' places.
+  if (g.waits_for.empty() && k == order_.pending(robot)) g.waits_for = r.kept_by;
   if (g.waits_for.empty()) g.waits_for = r.stopped_for;
   g.granted_index = r.place_point[index];
   g.granted_distance = r.point_s[static_cast<std::size_t>(g.granted_index)];

@@ -4,8 +4,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "../traffic/test_graphs.hpp"
 #include "coordination/place_traffic.hpp"
 #include "traffic/conflict_zones.hpp"
+#include "traffic/route_search.hpp"
 
 namespace fleet::coordination::testing {
 
@@ -38,6 +40,26 @@ struct Driver {
   /// Where its body is along the corridor.
   double x(const PlaceTraffic& traffic) const {
     return traffic.zones().position(traffic.places_ahead(number).front()).x;
+  }
+};
+
+/// PlaceTraffic on the corridor with a siding (traffic::testing::corridor_with_siding), planning
+/// every 0.5 s and two moves ahead. Its members bind as `auto& [road, zones, search, traffic]`.
+struct CorridorTraffic {
+  map::RoadGraph road = traffic::testing::corridor_with_siding();
+  traffic::ConflictZones zones{road, forklift_params()};
+  traffic::RouteSearch search{road, zones};
+  PlaceTraffic traffic{road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1}};
+
+  /// A new robot driving the corridor from x `from` to x `to`, its route handed to traffic (the
+  /// route is empty when traffic refused it).
+  Driver add_driver(double from, double to) {
+    Driver driver;
+    driver.number = traffic.add_robot(0);
+    driver.route =
+        search.shortest(traffic::testing::point_at(road, from, 0.0), traffic::testing::point_at(road, to, 0.0));
+    if (!traffic.drive(driver.number, driver.version, driver.route, 0.0)) driver.route.clear();
+    return driver;
   }
 };
 

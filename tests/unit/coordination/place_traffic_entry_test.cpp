@@ -14,6 +14,7 @@
 namespace fleet::coordination {
 namespace {
 
+using testing::CorridorTraffic;
 using testing::Driver;
 using testing::forklift_params;
 using traffic::testing::point_at;
@@ -90,14 +91,10 @@ TEST(PlaceTrafficEntry, ARobotWaitingToEnterClosesWhatItsBodyReaches) {
 // sweeps onto the corridor covers where the driver stands: each waits for the other. The waiter
 // pushes the driver back out of its way out, enters, and the driver follows once it has gone.
 TEST(PlaceTrafficEntry, ARobotInTheWayOutOfOneItWaitsForIsPushedOutOfIt) {
-  const map::RoadGraph road = traffic::testing::corridor_with_siding();
-  const traffic::ConflictZones zones(road, forklift_params());
-  traffic::RouteSearch search(road, zones);
-  PlaceTraffic traffic(road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1});
-  Driver driver;
-  driver.number = traffic.add_robot(0);
-  driver.route = search.shortest(point_at(road, 1.0, 0.0), point_at(road, 2.0, 0.0));
-  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, 0.0));
+  CorridorTraffic corridor;
+  auto& [road, zones, search, traffic] = corridor;
+  Driver driver = corridor.add_driver(1.0, 2.0);
+  ASSERT_FALSE(driver.route.empty());
   traffic.update(0.0);
   ASSERT_TRUE(traffic.on_roads(driver.number));
 
@@ -124,14 +121,10 @@ TEST(PlaceTrafficEntry, ARobotInTheWayOutOfOneItWaitsForIsPushedOutOfIt) {
 // and its body closes the driver's way on: the driver is pushed out of the area, which then
 // clears, and no robot outside plans into it meanwhile.
 TEST(PlaceTrafficEntry, ARobotWaitingForItsManoeuvresAreaPushesRobotsOutOfIt) {
-  const map::RoadGraph road = traffic::testing::corridor_with_siding();
-  const traffic::ConflictZones zones(road, forklift_params());
-  traffic::RouteSearch search(road, zones);
-  PlaceTraffic traffic(road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1});
-  Driver driver;
-  driver.number = traffic.add_robot(0);
-  driver.route = search.shortest(point_at(road, 1.0, 0.0), point_at(road, 2.0, 0.0));
-  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, 0.0));
+  CorridorTraffic corridor;
+  auto& [road, zones, search, traffic] = corridor;
+  Driver driver = corridor.add_driver(1.0, 2.0);
+  ASSERT_FALSE(driver.route.empty());
   traffic.update(0.0);
   const int worker = traffic.add_robot(0);
   const geometry::Polygon area{{0.8, -0.15}, {1.8, -0.15}, {1.8, 0.15}, {0.8, 0.15}};

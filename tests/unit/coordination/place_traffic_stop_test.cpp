@@ -1,6 +1,7 @@
 // A robot whose own look-ahead stops it for another robot's body reports it
 // (TrafficRoute::stopped_for): the core plans it to stay, drops its visits not yet begun, so that
-// robots whose visits wait for them may go first, and names the robot it stops for.
+// robots whose visits wait for them may go first, and names the robot it stops for. A robot the
+// plan keeps standing names the robots in its way.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -14,19 +15,16 @@
 namespace fleet::coordination {
 namespace {
 
+using testing::CorridorTraffic;
 using testing::Driver;
 using testing::forklift_params;
 using traffic::testing::point_at;
 
 TEST(PlaceTrafficStop, ARobotStoppedForABodyIsPlannedToStayAndNamesIt) {
-  const map::RoadGraph road = traffic::testing::corridor_with_siding();
-  const traffic::ConflictZones zones(road, forklift_params());
-  traffic::RouteSearch search(road, zones);
-  PlaceTraffic traffic(road, zones, {.plan_period_s = 0.5, .plan_ahead = 2, .seed = 1});
-  Driver driver;
-  driver.number = traffic.add_robot(0);
-  driver.route = search.shortest(point_at(road, 0.0, 0.0), point_at(road, 2.0, 0.0));
-  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, 0.0));
+  CorridorTraffic corridor;
+  auto& [road, zones, search, traffic] = corridor;
+  Driver driver = corridor.add_driver(0.0, 2.0);
+  ASSERT_FALSE(driver.route.empty());
   // Another robot stands at the siding's end, clear of the corridor as the core sees it.
   const int beside = traffic.add_robot(0);
   traffic.stand(beside, geometry::footprint_polygon({0.5, 0.6, 1.57}, zones.params().footprint));
@@ -51,6 +49,28 @@ TEST(PlaceTrafficStop, ARobotStoppedForABodyIsPlannedToStayAndNamesIt) {
   for (const double end = t + 30.0; t < end; t += 0.5) driver.cycle(traffic, t);
   EXPECT_NEAR(driver.x(traffic), 2.0, 1e-6);
   EXPECT_TRUE(traffic.grant(driver.number).waits_for.empty());
+}
+
+TEST(PlaceTrafficStop, ARobotThePlanKeepsStandingNamesTheRobotInItsWay) {
+  CorridorTraffic corridor;
+  PlaceTraffic& traffic = corridor.traffic;
+  // One robot drives into the corridor from its east end and stays at its route's end there, in
+  // the way of another driving the corridor's length from the west: nothing pushes a robot at its
+  // route's end, so the plan keeps the other standing.
+  Driver arriving = corridor.add_driver(2.0, 1.3);
+  Driver passing = corridor.add_driver(0.0, 2.0);
+  ASSERT_FALSE(arriving.route.empty());
+  ASSERT_FALSE(passing.route.empty());
+  double t = 0.0;
+  for (; t < 30.0; t += 0.5) {
+    arriving.cycle(traffic, t);
+    passing.cycle(traffic, t);
+  }
+  ASSERT_TRUE(traffic.grant(arriving.number).arrived);
+  EXPECT_LT(passing.x(traffic), 1.3);
+  EXPECT_EQ(traffic.grant(passing.number).waits_for, std::vector<int>{arriving.number})
+      << "it names the robot whose place its way on conflicts with";
+  EXPECT_TRUE(traffic.grant(arriving.number).waits_for.empty());
 }
 
 }  // namespace
