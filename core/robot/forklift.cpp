@@ -502,7 +502,7 @@ void Forklift::answer_plan_requests() {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
     follower_.adopt_route(*permit, site_->graph.graph, sim_.estimate().position());
     arrival_area_ = arrival_sweep(place_of(request->purpose));
-    safety_.clear();
+    if (!config_.stop_outlasts_reroute) safety_.clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
     executor_.path_received(request->id, planning::poses_along(follower_.path()));
     return;

@@ -53,6 +53,11 @@ struct ForkliftConfig {
   /// bodies keep `traffic.places_margin` apart, and a robot that stopped short of its place for a body
   /// the core keeps clear of it would never arrive. Negative: stop_distance, m.
   double planned_stop_distance = -1.0;
+  /// Under the coordination core a route handed by traffic leaves a lasting safety stop standing
+  /// (the robot has not moved away from the body it stopped for): the core plans a robot that
+  /// reports one to stay (TrafficRoute::stopped_for), and a robot handed routes every few seconds
+  /// would otherwise never report it.
+  bool stop_outlasts_reroute = false;
   double neighbour_margin = 0.03;  ///< metres added around other robots' footprints
   /// A neighbour's pose older than this counts as everywhere it could have reached since
   /// (the stale-neighbour rule).

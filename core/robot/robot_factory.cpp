@@ -81,7 +81,10 @@ robot::ForkliftConfig forklift_config(const config::FleetConfig& config, const c
     c.neighbour_margin = std::min(c.neighbour_margin, gap - c.clearance_margin);
     c.safety_gap = std::min(c.safety_gap, gap / 2.0);
     // The core's places keep the bodies apart: the look ahead's margins are all the stop needs.
-    if (config.settings.get_string("traffic.core") == "places") c.planned_stop_distance = 0.0;
+    if (config.settings.get_string("traffic.core") == "places") {
+      c.planned_stop_distance = 0.0;
+      c.stop_outlasts_reroute = true;
+    }
   }
   c.route_graph = route_graph_for(config, fleet, site);
   return c;

@@ -220,6 +220,29 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
 }
 
+TEST(Forklift, UnderTheCoordinationCoreALastingStopOutlastsARouteHandedByTraffic) {
+  // The core hands a robot it pushes a new route every plan step or two; the robot has not moved
+  // away from the body it stopped for, and the core must hear of the stop to plan it to stay.
+  const auto site = table_a();
+  for (const bool outlasts : {true, false}) {
+    robot::ForkliftConfig config = under_traffic(*site);
+    config.stop_outlasts_reroute = outlasts;
+    robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
+    ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
+    const geometry::Vec2 ahead = point_along(f.path(), 0.6);
+    f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+    for (int i = 0; i < 70 * 30 && !f.detail().ends_with("fl9 ahead"); ++i) f.step();
+    const double stopped_at = f.time();
+    while (f.time() < stopped_at + 3.5) f.step();
+    ASSERT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+    const robot::TrafficRoute own = f.traffic_route();
+    f.set_traffic_grant({own.version + 1, 0, 0.0, {}, own.points, false});
+    for (int i = 0; i < 70 && f.traffic_route().version != own.version + 1; ++i) f.step();
+    ASSERT_EQ(f.traffic_route().version, own.version + 1) << f.detail();
+    EXPECT_EQ(f.traffic_route().stopped_for.empty(), !outlasts) << (outlasts ? "kept" : "cleared") << f.detail();
+  }
+}
+
 TEST(Forklift, AStopForAStaleRobotsGrownCellsNamesThatRobot) {
   const auto site = table_a();
   robot::Forklift f(under_traffic(*site), site, site->site.find_home("H1")->pose, 3, 1);
