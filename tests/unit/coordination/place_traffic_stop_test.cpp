@@ -6,19 +6,15 @@
 
 #include <vector>
 
-#include "../traffic/test_graphs.hpp"
 #include "coordination/place_traffic.hpp"
 #include "forklift_places.hpp"
 #include "geometry/polygon.hpp"
-#include "traffic/route_search.hpp"
 
 namespace fleet::coordination {
 namespace {
 
 using testing::CorridorTraffic;
 using testing::Driver;
-using testing::forklift_params;
-using traffic::testing::point_at;
 
 TEST(PlaceTrafficStop, ARobotStoppedForABodyIsPlannedToStayAndNamesIt) {
   CorridorTraffic corridor;

@@ -11,7 +11,6 @@ namespace {
 
 using geometry::Vec2;
 
-/// Road points 0..5 along y = 0 at x = 1..6 (1 m apart).
 /// `count` points along y = 0, `spacing` apart from x = `first_x` (no edges: routes name points).
 map::RoadGraph points_along_x(int count, double first_x, double spacing) {
   map::RoadGraph g;
@@ -25,6 +24,7 @@ map::RoadGraph points_along_x(int count, double first_x, double spacing) {
   return g;
 }
 
+/// Road points 0..5 along y = 0 at x = 1..6 (1 m apart).
 map::RoadGraph straight_road() {
   return points_along_x(6, 1.0, 1.0);
 }
