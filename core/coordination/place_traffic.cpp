@@ -139,8 +139,11 @@ void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vecto
     const std::size_t index = static_cast<std::size_t>(start + k);
     if (index >= r.places.size() || order_.visit_place(robot, k) != r.places[index]) {
       if (k == 1 && order_.has_left(robot)) {
+        // Its body is past the middle of its move into a place the new route does not go on
+        // through: it stands in that place, and a route from there on to the new route's end
+        // keeps its visits and its route the same places.
         place_robot(robot, order_.visit_place(robot, 1));
-        r.at = std::min(here, static_cast<int>(r.places.size()) - 1);
+        reroute(robot);
         return;
       }
       order_.drop_from(robot, k);

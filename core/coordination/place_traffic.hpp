@@ -167,6 +167,8 @@ class PlaceTraffic {
   static std::size_t route_leg_end(const Robot& r, std::size_t from);
   /// The plan moved the robot off its route: a new route through its visits to the route's end.
   void reroute(int robot);
+  /// The graph point a route through the robot's visits starts at, of `place` (its current visit's).
+  int first_point(const Robot& r, int place) const;
   /// Graph points along consecutive places, starting at `from_point` (a point of places[0]).
   std::vector<int> points_along(int from_point, const std::vector<int>& places) const;
   void update_grant(int robot);

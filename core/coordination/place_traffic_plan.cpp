@@ -1,5 +1,6 @@
 // PlaceTraffic's plan steps, re-routes and grants.
 #include <algorithm>
+#include <cmath>
 
 #include "coordination/place_traffic.hpp"
 
@@ -143,14 +144,27 @@ void PlaceTraffic::reroute(int robot) {
     if (best < 0) break;
     places.push_back(best);
   }
-  const int from_point = r.points[static_cast<std::size_t>(r.place_point[static_cast<std::size_t>(r.at)])];
-  const std::vector<int> points = points_along(from_point, places);
+  const std::vector<int> points = points_along(first_point(r, places.front()), places);
   if (points.empty()) return;
   // Odd: the robots' own routes take even versions, so a second new route handed before the
   // robot took the first never gets the version of the robot's next own route.
   set_route(r, (r.version + 1) | 1U, points);
   r.at = 0;
   r.adopted = false;
+}
+
+int PlaceTraffic::first_point(const Robot& r, int place) const {
+  // The point of the route the robot drives when it is of `place`; else the point of `place`
+  // nearest the route's point at the robot's place.
+  const int route_point = r.points[static_cast<std::size_t>(r.place_point[static_cast<std::size_t>(r.at)])];
+  if (r.places[static_cast<std::size_t>(r.at)] == place) return route_point;
+  const auto& candidates = points_of_place_[static_cast<std::size_t>(place)];
+  const auto& from = graph_.points[static_cast<std::size_t>(route_point)];
+  const auto metres = [&](int point) {
+    const auto& p = graph_.points[static_cast<std::size_t>(point)];
+    return std::hypot(p.x - from.x, p.y - from.y);
+  };
+  return *std::min_element(candidates.begin(), candidates.end(), [&](int a, int b) { return metres(a) < metres(b); });
 }
 
 std::vector<int> PlaceTraffic::points_along(int from_point, const std::vector<int>& places) const {

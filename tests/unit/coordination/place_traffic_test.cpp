@@ -385,6 +385,31 @@ TEST(PlaceTraffic, ARouteThatTurnsRoundBackToItsStartIsDrivenNotTakenAsArrived) 
   EXPECT_NEAR(driver.x(traffic), 1.0, 1e-6);
 }
 
+// A robot turning round (a new order behind it) while its body is past the middle of a move
+// stands in the place it moved into, which its new route, starting at the place it left, does
+// not go on through: traffic hands it a route from the place it is in, and it drives back.
+TEST(PlaceTraffic, ARobotTurningRoundPastTheMiddleOfAMoveIsRoutedBackFromThePlaceItIsIn) {
+  testing::CorridorTraffic corridor;
+  PlaceTraffic& traffic = corridor.traffic;
+  using traffic::testing::point_at;
+  testing::Driver driver = corridor.add_driver(1.0, 1.6);
+  ASSERT_FALSE(driver.route.empty());
+  double t = 0.0;
+  for (; t < 5.0 && traffic.grant(driver.number).granted_distance < 0.19; t += 0.5) traffic.update(t);
+  ASSERT_GT(traffic.grant(driver.number).granted_distance, 0.19);
+  // Past the middle between its second and third places, short of the third.
+  driver.progress = 0.17;
+  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, driver.progress));
+  driver.version = 4;
+  driver.route = corridor.search.shortest(point_at(corridor.road, 1.1, 0.0), point_at(corridor.road, 0.5, 0.0));
+  driver.progress = 0.0;
+  ASSERT_TRUE(traffic.drive(driver.number, driver.version, driver.route, driver.progress));
+  for (; t < 30.0 && !traffic.grant(driver.number).arrived; t += 0.5) driver.cycle(traffic, t);
+  EXPECT_TRUE(traffic.grant(driver.number).arrived)
+      << "granted up to point " << traffic.grant(driver.number).granted_index << " of version " << driver.version;
+  EXPECT_NEAR(driver.x(traffic), 0.5, 1e-6);
+}
+
 // Traffic hands a robot new routes under odd versions, the robots' own taking even ones: a robot
 // pushed again and again, taking each new route, is never handed the version its next own route
 // will have.
