@@ -95,8 +95,11 @@ std::vector<KeySpec> make_schema() {
              "traffic.margin; the agents' look ahead keeps half of it, the other half is for two robots standing "
              "or driving off the places they are counted at"),
       flag("traffic.one_way", true,
-           "give corridors on cycles of the road network one driving direction (robots pushed aside by the "
-           "places core still back up against it)"),
+           "the traffic manager: give corridors on cycles of the road network one driving direction"),
+      flag("traffic.places_one_way", false,
+           "the places core: give corridors on cycles one driving direction, as traffic.one_way does for the "
+           "manager (robots pushed aside still back up against it); off, robots drive every lane both ways and "
+           "the plan settles who makes room"),
       choice("traffic.core", "manager", {"manager", "places"},
              "what grants the roads: the traffic manager, or the coordination core's planner and order of "
              "visits (docs/coordination.md)"),

@@ -61,7 +61,7 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config) {
   c.priority_wait = s.get_double("traffic.priority_wait_s");
   c.reroute_wait = s.get_double("traffic.reroute_wait_s");
   c.lost_reroute_wait = s.get_double("traffic.lost_reroute_wait_s");
-  c.one_way = s.get_bool("traffic.one_way");
+  c.one_way = one_way_lanes(config);
   return c;
 }
 
@@ -69,6 +69,12 @@ double reservation_margin(const config::FleetConfig& config) {
   const auto& s = config.settings;
   return s.get_string("traffic.core") == "places" ? s.get_double("traffic.places_margin")
                                                   : s.get_double("traffic.margin");
+}
+
+bool one_way_lanes(const config::FleetConfig& config) {
+  const auto& s = config.settings;
+  return s.get_string("traffic.core") == "places" ? s.get_bool("traffic.places_one_way")
+                                                  : s.get_bool("traffic.one_way");
 }
 
 int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id) {

@@ -25,6 +25,10 @@ TrafficConfiguration configuration_from(const config::FleetConfig& config);
 /// ahead keeps half of it.
 double reservation_margin(const config::FleetConfig& config);
 
+/// Whether corridors on cycles are driven one way: `traffic.places_one_way` under the coordination
+/// core, else `traffic.one_way`.
+bool one_way_lanes(const config::FleetConfig& config);
+
 /// The vehicle type index of fleet `fleet_id` under configuration_from(config); 0 when unknown.
 int vehicle_type_of(const config::FleetConfig& config, const std::string& fleet_id);
 

@@ -42,8 +42,8 @@ TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
 }
 
 // traffic.core places derives the coordination core instead of the traffic manager; it lets the
-// robots drive the lanes their agents plan on: the corridors on cycles one way with
-// traffic.one_way (the default), every lane both ways without.
+// robots drive the lanes their agents plan on: every lane both ways (the default), the corridors
+// on cycles one way with traffic.places_one_way. The manager's traffic.one_way does not apply.
 TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
   const auto table_a =
       std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/table_a.yaml")));
@@ -61,13 +61,14 @@ TEST(SiteDerivation, ThePlacesCoreIsDerivedInsteadOfTheManager) {
   EXPECT_GT(derived.places->zones.place_count(), 0u);
   EXPECT_EQ(derived.places->robot_types.size(), config.all_robots().size());
   EXPECT_GT(derived.places->traffic.plan_period_s(), 0.0);
-  EXPECT_TRUE(traffic::configuration_from(config).one_way);
-  EXPECT_LT(edges(derived.places->lanes), edges(table_a->graph.graph)) << "corridors on cycles one way";
+  EXPECT_FALSE(traffic::configuration_from(config).one_way);
+  EXPECT_EQ(edges(derived.places->lanes), edges(table_a->graph.graph)) << "every lane both ways";
 
+  config.settings.set("traffic.places_one_way", "true", "site_derivation_test");
   config.settings.set("traffic.one_way", "false", "site_derivation_test");
-  const server::SiteDerivation both_ways = server::derive_site(table_a, config);
-  ASSERT_NE(both_ways.places, nullptr);
-  EXPECT_EQ(edges(both_ways.places->lanes), edges(table_a->graph.graph));
+  const server::SiteDerivation one_way = server::derive_site(table_a, config);
+  ASSERT_NE(one_way.places, nullptr);
+  EXPECT_LT(edges(one_way.places->lanes), edges(table_a->graph.graph)) << "corridors on cycles one way";
 }
 
 TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
