@@ -158,13 +158,14 @@ std::vector<CommandSpec> fleet_starting_commands() {
        false,
        {value("--robots", "N=50"), value("--site", "NAME"), value("--duration", "SECONDS=120"),
         value("--warmup", "SECONDS=10"), value("--time-scale", "K=1"), value("--seed", "S"), value("--fleet", "ID"),
-        on_off("--verbose")},
+        value("--set", "KEY=VALUE"), on_off("--verbose")},
        "a load test of the server: a real fleet-server (automatic orders, traffic,\n"
        "its database and one web stream client) against N emulated robots on one DDS\n"
        "participant (a load generator: kinematic, exact poses, no sensors) that speak\n"
        "to it as agents do; prints server CPU and memory, traffic cycle and dispatch\n"
        "times, grant latency, wire rates and orders done; exit 0 when every robot\n"
-       "reported and none collided or deadlocked"},
+       "reported and none collided or deadlocked; --set KEY=VALUE (repeatable) sets a\n"
+       "setting for the server and the emulated robots alike"},
   };
 }
 

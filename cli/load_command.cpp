@@ -40,6 +40,7 @@ struct LoadOptions {
   long seed = 1;
   std::string fleet_id;  ///< empty: the config's first fleet
   bool verbose = false;  ///< the server's debug log
+  std::vector<std::string> settings;  ///< --set KEY=VALUE, for the server and the emulated robots
 };
 
 /// A port nobody listens on now, for the server's web view.
@@ -150,6 +151,7 @@ void start_server(ProcessGroup& processes, const CommandArgs& command, const Loa
                                 token,
                                 "--set",
                                 "traffic.enabled=true"};
+  for (const auto& s : options.settings) argv.insert(argv.end(), {"--set", s});
   if (options.verbose) argv.push_back("--verbose");
   processes.start("fleet-server", argv, run_dir + "/fleet-server.log");
   FleetClient probe(domain);
@@ -303,6 +305,9 @@ int load_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
   options.fleet_id = args.value("fleet").value_or("");
   options.verbose = args.flag("verbose");
+  while (auto v = args.value("set")) options.settings.push_back(*v);
+  // Checked here, named as given, before any process starts.
+  for (const auto& s : options.settings) config::apply_set_flag(config, s);
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   known_site_path(command.source_dir, options.site);
   {

@@ -19,7 +19,7 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
       planner_(places_, params.seed),
       order_(zones),
       points_of_place_(zones.place_count()),
-      reach_(zones.type_count(), std::vector<double>(zones.place_count(), 0.0)),
+      index_(zones),
       closed_(zones.type_count(), zones.place_count()) {
   for (std::size_t point = 0; point < zones.point_count(); ++point) {
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
@@ -28,14 +28,6 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
   if (params_.plan_period_s <= 0.0) {
     const double move = places_.mean_move_length();
     params_.plan_period_s = move > 0.0 && params_.speed > 0.0 ? move / params_.speed : 1.0;
-  }
-  for (std::size_t type = 0; type < zones.type_count(); ++type) {
-    for (std::size_t place = 0; place < zones.place_count(); ++place) {
-      const geometry::Vec2 at = zones.position(static_cast<int>(place));
-      for (const auto& polygon : zones.region(static_cast<int>(type), static_cast<int>(place))) {
-        for (const auto& v : polygon) reach_[type][place] = std::max(reach_[type][place], geometry::distance(at, v));
-      }
-    }
   }
 }
 
@@ -227,9 +219,9 @@ bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int pla
 
 bool PlaceTraffic::body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const {
   if (body.empty()) return false;
-  const auto t = static_cast<std::size_t>(type);
-  const auto p = static_cast<std::size_t>(place);
-  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + reach_[t][p]) return false;
+  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + index_.reach(type, place)) {
+    return false;
+  }
   for (const auto& polygon : zones_.region(type, place)) {
     if (geometry::convex_polygons_overlap(body, polygon)) return true;
   }
@@ -324,8 +316,8 @@ void PlaceTraffic::rebuild_closed() {
   auto close = [&](std::vector<std::vector<int>>& layer, int robot, const geometry::Polygon& polygon) {
     if (polygon.empty()) return;
     const Circle around = circle_around(polygon);
-    for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
-      for (int place = 0; place < static_cast<int>(zones_.place_count()); ++place) {
+    for (const int place : index_.near(around.centre, around.radius)) {
+      for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
         if (!body_reaches(polygon, around, type, place)) continue;
         int& closer = layer[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
         closer = closer == kOpen || closer == robot ? robot : kClosedByMany;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "coordination/place_graph.hpp"
+#include "coordination/place_index.hpp"
 #include "coordination/place_pibt.hpp"
 #include "coordination/visit_order.hpp"
 #include "geometry/polygon.hpp"
@@ -182,7 +183,7 @@ class PlaceTraffic {
   VisitOrder order_;
   std::vector<Robot> robots_;
   std::vector<std::vector<int>> points_of_place_;
-  std::vector<std::vector<double>> reach_;  ///< by type, by place: metres from its position its region reaches
+  PlaceIndex index_;
   ClosedPlaces closed_;
   bool closed_stale_ = false;
   std::uint64_t waits_begun_ = 0;
