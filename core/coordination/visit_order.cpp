@@ -6,25 +6,44 @@
 
 namespace fleet::coordination {
 
+void VisitOrder::open(int robot, const Visit& visit) {
+  open_[static_cast<std::size_t>(visit.place)].push_back({robot, visit.step});
+}
+
+void VisitOrder::close(int robot, const Visit& visit) {
+  auto& list = open_[static_cast<std::size_t>(visit.place)];
+  const auto it =
+      std::find_if(list.begin(), list.end(), [&](const Open& o) { return o.robot == robot && o.step == visit.step; });
+  if (it != list.end()) list.erase(it);
+}
+
 int VisitOrder::add_robot(int type, int place) {
   Robot robot;
   robot.type = type;
   robot.visits.push_back({place, 0});
   robots_.push_back(std::move(robot));
-  return static_cast<int>(robots_.size()) - 1;
+  const int number = static_cast<int>(robots_.size()) - 1;
+  open(number, robots_.back().visits.front());
+  return number;
 }
 
 void VisitOrder::stand(int robot, int place) {
   Robot& r = robots_[static_cast<std::size_t>(robot)];
+  for (std::size_t k = r.left ? 1 : 0; k < r.visits.size(); ++k) close(robot, r.visits[k]);
   r.visits.clear();
   r.left = false;
-  if (place >= 0) r.visits.push_back({place, 0});
+  if (place >= 0) {
+    r.visits.push_back({place, 0});
+    open(robot, r.visits.front());
+  }
 }
 
 void VisitOrder::drop_from(int robot, int k) {
   Robot& r = robots_[static_cast<std::size_t>(robot)];
   const std::size_t keep = std::max<std::size_t>(static_cast<std::size_t>(std::max(k, 0)), r.left ? 2 : 1);
-  if (r.visits.size() > keep) r.visits.resize(keep);
+  if (r.visits.size() <= keep) return;
+  for (std::size_t j = keep; j < r.visits.size(); ++j) close(robot, r.visits[j]);
+  r.visits.resize(keep);
 }
 
 void VisitOrder::plan(int robot, int place, std::size_t step) {
@@ -37,6 +56,7 @@ void VisitOrder::plan(int robot, int place, std::size_t step) {
                                 std::to_string(step) + ", not after its last visit's");
   }
   r.visits.push_back({place, step});
+  open(robot, r.visits.back());
 }
 
 int VisitOrder::place(int robot) const {
@@ -61,16 +81,19 @@ int VisitOrder::waits_for(int robot, int visit) const {
   const Robot& r = at(robot);
   if (visit < 1 || static_cast<std::size_t>(visit) >= r.visits.size()) return -1;
   const Visit& next = r.visits[static_cast<std::size_t>(visit)];
-  for (std::size_t j = 0; j < robots_.size(); ++j) {
-    if (static_cast<int>(j) == robot) continue;
-    const Robot& other = robots_[j];
-    // Its visits not ended (the one it is leaving has ended once it has left), those the plan
-    // has it begin before this robot's visit.
-    for (std::size_t k = other.left ? 1 : 0; k < other.visits.size() && other.visits[k].step < next.step; ++k) {
-      if (zones_.conflict(r.type, next.place, other.type, other.visits[k].place)) return static_cast<int>(j);
+  // Other robots' visits not ended (the one a robot is leaving has ended once it has left) of
+  // places conflicting with this one, which the plan has begin before it; the lowest-numbered
+  // such robot.
+  int found = -1;
+  for (int other_type = 0; other_type < static_cast<int>(zones_.type_count()); ++other_type) {
+    for (const int place : zones_.conflicts(r.type, next.place, other_type)) {
+      for (const Open& o : open_[static_cast<std::size_t>(place)]) {
+        if (o.robot == robot || o.step >= next.step || at(o.robot).type != other_type) continue;
+        if (found < 0 || o.robot < found) found = o.robot;
+      }
     }
   }
-  return -1;
+  return found;
 }
 
 void VisitOrder::leave(int robot) {
@@ -82,6 +105,7 @@ void VisitOrder::leave(int robot) {
                            std::to_string(other) + "'s earlier visit");
   }
   r.left = true;
+  close(robot, r.visits.front());
 }
 
 void VisitOrder::arrive(int robot) {

@@ -19,7 +19,7 @@ namespace fleet::coordination {
 /// grid's ExecutionGraph is the same order for places that conflict only with themselves.
 class VisitOrder {
  public:
-  explicit VisitOrder(const traffic::ConflictZones& zones) : zones_(zones) {}
+  explicit VisitOrder(const traffic::ConflictZones& zones) : zones_(zones), open_(zones.place_count()) {}
 
   /// A robot of vehicle type `type` standing at `place`; returns its number (0, 1, ...).
   int add_robot(int type, int place);
@@ -78,9 +78,17 @@ class VisitOrder {
     bool left = false;
   };
   const Robot& at(int robot) const { return robots_[static_cast<std::size_t>(robot)]; }
+  /// A visit not yet ended, listed under its place: who may have to be waited for there.
+  struct Open {
+    int robot = 0;
+    std::size_t step = 0;
+  };
+  void open(int robot, const Visit& visit);
+  void close(int robot, const Visit& visit);
 
   const traffic::ConflictZones& zones_;
   std::vector<Robot> robots_;
+  std::vector<std::vector<Open>> open_;  ///< by place: the visits of it not yet ended
 };
 
 }  // namespace fleet::coordination
