@@ -5,18 +5,10 @@
 
 namespace fleet::coordination {
 
-PlaceIndex::PlaceIndex(const traffic::ConflictZones& zones)
-    : reach_(zones.type_count(), std::vector<double>(zones.place_count(), 0.0)) {
+PlaceIndex::PlaceIndex(const traffic::ConflictZones& zones) {
   const int places = static_cast<int>(zones.place_count());
-  for (std::size_t type = 0; type < zones.type_count(); ++type) {
-    for (int place = 0; place < places; ++place) {
-      const geometry::Vec2 at = zones.position(place);
-      double& reach = reach_[type][static_cast<std::size_t>(place)];
-      for (const auto& polygon : zones.region(static_cast<int>(type), place)) {
-        for (const auto& v : polygon) reach = std::max(reach, geometry::distance(at, v));
-      }
-      longest_reach_ = std::max(longest_reach_, reach);
-    }
+  for (int type = 0; type < static_cast<int>(zones.type_count()); ++type) {
+    for (int place = 0; place < places; ++place) longest_reach_ = std::max(longest_reach_, zones.reach(type, place));
   }
   if (places == 0) return;
   geometry::Vec2 low = zones.position(0);

@@ -7,23 +7,18 @@
 
 namespace fleet::coordination {
 
-/// The places of a road site bucketed by position, with how far each one's region reaches from
-/// it for each vehicle type: a body's places are looked for among those near it, not among every
-/// place of a site of thousands.
+/// The places of a road site bucketed by position: a body's places are looked for among those
+/// near it, not among every place of a site of thousands.
 class PlaceIndex {
  public:
   explicit PlaceIndex(const traffic::ConflictZones& zones);
 
-  /// Metres from its position the region of `place` for vehicle `type` reaches.
-  double reach(int type, int place) const {
-    return reach_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
-  }
   /// Every place whose region, for some vehicle type, may reach within `radius` of `centre` (a
-  /// superset: the places whose positions lie within `radius` plus the longest reach of any).
+  /// superset: the places whose positions lie within `radius` plus the longest
+  /// ConflictZones::reach of any).
   std::vector<int> near(geometry::Vec2 centre, double radius) const;
 
  private:
-  std::vector<std::vector<double>> reach_;  ///< by type, by place
   double longest_reach_ = 0.0;
   double cell_ = 1.0;  ///< metres: a bucket's side
   geometry::Vec2 origin_;

@@ -219,7 +219,7 @@ bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int pla
 
 bool PlaceTraffic::body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const {
   if (body.empty()) return false;
-  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + index_.reach(type, place)) {
+  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + zones_.reach(type, place)) {
     return false;
   }
   for (const auto& polygon : zones_.region(type, place)) {

@@ -137,6 +137,10 @@ class ConflictZones {
   const std::vector<OppositeLane>& opposite_lanes(int type, int corridor, int other_type) const {
     return opposite_[pair_index(type, other_type)][static_cast<std::size_t>(corridor)];
   }
+  /// Metres from its position the region of `place` for vehicle `type` reaches.
+  double reach(int type, int place) const {
+    return reach_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+  }
   /// Undirected neighbour places.
   const std::vector<int>& neighbours(int place) const { return neighbours_[static_cast<std::size_t>(place)]; }
   const ResourceParams& params() const { return params_; }
