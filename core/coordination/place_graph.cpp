@@ -1,8 +1,6 @@
 #include "coordination/place_graph.hpp"
 
 #include <algorithm>
-#include <functional>
-#include <queue>
 #include <utility>
 
 #include "traffic/vehicle_lanes.hpp"
@@ -49,31 +47,48 @@ double PlaceGraph::mean_move_length() const {
 }
 
 double PlaceGraph::distance(int type, int place, int goal) {
-  return distances_to(type, goal)[static_cast<std::size_t>(place)];
+  GoalSearch& search = search_for(type, place, goal);
+  search.last_asked = ++asked_;
+  if (!search.settled[static_cast<std::size_t>(place)]) settle(search, type, place);
+  return search.metres[static_cast<std::size_t>(place)];
 }
 
-const std::vector<double>& PlaceGraph::distances_to(int type, int goal) {
+PlaceGraph::GoalSearch& PlaceGraph::search_for(int type, int place, int goal) {
   const std::int64_t key = static_cast<std::int64_t>(type) * place_count() + goal;
-  if (const auto found = distances_.find(key); found != distances_.end()) return found->second;
-  std::vector<double> metres(static_cast<std::size_t>(place_count()), kUnreachable);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  metres[static_cast<std::size_t>(goal)] = 0.0;
-  open.push({0.0, goal});
+  if (const auto found = searches_.find(key); found != searches_.end()) return found->second;
+  if (searches_.size() >= kMaxGoalSearches) {
+    const auto oldest = std::min_element(searches_.begin(), searches_.end(), [](const auto& a, const auto& b) {
+      return a.second.last_asked < b.second.last_asked;
+    });
+    searches_.erase(oldest);
+  }
+  GoalSearch& search = searches_[key];
+  search.towards = zones_.position(place);
+  search.metres.assign(static_cast<std::size_t>(place_count()), kUnreachable);
+  search.settled.assign(static_cast<std::size_t>(place_count()), false);
+  search.metres[static_cast<std::size_t>(goal)] = 0.0;
+  search.open.push({geometry::distance(zones_.position(goal), search.towards), goal});
+  return search;
+}
+
+void PlaceGraph::settle(GoalSearch& search, int type, int place) {
   const auto& predecessors = predecessors_[static_cast<std::size_t>(type)];
-  while (!open.empty()) {
-    const auto [d, place] = open.top();
-    open.pop();
-    if (d > metres[static_cast<std::size_t>(place)]) continue;
-    for (const int before : predecessors[static_cast<std::size_t>(place)]) {
-      const double via = d + step_length(before, place);
-      if (via < metres[static_cast<std::size_t>(before)]) {
-        metres[static_cast<std::size_t>(before)] = via;
-        open.push({via, before});
+  while (!search.open.empty()) {
+    const int next = search.open.top().second;
+    search.open.pop();
+    if (search.settled[static_cast<std::size_t>(next)]) continue;
+    search.settled[static_cast<std::size_t>(next)] = true;
+    ++places_settled_;
+    const double metres = search.metres[static_cast<std::size_t>(next)];
+    for (const int before : predecessors[static_cast<std::size_t>(next)]) {
+      const double via = metres + step_length(before, next);
+      if (via < search.metres[static_cast<std::size_t>(before)]) {
+        search.metres[static_cast<std::size_t>(before)] = via;
+        search.open.push({via + geometry::distance(zones_.position(before), search.towards), before});
       }
     }
+    if (next == place) return;
   }
-  return distances_.emplace(key, std::move(metres)).first->second;
 }
 
 }  // namespace fleet::coordination

@@ -34,6 +34,61 @@ TEST(PlaceGraph, DistancesFollowTheLanesOneWay) {
   EXPECT_EQ(graph.predecessors(0, last).size(), 1u);
 }
 
+// Plain Dijkstra backwards from `goal` over the type's moves: the metres from every place.
+std::vector<double> dijkstra_to(const PlaceGraph& graph, int type, int goal) {
+  std::vector<double> metres(static_cast<std::size_t>(graph.place_count()), PlaceGraph::kUnreachable);
+  std::vector<bool> done(metres.size(), false);
+  metres[static_cast<std::size_t>(goal)] = 0.0;
+  for (;;) {
+    int next = -1;
+    for (int place = 0; place < graph.place_count(); ++place) {
+      const auto p = static_cast<std::size_t>(place);
+      if (!done[p] && metres[p] < PlaceGraph::kUnreachable &&
+          (next < 0 || metres[p] < metres[static_cast<std::size_t>(next)])) {
+        next = place;
+      }
+    }
+    if (next < 0) return metres;
+    done[static_cast<std::size_t>(next)] = true;
+    for (const int before : graph.predecessors(type, next)) {
+      const double via = metres[static_cast<std::size_t>(next)] + graph.step_length(before, next);
+      metres[static_cast<std::size_t>(before)] = std::min(metres[static_cast<std::size_t>(before)], via);
+    }
+  }
+}
+
+// The search towards the first place asked for goes on for places asked later: every answer, in
+// any order, for every vehicle type of the plant (one-way lanes, types that fit fewer lanes and
+// places they cannot reach), is the shortest way's length.
+TEST(PlaceGraph, DistancesAskedInAnyOrderAreTheShortestWays) {
+  const auto config = config::load_fleet_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
+  const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/plant.yaml");
+  const traffic::ConflictZones zones(site.graph.graph, traffic::configuration_from(config).resources);
+  PlaceGraph graph(site.graph.graph, zones);
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> any_place(0, graph.place_count() - 1);
+  std::size_t unreachable = 0;
+  for (int type = 0; type < graph.type_count(); ++type) {
+    for (int goal_index = 0; goal_index < 3; ++goal_index) {
+      const int goal = any_place(rng);
+      const std::vector<double> expected = dijkstra_to(graph, type, goal);
+      for (int ask = 0; ask < 200; ++ask) {
+        const int place = any_place(rng);
+        const double metres = graph.distance(type, place, goal);
+        const double shortest = expected[static_cast<std::size_t>(place)];
+        if (shortest == PlaceGraph::kUnreachable) {
+          EXPECT_EQ(metres, PlaceGraph::kUnreachable) << "type " << type << " place " << place << " goal " << goal;
+          ++unreachable;
+        } else {
+          EXPECT_NEAR(metres, shortest, 1e-9) << "type " << type << " place " << place << " goal " << goal;
+        }
+      }
+    }
+  }
+  EXPECT_GT(graph.places_settled(), 0u);
+  EXPECT_LT(unreachable, 4u * 3u * 200u);
+}
+
 // A robot on a one-way lane stands behind one held at its place: a body that backs up tries
 // backing up along the lane after standing a while, a tricycle (which would pivot round first,
 // sweeping the ground about it) is only ever moved forwards, so it waits.
