@@ -163,6 +163,8 @@ class PlaceTraffic {
   /// Ends visits the robot's progress shows it has driven through.
   void follow_progress(int robot, double progress);
   void plan_step();
+  /// How many of the robot's visits after its current one its last grant lets it drive into.
+  static int granted_visits(const Robot& r);
   /// The index into r.places of the end of the route's leg after index `from` (< the last): the
   /// first place at which the route turns back on itself, or its end.
   static std::size_t route_leg_end(const Robot& r, std::size_t from);

@@ -25,9 +25,14 @@ void PlaceTraffic::plan_step() {
   // behind its own plan, and the other could never get past those visits.
   // A robot its own look-ahead stops for another's body cannot make its visits: those not begun
   // go, so that robots whose visits wait for them may go first and take their bodies away.
+  // A visit granted stays: the robot may be in it already, the grant having reached it before its
+  // report of the move reaches traffic. One stopped reported where it stands, and stands.
   for (int robot = 0; robot < robots(); ++robot) {
     if (at(robot).mode != Mode::kDriving || !order_.present(robot)) continue;
-    for (int k = order_.has_left(robot) ? 2 : 1; k <= order_.pending(robot); ++k) {
+    const int not_begun = order_.has_left(robot) ? 2 : 1;
+    const bool stopped = !at(robot).stopped_for.empty();
+    const int first_droppable = stopped ? not_begun : std::max(not_begun, granted_visits(at(robot)) + 1);
+    for (int k = first_droppable; k <= order_.pending(robot); ++k) {
       if (!at(robot).stopped_for.empty() || order_.waits_for(robot, k) >= 0) {
         order_.drop_from(robot, k);
         break;
@@ -83,7 +88,8 @@ void PlaceTraffic::plan_step() {
     const int to = next[static_cast<std::size_t>(robot)];
     if (p.place < 0 || to == p.place) continue;
     const int pending = order_.pending(robot);
-    if (pending >= 1 && to == order_.visit_place(robot, pending - 1) && (pending >= 2 || !order_.has_left(robot))) {
+    if (pending >= 1 && to == order_.visit_place(robot, pending - 1) && (pending >= 2 || !order_.has_left(robot)) &&
+        pending > granted_visits(at(robot))) {
       // Pushed back out of its last planned place before it began that visit: the visit goes,
       // instead of a move back. Planned as a move, its route would go on, back and on again
       // over the same ground.
@@ -113,6 +119,15 @@ std::vector<int> PlaceTraffic::kept_by(int robot, const std::vector<PlaceRobot>&
     }
   }
   return in_the_way;
+}
+
+int PlaceTraffic::granted_visits(const Robot& r) {
+  const PlaceGrant& g = r.grant;
+  if (g.version != r.version || g.granted_index < 0) return 0;
+  for (std::size_t index = static_cast<std::size_t>(r.at); index < r.place_point.size(); ++index) {
+    if (r.place_point[index] == g.granted_index) return static_cast<int>(index) - r.at;
+  }
+  return 0;
 }
 
 std::size_t PlaceTraffic::route_leg_end(const Robot& r, std::size_t from) {

@@ -352,9 +352,10 @@ TEST(PlaceTraffic, RobotsHearingLateKeepApartAndGetThrough) {
     // A robot is planned on from a push once it has made it, so a route handed to it never goes
     // back and forth between two places twice, each leg driven to a stop.
     EXPECT_EQ(robots.shuttles, 0u) << run << ", of " << robots.reroutes << " routes handed";
-    // A robot pushed back out of a place it has not begun to visit loses the visit instead: few
-    // routes go on, back and on again (2 % at most here; 6-9 % when each push was a move back).
-    EXPECT_LT(robots.back_and_on * 25, robots.reroutes) << run << ": " << robots.back_and_on << " went back and on";
+    // A robot pushed back out of a place it has not been granted loses the visit instead; one it
+    // was granted it may be in already (its report is late), so it drives in and back: some
+    // routes go on, back and on again (5 to 7 % here).
+    EXPECT_LT(robots.back_and_on * 10, robots.reroutes) << run << ": " << robots.back_and_on << " went back and on";
   }
 }
 
