@@ -341,7 +341,7 @@ TEST(PlaceTraffic, StandingBodiesCloseTheirPlacesAndRobotsEnterWhenClear) {
 TEST(PlaceTraffic, RobotsHearingLateKeepApartAndGetThrough) {
   const auto site = map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
   const traffic::ConflictZones zones(site.graph.graph, forklift_params());
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     std::mt19937_64 rng(seed);
     FollowingRobots robots(site.graph.graph, zones, points_apart(site.graph.graph, zones, 8, rng), seed, 0.2);
     robots.run(400.0);
