@@ -1,8 +1,8 @@
 // Coordination core on the big warehouse (200 m x 100 m, 14 558 graph points): the driving
 // distance from a place to a goal no robot had before, which PlacePibt asks for whenever a robot
-// is given a new goal, and then from the place's neighbours (its candidate moves). No time is
-// asserted. And the plan steps of 500 robots on random trips there in the core simulator.
-// Reads maps/ from the source tree.
+// is given a new goal, and then from the place's neighbours (its candidate moves); and the plan
+// steps of 500 robots on random trips there in the core simulator. No time is asserted. Reads
+// maps/ from the source tree.
 
 #include <benchmark/benchmark.h>
 

@@ -80,8 +80,6 @@ class Runner:
             print(f"figures: {what}: {error}", file=sys.stderr, flush=True)
         self.rows.append((what, figure, command))
 
-    # -- the rows -----------------------------------------------------------------------------
-
     # -- the page -----------------------------------------------------------------------------
 
     def page(self, started, minutes):

@@ -33,7 +33,7 @@ void PlaceTraffic::plan_step() {
     const bool stopped = !at(robot).stopped_for.empty();
     const int first_droppable = stopped ? not_begun : std::max(not_begun, granted_visits(at(robot)) + 1);
     for (int k = first_droppable; k <= order_.pending(robot); ++k) {
-      if (!at(robot).stopped_for.empty() || order_.waits_for(robot, k) >= 0) {
+      if (stopped || order_.waits_for(robot, k) >= 0) {
         order_.drop_from(robot, k);
         break;
       }
