@@ -14,8 +14,21 @@ namespace {
 constexpr double kDynamicUpdatePeriod = 0.1;  // sim seconds between dynamic-grid rebuilds (10 Hz)
 constexpr double kDetourAfter = 3.0;          // sim seconds blocked before a temporary obstacle goes in
 constexpr int kClearChecks = 3;               // dynamic updates a temporary must be seen free
-planning::StaticGrid make_static_grid(const ForkliftConfig& c, const map::SiteMap& site) {
-  return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
+NavigationParams navigation_params(const ForkliftConfig& c) {
+  return {
+      .grid_resolution = c.grid_resolution,
+      .route_graph = c.route_graph,
+      .both_ways_when_closed = true,
+      .routes = {},
+      .lidar = c.lidar,
+      .follower = {.traffic = c.traffic, .siding_timeout = c.siding_timeout, .siding_end_margin = c.siding_end_margin},
+      .safety = {.safety_gap = c.safety_gap,
+                 .stale_after = c.stale_after,
+                 .neighbour_max_speed = c.neighbour_max_speed,
+                 .scan_range = c.safety_scan_range,
+                 .escape_within = c.escape_within,
+                 .escape_speed = c.escape_speed,
+                 .stop_moved = c.stop_moved}};
 }
 
 geometry::Polygon box_around(Vec2 c, double side) {
@@ -28,8 +41,8 @@ geometry::Polygon box_around(Vec2 c, double side) {
 Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
                    std::uint64_t seed, std::uint64_t stream)
     : config_(config),
-      site_(std::move(site)),
-      sim_(config.sim, site_->site, home, seed, stream),
+      nav_(navigation_params(config), std::move(site), config.sim.forklift.footprint),
+      sim_(config.sim, nav_.site().site, home, seed, stream),
       camera_(
           [&] {
             perception::MarkerCameraParams cp = config.camera;
@@ -44,7 +57,6 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         return wp;
       }()),
       executor_(config.task, home),
-      static_grid_(make_static_grid(config, *site_)),
       dynamic_([&] {
         // No growth by our own size: clearance_ahead() sweeps our real footprint along the path,
         // so a robot parked at a home beside the road (0.25 m from its centre line on the
@@ -58,64 +70,27 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         d.reported_tolerance = config.reported_tolerance;
         return d;
       }()),
-      lidar_(config.lidar),
       octomap_([&] {
         planning::OctoMapConfiguration o;
         o.resolution = config.grid_resolution;
-        o.area = site_->site.bounds;
+        o.area = nav_.site().site.bounds;
         o.projection_resolution = config.grid_resolution;  // must match the static grid's cells
         return o;
-      }()),
-      road_(config.route_graph ? *config.route_graph : site_->graph.graph),
-      routes_(road_, grid_astar_),
-      two_way_road_(site_->graph.graph),
-      two_way_routes_(two_way_road_, grid_astar_),
-      follower_({.traffic = config.traffic,
-                 .siding_timeout = config.siding_timeout,
-                 .siding_end_margin = config.siding_end_margin}),
-      safety_({.safety_gap = config.safety_gap,
-               .stale_after = config.stale_after,
-               .neighbour_max_speed = config.neighbour_max_speed,
-               .scan_range = config.safety_scan_range,
-               .escape_within = config.escape_within,
-               .escape_speed = config.escape_speed,
-               .stop_moved = config.stop_moved},
-              config.sim.forklift.footprint) {
+      }()) {
   if (config_.arm) {
     arm_.emplace(make_picker_arm_work(config_.box_camera, config_.arm_layout,
                                       seed ^ (stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL));
   }
-  reset_obstacles();
-  // At start, not at the first order: the planners' tables for the whole site are the bulk of
-  // the agent's memory, which then stays flat while it works.
-  hand_grid_to_planners();
-  // Likewise the lidar map: every leaf of the site from the start (the ground free until seen
-  // otherwise), not one more for each stretch of floor the robot first sees.
+  // At start, like the planners' tables (Navigation): the lidar map: every leaf of the site from the start (the ground
+  // free until seen otherwise), not one more for each stretch of floor the robot first sees.
   octomap_.assume_free();
   sim_.warm_up(1.0, step_period());
 }
 
-void Forklift::reset_obstacles() {
-  obstacles_.clear();
-  for (const auto& o : site_->site.static_obstacles) {
-    obstacles_[o.id] = o.enabled_at_start;
-    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
-  }
-}
-
 void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
-  site_ = std::move(site);
-  config_.route_graph = std::move(route_graph);
-  static_grid_ = make_static_grid(config_, *site_);
-  reset_obstacles();
-  // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
-  road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
-  two_way_road_ = planning::RoadPlanner(site_->graph.graph);
-  grid_revision_ = std::numeric_limits<std::uint64_t>::max();
-  hand_grid_to_planners();
+  config_.route_graph = route_graph;
+  nav_.set_site(std::move(site), std::move(route_graph));
   seen_free_.clear();
-  // The old map's route means nothing to the traffic manager of the new one.
-  follower_.forget_route();
   executor_.replan();
 }
 
@@ -146,10 +121,7 @@ void Forklift::set_paused(bool paused) {
 }
 
 bool Forklift::set_obstacle(const std::string& id, bool enabled) {
-  auto it = obstacles_.find(id);
-  if (it == obstacles_.end() || it->second == enabled) return false;
-  it->second = enabled;
-  static_grid_.set_obstacle_enabled(id, enabled);
+  if (!nav_.set_obstacle(id, enabled)) return false;
   const task::State s = executor_.state();
   executor_.replan();
   return s == task::State::kTrackPath || s == task::State::kGoHome || s == task::State::kWaiting;
@@ -162,14 +134,6 @@ void Forklift::set_standing_loads(const std::map<int, Pose2>& standing) {
   }
   for (int id : gone) pallets_.remove(id);
   for (const auto& [id, pose] : standing) pallets_.place(id, pose);
-}
-
-void Forklift::set_neighbours(std::vector<Neighbour> neighbours) {
-  neighbours_ = std::move(neighbours);
-}
-
-void Forklift::set_true_neighbours(std::vector<geometry::Polygon> footprints) {
-  true_neighbours_ = std::move(footprints);
 }
 
 std::string Forklift::task_state() const {
@@ -264,7 +228,7 @@ double Forklift::clearance_ahead(geometry::Pose2& blocked_at) const {
   const double kSample = config_.clearance_sample;        // metres between swept poses
   const double kMargin = config_.clearance_margin;        // metres around our footprint
   const double kLookahead = config_.clearance_lookahead;  // metres of path checked [Forklift thesis, section 5.3]
-  const std::vector<Vec2>& path = follower_.path();
+  const std::vector<Vec2>& path = nav_.follower().path();
   if (path.size() < 2) return std::numeric_limits<double>::infinity();
   const auto& layer = dynamic_.dynamic_layer();
   if (layer.size() == 0) return std::numeric_limits<double>::infinity();
@@ -280,7 +244,7 @@ double Forklift::clearance_ahead(geometry::Pose2& blocked_at) const {
     }
   }
   // Backing up and coming back, the path covers the same ground twice: the leg it is on decides.
-  if (const auto on_leg = follower_.segment_on_leg()) segment = *on_leg;
+  if (const auto on_leg = nav_.follower().segment_on_leg()) segment = *on_leg;
   const Vec2 a = path[segment];
   const Vec2 ab = path[segment + 1] - a;
   const double len2 = geometry::dot(ab, ab);
@@ -324,21 +288,16 @@ double Forklift::clearance_ahead(geometry::Pose2& blocked_at) const {
 
 void Forklift::update_surroundings() {
   std::vector<planning::Neighbour> others;
-  for (const auto& n : neighbours_) others.push_back({n.robot_id, n.pose, n.speed, n.age, n.footprint});
+  for (const auto& n : nav_.neighbours()) others.push_back({n.robot_id, n.pose, n.speed, n.age, n.footprint});
   // The lidar measures from where the robot really is; the robot files the scan under where it
   // believes it is, so localization error shows in its map as it would on real hardware.
-  std::vector<geometry::Polygon> seen = true_neighbours_;
-  for (const auto& o : site_->site.static_obstacles) {
-    if (obstacles_.at(o.id)) seen.push_back(o.polygon);
-  }
-  planning::LidarScan scan = lidar_.scan(sim_.truth(), seen);
-  scan.pose = sim_.estimate();
-  safety_.take_scan(scan);
+  const planning::LidarScan scan = nav_.scan(sim_.truth(), sim_.estimate());
+  nav_.safety().take_scan(scan);
   octomap_.insert_scan(scan);
-  dynamic_.update(static_grid_.permanent_grid(), others, &octomap_.sensed());
+  dynamic_.update(nav_.static_grid().permanent_grid(), others, &octomap_.sensed());
   // [Forklift thesis, Fig. 5.13]: a temporary obstacle goes once its area is seen free again.
   std::vector<std::string> cleared;
-  for (const auto& [id, polygon] : static_grid_.temporaries()) {
+  for (const auto& [id, polygon] : nav_.static_grid().temporaries()) {
     Vec2 centre{};
     bool free = true;
     for (const Vec2& corner : polygon) {
@@ -350,7 +309,7 @@ void Forklift::update_surroundings() {
     if (seen_free_[id] >= kClearChecks) cleared.push_back(id);
   }
   for (const auto& id : cleared) {
-    static_grid_.remove_temporary(id);
+    nav_.static_grid().remove_temporary(id);
     seen_free_.erase(id);
     executor_.replan();
   }
@@ -361,8 +320,8 @@ double Forklift::follow_traffic(double t, double clearance, const geometry::Pose
   // with a temporary obstacle [Forklift thesis, section 5.3]. Under traffic control the robot also
   // stops at the end of its grant; the neighbour check stays underneath as the safety layer.
   const control::PathFollower& controller = executor_.follower();
-  const double room = follower_.room(sim_.estimate().position(),
-                                     TrafficFollower::ControllerLeg{controller.length(), controller.leg_start_s()});
+  const double room = nav_.follower().room(
+      sim_.estimate().position(), TrafficFollower::ControllerLeg{controller.length(), controller.leg_start_s()});
   const bool driving = executor_.state() == task::State::kTrackPath || executor_.state() == task::State::kGoHome ||
                        (executor_.state() == task::State::kWaiting && (blocked_by_neighbour_ || held_by_traffic_));
   const bool blocked = driving && clearance <= stop_distance();
@@ -374,18 +333,18 @@ double Forklift::follow_traffic(double t, double clearance, const geometry::Pose
     held_by_traffic_ = held;
     if (was_stopped != (blocked || held)) executor_.set_blocked(blocked || held);
   }
-  if (follower_.siding_timed_out(t, held)) executor_.replan();
+  if (nav_.follower().siding_timed_out(t, held)) executor_.replan();
   if (blocked) {
     const Pose2 here = sim_.estimate();
     // The robot whose cells stopped it, nearest the swept pose that met them: they are grown by
     // its speed and data age (a standing one that reports seldom is grown most), so its body may
     // be a metre off that pose. Measured from where this robot stands instead, a large vehicle
     // that stops its stopping distance short of the cells is further than that from their robot.
-    const std::string ahead = safety_.robot_within(blocked_at, neighbours_, 1.0);
+    const std::string ahead = nav_.safety().robot_within(blocked_at, nav_.neighbours(), 1.0);
     reports_.stopped_ahead(ahead);
-    safety_.note(t, here.position(), ahead);
+    nav_.safety().note(t, here.position(), ahead);
   } else if (held) {
-    reports_.held_by_traffic(follower_.blocked_by());
+    reports_.held_by_traffic(nav_.follower().blocked_by());
   } else if (driving) {
     reports_.driving_on();
   }
@@ -396,7 +355,7 @@ double Forklift::follow_traffic(double t, double clearance, const geometry::Pose
     const double size = config_.temporary_size;
     const Vec2 ahead{here.x + (clearance + size / 2) * std::cos(here.yaw),
                      here.y + (clearance + size / 2) * std::sin(here.yaw)};
-    static_grid_.add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, size));
+    nav_.static_grid().add_temporary("tmp-" + std::to_string(next_temporary_++), box_around(ahead, size));
     blocked_since_ = t;
     blocked_by_neighbour_ = false;
     if (!held_by_traffic_) executor_.set_blocked(false);
@@ -441,7 +400,7 @@ void Forklift::step() {
   }
 
   work_items(t);
-  command_ = safety_.safe(out.twist, sim_.estimate(), neighbours_);
+  command_ = nav_.safety().safe(out.twist, sim_.estimate(), nav_.neighbours());
   const auto blockers = uwb_blockers();
   sim_.step(command_, dt, blockers, shadowed_anchors());
   answer_plan_requests();
@@ -465,7 +424,7 @@ void Forklift::work_items(double t) {
   ArmWork work;
   if (state == task::State::kPickItems) {
     const task::ItemStop& stop = order.items.at(executor_.item_line());
-    const map::LoadingArea* area = site_->site.find_area(stop.place_id);
+    const map::LoadingArea* area = nav_.site().site.find_area(stop.place_id);
     if (area == nullptr || !area->boxes) {
       executor_.items_done(false, "place " + stop.place_id + " holds no boxes");
       return;
@@ -484,42 +443,27 @@ void Forklift::work_items(double t) {
                       std::to_string(static_cast<int>(std::lround(work.duration))) + " s");
 }
 
-void Forklift::hand_grid_to_planners() {
-  // Planners cache on the grid: hand them the new one only when an obstacle changed.
-  if (static_grid_.revision() == grid_revision_) return;
-  auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
-  road_.set_obstacles(*grid);
-  if (config_.route_graph) two_way_road_.set_obstacles(*grid);
-  grid_astar_.set_grid(grid);
-  grid_revision_ = static_grid_.revision();
-}
-
 void Forklift::answer_plan_requests() {
   const auto request = executor_.take_plan_request();
   if (!request) return;
-  hand_grid_to_planners();
-  if (auto permit = follower_.take_route()) {
+  if (auto permit = nav_.follower().take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
-    follower_.adopt_route(*permit, site_->graph.graph, sim_.estimate().position());
+    nav_.follower().adopt_route(*permit, nav_.site().graph.graph, sim_.estimate().position());
     arrival_area_ = arrival_sweep(place_of(request->purpose));
-    if (!config_.stop_outlasts_reroute) safety_.clear();
+    if (!config_.stop_outlasts_reroute) nav_.safety().clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
-    executor_.path_received(request->id, planning::poses_along(follower_.path()));
+    executor_.path_received(request->id, planning::poses_along(nav_.follower().path()));
     return;
   }
-  planning::Route route = routes_.plan(sim_.estimate(), request->goal);
-  if (config_.route_graph && route.status != planning::PlanStatus::kFound) {
-    planning::Route both_ways = two_way_routes_.plan(sim_.estimate(), request->goal);
-    if (both_ways.status == planning::PlanStatus::kFound) route = std::move(both_ways);
-  }
+  planning::Route route = nav_.plan(sim_.estimate(), request->goal);
   if (route.status == planning::PlanStatus::kFound && route.points.size() >= 2) {
-    follower_.adopt_plan(route);
+    nav_.follower().adopt_plan(route);
     arrival_area_ = arrival_sweep(place_of(request->purpose));
-    safety_.clear();
+    nav_.safety().clear();
     executor_.path_received(request->id, planning::poses_along(route.points));
   } else {
     // Blocked by a static obstacle [Forklift thesis, Fig. 5.11] or no way at all: wait and ask again.
-    follower_.drop_path();
+    nav_.follower().drop_path();
     reports_.set_detail(route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle"
                                                                               : "no route");
     executor_.plan_failed(request->id);
@@ -558,7 +502,7 @@ void Forklift::collect_reports() {
         break;
       case K::kHomeReached:
       case K::kArrived:
-        follower_.leave_road();
+        nav_.follower().leave_road();
         if (r.kind == K::kArrived) {
           reports_.add({RobotEvent::Kind::kDone, r.order_id, r.area_id, -1, {}});
         } else {
@@ -574,13 +518,13 @@ void Forklift::collect_reports() {
 }
 
 void Forklift::set_traffic_grant(const TrafficPermit& permit) {
-  if (follower_.grant(permit)) executor_.replan();
+  if (nav_.follower().grant(permit)) executor_.replan();
 }
 
 TrafficRoute Forklift::traffic_route() const {
-  TrafficRoute r = follower_.route();
-  if (follower_.on_road()) {
-    r.stopped_for = safety_.stopped_for(sim_.time(), sim_.estimate().position());
+  TrafficRoute r = nav_.follower().route();
+  if (nav_.follower().on_road()) {
+    r.stopped_for = nav_.safety().stopped_for(sim_.time(), sim_.estimate().position());
     r.arrival_area = arrival_area_;
   }
   return r;

@@ -12,18 +12,12 @@
 #include "perception/marker_camera.hpp"
 #include "perception/pallet_world.hpp"
 #include "planning/dynamic_grid.hpp"
-#include "planning/grid_astar.hpp"
-#include "planning/lidar_sim.hpp"
 #include "planning/octomap_layer.hpp"
-#include "planning/road_planner.hpp"
-#include "planning/route_planner.hpp"
-#include "planning/static_grid.hpp"
+#include "robot/navigation.hpp"
 #include "robot/order_reporter.hpp"
 #include "robot/picker_arm_work.hpp"
 #include "robot/robot.hpp"
-#include "robot/safety_stop.hpp"
 #include "robot/simulated_forklift.hpp"
-#include "robot/traffic_follower.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"
 
@@ -138,13 +132,15 @@ class Forklift : public Robot {
   /// The standing pallets. Pallets carried by other robots are left out; the one on these forks
   /// is left alone.
   void set_standing_loads(const std::map<int, geometry::Pose2>& standing) override;
-  void set_neighbours(std::vector<Neighbour> neighbours) override;
+  void set_neighbours(std::vector<Neighbour> neighbours) override { nav_.set_neighbours(std::move(neighbours)); }
   /// What the onboard lidar sees.
-  void set_true_neighbours(std::vector<geometry::Polygon> footprints) override;
+  void set_true_neighbours(std::vector<geometry::Polygon> footprints) override {
+    nav_.set_true_neighbours(std::move(footprints));
+  }
   /// Roads, obstacles and planners come from the new map; the task replans on it. `route_graph`
   /// replaces config.route_graph.
   void set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) override;
-  const map::SiteMap& site() const override { return *site_; }
+  const map::SiteMap& site() const override { return nav_.site(); }
   void set_traffic_grant(const TrafficPermit& permit) override;
 
   /// One control step of 1 / control_rate_hz sim seconds.
@@ -164,15 +160,13 @@ class Forklift : public Robot {
   std::optional<std::string> order_id() const override;
   /// The pallet on the forks, -1 when none.
   int carried_load() const override { return carried_pallet_; }
-  const std::vector<geometry::Vec2>& path() const override { return follower_.path(); }
+  const std::vector<geometry::Vec2>& path() const override { return nav_.follower().path(); }
   const geometry::Footprint& footprint() const override { return config_.sim.forklift.footprint; }
   TrafficRoute traffic_route() const override;
-  std::uint64_t route_version() const override { return follower_.version(); }
+  std::uint64_t route_version() const override { return nav_.follower().version(); }
   bool held_by_traffic() const override { return held_by_traffic_; }
 
  private:
-  /// The site's designated obstacles as the site file sets them at the start.
-  void reset_obstacles();
   /// The dynamic grid from the neighbours and a lidar scan, and temporaries seen free removed.
   void update_surroundings();
   /// Stops for what is in the way (met by the path sweep at `blocked_at`) and holds at the end
@@ -182,8 +176,6 @@ class Forklift : public Robot {
   double stop_distance() const {
     return config_.planned_stop_distance >= 0.0 ? config_.planned_stop_distance : config_.stop_distance;
   }
-  /// The static grid to the planners, when an obstacle changed it since they last had it.
-  void hand_grid_to_planners();
   void answer_plan_requests();
   void collect_reports();
   /// How far the robot drives along its path before its swept footprint meets another robot's
@@ -203,34 +195,18 @@ class Forklift : public Robot {
   void work_items(double t);
 
   ForkliftConfig config_;
-  std::shared_ptr<const map::SiteMap> site_;
+  Navigation nav_;
   SimulatedForklift sim_;
   perception::MarkerCamera camera_;
   perception::PalletWorld pallets_;
   task::TaskExecutor executor_;
-  planning::StaticGrid static_grid_;
   // Local planning [Forklift thesis, section 5.3]: the other robots on a dynamic grid, temporary
   // obstacles for the ones in the way, removed once their area is seen free.
   planning::DynamicGrid dynamic_;
-  // The onboard lidar (beyond the thesis, whose conclusion asks for range sensing [Forklift thesis]) into OctoMap,
-  // projected onto the dynamic grid as its sensed layer.
-  planning::LidarSim lidar_;
+  // The onboard lidar's scans (beyond the thesis, whose conclusion asks for range sensing
+  // [Forklift thesis]) into OctoMap, projected onto the dynamic grid as its sensed layer.
   planning::OctoMapLayer octomap_;
-  std::vector<geometry::Polygon> true_neighbours_;
-  planning::RoadPlanner road_;
-  planning::GridAStar grid_astar_;
-  planning::RoutePlanner routes_;
-  // Under traffic control routes_ plans on the one-way graph; when a static obstacle closes every
-  // way along it, the robot plans on the site's graph in both directions (the traffic manager
-  // keeps opposite directions apart in a corridor).
-  planning::RoadPlanner two_way_road_;
-  planning::RoutePlanner two_way_routes_;
-  std::uint64_t grid_revision_ = 0;
-  std::vector<Neighbour> neighbours_;
-  std::map<std::string, bool> obstacles_;
-  TrafficFollower follower_;
   std::vector<geometry::Vec2> arrival_area_;  ///< arrival_sweep() of the path adopted last
-  SafetyStop safety_;
   OrderReporter reports_;
   control::BodyTwist command_;
   int carried_pallet_ = -1;

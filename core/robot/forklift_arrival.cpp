@@ -15,8 +15,8 @@ std::vector<Vec2> Forklift::arrival_sweep(std::optional<Vec2> place) const {
   constexpr double kSample = 0.25;        // metres between bodies along the path
   constexpr int kTurnSamples = 16;        // headings of a turn on the spot
   std::vector<Vec2> corners;
-  const std::vector<Vec2>& path = follower_.path();
-  if (!config_.traffic || !follower_.on_road() || path.size() < 2) return corners;
+  const std::vector<Vec2>& path = nav_.follower().path();
+  if (!config_.traffic || !nav_.follower().on_road() || path.size() < 2) return corners;
   const auto add = [&](Vec2 at, double yaw) {
     const geometry::Polygon body = geometry::footprint_polygon({at.x, at.y, yaw}, footprint());
     corners.insert(corners.end(), body.begin(), body.end());
@@ -27,7 +27,7 @@ std::vector<Vec2> Forklift::arrival_sweep(std::optional<Vec2> place) const {
   const auto turn_at = [&](Vec2 at) {
     for (int i = 0; i < kTurnSamples; ++i) add(at, 2.0 * std::numbers::pi * i / kTurnSamples);
   };
-  const double road_end = follower_.road_end();
+  const double road_end = nav_.follower().road_end();
   double along = 0.0;
   bool started = false;
   for (std::size_t i = 1; i < path.size(); ++i) {

@@ -24,8 +24,21 @@ constexpr double kLaneAlongRow = 0.35;
 // A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
 constexpr double kSameEnd = 0.05;
 
-planning::StaticGrid make_static_grid(const StackerConfig& c, const map::SiteMap& site) {
-  return planning::StaticGrid({.resolution = c.grid_resolution}, site.site, site.graph.graph);
+NavigationParams navigation_params(const StackerConfig& c) {
+  return {.grid_resolution = c.grid_resolution,
+          .route_graph = c.route_graph,
+          .both_ways_when_closed = false,
+          // A tricycle cannot step sideways onto its docking run: its route ends on the lane along
+          // the pallet row, the run starts from there.
+          .routes = {.goal_heading_tolerance = kLaneAlongRow},
+          .lidar = c.lidar,
+          .follower = {.traffic = c.traffic, .siding_timeout = c.siding_timeout, .wait_off_road_for_room = true},
+          .safety = {.safety_gap = c.safety_gap,
+                     .stale_after = c.stale_after,
+                     .neighbour_max_speed = c.neighbour_max_speed,
+                     .scan_range = c.safety_scan_range,
+                     .escape_within = 0.0,
+                     .escape_speed = 0.0}};
 }
 
 }  // namespace
@@ -42,41 +55,19 @@ StackerConfig StackerConfig::for_vehicle(const vehicle::VehicleProfile& profile)
 Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
                  std::uint64_t seed, std::uint64_t stream)
     : config_(config),
-      site_(std::move(site)),
       home_(home),
       footprint_{config.body.geometry.length, config.body.geometry.width},
+      nav_(navigation_params(config), std::move(site), footprint_),
       body_(config.body,
             [&] {
               const Vec2 rear = home.position() - config.body.geometry.centre_x() * heading_of(home.yaw);
               return Pose2{rear.x, rear.y, home.yaw};
             }()),
-      rng_(seed * 0x9e3779b97f4a7c15ULL + stream),
-      static_grid_(make_static_grid(config, *site_)),
-      road_(config.route_graph ? *config.route_graph : site_->graph.graph),
-      // A tricycle cannot step sideways onto its docking run: its route ends on the lane along
-      // the pallet row, the run starts from there.
-      routes_(road_, grid_astar_, {.goal_heading_tolerance = kLaneAlongRow}),
-      grid_revision_(std::numeric_limits<std::uint64_t>::max()),
-      lidar_(config.lidar),
-      follower_({.traffic = config.traffic, .siding_timeout = config.siding_timeout, .wait_off_road_for_room = true}),
-      safety_({.safety_gap = config.safety_gap,
-               .stale_after = config.stale_after,
-               .neighbour_max_speed = config.neighbour_max_speed,
-               .scan_range = config.safety_scan_range,
-               .escape_within = 0.0,
-               .escape_speed = 0.0},
-              footprint_) {
-  for (const auto& o : site_->site.static_obstacles) {
-    obstacles_[o.id] = o.enabled_at_start;
-    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
-  }
+      rng_(seed * 0x9e3779b97f4a7c15ULL + stream) {
   estimate_ = body_.pose();
   update_centre();
   // The centre, where traffic places the robot, comes to stand on its route's end.
   config_.pursuit.stop_short = config_.body.geometry.centre_x();
-  // At start, not at the first order: the planners' tables for the whole site are the bulk of
-  // the agent's memory, which then stays flat while it works.
-  hand_grid_to_planners();
 }
 
 void Stacker::update_centre() {
@@ -126,29 +117,14 @@ bool Stacker::withdraw() {
 }
 
 bool Stacker::set_obstacle(const std::string& id, bool enabled) {
-  auto it = obstacles_.find(id);
-  if (it == obstacles_.end() || it->second == enabled) return false;
-  it->second = enabled;
-  static_grid_.set_obstacle_enabled(id, enabled);
-  if (!drives_route(state_)) return false;
+  if (!nav_.set_obstacle(id, enabled) || !drives_route(state_)) return false;
   need_route_ = true;
   return true;
 }
 
 void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
-  site_ = std::move(site);
-  config_.route_graph = std::move(route_graph);
-  static_grid_ = make_static_grid(config_, *site_);
-  obstacles_.clear();
-  for (const auto& o : site_->site.static_obstacles) {
-    obstacles_[o.id] = o.enabled_at_start;
-    static_grid_.set_obstacle_enabled(o.id, o.enabled_at_start);
-  }
-  // routes_ keeps a reference to road_: assigned in place, it plans on the new graph.
-  road_ = planning::RoadPlanner(config_.route_graph ? *config_.route_graph : site_->graph.graph);
-  grid_revision_ = std::numeric_limits<std::uint64_t>::max();
-  hand_grid_to_planners();
-  follower_.forget_route();
+  config_.route_graph = route_graph;
+  nav_.set_site(std::move(site), std::move(route_graph));
   if (drives_route(state_)) need_route_ = true;
 }
 
@@ -160,15 +136,15 @@ void Stacker::set_traffic_grant(const TrafficPermit& permit) {
     }
     return;
   }
-  if (follower_.grant(permit) && drives_route(state_)) need_route_ = true;
+  if (nav_.follower().grant(permit) && drives_route(state_)) need_route_ = true;
 }
 
 TrafficRoute Stacker::traffic_route() const {
-  TrafficRoute r = follower_.route();
-  if (follower_.on_road()) r.stopped_for = safety_.stopped_for(time_, estimate().position());
-  if (follower_.on_road() && !follower_.in_siding()) r.arrival_area = arrival_area_;
-  if (!follower_.on_road() && law_) r.work_area = work_area_;
-  if (follower_.before_road() && !way_out_.empty()) r.work_area = way_out_;
+  TrafficRoute r = nav_.follower().route();
+  if (nav_.follower().on_road()) r.stopped_for = nav_.safety().stopped_for(time_, estimate().position());
+  if (nav_.follower().on_road() && !nav_.follower().in_siding()) r.arrival_area = arrival_area_;
+  if (!nav_.follower().on_road() && law_) r.work_area = work_area_;
+  if (nav_.follower().before_road() && !way_out_.empty()) r.work_area = way_out_;
   return r;
 }
 
@@ -204,23 +180,13 @@ void Stacker::enter(StackerState state) {
   if (phase_of(state) != from_phase && order_) reports_.phase_changed(order_->order_id, phase_of(state));
 }
 
-void Stacker::hand_grid_to_planners() {
-  // Planners cache on the grid: hand them the new one only when an obstacle changed.
-  if (static_grid_.revision() == grid_revision_) return;
-  auto grid = std::make_shared<const planning::OccupancyGrid>(static_grid_.grid());
-  road_.set_obstacles(*grid);
-  grid_astar_.set_grid(grid);
-  grid_revision_ = static_grid_.revision();
-}
-
 bool Stacker::plan_route() {
-  hand_grid_to_planners();
-  if (auto permit = follower_.take_route()) {
+  if (auto permit = nav_.follower().take_route()) {
     // The traffic manager re-routed this robot (a way round, a siding, or back from one).
-    follower_.adopt_route(*permit, site_->graph.graph, estimate().position());
+    nav_.follower().adopt_route(*permit, nav_.site().graph.graph, estimate().position());
     at_siding_end_ = false;
     note_way_out();
-    safety_.clear();
+    nav_.safety().clear();
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
     return true;
   }
@@ -229,24 +195,24 @@ bool Stacker::plan_route() {
   // From the body's centre (the pose the traffic manager knows) to where the rear axle starts the
   // docking; the rear axle then follows the path from its projection onto it.
   planning::Route route =
-      routes_.plan(estimate(), {goal.x, goal.y, geometry::normalize_angle(prior.yaw + std::numbers::pi / 2)});
+      nav_.plan(estimate(), {goal.x, goal.y, geometry::normalize_angle(prior.yaw + std::numbers::pi / 2)});
   if (route.status != planning::PlanStatus::kFound || route.points.size() < 2) {
-    follower_.drop_path();
+    nav_.follower().drop_path();
     reports_.set_detail(route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle"
                                                                               : "no route");
     return false;
   }
-  follower_.adopt_plan(route);
-  planned_end_ = follower_.path().back();
+  nav_.follower().adopt_plan(route);
+  planned_end_ = nav_.follower().path().back();
   // Docking at a pallet place sweeps across the lane it comes along; parking in its bay off the
   // aisle it waits for its work area as it arrives, like a robot beside the roads.
   arrival_area_.clear();
   if (state_ == StackerState::kToPick || state_ == StackerState::kToDrop) {
-    arrival_area_ = arrival_manoeuvre(follower_.path());
+    arrival_area_ = arrival_manoeuvre(nav_.follower().path());
   }
   at_siding_end_ = false;
   note_way_out();
-  safety_.clear();
+  nav_.safety().clear();
   return true;
 }
 
@@ -255,7 +221,7 @@ void Stacker::note_way_out() {
   // the route's places cover the body.
   constexpr double kBesideTheRoad = 0.3;  // metres of path before the road's first point
   way_out_.clear();
-  if (config_.traffic && follower_.road_start() > kBesideTheRoad) way_out_ = way_out_area();
+  if (config_.traffic && nav_.follower().road_start() > kBesideTheRoad) way_out_ = way_out_area();
 }
 
 double Stacker::clearance_ahead() const {
@@ -264,11 +230,11 @@ double Stacker::clearance_ahead() const {
   // The sweep is the pursuit rolled forward on the body model from the estimate, the wheel as it
   // stands: in a bend the real rear axle cuts inside the path and the front swings with it, so
   // bodies placed on the path at its tangent would meet a robot the stacker passes 0.4 m from.
-  const std::vector<Vec2>& path = follower_.path();
-  if (path.size() < 2 || neighbours_.empty()) return std::numeric_limits<double>::infinity();
+  const std::vector<Vec2>& path = nav_.follower().path();
+  if (path.size() < 2 || nav_.neighbours().empty()) return std::numeric_limits<double>::infinity();
   const geometry::Polygon here = geometry::footprint_polygon(estimate(), footprint_);
   std::vector<geometry::Polygon> others;
-  for (const auto& n : neighbours_) {
+  for (const auto& n : nav_.neighbours()) {
     const double moved =
         planning::distance_since_seen(n.speed, n.age, config_.stale_after, config_.neighbour_max_speed);
     geometry::Polygon p =
@@ -305,12 +271,12 @@ void Stacker::drive() {
       next_route_try_ = time_ + 1.0;
     }
   }
-  if (follower_.path().size() < 2) {
+  if (nav_.follower().path().size() < 2) {
     apply({0.0, body_.state().theta_steer});
     return;
   }
   // Measured at the centre, ahead of the rear axle: the body stops short of the grant's end.
-  const double room = follower_.room(estimate().position());
+  const double room = nav_.follower().room(estimate().position());
   const double clearance = clearance_ahead();
   const bool held = room <= 0.0 || at_siding_end_;
   const bool blocked = clearance <= 0.05;
@@ -318,32 +284,32 @@ void Stacker::drive() {
     held_by_traffic_ = held;
     blocked_ = blocked;
   }
-  if (follower_.siding_timed_out(time_, held)) need_route_ = true;
+  if (nav_.follower().siding_timed_out(time_, held)) need_route_ = true;
   if (blocked) {
-    const std::string ahead = safety_.robot_within(estimate(), neighbours_, 1.0);
+    const std::string ahead = nav_.safety().robot_within(estimate(), nav_.neighbours(), 1.0);
     reports_.stopped_ahead(ahead);
-    safety_.note(time_, estimate().position(), ahead);
+    nav_.safety().note(time_, estimate().position(), ahead);
   } else if (held) {
-    reports_.held_by_traffic(follower_.blocked_by());
+    reports_.held_by_traffic(nav_.follower().blocked_by());
   } else {
     reports_.driving_on();
   }
   const control::TricyclePursuitOutput out =
-      control::pursue(estimate_, follower_.path(), std::min(room, clearance), body_.state().theta_steer,
+      control::pursue(estimate_, nav_.follower().path(), std::min(room, clearance), body_.state().theta_steer,
                       config_.pursuit, config_.body.geometry.wheelbase);
-  if (out.arrived &&
-      (follower_.in_siding() || need_route_ || geometry::distance(follower_.path().back(), planned_end_) > kSameEnd)) {
+  if (out.arrived && (nav_.follower().in_siding() || need_route_ ||
+                      geometry::distance(nav_.follower().path().back(), planned_end_) > kSameEnd)) {
     // A siding's end, or a route of the traffic manager's that ends short of its own, is no place
     // of the order: the stacker waits at a siding, held, until the manager sends it on or the
     // siding times out, and plans its way on from anywhere else, instead of docking to whatever
     // stands nearby.
-    at_siding_end_ = follower_.in_siding();
+    at_siding_end_ = nav_.follower().in_siding();
     if (!at_siding_end_) need_route_ = true;
     apply({0.0, body_.state().theta_steer});
     return;
   }
   if (out.arrived) {
-    follower_.leave_road();
+    nav_.follower().leave_road();
     apply({0.0, body_.state().theta_steer});
     fire(StackerEvent::kRouteEnded);
     return;
@@ -367,13 +333,7 @@ void Stacker::update_sensors() {
   }
   if (time_ >= next_scan_) {
     next_scan_ = time_ + 0.1;  // the S300s' 10 Hz is plenty for the stop's horizon
-    std::vector<geometry::Polygon> seen = true_neighbours_;
-    for (const auto& o : site_->site.static_obstacles) {
-      if (obstacles_.at(o.id)) seen.push_back(o.polygon);
-    }
-    planning::LidarScan scan = lidar_.scan(truth_centre_, seen);
-    scan.pose = estimate();
-    safety_.take_scan(scan);
+    nav_.safety().take_scan(nav_.scan(truth_centre_, estimate()));
   }
 }
 
@@ -382,11 +342,11 @@ void Stacker::apply(const sim::TricycleCommand& wanted) {
   const sim::TricycleRates rates = sim::forward_kinematics(command, config_.body.geometry.wheelbase);
   const double c = config_.body.geometry.centre_x();
   const control::BodyTwist twist{rates.v, rates.yaw_rate * c, rates.yaw_rate};
-  if (!(twist == control::BodyTwist{}) && safety_.moves_too_close(twist, estimate(), neighbours_)) {
+  if (!(twist == control::BodyTwist{}) && nav_.safety().moves_too_close(twist, estimate(), nav_.neighbours())) {
     // The last line of defence: stand, the wheel kept where it points.
     command = {0.0, body_.state().theta_steer};
-    const std::string ahead = safety_.robot_within(estimate(), neighbours_, 1.0);
-    safety_.note(time_, estimate().position(), ahead);
+    const std::string ahead = nav_.safety().robot_within(estimate(), nav_.neighbours(), 1.0);
+    nav_.safety().note(time_, estimate().position(), ahead);
     reports_.stopped_ahead(ahead);
   }
   if (paused_) command = {0.0, body_.state().theta_steer};

@@ -13,16 +13,10 @@
 #include "control/tricycle_pursuit.hpp"
 #include "map/site_map.hpp"
 #include "perception/stacker_cameras.hpp"
-#include "planning/grid_astar.hpp"
-#include "planning/lidar_sim.hpp"
-#include "planning/road_planner.hpp"
-#include "planning/route_planner.hpp"
-#include "planning/static_grid.hpp"
+#include "robot/navigation.hpp"
 #include "robot/order_reporter.hpp"
 #include "robot/robot.hpp"
-#include "robot/safety_stop.hpp"
 #include "robot/stacker_job.hpp"
-#include "robot/traffic_follower.hpp"
 #include "sim/tricycle.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"
@@ -88,12 +82,12 @@ class Stacker : public Robot {
   void set_paused(bool paused) override { paused_ = paused; }
   bool set_obstacle(const std::string& id, bool enabled) override;
   void set_standing_loads(const std::map<int, geometry::Pose2>& standing) override { standing_ = standing; }
-  void set_neighbours(std::vector<Neighbour> neighbours) override { neighbours_ = std::move(neighbours); }
+  void set_neighbours(std::vector<Neighbour> neighbours) override { nav_.set_neighbours(std::move(neighbours)); }
   void set_true_neighbours(std::vector<geometry::Polygon> footprints) override {
-    true_neighbours_ = std::move(footprints);
+    nav_.set_true_neighbours(std::move(footprints));
   }
   void set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) override;
-  const map::SiteMap& site() const override { return *site_; }
+  const map::SiteMap& site() const override { return nav_.site(); }
   void set_traffic_grant(const TrafficPermit& permit) override;
 
   void step() override;
@@ -110,10 +104,10 @@ class Stacker : public Robot {
   const std::string& detail() const override { return reports_.detail(); }
   std::optional<std::string> order_id() const override;
   int carried_load() const override { return carried_; }
-  const std::vector<geometry::Vec2>& path() const override { return follower_.path(); }
+  const std::vector<geometry::Vec2>& path() const override { return nav_.follower().path(); }
   const geometry::Footprint& footprint() const override { return footprint_; }
   TrafficRoute traffic_route() const override;
-  std::uint64_t route_version() const override { return follower_.version(); }
+  std::uint64_t route_version() const override { return nav_.follower().version(); }
   bool held_by_traffic() const override { return held_by_traffic_; }
   DockingView docking_view() const override;
 
@@ -128,8 +122,6 @@ class Stacker : public Robot {
   void enter(StackerState state);
   /// The route to where the current state drives; false when there is none for now.
   bool plan_route();
-  /// The static grid to the planners, when an obstacle changed it since they last had it.
-  void hand_grid_to_planners();
   void drive();
   void dock();
   void handle_forks();
@@ -165,9 +157,9 @@ class Stacker : public Robot {
   void update_centre();
 
   StackerConfig config_;
-  std::shared_ptr<const map::SiteMap> site_;
   geometry::Pose2 home_;
   geometry::Footprint footprint_;
+  Navigation nav_;
   sim::Tricycle body_;
   geometry::Pose2 estimate_;  ///< rear axle
   geometry::Pose2 truth_centre_;
@@ -175,14 +167,6 @@ class Stacker : public Robot {
   double time_ = 0.0;
   double next_pose_reading_ = 0.0;
   double next_scan_ = 0.0;
-  planning::StaticGrid static_grid_;
-  planning::RoadPlanner road_;
-  planning::GridAStar grid_astar_;
-  planning::RoutePlanner routes_;
-  std::uint64_t grid_revision_ = 0;
-  planning::LidarSim lidar_;
-  TrafficFollower follower_;
-  SafetyStop safety_;
   OrderReporter reports_;
 
   StackerState state_ = StackerState::kIdle;
@@ -206,9 +190,6 @@ class Stacker : public Robot {
   bool at_siding_end_ = false;  ///< the pursuit reached the end of the siding it was sent to
   geometry::Vec2 planned_end_;  ///< where its own plan's route ends: the docking's start
   std::map<int, geometry::Pose2> standing_;
-  std::vector<Neighbour> neighbours_;
-  std::vector<geometry::Polygon> true_neighbours_;
-  std::map<std::string, bool> obstacles_;
   control::BodyTwist twist_;
 };
 

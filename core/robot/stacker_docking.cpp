@@ -68,7 +68,7 @@ perception::PalletRow Stacker::pallet_row(const Pose2& place, double base_height
     if (geometry::distance(pose.position(), place.position()) > 6.0) continue;
     // A pallet stands on whatever its place stands on.
     double base = 0.0;
-    for (const auto& area : site_->site.loading_areas) {
+    for (const auto& area : nav_.site().site.loading_areas) {
       if (geometry::distance(area.pose.position(), pose.position()) < 0.5) base = area.height;
     }
     row.scene.add_pallet(pose, base);
@@ -89,7 +89,7 @@ void Stacker::start_docking() {
   law_.emplace(docking_params(), prior, estimate_, rng_());
   if (state_ == StackerState::kDocking) {
     double height = 0.0;
-    if (const auto* area = site_->site.find_area(order_->pick_area_id)) height = area->height;
+    if (const auto* area = nav_.site().site.find_area(order_->pick_area_id)) height = area->height;
     perception::StackerDetectorParams dp = config_.detector;
     dp.area.lateral_half = 0.5 * config_.row_pitch;
     detector_.emplace(config_.body.geometry, pallet_row(prior, height), dp, rng_());

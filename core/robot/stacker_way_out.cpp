@@ -15,7 +15,7 @@ std::vector<Vec2> Stacker::way_out_area() const {
   constexpr double kBeyondRoadStart = 1.0;  // metres of path
   constexpr double kSample = 0.25;          // metres between bodies along the path
   constexpr int kPivotSamples = 8;
-  const std::vector<Vec2>& path = follower_.path();
+  const std::vector<Vec2>& path = nav_.follower().path();
   std::vector<Vec2> corners;
   if (path.size() < 2) return corners;
   const auto add = [&](Vec2 rear, double yaw) { add_swept_body(corners, rear, yaw); };
@@ -26,7 +26,7 @@ std::vector<Vec2> Stacker::way_out_area() const {
   const double turn = geometry::angle_diff(first, here.yaw);
   for (int i = 0; i <= kPivotSamples; ++i) add(here.position(), here.yaw + turn * i / kPivotSamples);
   // Then the rear axle along the path, the body along its heading.
-  const double until = follower_.road_start() + kBeyondRoadStart;
+  const double until = nav_.follower().road_start() + kBeyondRoadStart;
   double along = 0.0;
   for (std::size_t i = 1; i < path.size() && along < until; ++i) {
     const Vec2 a = path[i - 1];
