@@ -62,7 +62,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
                               control_reader_.handle(), pallet_reader_.handle(), grant_reader_.handle()}) {
     waitset_.attach(reader);
   }
-  const auto& home = robot_->truth();
+  const geometry::Pose2 home = robot_->status().truth;
   log_->info("{} of fleet '{}' at home ({:.2f}, {:.2f}, {:.2f}) on site '{}', DDS domain {}", fleet_->robot_type,
              fleet_->id, home.x, home.y, home.yaw, options_.site->site.name, options_.domain);
 }
@@ -71,9 +71,10 @@ std::optional<model::OrderReport> FleetAgent::report(const std::string& status, 
                                                      int pallet_id, const geometry::Pose2& pallet_pose) {
   if (!order_) return std::nullopt;
   const auto& a = order_->assignment;
-  const int pallet = pallet_id >= 0 ? pallet_id : robot_->carried_load();
-  const model::OrderReport message{a.order_id,   options_.robot_id,           status, reason,     a.update_id,
-                                   clock_.now(), robot_->carried_load() >= 0, pallet, pallet_pose};
+  const int carried = robot_->status().carried_load;
+  const int pallet = pallet_id >= 0 ? pallet_id : carried;
+  const model::OrderReport message{a.order_id,   options_.robot_id, status, reason,     a.update_id,
+                                   clock_.now(), carried >= 0,      pallet, pallet_pose};
   report_writer_.write(message);
   return message;
 }
@@ -182,7 +183,7 @@ void FleetAgent::consider(const model::OrderAssignment& assignment) {
                         why,
                         assignment.update_id,
                         clock_.now(),
-                        robot_->carried_load() >= 0,
+                        robot_->status().carried_load >= 0,
                         -1,
                         {}});
 }
@@ -241,7 +242,7 @@ void FleetAgent::switch_map(LoadedMap loaded) {
     return;
   }
   const auto& next = loaded.site;
-  if (const std::string why = map::revision_mismatch(robot_->site().site, next->site); !why.empty()) {
+  if (const std::string why = map::revision_mismatch(robot_->navigation().site().site, next->site); !why.empty()) {
     log_->error("map '{}' assigned, staying on '{}': {}", map_id, map_id_, why);
     return;
   }
@@ -291,7 +292,7 @@ void FleetAgent::take_true_bodies(std::optional<model::NeighbourView>& latest) {
   if (!changed) return;
   std::vector<geometry::Polygon> footprints;
   for (const auto& [id, t] : truths_) footprints.push_back(geometry::footprint_polygon(t.pose, t.footprint));
-  robot_->set_true_neighbours(std::move(footprints));
+  robot_->navigation().set_true_neighbours(std::move(footprints));
 }
 
 void FleetAgent::handle_fleet_view(double now_sim) {
@@ -315,11 +316,11 @@ void FleetAgent::handle_fleet_view(double now_sim) {
   // restarted lack the robots it has not heard from yet. A complete view shows who has left the
   // radius it covers.
   if (latest->complete) {
-    neighbours_.update_within(listed, now_sim, robot_->estimate().position(), latest->radius);
+    neighbours_.update_within(listed, now_sim, robot_->status().estimate.position(), latest->radius);
   } else {
     neighbours_.update(listed, now_sim);
   }
-  robot_->set_neighbours(neighbours_.current());
+  robot_->navigation().set_neighbours(neighbours_.current());
 }
 
 void FleetAgent::handle_events() {
@@ -367,15 +368,16 @@ void FleetAgent::publish_state(double now_sim) {
   state.robot_id = options_.robot_id;
   state.fleet_id = fleet_->id;
   state.map_id = map_id_;
-  state.pose = robot_->estimate();
-  state.covariance = robot_->covariance();
-  state.localization_score = robot_->localization_score();
-  state.speed = robot_->command().vx;
-  state.yaw_rate = robot_->command().omega;
-  state.task_state = robot_->task_state();
-  state.detail = robot_->detail();
+  const robot::RobotStatus status = robot_->status();
+  state.pose = status.estimate;
+  state.covariance = status.covariance;
+  state.localization_score = status.localization_score;
+  state.speed = status.command.vx;
+  state.yaw_rate = status.command.omega;
+  state.task_state = status.task_state;
+  state.detail = status.detail;
   state.order_id = order_ ? order_->assignment.order_id : 0;
-  state.carrying_pallet = robot_->carried_load() >= 0;
+  state.carrying_pallet = status.carried_load >= 0;
   state.sim_time = now_sim;
   robot::DockingView docking = robot_->docking_view();
   state.docking_targets = std::move(docking.targets);
@@ -393,7 +395,7 @@ void FleetAgent::publish_state(double now_sim) {
   } else {
     state_writer_.write(state);
   }
-  truth_writer_.write({options_.robot_id, robot_->truth(), robot_->footprint(), state.carrying_pallet, now_sim});
+  truth_writer_.write({options_.robot_id, status.truth, status.footprint, state.carrying_pallet, now_sim});
   if (state.task_state != last_state_) {
     log_->info("state {}{}", state.task_state, state.detail.empty() ? "" : " (" + state.detail + ")");
     last_state_ = state.task_state;
@@ -401,9 +403,9 @@ void FleetAgent::publish_state(double now_sim) {
     log_->debug("state {} ({})", state.task_state, state.detail);
   }
   last_detail_ = state.detail;
-  if (robot_->path().size() != last_path_size_) {
-    path_writer_.write({options_.robot_id, robot_->path(), now_sim});
-    last_path_size_ = robot_->path().size();
+  if (robot_->navigation().follower().path().size() != last_path_size_) {
+    path_writer_.write({options_.robot_id, robot_->navigation().follower().path(), now_sim});
+    last_path_size_ = robot_->navigation().follower().path().size();
   }
 }
 
@@ -472,7 +474,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   const double publish_period_wall =
       std::max(1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
   // The robot keeps its own sim time from zero; `offset` maps it onto the shared clock.
-  double offset = clock_.now() - robot_->time();
+  double offset = clock_.now() - robot_->status().time;
   double last_publish_wall = 0.0;
   double target = clock_.now();
   publish_state(target);
@@ -492,7 +494,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     // Asleep until the next control step is due or an input arrives (the grants, orders and site
     // inputs wake the waitset): a fixed short timeout woke the process hundreds of times a second
     // for nothing, a fifth of an idle agent's CPU.
-    const double until_step_wall = clock_.to_wall(robot_->time() + offset + step - clock_.now());
+    const double until_step_wall = clock_.to_wall(robot_->status().time + offset + step - clock_.now());
     waitset_.wait(std::chrono::microseconds(static_cast<long>(std::clamp(until_step_wall, 0.0, kMaxSleepWall) * 1e6)));
     const double loop_wall = SimClock::wall_now();
     if (loop_wall - last_loop_wall >= grant_lost_gap_wall) drop_grant(clock_.now());
@@ -503,7 +505,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     handle_fleet_view(target);
     // Advance in fixed control steps to the clock. After a long gap (the process was stopped)
     // the body does not replay the missed time: it was frozen with its software.
-    double behind = target - (robot_->time() + offset);
+    double behind = target - (robot_->status().time + offset);
     if (behind > 1.0) {
       offset += behind - step;
       step_lag_.steps_skipped(static_cast<std::int64_t>((behind - step) / step));
@@ -517,9 +519,9 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       handle_events();
       // A long catch-up (a burst of camera frames, a loaded host) still publishes at the state
       // rate, so that the server's liveness deadline sees a robot that is only busy.
-      if (behind >= 2.0 * step) publish_when_due(robot_->time() + offset);
+      if (behind >= 2.0 * step) publish_when_due(robot_->status().time + offset);
     }
-    if (!publish_when_due(target) && traffic_ && robot_->route_version() != last_traffic_.version) {
+    if (!publish_when_due(target) && traffic_ && robot_->navigation().follower().version() != last_traffic_.version) {
       publish_traffic(target);
     }
     flush_delayed_states();

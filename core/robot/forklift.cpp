@@ -136,8 +136,19 @@ void Forklift::set_standing_loads(const std::map<int, Pose2>& standing) {
   for (const auto& [id, pose] : standing) pallets_.place(id, pose);
 }
 
-std::string Forklift::task_state() const {
-  return task::to_string(executor_.state());
+RobotStatus Forklift::status() const {
+  return {.time = sim_.time(),
+          .truth = sim_.truth(),
+          .estimate = sim_.estimate(),
+          .covariance = sim_.covariance(),
+          .localization_score = sim_.localization_score(),
+          .command = command_,
+          .task_state = task::to_string(executor_.state()),
+          .detail = reports_.detail(),
+          .order_id = order_id(),
+          .carried_load = carried_pallet_,
+          .footprint = footprint(),
+          .held_by_traffic = held_by_traffic_};
 }
 
 std::optional<std::string> Forklift::order_id() const {

@@ -132,15 +132,9 @@ class Forklift : public Robot {
   /// The standing pallets. Pallets carried by other robots are left out; the one on these forks
   /// is left alone.
   void set_standing_loads(const std::map<int, geometry::Pose2>& standing) override;
-  void set_neighbours(std::vector<Neighbour> neighbours) override { nav_.set_neighbours(std::move(neighbours)); }
-  /// What the onboard lidar sees.
-  void set_true_neighbours(std::vector<geometry::Polygon> footprints) override {
-    nav_.set_true_neighbours(std::move(footprints));
-  }
-  /// Roads, obstacles and planners come from the new map; the task replans on it. `route_graph`
-  /// replaces config.route_graph.
   void set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) override;
-  const map::SiteMap& site() const override { return nav_.site(); }
+  Navigation& navigation() override { return nav_; }
+  const Navigation& navigation() const override { return nav_; }
   void set_traffic_grant(const TrafficPermit& permit) override;
 
   /// One control step of 1 / control_rate_hz sim seconds.
@@ -148,25 +142,13 @@ class Forklift : public Robot {
   double step_period() const override { return 1.0 / config_.control_rate_hz; }
 
   // --- outputs --------------------------------------------------------------------------------
+  RobotStatus status() const override;
   std::vector<RobotEvent> take_events() override { return reports_.take_events(); }
-  double time() const override { return sim_.time(); }
-  const geometry::Pose2& truth() const override { return sim_.truth(); }
-  geometry::Pose2 estimate() const override { return sim_.estimate(); }
-  std::array<double, 9> covariance() const override { return sim_.covariance(); }
-  double localization_score() const override { return sim_.localization_score(); }
-  const control::BodyTwist& command() const override { return command_; }
-  std::string task_state() const override;
-  const std::string& detail() const override { return reports_.detail(); }
-  std::optional<std::string> order_id() const override;
-  /// The pallet on the forks, -1 when none.
-  int carried_load() const override { return carried_pallet_; }
-  const std::vector<geometry::Vec2>& path() const override { return nav_.follower().path(); }
-  const geometry::Footprint& footprint() const override { return config_.sim.forklift.footprint; }
   TrafficRoute traffic_route() const override;
-  std::uint64_t route_version() const override { return nav_.follower().version(); }
-  bool held_by_traffic() const override { return held_by_traffic_; }
 
  private:
+  std::optional<std::string> order_id() const;
+  const geometry::Footprint& footprint() const { return config_.sim.forklift.footprint; }
   /// The dynamic grid from the neighbours and a lidar scan, and temporaries seen free removed.
   void update_surroundings();
   /// Stops for what is in the way (met by the path sweep at `blocked_at`) and holds at the end

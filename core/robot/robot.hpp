@@ -86,14 +86,35 @@ struct RobotEvent {
   geometry::Pose2 load_pose;
 };
 
+/// What a robot tells of itself at a moment, the same for every type (model::RobotState and
+/// model::RobotTruth are made of it).
+struct RobotStatus {
+  double time = 0.0;                   ///< sim seconds since the robot started
+  geometry::Pose2 truth;               ///< where the body really is (simulation truth): its footprint's centre
+  geometry::Pose2 estimate;            ///< where the robot believes it is, the same point
+  std::array<double, 9> covariance{};  ///< of the estimate, row-major over x, y, yaw
+  double localization_score = 1.0;
+  control::BodyTwist command;  ///< the twist commanded in the last step
+  std::string task_state;
+  std::string detail;  ///< why the robot waits or failed, empty otherwise
+  std::optional<std::string> order_id;
+  int carried_load = -1;  ///< the id of the load it carries, -1 when none
+  geometry::Footprint footprint;
+  bool held_by_traffic = false;  ///< it stands at the end of what traffic granted it
+};
+
+class Navigation;  // robot/navigation.hpp
+
 /// One robot of any type, as the agent drives it: its simulated body and sensors and its own
 /// software. No I/O: the agent feeds it what arrives over DDS and publishes what it reports.
+/// What every type shares (the site, the other robots, the path under traffic grants) is its
+/// Navigation; what differs (the body, the sensors, the job) is the type's own.
 /// robot::make_robot (robot_factory.hpp) builds the one a fleet's `robot_type` names.
 class Robot {
  public:
   virtual ~Robot() = default;
 
-  // --- inputs ---------------------------------------------------------------------------------
+  // --- orders ---------------------------------------------------------------------------------
   /// Why this type cannot perform orders of `kind` at all; empty when it can.
   virtual std::string refusal(orders::OrderKind kind) const = 0;
   /// An order; false with the reason when the robot cannot take it now.
@@ -102,50 +123,35 @@ class Robot {
   /// when the robot cannot stop it now (a load half taken up).
   virtual bool withdraw() = 0;
   virtual void set_paused(bool paused) = 0;
+
+  // --- the world as the agent hears it --------------------------------------------------------
+  /// The server switched this robot to a revision of its site's map (see map::revision_mismatch);
+  /// `route_graph` is the graph to plan on, null for the site's own.
+  virtual void set_site(std::shared_ptr<const map::SiteMap> site,
+                        std::shared_ptr<const map::RoadGraph> route_graph) = 0;
   /// A designated static obstacle switched on or off. True when the robot is driving and asked
   /// for a new plan on the changed grid.
   virtual bool set_obstacle(const std::string& id, bool enabled) = 0;
   /// Where the loads really stand (simulation truth, owned by the server), by id; loads carried
   /// by other robots are left out.
   virtual void set_standing_loads(const std::map<int, geometry::Pose2>& standing) = 0;
-  virtual void set_neighbours(std::vector<Neighbour> neighbours) = 0;
-  /// Simulation truth of the other robots' footprints: what the onboard sensors see.
-  virtual void set_true_neighbours(std::vector<geometry::Polygon> footprints) = 0;
-  /// The server switched this robot to a revision of its site's map (see map::revision_mismatch);
-  /// `route_graph` is the graph to plan on, null for the site's own.
-  virtual void set_site(std::shared_ptr<const map::SiteMap> site,
-                        std::shared_ptr<const map::RoadGraph> route_graph) = 0;
-  virtual const map::SiteMap& site() const = 0;
   /// The traffic manager's latest grant for this robot (traffic on only).
   virtual void set_traffic_grant(const TrafficPermit& permit) = 0;
+  /// The site, the other robots (Navigation::set_neighbours, set_true_neighbours) and the path
+  /// being followed (navigation().follower()), as every type has them.
+  virtual Navigation& navigation() = 0;
+  virtual const Navigation& navigation() const = 0;
 
+  // --- time -----------------------------------------------------------------------------------
   /// One control step of step_period() sim seconds.
   virtual void step() = 0;
   virtual double step_period() const = 0;
 
-  // --- outputs --------------------------------------------------------------------------------
+  // --- what it reports ------------------------------------------------------------------------
+  virtual RobotStatus status() const = 0;
   virtual std::vector<RobotEvent> take_events() = 0;
-  virtual double time() const = 0;
-  virtual const geometry::Pose2& truth() const = 0;
-  virtual geometry::Pose2 estimate() const = 0;
-  virtual std::array<double, 9> covariance() const = 0;
-  virtual double localization_score() const = 0;
-  virtual const control::BodyTwist& command() const = 0;
-  virtual std::string task_state() const = 0;
-  /// Why the robot waits or failed, empty otherwise.
-  virtual const std::string& detail() const = 0;
-  virtual std::optional<std::string> order_id() const = 0;
-  /// The id of the load it carries, -1 when none.
-  virtual int carried_load() const = 0;
-  /// The path being followed (for RobotPath and the web view).
-  virtual const std::vector<geometry::Vec2>& path() const = 0;
-  virtual const geometry::Footprint& footprint() const = 0;
   /// The route to report to the traffic manager, with the progress along it.
   virtual TrafficRoute traffic_route() const = 0;
-  /// Its version alone: changes with every new route (no copy of the route).
-  virtual std::uint64_t route_version() const = 0;
-  /// Whether the robot stands at the end of what traffic granted it.
-  virtual bool held_by_traffic() const = 0;
   /// The docking under way; empty when none (and for types that do not dock).
   virtual DockingView docking_view() const { return {}; }
 };

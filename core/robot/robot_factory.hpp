@@ -7,6 +7,7 @@
 #include "config/fleet_config.hpp"
 #include "control/path_follower.hpp"
 #include "map/site_map.hpp"
+#include "robot/navigation.hpp"
 #include "robot/robot.hpp"
 
 namespace fleet::robot {

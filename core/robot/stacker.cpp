@@ -78,10 +78,21 @@ Pose2 Stacker::estimate() const {
   return geometry::body_pose_to_map(estimate_, {config_.body.geometry.centre_x(), 0.0, 0.0});
 }
 
-std::array<double, 9> Stacker::covariance() const {
+RobotStatus Stacker::status() const {
   const double p = config_.pose_noise.position_sigma * config_.pose_noise.position_sigma;
   const double y = config_.pose_noise.yaw_sigma * config_.pose_noise.yaw_sigma;
-  return {p, 0, 0, 0, p, 0, 0, 0, y};
+  return {.time = time_,
+          .truth = truth_centre_,
+          .estimate = estimate(),
+          .covariance = {p, 0, 0, 0, p, 0, 0, 0, y},
+          .localization_score = 1.0,
+          .command = twist_,
+          .task_state = to_string(state_),
+          .detail = reports_.detail(),
+          .order_id = order_id(),
+          .carried_load = carried_,
+          .footprint = footprint_,
+          .held_by_traffic = held_by_traffic_};
 }
 
 std::optional<std::string> Stacker::order_id() const {

@@ -82,33 +82,17 @@ class Stacker : public Robot {
   void set_paused(bool paused) override { paused_ = paused; }
   bool set_obstacle(const std::string& id, bool enabled) override;
   void set_standing_loads(const std::map<int, geometry::Pose2>& standing) override { standing_ = standing; }
-  void set_neighbours(std::vector<Neighbour> neighbours) override { nav_.set_neighbours(std::move(neighbours)); }
-  void set_true_neighbours(std::vector<geometry::Polygon> footprints) override {
-    nav_.set_true_neighbours(std::move(footprints));
-  }
   void set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) override;
-  const map::SiteMap& site() const override { return nav_.site(); }
+  Navigation& navigation() override { return nav_; }
+  const Navigation& navigation() const override { return nav_; }
   void set_traffic_grant(const TrafficPermit& permit) override;
 
   void step() override;
   double step_period() const override { return 1.0 / config_.control_rate_hz; }
 
+  RobotStatus status() const override;
   std::vector<RobotEvent> take_events() override { return reports_.take_events(); }
-  double time() const override { return time_; }
-  const geometry::Pose2& truth() const override { return truth_centre_; }
-  geometry::Pose2 estimate() const override;
-  std::array<double, 9> covariance() const override;
-  double localization_score() const override { return 1.0; }
-  const control::BodyTwist& command() const override { return twist_; }
-  std::string task_state() const override { return to_string(state_); }
-  const std::string& detail() const override { return reports_.detail(); }
-  std::optional<std::string> order_id() const override;
-  int carried_load() const override { return carried_; }
-  const std::vector<geometry::Vec2>& path() const override { return nav_.follower().path(); }
-  const geometry::Footprint& footprint() const override { return footprint_; }
   TrafficRoute traffic_route() const override;
-  std::uint64_t route_version() const override { return nav_.follower().version(); }
-  bool held_by_traffic() const override { return held_by_traffic_; }
   DockingView docking_view() const override;
 
   // For tests and logs.
@@ -117,6 +101,9 @@ class Stacker : public Robot {
   const control::DockingLaw* docking_law() const { return law_ ? &*law_ : nullptr; }
 
  private:
+  /// The body's centre, where the rear axle's estimate puts it.
+  geometry::Pose2 estimate() const;
+  std::optional<std::string> order_id() const;
   /// A transition of the job's table; false (and nothing changes) when the table has none.
   bool fire(StackerEvent event);
   void enter(StackerState state);

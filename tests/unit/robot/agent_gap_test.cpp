@@ -65,15 +65,15 @@ bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, const std:
     test::step_among(*robot, neighbours, bodies);
     robot->take_events();
   };
-  while (robot->time() < 1.0) step();
+  while (robot->status().time < 1.0) step();
   task::TaskOrder order;
   order.order_id = "1";
   order.kind = orders::OrderKind::kMove;
   order.drop_area_id = "EX4";
   order.drop_area = site->site.find_area("EX4")->pose;
   if (!robot->submit(order, why)) return false;
-  while (robot->time() < 20.0 && robot->path().size() < 2) step();
-  const auto stretch = straight_stretch(robot->path());
+  while (robot->status().time < 20.0 && robot->navigation().follower().path().size() < 2) step();
+  const auto stretch = straight_stretch(robot->navigation().follower().path());
   if (!stretch) {
     *why = "no straight 8 m in the route";
     return false;
@@ -82,18 +82,19 @@ bool drives_past_a_robot_beside_its_lane(const std::string& fleet_id, const std:
   const geometry::Vec2 left{-along.y, along.x};
   const geometry::Footprint other{1.2, 0.8};
   const geometry::Vec2 beside =
-      stretch->start + 4.0 * along + (robot->footprint().width / 2.0 + gap + other.width / 2.0) * left;
+      stretch->start + 4.0 * along + (robot->status().footprint.width / 2.0 + gap + other.width / 2.0) * left;
   const geometry::Pose2 pose{beside.x, beside.y, std::atan2(along.y, along.x)};
   neighbours = {{"fk9", pose, other, 0.0, 0.1}};
   bodies = {geometry::footprint_polygon(pose, other)};
-  const double start = robot->time();
-  const auto past = [&] { return geometry::dot(robot->truth().position() - stretch->start, along) > 7.0; };
-  while (robot->time() < start + 60.0 && !past()) {
+  const double start = robot->status().time;
+  const auto past = [&] { return geometry::dot(robot->status().truth.position() - stretch->start, along) > 7.0; };
+  while (robot->status().time < start + 60.0 && !past()) {
     step();
-    closest = std::min(closest, geometry::convex_polygons_distance(
-                                    geometry::footprint_polygon(robot->truth(), robot->footprint()), bodies.front()));
+    closest = std::min(
+        closest, geometry::convex_polygons_distance(
+                     geometry::footprint_polygon(robot->status().truth, robot->status().footprint), bodies.front()));
   }
-  if (!past()) *why = robot->task_state() + " (" + robot->detail() + ")";
+  if (!past()) *why = robot->status().task_state + " (" + robot->status().detail + ")";
   return past();
 }
 

@@ -38,8 +38,8 @@ task::TaskOrder order_between(const map::Site& site, const std::string& from, co
 /// Steps until an event of `kind` or the sim-time limit; collects every event.
 std::vector<RobotEvent> run_until(robot::Forklift& f, RobotEvent::Kind kind, double limit_s) {
   std::vector<RobotEvent> all;
-  const double end = f.time() + limit_s;
-  while (f.time() < end) {
+  const double end = f.status().time + limit_s;
+  while (f.status().time < end) {
     f.step();
     for (auto& e : f.take_events()) {
       all.push_back(e);
@@ -86,7 +86,7 @@ TEST(Forklift, CarriesARealPalletFromPickToDropAndGoesHome) {
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), &why)) << why;
 
   const auto events = run_until(f, RobotEvent::Kind::kDone, 300.0);
-  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
+  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.status().task_state << " " << f.status().detail;
   for (const char* phase : {"TO_PICK", "SEARCHING", "PICKING", "TO_DROP", "DROPPING"}) {
     EXPECT_TRUE(has(events, RobotEvent::Kind::kPhase, phase)) << phase;
   }
@@ -95,11 +95,11 @@ TEST(Forklift, CarriesARealPalletFromPickToDropAndGoesHome) {
   EXPECT_EQ(done.load_id, 1);  // the pallet that stood on A1
   const auto& a2 = site->site.find_area("A2")->pose;
   EXPECT_LT(geometry::distance(done.load_pose.position(), a2.position()), 0.03);
-  EXPECT_EQ(f.carried_load(), -1);
+  EXPECT_EQ(f.status().carried_load, -1);
 
   const auto back = run_until(f, RobotEvent::Kind::kHome, 200.0);
   ASSERT_TRUE(has(back, RobotEvent::Kind::kHome));
-  EXPECT_LT(geometry::distance(f.truth().position(), home.position()), 0.05);
+  EXPECT_LT(geometry::distance(f.status().truth.position(), home.position()), 0.05);
 }
 
 TEST(Forklift, WithdrawnWithThePalletLiftedItCarriesTheOrderOnToTheDrop) {
@@ -107,12 +107,12 @@ TEST(Forklift, WithdrawnWithThePalletLiftedItCarriesTheOrderOnToTheDrop) {
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 1, 1);
   f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
-  ASSERT_TRUE(has(run_until(f, RobotEvent::Kind::kLifted, 300.0), RobotEvent::Kind::kLifted)) << f.task_state();
+  ASSERT_TRUE(has(run_until(f, RobotEvent::Kind::kLifted, 300.0), RobotEvent::Kind::kLifted)) << f.status().task_state;
   // The order cannot be cancelled now [Forklift thesis, section 6.4]; stopping would leave the robot in the lane.
   EXPECT_FALSE(f.withdraw());
   const auto events = run_until(f, RobotEvent::Kind::kDone, 300.0);
-  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.task_state() << " " << f.detail();
-  EXPECT_EQ(f.carried_load(), -1);
+  ASSERT_TRUE(has(events, RobotEvent::Kind::kDone)) << "state " << f.status().task_state << " " << f.status().detail;
+  EXPECT_EQ(f.status().carried_load, -1);
 }
 
 TEST(Forklift, AnEmptyAreaFailsTheOrderAndTheRobotGoesHome) {
@@ -121,8 +121,8 @@ TEST(Forklift, AnEmptyAreaFailsTheOrderAndTheRobotGoesHome) {
   f.set_standing_loads({});  // no pallet anywhere
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
   const auto events = run_until(f, RobotEvent::Kind::kAreaEmpty, 200.0);
-  EXPECT_TRUE(has(events, RobotEvent::Kind::kAreaEmpty)) << f.task_state();
-  EXPECT_EQ(f.task_state(), "GO_HOME");
+  EXPECT_TRUE(has(events, RobotEvent::Kind::kAreaEmpty)) << f.status().task_state;
+  EXPECT_EQ(f.status().task_state, "GO_HOME");
 }
 
 TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
@@ -132,20 +132,20 @@ TEST(Forklift, ARobotStandingOnThePathMakesItWaitAndPlanAround) {
   f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   // Drive until a path exists, then put a robot on it 0.6 m ahead.
-  for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
-  ASSERT_GE(f.path().size(), 4u);
-  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
-  f.set_neighbours({{"other", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+  for (int i = 0; i < 200 && f.navigation().follower().path().size() < 4; ++i) f.step();
+  ASSERT_GE(f.navigation().follower().path().size(), 4u);
+  const geometry::Vec2 ahead = point_along(f.navigation().follower().path(), 0.6);
+  f.navigation().set_neighbours({{"other", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
   bool waited = false;
   for (int i = 0; i < 70 * 30 && !waited; ++i) {
     f.step();
-    waited = f.detail().ends_with(" ahead");
+    waited = f.status().detail.ends_with(" ahead");
   }
   EXPECT_TRUE(waited);
   // It never drives into the other robot.
   for (int i = 0; i < 70 * 60; ++i) {
     f.step();
-    const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
+    const auto mine = geometry::footprint_polygon(f.status().truth, f.status().footprint);
     ASSERT_FALSE(
         geometry::convex_polygons_overlap(mine, geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16})));
   }
@@ -160,7 +160,7 @@ void set_out_with_the_whole_route_granted(robot::Forklift& f, const map::SiteMap
   ASSERT_TRUE(f.submit(order_between(site.site, "A3", "A2"), nullptr));
   for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
   const robot::TrafficRoute route = f.traffic_route();
-  ASSERT_GE(route.points.size(), 4u) << f.detail();
+  ASSERT_GE(route.points.size(), 4u) << f.status().detail;
   f.set_traffic_grant({route.version, static_cast<int>(route.points.size()) - 1, 100.0, {}, {}, false});
 }
 
@@ -173,27 +173,27 @@ TEST(Forklift, ARouteToAPlaceBesideTheRoadAsksTrafficForWhatItsTurnOffTheLaneSwe
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   for (int i = 0; i < 400 && f.traffic_route().points.size() < 4; ++i) f.step();
   const robot::TrafficRoute route = f.traffic_route();
-  ASSERT_GE(route.points.size(), 4u) << f.detail();
+  ASSERT_GE(route.points.size(), 4u) << f.status().detail;
   ASSERT_FALSE(route.arrival_area.empty()) << "A3 lies beside the road, off the route's last point";
   const geometry::Polygon area = traffic::convex_hull(route.arrival_area);
   // The body turning on the spot at the road's end, in the loading area, and where it has backed
   // its forks out of a load it set down, any heading.
   const auto& end = site->graph.graph.points[static_cast<std::size_t>(route.points.back())];
   const geometry::Vec2 place = site->site.find_area("A3")->pose.position();
-  const geometry::Vec2 path_end = f.path().back();
+  const geometry::Vec2 path_end = f.navigation().follower().path().back();
   const geometry::Vec2 backed_out =
       path_end +
       (under_traffic(*site).task.place.back_out_distance / geometry::distance(path_end, place)) * (path_end - place);
   for (const geometry::Vec2 at : {geometry::Vec2{end.x, end.y}, place, backed_out}) {
     for (double yaw = 0.0; yaw < 2.0 * std::numbers::pi; yaw += std::numbers::pi / 8) {
-      for (const geometry::Vec2& corner : geometry::footprint_polygon({at.x, at.y, yaw}, f.footprint())) {
+      for (const geometry::Vec2& corner : geometry::footprint_polygon({at.x, at.y, yaw}, f.status().footprint)) {
         const geometry::Vec2 just_inside = at + 0.99 * (corner - at);  // corners may be the hull's own
         EXPECT_TRUE(geometry::contains(area, just_inside)) << "at (" << at.x << ", " << at.y << ")";
       }
     }
   }
   // Driving on the road it sweeps nothing the route's places do not cover.
-  const geometry::Vec2 start = f.path().front();
+  const geometry::Vec2 start = f.navigation().follower().path().front();
   EXPECT_GT(geometry::distance(start, {end.x, end.y}), 1.0);
   EXPECT_FALSE(geometry::contains(area, start)) << "the area reaches back to where the robot set off";
 }
@@ -202,22 +202,22 @@ TEST(Forklift, AStopForAnotherRobotsBodyIsReportedToTrafficOnceItHasLasted) {
   const auto site = table_a();
   robot::Forklift f(under_traffic(*site), site, site->site.find_home("H1")->pose, 3, 1);
   ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
-  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
-  f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
-  for (int i = 0; i < 70 * 30 && !f.detail().ends_with("fl9 ahead"); ++i) f.step();
-  ASSERT_TRUE(f.detail().ends_with("fl9 ahead")) << f.detail();
-  const double stopped_at = f.time();
+  const geometry::Vec2 ahead = point_along(f.navigation().follower().path(), 0.6);
+  f.navigation().set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+  for (int i = 0; i < 70 * 30 && !f.status().detail.ends_with("fl9 ahead"); ++i) f.step();
+  ASSERT_TRUE(f.status().detail.ends_with("fl9 ahead")) << f.status().detail;
+  const double stopped_at = f.status().time;
   // A short stop is nobody's business but its own ...
-  while (f.time() < stopped_at + 2.5) f.step();
+  while (f.status().time < stopped_at + 2.5) f.step();
   EXPECT_TRUE(f.traffic_route().stopped_for.empty());
   // ... a lasting one names the robot whose body it stands for.
-  while (f.time() < stopped_at + 3.5) f.step();
-  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+  while (f.status().time < stopped_at + 3.5) f.step();
+  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.status().detail;
   // Once that robot has gone and this one drives on, it waits for no one.
-  f.set_neighbours({});
-  const double freed_at = f.time();
-  while (f.time() < freed_at + 2.0) f.step();
-  EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.detail();
+  f.navigation().set_neighbours({});
+  const double freed_at = f.status().time;
+  while (f.status().time < freed_at + 2.0) f.step();
+  EXPECT_TRUE(f.traffic_route().stopped_for.empty()) << f.status().detail;
 }
 
 TEST(Forklift, UnderTheCoordinationCoreALastingStopOutlastsARouteHandedByTraffic) {
@@ -229,17 +229,17 @@ TEST(Forklift, UnderTheCoordinationCoreALastingStopOutlastsARouteHandedByTraffic
     config.stop_outlasts_reroute = outlasts;
     robot::Forklift f(config, site, site->site.find_home("H1")->pose, 3, 1);
     ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
-    const geometry::Vec2 ahead = point_along(f.path(), 0.6);
-    f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
-    for (int i = 0; i < 70 * 30 && !f.detail().ends_with("fl9 ahead"); ++i) f.step();
-    const double stopped_at = f.time();
-    while (f.time() < stopped_at + 3.5) f.step();
-    ASSERT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+    const geometry::Vec2 ahead = point_along(f.navigation().follower().path(), 0.6);
+    f.navigation().set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 0.0}});
+    for (int i = 0; i < 70 * 30 && !f.status().detail.ends_with("fl9 ahead"); ++i) f.step();
+    const double stopped_at = f.status().time;
+    while (f.status().time < stopped_at + 3.5) f.step();
+    ASSERT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.status().detail;
     const robot::TrafficRoute own = f.traffic_route();
     f.set_traffic_grant({own.version + 1, 0, 0.0, {}, own.points, false});
     for (int i = 0; i < 70 && f.traffic_route().version != own.version + 1; ++i) f.step();
-    ASSERT_EQ(f.traffic_route().version, own.version + 1) << f.detail();
-    EXPECT_EQ(f.traffic_route().stopped_for.empty(), !outlasts) << (outlasts ? "kept" : "cleared") << f.detail();
+    ASSERT_EQ(f.traffic_route().version, own.version + 1) << f.status().detail;
+    EXPECT_EQ(f.traffic_route().stopped_for.empty(), !outlasts) << (outlasts ? "kept" : "cleared") << f.status().detail;
   }
 }
 
@@ -249,13 +249,13 @@ TEST(Forklift, AStopForAStaleRobotsGrownCellsNamesThatRobot) {
   ASSERT_NO_FATAL_FAILURE(set_out_with_the_whole_route_granted(f, *site));
   // A robot standing 2 m ahead that has not reported for 3 s: its cells are grown by how far
   // it may have moved meanwhile, and the sweep meets them with its body well over 0.5 m away.
-  const geometry::Vec2 ahead = point_along(f.path(), 2.0);
-  f.set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 3.0}});
-  for (int i = 0; i < 70 * 30 && !f.detail().ends_with(" ahead"); ++i) f.step();
-  EXPECT_EQ(f.detail(), "robot fl9 ahead");
-  const double stopped_at = f.time();
-  while (f.time() < stopped_at + 3.5) f.step();
-  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.detail();
+  const geometry::Vec2 ahead = point_along(f.navigation().follower().path(), 2.0);
+  f.navigation().set_neighbours({{"fl9", {ahead.x, ahead.y, 0.0}, {0.25, 0.16}, 0.0, 3.0}});
+  for (int i = 0; i < 70 * 30 && !f.status().detail.ends_with(" ahead"); ++i) f.step();
+  EXPECT_EQ(f.status().detail, "robot fl9 ahead");
+  const double stopped_at = f.status().time;
+  while (f.status().time < stopped_at + 3.5) f.step();
+  EXPECT_EQ(f.traffic_route().stopped_for, std::vector<std::string>{"fl9"}) << f.status().detail;
 }
 
 /// A forklift from H1 under traffic whose every route is granted whole as soon as it reports
@@ -283,13 +283,13 @@ struct SidingOnTheWayHome {
   void yield_on_siding() {
     f.set_standing_loads(pallets_of(site->site));
     ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
-    while (f.time() < 20.0) step();
+    while (f.status().time < 20.0) step();
     ASSERT_TRUE(f.withdraw()) << "on its way to the pick, the order can be withdrawn";
     for (int i = 0; i < 400 && way_home.size() < 8; ++i) {
       step();
-      if (f.task_state() == "GO_HOME") way_home = f.traffic_route().points;
+      if (f.status().task_state == "GO_HOME") way_home = f.traffic_route().points;
     }
-    ASSERT_GE(way_home.size(), 8u) << f.task_state() << " " << f.detail();
+    ASSERT_GE(way_home.size(), 8u) << f.status().task_state << " " << f.status().detail;
     own_version = f.traffic_route().version;
     siding_end = way_home.size() / 2;
     f.set_traffic_grant({own_version + 1,
@@ -298,17 +298,18 @@ struct SidingOnTheWayHome {
                          {},
                          {way_home.begin(), way_home.begin() + static_cast<std::ptrdiff_t>(siding_end) + 1},
                          true});
-    while (f.traffic_route().version != own_version + 1 && f.time() < 200.0) step();
+    while (f.traffic_route().version != own_version + 1 && f.status().time < 200.0) step();
     const auto& end = site->graph.graph.points[static_cast<std::size_t>(way_home[siding_end])];
-    const double sent = f.time();
-    while (geometry::distance(f.estimate().position(), {end.x, end.y}) > 0.05 && f.time() < sent + 60.0) step();
-    ASSERT_LT(geometry::distance(f.estimate().position(), {end.x, end.y}), 0.05) << f.detail();
+    const double sent = f.status().time;
+    while (geometry::distance(f.status().estimate.position(), {end.x, end.y}) > 0.05 && f.status().time < sent + 60.0)
+      step();
+    ASSERT_LT(geometry::distance(f.status().estimate.position(), {end.x, end.y}), 0.05) << f.status().detail;
   }
 
   /// Steps until the robot reports home, up to `limit_s` sim seconds.
   bool drive_home(double limit_s) {
-    const double end = f.time() + limit_s;
-    while (f.time() < end) {
+    const double end = f.status().time + limit_s;
+    while (f.status().time < end) {
       step();
       for (const auto& e : f.take_events()) {
         if (e.kind == RobotEvent::Kind::kHome) return true;
@@ -331,9 +332,9 @@ TEST(Forklift, BackFromASidingItStillLeavesTheRoadForItsHome) {
                          {},
                          {g.way_home.begin() + static_cast<std::ptrdiff_t>(g.siding_end), g.way_home.end()},
                          false});
-  ASSERT_TRUE(g.drive_home(120.0)) << g.f.task_state() << " " << g.f.detail();
-  EXPECT_LT(geometry::distance(g.f.truth().position(), g.home.position()), 0.05)
-      << "home reached at (" << g.f.truth().x << ", " << g.f.truth().y << ")";
+  ASSERT_TRUE(g.drive_home(120.0)) << g.f.status().task_state << " " << g.f.status().detail;
+  EXPECT_LT(geometry::distance(g.f.status().truth.position(), g.home.position()), 0.05)
+      << "home reached at (" << g.f.status().truth.x << ", " << g.f.status().truth.y << ")";
 }
 
 TEST(Forklift, NotCalledBackFromASidingItAsksForItsOwnWayOn) {
@@ -341,16 +342,16 @@ TEST(Forklift, NotCalledBackFromASidingItAsksForItsOwnWayOn) {
   // has arrived, and never calls it back. After siding_timeout the robot plans its way on.
   SidingOnTheWayHome g;
   ASSERT_NO_FATAL_FAILURE(g.yield_on_siding());
-  const double arrived = g.f.time();
-  while (g.f.time() < arrived + 25.0) g.step();
+  const double arrived = g.f.status().time;
+  while (g.f.status().time < arrived + 25.0) g.step();
   EXPECT_EQ(g.f.traffic_route().version, g.own_version + 1) << "still waits on the siding";
-  while (g.f.time() < arrived + 35.0 && g.f.traffic_route().version == g.own_version + 1) g.step();
+  while (g.f.status().time < arrived + 35.0 && g.f.traffic_route().version == g.own_version + 1) g.step();
   const robot::TrafficRoute own = g.f.traffic_route();
   EXPECT_EQ(own.version % 2, 0u) << "a route of its own";
   ASSERT_FALSE(own.points.empty());
   EXPECT_EQ(own.points.back(), g.way_home.back());
-  ASSERT_TRUE(g.drive_home(120.0)) << g.f.task_state() << " " << g.f.detail();
-  EXPECT_LT(geometry::distance(g.f.truth().position(), g.home.position()), 0.05);
+  ASSERT_TRUE(g.drive_home(120.0)) << g.f.status().task_state << " " << g.f.status().detail;
+  EXPECT_LT(geometry::distance(g.f.status().truth.position(), g.home.position()), 0.05);
 }
 
 TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
@@ -363,18 +364,21 @@ TEST(Forklift, UnderTrafficAnObstacleClosingTheOneWayRouteIsPassedAgainstIt) {
   f.set_standing_loads(pallets_of(site->site));
   f.set_obstacle("O4", true);
   ASSERT_TRUE(f.submit(order_between(site->site, "A4", "A1"), nullptr));
-  for (int i = 0; i < 400 && f.path().size() < 2; ++i) f.step();
-  ASSERT_GE(f.path().size(), 2u) << f.detail();
+  for (int i = 0; i < 400 && f.navigation().follower().path().size() < 2; ++i) f.step();
+  ASSERT_GE(f.navigation().follower().path().size(), 2u) << f.status().detail;
   const auto o4 = site->site.find_obstacle("O4")->polygon;
   bool through_o4 = false, up_the_east_ring = false;
-  for (std::size_t i = 1; i < f.path().size(); ++i) {
-    through_o4 = through_o4 || geometry::segment_intersects_polygon(f.path()[i - 1], f.path()[i], o4);
-    up_the_east_ring = up_the_east_ring || (f.path()[i].x > 2.5 && f.path()[i].y > f.path()[i - 1].y + 1e-6);
+  for (std::size_t i = 1; i < f.navigation().follower().path().size(); ++i) {
+    through_o4 = through_o4 || geometry::segment_intersects_polygon(f.navigation().follower().path()[i - 1],
+                                                                    f.navigation().follower().path()[i], o4);
+    up_the_east_ring =
+        up_the_east_ring || (f.navigation().follower().path()[i].x > 2.5 &&
+                             f.navigation().follower().path()[i].y > f.navigation().follower().path()[i - 1].y + 1e-6);
   }
   EXPECT_FALSE(through_o4);
   EXPECT_TRUE(up_the_east_ring);
   const auto& a4 = site->site.find_area("A4")->pose;
-  EXPECT_LT(geometry::distance(f.path().back(), a4.position()), 0.45);
+  EXPECT_LT(geometry::distance(f.navigation().follower().path().back(), a4.position()), 0.45);
 }
 
 TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
@@ -384,21 +388,21 @@ TEST(Forklift, PicksWithAnotherRobotParkedNextToThePickArea) {
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H2")->pose, seed, 1);
     f.set_standing_loads(pallets_of(site->site));
-    f.set_neighbours({{"fl1", site->site.find_home("H1")->pose, {0.25, 0.16}, 0.0, 0.0}});
+    f.navigation().set_neighbours({{"fl1", site->site.find_home("H1")->pose, {0.25, 0.16}, 0.0, 0.0}});
     ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
     double worst = 0.0;
-    const double end = f.time() + 300.0;
+    const double end = f.status().time + 300.0;
     bool done = false, empty = false;
-    while (f.time() < end && !done && !empty) {
+    while (f.status().time < end && !done && !empty) {
       f.step();
-      worst = std::max(worst, geometry::distance(f.truth().position(), f.estimate().position()));
+      worst = std::max(worst, geometry::distance(f.status().truth.position(), f.status().estimate.position()));
       for (const auto& e : f.take_events()) {
         done = done || e.kind == RobotEvent::Kind::kDone;
         empty = empty || e.kind == RobotEvent::Kind::kAreaEmpty;
       }
     }
     if (!done) ++failures;
-    EXPECT_TRUE(done) << "seed " << seed << ": " << (empty ? "area reported empty" : f.task_state())
+    EXPECT_TRUE(done) << "seed " << seed << ": " << (empty ? "area reported empty" : f.status().task_state)
                       << ", worst localization error " << worst << " m";
   }
   EXPECT_EQ(failures, 0);
@@ -411,16 +415,17 @@ TEST(Forklift, TheLidarAloneStopsItForARobotMissingFromFleetView) {
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H1")->pose, 4, 1);
   f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
-  for (int i = 0; i < 200 && f.path().size() < 4; ++i) f.step();
-  ASSERT_GE(f.path().size(), 4u);
-  const geometry::Vec2 ahead = point_along(f.path(), 0.6);
+  for (int i = 0; i < 200 && f.navigation().follower().path().size() < 4; ++i) f.step();
+  ASSERT_GE(f.navigation().follower().path().size(), 4u);
+  const geometry::Vec2 ahead = point_along(f.navigation().follower().path(), 0.6);
   const auto other = geometry::footprint_polygon({ahead.x, ahead.y, 0.0}, {0.25, 0.16});
-  f.set_true_neighbours({other});  // and no FleetView neighbour at all
+  f.navigation().set_true_neighbours({other});  // and no FleetView neighbour at all
   bool waited = false;
   for (int i = 0; i < 70 * 60; ++i) {
     f.step();
-    waited = waited || f.detail().ends_with(" ahead");
-    ASSERT_FALSE(geometry::convex_polygons_overlap(geometry::footprint_polygon(f.truth(), f.footprint()), other));
+    waited = waited || f.status().detail.ends_with(" ahead");
+    ASSERT_FALSE(
+        geometry::convex_polygons_overlap(geometry::footprint_polygon(f.status().truth, f.status().footprint), other));
   }
   EXPECT_TRUE(waited);
 }
@@ -433,17 +438,18 @@ TEST(Forklift, BackingOutOfADropItStopsForARobotOnlyItsLidarSees) {
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, site->site.find_home("H2")->pose, 3, 1);
   f.set_standing_loads(pallets_of(site->site));
   ASSERT_TRUE(f.submit(order_between(site->site, "A1", "A2"), nullptr));
-  for (int i = 0; i < 70 * 300 && !(f.task_state() == "DROP_PALLET" && f.truth().y < 0.33); ++i) f.step();
-  ASSERT_EQ(f.task_state(), "DROP_PALLET");
+  for (int i = 0; i < 70 * 300 && !(f.status().task_state == "DROP_PALLET" && f.status().truth.y < 0.33); ++i) f.step();
+  ASSERT_EQ(f.status().task_state, "DROP_PALLET");
   // The back-out ends with the body's centre at about y = 0.47 (its rear edge at 0.60).
   const geometry::Polygon other =
-      geometry::footprint_polygon({f.truth().x, 0.693, -std::numbers::pi / 2}, {0.25, 0.16});
-  f.set_true_neighbours({other});
+      geometry::footprint_polygon({f.status().truth.x, 0.693, -std::numbers::pi / 2}, {0.25, 0.16});
+  f.navigation().set_true_neighbours({other});
   double closest = 1.0;
   for (int i = 0; i < 70 * 20; ++i) {
     f.step();
-    const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
-    ASSERT_FALSE(geometry::convex_polygons_overlap(mine, other)) << "at (" << f.truth().x << ", " << f.truth().y << ")";
+    const auto mine = geometry::footprint_polygon(f.status().truth, f.status().footprint);
+    ASSERT_FALSE(geometry::convex_polygons_overlap(mine, other))
+        << "at (" << f.status().truth.x << ", " << f.status().truth.y << ")";
     closest = std::min(closest, geometry::convex_polygons_distance(mine, other));
   }
   EXPECT_GT(closest, 0.01);
@@ -465,7 +471,7 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
       ASSERT_TRUE(f.submit(order_between(site->site, from, to), nullptr));
       std::uint64_t granted = 0;
       bool home = false;
-      while (f.time() < 400.0 && !home) {
+      while (f.status().time < 400.0 && !home) {
         const robot::TrafficRoute r = f.traffic_route();
         if (!r.points.empty() && r.version != granted) {
           f.set_traffic_grant({r.version, static_cast<int>(r.points.size()) - 1, 100.0, {}, {}, false});
@@ -473,7 +479,7 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
         }
         f.step();
         for (const auto& e : f.take_events()) home = home || e.kind == RobotEvent::Kind::kHome;
-        const auto mine = geometry::footprint_polygon(f.truth(), f.footprint());
+        const auto mine = geometry::footprint_polygon(f.status().truth, f.status().footprint);
         for (const auto& h : site->site.homes) {
           if (h.id == start) continue;
           const double gap =
@@ -484,7 +490,8 @@ TEST(Forklift, DrivingOrdersFromTheHomesBesideTheSouthJunctionsItKeepsClearOfThe
           }
         }
       }
-      EXPECT_TRUE(home) << start << " " << from << "->" << to << ": " << f.task_state() << " " << f.detail();
+      EXPECT_TRUE(home) << start << " " << from << "->" << to << ": " << f.status().task_state << " "
+                        << f.status().detail;
     }
   }
   EXPECT_GE(worst, robot::ForkliftConfig::defaults().safety_gap) << where;
@@ -500,16 +507,17 @@ TEST(Forklift, StoppedCloseBesideAParkedBodyItStepsAwayToTurnAndDrivesOn) {
   const auto parked_body = geometry::footprint_polygon(parked, {0.25, 0.16});
   robot::Forklift f(robot::ForkliftConfig::defaults(), site, close_by, 8, 1);
   f.set_standing_loads(pallets_of(site->site));
-  f.set_neighbours({{"fl5", parked, {0.25, 0.16}, 0.0, 0.0}});
-  f.set_true_neighbours({parked_body});
+  f.navigation().set_neighbours({{"fl5", parked, {0.25, 0.16}, 0.0, 0.0}});
+  f.navigation().set_true_neighbours({parked_body});
   ASSERT_TRUE(f.submit(order_between(site->site, "A3", "A2"), nullptr));
   double closest = 1.0;
-  while (f.time() < 30.0 && geometry::distance(f.truth().position(), close_by.position()) < 0.3) {
+  while (f.status().time < 30.0 && geometry::distance(f.status().truth.position(), close_by.position()) < 0.3) {
     f.step();
     closest = std::min(closest, geometry::convex_polygons_distance(
-                                    geometry::footprint_polygon(f.truth(), f.footprint()), parked_body));
+                                    geometry::footprint_polygon(f.status().truth, f.status().footprint), parked_body));
   }
-  EXPECT_GE(geometry::distance(f.truth().position(), close_by.position()), 0.3) << f.task_state() << " " << f.detail();
+  EXPECT_GE(geometry::distance(f.status().truth.position(), close_by.position()), 0.3)
+      << f.status().task_state << " " << f.status().detail;
   EXPECT_GT(closest, 0.01);
 }
 
@@ -520,7 +528,7 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
   SidingOnTheWayHome g;
   g.f.set_standing_loads(pallets_of(g.site->site));
   ASSERT_TRUE(g.f.submit(order_between(g.site->site, "A3", "A2"), nullptr));
-  while (g.f.time() < 20.0) g.step();
+  while (g.f.status().time < 20.0) g.step();
   const robot::TrafficRoute own = g.f.traffic_route();
   ASSERT_GE(own.points.size(), 8u);
   const auto& points = g.site->graph.graph.points;
@@ -532,7 +540,7 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
   double best = 1e9;
   for (std::size_t k = 0; k + 1 < own.points.size(); ++k) {
     const double d =
-        geometry::point_segment_distance(g.f.estimate().position(), at(own.points[k]), at(own.points[k + 1]));
+        geometry::point_segment_distance(g.f.status().estimate.position(), at(own.points[k]), at(own.points[k + 1]));
     if (d < best) {
       best = d;
       behind = k;
@@ -546,15 +554,15 @@ TEST(Forklift, ARouteHandedOverFromThePointBehindItIsJoinedAheadWithoutTurningRo
                          {},
                          {own.points.begin() + static_cast<std::ptrdiff_t>(behind), own.points.end()},
                          false});
-  const geometry::Vec2 start = g.f.truth().position();
+  const geometry::Vec2 start = g.f.status().truth.position();
   double worst_turn = 0.0;
-  while (g.f.time() < 23.0) {
+  while (g.f.status().time < 23.0) {
     g.step();
-    worst_turn = std::max(worst_turn, std::abs(geometry::angle_diff(g.f.truth().yaw, heading)));
+    worst_turn = std::max(worst_turn, std::abs(geometry::angle_diff(g.f.status().truth.yaw, heading)));
   }
   EXPECT_EQ(g.f.traffic_route().version, own.version + 1);
   EXPECT_LT(worst_turn, 0.8) << "turned round to the point behind";
-  EXPECT_GT(geometry::distance(g.f.truth().position(), start), 0.2) << g.f.detail();
+  EXPECT_GT(geometry::distance(g.f.status().truth.position(), start), 0.2) << g.f.status().detail;
 }
 
 TEST(Forklift, StandingAtA1WithO3EnabledItLeavesTheShadowedAnchorOutOfItsFix) {
@@ -572,7 +580,7 @@ TEST(Forklift, StandingAtA1WithO3EnabledItLeavesTheShadowedAnchorOutOfItsFix) {
       robot::Forklift f(config, site, place, seed, 1);
       f.set_obstacle("O3", true);  // true only when it makes a driving robot plan again
       for (int i = 0; i < 70 * 8; ++i) f.step();
-      sum += geometry::distance(f.truth().position(), f.estimate().position());
+      sum += geometry::distance(f.status().truth.position(), f.status().estimate.position());
     }
     return sum / 5.0;
   };

@@ -37,17 +37,17 @@ TEST(MapSwitch, ARobotOnARoadTheNewMapClosesDrivesBackOntoTheRoadsAndDoesItsOrde
 
   bool done = false;
   std::string no_route_at;
-  while (!done && robot->time() < 120.0) {
+  while (!done && robot->status().time < 120.0) {
     test::grant_everything(*robot);
     robot->step();
-    if (robot->detail() == "no route" && no_route_at.empty()) no_route_at = std::to_string(robot->time());
+    if (robot->status().detail == "no route" && no_route_at.empty()) no_route_at = std::to_string(robot->status().time);
     for (const auto& e : robot->take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
       done = done || (e.kind == RobotEvent::Kind::kDone && e.order_id == "23");
     }
   }
-  EXPECT_TRUE(done) << robot->task_state() << " (" << robot->detail() << ") at " << robot->truth().x << ", "
-                    << robot->truth().y;
+  EXPECT_TRUE(done) << robot->status().task_state << " (" << robot->status().detail << ") at "
+                    << robot->status().truth.x << ", " << robot->status().truth.y;
   EXPECT_TRUE(no_route_at.empty()) << "no route at " << no_route_at << " s";
 }
 

@@ -40,29 +40,30 @@ struct PlantPicker {
 TEST(PickerBase, DrivesFromItsStallIntoTheRackAisleOnMarkersAndOdometry) {
   const PlantPicker plant;
   auto picker = plant.make("PP1");
-  EXPECT_EQ(picker->footprint().length, 0.65);
+  EXPECT_EQ(picker->status().footprint.length, 0.65);
   // Where the server sends a move to a loading area: the road in front of it, facing it.
   const auto target = plant.site->site.find_area("RB3")->approach_pose(plant.site->site.approach_distance);
   ASSERT_TRUE(picker->submit({"1", "", {}, "RB3", target, orders::OrderKind::kMove}, nullptr));
   bool done = false;
   double worst = 0.0;
-  while (!done && picker->time() < 150.0) {
+  while (!done && picker->status().time < 150.0) {
     test::grant_everything(*picker);
     picker->step();
-    worst = std::max(worst, geometry::distance(picker->estimate().position(), picker->truth().position()));
+    worst =
+        std::max(worst, geometry::distance(picker->status().estimate.position(), picker->status().truth.position()));
     for (const auto& e : picker->take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
       done = done || e.kind == RobotEvent::Kind::kDone;
     }
   }
-  ASSERT_TRUE(done) << picker->task_state() << " (" << picker->detail() << ") at " << picker->truth().x << ", "
-                    << picker->truth().y;
-  EXPECT_LT(geometry::distance(picker->truth().position(), target.position()), 0.15);
-  EXPECT_GT(picker->truth().y, 10.2 + 0.25) << "in the aisle, clear of the rack face";
-  std::cout << "picker: PP1 -> RB3 in " << picker->time() << " s sim, estimate off by " << worst * 100.0
+  ASSERT_TRUE(done) << picker->status().task_state << " (" << picker->status().detail << ") at "
+                    << picker->status().truth.x << ", " << picker->status().truth.y;
+  EXPECT_LT(geometry::distance(picker->status().truth.position(), target.position()), 0.15);
+  EXPECT_GT(picker->status().truth.y, 10.2 + 0.25) << "in the aisle, clear of the rack face";
+  std::cout << "picker: PP1 -> RB3 in " << picker->status().time << " s sim, estimate off by " << worst * 100.0
             << " cm at worst\n";
   EXPECT_LT(worst, 0.15) << "the estimate stays within 15 cm all the way, 30 m and four turns";
-  EXPECT_GT(picker->localization_score(), 0.3);
+  EXPECT_GT(picker->status().localization_score, 0.3);
 }
 
 // A tour of two lines [Picker thesis, section 5.3.3.1.1, beyond its one box per job]: to RB1 and
@@ -79,30 +80,30 @@ TEST(PickerBase, DrivesAPickTourPicksEachLinesBoxesAndPutsThemDownAtThePackingSt
   std::set<std::string> states;
   bool done = false;
   double picking_s = 0.0, dropping_s = 0.0;
-  while (!done && picker->time() < 600.0) {
+  while (!done && picker->status().time < 600.0) {
     test::grant_everything(*picker);
     picker->step();
-    const std::string state = picker->task_state();
+    const std::string state = picker->status().task_state;
     states.insert(state);
     if (state == "PICK_ITEMS") picking_s += picker->step_period();
     if (state == "DROP_ITEMS") {
       dropping_s += picker->step_period();
       // Side-on beside the packing pallet, within the arm's reach of it.
-      ASSERT_LT(geometry::distance(picker->truth().position(), {7.825, 4.1}), 0.15);
+      ASSERT_LT(geometry::distance(picker->status().truth.position(), {7.825, 4.1}), 0.15);
     }
     for (const auto& e : picker->take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
       done = done || e.kind == RobotEvent::Kind::kDone;
     }
   }
-  ASSERT_TRUE(done) << picker->task_state() << " (" << picker->detail() << ") at " << picker->truth().x << ", "
-                    << picker->truth().y;
+  ASSERT_TRUE(done) << picker->status().task_state << " (" << picker->status().detail << ") at "
+                    << picker->status().truth.x << ", " << picker->status().truth.y;
   for (const char* s : {"TRACK_PATH", "PICK_ITEMS", "DROP_ITEMS"}) EXPECT_TRUE(states.contains(s)) << s;
   // Two boxes: each located, picked and set on the tray, then taken off and put down.
   EXPECT_GT(picking_s, 20.0);
   EXPECT_GT(dropping_s, 20.0);
-  std::cout << "picker tour: 2 lines, 2 boxes in " << picker->time() << " s sim; arm " << picking_s << " s picking, "
-            << dropping_s << " s dropping\n";
+  std::cout << "picker tour: 2 lines, 2 boxes in " << picker->status().time << " s sim; arm " << picking_s
+            << " s picking, " << dropping_s << " s dropping\n";
 }
 
 TEST(PickerBase, TakesNoTransports) {
@@ -137,23 +138,25 @@ TEST(PickerBase, KeepsItsEstimateTourAfterTourAcrossThePlant) {
     std::string why;
     ASSERT_TRUE(picker->submit(tour, &why)) << why;
     bool done = false;
-    const double started = picker->time();
-    while (!done && picker->time() < started + 400.0) {
+    const double started = picker->status().time;
+    while (!done && picker->status().time < started + 400.0) {
       test::grant_everything(*picker);
       picker->step();
-      const double error = geometry::distance(picker->estimate().position(), picker->truth().position());
+      const double error = geometry::distance(picker->status().estimate.position(), picker->status().truth.position());
       if (error > worst) {
         worst = error;
-        worst_where = from + " -> " + to + " " + picker->task_state() + " at (" + std::to_string(picker->truth().x) +
-                      ", " + std::to_string(picker->truth().y) + "), estimate (" +
-                      std::to_string(picker->estimate().x) + ", " + std::to_string(picker->estimate().y) + ")";
+        worst_where = from + " -> " + to + " " + picker->status().task_state + " at (" +
+                      std::to_string(picker->status().truth.x) + ", " + std::to_string(picker->status().truth.y) +
+                      "), estimate (" + std::to_string(picker->status().estimate.x) + ", " +
+                      std::to_string(picker->status().estimate.y) + ")";
       }
       for (const auto& e : picker->take_events()) {
         ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << from << " -> " << to << ": " << e.text;
         done = done || e.kind == RobotEvent::Kind::kDone;
       }
     }
-    ASSERT_TRUE(done) << from << " -> " << to << ": " << picker->task_state() << " (" << picker->detail() << ")";
+    ASSERT_TRUE(done) << from << " -> " << to << ": " << picker->status().task_state << " (" << picker->status().detail
+                      << ")";
   }
   std::cout << "picker: 5 tours, estimate off by " << worst * 100.0 << " cm at worst: " << worst_where << "\n";
   EXPECT_LT(worst, 0.5) << "worst " << worst_where;

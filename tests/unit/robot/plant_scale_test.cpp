@@ -197,7 +197,7 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
   const auto& to = site->site.find_area("EX7")->pose;
   ASSERT_TRUE(f.submit({"1", "FG5", from, "EX7", to}, nullptr));
   bool done = false;
-  while (!done && f.time() < 240.0) {
+  while (!done && f.status().time < 240.0) {
     f.step();
     for (const auto& e : f.take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
@@ -208,8 +208,8 @@ TEST(ForkliftForVehicle, ARealForkliftCarriesAPalletAcrossThePlant) {
       }
     }
   }
-  EXPECT_TRUE(done) << "state " << f.task_state() << " (" << f.detail() << ") at " << f.truth().x << ", "
-                    << f.truth().y;
+  EXPECT_TRUE(done) << "state " << f.status().task_state << " (" << f.status().detail << ") at " << f.status().truth.x
+                    << ", " << f.status().truth.y;
 }
 
 TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
@@ -222,17 +222,18 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallBesideOneParkedInTheNext) {
   const robot::Neighbour parked{"fk4", {41.5582, 29.0320, -1.5694}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
   const auto step = [&] { test::step_among(*robot, {parked}, {parked_body}); };
-  while (robot->time() < 1.0) step();
+  while (robot->status().time < 1.0) step();
   ASSERT_TRUE(robot->submit({"38", "WA2", site->site.find_area("WA2")->pose, "EX4", site->site.find_area("EX4")->pose},
                             nullptr));
   double closest = std::numeric_limits<double>::infinity();
-  while (robot->time() < 11.0 && robot->truth().y > 27.5) {
+  while (robot->status().time < 11.0 && robot->status().truth.y > 27.5) {
     test::grant_everything(*robot);
     step();
-    closest = std::min(closest, geometry::convex_polygons_distance(
-                                    geometry::footprint_polygon(robot->truth(), robot->footprint()), parked_body));
+    closest = std::min(closest,
+                       geometry::convex_polygons_distance(
+                           geometry::footprint_polygon(robot->status().truth, robot->status().footprint), parked_body));
   }
-  EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
+  EXPECT_LE(robot->status().truth.y, 27.5) << robot->status().task_state << " (" << robot->status().detail << ")";
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
 }
 
@@ -249,19 +250,20 @@ TEST(ForkliftForVehicle, AForkliftLeavesItsStallForwardsFromWhereItStoppedComing
   const robot::Neighbour parked{"fk2", {next_home.x, next_home.y - 0.04, next_home.yaw}, {1.2, 0.8}, 0.0, 0.1};
   const geometry::Polygon parked_body = geometry::footprint_polygon(parked.pose, parked.footprint);
   const auto step = [&] { test::step_among(*robot, {parked}, {parked_body}); };
-  while (robot->time() < 1.0) step();
+  while (robot->status().time < 1.0) step();
   ASSERT_TRUE(robot->submit({"19", "WA2", site->site.find_area("WA2")->pose, "EN1", site->site.find_area("EN1")->pose},
                             nullptr));
   double most_turned = 0.0;
   double closest = std::numeric_limits<double>::infinity();
-  while (robot->time() < 11.0 && robot->truth().y > 27.5) {
+  while (robot->status().time < 11.0 && robot->status().truth.y > 27.5) {
     test::grant_everything(*robot);
     step();
-    most_turned = std::max(most_turned, std::abs(geometry::angle_diff(robot->truth().yaw, home.yaw)));
-    closest = std::min(closest, geometry::convex_polygons_distance(
-                                    geometry::footprint_polygon(robot->truth(), robot->footprint()), parked_body));
+    most_turned = std::max(most_turned, std::abs(geometry::angle_diff(robot->status().truth.yaw, home.yaw)));
+    closest = std::min(closest,
+                       geometry::convex_polygons_distance(
+                           geometry::footprint_polygon(robot->status().truth, robot->status().footprint), parked_body));
   }
-  EXPECT_LE(robot->truth().y, 27.5) << robot->task_state() << " (" << robot->detail() << ")";
+  EXPECT_LE(robot->status().truth.y, 27.5) << robot->status().task_state << " (" << robot->status().detail << ")";
   EXPECT_LT(most_turned, 0.3);
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
 }
@@ -277,32 +279,33 @@ TEST(ForkliftForVehicle, AReachTruckStoppedForAPickerOnItsWayNamesThePicker) {
   std::vector<robot::Neighbour> picker;
   const auto step = [&] {
     test::grant_everything(*robot);
-    robot->set_neighbours(picker);
+    robot->navigation().set_neighbours(picker);
     robot->step();
   };
-  while (robot->time() < 1.0) step();
+  while (robot->status().time < 1.0) step();
   ASSERT_TRUE(robot->submit({"7", "FG5", site->site.find_area("FG5")->pose, "RH4", site->site.find_area("RH4")->pose},
                             nullptr));
-  while (robot->time() < 20.0 && robot->path().size() < 2) step();
-  ASSERT_GE(robot->path().size(), 2u);
+  while (robot->status().time < 20.0 && robot->navigation().follower().path().size() < 2) step();
+  ASSERT_GE(robot->navigation().follower().path().size(), 2u);
   // Where the truck will be in 3 m: a picker stands there, reporting as it should.
-  double left = 3.0 + geometry::distance(robot->estimate().position(), robot->path().front());
-  geometry::Vec2 at = robot->path().front();
-  for (std::size_t i = 1; i < robot->path().size() && left > 0.0; ++i) {
-    const geometry::Vec2 a = robot->path()[i - 1], b = robot->path()[i];
+  double left =
+      3.0 + geometry::distance(robot->status().estimate.position(), robot->navigation().follower().path().front());
+  geometry::Vec2 at = robot->navigation().follower().path().front();
+  for (std::size_t i = 1; i < robot->navigation().follower().path().size() && left > 0.0; ++i) {
+    const geometry::Vec2 a = robot->navigation().follower().path()[i - 1], b = robot->navigation().follower().path()[i];
     const double d = geometry::distance(a, b);
     at = d >= left ? a + (left / d) * (b - a) : b;
     left -= d;
   }
   picker = {{"pk9", {at.x, at.y, 0.0}, {0.65, 0.50}, 0.3, 0.1}};
-  while (robot->time() < 60.0 && !robot->detail().ends_with(" ahead")) step();
-  EXPECT_EQ(robot->detail(), "robot pk9 ahead");
+  while (robot->status().time < 60.0 && !robot->status().detail.ends_with(" ahead")) step();
+  EXPECT_EQ(robot->status().detail, "robot pk9 ahead");
   RecordProperty("gap", std::to_string(geometry::convex_polygons_distance(
-                            geometry::footprint_polygon(robot->estimate(), robot->footprint()),
+                            geometry::footprint_polygon(robot->status().estimate, robot->status().footprint),
                             geometry::footprint_polygon(picker.front().pose, picker.front().footprint))));
-  const double stopped_at = robot->time();
-  while (robot->time() < stopped_at + 3.5) step();
-  EXPECT_EQ(robot->traffic_route().stopped_for, std::vector<std::string>{"pk9"}) << robot->detail();
+  const double stopped_at = robot->status().time;
+  while (robot->status().time < stopped_at + 3.5) step();
+  EXPECT_EQ(robot->traffic_route().stopped_for, std::vector<std::string>{"pk9"}) << robot->status().detail;
 }
 
 TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStall) {
@@ -323,33 +326,35 @@ TEST(ForkliftForVehicle, AForkliftComingHomeBetweenTwoParkedOnesBacksIntoItsStal
     test::grant_everything(*robot);
     test::step_among(*robot, parked, parked_bodies);
   };
-  while (robot->time() < 1.0) step();
+  while (robot->status().time < 1.0) step();
   ASSERT_TRUE(robot->submit({"61", "PS2", site->site.find_area("PS2")->pose, "EX6", site->site.find_area("EX6")->pose},
                             nullptr));
   // Out of the stall and a few metres along the lane, then the order is taken away: home again.
-  while (robot->time() < 30.0 && geometry::distance(robot->truth().position(), home.position()) < 4.0) step();
-  ASSERT_GE(geometry::distance(robot->truth().position(), home.position()), 4.0) << robot->detail();
+  while (robot->status().time < 30.0 && geometry::distance(robot->status().truth.position(), home.position()) < 4.0)
+    step();
+  ASSERT_GE(geometry::distance(robot->status().truth.position(), home.position()), 4.0) << robot->status().detail;
   ASSERT_TRUE(robot->withdraw());
   bool home_reached = false;
   double most_turned_in_stall = 0.0;
   double closest = std::numeric_limits<double>::infinity();
   const double stall_mouth = home.y - 0.9;
-  while (robot->time() < 90.0 && !home_reached) {
+  while (robot->status().time < 90.0 && !home_reached) {
     step();
     for (const auto& e : robot->take_events()) home_reached = home_reached || e.kind == RobotEvent::Kind::kHome;
-    const geometry::Polygon body = geometry::footprint_polygon(robot->truth(), robot->footprint());
+    const geometry::Polygon body = geometry::footprint_polygon(robot->status().truth, robot->status().footprint);
     for (const auto& other : parked_bodies)
       closest = std::min(closest, geometry::convex_polygons_distance(body, other));
-    if (robot->truth().y > stall_mouth) {
+    if (robot->status().truth.y > stall_mouth) {
       most_turned_in_stall =
-          std::max(most_turned_in_stall, std::abs(geometry::angle_diff(robot->truth().yaw, home.yaw)));
+          std::max(most_turned_in_stall, std::abs(geometry::angle_diff(robot->status().truth.yaw, home.yaw)));
     }
   }
-  EXPECT_TRUE(home_reached) << robot->task_state() << " (" << robot->detail() << ") at " << robot->truth().x << ", "
-                            << robot->truth().y << ", yaw " << robot->truth().yaw;
+  EXPECT_TRUE(home_reached) << robot->status().task_state << " (" << robot->status().detail << ") at "
+                            << robot->status().truth.x << ", " << robot->status().truth.y << ", yaw "
+                            << robot->status().truth.yaw;
   EXPECT_LT(most_turned_in_stall, 0.3);
   EXPECT_GE(closest, ForkliftConfig::for_vehicle(plant_forklift()).safety_gap);
-  EXPECT_LT(geometry::distance(robot->truth().position(), home.position()), 0.1);
+  EXPECT_LT(geometry::distance(robot->status().truth.position(), home.position()), 0.1);
 }
 
 TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGrantEnds) {
@@ -362,22 +367,22 @@ TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGr
   const auto& site = plant.site;
   auto& robot = plant.make("reach_trucks", site->site.find_home("PR1")->pose);
   const auto step = [&] {
-    robot->set_neighbours({});
+    robot->navigation().set_neighbours({});
     robot->step();
   };
-  while (robot->time() < 1.0) {
+  while (robot->status().time < 1.0) {
     test::grant_everything(*robot);
     step();
   }
   ASSERT_TRUE(robot->submit({"7", "FG5", site->site.find_area("FG5")->pose, "RH4", site->site.find_area("RH4")->pose},
                             nullptr));
   // On the road and a few metres along its own route.
-  while (robot->time() < 40.0 && robot->traffic_route().progress < 4.0) {
+  while (robot->status().time < 40.0 && robot->traffic_route().progress < 4.0) {
     test::grant_everything(*robot);
     step();
   }
   const robot::TrafficRoute own = robot->traffic_route();
-  ASSERT_GE(own.progress, 4.0) << robot->detail();
+  ASSERT_GE(own.progress, 4.0) << robot->status().detail;
   const auto& points = site->graph.graph.points;
   const auto at = [&](int id) {
     return geometry::Vec2{points[static_cast<std::size_t>(id)].x, points[static_cast<std::size_t>(id)].y};
@@ -386,7 +391,7 @@ TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGr
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k + 1 < own.points.size(); ++k) {
     const double d =
-        geometry::point_segment_distance(robot->estimate().position(), at(own.points[k]), at(own.points[k + 1]));
+        geometry::point_segment_distance(robot->status().estimate.position(), at(own.points[k]), at(own.points[k + 1]));
     if (d < best) {
       best = d;
       behind = k;
@@ -407,29 +412,29 @@ TEST(ForkliftForVehicle, AReachTruckHandedARouteThatBacksUpAPlaceStopsWhereItsGr
   robot::TrafficPermit handed{own.version + 1, 2, metres_to(2), {}, shuttle, false};
   robot->set_traffic_grant(handed);
   handed.route.clear();
-  const double handed_at = robot->time();
-  while (robot->time() < handed_at + 20.0) {
+  const double handed_at = robot->status().time;
+  while (robot->status().time < handed_at + 20.0) {
     robot->set_traffic_grant(handed);
     step();
   }
   ASSERT_EQ(robot->traffic_route().version, handed.version);
   // Up to the cusp, close enough for traffic to count it there (within 5 cm), and no further.
-  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->detail();
-  EXPECT_LT(geometry::distance(robot->truth().position(), at(p(2))), 0.1) << "its estimate's error aside";
+  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->status().detail;
+  EXPECT_LT(geometry::distance(robot->status().truth.position(), at(p(2))), 0.1) << "its estimate's error aside";
   handed.granted_index = 5;
   handed.granted_distance = metres_to(5);
   const geometry::Vec2 grant_end = at(p(3));
   const geometry::Vec2 beyond = at(p(4));
   double farthest_past = -std::numeric_limits<double>::infinity();
-  while (robot->time() < handed_at + 60.0) {
+  while (robot->status().time < handed_at + 60.0) {
     robot->set_traffic_grant(handed);
     step();
     // How far past the grant's end, along the way on.
-    const double past = geometry::dot(robot->truth().position() - grant_end, beyond - grant_end) /
+    const double past = geometry::dot(robot->status().truth.position() - grant_end, beyond - grant_end) /
                         geometry::distance(beyond, grant_end);
     farthest_past = std::max(farthest_past, past);
   }
   EXPECT_EQ(robot->traffic_route().version, handed.version);
-  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->detail();
-  EXPECT_LT(farthest_past, 0.05) << "drove past its grant: " << robot->detail();
+  EXPECT_NEAR(robot->traffic_route().progress, handed.granted_distance, 0.03) << robot->status().detail;
+  EXPECT_LT(farthest_past, 0.05) << "drove past its grant: " << robot->status().detail;
 }

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "geometry/polygon.hpp"
+#include "robot/navigation.hpp"
 #include "robot/robot.hpp"
 
 namespace fleet::test {
@@ -23,7 +24,7 @@ inline robot::TrafficPermit all_it_asks_for(const robot::TrafficRoute& route) {
 /// Grants the robot every point of whatever route it drives now, as a manager with no other robot would.
 inline void grant_everything(robot::Robot& robot) {
   robot::TrafficPermit all_of_it;
-  all_of_it.version = robot.route_version();
+  all_of_it.version = robot.navigation().follower().version();
   all_of_it.granted_index = 1000;
   all_of_it.granted_distance = 1e9;
   robot.set_traffic_grant(all_of_it);
@@ -33,8 +34,8 @@ inline void grant_everything(robot::Robot& robot) {
 /// simulated sensors see their bodies.
 inline void step_among(robot::Robot& robot, const std::vector<robot::Neighbour>& neighbours,
                        const std::vector<geometry::Polygon>& bodies) {
-  robot.set_neighbours(neighbours);
-  robot.set_true_neighbours(bodies);
+  robot.navigation().set_neighbours(neighbours);
+  robot.navigation().set_true_neighbours(bodies);
   robot.step();
 }
 

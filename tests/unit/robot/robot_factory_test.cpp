@@ -26,10 +26,10 @@ TEST(RobotFactory, BuildsTheRobotOfTheFleetsTypeWithItsProfile) {
   const auto home = table_a()->site.find_home("H1")->pose;
   const std::unique_ptr<Robot> robot = make_robot(fleet, config, table_a(), home, 1, 1);
   ASSERT_NE(robot, nullptr);
-  EXPECT_DOUBLE_EQ(robot->footprint().length, 0.30);
-  EXPECT_DOUBLE_EQ(robot->footprint().width, 0.20);
-  EXPECT_LT(geometry::distance(robot->truth().position(), home.position()), 1e-9);
-  EXPECT_EQ(robot->task_state(), "IDLE");
+  EXPECT_DOUBLE_EQ(robot->status().footprint.length, 0.30);
+  EXPECT_DOUBLE_EQ(robot->status().footprint.width, 0.20);
+  EXPECT_LT(geometry::distance(robot->status().truth.position(), home.position()), 1e-9);
+  EXPECT_EQ(robot->status().task_state, "IDLE");
   EXPECT_EQ(robot->refusal(orders::OrderKind::kTransport), "");
   EXPECT_NE(robot->refusal(orders::OrderKind::kPick), "") << "a forklift has no arm";
 }

@@ -135,9 +135,9 @@ TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) 
   std::set<std::string> states;
   for (int i = 0; i < 20 * 900 && !home; ++i) {
     stacker->step();
-    states.insert(stacker->task_state());
+    states.insert(stacker->status().task_state);
     for (auto& e : stacker->take_events()) {
-      if (e.kind == RobotEvent::Kind::kFailed) FAIL() << "failed: " << e.text << " in " << stacker->task_state();
+      if (e.kind == RobotEvent::Kind::kFailed) FAIL() << "failed: " << e.text << " in " << stacker->status().task_state;
       if (e.kind == RobotEvent::Kind::kLifted) plant.loads.erase(e.load_id);
       if (e.kind == RobotEvent::Kind::kDone) plant.loads[e.load_id] = e.load_pose;
       home = home || e.kind == RobotEvent::Kind::kHome;
@@ -145,8 +145,9 @@ TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) 
     }
     stacker->set_standing_loads(plant.loads);
   }
-  ASSERT_TRUE(home) << "not home after 900 s; state " << stacker->task_state() << ", detail '" << stacker->detail()
-                    << "', rear axle at (" << stacker->rear_axle().x << ", " << stacker->rear_axle().y << ")";
+  ASSERT_TRUE(home) << "not home after 900 s; state " << stacker->status().task_state << ", detail '"
+                    << stacker->status().detail << "', rear axle at (" << stacker->rear_axle().x << ", "
+                    << stacker->rear_axle().y << ")";
   ASSERT_EQ(events.size(), 3u);
   EXPECT_EQ(events[0].kind, RobotEvent::Kind::kLifted);
   EXPECT_EQ(events[0].load_id, pallet);
@@ -158,8 +159,8 @@ TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) 
   EXPECT_LT(std::abs(geometry::angle_diff(events[1].load_pose.yaw, ex3.yaw)), 0.02);
   // Back in its bay, facing the aisle.
   const geometry::Pose2 bay = plant.site->site.find_home("PT2")->pose;
-  EXPECT_LT(geometry::distance(stacker->truth().position(), bay.position()), 0.05);
-  EXPECT_LT(std::abs(geometry::angle_diff(stacker->truth().yaw, bay.yaw)), 0.02);
+  EXPECT_LT(geometry::distance(stacker->status().truth.position(), bay.position()), 0.05);
+  EXPECT_LT(std::abs(geometry::angle_diff(stacker->status().truth.yaw, bay.yaw)), 0.02);
   for (const char* s : {"TO_PICK", "DOCKING", "LIFTING", "TO_DROP", "PLACING", "LOWERING", "GO_HOME", "PARKING"}) {
     EXPECT_TRUE(states.contains(s)) << s;
   }
@@ -177,11 +178,11 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
     if (route.points.size() >= 2) stacker->set_traffic_grant(test::all_it_asks_for(route));
   };
   int step = 0;
-  for (; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
+  for (; step < 20 * 300 && stacker->status().task_state != "DOCKING"; ++step) {
     grant_all();
     stacker->step();
   }
-  ASSERT_EQ(stacker->task_state(), "DOCKING");
+  ASSERT_EQ(stacker->status().task_state, "DOCKING");
   const std::vector<geometry::Vec2> area = stacker->traffic_route().work_area;
   ASSERT_FALSE(area.empty());
   // It reaches over the pallet's place, and not behind the stacker where it stands: the robots
@@ -192,7 +193,7 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
     return p.x > xs->x && p.x < xe->x && p.y > ys->y && p.y < ye->y;
   };
   EXPECT_TRUE(covers(plant.site->site.find_area("FG5")->pose.position()));
-  const geometry::Pose2 start = stacker->truth();
+  const geometry::Pose2 start = stacker->status().truth;
   const geometry::Vec2 behind = start.position() - 1.2 * geometry::Vec2{std::cos(start.yaw), std::sin(start.yaw)};
   EXPECT_FALSE(covers(behind)) << "the area reaches behind the stacker's fork tips";
   robot::TrafficPermit hold;
@@ -200,24 +201,24 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   hold.blocked_by = {"fk1"};
   geometry::Pose2 stood;
   for (int i = 0; i < 20 * 30; ++i) {
-    if (i == 20 * 2) stood = stacker->truth();  // stopped from the route's last metres by then
+    if (i == 20 * 2) stood = stacker->status().truth;  // stopped from the route's last metres by then
     stacker->set_traffic_grant(hold);
     stacker->step();
   }
-  EXPECT_LT(geometry::distance(stacker->truth().position(), stood.position()), 1e-3) << "it moved into the area";
-  EXPECT_EQ(stacker->task_state(), "DOCKING");
+  EXPECT_LT(geometry::distance(stacker->status().truth.position(), stood.position()), 1e-3) << "it moved into the area";
+  EXPECT_EQ(stacker->status().task_state, "DOCKING");
   robot::TrafficPermit clear;
   clear.area = robot::TrafficPermit::Area::kClear;
   stacker->set_traffic_grant(clear);
   double back = 0.0;  // how far the centre came back along the lane from where it stood
   std::set<std::string> details;
-  for (int i = 0; i < 20 * 120 && stacker->task_state() == "DOCKING"; ++i) {
+  for (int i = 0; i < 20 * 120 && stacker->status().task_state == "DOCKING"; ++i) {
     stacker->step();
-    details.insert(stacker->detail());
-    const geometry::Vec2 d = stacker->truth().position() - stood.position();
+    details.insert(stacker->status().detail);
+    const geometry::Vec2 d = stacker->status().truth.position() - stood.position();
     back = std::max(back, -(d.x * std::cos(stood.yaw) + d.y * std::sin(stood.yaw)));
   }
-  EXPECT_EQ(stacker->task_state(), "LIFTING") << stacker->detail();
+  EXPECT_EQ(stacker->status().task_state, "LIFTING") << stacker->status().detail;
   EXPECT_LT(back, 0.1) << "the docking run backed towards the robots behind";
   // Its detail tells where the docking stands.
   for (const char* phase : {"docking: to_target1", "docking: pivot", "docking: fork_in"}) {
@@ -228,14 +229,14 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
   // onto the lane, to past the route's first point.
   for (int i = 0; i < 20 * 30 && stacker->traffic_route().points.empty(); ++i) stacker->step();
   const robot::TrafficRoute out = stacker->traffic_route();
-  ASSERT_FALSE(out.points.empty()) << stacker->task_state();
+  ASSERT_FALSE(out.points.empty()) << stacker->status().task_state;
   const std::vector<geometry::Vec2> way_out = out.work_area;
   ASSERT_FALSE(way_out.empty()) << "no way out asked for";
   const auto in_hull = [&](geometry::Vec2 p) {
     return geometry::convex_polygons_overlap(traffic::convex_hull(way_out),
                                              {p, p + geometry::Vec2{1e-3, 0.0}, p + geometry::Vec2{0.0, 1e-3}});
   };
-  EXPECT_TRUE(in_hull(stacker->estimate().position()));
+  EXPECT_TRUE(in_hull(stacker->status().estimate.position()));
   const auto& road = plant.site->graph.graph.points;
   const auto& first = road[static_cast<std::size_t>(out.points.front())];
   EXPECT_TRUE(in_hull({first.x, first.y}));
@@ -244,7 +245,8 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
     grant_all();
     stacker->step();
   }
-  EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << stacker->task_state() << " " << stacker->detail();
+  EXPECT_TRUE(stacker->traffic_route().work_area.empty())
+      << stacker->status().task_state << " " << stacker->status().detail;
 }
 
 TEST(Stacker, APalletNotWhereLogisticsSaysFailsTheOrderWithWhatTheCamerasSaw) {
@@ -264,8 +266,8 @@ TEST(Stacker, APalletNotWhereLogisticsSaysFailsTheOrderWithWhatTheCamerasSaw) {
   }
   EXPECT_NE(failure.find("docking at FG5: pallet not found"), std::string::npos) << failure;
   EXPECT_NE(failure.find("frames, last:"), std::string::npos) << failure;
-  EXPECT_EQ(stacker->task_state(), "GO_HOME");
-  EXPECT_EQ(stacker->carried_load(), -1);
+  EXPECT_EQ(stacker->status().task_state, "GO_HOME");
+  EXPECT_EQ(stacker->status().carried_load, -1);
 }
 
 TEST(Stacker, RefusesPickItemAndASecondOrder) {
@@ -292,13 +294,14 @@ TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
   double outside = 0.0;
   std::string where;
   int areas = 0;
-  for (int i = 0; i < 20 * 600 && stacker->task_state() != "GO_HOME"; ++i) {
+  for (int i = 0; i < 20 * 600 && stacker->status().task_state != "GO_HOME"; ++i) {
     const robot::TrafficRoute route = stacker->traffic_route();
     if (!route.work_area.empty() && route.points.size() < 2) {
       if (held.empty()) {
         ++areas;
         held = route.work_area;
-        for (const auto& c : geometry::footprint_polygon(stacker->estimate(), stacker->footprint())) held.push_back(c);
+        for (const auto& c : geometry::footprint_polygon(stacker->status().estimate, stacker->status().footprint))
+          held.push_back(c);
       }
     } else {
       held.clear();
@@ -312,16 +315,16 @@ TEST(Stacker, ItsDockingRunsStayInsideTheAreasTrafficHoldsForThem) {
     stacker->set_standing_loads(plant.loads);
     if (held.empty()) continue;
     const geometry::Polygon hull = traffic::convex_hull(held);
-    for (const auto& c : geometry::footprint_polygon(stacker->truth(), stacker->footprint())) {
+    for (const auto& c : geometry::footprint_polygon(stacker->status().truth, stacker->status().footprint)) {
       const double d =
           geometry::convex_polygons_distance(hull, {c, c + geometry::Vec2{1e-4, 0.0}, c + geometry::Vec2{0.0, 1e-4}});
       if (d > outside) {
         outside = d;
-        where = stacker->detail();
+        where = stacker->status().detail;
       }
     }
   }
-  ASSERT_EQ(stacker->task_state(), "GO_HOME") << stacker->detail();
+  ASSERT_EQ(stacker->status().task_state, "GO_HOME") << stacker->status().detail;
   EXPECT_EQ(areas, 2) << "the docking at the pick place and at the drop place";
   EXPECT_LT(outside, 1e-3) << "its body left the held area by " << outside << " m (" << where << ")";
 }
@@ -334,17 +337,17 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   stacker->set_standing_loads(plant.loads);
   std::string why;
   ASSERT_TRUE(stacker->submit(plant.transport("FG5", "EX7"), &why)) << why;
-  for (int i = 0; i < 20 * 600 && stacker->task_state() != "TO_DROP"; ++i) {
+  for (int i = 0; i < 20 * 600 && stacker->status().task_state != "TO_DROP"; ++i) {
     stacker->set_traffic_grant(test::all_it_asks_for(stacker->traffic_route()));
     stacker->step();
   }
-  ASSERT_EQ(stacker->task_state(), "TO_DROP") << stacker->detail();
+  ASSERT_EQ(stacker->status().task_state, "TO_DROP") << stacker->status().detail;
   for (int i = 0; i < 20 * 30 && stacker->traffic_route().points.empty(); ++i) stacker->step();
   const robot::TrafficRoute out = stacker->traffic_route();
   ASSERT_FALSE(out.work_area.empty()) << "no way out asked for";
   const geometry::Polygon way_out = traffic::convex_hull(out.work_area);
   const geometry::Polygon parked =
-      geometry::footprint_polygon(plant.site->site.find_home("PT2")->pose, stacker->footprint());
+      geometry::footprint_polygon(plant.site->site.find_home("PT2")->pose, stacker->status().footprint);
   ASSERT_GT(geometry::convex_polygons_distance(way_out, parked), 0.3);
   const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   traffic::TrafficManager traffic(plant.site->graph.graph, traffic::configuration_from(config));
@@ -355,7 +358,7 @@ TEST(Stacker, ItsWayOutOfAFinishedGoodsPlaceIsNotHeldUpByTheStackerParkedBehindI
   EXPECT_TRUE(traffic.holders_in_area(4, way_out, {{2, parked}}).empty()) << "held up by the parked stacker";
   // A body standing in the way out does hold it up.
   const geometry::Polygon in_the_way =
-      geometry::footprint_polygon({out.work_area.front().x, out.work_area.front().y, 0.0}, stacker->footprint());
+      geometry::footprint_polygon({out.work_area.front().x, out.work_area.front().y, 0.0}, stacker->status().footprint);
   ASSERT_TRUE(traffic.hold_body(2, in_the_way, 0.0));
   EXPECT_EQ(traffic.holders_in_area(4, way_out, {{2, in_the_way}}), std::vector<int>{2});
 }
@@ -377,21 +380,22 @@ bool passes_reach_truck_at_the_junction(double age, std::string* why) {
   double nearest = 1e9;
   for (int i = 0; i < 20 * 260; ++i) {
     stacker->set_traffic_grant(test::all_it_asks_for(stacker->traffic_route()));
-    if (going_home) stacker->set_neighbours({waiting});
+    if (going_home) stacker->navigation().set_neighbours({waiting});
     stacker->step();
     stacker->take_events();
-    going_home = going_home || stacker->task_state() == "GO_HOME";
+    going_home = going_home || stacker->status().task_state == "GO_HOME";
     if (!going_home) continue;
-    nearest = std::min(nearest, geometry::convex_polygons_distance(
-                                    geometry::footprint_polygon(stacker->truth(), stacker->footprint()), body));
+    nearest =
+        std::min(nearest, geometry::convex_polygons_distance(
+                              geometry::footprint_polygon(stacker->status().truth, stacker->status().footprint), body));
     // Down the middle aisle, past the junction.
-    if (stacker->truth().y < 19.0 && stacker->truth().x > 27.0) {
+    if (stacker->status().truth.y < 19.0 && stacker->status().truth.x > 27.0) {
       if (nearest < 0.3) *why = "passed within " + std::to_string(nearest) + " m";
       return nearest >= 0.3;
     }
   }
-  *why = "stands at (" + std::to_string(stacker->truth().x) + ", " + std::to_string(stacker->truth().y) + ") in " +
-         stacker->task_state() + ": " + stacker->detail();
+  *why = "stands at (" + std::to_string(stacker->status().truth.x) + ", " + std::to_string(stacker->status().truth.y) +
+         ") in " + stacker->status().task_state + ": " + stacker->status().detail;
   return false;
 }
 
@@ -432,7 +436,7 @@ TEST(Stacker, TurningOutOfAnAisleItsBodyStaysInsideThePlacesTrafficReservesForIt
   std::vector<const geometry::Polygon*> reserved;
   double worst = 0.0;
   int turning = 0;
-  for (int i = 0; i < 20 * 120 && stacker->truth().x > 24.0; ++i) {
+  for (int i = 0; i < 20 * 120 && stacker->status().truth.x > 24.0; ++i) {
     const robot::TrafficRoute route = stacker->traffic_route();
     if (reserved.empty() && route.points.size() >= 2) {
       for (int point : route.points) {
@@ -443,13 +447,13 @@ TEST(Stacker, TurningOutOfAnAisleItsBodyStaysInsideThePlacesTrafficReservesForIt
     stacker->step();
     stacker->take_events();
     // Through the turn from the aisle (x = 29.13) into the north lane (y = 17.85).
-    const geometry::Pose2 at = stacker->truth();
+    const geometry::Pose2 at = stacker->status().truth;
     if (reserved.empty() || at.x < 26.0 || at.x > 30.0 || at.y > 19.5) continue;
     ++turning;
-    const geometry::Polygon body = geometry::footprint_polygon(at, stacker->footprint());
+    const geometry::Polygon body = geometry::footprint_polygon(at, stacker->status().footprint);
     worst = std::max(worst, test::outside(body, reserved));
   }
-  EXPECT_LT(stacker->truth().x, 24.0) << stacker->task_state() << ": " << stacker->detail();
+  EXPECT_LT(stacker->status().truth.x, 24.0) << stacker->status().task_state << ": " << stacker->status().detail;
   EXPECT_GT(turning, 20);
   EXPECT_LT(worst, 0.01) << "the stacker's body left the places of its route by " << worst << " m";
 }
@@ -472,11 +476,11 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
     if (r.points.size() >= 2) {
       stacker->set_traffic_grant(test::all_it_asks_for(r));
       // On the aisle, out of its bay: the route ahead.
-      if (geometry::distance(stacker->truth().position(), bay) > 3.0) route = r.points;
+      if (geometry::distance(stacker->status().truth.position(), bay) > 3.0) route = r.points;
     }
     stacker->step();
   }
-  ASSERT_GE(route.size(), 8u) << stacker->task_state() << " (" << stacker->detail() << ")";
+  ASSERT_GE(route.size(), 8u) << stacker->status().task_state << " (" << stacker->status().detail << ")";
   // The manager sends it to a siding: the next few points of its own route.
   robot::TrafficPermit siding;
   siding.version = stacker->traffic_route().version + 1;
@@ -486,10 +490,10 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
   siding.siding = true;
   stacker->set_traffic_grant(siding);
   const auto& end = plant.site->graph.graph.points[static_cast<std::size_t>(route[4])];
-  const double sent = stacker->time();
-  while (stacker->time() < sent + 25.0) {
+  const double sent = stacker->status().time;
+  while (stacker->status().time < sent + 25.0) {
     stacker->step();
-    ASSERT_EQ(stacker->task_state(), "TO_PICK") << stacker->detail();
+    ASSERT_EQ(stacker->status().task_state, "TO_PICK") << stacker->status().detail;
   }
   EXPECT_LT(geometry::distance(stacker->rear_axle().position(), {end.x, end.y}), 0.3);
   EXPECT_EQ(stacker->traffic_route().version, siding.version) << "still waits on the siding";
@@ -500,13 +504,13 @@ TEST(Stacker, SentToASidingOnItsWayItWaitsThereAndDocksOnlyAtThePallet) {
     const robot::TrafficRoute r = stacker->traffic_route();
     if (r.points.size() >= 2 || !r.work_area.empty()) stacker->set_traffic_grant(test::all_it_asks_for(r));
     stacker->step();
-    if (!docked_from && stacker->task_state() == "DOCKING") docked_from = stacker->rear_axle().position();
+    if (!docked_from && stacker->status().task_state == "DOCKING") docked_from = stacker->rear_axle().position();
     for (const auto& e : stacker->take_events()) {
       ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
       if (e.kind == RobotEvent::Kind::kLifted) lifted = e.load_id;
     }
   }
-  EXPECT_EQ(lifted, plant.load_at.at("FG5")) << stacker->task_state() << " (" << stacker->detail() << ")";
+  EXPECT_EQ(lifted, plant.load_at.at("FG5")) << stacker->status().task_state << " (" << stacker->status().detail << ")";
   ASSERT_TRUE(docked_from.has_value());
   EXPECT_GT(geometry::distance(*docked_from, {end.x, end.y}), 0.3) << "docked from the siding's end";
 }
@@ -521,7 +525,7 @@ TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt
   std::string why;
   ASSERT_TRUE(stacker->submit(plant.transport("PK4", "EX3"), &why)) << why;
   std::vector<geometry::Vec2> arrival;
-  for (int step = 0; step < 20 * 300 && stacker->task_state() != "DOCKING"; ++step) {
+  for (int step = 0; step < 20 * 300 && stacker->status().task_state != "DOCKING"; ++step) {
     const robot::TrafficRoute r = stacker->traffic_route();
     if (r.points.size() >= 2) {
       stacker->set_traffic_grant(test::all_it_asks_for(r));
@@ -529,7 +533,7 @@ TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt
     }
     stacker->step();
   }
-  ASSERT_EQ(stacker->task_state(), "DOCKING");
+  ASSERT_EQ(stacker->status().task_state, "DOCKING");
   ASSERT_GE(arrival.size(), 3u) << "the route named no arrival area";
   const geometry::Polygon held = traffic::convex_hull(arrival);
   // What the docking asks traffic to hold lies inside what the route held, but for the

@@ -76,7 +76,7 @@ TEST(StackerView, ShowsItsTargetsAndTheDetectedPalletWhileDockingAndNothingOther
 
   int steps = 0;
   const auto run_while = [&](const std::string& state, auto&& each_step) {
-    for (; steps < 20 * 900 && stacker->task_state() == state; ++steps) {
+    for (; steps < 20 * 900 && stacker->status().task_state == state; ++steps) {
       stacker->step();
       for (const auto& e : stacker->take_events()) {
         if (e.kind == RobotEvent::Kind::kFailed) FAIL() << e.text;
@@ -89,11 +89,11 @@ TEST(StackerView, ShowsItsTargetsAndTheDetectedPalletWhileDockingAndNothingOther
   };
   int shown_off_docking = 0;
   const auto count_shown = [&] {
-    const bool driving = stacker->task_state() == "TO_PICK" || stacker->task_state() == "TO_DROP";
+    const bool driving = stacker->status().task_state == "TO_PICK" || stacker->status().task_state == "TO_DROP";
     shown_off_docking += driving && !stacker->docking_view().empty() ? 1 : 0;
   };
   run_while("TO_PICK", count_shown);
-  ASSERT_EQ(stacker->task_state(), "DOCKING");
+  ASSERT_EQ(stacker->status().task_state, "DOCKING");
   EXPECT_EQ(shown_off_docking, 0) << "steps on its way to the pallet that showed a docking";
 
   // Target 2 stands off the pallet's entry face on its axis, target 1 further out and along the
@@ -102,7 +102,7 @@ TEST(StackerView, ShowsItsTargetsAndTheDetectedPalletWhileDockingAndNothingOther
   const double targets_apart = std::hypot(docking.target1_offset, docking.target1_extra_standoff);
   int with_targets = 0, without_targets = 0, with_pallet = 0;
   run_while("DOCKING", [&] {
-    if (stacker->task_state() != "DOCKING") return;
+    if (stacker->status().task_state != "DOCKING") return;
     const robot::DockingView view = stacker->docking_view();
     if (view.targets.size() != 2) {
       ++without_targets;
@@ -116,7 +116,7 @@ TEST(StackerView, ShowsItsTargetsAndTheDetectedPalletWhileDockingAndNothingOther
     EXPECT_LT(geometry::distance(view.detected_pallet->position(), fg5.position()), 0.15);
     EXPECT_LT(std::abs(geometry::angle_diff(view.detected_pallet->yaw, fg5.yaw)), 0.1);
   });
-  ASSERT_EQ(stacker->task_state(), "LIFTING") << stacker->detail();
+  ASSERT_EQ(stacker->status().task_state, "LIFTING") << stacker->status().detail;
   EXPECT_EQ(without_targets, 0) << "steps of the docking without its two targets";
   EXPECT_GT(with_targets, 20 * 10) << "steps of the docking showing its targets";
   EXPECT_GT(with_pallet, 20 * 5) << "steps of the docking showing a detected pallet";
@@ -125,18 +125,18 @@ TEST(StackerView, ShowsItsTargetsAndTheDetectedPalletWhileDockingAndNothingOther
   // Putting the carried pallet down it docks to the place, where its cameras look for nothing.
   run_while("LIFTING", [] {});
   run_while("TO_DROP", count_shown);
-  ASSERT_EQ(stacker->task_state(), "PLACING");
+  ASSERT_EQ(stacker->status().task_state, "PLACING");
   EXPECT_EQ(shown_off_docking, 0) << "steps on its way to the drop that showed a docking";
   int placing_with_targets = 0, placing_with_pallet = 0;
   run_while("PLACING", [&] {
-    if (stacker->task_state() != "PLACING") return;
+    if (stacker->status().task_state != "PLACING") return;
     const robot::DockingView view = stacker->docking_view();
     placing_with_targets += view.targets.size() == 2 ? 1 : 0;
     placing_with_pallet += view.detected_pallet ? 1 : 0;
   });
   EXPECT_GT(placing_with_targets, 20 * 10);
   EXPECT_EQ(placing_with_pallet, 0);
-  EXPECT_EQ(stacker->task_state(), "LOWERING") << stacker->detail();
+  EXPECT_EQ(stacker->status().task_state, "LOWERING") << stacker->status().detail;
   EXPECT_TRUE(stacker->docking_view().empty());
 }
 
