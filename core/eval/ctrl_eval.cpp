@@ -17,7 +17,7 @@
 #include "perception/pallet_world.hpp"
 #include "planning/road_planner.hpp"
 #include "planning/route_planner.hpp"
-#include "robot/simulated_forklift.hpp"
+#include "robot/forklift/simulated_forklift.hpp"
 
 namespace fleet::eval {
 

@@ -12,7 +12,15 @@
 
 namespace fleet::robot {
 
-struct ForkliftConfig;  // robot/forklift.hpp
+/// What make_robot hands the builder of a robot type (make_<type> in core/robot/<type>/).
+struct RobotBuild {
+  const config::FleetSpec& fleet;
+  const config::FleetConfig& config;
+  std::shared_ptr<const map::SiteMap> site;
+  geometry::Pose2 home;
+  std::uint64_t seed = 0;
+  std::uint64_t stream = 0;
+};
 
 /// The robot of `fleet`'s robot type, at `home` on `site`, configured from the fleet's profile
 /// and `config`'s settings; `seed` and `stream` pick its noise. Throws std::invalid_argument
@@ -21,11 +29,9 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
                                   std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
                                   std::uint64_t seed, std::uint64_t stream);
 
-/// The picker's software as make_robot configures it for `fleet` (robot_type picker): the
-/// forklift software without forks on the Summit-XLS, with the UR5 arm and its boom camera
-/// [Picker thesis]. For whoever needs the picker's parts without the robot (pick-eval).
-ForkliftConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
-                                   const map::SiteMap& site);
+/// The gap the look ahead keeps to the bodies other robots report when traffic is on: half of
+/// what traffic keeps between the robots it grants places to (traffic::reservation_margin).
+double lookahead_gap(const config::FleetConfig& config);
 
 /// The path follower of a robot of `fleet` with a mecanum or differential base, as make_robot
 /// configures it: scaled to the vehicle, at the fleet's top speed and yaw rate.

@@ -1,4 +1,4 @@
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 
 #include <gtest/gtest.h>
 

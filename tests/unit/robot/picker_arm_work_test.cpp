@@ -1,6 +1,6 @@
 // The picker's arm at a stop: the line's boxes located, picked and stowed on the tray; at the
 // drop place taken off the tray and put down on the packing pallet [Picker thesis, section 4.4].
-#include "robot/picker_arm_work.hpp"
+#include "robot/picker/picker_arm_work.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 
 #include "config/fleet_config.hpp"
 #include "road_to_itself.hpp"
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 #include "robot/robot_factory.hpp"
 #include "test_paths.hpp"
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "test_paths.hpp"
+#include "vehicle/vehicle_types.hpp"
 
 namespace fleet::robot {
 namespace {
@@ -32,6 +33,31 @@ TEST(RobotFactory, BuildsTheRobotOfTheFleetsTypeWithItsProfile) {
   EXPECT_EQ(robot->status().task_state, "IDLE");
   EXPECT_EQ(robot->refusal(orders::OrderKind::kTransport), "");
   EXPECT_NE(robot->refusal(orders::OrderKind::kPick), "") << "a forklift has no arm";
+}
+
+TEST(RobotFactory, EveryTypeOfTheTableBuildsAndRefusesExactlyTheOrdersItsDataHasNoActionsFor) {
+  // The two halves of a type (its data, read by config and the server, and its software, built
+  // here) come from one line of core/robot/robot_types.def: they must agree on what it can do.
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const auto plant =
+      std::make_shared<const map::SiteMap>(map::load_site_map(fleet::test::source_path("/maps/plant.yaml")));
+  const auto has = [](const vehicle::RobotType& type, const std::string& action) {
+    return std::find(type.possible_actions.begin(), type.possible_actions.end(), action) != type.possible_actions.end();
+  };
+  ASSERT_GE(vehicle::robot_types().size(), 3u);
+  for (const vehicle::RobotType& type : vehicle::robot_types()) {
+    SCOPED_TRACE(type.name);
+    config::FleetSpec fleet = config.fleets.front();
+    fleet.robot_type = type.name;
+    fleet.profile = type.defaults;
+    fleet.footprint = type.defaults.extent();
+    const std::unique_ptr<Robot> robot = make_robot(fleet, config, plant, plant->site.find_home("PP1")->pose, 1, 1);
+    ASSERT_NE(robot, nullptr);
+    EXPECT_DOUBLE_EQ(robot->status().footprint.length, fleet.footprint.length);
+    EXPECT_EQ(robot->refusal(orders::OrderKind::kTransport).empty(), has(type, "pick"));
+    EXPECT_EQ(robot->refusal(orders::OrderKind::kPick).empty(), has(type, "pickItem"));
+    EXPECT_EQ(robot->refusal(orders::OrderKind::kMove), "") << "every type drives";
+  }
 }
 
 TEST(RobotFactory, AnUnknownTypeIsNamedWithTheKnownOnes) {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 
 namespace fleet::robot {
 namespace {

@@ -1,4 +1,4 @@
-#include "robot/stacker.hpp"
+#include "robot/stacker/stacker.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include "outside_regions.hpp"
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
-#include "robot/stacker_job.hpp"
+#include "robot/stacker/stacker_job.hpp"
 #include "test_paths.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_manager.hpp"

@@ -12,7 +12,7 @@
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "robot/robot_factory.hpp"
-#include "robot/stacker.hpp"
+#include "robot/stacker/stacker.hpp"
 #include "test_paths.hpp"
 
 using namespace fleet;

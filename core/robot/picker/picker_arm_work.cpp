@@ -1,4 +1,4 @@
-#include "robot/picker_arm_work.hpp"
+#include "robot/picker/picker_arm_work.hpp"
 
 #include <cmath>
 #include <map>

@@ -1,4 +1,4 @@
-#include "robot/stacker.hpp"
+#include "robot/stacker/stacker.hpp"
 
 #include <algorithm>
 #include <cmath>

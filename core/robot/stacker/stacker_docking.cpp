@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "robot/stacker.hpp"
+#include "robot/stacker/stacker.hpp"
 
 namespace fleet::robot {
 

@@ -16,7 +16,7 @@
 #include "robot/navigation.hpp"
 #include "robot/order_reporter.hpp"
 #include "robot/robot.hpp"
-#include "robot/stacker_job.hpp"
+#include "robot/stacker/stacker_job.hpp"
 #include "sim/tricycle.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"

@@ -1,4 +1,4 @@
-#include "robot/simulated_forklift.hpp"
+#include "robot/forklift/simulated_forklift.hpp"
 
 #include <algorithm>
 #include <cmath>

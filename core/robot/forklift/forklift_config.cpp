@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 namespace fleet::robot {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 
 namespace fleet::robot {
 

@@ -1,4 +1,4 @@
-#include "robot/stacker_job.hpp"
+#include "robot/stacker/stacker_job.hpp"
 
 #include <array>
 

@@ -13,11 +13,11 @@
 #include "perception/pallet_world.hpp"
 #include "planning/dynamic_grid.hpp"
 #include "planning/octomap_layer.hpp"
+#include "robot/forklift/simulated_forklift.hpp"
 #include "robot/navigation.hpp"
 #include "robot/order_reporter.hpp"
-#include "robot/picker_arm_work.hpp"
+#include "robot/picker/picker_arm_work.hpp"
 #include "robot/robot.hpp"
-#include "robot/simulated_forklift.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"
 

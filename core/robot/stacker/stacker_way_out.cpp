@@ -2,7 +2,7 @@
 // asked of traffic before it sets off, as the docking asks for its manoeuvre's area.
 #include <cmath>
 
-#include "robot/stacker.hpp"
+#include "robot/stacker/stacker.hpp"
 
 namespace fleet::robot {
 

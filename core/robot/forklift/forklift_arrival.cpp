@@ -4,7 +4,7 @@
 #include <numbers>
 #include <optional>
 
-#include "robot/forklift.hpp"
+#include "robot/forklift/forklift.hpp"
 
 namespace fleet::robot {
 
