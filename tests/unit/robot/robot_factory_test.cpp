@@ -44,7 +44,7 @@ TEST(RobotFactory, EveryTypeOfTheTableBuildsAndRefusesExactlyTheOrdersItsDataHas
   const auto has = [](const vehicle::RobotType& type, const std::string& action) {
     return std::find(type.possible_actions.begin(), type.possible_actions.end(), action) != type.possible_actions.end();
   };
-  ASSERT_GE(vehicle::robot_types().size(), 3u);
+  ASSERT_GE(vehicle::robot_types().size(), 4u);
   for (const vehicle::RobotType& type : vehicle::robot_types()) {
     SCOPED_TRACE(type.name);
     config::FleetSpec fleet = config.fleets.front();
