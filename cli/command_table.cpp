@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/fleet_run.hpp"
 #include "model/names.hpp"
+#include "orders/order_request_check.hpp"
 
 namespace fleet::cli {
 
@@ -26,6 +28,30 @@ FlagSpec choice(std::string name, std::vector<std::string> choices, std::string 
 FlagSpec on_off(std::string name) {
   return {std::move(name), Kind::kSwitch, "", {}, false};
 }
+FlagSpec integer(std::string name, std::string hint, double min, double max) {
+  FlagSpec f = value(std::move(name), std::move(hint));
+  f.type = FlagSpec::Type::kInteger;
+  f.min = min;
+  f.max = max;
+  return f;
+}
+FlagSpec number(std::string name, std::string hint, double min, double max) {
+  FlagSpec f = integer(std::move(name), std::move(hint), min, max);
+  f.type = FlagSpec::Type::kNumber;
+  return f;
+}
+/// A seed of the whole 64-bit range.
+FlagSpec seed() {
+  FlagSpec f = value("--seed", "S");
+  f.type = FlagSpec::Type::kUnsigned;
+  return f;
+}
+/// The seed of a run of fleet processes: they take a 32-bit signed setting.
+FlagSpec process_seed() {
+  return integer("--seed", "S", 0, 2147483647);
+}
+constexpr double kMaxPriority = orders::kMaxPriority;
+constexpr double kMinPriority = orders::kMinPriority;
 
 const std::vector<std::string> kOrderStates{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
 
@@ -38,8 +64,8 @@ std::vector<CommandSpec> server_commands() {
        "",
        false,
        {choice("--kind", {"transport", "move", "pick"}, "K"), value("--from", "AREA"), value("--to", "PLACE", true),
-        value("--lines", "FILE.csv"), value("--priority", "P"), value("--robot", "R"), value("--fleet", "F"),
-        on_off("--wait")},
+        value("--lines", "FILE.csv"), integer("--priority", "P", kMinPriority, kMaxPriority), value("--robot", "R"),
+        value("--fleet", "F"), on_off("--wait")},
        "create an order, print its id: a transport --from AREA --to AREA (the default\n"
        "kind), a move --to PARKING (go there and stay), a pick --lines FILE.csv --to\n"
        "PLACE (place,item,quantity per line; one order per tour, their ids printed);\n"
@@ -70,8 +96,8 @@ std::vector<CommandSpec> server_commands() {
        "",
        "",
        false,
-       {value("--count", "M"), value("--rate", "N/min"), value("--seed", "S"), value("--priority", "P"),
-        file("--file", "ORDERS.csv"), on_off("--wait")},
+       {integer("--count", "M", 1, 100000), value("--rate", "N/min"), process_seed(),
+        integer("--priority", "P", kMinPriority, kMaxPriority), file("--file", "ORDERS.csv"), on_off("--wait")},
        "random valid orders (--count M, --rate N/min, default 60/min; --seed S) or the\n"
        "rows of a CSV file (from,to,priority,delay_s; checked whole before any is sent);\n"
        "prints one line per order; --wait follows them all and prints a summary"},
@@ -119,7 +145,7 @@ std::vector<CommandSpec> server_commands() {
        "",
        "",
        false,
-       {value("--seconds", "S=10")},
+       {number("--seconds", "S=10", 1.0, 3600.0)},
        "a pose's age on arrival, straight from the robot vs routed by the server"},
   };
 }
@@ -132,8 +158,9 @@ std::vector<CommandSpec> fleet_starting_commands() {
        "",
        "",
        false,
-       {value("--agents", "N=4"), value("--site", "NAME"), value("--duration", "SECONDS"), value("--time-scale", "K"),
-        value("--seed", "S"), value("--http-port", "P=8080"), on_off("--no-auto-orders")},
+       {integer("--agents", "N=4", 1, kMaxAgents), value("--site", "NAME"), number("--duration", "SECONDS", 0.0, 1e7),
+        number("--time-scale", "K", 0.01, 100.0), process_seed(), integer("--http-port", "P=8080", 0, 65535),
+        on_off("--no-auto-orders")},
        "one fleet-server and N fleet-agents with automatic orders (off with\n"
        "--no-auto-orders); Ctrl-C or --duration (wall seconds) stops them all\n"
        "and prints a summary; the web view's address (with its token) is printed at start"},
@@ -142,10 +169,10 @@ std::vector<CommandSpec> fleet_starting_commands() {
        "",
        "",
        false,
-       {value("--agents", "N=4"), value("--site", "NAME"), value("--duration", "SECONDS=180"),
-        value("--time-scale", "K=10"), value("--seed", "S"), choice("--traffic", {"on", "off"}),
-        value("--faults", "LIST"), value("--set", "KEY=VALUE"), value("--agent-wrap", "WORDS"),
-        value("--http-port", "P=0"), on_off("--verbose")},
+       {integer("--agents", "N=4", 1, kMaxAgents), value("--site", "NAME"),
+        number("--duration", "SECONDS=180", 1.0, 1e7), number("--time-scale", "K=10", 0.01, 100.0), process_seed(),
+        choice("--traffic", {"on", "off"}), value("--faults", "LIST"), value("--set", "KEY=VALUE"),
+        value("--agent-wrap", "WORDS"), integer("--http-port", "P=0", 0, 65535), on_off("--verbose")},
        "the demo's fleet under ground-truth watch: collisions, deadlocks (an order\n"
        "without progress for 60 s sim), lost and duplicated orders; --faults all|none|\n"
        "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"
@@ -156,9 +183,9 @@ std::vector<CommandSpec> fleet_starting_commands() {
        "",
        "",
        false,
-       {value("--robots", "N=50"), value("--site", "NAME"), value("--duration", "SECONDS=120"),
-        value("--warmup", "SECONDS=10"), value("--time-scale", "K=1"), value("--seed", "S"), value("--fleet", "ID"),
-        value("--set", "KEY=VALUE"), on_off("--verbose")},
+       {integer("--robots", "N=50", 1, 5000), value("--site", "NAME"), number("--duration", "SECONDS=120", 1.0, 1e6),
+        number("--warmup", "SECONDS=10", 0.0, 600.0), number("--time-scale", "K=1", 0.1, 10.0), process_seed(),
+        value("--fleet", "ID"), value("--set", "KEY=VALUE"), on_off("--verbose")},
        "a load test of the server: a real fleet-server (automatic orders, traffic,\n"
        "its database and one web stream client) against N emulated robots on one DDS\n"
        "participant (a load generator: kinematic, exact poses, no sensors) that speak\n"
@@ -186,7 +213,8 @@ std::vector<CommandSpec> offline_commands() {
        "sample",
        "FILE.xodr",
        true,
-       {value("--step", "M"), value("--max-rows", "N"), value("--tolerance", "M"), on_off("--strict")},
+       {number("--step", "M", 1e-6, 1e9), integer("--max-rows", "N", 1, 1e12), number("--tolerance", "M", 0.0, 1e3),
+        on_off("--strict")},
        "CSV road_id,s,x,y,hdg along every reference line, row by row, at most\n"
        "--max-rows (10,000,000); --strict: warnings are errors"},
       {Group::kOffline,
@@ -194,48 +222,56 @@ std::vector<CommandSpec> offline_commands() {
        "render",
        "SITE.yaml",
        true,
-       {file("-o", "FILE.svg", true), on_off("--no-points"), file("--tracks", "TRACKS.csv"), value("--since", "S")},
+       {file("-o", "FILE.svg", true), on_off("--no-points"), file("--tracks", "TRACKS.csv"),
+        number("--since", "S", -1e12, 1e12)},
        "an SVG picture of a site; --tracks draws the robots' tracks a soak wrote\n"
-       "                       beside a deadlock or collision report (from --since S sim seconds on)"},
+       "beside a deadlock or collision report (from --since S sim seconds on)"},
       {Group::kOffline,
        "loc-eval",
        "",
        "",
        false,
-       {choice("--trajectory", {"square", "figure8", "table_a_loop"}), value("--duration", "S"), value("--seed", "N"),
-        value("--nlos", "F"), file("--plot", "FILE.svg")},
-       "localization on core/ alone: raw UWB vs EKF errors"},
+       {choice("--trajectory", {"square", "figure8", "table_a_loop", "rack_aisle"}),
+        number("--duration", "S", 1e-3, 36000.0), seed(), number("--nlos", "F", 0.0, 1.0), file("--plot", "FILE.svg")},
+       "localization on core/ alone: raw UWB vs EKF errors; rack_aisle: the picker on the\n"
+       "plant's rack aisle, localised by markers and wheel odometry (--nlos and --plot do not apply)"},
       {Group::kOffline,
        "plan-eval",
        "",
        "",
        false,
-       {value("--site", "NAME", true), value("--queries", "N"), value("--seed", "S"), value("--resolution", "M"),
-        value("--optimal-budget-ms", "MS"), on_off("--no-ompl")},
-       "every planner on the same random queries: time, success, length ratio"},
+       {value("--site", "NAME", true), integer("--queries", "N", 1, 1000000), seed(),
+        number("--resolution", "M", 0.005, 1.0), number("--optimal-budget-ms", "MS", 1e-3, 60000.0),
+        on_off("--no-ompl")},
+       "road_astar, grid_astar, grassfire, ompl_rrtconnect and ompl_bitstar on the same\n"
+       "random start/goal pairs of maps/NAME.yaml: per planner the median and p95 time, the\n"
+       "success rate and the mean path length relative to the shortest any planner found"},
       {Group::kOffline,
        "ctrl-eval",
        "",
        "",
        false,
-       {value("--seed", "S"), value("--runs", "N"), value("--site", "NAME"), value("--speed", "V"),
+       {seed(), integer("--runs", "N", 0, 100000), value("--site", "NAME"), number("--speed", "V", 0.01, 1.0),
         choice("--follower", {"seed", "regulated"}), on_off("--gyro-cal"), file("--plot", "F.svg")},
-       "path tracking, picks and drops on core/ alone"},
+       "path tracking on the site's standard paths (perfect localization and EKF, the\n"
+       "thesis's follower and the regulated one), then N pick-and-drop orders with sensor\n"
+       "noise, on core/ alone; --gyro-cal subtracts a gyro bias estimated at standstill\n"
+       "before the EKF (the agent does not; it shows what it would bring)"},
       {Group::kOffline,
        "dock-eval",
        "",
        "",
        false,
-       {value("--runs", "N"), value("--seed", "S"), value("--pose-noise", "CM,DEG"), on_off("--no-sweeps"),
+       {integer("--runs", "N", 1, 10000), seed(), value("--pose-noise", "CM,DEG"), on_off("--no-sweeps"),
         file("--plot", "F.svg")},
        "the stacker's docking runs and detection ranges on core/ alone, beside the thesis's (exit 1 below\n"
-       "                       99 % docked)"},
+       "99 % docked)"},
       {Group::kOffline,
        "pick-eval",
        "",
        "",
        false,
-       {value("--seed", "S"), value("--drop", "PLACE")},
+       {seed(), value("--drop", "PLACE")},
        "the picker on core/ alone beside the thesis's figures: aisle tests I-III,\n"
        "marker error against distance, arm pick cycle, job cycle and items per hour\n"
        "on maps/plant_pick_list.csv, dropped at --drop PLACE (default the first packing\n"
@@ -245,8 +281,8 @@ std::vector<CommandSpec> offline_commands() {
        "",
        "",
        false,
-       {value("--site", "NAME"), value("--against", "SITE"), value("--robots", "N"), value("--duration", "S"),
-        value("--dwell", "S"), value("--seed", "S"), value("--places", "P1,P2"),
+       {value("--site", "NAME"), value("--against", "SITE"), integer("--robots", "N", 1, 200),
+        number("--duration", "S", 1.0, 1e6), number("--dwell", "S", 0.0, 600.0), seed(), value("--places", "P1,P2"),
         choice("--core", {"manager", "pibt", "both"}), choice("--lanes", {"both", "one-way"}),
         value("--delay", "P,MIN,MAX"), on_off("--verbose")},
        "the traffic manager with the fleets' vehicle types on a site, robots driven\n"
@@ -262,8 +298,8 @@ std::vector<CommandSpec> offline_commands() {
        "",
        "",
        false,
-       {file("--instance", "FILE.json", true), value("--steps", "N"), value("--window", "W"),
-        value("--planner", "operations|cells"), value("--delay", "P,MIN,MAX"), value("--seed", "S"),
+       {file("--instance", "FILE.json", true), integer("--steps", "N", 1, 1000000), integer("--window", "W", 1, 50),
+        choice("--planner", {"operations", "cells"}), value("--delay", "P,MIN,MAX"), seed(),
         file("--output", "OUT.json")},
        "the coordination core on a League of Robot Runners 2023 instance in the\n"
        "competition's discrete model (default 1000 steps); --planner cells plans a\n"
@@ -548,10 +584,6 @@ nlohmann::json command_table_json() {
   nlohmann::json global = nlohmann::json::array();
   for (const auto& flag : global_flags()) global.push_back(flag_json(flag));
   return {{"commands", commands}, {"global_flags", global}};
-}
-
-bool asks_for_usage(const CommandArgs& args) {
-  return std::find(args.args.begin(), args.args.end(), "-h") != args.args.end();
 }
 
 }  // namespace fleet::cli

@@ -9,11 +9,17 @@ namespace fleet::cli {
 /// One flag of a command, as --help shows it and the shell completes it.
 struct FlagSpec {
   enum class Kind { kSwitch, kValue, kFile, kChoice };
+  /// What a value must parse as (CommandFlags checks it): text, an integer or a finite number
+  /// within [min, max], or a non-negative integer of the whole 64-bit range (seeds).
+  enum class Type { kText, kInteger, kNumber, kUnsigned };
   std::string name;  ///< with its dashes: "--from", "-o"
   Kind kind = Kind::kSwitch;
   std::string hint;                  ///< what the value is: "AREA", "N/min"; empty for a switch
   std::vector<std::string> choices;  ///< for Kind::kChoice; completed and shown as a|b|c
   bool required = false;
+  Type type = Type::kText;
+  double min = 0.0;
+  double max = 0.0;
 };
 
 /// One command line fleetctl understands: a command, maybe a subcommand, its positional

@@ -24,9 +24,6 @@ struct CommandArgs {
   std::string source_dir;     ///< project root (maps/, config/ live there)
 };
 
-/// Whether a command's own usage is asked for: -h (fleetctl takes --help itself, for all).
-bool asks_for_usage(const CommandArgs& args);
-
 /// The site files' names under `source_dir`/maps (without .yaml), sorted.
 std::vector<std::string> site_names(const std::string& source_dir);
 /// maps/NAME.yaml under `source_dir`; InputError naming NAME and listing the sites there when it

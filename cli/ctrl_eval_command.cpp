@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "eval/ctrl_eval.hpp"
@@ -19,15 +20,6 @@
 namespace fleet::cli {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: fleetctl ctrl-eval [--seed S] [--runs N] [--site NAME] [--speed M_PER_S]\n"
-    "                          [--follower seed|regulated] [--gyro-cal]\n"
-    "                          [--plot FILE.svg] [--json]\n"
-    "Path tracking on the site's standard paths (perfect localization and EKF, the Forklift thesis's follower\n"
-    "and the regulated one), then N pick-and-drop orders with sensor noise. Exit 0 when the run\n"
-    "completes, 2 on bad flags or an unusable site. --gyro-cal subtracts a gyro bias estimated at\n"
-    "standstill before the EKF (not done by the agent; shows what it would bring).\n";
 
 std::string cm(double metres) {
   std::ostringstream s;
@@ -42,26 +34,21 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   bool json = args.json;
   std::string site = "table_a";
   std::string plot_file;
+  int exit_code = kExitOk;
+  const auto parsed = flags_or_exit("ctrl-eval", args.args, out, err, exit_code);
+  if (!parsed) return exit_code;
+  const CommandFlags& a = *parsed;
   try {
-    if (asks_for_usage(args)) {
-      out << kUsage;
-      return kExitOk;
-    }
-    Args a(args.args);
-    json = a.flag("json") || json;
     params.gyro_standstill_calibration = a.flag("gyro-cal");
     if (const auto v = a.value("plot")) plot_file = *v;
     if (const auto v = a.u64("seed")) params.seed = *v;
-    if (const auto v = a.integer("runs", 0, 100000)) params.runs = static_cast<int>(*v);
-    if (const auto v = a.number("speed", 0.01, 1.0)) params.speed = *v;
+    if (const auto v = a.integer("runs")) params.runs = static_cast<int>(*v);
+    if (const auto v = a.number("speed")) params.speed = *v;
     if (const auto v = a.value("site")) site = *v;
-    if (const auto v = a.value("follower")) {
-      if (*v != "seed" && *v != "regulated") throw ArgError("flag --follower: '" + *v + "' is not seed|regulated");
-      params.use_regulated = *v == "regulated";
-    }
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+    if (const auto v = a.value("follower")) params.use_regulated = *v == "regulated";
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
-    err << "ctrl-eval: " << e.what() << '\n' << kUsage;
+    err << "ctrl-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;
   }
   try {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "eval/dock_eval.hpp"
@@ -18,8 +19,6 @@ namespace fleet::cli {
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: fleetctl dock-eval [--runs N] [--seed S] [--pose-noise CM,DEG] [--no-sweeps] [--plot FILE.svg] [--json]\n";
 using ::fleet::geometry::kDeg;
 
 nlohmann::json run_json(const eval::DockRun& run) {
@@ -69,15 +68,13 @@ int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   eval::DockEvalParams params;
   std::string plot_file;
   bool json = args.json;
+  int exit_code = kExitOk;
+  const auto parsed = flags_or_exit("dock-eval", args.args, out, err, exit_code);
+  if (!parsed) return exit_code;
+  const CommandFlags& a = *parsed;
   try {
-    if (asks_for_usage(args)) {
-      out << kUsage;
-      return kExitOk;
-    }
-    Args a(args.args);
-    json = a.flag("json") || json;
     if (a.flag("no-sweeps")) params.sweeps = false;
-    if (const auto v = a.integer("runs", 1, 10000)) params.runs = static_cast<int>(*v);
+    if (const auto v = a.integer("runs")) params.runs = static_cast<int>(*v);
     if (const auto v = a.u64("seed")) params.seed = *v;
     if (const auto v = a.value("pose-noise")) {
       const auto comma = v->find(',');
@@ -91,9 +88,9 @@ int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       params.pose_noise.yaw_sigma = *deg * kDeg;
     }
     if (const auto v = a.value("plot")) plot_file = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
-    err << "dock-eval: " << e.what() << '\n' << kUsage;
+    err << "dock-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;
   }
   params.trajectories = !plot_file.empty();

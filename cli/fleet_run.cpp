@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
@@ -307,18 +308,17 @@ monitor::OrderTally FleetRun::tally() const {
 }
 
 int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
-  Args args(command.args);
+  const CommandFlags args("demo", "", command.args);
   RunOptions options;
   config::FleetConfig config = config::load_fleet_config(command.config_file);
   options.config_file = command.config_file;
   options.domain = domain;
-  options.agents = static_cast<int>(args.integer("agents", 1, kMaxAgents).value_or(4));
+  options.agents = static_cast<int>(args.integer("agents").value_or(4));
   options.site = args.value("site").value_or(config.settings.get_string("site"));
-  options.duration_s = args.number("duration", 0.0, 1e7).value_or(0.0);
-  options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(config.settings.get_double("time_scale"));
-  options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
-  options.http_port =
-      static_cast<int>(args.integer("http-port", 0, 65535).value_or(config.settings.get_int("server.http_port")));
+  options.duration_s = args.number("duration").value_or(0.0);
+  options.time_scale = args.number("time-scale").value_or(config.settings.get_double("time_scale"));
+  options.seed = args.integer("seed").value_or(config.settings.get_int("seed"));
+  options.http_port = static_cast<int>(args.integer("http-port").value_or(config.settings.get_int("server.http_port")));
   options.api_token = random_token();
   options.auto_orders = !args.flag("no-auto-orders");
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");

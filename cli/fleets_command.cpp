@@ -1,6 +1,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "config/fleet_config.hpp"
@@ -26,8 +27,7 @@ std::string fixed(double value, int digits) {
 
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
   // --site only chooses the configuration (config/sites/SITE.yaml), which main() has done.
-  Args flags(args.args);
-  flags.value("site");
+  const CommandFlags flags("fleets", "", args.args);
   if (const auto rest = flags.positionals(); !rest.empty()) {
     throw ArgError("fleets takes no argument, got '" + rest.front() + "'");
   }

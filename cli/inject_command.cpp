@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/online_support.hpp"
 #include "cli/order_injection.hpp"
 #include "cli/order_progress.hpp"
@@ -344,12 +345,12 @@ std::vector<PlannedOrder> checked_orders_file(const std::string& path, FleetClie
 
 int inject_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
+    const CommandFlags args("inject", "", command.args);
     const auto file = args.value("file");
-    const auto count = args.integer("count", 1, 100000);
+    const auto count = args.integer("count");
     const auto rate_text = args.value("rate");
-    const auto seed = args.integer("seed", 0, std::numeric_limits<std::int32_t>::max());
-    const auto priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority);
+    const auto seed = args.integer("seed");
+    const auto priority = args.integer("priority");
     const bool wait = args.flag("wait");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     if (file && (count || rate_text || seed || priority)) {

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "cli/emulated_fleet.hpp"
 #include "cli/fleet_run.hpp"
@@ -38,8 +39,8 @@ struct LoadOptions {
   double warmup_s = 10.0;     ///< wall seconds before it, while the robots register and set off
   double time_scale = 1.0;
   long seed = 1;
-  std::string fleet_id;  ///< empty: the config's first fleet
-  bool verbose = false;  ///< the server's debug log
+  std::string fleet_id;               ///< empty: the config's first fleet
+  bool verbose = false;               ///< the server's debug log
   std::vector<std::string> settings;  ///< --set KEY=VALUE, for the server and the emulated robots
 };
 
@@ -294,18 +295,18 @@ LoadResult run_load(const LoadOptions& options, ProcessGroup& processes, Emulate
 }  // namespace
 
 int load_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
-  Args args(command.args);
+  const CommandFlags args("load", "", command.args);
   config::FleetConfig config = config::load_fleet_config(command.config_file);
   LoadOptions options;
-  options.robots = static_cast<int>(args.integer("robots", 1, 5000).value_or(50));
+  options.robots = static_cast<int>(args.integer("robots").value_or(50));
   options.site = args.value("site").value_or(config.settings.get_string("site"));
-  options.duration_s = args.number("duration", 1.0, 1e6).value_or(120.0);
-  options.warmup_s = args.number("warmup", 0.0, 600.0).value_or(10.0);
-  options.time_scale = args.number("time-scale", 0.1, 10.0).value_or(1.0);
-  options.seed = args.integer("seed", 0, 2147483647).value_or(config.settings.get_int("seed"));
+  options.duration_s = args.number("duration").value_or(120.0);
+  options.warmup_s = args.number("warmup").value_or(10.0);
+  options.time_scale = args.number("time-scale").value_or(1.0);
+  options.seed = args.integer("seed").value_or(config.settings.get_int("seed"));
   options.fleet_id = args.value("fleet").value_or("");
   options.verbose = args.flag("verbose");
-  while (auto v = args.value("set")) options.settings.push_back(*v);
+  options.settings = args.values("set");
   // Checked here, named as given, before any process starts.
   for (const auto& s : options.settings) config::apply_set_flag(config, s);
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");

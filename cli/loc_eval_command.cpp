@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "eval/loc_eval.hpp"
@@ -14,12 +15,6 @@
 namespace fleet::cli {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: fleetctl loc-eval [--trajectory square|figure8|table_a_loop|rack_aisle] [--duration S] [--seed N]\n"
-    "                         [--nlos FRACTION] [--plot FILE.svg] [--json]\n"
-    "  rack_aisle: the picker on the plant's rack aisle, localised by markers and wheel odometry\n"
-    "  (no UWB: --nlos and --plot do not apply)\n";
 
 nlohmann::json stats_json(const eval::ErrorStats& s) {
   return {{"pos_rmse_m", s.pos_rmse},
@@ -46,35 +41,31 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
   bool rack_aisle = false;
   std::string plot_file;
   bool json = args.json;
+  int exit_code = kExitOk;
+  const auto parsed = flags_or_exit("loc-eval", args.args, out, err, exit_code);
+  if (!parsed) return exit_code;
+  const CommandFlags& a = *parsed;
   try {
-    if (asks_for_usage(args)) {
-      out << kUsage;
-      return kExitOk;
-    }
-    Args a(args.args);
-    json = a.flag("json") || json;
     if (const auto v = a.value("trajectory")) {
       if (*v == "rack_aisle") {
         rack_aisle = true;
-      } else if (const auto t = eval::parse_trajectory(*v)) {
-        params.trajectory = *t;
       } else {
-        throw ArgError("flag --trajectory: '" + *v + "' is not one of square, figure8, table_a_loop, rack_aisle");
+        params.trajectory = eval::parse_trajectory(*v).value();  // the table's choices are the trajectories
       }
     }
-    if (const auto v = a.number("duration", 1e-3, 36000.0)) params.duration = *v;
+    if (const auto v = a.number("duration")) params.duration = *v;
     if (const auto v = a.u64("seed")) params.seed = *v;
-    if (const auto v = a.number("nlos", 0.0, 1.0)) params.nlos_fraction = *v;
+    if (const auto v = a.number("nlos")) params.nlos_fraction = *v;
     if (const auto v = a.value("plot")) plot_file = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
-    err << "loc-eval: " << e.what() << '\n' << kUsage;
+    err << "loc-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;
   }
 
   if (rack_aisle) {
     if (params.nlos_fraction > 0.0 || !plot_file.empty()) {
-      err << "loc-eval: --nlos and --plot apply to the UWB trajectories, not rack_aisle\n" << kUsage;
+      err << "loc-eval: --nlos and --plot apply to the UWB trajectories, not rack_aisle\n" << a.usage();
       return kExitBadInput;
     }
     return marker_loc_eval_command(args, params.duration, params.seed, json, out, err);

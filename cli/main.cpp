@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/process.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/fleet_run.hpp"
@@ -43,6 +44,27 @@ nlohmann::json schema_json() {
   return keys;
 }
 
+/// Every flag given to a command must be declared in its entry of the command table, with a value
+/// of the declared type, range and choices (CommandFlags); a command with subcommands is checked
+/// once its subcommand is known (an unknown one is the command's own message).
+void check_flags(const std::string& name, const std::vector<std::string>& args) {
+  using fleet::cli::CommandSpec;
+  const auto check = [&](const CommandSpec& spec, const std::vector<std::string>& flags) {
+    try {
+      fleet::cli::CommandFlags(spec, flags);
+    } catch (const fleet::ArgError& e) {
+      throw fleet::ArgError(name + ": " + e.what() + "\nusage: fleetctl " + fleet::cli::usage_line(spec));
+    }
+  };
+  if (const CommandSpec* spec = fleet::cli::find_command(name, "")) {
+    check(*spec, args);
+  } else if (!args.empty()) {
+    if (const CommandSpec* sub = fleet::cli::find_command(name, args.front())) {
+      check(*sub, std::vector<std::string>(args.begin() + 1, args.end()));
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,6 +94,7 @@ int main(int argc, char** argv) {
     }
     const std::string name = args.remaining().front();
     command.args.assign(args.remaining().begin() + 1, args.remaining().end());
+    check_flags(name, command.args);
 
     // Offline tools need no configuration or DDS (`map list` asks the server).
     // map list and map set talk to the server; map check, sample and render read files.

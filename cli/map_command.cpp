@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/command_flags.hpp"
 #include "commands.hpp"
 #include "common/args.hpp"
 #include "coordination/grid_map.hpp"
@@ -21,11 +22,6 @@
 namespace fleet::cli {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: fleetctl map check SITE.yaml|NAME|GRID.map ... [--strict]\n"
-    "       fleetctl map sample FILE.xodr [--step METRES] [--max-rows N] [--tolerance METRES] [--strict]\n"
-    "       fleetctl map render SITE.yaml|NAME -o FILE.svg [--no-points] [--tracks TRACKS.csv [--since S]]\n";
 
 /// A site given by path, or by name as maps/NAME.yaml under the project root (InputError naming
 /// it and listing the sites when there is no such name).
@@ -74,20 +70,12 @@ int check_grid(const std::string& path, std::ostream& out, std::ostream& err, st
 }
 
 int check(const CommandArgs& args, const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
-  std::vector<std::string> sites;
-  bool strict = false;
-  for (const std::string& w : words) {
-    if (w == "--strict") {
-      strict = true;
-    } else if (w.starts_with("--")) {
-      err << "map check: unexpected argument '" << w << "'\n" << kUsage;
-      return kExitBadInput;
-    } else {
-      sites.push_back(w);
-    }
-  }
+  const auto flags = flags_or_report("map", "check", words, err);
+  if (!flags) return kExitBadInput;
+  const std::vector<std::string>& sites = flags->positionals();
+  const bool strict = flags->flag("strict");
   if (sites.empty()) {
-    err << kUsage;
+    err << "map check: name a site\n" << flags->usage();
     return kExitBadInput;
   }
   int code = kExitOk;
@@ -129,46 +117,17 @@ int check(const CommandArgs& args, const std::vector<std::string>& words, std::o
 }
 
 int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  std::string file;
-  double step = 1.0;
-  std::size_t max_rows = map::kDefaultMaxSamples;
-  double tolerance = map::kDefaultGeometryTolerance;
-  bool strict = false;
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    if (rest[i] == "--step" && i + 1 < rest.size()) {
-      const auto value = parse_finite(rest[++i]);
-      if (!value) {
-        err << "map sample: --step '" << rest[i] << "' is not a number\n";
-        return kExitBadInput;
-      }
-      step = *value;
-    } else if (rest[i] == "--max-rows" && i + 1 < rest.size()) {
-      const auto value = parse_u64(rest[++i]);
-      if (!value || *value == 0) {
-        err << "map sample: --max-rows '" << rest[i] << "' is not a positive whole number\n";
-        return kExitBadInput;
-      }
-      max_rows = static_cast<std::size_t>(*value);
-    } else if (rest[i] == "--tolerance" && i + 1 < rest.size()) {
-      const auto value = parse_finite(rest[++i]);
-      if (!value || *value < 0.0) {
-        err << "map sample: --tolerance '" << rest[i] << "' is not a non-negative number of metres\n";
-        return kExitBadInput;
-      }
-      tolerance = *value;
-    } else if (rest[i] == "--strict") {
-      strict = true;
-    } else if (file.empty() && !rest[i].starts_with("--")) {
-      file = rest[i];
-    } else {
-      err << "map sample: unexpected argument '" << rest[i] << "'\n" << kUsage;
-      return kExitBadInput;
-    }
-  }
-  if (file.empty()) {
-    err << kUsage;
+  const auto flags = flags_or_report("map", "sample", rest, err);
+  if (!flags) return kExitBadInput;
+  const double step = flags->number("step").value_or(1.0);
+  const auto max_rows = static_cast<std::size_t>(flags->integer("max-rows").value_or(map::kDefaultMaxSamples));
+  const double tolerance = flags->number("tolerance").value_or(map::kDefaultGeometryTolerance);
+  const bool strict = flags->flag("strict");
+  if (flags->positionals().size() != 1) {
+    err << "map sample: name one OpenDRIVE file\n" << flags->usage();
     return kExitBadInput;
   }
+  const std::string& file = flags->positionals().front();
   try {
     const map::RoadNetwork network = map::load_opendrive(file, tolerance);
     if (!warnings_pass(network.warnings, strict, err)) return kExitBadInput;
@@ -201,34 +160,18 @@ int sample(const CommandArgs& args, const std::vector<std::string>& rest, std::o
 }
 
 int render(const CommandArgs& args, const std::vector<std::string>& rest, std::ostream& out, std::ostream& err) {
-  std::string site, output, tracks_file;
-  double since = -std::numeric_limits<double>::infinity();
+  const auto flags = flags_or_report("map", "render", rest, err);
+  if (!flags) return kExitBadInput;
   map::RenderOptions options;
-  for (std::size_t i = 0; i < rest.size(); ++i) {
-    if (rest[i] == "-o" && i + 1 < rest.size()) {
-      output = rest[++i];
-    } else if (rest[i] == "--tracks" && i + 1 < rest.size()) {
-      tracks_file = rest[++i];
-    } else if (rest[i] == "--since" && i + 1 < rest.size()) {
-      const auto value = parse_finite(rest[++i]);
-      if (!value) {
-        err << "map render: --since '" << rest[i] << "': expected sim seconds\n";
-        return kExitBadInput;
-      }
-      since = *value;
-    } else if (rest[i] == "--no-points") {
-      options.graph_points = false;
-    } else if (site.empty() && !rest[i].starts_with("-")) {
-      site = rest[i];
-    } else {
-      err << "map render: unexpected argument '" << rest[i] << "'\n" << kUsage;
-      return kExitBadInput;
-    }
-  }
-  if (site.empty() || output.empty()) {
-    err << kUsage;
+  options.graph_points = !flags->flag("no-points");
+  const std::string output = flags->value("o").value_or("");
+  const std::string tracks_file = flags->value("tracks").value_or("");
+  const double since = flags->number("since").value_or(-std::numeric_limits<double>::infinity());
+  if (flags->positionals().size() != 1 || output.empty()) {
+    err << "map render: name one site and -o FILE.svg\n" << flags->usage();
     return kExitBadInput;
   }
+  const std::string& site = flags->positionals().front();
   if (!tracks_file.empty()) {
     // Tracks a soak wrote beside a deadlock or collision report (TrackRecorder's CSV).
     std::ifstream in(tracks_file);
@@ -270,8 +213,9 @@ int render(const CommandArgs& args, const std::vector<std::string>& rest, std::o
 }  // namespace
 
 int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
+  constexpr const char* kSubcommands = "check, sample, render (list and set ask the server)";
   if (args.args.empty()) {
-    err << kUsage;
+    err << "map needs a subcommand: " << kSubcommands << "\n";
     return kExitBadInput;
   }
   const std::string& sub = args.args.front();
@@ -279,7 +223,7 @@ int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
   if (sub == "check") return check(args, rest, out, err);
   if (sub == "sample") return sample(args, rest, out, err);
   if (sub == "render") return render(args, rest, out, err);
-  err << "map: unknown subcommand '" << sub << "'\n" << kUsage;
+  err << "map: unknown subcommand '" << sub << "' (" << kSubcommands << ")\n";
   return kExitBadInput;
 }
 

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "coordination/lifelong_run.hpp"
@@ -34,18 +35,12 @@ coordination::DelayModel parse_delay(const std::string& text) {
 }  // namespace
 
 int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
-  Args flags(args.args);
+  const CommandFlags flags("mapf-eval", "", args.args);
   const auto instance_path = flags.value("instance");
   coordination::LifelongSettings settings;
-  settings.steps = static_cast<int>(flags.integer("steps", 1, 1000000).value_or(settings.steps));
-  settings.window = static_cast<int>(flags.integer("window", 1, 50).value_or(settings.window));
-  if (const auto planner = flags.value("planner")) {
-    if (*planner == "cells") {
-      settings.planner = coordination::GridPlanner::kCells;
-    } else if (*planner != "operations") {
-      throw ArgError("--planner '" + *planner + "': expected cells or operations");
-    }
-  }
+  settings.steps = static_cast<int>(flags.integer("steps").value_or(settings.steps));
+  settings.window = static_cast<int>(flags.integer("window").value_or(settings.window));
+  if (flags.value("planner") == "cells") settings.planner = coordination::GridPlanner::kCells;
   if (settings.window == 0) settings.window = coordination::default_window(settings.planner);
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);

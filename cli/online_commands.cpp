@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
@@ -29,8 +30,9 @@ namespace fleet::cli {
 
 namespace {
 
-int order_add(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out,
-              std::ostream& err) {
+int order_add(const std::vector<std::string>& words, const CommandArgs& command, const Connection& connection,
+              std::ostream& out, std::ostream& err) {
+  const CommandFlags args("order", "add", words);
   model::OrderRequest request;
   request.kind = args.value("kind").value_or("");
   const bool move = request.kind == "move";
@@ -53,7 +55,7 @@ int order_add(Args& args, const CommandArgs& command, const Connection& connecti
   if (!move && !lines_file && (!from || !to)) throw ArgError("order add needs --from AREA and --to AREA");
   request.pick_area = lines_file ? lines.front().place : from.value_or("");
   request.drop_area = *to;
-  const long priority = args.integer("priority", orders::kMinPriority, orders::kMaxPriority).value_or(0);
+  const long priority = args.integer("priority").value_or(0);
   request.priority = static_cast<int>(priority);
   request.robot_id = args.value("robot").value_or("");
   request.fleet_id = args.value("fleet").value_or("");
@@ -363,7 +365,7 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
     Args args(command.args);
     const auto sub = args.remaining().empty() ? std::string() : args.remaining().front();
     Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
-    if (sub == "add") return order_add(rest, command, connection, out, err);
+    if (sub == "add") return order_add(rest.remaining(), command, connection, out, err);
     if (sub == "list") return order_list(rest, command, connection, out);
     if (sub == "show") return order_show(rest, command, connection, out);
     if (sub == "cancel") return order_cancel(rest, command, connection, out);
@@ -412,8 +414,8 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
   // robot (RobotState) and as routed by the server (FleetView). The difference is what routing
   // costs; both share this process's scheduling, so it cancels out of the comparison.
   try {
-    Args args(command.args);
-    const double seconds = args.number("seconds", 1.0, 3600.0).value_or(10.0);
+    const CommandFlags args("routing-age", "", command.args);
+    const double seconds = args.number("seconds").value_or(10.0);
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "common/errors.hpp"
@@ -19,7 +20,6 @@ namespace fleet::cli {
 
 namespace {
 
-constexpr const char* kUsage = "usage: fleetctl pick-eval [--seed S] [--drop PLACE] [--json]\n";
 using ::fleet::geometry::kDeg;
 
 const char* met(bool ok) {
@@ -320,14 +320,14 @@ nlohmann::json job_json(const eval::JobCycleResult& j) {
 }  // namespace
 
 int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
-  Args flags(args.args);
-  if (flags.flag("help")) {
-    out << kUsage;
+  const CommandFlags flags("pick-eval", "", args.args);
+  if (flags.asks_for_usage()) {
+    out << flags.usage();
     return kExitOk;
   }
   eval::PickEvalParams params;
   params.files = eval::plant_pick_eval_files(args.source_dir);
-  const bool json = flags.flag("json") || args.json;
+  const bool json = args.json;
   params.seed = flags.u64("seed").value_or(params.seed);
   params.drop_place = flags.value("drop").value_or("");
   if (const auto rest = flags.positionals(); !rest.empty()) {

@@ -5,6 +5,7 @@
 #include <ostream>
 #include <string>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "common/errors.hpp"
@@ -14,38 +15,27 @@
 
 namespace fleet::cli {
 
-namespace {
-
-constexpr const char* kUsage =
-    "usage: fleetctl plan-eval --site NAME [--queries N] [--seed S] [--resolution M]\n"
-    "                          [--optimal-budget-ms MS] [--no-ompl] [--json]\n"
-    "Runs road_astar, grid_astar, grassfire, ompl_rrtconnect and ompl_bitstar on the same random\n"
-    "start/goal pairs of maps/NAME.yaml and prints per planner the median and p95 time, the success\n"
-    "rate and the mean path length relative to the shortest path any planner found for each query.\n";
-
-}  // namespace
+namespace {}  // namespace
 
 int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
   planning::PlanEvalConfiguration config;
   std::string site_name;
   bool json = args.json;
+  int exit_code = kExitOk;
+  const auto parsed = flags_or_exit("plan-eval", args.args, out, err, exit_code);
+  if (!parsed) return exit_code;
+  const CommandFlags& a = *parsed;
   try {
-    if (asks_for_usage(args)) {
-      out << kUsage;
-      return kExitOk;
-    }
-    Args a(args.args);
-    json = a.flag("json") || json;
     if (a.flag("no-ompl")) config.include_ompl = false;
     if (const auto v = a.value("site")) site_name = *v;
-    if (const auto v = a.integer("queries", 1, 1000000)) config.queries = static_cast<int>(*v);
+    if (const auto v = a.integer("queries")) config.queries = static_cast<int>(*v);
     if (const auto v = a.u64("seed")) config.seed = *v;
-    if (const auto v = a.number("resolution", 0.005, 1.0)) config.resolution = *v;
-    if (const auto v = a.number("optimal-budget-ms", 1e-3, 60000.0)) config.optimal_budget_ms = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.remaining().front() + "'");
+    if (const auto v = a.number("resolution")) config.resolution = *v;
+    if (const auto v = a.number("optimal-budget-ms")) config.optimal_budget_ms = *v;
+    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
     if (site_name.empty()) throw ArgError("--site is required");
   } catch (const ArgError& e) {
-    err << "plan-eval: " << e.what() << '\n' << kUsage;
+    err << "plan-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;
   }
 

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "cli/fleet_run.hpp"
 #include "cli/soak_parts.hpp"
@@ -32,24 +33,23 @@ struct SoakRequest {
 };
 
 SoakRequest parse_soak(const CommandArgs& command, std::uint32_t domain) {
-  Args args(command.args);
+  const CommandFlags args("soak", "", command.args);
   SoakRequest r{{}, config::load_fleet_config(command.config_file), "", {}};
   RunOptions& options = r.options;
   options.kind = "soak";
   options.config_file = command.config_file;
   options.domain = domain;
-  options.agents = static_cast<int>(args.integer("agents", 1, kMaxAgents).value_or(4));
+  options.agents = static_cast<int>(args.integer("agents").value_or(4));
   options.site = args.value("site").value_or(r.config.settings.get_string("site"));
-  options.duration_s = args.number("duration", 1.0, 1e7).value_or(180.0);
-  options.time_scale = args.number("time-scale", 0.01, 100.0).value_or(10.0);
-  options.seed = args.integer("seed", 0, 2147483647).value_or(r.config.settings.get_int("seed"));
-  options.http_port = static_cast<int>(args.integer("http-port", 0, 65535).value_or(0));
+  options.duration_s = args.number("duration").value_or(180.0);
+  options.time_scale = args.number("time-scale").value_or(10.0);
+  options.seed = args.integer("seed").value_or(r.config.settings.get_int("seed"));
+  options.http_port = static_cast<int>(args.integer("http-port").value_or(0));
   options.agent_wrap = args.value("agent-wrap").value_or("");
   r.traffic = args.value("traffic").value_or(r.config.settings.get_bool("traffic.enabled") ? "on" : "off");
-  if (r.traffic != "on" && r.traffic != "off") throw ArgError("--traffic '" + r.traffic + "': expected on or off");
   r.kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
   std::vector<std::string> settings{"traffic.enabled=" + std::string(r.traffic == "on" ? "true" : "false")};
-  while (auto v = args.value("set")) settings.push_back(*v);
+  for (const std::string& v : args.values("set")) settings.push_back(v);
   if (args.flag("verbose")) {
     // Debug logs of every process in the run directory: traffic requests, grants and waits.
     options.extra_server_args.push_back("--verbose");

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 
+#include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
 #include "common/args.hpp"
 #include "common/paths.hpp"
@@ -120,14 +121,14 @@ nlohmann::json run_site(const std::string& site_name, const std::string& core, c
 }  // namespace
 
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
-  Args flags(args.args);
+  const CommandFlags flags("traffic-eval", "", args.args);
   const config::FleetConfig config = config::load_fleet_config(args.config_file);
   const std::string site = flags.value("site").value_or(config.settings.get_string("site"));
   const auto against = flags.value("against");
   EvalSpec spec;
-  spec.robots = static_cast<int>(flags.integer("robots", 1, 200).value_or(spec.robots));
-  spec.duration_s = flags.number("duration", 1.0, 1e6).value_or(spec.duration_s);
-  spec.dwell_s = flags.number("dwell", 0.0, 600.0).value_or(spec.dwell_s);
+  spec.robots = static_cast<int>(flags.integer("robots").value_or(spec.robots));
+  spec.duration_s = flags.number("duration").value_or(spec.duration_s);
+  spec.dwell_s = flags.number("dwell").value_or(spec.dwell_s);
   spec.seed = flags.u64("seed").value_or(spec.seed);
   spec.verbose = flags.flag("verbose");
   if (const auto places = flags.value("places")) {
