@@ -24,7 +24,7 @@
 #include "orders/order.hpp"
 #include "orders/order_request_check.hpp"
 #include "orders/pick_lines.hpp"
-#include "traffic/traffic_settings.hpp"
+#include "traffic/order_names.hpp"
 
 namespace fleet::cli {
 
@@ -72,12 +72,7 @@ int order_add(const std::vector<std::string>& words, const CommandArgs& command,
   // default configuration.
   const auto config =
       config::load_fleet_config(command.config_given ? command.config_file : config_path_for(std::nullopt, info.site));
-  orders::KnownNames names = orders::known_names(config, site.site);
-  const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
-  for (auto& ability : names.abilities) {
-    ability.out_of_reach =
-        traffic::fleet_places_out_of_reach(site, graphs.at(ability.fleet_id), config, ability.fleet_id);
-  }
+  orders::KnownNames names = traffic::order_request_names(config, site);
   names.areas = info.loading_areas;
   names.homes = info.homes;
   names.robots = info.robots;

@@ -342,7 +342,7 @@ std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) co
 }
 
 const orders::KnownNames& FleetServer::known_names() const {
-  return known_names_;
+  return *known_names_;
 }
 
 void FleetServer::fill_steps(Order& order) const {
@@ -394,6 +394,7 @@ void FleetServer::publish_web_snapshot() {
   LiveSnapshot snap;
   snap.map = options_.site.name;
   snap.site_map = options_.site_map;
+  snap.known_names = known_names_;
   snap.sim_time = clock_.now();
   snap.time_scale = options_.time_scale;
   const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");

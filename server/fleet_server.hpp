@@ -199,7 +199,7 @@ class FleetServer {
   std::map<std::string, planning::RoadDistances> travel_;
   /// What orders may name on the site served, with each fleet's abilities and the places it
   /// cannot reach (server::derive_site).
-  orders::KnownNames known_names_;
+  std::shared_ptr<const orders::KnownNames> known_names_;
   /// A map switch under way: its derivation runs off the loop.
   struct MapSwitch {
     std::string request_id;

@@ -3,19 +3,16 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "traffic/order_names.hpp"
 #include "traffic/traffic_settings.hpp"
 
 namespace fleet::server {
 
 SiteDerivation derive_site(std::shared_ptr<const map::SiteMap> site_map, const config::FleetConfig& config) {
   SiteDerivation d;
-  d.known_names = orders::known_names(config, site_map->site);
   const auto graphs = traffic::fleet_graphs(site_map->graph.graph, config);
-  for (auto& ability : d.known_names.abilities) {
-    const map::RoadGraph& graph = graphs.at(ability.fleet_id);
-    d.travel.emplace(ability.fleet_id, planning::RoadDistances(graph));
-    ability.out_of_reach = traffic::fleet_places_out_of_reach(*site_map, graph, config, ability.fleet_id);
-  }
+  d.known_names = std::make_shared<const orders::KnownNames>(traffic::order_request_names(config, *site_map, graphs));
+  for (const auto& [fleet_id, graph] : graphs) d.travel.emplace(fleet_id, planning::RoadDistances(graph));
   if (config.settings.get_bool("traffic.enabled")) {
     if (config.settings.get_string("traffic.core") == "places") {
       d.places = std::make_unique<PlaceTrafficSite>(site_map, config);

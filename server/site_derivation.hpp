@@ -19,7 +19,8 @@ namespace fleet::server {
 /// loop and adopts it on the loop once it is ready.
 struct SiteDerivation {
   std::shared_ptr<const map::SiteMap> site_map;
-  orders::KnownNames known_names;
+  /// Shared with the web API, which checks orders against the same names.
+  std::shared_ptr<const orders::KnownNames> known_names;
   std::map<std::string, planning::RoadDistances> travel;
   /// The traffic manager (`traffic.core: manager`); null when traffic.enabled is false.
   std::unique_ptr<traffic::TrafficManager> traffic;

@@ -157,8 +157,10 @@ void WebApi::add_order(const Request& req, Response& res) {
     if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
     priority = it->get<long>();
   }
-  const orders::KnownNames names = orders::known_names(*site_.config, site_.site_map->site);
-  if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, names)) {
+  // The server's own names for the map it serves (the same check it makes).
+  const std::shared_ptr<const orders::KnownNames> names = bridge_.latest().first.known_names;
+  if (!names) return send_error(res, 503, "server", "the server has not published its site yet; try again");
+  if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, *names)) {
     return send_error(res, 400, problem->field, problem->message);
   }
   if (const auto why = pick_lines.empty()

@@ -1,6 +1,5 @@
 #pragma once
 
-#include "map/site_map.hpp"
 #include <future>
 #include <map>
 #include <mutex>
@@ -10,18 +9,20 @@
 #include <vector>
 
 #include "geometry/polygon.hpp"
+#include "map/site_map.hpp"
 #include "model/messages.hpp"
+#include "orders/order_request_check.hpp"
 
 namespace fleet::server {
 
 /// A robot as the web view shows it.
 struct RobotView {
-  model::RobotState state;                ///< what the robot reports: estimated pose, covariance, task
-  std::optional<model::SimTruth> truth;   ///< simulation only: its true pose
-  std::vector<geometry::Vec2> path;       ///< its planned path
+  model::RobotState state;               ///< what the robot reports: estimated pose, covariance, task
+  std::optional<model::SimTruth> truth;  ///< simulation only: its true pose
+  std::vector<geometry::Vec2> path;      ///< its planned path
   geometry::Footprint footprint;
-  std::string health;                     ///< "alive", "stale" (late), "lost"
-  double age_s = 0.0;                     ///< sim seconds since its last RobotState
+  std::string health;  ///< "alive", "stale" (late), "lost"
+  double age_s = 0.0;  ///< sim seconds since its last RobotState
   /// Traffic (when on): MOVING, WAITING or ARRIVED, whom it waits for, and where the places it
   /// holds on the road graph are. Empty status: not on the roads.
   std::string traffic;
@@ -34,6 +35,8 @@ struct LiveSnapshot {
   /// The map the robots drive on now, and its roads (switched at runtime by the map command).
   std::string map;
   std::shared_ptr<const map::SiteMap> site_map;
+  /// The names orders are checked against on that map (traffic::order_request_names).
+  std::shared_ptr<const orders::KnownNames> known_names;
   double sim_time = 0.0;
   double time_scale = 1.0;
   std::vector<RobotView> robots;
@@ -43,8 +46,8 @@ struct LiveSnapshot {
   bool auto_orders = false;
   long orders_done = 0;
   long orders_failed = 0;
-  double orders_per_hour = 0.0;  ///< done orders per sim hour since the server started
-  double order_time_p95_s = 0.0; ///< sim seconds from creation to DONE, p95
+  double orders_per_hour = 0.0;   ///< done orders per sim hour since the server started
+  double order_time_p95_s = 0.0;  ///< sim seconds from creation to DONE, p95
 };
 
 /// A request from the web side for the server loop to carry out.

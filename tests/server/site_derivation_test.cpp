@@ -35,7 +35,7 @@ TEST(SiteDerivation, ARevisionIsDerivedWithItsNamesTravelAndTrafficManager) {
   ASSERT_NE(closed.traffic, nullptr);
   EXPECT_GT(closed.traffic->zones().place_count(), 0);
   for (const auto& fleet : config.fleets) EXPECT_TRUE(closed.travel.contains(fleet.id)) << fleet.id;
-  EXPECT_FALSE(closed.known_names.abilities.empty());
+  EXPECT_FALSE(closed.known_names->abilities.empty());
 
   config.settings.set("traffic.enabled", "false", "site_derivation_test");
   EXPECT_EQ(server::derive_site(closed.site_map, config).traffic, nullptr);

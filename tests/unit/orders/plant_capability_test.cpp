@@ -9,7 +9,7 @@
 #include "map/site_map.hpp"
 #include "orders/order_request_check.hpp"
 #include "test_paths.hpp"
-#include "traffic/traffic_settings.hpp"
+#include "traffic/order_names.hpp"
 
 using namespace fleet;
 
@@ -18,16 +18,7 @@ namespace {
 struct Plant {
   config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
-  orders::KnownNames names;
-
-  Plant() {
-    names = orders::known_names(config, site.site);
-    const auto graphs = traffic::fleet_graphs(site.graph.graph, config);
-    for (auto& ability : names.abilities) {
-      ability.out_of_reach =
-          traffic::fleet_places_out_of_reach(site, graphs.at(ability.fleet_id), config, ability.fleet_id);
-    }
-  }
+  orders::KnownNames names = traffic::order_request_names(config, site);
   std::optional<orders::RequestProblem> check(const std::string& from, const std::string& to,
                                               const std::string& fleet) {
     return orders::check_order_request({"", from, to, "", fleet, 0}, names);
