@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "task/transition_table.hpp"
+
 namespace fleet::task {
 
 namespace {
@@ -148,10 +150,7 @@ std::span<const PickerArmTransition> picker_arm_table() {
 }
 
 std::optional<PickerArmState> next_picker_arm_state(PickerArmState from, PickerArmEvent event) {
-  for (const auto& t : kTable) {
-    if (t.from == from && t.event == event) return t.to;
-  }
-  return std::nullopt;
+  return next_state(kTable, from, event);
 }
 
 }  // namespace fleet::task

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "task/transition_table.hpp"
+
 namespace fleet::task {
 
 namespace {
@@ -159,10 +161,7 @@ std::span<const PickerLocalizationTransition> picker_localization_table() {
 
 std::optional<PickerLocalizationState> next_picker_localization_state(PickerLocalizationState from,
                                                                       PickerLocalizationEvent event) {
-  for (const auto& t : kTable) {
-    if (t.from == from && t.event == event) return t.to;
-  }
-  return std::nullopt;
+  return next_state(kTable, from, event);
 }
 
 }  // namespace fleet::task

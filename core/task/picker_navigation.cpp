@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "task/transition_table.hpp"
+
 namespace fleet::task {
 
 namespace {
@@ -190,10 +192,7 @@ std::span<const PickerNavigationTransition> picker_navigation_table() {
 
 std::optional<PickerNavigationState> next_picker_navigation_state(PickerNavigationState from,
                                                                   PickerNavigationEvent event) {
-  for (const auto& t : kTable) {
-    if (t.from == from && t.event == event) return t.to;
-  }
-  return std::nullopt;
+  return next_state(kTable, from, event);
 }
 
 bool is_final(PickerNavigationState state) {

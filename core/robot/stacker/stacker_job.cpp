@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "task/transition_table.hpp"
+
 namespace fleet::robot {
 
 namespace {
@@ -89,10 +91,7 @@ std::span<const StackerTransition> stacker_transition_table() {
 }
 
 std::optional<StackerState> next_stacker_state(StackerState from, StackerEvent event) {
-  for (const auto& t : kTable) {
-    if (t.from == from && t.event == event) return t.to;
-  }
-  return std::nullopt;
+  return task::next_state(kTable, from, event);
 }
 
 orders::OrderPhase stacker_phase(StackerState state) {

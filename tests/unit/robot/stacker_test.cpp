@@ -17,6 +17,7 @@
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker/stacker_job.hpp"
+#include "task/transition_table.hpp"
 #include "test_paths.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_manager.hpp"
@@ -39,11 +40,13 @@ constexpr StackerEvent kEvents[] = {StackerEvent::kTransport, StackerEvent::kMov
                                     StackerEvent::kDocked,    StackerEvent::kDockFailed, StackerEvent::kForksUp,
                                     StackerEvent::kForksDown, StackerEvent::kCancel};
 
-TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEvent) {
+TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEventAndEveryStateIsReached) {
+  const auto table = robot::stacker_transition_table();
+  for (const auto& t : task::repeated_rows(table))
+    ADD_FAILURE() << to_string(t.from) << " on " << to_string(t.event) << " listed twice";
   std::set<std::pair<int, int>> rows;
-  for (const auto& t : robot::stacker_transition_table()) {
-    EXPECT_TRUE(rows.insert({static_cast<int>(t.from), static_cast<int>(t.event)}).second)
-        << to_string(t.from) << " on " << to_string(t.event) << " listed twice";
+  for (const auto& t : table) {
+    rows.insert({static_cast<int>(t.from), static_cast<int>(t.event)});
     EXPECT_EQ(robot::next_stacker_state(t.from, t.event), t.to);
   }
   for (StackerState s : kStates) {
@@ -53,6 +56,8 @@ TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEvent) {
       }
     }
   }
+  const auto reached = task::reachable_states(table, StackerState::kIdle);
+  for (StackerState s : kStates) EXPECT_TRUE(reached.contains(s)) << to_string(s) << " unreachable";
 }
 
 TEST(StackerJob, APalletOnTheForksIsNeverCancelledNorLeftAtAFailedPlacing) {

@@ -2,11 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <deque>
 #include <optional>
 #include <set>
 #include <utility>
 #include <vector>
+
+#include "task/transition_table.hpp"
 
 namespace fleet::task {
 namespace {
@@ -29,10 +30,11 @@ std::vector<Enum> all_up_to(Enum last) {
 template <typename Row, typename State, typename Event>
 void expect_rows_unique_and_alone(std::span<const Row> table, std::optional<State> (*next)(State, Event),
                                   State last_state, Event last_event) {
+  for (const Row& t : repeated_rows(table))
+    ADD_FAILURE() << to_string(t.from) << " on " << to_string(t.event) << " listed twice";
   std::set<std::pair<int, int>> rows;
   for (const Row& t : table) {
-    EXPECT_TRUE(rows.insert({static_cast<int>(t.from), static_cast<int>(t.event)}).second)
-        << to_string(t.from) << " on " << to_string(t.event) << " listed twice";
+    rows.insert({static_cast<int>(t.from), static_cast<int>(t.event)});
     EXPECT_EQ(next(t.from, t.event), t.to) << to_string(t.from) << " on " << to_string(t.event);
   }
   for (State s : all_up_to(last_state)) {
@@ -46,15 +48,7 @@ void expect_rows_unique_and_alone(std::span<const Row> table, std::optional<Stat
 
 template <typename Row, typename State>
 void expect_all_reachable(std::span<const Row> table, State start, State last_state) {
-  std::set<State> seen{start};
-  std::deque<State> open{start};
-  while (!open.empty()) {
-    const State s = open.front();
-    open.pop_front();
-    for (const Row& t : table) {
-      if (t.from == s && seen.insert(t.to).second) open.push_back(t.to);
-    }
-  }
+  const std::set<State> seen = reachable_states(table, start);
   for (State s : all_up_to(last_state)) EXPECT_TRUE(seen.contains(s)) << to_string(s) << " unreachable";
 }
 
