@@ -56,7 +56,7 @@ struct PlantPicker {
   map::SiteMap site;
   config::FleetConfig config;
   config::FleetSpec fleet;
-  robot::ForkliftConfig picker;
+  robot::PickerConfig picker;
 };
 
 PlantPicker load_plant_picker(const PickEvalFiles& files) {
@@ -230,7 +230,7 @@ class PickerRoads {
       : plant_(plant),
         graphs_(traffic::fleet_graphs(plant.site.graph.graph, plant.config)),
         travel_(graphs_.at(plant.fleet.id)),
-        executor_(plant.picker.task, {}) {}
+        executor_(plant.picker.base.task, {}) {}
 
   geometry::Pose2 stand_beside(const std::string& place) const {
     const map::LoadingArea* area = plant_.site.site.find_area(place);

@@ -39,7 +39,7 @@ geometry::Polygon box_around(Vec2 c, double side) {
 }  // namespace
 
 Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const Pose2& home,
-                   std::uint64_t seed, std::uint64_t stream)
+                   std::uint64_t seed, std::uint64_t stream, std::unique_ptr<ItemHandler> items)
     : config_(config),
       nav_(navigation_params(config), std::move(site), config.sim.forklift.footprint),
       sim_(config.sim, nav_.site().site, home, seed, stream),
@@ -76,13 +76,11 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
         o.area = nav_.site().site.bounds;
         o.projection_resolution = config.grid_resolution;  // must match the static grid's cells
         return o;
-      }()) {
-  if (config_.arm) {
-    arm_.emplace(make_picker_arm_work(config_.box_camera, config_.arm_layout,
-                                      seed ^ (stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL));
-  }
-  // At start, like the planners' tables (Navigation): the lidar map: every leaf of the site from the start (the ground
-  // free until seen otherwise), not one more for each stretch of floor the robot first sees.
+      }()),
+      items_(std::move(items)) {
+  // At start, like the planners' tables (Navigation): the lidar map, every leaf of the site from the
+  // start (the ground free until seen otherwise), not one more for each stretch of floor the robot
+  // first sees.
   octomap_.assume_free();
   sim_.warm_up(1.0, step_period());
 }
@@ -95,7 +93,7 @@ void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_pt
 }
 
 std::string Forklift::refusal(orders::OrderKind kind) const {
-  if (kind == orders::OrderKind::kPick && !config_.arm) return "a " + config_.type_name + " performs no pickItem";
+  if (kind == orders::OrderKind::kPick && !items_) return "a " + config_.type_name + " performs no pickItem";
   if (kind == orders::OrderKind::kTransport && !config_.forks) return "a " + config_.type_name + " has no forks";
   return "";
 }
@@ -410,48 +408,12 @@ void Forklift::step() {
       break;
   }
 
-  work_items(t);
+  if (items_) items_->step(t, executor_, nav_.site().site, reports_);
   command_ = nav_.safety().safe(out.twist, sim_.estimate(), nav_.neighbours());
   const auto blockers = uwb_blockers();
   sim_.step(command_, dt, blockers, shadowed_anchors());
   answer_plan_requests();
   collect_reports();
-}
-
-void Forklift::work_items(double t) {
-  const task::State state = executor_.state();
-  if (!arm_ || (state != task::State::kPickItems && state != task::State::kDropItems)) {
-    arm_done_at_.reset();
-    return;
-  }
-  if (arm_done_at_) {
-    if (t < *arm_done_at_) return;
-    arm_done_at_.reset();
-    if (state == task::State::kDropItems) tray_.clear();
-    executor_.items_done(true);
-    return;
-  }
-  const task::TaskOrder& order = *executor_.order();
-  ArmWork work;
-  if (state == task::State::kPickItems) {
-    const task::ItemStop& stop = order.items.at(executor_.item_line());
-    const map::LoadingArea* area = nav_.site().site.find_area(stop.place_id);
-    if (area == nullptr || !area->boxes) {
-      executor_.items_done(false, "place " + stop.place_id + " holds no boxes");
-      return;
-    }
-    work = arm_->pick(*area->boxes, stop.quantity, tray_);
-  } else {
-    work = arm_->drop(tray_, 0);
-  }
-  if (!work.ok) {
-    executor_.items_done(false, work.reason);
-    return;
-  }
-  arm_done_at_ = t + work.duration;
-  reports_.set_detail((state == task::State::kPickItems ? "arm picks " : "arm puts down ") +
-                      std::to_string(work.boxes) + " box" + (work.boxes == 1 ? "" : "es") + " in " +
-                      std::to_string(static_cast<int>(std::lround(work.duration))) + " s");
 }
 
 void Forklift::answer_plan_requests() {

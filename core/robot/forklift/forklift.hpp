@@ -14,9 +14,9 @@
 #include "planning/dynamic_grid.hpp"
 #include "planning/octomap_layer.hpp"
 #include "robot/forklift/simulated_forklift.hpp"
+#include "robot/item_handler.hpp"
 #include "robot/navigation.hpp"
 #include "robot/order_reporter.hpp"
-#include "robot/picker/picker_arm_work.hpp"
 #include "robot/robot.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"
@@ -26,13 +26,8 @@ namespace fleet::robot {
 struct ForkliftConfig {
   /// The robot type this software drives, for messages ("forklift", "picker").
   std::string type_name = "forklift";
-  /// False for a base without forks (the picker): it takes no transport.
+  /// False for a base without forks (the picker, the cart): it takes no transport.
   bool forks = true;
-  /// An arm that picks boxes (the picker's UR5 with its vacuum gripper and boom camera): the
-  /// robot takes pick orders, its arm working at each stop (PickerArmWork).
-  bool arm = false;
-  perception::DepthMarkerCameraParams box_camera;
-  PickerArmLayout arm_layout;
   SimulatedForkliftParams sim;
   task::ExecutorParams task;  ///< its follower defaults to the regulated one
   perception::MarkerCameraParams camera;
@@ -113,12 +108,12 @@ struct ForkliftConfig {
 /// One forklift: its simulated body and sensors (SimulatedForklift), the marker camera on the
 /// pallets it knows of, and its software: EKF pose into the task executor [Forklift thesis, Fig. 6.9],
 /// route planning on the road graph with the static grid [Forklift thesis, chapter 5], pallet search,
-/// pick and place [Forklift thesis, sections 6.2-6.3]. What every robot type shares it composes:
-/// TrafficFollower (path, grants, re-routes), SafetyStop and OrderReporter.
+/// pick and place [Forklift thesis, sections 6.2-6.3]. What every robot type shares it holds in
+/// its Navigation; a type that handles items at stops (the picker's arm) plugs in an ItemHandler.
 class Forklift : public Robot {
  public:
   Forklift(const ForkliftConfig& config, std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
-           std::uint64_t seed, std::uint64_t stream);
+           std::uint64_t seed, std::uint64_t stream, std::unique_ptr<ItemHandler> items = nullptr);
 
   // --- inputs ---------------------------------------------------------------------------------
   /// A forklift performs transports and moves; no pickItem.
@@ -172,9 +167,6 @@ class Forklift : public Robot {
   std::vector<geometry::Polygon> uwb_blockers() const;
   /// Anchors the map shows behind an enabled static obstacle, seen from the estimate.
   std::vector<std::size_t> shadowed_anchors() const;
-  /// PICK_ITEMS and DROP_ITEMS: plans and times the arm's work at the stop on entering, answers
-  /// the executor when that time has passed.
-  void work_items(double t);
 
   ForkliftConfig config_;
   Navigation nav_;
@@ -199,9 +191,7 @@ class Forklift : public Robot {
   std::map<std::string, int> seen_free_;
   int next_temporary_ = 1;
   bool held_by_traffic_ = false;
-  std::optional<PickerArmWork> arm_;
-  std::vector<map::BoxStock> tray_;    ///< the boxes on the picker's tray, bottom first
-  std::optional<double> arm_done_at_;  ///< sim time the arm's work at this stop ends
+  std::unique_ptr<ItemHandler> items_;  ///< the tool at item stops; null: no pick orders
 };
 
 }  // namespace fleet::robot

@@ -92,7 +92,7 @@ arm::Box box_of(const map::BoxStock& stock);
 
 /// The picker's arm work as the robot builds it (robot_type picker): the UR5 with its vacuum gripper
 /// [Picker thesis, sections 3.1-3.2], the boom camera and layout of its configuration
-/// (ForkliftConfig::box_camera, ForkliftConfig::arm_layout).
+/// (PickerConfig::box_camera, PickerConfig::arm_layout).
 PickerArmWork make_picker_arm_work(const perception::DepthMarkerCameraParams& camera, const PickerArmLayout& layout,
                                    std::uint64_t seed);
 

@@ -3,30 +3,34 @@
 #include "robot/picker/picker_robot.hpp"
 
 #include "robot/forklift/forklift_robot.hpp"
+#include "robot/picker/picker_arm_stops.hpp"
 #include "sim/summit_xls.hpp"
 
 namespace fleet::robot {
 
 /// The picker's base [Picker thesis]: the forklift software without forks on the Summit-XLS, localised by the
 /// site's markers and wheel odometry.
-ForkliftConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
-                                   const map::SiteMap& site) {
-  ForkliftConfig c = forklift_robot_config(config, fleet, site);
+PickerConfig picker_robot_config(const config::FleetConfig& config, const config::FleetSpec& fleet,
+                                 const map::SiteMap& site) {
+  PickerConfig p;
+  ForkliftConfig& c = p.base;
+  c = forklift_robot_config(config, fleet, site);
   c.type_name = "picker";
   c.forks = false;
-  c.arm = true;
   // The boom camera over the left side, where the pallet stands at a stop.
-  c.box_camera.mount = {0.25, 0.20, 1.50};
+  p.box_camera.mount = {0.25, 0.20, 1.50};
   const geometry::Footprint footprint = c.sim.forklift.footprint;
   c.sim.forklift = sim::summit_xls_body_params();
   c.sim.forklift.footprint = footprint;
   c.sim.marker_localization = true;
-  return c;
+  return p;
 }
 
 std::unique_ptr<Robot> make_picker(const RobotBuild& build) {
-  return std::make_unique<Forklift>(picker_robot_config(build.config, build.fleet, *build.site), build.site, build.home,
-                                    build.seed, build.stream);
+  const PickerConfig config = picker_robot_config(build.config, build.fleet, *build.site);
+  auto arm = std::make_unique<PickerArmStops>(make_picker_arm_work(
+      config.box_camera, config.arm_layout, build.seed ^ (build.stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL));
+  return std::make_unique<Forklift>(config.base, build.site, build.home, build.seed, build.stream, std::move(arm));
 }
 
 }  // namespace fleet::robot

@@ -1,0 +1,21 @@
+#pragma once
+
+#include "map/site.hpp"
+#include "robot/order_reporter.hpp"
+#include "task/task_executor.hpp"
+
+namespace fleet::robot {
+
+/// A tool that handles items at an order's stops while the forklift software stands there (task
+/// states PICK_ITEMS and DROP_ITEMS): the picker's arm (robot/picker/picker_arm_stops.hpp). The
+/// forklift software plugs one in when its type has one; without one it refuses pick orders.
+class ItemHandler {
+ public:
+  virtual ~ItemHandler() = default;
+  /// One control step at sim time `t`: starts, times and ends the work at the stop `executor`
+  /// stands at and answers it (TaskExecutor::items_done), telling people what it does on
+  /// `reports`; does nothing in any other state.
+  virtual void step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) = 0;
+};
+
+}  // namespace fleet::robot

@@ -1,0 +1,44 @@
+#include "robot/picker/picker_arm_stops.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace fleet::robot {
+
+void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) {
+  const task::State state = executor.state();
+  if (state != task::State::kPickItems && state != task::State::kDropItems) {
+    done_at_.reset();
+    return;
+  }
+  if (done_at_) {
+    if (t < *done_at_) return;
+    done_at_.reset();
+    if (state == task::State::kDropItems) tray_.clear();
+    executor.items_done(true);
+    return;
+  }
+  const task::TaskOrder& order = *executor.order();
+  ArmWork work;
+  if (state == task::State::kPickItems) {
+    const task::ItemStop& stop = order.items.at(executor.item_line());
+    const map::LoadingArea* area = site.find_area(stop.place_id);
+    if (area == nullptr || !area->boxes) {
+      executor.items_done(false, "place " + stop.place_id + " holds no boxes");
+      return;
+    }
+    work = arm_.pick(*area->boxes, stop.quantity, tray_);
+  } else {
+    work = arm_.drop(tray_, 0);
+  }
+  if (!work.ok) {
+    executor.items_done(false, work.reason);
+    return;
+  }
+  done_at_ = t + work.duration;
+  reports.set_detail((state == task::State::kPickItems ? "arm picks " : "arm puts down ") + std::to_string(work.boxes) +
+                     " box" + (work.boxes == 1 ? "" : "es") + " in " +
+                     std::to_string(static_cast<int>(std::lround(work.duration))) + " s");
+}
+
+}  // namespace fleet::robot
