@@ -12,7 +12,6 @@
 
 #include "cli/command_flags.hpp"
 #include "commands.hpp"
-#include "common/args.hpp"
 #include "coordination/grid_map.hpp"
 #include "map/reference_samples.hpp"
 #include "map/site_map.hpp"

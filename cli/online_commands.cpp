@@ -30,9 +30,8 @@ namespace fleet::cli {
 
 namespace {
 
-int order_add(const std::vector<std::string>& words, const CommandArgs& command, const Connection& connection,
-              std::ostream& out, std::ostream& err) {
-  const CommandFlags args("order", "add", words);
+int order_add(const CommandFlags& args, const CommandArgs& command, const Connection& connection, std::ostream& out,
+              std::ostream& err) {
   model::OrderRequest request;
   request.kind = args.value("kind").value_or("");
   const bool move = request.kind == "move";
@@ -143,7 +142,7 @@ int order_add(const std::vector<std::string>& words, const CommandArgs& command,
   return final_info->state == "DONE" ? kExitOk : kExitFailed;
 }
 
-std::string one_positional(const Args& args, const std::string& what) {
+std::string one_positional(const CommandFlags& args, const std::string& what) {
   const auto rest = args.positionals();
   if (rest.size() != 1) throw ArgError("expected exactly one " + what);
   return rest[0];
@@ -167,11 +166,8 @@ int run_command_on_server(FleetClient& client, const Connection& connection, mod
   return kExitOk;
 }
 
-int order_list(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+int order_list(const CommandFlags& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
   const auto state = args.value("state");
-  if (state && !orders::parse_status(*state)) {
-    throw ArgError("--state: '" + *state + "' is not one of QUEUED, ASSIGNED, ACTIVE, DONE, FAILED, CANCELLED");
-  }
   if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   FleetClient client(connection.domain);
   require_server(client, connection);
@@ -195,7 +191,7 @@ int order_list(Args& args, const CommandArgs& command, const Connection& connect
   return kExitOk;
 }
 
-int order_show(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+int order_show(const CommandFlags& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
   const std::int64_t id = order_id_of(one_positional(args, "order id"));
   FleetClient client(connection.domain);
   require_server(client, connection);
@@ -232,7 +228,8 @@ int order_show(Args& args, const CommandArgs& command, const Connection& connect
   return kExitOk;
 }
 
-int order_cancel(Args& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
+int order_cancel(const CommandFlags& args, const CommandArgs& command, const Connection& connection,
+                 std::ostream& out) {
   const std::int64_t id = order_id_of(one_positional(args, "order id"));
   FleetClient client(connection.domain);
   require_server(client, connection);
@@ -247,8 +244,8 @@ int order_cancel(Args& args, const CommandArgs& command, const Connection& conne
 
 int obstacle_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
-    const auto words = args.positionals();
+    // list, on and off are subcommands of the table, whose flags (none) main() has checked.
+    const std::vector<std::string>& words = command.args;
     const std::string sub = words.empty() ? "" : words[0];
     FleetClient client(connection.domain);
     if (sub == "list" && words.size() == 1) {
@@ -286,7 +283,7 @@ int obstacle_command(const CommandArgs& command, const Connection& connection, s
 int robot_control_command(const std::string& verb, const CommandArgs& command, const Connection& connection,
                           std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
+    const CommandFlags args(verb, "", command.args);
     const std::string robot = one_positional(args, "robot id");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
@@ -304,9 +301,11 @@ int robot_control_command(const std::string& verb, const CommandArgs& command, c
 int auto_orders_command(const CommandArgs& command, const Connection& connection, std::ostream& out,
                         std::ostream& err) {
   try {
-    Args args(command.args);
-    const std::string value = one_positional(args, "on or off");
-    if (value != "on" && value != "off") throw ArgError("auto-orders takes on or off, got '" + value + "'");
+    // on and off are subcommands of the table, whose flags (none) main() has checked.
+    const std::string value = command.args.empty() ? std::string() : command.args.front();
+    if (command.args.size() != 1 || (value != "on" && value != "off")) {
+      throw ArgError("auto-orders takes on or off" + (value.empty() ? std::string() : ", got '" + value + "'"));
+    }
     FleetClient client(connection.domain);
     require_server(client, connection);
     model::Command c;
@@ -321,27 +320,26 @@ int auto_orders_command(const CommandArgs& command, const Connection& connection
 
 int map_list_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
-    const auto robot = args.value("robot");
-    const auto words = args.positionals();
-    if (!words.empty() && words[0] == "set") {
+    // main() sends only map list and map set here.
+    const std::string& sub = command.args.front();
+    const CommandFlags args("map", sub, std::vector<std::string>(command.args.begin() + 1, command.args.end()));
+    if (sub == "set") {
       // map set MAP [--robot R]: every robot (or one, with traffic off) onto another map of the site.
-      if (words.size() != 2) throw ArgError("usage: map set MAP [--robot R]");
+      const std::string map_id = one_positional(args, "map id");
+      const auto robot = args.value("robot");
       FleetClient client(connection.domain);
       const model::ServerInfo info = require_server(client, connection);
-      require_known("map", words[1], info.maps);
+      require_known("map", map_id, info.maps);
       if (robot) require_known("robot", *robot, info.robots);
       model::Command c;
       c.verb = "map";
       c.target = robot.value_or("");
-      c.value = words[1];
+      c.value = map_id;
       return run_command_on_server(client, connection, c, command, out,
-                                   (robot ? "robot " + *robot : std::string("every robot")) + " on map " + words[1],
-                                   {{"map", words[1]}, {"robot_id", robot.value_or("")}});
+                                   (robot ? "robot " + *robot : std::string("every robot")) + " on map " + map_id,
+                                   {{"map", map_id}, {"robot_id", robot.value_or("")}});
     }
-    if (words.size() != 1 || words[0] != "list" || robot) {
-      throw ArgError("usage: map list | map set MAP [--robot R] (map check|sample|render work on files)");
-    }
+    if (!args.positionals().empty()) throw ArgError("map list takes no argument, got '" + args.positionals()[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     if (command.json) {
@@ -357,14 +355,16 @@ int map_list_command(const CommandArgs& command, const Connection& connection, s
 
 int order_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
-    const auto sub = args.remaining().empty() ? std::string() : args.remaining().front();
-    Args rest(std::vector<std::string>(args.remaining().begin() + (sub.empty() ? 0 : 1), args.remaining().end()));
-    if (sub == "add") return order_add(rest.remaining(), command, connection, out, err);
-    if (sub == "list") return order_list(rest, command, connection, out);
-    if (sub == "show") return order_show(rest, command, connection, out);
-    if (sub == "cancel") return order_cancel(rest, command, connection, out);
-    if (sub == "watch") return order_watch(rest.remaining(), command, connection, out, err);
+    const std::string sub = command.args.empty() ? std::string() : command.args.front();
+    const std::vector<std::string> rest(command.args.begin() + (sub.empty() ? 0 : 1), command.args.end());
+    if (sub == "watch") return order_watch(rest, command, connection, out, err);
+    if (find_command("order", sub) != nullptr) {
+      const CommandFlags flags("order", sub, rest);
+      if (sub == "add") return order_add(flags, command, connection, out, err);
+      if (sub == "list") return order_list(flags, command, connection, out);
+      if (sub == "show") return order_show(flags, command, connection, out);
+      if (sub == "cancel") return order_cancel(flags, command, connection, out);
+    }
     throw ArgError(sub.empty() ? "order needs a subcommand: add, list, show, cancel, watch"
                                : "unknown order subcommand '" + sub + "' (add, list, show, cancel, watch)");
   } catch (const CommandExit& e) {
@@ -374,8 +374,8 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
 
 int stats_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
-    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
+    const CommandFlags args("stats", "", command.args);
+    if (const auto& rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     const auto orders = client.orders(std::chrono::milliseconds(600));
@@ -456,7 +456,7 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
 
 int robots_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
-    Args args(command.args);
+    const CommandFlags args("robots", "", command.args);
     const bool all = args.flag("all");
     if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/online_support.hpp"
 #include "cli/order_progress.hpp"
 #include "cli/processes.hpp"
@@ -127,8 +128,8 @@ std::string summary_title(std::uint32_t domain, const std::map<std::int64_t, mod
 int order_watch(const std::vector<std::string>& words, const CommandArgs& command, const Connection& connection,
                 std::ostream& out, std::ostream& err) {
   try {
-    Args args(words);
-    const auto positionals = args.positionals();
+    const CommandFlags args("order", "watch", words);
+    const std::vector<std::string>& positionals = args.positionals();
     if (positionals.size() > 1) throw ArgError("order watch takes at most one order id");
     // Order ids are positive: 0 watches every order.
     const std::int64_t watched = positionals.empty() ? 0 : order_id_of(positionals[0]);

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cli/client.hpp"
+#include "cli/command_flags.hpp"
 #include "cli/online_commands.hpp"
 #include "cli/online_support.hpp"
 #include "common/args.hpp"
@@ -91,8 +92,8 @@ int traffic_show_command(const CommandArgs& command, const Connection& connectio
                          std::ostream& err) {
   try {
     if (command.args.empty() || command.args[0] != "show") throw ArgError("traffic needs a subcommand: show [ROBOT]");
-    Args args(std::vector<std::string>(command.args.begin() + 1, command.args.end()));
-    const auto rest = args.positionals();
+    const CommandFlags args("traffic", "show", std::vector<std::string>(command.args.begin() + 1, command.args.end()));
+    const std::vector<std::string>& rest = args.positionals();
     if (rest.size() > 1) throw ArgError("unexpected argument '" + rest[1] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);

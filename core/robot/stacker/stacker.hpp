@@ -67,9 +67,9 @@ struct StackerConfig {
 /// its software. On the roads it follows its traffic-granted route by pure pursuit of the rear
 /// axle; at a place it docks in reverse with the docking law and the camera-based pallet
 /// detection, lifts, drives on, docks the carried pallet onto the drop place and lowers it; at
-/// home it reverses into its bay the same way. What every robot type shares it composes:
-/// TrafficFollower, SafetyStop and OrderReporter. The reported pose is the body's centre (the
-/// footprint's), the control reference the rear-axle midpoint.
+/// home it reverses into its bay the same way. What every robot type shares it holds in its
+/// Navigation. The reported pose is the body's centre (the footprint's), the control reference the
+/// rear-axle midpoint.
 class Stacker : public Robot {
  public:
   Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
