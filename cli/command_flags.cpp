@@ -1,7 +1,6 @@
 #include "cli/command_flags.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,11 +14,6 @@ namespace {
 
 using Kind = FlagSpec::Kind;
 using Type = FlagSpec::Type;
-
-bool looks_like_flag(const std::string& word) {
-  // "-3" and "-.5" are numbers, not flags.
-  return word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
-}
 
 std::string range_text(const FlagSpec& flag) {
   return format_number(flag.min) + " .. " + format_number(flag.max);
@@ -122,6 +116,9 @@ CommandFlags::CommandFlags(const CommandSpec& spec, const std::vector<std::strin
     }
     check_value(*flag, text);
     given_[name].push_back(std::move(text));
+  }
+  if (spec.positionals.empty() && !positionals_.empty()) {
+    throw ArgError("unexpected argument '" + positionals_.front() + "'");
   }
 }
 

@@ -15,7 +15,8 @@ namespace fleet::cli {
 /// A command's arguments parsed against its entry of the command table, where each flag is
 /// declared once (name, kind, value type, range, choices): what --help, the shell completion and
 /// the docs test read too. An undeclared flag, a missing value, a value that is not of the flag's
-/// type, out of its range or not among its choices is an ArgError naming the flag. Accepts
+/// type, out of its range or not among its choices, or an argument to a command that takes none,
+/// is an ArgError naming it. Accepts
 /// `--name value` and `--name=value`; a value flag given twice keeps every value (`values`).
 class CommandFlags {
  public:

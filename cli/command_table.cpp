@@ -50,8 +50,6 @@ FlagSpec seed() {
 FlagSpec process_seed() {
   return integer("--seed", "S", 0, 2147483647);
 }
-constexpr double kMaxPriority = orders::kMaxPriority;
-constexpr double kMinPriority = orders::kMinPriority;
 
 const std::vector<std::string> kOrderStates{"QUEUED", "ASSIGNED", "ACTIVE", "DONE", "FAILED", "CANCELLED"};
 
@@ -64,8 +62,8 @@ std::vector<CommandSpec> server_commands() {
        "",
        false,
        {choice("--kind", {"transport", "move", "pick"}, "K"), value("--from", "AREA"), value("--to", "PLACE", true),
-        value("--lines", "FILE.csv"), integer("--priority", "P", kMinPriority, kMaxPriority), value("--robot", "R"),
-        value("--fleet", "F"), on_off("--wait")},
+        value("--lines", "FILE.csv"), integer("--priority", "P", orders::kMinPriority, orders::kMaxPriority),
+        value("--robot", "R"), value("--fleet", "F"), on_off("--wait")},
        "create an order, print its id: a transport --from AREA --to AREA (the default\n"
        "kind), a move --to PARKING (go there and stay), a pick --lines FILE.csv --to\n"
        "PLACE (place,item,quantity per line; one order per tour, their ids printed);\n"
@@ -97,7 +95,8 @@ std::vector<CommandSpec> server_commands() {
        "",
        false,
        {integer("--count", "M", 1, 100000), value("--rate", "N/min"), process_seed(),
-        integer("--priority", "P", kMinPriority, kMaxPriority), file("--file", "ORDERS.csv"), on_off("--wait")},
+        integer("--priority", "P", orders::kMinPriority, orders::kMaxPriority), file("--file", "ORDERS.csv"),
+        on_off("--wait")},
        "random valid orders (--count M, --rate N/min, default 60/min; --seed S) or the\n"
        "rows of a CSV file (from,to,priority,delay_s; checked whole before any is sent);\n"
        "prints one line per order; --wait follows them all and prints a summary"},

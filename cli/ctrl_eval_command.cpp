@@ -46,7 +46,6 @@ int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
     if (const auto v = a.number("speed")) params.speed = *v;
     if (const auto v = a.value("site")) site = *v;
     if (const auto v = a.value("follower")) params.use_regulated = *v == "regulated";
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
     err << "ctrl-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;

@@ -88,7 +88,6 @@ int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       params.pose_noise.yaw_sigma = *deg * kDeg;
     }
     if (const auto v = a.value("plot")) plot_file = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
     err << "dock-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;

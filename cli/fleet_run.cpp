@@ -321,7 +321,6 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.http_port = static_cast<int>(args.integer("http-port").value_or(config.settings.get_int("server.http_port")));
   options.api_token = random_token();
   options.auto_orders = !args.flag("no-auto-orders");
-  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
     throw ArgError("--site: " + model::unknown_name_message("site", options.site, map::site_names(maps_dir())));
   }

@@ -27,10 +27,7 @@ std::string fixed(double value, int digits) {
 
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& /*err*/) {
   // --site only chooses the configuration (config/sites/SITE.yaml), which main() has done.
-  const CommandFlags flags("fleets", "", args.args);
-  if (const auto rest = flags.positionals(); !rest.empty()) {
-    throw ArgError("fleets takes no argument, got '" + rest.front() + "'");
-  }
+  const CommandFlags flags("fleets", "", args.args);  // takes no argument
   const config::FleetConfig config = config::load_fleet_config(args.config_file);
   if (args.json) {
     nlohmann::json fleets = nlohmann::json::array();

@@ -352,7 +352,6 @@ int inject_command(const CommandArgs& command, const Connection& connection, std
     const auto seed = args.integer("seed");
     const auto priority = args.integer("priority");
     const bool wait = args.flag("wait");
-    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     if (file && (count || rate_text || seed || priority)) {
       throw ArgError(
           "inject --file takes areas, priorities and delays from the file; leave out --count, --rate, "

@@ -309,7 +309,6 @@ int load_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.settings = args.values("set");
   // Checked here, named as given, before any process starts.
   for (const auto& s : options.settings) config::apply_set_flag(config, s);
-  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   known_site_path(command.source_dir, options.site);
   {
     FleetClient probe(domain);

@@ -57,7 +57,6 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
     if (const auto v = a.u64("seed")) params.seed = *v;
     if (const auto v = a.number("nlos")) params.nlos_fraction = *v;
     if (const auto v = a.value("plot")) plot_file = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
   } catch (const ArgError& e) {
     err << "loc-eval: " << e.what() << '\n' << a.usage();
     return kExitBadInput;

@@ -111,11 +111,9 @@ int main(int argc, char** argv) {
     if (name == "mapf-eval") return mapf_eval_command(command, out, err);
     if (name == "config") {
       if (!command.args.empty() && command.args[0] == "keys") {
-        Args keys_args(std::vector<std::string>(command.args.begin() + 1, command.args.end()));
-        const bool markdown = keys_args.flag("markdown");
-        if (const auto extra = keys_args.positionals(); !extra.empty()) {
-          throw ArgError("config keys takes no argument, got '" + extra.front() + "'");
-        }
+        const CommandFlags keys("config", "keys",
+                                std::vector<std::string>(command.args.begin() + 1, command.args.end()));
+        const bool markdown = keys.flag("markdown");
         if (markdown) {
           out << config::configuration_page();
           return kExitOk;

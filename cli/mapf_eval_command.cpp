@@ -45,7 +45,6 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);
   const auto output = flags.value("output");
-  if (const auto rest = flags.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   if (!instance_path) throw ArgError("mapf-eval needs --instance FILE.json (a League of Robot Runners 2023 instance)");
 
   const coordination::LorrInstance instance = coordination::load_lorr_instance(*instance_path);

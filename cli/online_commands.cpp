@@ -59,7 +59,6 @@ int order_add(const CommandFlags& args, const CommandArgs& command, const Connec
   request.robot_id = args.value("robot").value_or("");
   request.fleet_id = args.value("fleet").value_or("");
   const bool wait = args.flag("wait");
-  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
 
   FleetClient client(connection.domain);
   const model::ServerInfo info = require_server(client, connection);
@@ -168,7 +167,6 @@ int run_command_on_server(FleetClient& client, const Connection& connection, mod
 
 int order_list(const CommandFlags& args, const CommandArgs& command, const Connection& connection, std::ostream& out) {
   const auto state = args.value("state");
-  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   FleetClient client(connection.domain);
   require_server(client, connection);
   nlohmann::json rows = nlohmann::json::array();
@@ -339,7 +337,6 @@ int map_list_command(const CommandArgs& command, const Connection& connection, s
                                    (robot ? "robot " + *robot : std::string("every robot")) + " on map " + map_id,
                                    {{"map", map_id}, {"robot_id", robot.value_or("")}});
     }
-    if (!args.positionals().empty()) throw ArgError("map list takes no argument, got '" + args.positionals()[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     if (command.json) {
@@ -375,7 +372,6 @@ int order_command(const CommandArgs& command, const Connection& connection, std:
 int stats_command(const CommandArgs& command, const Connection& connection, std::ostream& out, std::ostream& err) {
   try {
     const CommandFlags args("stats", "", command.args);
-    if (const auto& rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     const auto orders = client.orders(std::chrono::milliseconds(600));
@@ -411,7 +407,6 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
   try {
     const CommandFlags args("routing-age", "", command.args);
     const double seconds = args.number("seconds").value_or(10.0);
-    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     const SimClock clock(info.time_scale);
@@ -458,7 +453,6 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
   try {
     const CommandFlags args("robots", "", command.args);
     const bool all = args.flag("all");
-    if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     const auto states = client.robot_states(std::chrono::milliseconds(600));

@@ -330,9 +330,6 @@ int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   const bool json = args.json;
   params.seed = flags.u64("seed").value_or(params.seed);
   params.drop_place = flags.value("drop").value_or("");
-  if (const auto rest = flags.positionals(); !rest.empty()) {
-    throw ArgError("pick-eval: unexpected argument '" + rest[0] + "'");
-  }
 
   eval::PickEvalResult r;
   try {

@@ -32,7 +32,6 @@ int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
     if (const auto v = a.u64("seed")) config.seed = *v;
     if (const auto v = a.number("resolution")) config.resolution = *v;
     if (const auto v = a.number("optimal-budget-ms")) config.optimal_budget_ms = *v;
-    if (!a.positionals().empty()) throw ArgError("unexpected argument '" + a.positionals().front() + "'");
     if (site_name.empty()) throw ArgError("--site is required");
   } catch (const ArgError& e) {
     err << "plan-eval: " << e.what() << '\n' << a.usage();

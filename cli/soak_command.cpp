@@ -55,7 +55,6 @@ SoakRequest parse_soak(const CommandArgs& command, std::uint32_t domain) {
     options.extra_server_args.push_back("--verbose");
     options.extra_agent_args.push_back("--verbose");
   }
-  if (const auto rest = args.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   known_site_path(command.source_dir, options.site);
   // Checked here, named as given, before any process starts.
   for (const auto& s : settings) config::apply_set_flag(r.config, s);

@@ -139,16 +139,10 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
     if (!rest.empty()) spec.place_prefixes.push_back(rest);
   }
   if (const auto core = flags.value("core")) {
-    if (*core == "both") {
-      spec.cores = {"manager", "pibt"};
-    } else if (*core == "manager" || *core == "pibt") {
-      spec.cores = {*core};
-    } else {
-      throw ArgError("--core: '" + *core + "' is none of manager, pibt, both");
-    }
+    // The command table's choices: manager, pibt, both.
+    spec.cores = *core == "both" ? std::vector<std::string>{"manager", "pibt"} : std::vector<std::string>{*core};
   }
   if (const auto lanes = flags.value("lanes")) {
-    if (*lanes != "both" && *lanes != "one-way") throw ArgError("--lanes: '" + *lanes + "' is none of both, one-way");
     if (*lanes == "one-way" && spec.cores == std::vector<std::string>{"manager"}) {
       throw ArgError("--lanes one-way: the traffic manager drives its own one-way plan; give --core pibt or both");
     }
@@ -163,21 +157,20 @@ int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostrea
         parts.back().push_back(c);
       }
     }
-    const auto p = parts.size() == 3 ? parse_finite(parts[0]) : std::nullopt;
-    const auto lo = parts.size() == 3 ? parse_finite(parts[1]) : std::nullopt;
-    const auto hi = parts.size() == 3 ? parse_finite(parts[2]) : std::nullopt;
-    if (!p || !lo || !hi || *p < 0.0 || *p > 1.0 || *lo < 0.0 || *hi < *lo || *hi > 3600.0) {
+    // -1 stands for a part that is missing or no number: every check below refuses it.
+    const auto part = [&](std::size_t i) { return parts.size() == 3 ? parse_finite(parts[i]).value_or(-1.0) : -1.0; };
+    const double p = part(0), lo = part(1), hi = part(2);
+    if (p < 0.0 || p > 1.0 || lo < 0.0 || hi < lo || hi > 3600.0) {
       throw ArgError("--delay '" + *delay + "': expected P,MIN,MAX with 0 <= P <= 1 and 0 <= MIN <= MAX (seconds)");
     }
     if (spec.cores != std::vector<std::string>{"pibt"}) {
       throw ArgError("--delay: only the coordination core's runs model delays (--core pibt)");
     }
-    spec.delay_probability = *p;
-    spec.delay_min_s = *lo;
-    spec.delay_max_s = *hi;
+    spec.delay_probability = p;
+    spec.delay_min_s = lo;
+    spec.delay_max_s = hi;
   }
   if (against && spec.cores.size() > 1) throw ArgError("--core both compares cores on one site: drop --against");
-  if (const auto rest = flags.positionals(); !rest.empty()) throw ArgError("unexpected argument '" + rest[0] + "'");
   for (const auto& name : against ? std::vector<std::string>{site, *against} : std::vector<std::string>{site}) {
     if (!std::filesystem::exists(map::site_path(maps_dir(), name))) {
       throw ArgError(model::unknown_name_message("site", name, map::site_names(maps_dir())));

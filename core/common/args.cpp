@@ -119,12 +119,13 @@ std::optional<std::uint64_t> Args::u64(const std::string& name) {
   return parse_u64(name, *text);
 }
 
+bool looks_like_flag(const std::string& word) {
+  return word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
+}
+
 std::vector<std::string> Args::positionals() const {
   for (const auto& a : args_) {
-    if (a.size() > 1 && a[0] == '-' &&
-        !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
-      throw ArgError("unknown flag '" + a + "'");
-    }
+    if (looks_like_flag(a)) throw ArgError("unknown flag '" + a + "'");
   }
   return args_;
 }

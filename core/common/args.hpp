@@ -32,6 +32,9 @@ std::optional<std::uint64_t> parse_u64(const std::string& text);
 /// value when it is not one.
 std::uint64_t parse_u64(const std::string& name, const std::string& text);
 
+/// Whether a command-line word is a flag: a dash and more, but not a negative number ("-3", "-.5").
+bool looks_like_flag(const std::string& word);
+
 /// Takes flags out of an argument list one by one; what remains is positional. Accepts
 /// `--name value` and `--name=value`.
 class Args {

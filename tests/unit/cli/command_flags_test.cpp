@@ -62,6 +62,8 @@ TEST(CommandFlags, BadFlagsAreArgErrorsNamingTheFlagTheValueAndWhatTheCommandTak
   EXPECT_EQ(error_of("order", "add", {"--priority", "5000"}), "flag --priority: 5000 is outside -1000 .. 1000");
   EXPECT_EQ(error_of("stats", "", {"--all"}), "unknown flag '--all' for stats (it takes none)");
   EXPECT_EQ(error_of("load", "", {"--duration", "nan"}), "flag --duration: 'nan' is not a number");
+  EXPECT_EQ(error_of("dock-eval", "", {"extra"}), "unexpected argument 'extra'") << "dock-eval takes no argument";
+  EXPECT_EQ(error_of("map", "check", {"table_a", "plant"}), "") << "map check takes sites";
 }
 
 TEST(CommandFlags, ReadingAFlagTheTableDoesNotDeclareIsAProgrammingError) {
