@@ -474,7 +474,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
   const double publish_period_wall =
       std::max(1.0 / kMaxPublishHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("agent.state_hz")));
   // The robot keeps its own sim time from zero; `offset` maps it onto the shared clock.
-  double offset = clock_.now() - robot_->status().time;
+  double offset = clock_.now() - robot_->time();
   double last_publish_wall = 0.0;
   double target = clock_.now();
   publish_state(target);
@@ -494,7 +494,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     // Asleep until the next control step is due or an input arrives (the grants, orders and site
     // inputs wake the waitset): a fixed short timeout woke the process hundreds of times a second
     // for nothing, a fifth of an idle agent's CPU.
-    const double until_step_wall = clock_.to_wall(robot_->status().time + offset + step - clock_.now());
+    const double until_step_wall = clock_.to_wall(robot_->time() + offset + step - clock_.now());
     waitset_.wait(std::chrono::microseconds(static_cast<long>(std::clamp(until_step_wall, 0.0, kMaxSleepWall) * 1e6)));
     const double loop_wall = SimClock::wall_now();
     if (loop_wall - last_loop_wall >= grant_lost_gap_wall) drop_grant(clock_.now());
@@ -505,7 +505,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
     handle_fleet_view(target);
     // Advance in fixed control steps to the clock. After a long gap (the process was stopped)
     // the body does not replay the missed time: it was frozen with its software.
-    double behind = target - (robot_->status().time + offset);
+    double behind = target - (robot_->time() + offset);
     if (behind > 1.0) {
       offset += behind - step;
       step_lag_.steps_skipped(static_cast<std::int64_t>((behind - step) / step));
@@ -519,7 +519,7 @@ void FleetAgent::run(const std::atomic<bool>& stop) {
       handle_events();
       // A long catch-up (a burst of camera frames, a loaded host) still publishes at the state
       // rate, so that the server's liveness deadline sees a robot that is only busy.
-      if (behind >= 2.0 * step) publish_when_due(robot_->status().time + offset);
+      if (behind >= 2.0 * step) publish_when_due(robot_->time() + offset);
     }
     if (!publish_when_due(target) && traffic_ && robot_->navigation().follower().version() != last_traffic_.version) {
       publish_traffic(target);

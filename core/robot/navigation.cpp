@@ -96,7 +96,9 @@ planning::Route Navigation::plan(const geometry::Pose2& from, const geometry::Po
 
 planning::LidarScan Navigation::scan(const geometry::Pose2& truth, const geometry::Pose2& estimate) const {
   std::vector<geometry::Polygon> seen = true_neighbours_;
-  for (auto& polygon : enabled_obstacles()) seen.push_back(std::move(polygon));
+  for (const auto& o : site_->site.static_obstacles) {
+    if (obstacles_.at(o.id)) seen.push_back(o.polygon);
+  }
   planning::LidarScan scan = lidar_.scan(truth, seen);
   scan.pose = estimate;
   return scan;

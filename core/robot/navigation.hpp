@@ -56,6 +56,8 @@ class Navigation {
   /// The static grid, for temporaries of the local planner.
   planning::StaticGrid& static_grid() { return static_grid_; }
   const planning::StaticGrid& static_grid() const { return static_grid_; }
+  /// Whether the site's static obstacle `id` is switched on.
+  bool obstacle_enabled(const std::string& id) const { return obstacles_.at(id); }
   /// The enabled static obstacles' polygons.
   std::vector<geometry::Polygon> enabled_obstacles() const;
 

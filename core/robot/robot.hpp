@@ -146,6 +146,9 @@ class Robot {
   /// One control step of step_period() sim seconds.
   virtual void step() = 0;
   virtual double step_period() const = 0;
+  /// Sim seconds since the robot started, as status().time: the clock the agent steps it by, read
+  /// every step without building a whole status.
+  virtual double time() const = 0;
 
   // --- what it reports ------------------------------------------------------------------------
   virtual RobotStatus status() const = 0;

@@ -60,6 +60,12 @@ double lookahead_gap(const config::FleetConfig& config) {
   return traffic::reservation_margin(config) / 2.0;
 }
 
+double fastest_fleet_speed(const config::FleetConfig& config) {
+  double fastest = 0.0;
+  for (const auto& fleet : config.fleets) fastest = std::max(fastest, fleet.profile.max_speed);
+  return fastest;
+}
+
 // Each type's builder lives in its folder (core/robot/<type>/<type>_robot.cpp).
 #define FLEET_ROBOT_TYPE(name) std::unique_ptr<Robot> make_##name(const RobotBuild& build);
 #include "robot/robot_types.def"

@@ -29,6 +29,10 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
                                   std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
                                   std::uint64_t seed, std::uint64_t stream);
 
+/// The top speed of the fastest fleet's vehicles: how fast a neighbour not heard from lately may
+/// have driven, whatever its fleet.
+double fastest_fleet_speed(const config::FleetConfig& config);
+
 /// The gap the look ahead keeps to the bodies other robots report when traffic is on: half of
 /// what traffic keeps between the robots it grants places to (traffic::reservation_margin).
 double lookahead_gap(const config::FleetConfig& config);

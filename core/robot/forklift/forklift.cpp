@@ -86,7 +86,6 @@ Forklift::Forklift(const ForkliftConfig& config, std::shared_ptr<const map::Site
 }
 
 void Forklift::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
-  config_.route_graph = route_graph;
   nav_.set_site(std::move(site), std::move(route_graph));
   seen_free_.clear();
   executor_.replan();
@@ -135,7 +134,7 @@ void Forklift::set_standing_loads(const std::map<int, Pose2>& standing) {
 }
 
 RobotStatus Forklift::status() const {
-  return {.time = sim_.time(),
+  return {.time = time(),
           .truth = sim_.truth(),
           .estimate = sim_.estimate(),
           .covariance = sim_.covariance(),

@@ -135,6 +135,7 @@ class Forklift : public Robot {
   /// One control step of 1 / control_rate_hz sim seconds.
   void step() override;
   double step_period() const override { return 1.0 / config_.control_rate_hz; }
+  double time() const override { return sim_.time(); }
 
   // --- outputs --------------------------------------------------------------------------------
   RobotStatus status() const override;

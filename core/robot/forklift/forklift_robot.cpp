@@ -13,10 +13,7 @@ ForkliftConfig forklift_robot_config(const config::FleetConfig& config, const co
   // Sizes, tolerances, gaps and manoeuvre speeds follow the fleet's vehicle (see docs/control.md).
   ForkliftConfig c = ForkliftConfig::for_vehicle(fleet.profile);
   c.sim.forklift.footprint = fleet.footprint;
-  // A neighbour not heard from lately may have driven at the top speed of any fleet on the site.
-  for (const auto& other : config.fleets) {
-    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
-  }
+  c.neighbour_max_speed = std::max(c.neighbour_max_speed, fastest_fleet_speed(config));
   c.task.follower = follower_params(config, fleet);
   c.traffic = config.settings.get_bool("traffic.enabled");
   if (c.traffic) {

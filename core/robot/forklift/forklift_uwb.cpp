@@ -32,12 +32,12 @@ std::vector<std::size_t> Forklift::shadowed_anchors() const {
   std::vector<std::size_t> out;
   if (config_.anchor_shadow_margin < 0.0) return out;
   const auto& anchors = nav_.site().site.uwb_anchors;
-  const std::vector<geometry::Polygon> obstacles = nav_.enabled_obstacles();
   const Vec2 tag = geometry::body_to_map(sim_.estimate(), config_.sim.uwb.antenna_offset);
   for (std::size_t i = 0; i < anchors.size(); ++i) {
     const Vec2 anchor{anchors[i].x, anchors[i].y};
-    for (const auto& polygon : obstacles) {
-      if (geometry::segment_polygon_distance(anchor, tag, polygon) <= config_.anchor_shadow_margin) {
+    for (const auto& o : nav_.site().site.static_obstacles) {
+      if (nav_.obstacle_enabled(o.id) &&
+          geometry::segment_polygon_distance(anchor, tag, o.polygon) <= config_.anchor_shadow_margin) {
         out.push_back(i);
         break;
       }

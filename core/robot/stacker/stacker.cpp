@@ -134,7 +134,6 @@ bool Stacker::set_obstacle(const std::string& id, bool enabled) {
 }
 
 void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr<const map::RoadGraph> route_graph) {
-  config_.route_graph = route_graph;
   nav_.set_site(std::move(site), std::move(route_graph));
   if (drives_route(state_)) need_route_ = true;
 }

@@ -89,6 +89,7 @@ class Stacker : public Robot {
 
   void step() override;
   double step_period() const override { return 1.0 / config_.control_rate_hz; }
+  double time() const override { return time_; }
 
   RobotStatus status() const override;
   std::vector<RobotEvent> take_events() override { return reports_.take_events(); }

@@ -14,9 +14,7 @@ StackerConfig stacker_config(const config::FleetConfig& config, const config::Fl
                              const map::SiteMap& site) {
   StackerConfig c = StackerConfig::for_vehicle(fleet.profile);
   c.pursuit.max_speed = config.top_speed(fleet);
-  for (const auto& other : config.fleets) {
-    c.neighbour_max_speed = std::max(c.neighbour_max_speed, other.profile.max_speed);
-  }
+  c.neighbour_max_speed = std::max(c.neighbour_max_speed, fastest_fleet_speed(config));
   c.traffic = config.settings.get_bool("traffic.enabled");
   if (c.traffic) {
     c.clearance_margin = std::min(c.clearance_margin, lookahead_gap(config));
