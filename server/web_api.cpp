@@ -158,7 +158,7 @@ void WebApi::add_order(const Request& req, Response& res) {
     priority = it->get<long>();
   }
   // The server's own names for the map it serves (the same check it makes).
-  const std::shared_ptr<const orders::KnownNames> names = bridge_.latest().first.known_names;
+  const std::shared_ptr<const orders::KnownNames> names = bridge_.known_names();
   if (!names) return send_error(res, 503, "server", "the server has not published its site yet; try again");
   if (const auto problem = orders::check_order_request({*kind, *from, *to, *robot, *fleet, priority}, *names)) {
     return send_error(res, 400, problem->field, problem->message);

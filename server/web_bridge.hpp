@@ -69,6 +69,11 @@ class WebBridge {
     std::lock_guard lock(mutex_);
     return {snapshot_, version_};
   }
+  /// The names orders are checked against on the latest snapshot's map, without copying the rest.
+  std::shared_ptr<const orders::KnownNames> known_names() const {
+    std::lock_guard lock(mutex_);
+    return snapshot_.known_names;
+  }
 
   std::future<model::RequestReply> submit(WebRequest request) {
     std::lock_guard lock(mutex_);
