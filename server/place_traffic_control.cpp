@@ -23,26 +23,10 @@ coordination::PlaceTrafficParams params_for(const config::FleetConfig& config) {
   return params;
 }
 
-// The places of the vehicle types that follow paths with the mecanum or differential follower
-// hold what that follower sweeps through the bends, as a stacker's hold its pursuit's: steering
-// for a point one lookahead on (0.64 m for a reach truck), it turns before a bend and cuts it.
-traffic::TrafficConfiguration with_follower_drives(const config::FleetConfig& config) {
-  traffic::TrafficConfiguration configuration = traffic::configuration_from(config);
-  for (std::size_t type = 0; type < config.fleets.size(); ++type) {
-    traffic::VehicleType& vehicle = configuration.resources.vehicle_types.at(type);
-    if (vehicle.drive) continue;
-    const control::FollowerParams follower = robot::follower_params(config, config.fleets[type]);
-    vehicle.drive = [follower](const std::vector<geometry::Vec2>& path, bool) {
-      return robot::follower_drive(follower, path);
-    };
-  }
-  return configuration;
-}
-
 }  // namespace
 
 PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map, const config::FleetConfig& config)
-    : PlaceTrafficSite(std::move(map), with_follower_drives(config), params_for(config)) {}
+    : PlaceTrafficSite(std::move(map), robot::traffic_configuration_with_drives(config), params_for(config)) {}
 
 PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
                                    const traffic::TrafficConfiguration& configuration,

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "coordination/place_graph.hpp"
@@ -38,13 +39,28 @@ struct ClosedPlaces {
   /// it, and passable for those already in it, so that they can drive out of it.
   std::vector<std::vector<int>> by_area;
 
+  /// Of places bodies close: per vehicle type and move into them (from a neighbour), the robot
+  /// whose body reaches what that move sweeps (traffic::ConflictZones::body_reaches_move), kOpen
+  /// when none does. A body may close a place to the ways that turn through it and leave it open
+  /// to those that drive straight through.
+  std::vector<std::unordered_map<std::uint64_t, int>> by_move;
+
   ClosedPlaces() = default;
   ClosedPlaces(std::size_t types, std::size_t places)
-      : by_body(types, std::vector<int>(places, kOpen)), by_area(types, std::vector<int>(places, kOpen)) {}
-  /// The robot closing `place` to `robot` (of `type`, standing at `from`), kOpen when none does.
+      : by_body(types, std::vector<int>(places, kOpen)),
+        by_area(types, std::vector<int>(places, kOpen)),
+        by_move(types) {}
+  static std::uint64_t move_key(int from, int to) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+  }
+  /// The robot closing `place` to `robot` (of `type`, standing at `from`, -1 off the roads), kOpen
+  /// when none does.
   int closer(int type, int place, int robot, int from) const {
     const auto t = static_cast<std::size_t>(type);
-    const int body = by_body[t][static_cast<std::size_t>(place)];
+    int body = by_body[t][static_cast<std::size_t>(place)];
+    if (body != kOpen && body != robot && from >= 0 && from != place && t < by_move.size()) {
+      if (const auto move = by_move[t].find(move_key(from, place)); move != by_move[t].end()) body = move->second;
+    }
     if (body != kOpen && body != robot) return body;
     const int area = by_area[t][static_cast<std::size_t>(place)];
     const bool inside = from >= 0 && by_area[t][static_cast<std::size_t>(from)] == area;

@@ -25,6 +25,15 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
   }
+  for (const auto& type : zones.vehicle_types()) {
+    double front = 0.0;
+    double back = 0.0;
+    for (const auto& corner : type.footprint) {
+      front = std::max(front, corner.x);
+      back = std::min(back, corner.x);
+    }
+    body_length_.push_back(front - back);
+  }
   if (params_.plan_period_s <= 0.0) {
     const double move = places_.mean_move_length();
     params_.plan_period_s = move > 0.0 && params_.speed > 0.0 ? move / params_.speed : 1.0;
@@ -175,17 +184,71 @@ void PlaceTraffic::try_to_enter(int robot) {
       }
     }
   }
+  // Nor may anybody on the roads be about to drive where it makes its first move, a body length
+  // on from where it enters: robots let on beside one another (neighbouring stalls that join one
+  // lane) would each want the others' places at once, and pushing bodies that span several places
+  // back into their stalls and out again in turn gets none of them onto the road. A robot that
+  // waits for this one, or whose route leads through its body, does not hold it up.
+  const std::vector<int> first_move = places_within_body_length(r, static_cast<std::size_t>(here));
+  for (int other = 0; other < robots(); ++other) {
+    if (other == robot || !order_.present(other)) continue;
+    // Where it stands, then where it is about to drive.
+    const std::vector<int> its_way = way_ahead(other);
+    const int its_type = at(other).type;
+    const auto conflicts_with = [&](const std::vector<int>& mine) {
+      return std::any_of(its_way.begin() + 1, its_way.end(), [&](int visit) {
+        return std::any_of(mine.begin(), mine.end(),
+                           [&](int p) { return zones_.conflict(r.type, p, its_type, visit); });
+      });
+    };
+    const auto& its_waits = at(other).grant.waits_for;
+    bool waits_for_its_body = std::find(its_waits.begin(), its_waits.end(), robot) != its_waits.end() ||
+                              (r.body.empty() && conflicts_with({place}));
+    // Its route on, as far as it goes: a robot coming past where this one stands will wait for it.
+    const Robot& o = at(other);
+    const bool routed = o.mode == Mode::kDriving && o.adopted && !o.places.empty();
+    const std::vector<int> its_route =
+        routed ? std::vector<int>(o.places.begin() + std::min<std::ptrdiff_t>(o.at, std::ssize(o.places) - 1),
+                                  o.places.end())
+               : its_way;
+    for (std::size_t k = 1; k < its_route.size() && !r.body.empty() && !waits_for_its_body; ++k) {
+      waits_for_its_body = zones_.body_reaches_move(r.body, its_type, its_route[k - 1], its_route[k]);
+    }
+    if (!waits_for_its_body && conflicts_with(first_move)) blockers.push_back(other);
+  }
   std::sort(blockers.begin(), blockers.end());
   blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
   r.entry_blockers = std::move(blockers);
   if (!r.entry_blockers.empty()) return;
   r.mode = Mode::kDriving;
-  if (!r.body.empty()) closed_stale_ = true;
+  if (!r.body.empty() || r.reserves_entry) closed_stale_ = true;
+  r.reserves_entry = false;
   r.body.clear();
 
   place_robot(robot, place);
   r.at = here;
   follow_progress(robot, r.progress);
+}
+
+std::vector<int> PlaceTraffic::places_within_body_length(const Robot& r, std::size_t from) const {
+  std::vector<int> places;
+  const double length = body_length_[static_cast<std::size_t>(r.type)];
+  for (std::size_t i = from; i < r.places.size() && (i == from || place_s(r, i) - place_s(r, from) <= length); ++i) {
+    places.push_back(r.places[i]);
+  }
+  return places;
+}
+
+std::vector<int> PlaceTraffic::way_ahead(int robot) const {
+  std::vector<int> places{order_.current(robot)};
+  for (int k = 1; k <= order_.pending(robot); ++k) places.push_back(order_.visit_place(robot, k));
+  const Robot& r = at(robot);
+  if (r.mode == Mode::kDriving && r.adopted && !r.places.empty()) {
+    const auto last = std::min(static_cast<std::size_t>(r.at + order_.pending(robot)), r.places.size() - 1);
+    const std::vector<int> on = places_within_body_length(r, last);
+    places.insert(places.end(), on.begin() + 1, on.end());
+  }
+  return places;
 }
 
 void PlaceTraffic::place_robot(int robot, int place) {
@@ -327,8 +390,44 @@ void PlaceTraffic::rebuild_closed() {
   for (int robot = 0; robot < robots(); ++robot) {
     close(closed_.by_body, robot, closing_body(at(robot)));
     close(closed_.by_area, robot, at(robot).way_out);
+    const Robot& r = at(robot);
+    if (!r.reserves_entry || r.mode != Mode::kWaitingToEnter || r.places.empty()) continue;
+    // Where it enters is held as a way out is: closed to robots outside, and those in places
+    // conflicting with it are pushed out of them.
+    const int entry = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
+    for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
+      for (const int place : zones_.conflicts(type, entry, r.type)) {
+        int& closer = closed_.by_area[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+        closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
+      }
+    }
   }
+  close_moves();
   closed_stale_ = false;
+}
+
+void PlaceTraffic::close_moves() {
+  // A place a standing body closes may be closed only to some of the moves into it (a parked
+  // truck's body beside a junction reaches what a truck turning there sweeps, not what one driving
+  // straight through does): for every move into such a place from a neighbour, the standing
+  // bodies that reach what it sweeps.
+  for (auto& by_move : closed_.by_move) by_move.clear();
+  for (int robot = 0; robot < robots(); ++robot) {
+    const geometry::Polygon& body = closing_body(at(robot));
+    if (body.empty()) continue;
+    const Circle around = circle_around(body);
+    for (const int place : index_.near(around.centre, around.radius)) {
+      for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
+        if (closed_.by_body[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] == kOpen) continue;
+        auto& by_move = closed_.by_move[static_cast<std::size_t>(type)];
+        for (const int from : zones_.neighbours(place)) {
+          int& closer = by_move.try_emplace(ClosedPlaces::move_key(from, place), kOpen).first->second;
+          if (!zones_.body_reaches_move(body, type, from, place)) continue;
+          closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
+        }
+      }
+    }
+  }
 }
 
 void PlaceTraffic::follow_progress(int robot, double progress) {

@@ -113,7 +113,10 @@ class PlaceTraffic {
     geometry::Polygon way_out;
     std::uint64_t waiting_since = 0;  ///< the order in which robots began to wait to enter
     std::vector<int> entry_blockers;  ///< waiting to enter: the robots in its way
-    std::vector<int> stopped_for;     ///< robots its own look-ahead stops it for
+    /// Waiting to enter with robots in its way that wait for it in turn: the places conflicting
+    /// with where it enters are closed to the others, and those in them are pushed out.
+    bool reserves_entry = false;
+    std::vector<int> stopped_for;  ///< robots its own look-ahead stops it for
     /// The last plan kept it standing: the robots standing or planned at places conflicting with
     /// its route's next place.
     std::vector<int> kept_by;
@@ -155,6 +158,11 @@ class PlaceTraffic {
   bool body_reaches(const geometry::Polygon& body, int type, int place) const;
   /// The same with the body's circle computed once for many places.
   bool body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const;
+  /// r's route's places from index `from` on, as far as one body length beyond it.
+  std::vector<int> places_within_body_length(const Robot& r, std::size_t from) const;
+  /// The place of the robot's current visit, then those it is about to drive into: its planned
+  /// visits, and its route's on from the last of them, as far as one body length.
+  std::vector<int> way_ahead(int robot) const;
   /// The robot stands at `place` in the order: others' plans into places conflicting with it go.
   void place_robot(int robot, int place);
   /// Drops the visits other robots have planned, not begun, into places `conflicts` accepts.
@@ -163,6 +171,8 @@ class PlaceTraffic {
   /// Ends visits the robot's progress shows it has driven through.
   void follow_progress(int robot, double progress);
   void plan_step();
+  /// Sets Robot::reserves_entry of the robots waiting to enter, and closes what they hold.
+  void reserve_entries();
   /// How many of the robot's visits after its current one its last grant lets it drive into.
   static int granted_visits(const Robot& r);
   /// The index into r.places of the end of the route's leg after index `from` (< the last): the
@@ -176,6 +186,8 @@ class PlaceTraffic {
   std::vector<int> points_along(int from_point, const std::vector<int>& places) const;
   void update_grant(int robot);
   void rebuild_closed();
+  /// ClosedPlaces::by_move of the places bodies close.
+  void close_moves();
 
   const map::RoadGraph& graph_;
   const traffic::ConflictZones& zones_;
@@ -185,6 +197,7 @@ class PlaceTraffic {
   VisitOrder order_;
   std::vector<Robot> robots_;
   std::vector<std::vector<int>> points_of_place_;
+  std::vector<double> body_length_;  ///< per vehicle type: its footprint's length
   PlaceIndex index_;
   ClosedPlaces closed_;
   bool closed_stale_ = false;

@@ -18,7 +18,23 @@ void PlaceTraffic::update(double now) {
   for (int robot = 0; robot < robots(); ++robot) update_grant(robot);
 }
 
+void PlaceTraffic::reserve_entries() {
+  for (int robot = 0; robot < robots(); ++robot) {
+    Robot& r = at(robot);
+    const auto waits_for_it = [&](int other) {
+      const auto& waits = at(other).grant.waits_for;
+      return std::find(waits.begin(), waits.end(), robot) != waits.end();
+    };
+    const bool reserves = r.mode == Mode::kWaitingToEnter && r.way_out.empty() &&
+                          std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), waits_for_it);
+    if (reserves != r.reserves_entry) closed_stale_ = true;
+    r.reserves_entry = reserves;
+  }
+  if (closed_stale_) rebuild_closed();
+}
+
 void PlaceTraffic::plan_step() {
+  reserve_entries();
   // A robot's visits from the first that waits for another robot's on are not granted: planned
   // again each step from its last granted one, they stay as they were, or the planner sends it
   // another way or pushes it. Kept, a robot whose plan ran ahead behind another would be held
@@ -52,13 +68,8 @@ void PlaceTraffic::plan_step() {
       p.pushes_from_area = r.mode == Mode::kStanding && !r.way_out.empty();
       // A robot waiting to enter with a way out pushes those in it out of it; one without pushes
       // those in its way once one of them waits for it in turn (its body closes their way on),
-      // and else waits for them to drive on.
-      const auto waits_for_it = [&](int other) {
-        const auto& waits = at(other).grant.waits_for;
-        return std::find(waits.begin(), waits.end(), robot) != waits.end();
-      };
-      if (r.mode == Mode::kWaitingToEnter &&
-          (!r.way_out.empty() || std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), waits_for_it))) {
+      // holding where it enters (reserve_entries), and else waits for them to drive on.
+      if (r.mode == Mode::kWaitingToEnter && (!r.way_out.empty() || r.reserves_entry)) {
         p.entering = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
       }
       continue;

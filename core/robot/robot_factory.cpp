@@ -52,6 +52,19 @@ std::vector<geometry::Pose2> follower_drive(const control::FollowerParams& param
   return driven;
 }
 
+traffic::TrafficConfiguration traffic_configuration_with_drives(const config::FleetConfig& config) {
+  traffic::TrafficConfiguration configuration = traffic::configuration_from(config);
+  for (std::size_t type = 0; type < config.fleets.size(); ++type) {
+    traffic::VehicleType& vehicle = configuration.resources.vehicle_types.at(type);
+    if (vehicle.drive) continue;
+    const control::FollowerParams follower = follower_params(config, config.fleets[type]);
+    vehicle.drive = [follower](const std::vector<geometry::Vec2>& path, bool) {
+      return follower_drive(follower, path);
+    };
+  }
+  return configuration;
+}
+
 // Traffic grants two robots places only where their bodies stay traffic::reservation_margin
 // apart. A robot that refused to drive on beside another at that gap would wait for it with the
 // road granted to both, and the other likewise. The look ahead therefore keeps half of it to the

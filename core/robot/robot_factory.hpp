@@ -9,6 +9,7 @@
 #include "map/site_map.hpp"
 #include "robot/navigation.hpp"
 #include "robot/robot.hpp"
+#include "traffic/traffic_settings.hpp"
 
 namespace fleet::robot {
 
@@ -46,6 +47,12 @@ control::FollowerParams follower_params(const config::FleetConfig& config, const
 /// a point one lookahead on, so it turns before a bend and cuts it.
 std::vector<geometry::Pose2> follower_drive(const control::FollowerParams& params,
                                             const std::vector<geometry::Vec2>& path);
+
+/// The traffic configuration of `config` whose vehicle types sweep what their agents' own
+/// controllers sweep through the bends: a stacker's pursuit (traffic::configuration_from) and, for
+/// mecanum and differential bases, the path follower (follower_drive), which steers for a point
+/// one lookahead on (0.64 m for a reach truck), turns before a bend and cuts it.
+traffic::TrafficConfiguration traffic_configuration_with_drives(const config::FleetConfig& config);
 
 /// The graph a robot of `fleet` plans on: under traffic, the traffic manager's graph for its
 /// fleet's vehicle type (one-way corridors, only the lanes it fits), else none (the site's own).

@@ -165,6 +165,7 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
 
   const std::size_t types = types_.size();
   region_.assign(types, {});
+  region_move_.assign(types, {});
   reach_.assign(types, {});
   for (std::size_t t = 0; t < types; ++t) build_regions(graph, adjacent, members, t);
   conflicts_.assign(types * types, {});
@@ -263,8 +264,10 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
   const double tracking_x = types_[type].tracking_x;
   auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
   auto& region = region_[type];
+  auto& moves = region_move_[type];
   auto& reach = reach_[type];
   region.assign(places, {});
+  moves.assign(places, {});
   reach.assign(places, 0.0);
   for (std::size_t p = 0; p < places; ++p) {
     for (int i : members[p]) {
@@ -278,16 +281,31 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
         const Polygon far = sim::polygon_in_map({mid.x, mid.y, heading}, body);
         corners.insert(corners.end(), far.begin(), far.end());
         region[p].push_back(convex_hull(std::move(corners)));
+        const int other = place_of_[static_cast<std::size_t>(j)];
+        moves[p].push_back({other, other});
       }
     }
     if (region[p].empty()) {
       // An isolated place: the robot may stand there at any heading.
       const Vec2 a = position_[p];
-      for (double heading : {0.0, std::acos(0.0)}) region[p].push_back(sim::polygon_in_map({a.x, a.y, heading}, body));
+      for (double heading : {0.0, std::acos(0.0)}) {
+        region[p].push_back(sim::polygon_in_map({a.x, a.y, heading}, body));
+        moves[p].push_back({});
+      }
     }
   }
   if (tracking_x != 0.0) add_tracked_bodies(graph, adjacent, body, -tracking_x, type);
   update_reach(type);
+}
+
+bool ConflictZones::body_reaches_move(const Polygon& body, int type, int from, int to) const {
+  const auto& polygons = region(type, to);
+  const auto& moves = region_moves(type, to);
+  for (std::size_t k = 0; k < polygons.size(); ++k) {
+    const bool of_move = moves[k].before < 0 || moves[k].before == from;
+    if (of_move && geometry::convex_polygons_overlap(body, polygons[k])) return true;
+  }
+  return false;
 }
 
 void ConflictZones::update_reach(std::size_t type) {
@@ -355,7 +373,10 @@ void ConflictZones::add_tracked_bodies(const map::RoadGraph& graph, const std::v
                            sim::polygon_in_map({centre.x, centre.y, heading}, body));
     }
   }
-  for (auto& [place, polygon] : tracked) region[static_cast<std::size_t>(place)].push_back(std::move(polygon));
+  for (auto& [place, polygon] : tracked) {
+    region[static_cast<std::size_t>(place)].push_back(std::move(polygon));
+    region_move_[type][static_cast<std::size_t>(place)].push_back({});
+  }
 }
 
 void ConflictZones::build_conflicts(std::size_t type_a, std::size_t type_b) {

@@ -130,6 +130,22 @@ class ConflictZones {
   const std::vector<geometry::Polygon>& region(int type, int place) const {
     return region_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
   }
+  /// Which move each of region(type, place)'s polygons is a body of: a robot coming from place
+  /// `before` through the place and going on to `after` (a body centred on one edge: that edge's
+  /// other end for both); -1: any move.
+  struct RegionMove {
+    int before = -1;
+    int after = -1;
+  };
+  const std::vector<RegionMove>& region_moves(int type, int place) const {
+    return region_move_[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
+  }
+  /// Whether `body` (convex, map frame) reaches into what a robot of `type` sweeps coming from
+  /// place `from` into its neighbour `to` and through it: the polygons of `to` of the moves that
+  /// come from `from` (every way on from there included). A body beside the roads may reach into a
+  /// place's region for some ways through it and not others: a truck turning onto a lane swings
+  /// over the stall beside it, one driving straight through does not.
+  bool body_reaches_move(const geometry::Polygon& body, int type, int from, int to) const;
   /// The opposite lanes of `corridor` whose places conflict with it for `type` on `corridor` and
   /// `other_type` on the opposite lane (two lanes of one road: see OppositeLane).
   /// Whether any pair of lanes of one road conflicts (opposite_lanes is empty everywhere if not).
@@ -173,6 +189,7 @@ class ConflictZones {
   std::vector<geometry::Vec2> position_;
   std::vector<std::vector<int>> neighbours_;
   std::vector<std::vector<std::vector<geometry::Polygon>>> region_;  ///< by type, by place
+  std::vector<std::vector<std::vector<RegionMove>>> region_move_;    ///< by type, by place, as region_
   std::vector<std::vector<double>> reach_;                           ///< by type, by place
   std::vector<std::vector<std::vector<int>>> conflicts_;             ///< by pair of types, by place
   std::vector<std::vector<std::vector<OppositeLane>>> opposite_;     ///< by pair of types, by corridor

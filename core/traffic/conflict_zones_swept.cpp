@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "sim/tricycle.hpp"
@@ -126,8 +127,9 @@ void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon
     return done;
   };
   auto& region = region_[type];
-  // The bodies of one drive along `way` off the route, by the place nearest their centres.
-  std::map<int, std::vector<Vec2>> off_route;
+  // The bodies of one drive along `way` off the route, by the place nearest their centres and
+  // the places before and after that one on the way (the move they are bodies of).
+  std::map<std::tuple<int, int, int>, std::vector<Vec2>> off_route;
   const auto sweep = [&](const std::vector<int>& way, bool at_speed) {
     std::vector<Vec2> path;
     for (int place : way) path.push_back(at(place));
@@ -149,7 +151,9 @@ void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon
                   std::abs(geometry::angle_diff(centre.yaw, std::atan2(d.y, d.x))) <= kAlongRoute;
       }
       if (covered) continue;
-      auto& points = off_route[way[nearest]];
+      const int before = nearest > 0 ? way[nearest - 1] : -1;
+      const int after = nearest + 1 < way.size() ? way[nearest + 1] : -1;
+      auto& points = off_route[{way[nearest], before, after}];
       const Polygon placed = sim::polygon_in_map(centre, body);
       points.insert(points.end(), placed.begin(), placed.end());
     }
@@ -157,13 +161,23 @@ void ConflictZones::add_driven_bodies(const map::RoadGraph& graph, const Polygon
   // One hull per place and way through the bend (a hull over the ways that part there would
   // reach across their fork), unless a polygon the place holds already covers it.
   const auto reserve = [&] {
-    for (auto& [place, points] : off_route) {
+    for (auto& [move, points] : off_route) {
+      const auto [place, before, after] = move;
       auto& polygons = region[static_cast<std::size_t>(place)];
+      auto& moves = region_move_[type][static_cast<std::size_t>(place)];
       Polygon hull = simplified(convex_hull(std::move(points)), kSimplify);
-      const bool inside = std::any_of(polygons.begin(), polygons.end(), [&](const Polygon& held) {
-        return std::all_of(hull.begin(), hull.end(), [&](Vec2 v) { return geometry::contains(held, v); });
-      });
-      if (!inside) polygons.push_back(std::move(hull));
+      // Held already by a polygon of the same move (or of any move).
+      bool inside = false;
+      for (std::size_t k = 0; k < polygons.size() && !inside; ++k) {
+        const bool same_move =
+            (moves[k].before < 0 && moves[k].after < 0) || (moves[k].before == before && moves[k].after == after);
+        inside = same_move &&
+                 std::all_of(hull.begin(), hull.end(), [&](Vec2 v) { return geometry::contains(polygons[k], v); });
+      }
+      if (!inside) {
+        polygons.push_back(std::move(hull));
+        moves.push_back({before, after});
+      }
     }
     off_route.clear();
   };

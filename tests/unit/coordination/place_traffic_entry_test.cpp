@@ -37,12 +37,10 @@ void follow_to_the_end(PlaceTraffic& traffic, Driver& waiter, Driver& driver, do
   }
 }
 
-bool overlaps_any_region(const traffic::ConflictZones& zones, const std::vector<int>& places,
-                         const geometry::Polygon& body) {
-  for (const int place : places) {
-    for (const auto& region : zones.region(0, place)) {
-      if (geometry::convex_polygons_overlap(region, body)) return true;
-    }
+// Whether the moves through `places` (from the first, where the robot is) sweep into `body`.
+bool moves_reach(const traffic::ConflictZones& zones, const std::vector<int>& places, const geometry::Polygon& body) {
+  for (std::size_t k = 1; k < places.size(); ++k) {
+    if (zones.body_reaches_move(body, 0, places[k - 1], places[k])) return true;
   }
   return false;
 }
@@ -74,8 +72,8 @@ TEST(PlaceTrafficEntry, ARobotWaitingToEnterClosesWhatItsBodyReaches) {
   for (; t < 30.0; t += 0.5) {
     driver.cycle(traffic, t);
     furthest = std::max(furthest, driver.x(traffic));
-    EXPECT_FALSE(overlaps_any_region(zones, traffic.places_ahead(driver.number), body))
-        << "at " << t << " s the driver's visits reach into the waiting body";
+    EXPECT_FALSE(moves_reach(zones, traffic.places_ahead(driver.number), body))
+        << "at " << t << " s the driver's moves sweep into the waiting body";
   }
   EXPECT_FALSE(traffic.on_roads(waiter.number));
   EXPECT_EQ(traffic.grant(waiter.number).waits_for, std::vector<int>{standing.number});

