@@ -19,8 +19,7 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
       planner_(places_, params.seed),
       order_(zones),
       points_of_place_(zones.place_count()),
-      index_(zones),
-      closed_(zones.type_count(), zones.place_count()) {
+      closures_(zones) {
   for (std::size_t point = 0; point < zones.point_count(); ++point) {
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
@@ -171,7 +170,7 @@ void PlaceTraffic::try_to_enter(int robot) {
   std::erase_if(blockers, [&](int other) {
     const Robot& o = at(other);
     return o.mode == Mode::kWaitingToEnter && o.waiting_since > r.waiting_since &&
-           !body_reaches(o.body, r.type, place) &&
+           !closures_.reaches(o.body, r.type, place) &&
            (r.way_out.empty() || o.body.empty() || !geometry::convex_polygons_overlap(o.body, r.way_out));
   });
   for (int other = 0; other < robots(); ++other) {
@@ -270,29 +269,8 @@ void PlaceTraffic::drop_visits_into(int robot, const Conflicts& conflicts) {
   }
 }
 
-PlaceTraffic::Circle PlaceTraffic::circle_around(const geometry::Polygon& body) {
-  Circle circle{geometry::vertex_centroid(body), 0.0};
-  for (const auto& v : body) circle.radius = std::max(circle.radius, geometry::distance(circle.centre, v));
-  return circle;
-}
-
-bool PlaceTraffic::body_reaches(const geometry::Polygon& body, int type, int place) const {
-  return !body.empty() && body_reaches(body, circle_around(body), type, place);
-}
-
-bool PlaceTraffic::body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const {
-  if (body.empty()) return false;
-  if (geometry::distance(around.centre, zones_.position(place)) > around.radius + zones_.reach(type, place)) {
-    return false;
-  }
-  for (const auto& polygon : zones_.region(type, place)) {
-    if (geometry::convex_polygons_overlap(body, polygon)) return true;
-  }
-  return false;
-}
-
 std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon& area) const {
-  const Circle around = circle_around(area);
+  const BodyClosures::Circle around = BodyClosures::circle_around(area);
   std::vector<int> found;
   for (int other = 0; other < robots(); ++other) {
     if (other == robot) continue;
@@ -300,7 +278,8 @@ std::vector<int> PlaceTraffic::robots_in_area(int robot, const geometry::Polygon
     const geometry::Polygon& body = closing_body(o);
     bool inside = (!body.empty() && geometry::convex_polygons_overlap(body, area)) ||
                   (!o.way_out.empty() && geometry::convex_polygons_overlap(o.way_out, area));
-    for (const int place : order_.places_ahead(other)) inside = inside || body_reaches(area, around, o.type, place);
+    for (const int place : order_.places_ahead(other))
+      inside = inside || closures_.reaches(area, around, o.type, place);
     if (inside) found.push_back(other);
   }
   return found;
@@ -340,8 +319,8 @@ void PlaceTraffic::take_body(int robot, const geometry::Polygon& body) {
   closed_stale_ = true;
   if (body.empty()) return;
   // Plans made before it stood here may lead into its body: those visits go, not yet begun.
-  const Circle around = circle_around(body);
-  drop_visits_into(robot, [&](int type, int place) { return body_reaches(body, around, type, place); });
+  const BodyClosures::Circle around = BodyClosures::circle_around(body);
+  drop_visits_into(robot, [&](int type, int place) { return closures_.reaches(body, around, type, place); });
 }
 
 void PlaceTraffic::hold_way_out(int robot, const geometry::Polygon& way_out) {
@@ -360,12 +339,12 @@ const geometry::Polygon& PlaceTraffic::closing_body(const Robot& r) {
 
 std::vector<int> PlaceTraffic::closers_of(int robot, int type, int place, int from) const {
   std::vector<int> closers;
-  if (closed_.closer(type, place, robot, from) == kOpen) return closers;
+  if (closures_.closer(type, place, robot, from) == kOpen) return closers;
   for (int other = 0; other < robots(); ++other) {
     if (other == robot) continue;
     const Robot& o = at(other);
-    const bool inside = from >= 0 && body_reaches(o.way_out, type, from);
-    if (body_reaches(closing_body(o), type, place) || (!inside && body_reaches(o.way_out, type, place))) {
+    const bool inside = from >= 0 && closures_.reaches(o.way_out, type, from);
+    if (closures_.reaches(closing_body(o), type, place) || (!inside && closures_.reaches(o.way_out, type, place))) {
       closers.push_back(other);
     }
   }
@@ -373,61 +352,19 @@ std::vector<int> PlaceTraffic::closers_of(int robot, int type, int place, int fr
 }
 
 void PlaceTraffic::rebuild_closed() {
-  for (auto* layer : {&closed_.by_body, &closed_.by_area}) {
-    for (auto& by_place : *layer) std::fill(by_place.begin(), by_place.end(), kOpen);
-  }
-  auto close = [&](std::vector<std::vector<int>>& layer, int robot, const geometry::Polygon& polygon) {
-    if (polygon.empty()) return;
-    const Circle around = circle_around(polygon);
-    for (const int place : index_.near(around.centre, around.radius)) {
-      for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
-        if (!body_reaches(polygon, around, type, place)) continue;
-        int& closer = layer[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
-        closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
-      }
-    }
-  };
+  std::vector<BesideTheRoads> beside(robots_.size());
   for (int robot = 0; robot < robots(); ++robot) {
-    close(closed_.by_body, robot, closing_body(at(robot)));
-    close(closed_.by_area, robot, at(robot).way_out);
     const Robot& r = at(robot);
-    if (!r.reserves_entry || r.mode != Mode::kWaitingToEnter || r.places.empty()) continue;
-    // Where it enters is held as a way out is: closed to robots outside, and those in places
-    // conflicting with it are pushed out of them.
-    const int entry = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
-    for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
-      for (const int place : zones_.conflicts(type, entry, r.type)) {
-        int& closer = closed_.by_area[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)];
-        closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
-      }
+    BesideTheRoads& b = beside[static_cast<std::size_t>(robot)];
+    b.type = r.type;
+    b.body = &closing_body(r);
+    b.way_out = &r.way_out;
+    if (r.reserves_entry && r.mode == Mode::kWaitingToEnter && !r.places.empty()) {
+      b.held_entry = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
     }
   }
-  close_moves();
+  closures_.rebuild(beside);
   closed_stale_ = false;
-}
-
-void PlaceTraffic::close_moves() {
-  // A place a standing body closes may be closed only to some of the moves into it (a parked
-  // truck's body beside a junction reaches what a truck turning there sweeps, not what one driving
-  // straight through does): for every move into such a place from a neighbour, the standing
-  // bodies that reach what it sweeps.
-  for (auto& by_move : closed_.by_move) by_move.clear();
-  for (int robot = 0; robot < robots(); ++robot) {
-    const geometry::Polygon& body = closing_body(at(robot));
-    if (body.empty()) continue;
-    const Circle around = circle_around(body);
-    for (const int place : index_.near(around.centre, around.radius)) {
-      for (int type = 0; type < static_cast<int>(zones_.type_count()); ++type) {
-        if (closed_.by_body[static_cast<std::size_t>(type)][static_cast<std::size_t>(place)] == kOpen) continue;
-        auto& by_move = closed_.by_move[static_cast<std::size_t>(type)];
-        for (const int from : zones_.neighbours(place)) {
-          int& closer = by_move.try_emplace(ClosedPlaces::move_key(from, place), kOpen).first->second;
-          if (!zones_.body_reaches_move(body, type, from, place)) continue;
-          closer = closer == kOpen || closer == robot ? robot : kClosedByMany;
-        }
-      }
-    }
-  }
 }
 
 void PlaceTraffic::follow_progress(int robot, double progress) {

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "coordination/body_closures.hpp"
 #include "coordination/place_graph.hpp"
-#include "coordination/place_index.hpp"
 #include "coordination/place_pibt.hpp"
 #include "coordination/visit_order.hpp"
 #include "geometry/polygon.hpp"
@@ -134,12 +134,6 @@ class PlaceTraffic {
   int index_at(const Robot& r, double progress) const;
   /// Metres along r's route to its `index`-th place.
   double place_s(const Robot& r, std::size_t index) const;
-  /// A circle round a body: places farther than it reaches are skipped without a polygon test.
-  struct Circle {
-    geometry::Vec2 centre;
-    double radius = 0.0;
-  };
-  static Circle circle_around(const geometry::Polygon& body);
   /// The body the robot stands with beside the roads (standing or waiting to enter): it closes
   /// the places it reaches, and visits planned into them that have not begun are dropped.
   void take_body(int robot, const geometry::Polygon& body);
@@ -154,10 +148,6 @@ class PlaceTraffic {
   /// place conflicts with the place its route leads on to (none when the plan moves it, or it is
   /// held, or has no errand).
   std::vector<int> kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next) const;
-  /// Whether a body (convex, map frame) reaches into the region of `place` for vehicle `type`.
-  bool body_reaches(const geometry::Polygon& body, int type, int place) const;
-  /// The same with the body's circle computed once for many places.
-  bool body_reaches(const geometry::Polygon& body, const Circle& around, int type, int place) const;
   /// r's route's places from index `from` on, as far as one body length beyond it.
   std::vector<int> places_within_body_length(const Robot& r, std::size_t from) const;
   /// The place of the robot's current visit, then those it is about to drive into: its planned
@@ -185,9 +175,8 @@ class PlaceTraffic {
   /// Graph points along consecutive places, starting at `from_point` (a point of places[0]).
   std::vector<int> points_along(int from_point, const std::vector<int>& places) const;
   void update_grant(int robot);
+  /// The places closed by what robots beside the roads close (BodyClosures::rebuild).
   void rebuild_closed();
-  /// ClosedPlaces::by_move of the places bodies close.
-  void close_moves();
 
   const map::RoadGraph& graph_;
   const traffic::ConflictZones& zones_;
@@ -198,8 +187,7 @@ class PlaceTraffic {
   std::vector<Robot> robots_;
   std::vector<std::vector<int>> points_of_place_;
   std::vector<double> body_length_;  ///< per vehicle type: its footprint's length
-  PlaceIndex index_;
-  ClosedPlaces closed_;
+  BodyClosures closures_;
   bool closed_stale_ = false;
   std::uint64_t waits_begun_ = 0;
   double next_plan_ = -1.0;

@@ -91,7 +91,7 @@ void PlaceTraffic::plan_step() {
     p.held = !r.adopted || (!stopped && order_.pending(robot) >= params_.plan_ahead) ||
              (r.moved_off_route && order_.pending(robot) > 0) || at_end;
   }
-  const std::vector<int> next = planner_.plan(planned, &closed_);
+  const std::vector<int> next = planner_.plan(planned, &closures_.closed());
   ++plan_step_;
   for (int robot = 0; robot < robots(); ++robot) at(robot).kept_by = kept_by(robot, planned, next);
   for (int robot = 0; robot < robots(); ++robot) {
