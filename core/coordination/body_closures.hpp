@@ -48,8 +48,11 @@ class BodyClosures {
   std::vector<int> places_near(const Circle& around) const { return index_.near(around.centre, around.radius); }
 
  private:
+  /// Marks the places `polygon` reaches in `layer` as closed by `robot`.
   void close(std::vector<std::vector<int>>& layer, int robot, const geometry::Polygon& polygon);
-  void close_moves(const std::vector<BesideTheRoads>& robots);
+  /// Closes the places a body reaches (by_body), and of the moves into them those whose swept
+  /// bodies it reaches (by_move).
+  void close_to_moves(int robot, const geometry::Polygon& body);
 
   const traffic::ConflictZones& zones_;
   PlaceIndex index_;

@@ -24,15 +24,7 @@ PlaceTraffic::PlaceTraffic(const map::RoadGraph& graph, const traffic::ConflictZ
     points_of_place_[static_cast<std::size_t>(zones.place_of(static_cast<int>(point)))].push_back(
         static_cast<int>(point));
   }
-  for (const auto& type : zones.vehicle_types()) {
-    double front = 0.0;
-    double back = 0.0;
-    for (const auto& corner : type.footprint) {
-      front = std::max(front, corner.x);
-      back = std::min(back, corner.x);
-    }
-    body_length_.push_back(front - back);
-  }
+  for (const auto& type : zones.vehicle_types()) body_length_.push_back(traffic::footprint_length(type.footprint));
   if (params_.plan_period_s <= 0.0) {
     const double move = places_.mean_move_length();
     params_.plan_period_s = move > 0.0 && params_.speed > 0.0 ? move / params_.speed : 1.0;
@@ -191,27 +183,25 @@ void PlaceTraffic::try_to_enter(int robot) {
   const std::vector<int> first_move = places_within_body_length(r, static_cast<std::size_t>(here));
   for (int other = 0; other < robots(); ++other) {
     if (other == robot || !order_.present(other)) continue;
+    const Robot& o = at(other);
     // Where it stands, then where it is about to drive.
     const std::vector<int> its_way = way_ahead(other);
-    const int its_type = at(other).type;
     const auto conflicts_with = [&](const std::vector<int>& mine) {
       return std::any_of(its_way.begin() + 1, its_way.end(), [&](int visit) {
-        return std::any_of(mine.begin(), mine.end(),
-                           [&](int p) { return zones_.conflict(r.type, p, its_type, visit); });
+        return std::any_of(mine.begin(), mine.end(), [&](int p) { return zones_.conflict(r.type, p, o.type, visit); });
       });
     };
-    const auto& its_waits = at(other).grant.waits_for;
-    bool waits_for_its_body = std::find(its_waits.begin(), its_waits.end(), robot) != its_waits.end() ||
-                              (r.body.empty() && conflicts_with({place}));
+    bool waits_for_its_body =
+        std::find(o.grant.waits_for.begin(), o.grant.waits_for.end(), robot) != o.grant.waits_for.end() ||
+        (r.body.empty() && conflicts_with({place}));
     // Its route on, as far as it goes: a robot coming past where this one stands will wait for it.
-    const Robot& o = at(other);
     const bool routed = o.mode == Mode::kDriving && o.adopted && !o.places.empty();
     const std::vector<int> its_route =
         routed ? std::vector<int>(o.places.begin() + std::min<std::ptrdiff_t>(o.at, std::ssize(o.places) - 1),
                                   o.places.end())
                : its_way;
     for (std::size_t k = 1; k < its_route.size() && !r.body.empty() && !waits_for_its_body; ++k) {
-      waits_for_its_body = zones_.body_reaches_move(r.body, its_type, its_route[k - 1], its_route[k]);
+      waits_for_its_body = zones_.body_reaches_move(r.body, o.type, its_route[k - 1], its_route[k]);
     }
     if (!waits_for_its_body && conflicts_with(first_move)) blockers.push_back(other);
   }

@@ -38,14 +38,27 @@ geometry::Polygon rectangle_footprint(const geometry::Footprint& footprint) {
   return {{hl, hw}, {-hl, hw}, {-hl, -hw}, {hl, -hw}};
 }
 
-double footprint_width(const geometry::Polygon& footprint) {
+namespace {
+
+/// Extent of a footprint along one of the body's axes.
+double extent(const geometry::Polygon& footprint, double Vec2::*axis) {
   if (footprint.empty()) return 0.0;
-  double lo = footprint.front().y, hi = footprint.front().y;
+  double lo = footprint.front().*axis, hi = lo;
   for (const Vec2& v : footprint) {
-    lo = std::min(lo, v.y);
-    hi = std::max(hi, v.y);
+    lo = std::min(lo, v.*axis);
+    hi = std::max(hi, v.*axis);
   }
   return hi - lo;
+}
+
+}  // namespace
+
+double footprint_width(const geometry::Polygon& footprint) {
+  return extent(footprint, &Vec2::y);
+}
+
+double footprint_length(const geometry::Polygon& footprint) {
+  return extent(footprint, &Vec2::x);
 }
 
 namespace {

@@ -36,6 +36,8 @@ struct VehicleType {
 geometry::Polygon rectangle_footprint(const geometry::Footprint& footprint);
 /// Extent of a body-frame footprint across the body's x axis (its width), metres.
 double footprint_width(const geometry::Polygon& footprint);
+/// Extent of a body-frame footprint along the body's x axis (its length), metres.
+double footprint_length(const geometry::Polygon& footprint);
 
 /// How the shared resources of a road graph are sized. Fixed per ConflictZones instance.
 struct ResourceParams {
