@@ -40,39 +40,6 @@ int PlaceTraffic::add_robot(int type) {
   return number;
 }
 
-void PlaceTraffic::set_route(Robot& r, std::uint64_t version, const std::vector<int>& points) const {
-  r.version = version;
-  r.points = points;
-  r.point_s.assign(points.size(), 0.0);
-  r.places.clear();
-  r.place_point.clear();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i > 0) {
-      const auto& a = graph_.points[static_cast<std::size_t>(points[i - 1])];
-      const auto& b = graph_.points[static_cast<std::size_t>(points[i])];
-      r.point_s[i] = r.point_s[i - 1] + std::hypot(b.x - a.x, b.y - a.y);
-    }
-    const int place = zones_.place_of(points[i]);
-    if (r.places.empty() || r.places.back() != place) {
-      r.places.push_back(place);
-      r.place_point.push_back(static_cast<int>(i));
-    } else {
-      r.place_point.back() = static_cast<int>(i);
-    }
-  }
-}
-
-int PlaceTraffic::index_at(const Robot& r, double progress) const {
-  // Past the midpoint of a move the body is inside the place it drives to.
-  std::size_t i = 0;
-  while (i + 1 < r.places.size() && progress >= 0.5 * (place_s(r, i) + place_s(r, i + 1))) ++i;
-  return static_cast<int>(i);
-}
-
-double PlaceTraffic::place_s(const Robot& r, std::size_t index) const {
-  return r.point_s[static_cast<std::size_t>(r.place_point[index])];
-}
-
 bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int>& points, double progress,
                          const geometry::Polygon& way_out) {
   if (points.empty() || !std::isfinite(progress)) return false;
@@ -101,9 +68,10 @@ bool PlaceTraffic::drive(int robot, std::uint64_t version, const std::vector<int
 
 void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vector<int>& points, double progress) {
   Robot& r = at(robot);
-  set_route(r, version, points);
+  r.version = version;
+  r.assign(graph_, zones_, points);
   r.adopted = true;
-  const int here = index_at(r, progress);
+  const int here = r.index_at(progress);
   if (!order_.present(robot)) {
     if (r.mode != Mode::kWaitingToEnter) r.waiting_since = ++waits_begun_;
     r.mode = Mode::kWaitingToEnter;
@@ -148,7 +116,7 @@ void PlaceTraffic::take_route(int robot, std::uint64_t version, const std::vecto
 void PlaceTraffic::try_to_enter(int robot) {
   if (closed_stale_) rebuild_closed();
   Robot& r = at(robot);
-  const int here = index_at(r, r.progress);
+  const int here = r.index_at(r.progress);
   const int place = r.places[static_cast<std::size_t>(here)];
   // Nobody's visit, begun or planned, may conflict with where it enters, no body or way out may
   // close that place, and nobody may be in the way out it sweeps to get there.
@@ -180,7 +148,8 @@ void PlaceTraffic::try_to_enter(int robot) {
   // lane) would each want the others' places at once, and pushing bodies that span several places
   // back into their stalls and out again in turn gets none of them onto the road. A robot that
   // waits for this one, or whose route leads through its body, does not hold it up.
-  const std::vector<int> first_move = places_within_body_length(r, static_cast<std::size_t>(here));
+  const std::vector<int> first_move =
+      r.places_within(static_cast<std::size_t>(here), body_length_[static_cast<std::size_t>(r.type)]);
   for (int other = 0; other < robots(); ++other) {
     if (other == robot || !order_.present(other)) continue;
     const Robot& o = at(other);
@@ -219,22 +188,13 @@ void PlaceTraffic::try_to_enter(int robot) {
   follow_progress(robot, r.progress);
 }
 
-std::vector<int> PlaceTraffic::places_within_body_length(const Robot& r, std::size_t from) const {
-  std::vector<int> places;
-  const double length = body_length_[static_cast<std::size_t>(r.type)];
-  for (std::size_t i = from; i < r.places.size() && (i == from || place_s(r, i) - place_s(r, from) <= length); ++i) {
-    places.push_back(r.places[i]);
-  }
-  return places;
-}
-
 std::vector<int> PlaceTraffic::way_ahead(int robot) const {
   std::vector<int> places{order_.current(robot)};
   for (int k = 1; k <= order_.pending(robot); ++k) places.push_back(order_.visit_place(robot, k));
   const Robot& r = at(robot);
   if (r.mode == Mode::kDriving && r.adopted && !r.places.empty()) {
     const auto last = std::min(static_cast<std::size_t>(r.at + order_.pending(robot)), r.places.size() - 1);
-    const std::vector<int> on = places_within_body_length(r, last);
+    const std::vector<int> on = r.places_within(last, body_length_[static_cast<std::size_t>(r.type)]);
     places.insert(places.end(), on.begin() + 1, on.end());
   }
   return places;
@@ -350,7 +310,7 @@ void PlaceTraffic::rebuild_closed() {
     b.body = &closing_body(r);
     b.way_out = &r.way_out;
     if (r.reserves_entry && r.mode == Mode::kWaitingToEnter && !r.places.empty()) {
-      b.held_entry = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
+      b.held_entry = r.places[static_cast<std::size_t>(r.index_at(r.progress))];
     }
   }
   closures_.rebuild(beside);
@@ -367,8 +327,8 @@ void PlaceTraffic::follow_progress(int robot, double progress) {
   while (static_cast<std::size_t>(r.at) + 1 < r.places.size()) {
     const auto i = static_cast<std::size_t>(r.at);
     if (order_.next(robot) != r.places[i + 1]) break;
-    const double from = place_s(r, i);
-    const double to = place_s(r, i + 1);
+    const double from = r.place_s(i);
+    const double to = r.place_s(i + 1);
     if (!order_.has_left(robot)) {
       if (progress < 0.5 * (from + to) || order_.waits_for(robot) >= 0) break;
       order_.leave(robot);

@@ -6,6 +6,7 @@
 #include "coordination/body_closures.hpp"
 #include "coordination/place_graph.hpp"
 #include "coordination/place_pibt.hpp"
+#include "coordination/place_route.hpp"
 #include "coordination/visit_order.hpp"
 #include "geometry/polygon.hpp"
 #include "map/road_graph.hpp"
@@ -95,14 +96,11 @@ class PlaceTraffic {
 
  private:
   enum class Mode { kOff, kStanding, kWaitingToEnter, kDriving };
-  struct Robot {
+  /// A robot and the route it drives (version `version`).
+  struct Robot : PlaceRoute {
     int type = 0;
     Mode mode = Mode::kOff;
     std::uint64_t version = 0;
-    std::vector<int> points;
-    std::vector<double> point_s;   ///< metres along the route at each point
-    std::vector<int> places;       ///< the route's places, consecutive repeats merged
-    std::vector<int> place_point;  ///< per entry of `places`: the index of its last point
     int at = 0;                    ///< index into `places` of the robot's current visit
     double progress = 0.0;         ///< metres along the route, as last reported
     bool adopted = true;           ///< it drives `version` (false: a new route is on its way to it)
@@ -125,15 +123,10 @@ class PlaceTraffic {
   Robot& at(int robot) { return robots_[static_cast<std::size_t>(robot)]; }
   const Robot& at(int robot) const { return robots_[static_cast<std::size_t>(robot)]; }
 
-  void set_route(Robot& r, std::uint64_t version, const std::vector<int>& points) const;
   /// Takes a route the robot drives now (or waits to enter the roads by).
   void take_route(int robot, std::uint64_t version, const std::vector<int>& points, double progress);
   /// Lets a robot waiting beside the roads onto them where its route continues, when free.
   void try_to_enter(int robot);
-  /// The index into r.places of the place its body is in `progress` metres along its route.
-  int index_at(const Robot& r, double progress) const;
-  /// Metres along r's route to its `index`-th place.
-  double place_s(const Robot& r, std::size_t index) const;
   /// The body the robot stands with beside the roads (standing or waiting to enter): it closes
   /// the places it reaches, and visits planned into them that have not begun are dropped.
   void take_body(int robot, const geometry::Polygon& body);
@@ -148,8 +141,6 @@ class PlaceTraffic {
   /// place conflicts with the place its route leads on to (none when the plan moves it, or it is
   /// held, or has no errand).
   std::vector<int> kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next) const;
-  /// r's route's places from index `from` on, as far as one body length beyond it.
-  std::vector<int> places_within_body_length(const Robot& r, std::size_t from) const;
   /// The place of the robot's current visit, then those it is about to drive into: its planned
   /// visits, and its route's on from the last of them, as far as one body length.
   std::vector<int> way_ahead(int robot) const;
@@ -165,9 +156,6 @@ class PlaceTraffic {
   void reserve_entries();
   /// How many of the robot's visits after its current one its last grant lets it drive into.
   static int granted_visits(const Robot& r);
-  /// The index into r.places of the end of the route's leg after index `from` (< the last): the
-  /// first place at which the route turns back on itself, or its end.
-  static std::size_t route_leg_end(const Robot& r, std::size_t from);
   /// The plan moved the robot off its route: a new route through its visits to the route's end.
   void reroute(int robot);
   /// The graph point a route through the robot's visits starts at, of `place` (its current visit's).

@@ -70,7 +70,7 @@ void PlaceTraffic::plan_step() {
       // those in its way once one of them waits for it in turn (its body closes their way on),
       // holding where it enters (reserve_entries), and else waits for them to drive on.
       if (r.mode == Mode::kWaitingToEnter && (!r.way_out.empty() || r.reserves_entry)) {
-        p.entering = r.places[static_cast<std::size_t>(index_at(r, r.progress))];
+        p.entering = r.places[static_cast<std::size_t>(r.index_at(r.progress))];
       }
       continue;
     }
@@ -81,7 +81,7 @@ void PlaceTraffic::plan_step() {
     // its place pushes it out of the way (its look-ahead lets it drive away from the body it
     // stopped for, never towards it).
     const bool stopped = !r.stopped_for.empty();
-    p.goal = stopped ? -1 : at_end ? r.places.back() : r.places[route_leg_end(r, last)];
+    p.goal = stopped ? -1 : at_end ? r.places.back() : r.places[r.leg_end(last)];
     p.preferred = stopped || at_end ? -1 : r.places[last + 1];
     // Behind its plan, waiting for a new route to reach it, not yet where a move off its route
     // (a push, giving way) puts it, or at its route's end (where it turns off the road): planned
@@ -141,15 +141,6 @@ int PlaceTraffic::granted_visits(const Robot& r) {
   return 0;
 }
 
-std::size_t PlaceTraffic::route_leg_end(const Robot& r, std::size_t from) {
-  // A route may turn back on itself (a robot turning round, or pushed back and coming on): where
-  // it does, the place it turns at is the goal of the leg, not the route's end, which may be the
-  // place the robot stands at.
-  std::size_t end = from + 1;
-  while (end + 1 < r.places.size() && r.places[end + 1] != r.places[end - 1]) ++end;
-  return end;
-}
-
 void PlaceTraffic::reroute(int robot) {
   Robot& r = at(robot);
   std::vector<int> places;
@@ -174,7 +165,8 @@ void PlaceTraffic::reroute(int robot) {
   if (points.empty()) return;
   // Odd: the robots' own routes take even versions, so a second new route handed before the
   // robot took the first never gets the version of the robot's next own route.
-  set_route(r, (r.version + 1) | 1U, points);
+  r.version = (r.version + 1) | 1U;
+  r.assign(graph_, zones_, points);
   r.at = 0;
   r.adopted = false;
 }

@@ -45,6 +45,12 @@ struct PlantTraffic {
   static constexpr std::array<double, 3> kStallX{51.2, 52.4, 53.6};  // PR2, PR1, PR3
   static constexpr double kStallY = 29.1;
 
+  /// The body of a robot of the site's `robot_id` standing at (x, y) facing `yaw`.
+  geometry::Polygon body(const std::string& robot_id, double x, double y, double yaw) const {
+    geometry::Polygon footprint;
+    for (const auto& corner : config.find_robot(robot_id)->first->profile.footprint) footprint.push_back(corner);
+    return placed(footprint, x, y, yaw);
+  }
   geometry::Polygon parked_body(double x) const {
     return placed(zones.vehicle_types()[static_cast<std::size_t>(reach_truck)].footprint, x, kStallY, -M_PI / 2);
   }
@@ -130,6 +136,109 @@ TEST(PlaceTrafficPlant, EachReachTruckLeavesItsStallBetweenParkedNeighbours) {
                                    ? -1
                                    : traffic.grant(truck.number).waits_for[0]);
   }
+}
+
+}  // namespace
+}  // namespace fleet::coordination
+namespace fleet::coordination {
+namespace {
+
+// The pick spur west of the racks (x 8, y 2.3 to 5.3) is one lane with a dead end. A picker at its
+// end, done at a packing station, leaves for the racks; a forklift has come in behind it for the
+// full pallet at the spur's end; a picker stands at the spur's mouth on its way in to a station
+// and another comes along the road to one. Robots drive at 0.8 m/s and work 10 s at a station
+// standing beside the roads, as the fleet's do: the forklift backs out of the spur for the picker
+// at its end (the picker at the mouth pushed out of its way), and every robot is done within five
+// minutes.
+TEST(PlaceTrafficPlant, RobotsComingIntoThePickSpurLetTheOneAtItsEndOut) {
+  PlantTraffic plant;
+  PlaceTraffic traffic(plant.lanes, plant.zones, {.speed = 0.8, .plan_ahead = 4, .seed = 1});
+  struct Trip {
+    const char* robot;
+    std::vector<geometry::Vec2> stops;  // where it starts, then each place it drives to
+    bool starts_working = false;        // at its first stop, beside the roads
+  };
+  const std::vector<Trip> trips{{"pk2", {{8.0, 2.4}, {20.0, 6.12}}, true},
+                                {"fk1", {{8.0, 4.6}, {8.0, 2.4}, {30.0, 6.12}}},
+                                {"pk3", {{7.72, 6.42}, {8.0, 4.1}, {25.0, 6.12}}},
+                                {"pk1", {{8.8, 7.88}, {8.0, 3.2}, {35.0, 6.12}}}};
+  constexpr double kWorkS = 10.0;
+  constexpr double kSpeed = 0.8;
+  constexpr double kCycleS = 0.25;
+  struct State {
+    testing::Driver driver;
+    std::size_t leg = 0;     // driving from stops[leg] to stops[leg + 1]
+    double work_until = -1;  // working beside the roads at stops[leg] until then
+    geometry::Polygon body;  // while working or waiting to enter
+    bool done = false;
+  };
+  std::vector<State> robots(trips.size());
+  const auto body_at = [&](std::size_t i, geometry::Vec2 at) {
+    return plant.body(trips[i].robot, at.x, at.y, -M_PI / 2);  // facing down the spur
+  };
+  const auto start_leg = [&](std::size_t i) {
+    State& r = robots[i];
+    const auto& stops = trips[i].stops;
+    r.driver.route = plant.search.shortest(map::nearest_point(plant.graph, stops[r.leg].x, stops[r.leg].y),
+                                           map::nearest_point(plant.graph, stops[r.leg + 1].x, stops[r.leg + 1].y));
+    r.driver.version += 1;
+    r.driver.progress = 0.0;
+    if (r.driver.route.size() < 2 || !traffic.drive(r.driver.number, r.driver.version, r.driver.route, 0.0)) {
+      return false;
+    }
+    if (!r.body.empty()) traffic.waiting_body(r.driver.number, r.body);
+    return true;
+  };
+  for (std::size_t i = 0; i < trips.size(); ++i) {
+    robots[i].driver.number = traffic.add_robot(plant.configuration.robot_vehicle_types.at(trips[i].robot));
+    if (trips[i].starts_working) robots[i].body = body_at(i, trips[i].stops[0]);
+    ASSERT_TRUE(start_leg(i)) << trips[i].robot;
+  }
+  for (double t = 0.0; t < 300.0; t += kCycleS) {
+    traffic.update(t);
+    for (std::size_t i = 0; i < robots.size(); ++i) {
+      State& r = robots[i];
+      if (r.done) continue;
+      if (r.work_until >= 0.0) {
+        if (t < r.work_until) continue;
+        r.work_until = -1.0;
+        ASSERT_TRUE(start_leg(i)) << trips[i].robot << " leaving its station";
+        continue;
+      }
+      // It drives towards what it is granted at its own speed, and takes the routes it is handed.
+      testing::Driver& d = r.driver;
+      const PlaceGrant& grant = traffic.grant(d.number);
+      if (grant.version > d.version && !grant.route.empty()) {
+        d.route = grant.route;
+        d.version = grant.version;
+        d.progress = 0.0;
+      }
+      if (grant.version == d.version && grant.granted_index >= 0) {
+        d.progress = std::max(d.progress, std::min(grant.granted_distance, d.progress + kSpeed * kCycleS));
+        if (traffic.on_roads(d.number)) r.body.clear();
+      }
+      if (grant.arrived && grant.version == d.version && d.progress >= grant.granted_distance - 1e-9) {
+        ++r.leg;
+        if (r.leg + 1 < trips[i].stops.size()) {
+          r.body = body_at(i, trips[i].stops[r.leg]);
+          traffic.stand(d.number, r.body);
+          r.work_until = t + kWorkS;
+        } else {
+          r.done = true;
+          traffic.stand(d.number, {});  // it drives on off this part of the site
+        }
+        continue;
+      }
+      traffic.drive(d.number, d.version, d.route, d.progress);
+    }
+  }
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const PlaceGrant& grant = traffic.grant(robots[i].driver.number);
+    EXPECT_TRUE(robots[i].done) << trips[i].robot << " on leg " << robots[i].leg
+                                << (robots[i].work_until >= 0 ? " working" : "") << ", waiting for robot "
+                                << (grant.waits_for.empty() ? -1 : grant.waits_for[0]);
+  }
+  EXPECT_TRUE(traffic.wait_cycle().empty());
 }
 
 }  // namespace
