@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "../traffic/test_graphs.hpp"
@@ -18,13 +19,14 @@ inline traffic::ResourceParams forklift_params() {
   return params;
 }
 
-/// A robot on a corridor along x that drives whatever it is granted at once and takes the routes
-/// traffic hands it.
+/// A robot on a corridor along x that drives towards what it is granted (at once, or at most
+/// `max_step` metres a cycle) and takes the routes traffic hands it.
 struct Driver {
   int number = 0;
   std::uint64_t version = 2;
   std::vector<int> route;
   double progress = 0.0;
+  double max_step = std::numeric_limits<double>::infinity();  ///< metres it drives in one cycle at most
 
   void cycle(PlaceTraffic& traffic, double now) {
     traffic.update(now);
@@ -34,7 +36,9 @@ struct Driver {
       version = grant.version;
       progress = 0.0;
     }
-    if (grant.version == version && grant.granted_index >= 0) progress = std::max(progress, grant.granted_distance);
+    if (grant.version == version && grant.granted_index >= 0) {
+      progress = std::max(progress, std::min(grant.granted_distance, progress + max_step));
+    }
     traffic.drive(number, version, route, progress);
   }
   /// Where its body is along the corridor.
