@@ -442,18 +442,7 @@ void FleetAgent::handle_traffic() {
   if (!traffic_) return;
   grant_reader_.take_data([&](model::TrafficGrant&& grant) {
     if (grant.robot_id != options_.robot_id || grant.sim_time < grants_valid_from_sim_) return;
-    robot::TrafficPermit permit;
-    permit.version = grant.version;
-    permit.granted_index = grant.granted_index;
-    permit.granted_distance = grant.granted_distance;
-    permit.blocked_by = std::move(grant.blocked_by);
-    if (grant.status == "AREA_CLEAR") permit.area = robot::TrafficPermit::Area::kClear;
-    if (grant.status == "AREA_WAITING") permit.area = robot::TrafficPermit::Area::kWaiting;
-    if (!grant.instruction.empty()) {
-      permit.route = std::move(grant.route);
-      permit.siding = grant.instruction == "SIDING";
-    }
-    robot_->set_traffic_grant(permit);
+    robot_->set_traffic_grant(robot::permit_of(std::move(grant)));
   });
 }
 

@@ -159,10 +159,12 @@ std::vector<CommandSpec> fleet_starting_commands() {
        false,
        {integer("--agents", "N=4", 1, kMaxAgents), value("--site", "NAME"), number("--duration", "SECONDS", 0.0, 1e7),
         number("--time-scale", "K", 0.01, 100.0), process_seed(), integer("--http-port", "P=8080", 0, 65535),
-        on_off("--no-auto-orders")},
+        on_off("--no-auto-orders"), integer("--vda5050-vehicles", "N=0", 0, kMaxAgents)},
        "one fleet-server and N fleet-agents with automatic orders (off with\n"
        "--no-auto-orders); Ctrl-C or --duration (wall seconds) stops them all\n"
-       "and prints a summary; the web view's address (with its token) is printed at start"},
+       "and prints a summary; the web view's address (with its token) is printed at start;\n"
+       "--vda5050-vehicles N adds N simulated VDA 5050 vehicles driven by fleet-vda5050\n"
+       "over a broker of the run's own (docs/vda5050.md)"},
       {Group::kStartsFleet,
        "soak",
        "",
@@ -171,7 +173,8 @@ std::vector<CommandSpec> fleet_starting_commands() {
        {integer("--agents", "N=4", 1, kMaxAgents), value("--site", "NAME"),
         number("--duration", "SECONDS=180", 1.0, 1e7), number("--time-scale", "K=10", 0.01, 100.0), process_seed(),
         choice("--traffic", {"on", "off"}), value("--faults", "LIST"), value("--set", "KEY=VALUE"),
-        value("--agent-wrap", "WORDS"), integer("--http-port", "P=0", 0, 65535), on_off("--verbose")},
+        value("--agent-wrap", "WORDS"), integer("--http-port", "P=0", 0, 65535), on_off("--verbose"),
+        integer("--vda5050-vehicles", "N=0", 0, kMaxAgents)},
        "the demo's fleet under ground-truth watch: collisions, deadlocks (an order\n"
        "without progress for 60 s sim), lost and duplicated orders; --faults all|none|\n"
        "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"

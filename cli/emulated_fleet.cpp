@@ -145,19 +145,8 @@ void EmulatedFleet::take_grants() {
       }
       link.route_sent_wall = -1.0;
     }
-    robot::TrafficPermit permit;
-    permit.version = grant.version;
-    permit.granted_index = grant.granted_index;
-    permit.granted_distance = grant.granted_distance;
-    permit.blocked_by = grant.blocked_by;
-    if (grant.status == "AREA_CLEAR") permit.area = robot::TrafficPermit::Area::kClear;
-    if (grant.status == "AREA_WAITING") permit.area = robot::TrafficPermit::Area::kWaiting;
-    if (!grant.instruction.empty()) {
-      permit.route = std::move(grant.route);
-      permit.siding = grant.instruction == "SIDING";
-    }
-    robots_[found->second].grant(permit);
-    progress_.note_waiting_for(grant.robot_id, std::move(grant.blocked_by));
+    progress_.note_waiting_for(grant.robot_id, grant.blocked_by);
+    robots_[found->second].grant(robot::permit_of(std::move(grant)));
   });
 }
 

@@ -18,11 +18,13 @@
 #include "cli/client.hpp"
 #include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
+#include "cli/vda5050_vehicles.hpp"
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "common/paths.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
+#include "vehicle/vehicle_types.hpp"
 
 namespace fleet::cli {
 
@@ -59,14 +61,22 @@ FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
   std::vector<std::string> homes;
   for (const map::Home& home : site.homes) homes.push_back(home.id);
   config::assign_homes(config_, homes, site.name);
-  const auto robots = config_.all_robots();
-  if (options_.agents < 1 || options_.agents > static_cast<int>(robots.size())) {
-    throw ArgError("--agents " + std::to_string(options_.agents) + ": " + config_.source + " declares " +
-                   std::to_string(robots.size()) + " robots; choose 1 .. " + std::to_string(robots.size()));
+  std::size_t agent_robots = 0;
+  for (const auto& [fleet, robot] : config_.all_robots()) {
+    const vehicle::RobotType* type = vehicle::find_robot_type(fleet->robot_type);
+    if (type == nullptr || type->agent_driven) ++agent_robots;
   }
+  if (options_.agents < 1 || options_.agents > static_cast<int>(agent_robots)) {
+    throw ArgError("--agents " + std::to_string(options_.agents) + ": " + config_.source + " declares " +
+                   std::to_string(agent_robots) + " robots driven by fleet-agent; choose 1 .. " +
+                   std::to_string(agent_robots));
+  }
+  if (options_.vda5050_vehicles > 0) pick_vda5050_vehicles(config_, options_.vda5050_vehicles);  // checked early
   // Round robin over the fleets, so that N agents bring every fleet of the site (fk1, rt1, fk2, ...).
   for (std::size_t index = 0; static_cast<int>(robot_ids_.size()) < options_.agents; ++index) {
     for (const auto& fleet : config_.fleets) {
+      const vehicle::RobotType* type = vehicle::find_robot_type(fleet.robot_type);
+      if (type != nullptr && !type->agent_driven) continue;  // fleet-vda5050 drives them
       if (index < fleet.robots.size() && static_cast<int>(robot_ids_.size()) < options_.agents) {
         robot_ids_.push_back(fleet.robots[index].id);
       }
@@ -156,6 +166,17 @@ void FleetRun::start() {
     argv.insert(argv.end(), options_.extra_agent_args.begin(), options_.extra_agent_args.end());
     processes_.start("fleet-agent " + id, argv, run_dir_ + "/fleet-agent-" + id + ".log");
     wait_until_up(id);
+  }
+  if (options_.vda5050_vehicles > 0) {
+    std::vector<std::string> bridge_argv{binary("fleet-vda5050")};
+    bridge_argv.insert(bridge_argv.end(), common.begin(), common.end());
+    bridge_argv.insert(bridge_argv.end(), options_.extra_agent_args.begin(), options_.extra_agent_args.end());
+    const map::Site site = map::load_site(map::site_path(maps_dir(), options_.site));
+    vda5050_ = start_vda5050_vehicles(processes_, config_, site, options_.vda5050_vehicles, options_.time_scale,
+                                      bridge_argv, run_dir_);
+    log_->info("{} simulated VDA 5050 vehicles ({}) on the run's broker {}", vda5050_.robot_ids.size(),
+               model::join(vda5050_.robot_ids), vda5050_.broker);
+    for (const auto& id : vda5050_.robot_ids) wait_until_up(id);
   }
   started_ = std::chrono::steady_clock::now();
   start_sim_ = SimClock(options_.time_scale).now();
@@ -321,6 +342,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.http_port = static_cast<int>(args.integer("http-port").value_or(config.settings.get_int("server.http_port")));
   options.api_token = random_token();
   options.auto_orders = !args.flag("no-auto-orders");
+  options.vda5050_vehicles = static_cast<int>(args.integer("vda5050-vehicles").value_or(0));
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
     throw ArgError("--site: " + model::unknown_name_message("site", options.site, map::site_names(maps_dir())));
   }
@@ -336,8 +358,12 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   auto log = make_logger("fleetctl demo");
   FleetRun run(options, config, log);
   run.start();
-  err << "Fleet demo: fleet-server and " << options.agents << " fleet-agents (" << model::join(run.robot_ids())
-      << ") on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
+  err << "Fleet demo: fleet-server and " << options.agents << " fleet-agents (" << model::join(run.robot_ids()) << ")"
+      << (run.vda5050_robot_ids().empty()
+              ? std::string()
+              : ", " + std::to_string(run.vda5050_robot_ids().size()) + " simulated VDA 5050 vehicles (" +
+                    model::join(run.vda5050_robot_ids()) + ")")
+      << " on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
       << ", automatic orders " << (options.auto_orders ? "on" : "off") << ".\n"
       << "  logs:    " << run.run_dir() << "/\n"
       << (options.http_port > 0 ? "  web:     http://127.0.0.1:" + std::to_string(options.http_port) +

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/processes.hpp"
+#include "cli/vda5050_vehicles.hpp"
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "dds/topics.hpp"
@@ -46,6 +47,9 @@ struct RunOptions {
   /// Words put before each agent's command line, "{n}" replaced by the agent's number (1..N):
   /// e.g. "ip netns exec fleet-agent{n}" runs each agent in its own network namespace.
   std::string agent_wrap;
+  /// Simulated VDA 5050 vehicles of the configuration's fleets of robot type vda5050, with a
+  /// broker and fleet-vda5050 (cli/vda5050_vehicles.hpp); 0: none.
+  int vda5050_vehicles = 0;
 };
 
 /// How late one agent's control steps run against the clock (model::RobotState's control_lag).
@@ -107,7 +111,10 @@ class FleetRun {
   const std::vector<std::string>& crashes() const { return crashes_; }
   const std::string& run_dir() const { return run_dir_; }
   ProcessGroup& processes() { return processes_; }
+  /// The robots driven by fleet-agent processes.
   const std::vector<std::string>& robot_ids() const { return robot_ids_; }
+  /// The simulated VDA 5050 vehicles, empty without --vda5050-vehicles.
+  const std::vector<std::string>& vda5050_robot_ids() const { return vda5050_.robot_ids; }
 
  private:
   static constexpr std::chrono::seconds kAgentStartWait{10};
@@ -126,6 +133,7 @@ class FleetRun {
   Logger log_;
   std::string run_dir_;
   std::vector<std::string> robot_ids_;
+  Vda5050Vehicles vda5050_;
   ProcessGroup processes_;
   std::chrono::steady_clock::time_point started_;
   std::chrono::steady_clock::time_point ended_;

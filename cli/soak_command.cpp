@@ -46,6 +46,7 @@ SoakRequest parse_soak(const CommandArgs& command, std::uint32_t domain) {
   options.seed = args.integer("seed").value_or(r.config.settings.get_int("seed"));
   options.http_port = static_cast<int>(args.integer("http-port").value_or(0));
   options.agent_wrap = args.value("agent-wrap").value_or("");
+  options.vda5050_vehicles = static_cast<int>(args.integer("vda5050-vehicles").value_or(0));
   r.traffic = args.value("traffic").value_or(r.config.settings.get_bool("traffic.enabled") ? "on" : "off");
   r.kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
   std::vector<std::string> settings{"traffic.enabled=" + std::string(r.traffic == "on" ? "true" : "false")};

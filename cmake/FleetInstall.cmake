@@ -1,7 +1,7 @@
 # `cmake --install build --prefix PREFIX`: the binaries into PREFIX/bin, config/ and maps/ into
 # PREFIX/share/fleet (where the installed binaries look, core/common/paths.cpp), the systemd unit
 # of fleet-server, and the README. `cpack -G DEB` in build/ packages the same tree for /usr.
-install(TARGETS fleet-server fleet-agent fleetctl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS fleet-server fleet-agent fleetctl fleet-vda5050 RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fleet/config)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/maps/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fleet/maps
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.xodr" PATTERN "tools" EXCLUDE)

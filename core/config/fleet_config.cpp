@@ -64,7 +64,7 @@ void parse_robots(const YAML::Node& robots, const YAML::Node& fleet_node, const 
     for (int n = 1; n <= static_cast<int>(count); ++n) {
       std::string id = pattern;
       id.replace(slot, 3, std::to_string(n));
-      add_robot({std::move(id), ""}, robots, key, source, fleet, robot_ids);
+      add_robot({std::move(id), "", ""}, robots, key, source, fleet, robot_ids);
     }
     return;
   }
@@ -76,10 +76,42 @@ void parse_robots(const YAML::Node& robots, const YAML::Node& fleet_node, const 
     const std::string rkey = key + "[" + std::to_string(j) + "]";
     const YAML::Node r = robots[j];
     if (!r.IsMap()) throw ConfigError(where(source, r) + ": key '" + rkey + "' must be a map");
-    check_keys(r, {"id", "home"}, rkey, source);
-    add_robot({required_text(r, "id", rkey, source), required_text(r, "home", rkey, source)}, r, rkey, source, fleet,
-              robot_ids);
+    check_keys(r, {"id", "home", "serial_number"}, rkey, source);
+    RobotSpec robot{required_text(r, "id", rkey, source), required_text(r, "home", rkey, source), ""};
+    if (r["serial_number"]) {
+      if (!fleet.vda5050) {
+        throw ConfigError(where(source, r["serial_number"]) + ": key '" + rkey +
+                          ".serial_number' is only for robot type vda5050");
+      }
+      robot.serial_number = required_text(r, "serial_number", rkey, source);
+    }
+    add_robot(std::move(robot), r, rkey, source, fleet, robot_ids);
   }
+}
+
+/// `vda5050: {manufacturer, interface_name, version}` of a fleet of robot type vda5050.
+Vda5050Link parse_vda5050_link(const YAML::Node& node, const YAML::Node& fleet_node, const std::string& key,
+                               const std::string& source) {
+  if (!node || !node.IsMap()) {
+    throw ConfigError(where(source, node ? node : fleet_node) + ": key '" + key +
+                      "' must be a map {manufacturer, interface_name, version} for robot type vda5050");
+  }
+  check_keys(node, {"manufacturer", "interface_name", "version"}, key, source);
+  Vda5050Link link;
+  link.manufacturer = required_text(node, "manufacturer", key, source);
+  if (node["interface_name"]) link.interface_name = required_text(node, "interface_name", key, source);
+  if (node["version"]) link.version = required_text(node, "version", key, source);
+  if (link.version != "2.0.0" && link.version != "2.1.0") {
+    throw ConfigError(where(source, node["version"]) + ": key '" + key + ".version': '" + link.version +
+                      "' is not a VDA 5050 version Fleet speaks (2.0.0, 2.1.0)");
+  }
+  for (const std::string* part : {&link.manufacturer, &link.interface_name}) {
+    if (part->find_first_of("/+#") != std::string::npos) {
+      throw ConfigError(where(source, node) + ": key '" + key + "': '" + *part +
+                        "' holds a character MQTT topics reserve (/, + or #)");
+    }
+  }
+  return link;
 }
 
 std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& source) {
@@ -94,7 +126,7 @@ std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& s
       throw ConfigError(where(source, f["footprint"]) + ": key '" + key +
                         ".footprint' belongs in the vehicle profile: '" + key + ".profile.footprint'");
     }
-    check_keys(f, {"id", "robot_type", "profile", "robots"}, key, source);
+    check_keys(f, {"id", "robot_type", "profile", "robots", "vda5050"}, key, source);
     FleetSpec fleet;
     fleet.id = required_text(f, "id", key, source);
     fleet.robot_type = required_text(f, "robot_type", key, source);
@@ -105,6 +137,11 @@ std::vector<FleetSpec> parse_fleets(const YAML::Node& node, const std::string& s
     }
     if (!fleet_ids.insert(fleet.id).second) {
       throw ConfigError(where(source, f) + ": key '" + key + ".id': duplicate fleet id '" + fleet.id + "'");
+    }
+    if (!type->agent_driven) {
+      fleet.vda5050 = parse_vda5050_link(f["vda5050"], f, key + ".vda5050", source);
+    } else if (f["vda5050"]) {
+      throw ConfigError(where(source, f["vda5050"]) + ": key '" + key + ".vda5050' is only for robot type vda5050");
     }
     fleet.profile = parse_vehicle_profile(f["profile"], *type, key + ".profile", source);
     fleet.footprint = fleet.profile.extent();

@@ -17,6 +17,16 @@ struct RobotSpec {
   /// Id of a home pose in the site file; empty for a robot declared by count until
   /// assign_homes gives it one.
   std::string home;
+  /// A VDA 5050 vehicle's serial number (its MQTT topics' last part); the id when not given.
+  std::string serial_number;
+};
+
+/// How fleet-vda5050 reaches the vehicles of a fleet of robot type `vda5050`: topics
+/// `{interface_name}/v{major}/{manufacturer}/{serial_number}/{topic}`.
+struct Vda5050Link {
+  std::string interface_name = "uagv";
+  std::string version = "2.0.0";  ///< 2.0.0 or 2.1.0
+  std::string manufacturer;
 };
 
 /// A fleet: robots of one robot type sharing one vehicle profile.
@@ -28,6 +38,8 @@ struct FleetSpec {
   /// rectangle-based parts (the simulated body, the collision monitor) use.
   geometry::Footprint footprint;
   std::vector<RobotSpec> robots;
+  /// Only for robot type `vda5050`.
+  std::optional<Vda5050Link> vda5050;
 };
 
 struct FleetConfig {

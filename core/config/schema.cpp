@@ -110,6 +110,12 @@ std::vector<KeySpec> make_schema() {
               "the places core: moves a robot's plan may run ahead of where the robot is, so how far it is "
               "granted beyond its place"),
 
+      // VDA 5050 (fleet-vda5050): vehicles of fleets of robot type vda5050, over MQTT
+      text("vda5050.broker", "tcp://127.0.0.1:1883", "the MQTT broker fleet-vda5050 connects to"),
+      number("vda5050.state_timeout_s", 35.0, "s", 1.0, 600.0,
+             "wall seconds without a vehicle's state after which it is lost; VDA 5050 vehicles send state at least "
+             "every 30 s"),
+
       // Fault injection (soak tests only; everything off by default)
       number("faults.pose_delay_ms", 0.0, "ms", 0.0, 10000.0,
              "agents publish RobotState this much late (wall time), as a slow network would deliver it"),

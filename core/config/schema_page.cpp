@@ -22,6 +22,7 @@ const std::map<std::string, std::string>& section_titles() {
       {"server", "Server (orders, dispatch, web view)"},
       {"agent", "Agent (one robot)"},
       {"traffic", "Traffic control"},
+      {"vda5050", "VDA 5050 (fleet-vda5050)"},
       {"faults", "Fault injection (soak tests)"},
   };
   return titles;
@@ -53,7 +54,7 @@ Relative paths: `server.db_path` is relative to the state folder: `$FLEET_STATE_
 ## Fleets
 
 Beside the keys, the file declares the fleets under `fleets:`. A fleet has an `id`, a
-`robot_type` (the software that drives it: `forklift`, `stacker` or `picker`), an optional vehicle
+`robot_type` (the software that drives it: `forklift`, `stacker`, `picker`, `cart`, or `vda5050`), an optional vehicle
 `profile` and its `robots`, each with an `id` unique across fleets and a `home`, the id of a
 home pose in the site file. The profile is the vehicle's factsheet; every key left out keeps the robot type's own
 vehicle:
@@ -84,6 +85,20 @@ A large fleet is declared by count: `robots: {count: 200, id: "fl{n}"}` gives ro
 `fl200`, each parked at a home of the site: the site's homes in file order, skipping the ones a
 listed robot names. Every process reads the same files and gives the same homes; a site with too
 few homes stops the program with how many it has left.
+
+A fleet of robot type `vda5050` is vehicles of another maker that `fleet-vda5050` drives as VDA
+5050 master control over MQTT ([VDA 5050](vda5050.md)); no fleet-agent runs for them. It names
+how its vehicles are reached, `vda5050: {manufacturer: M, interface_name: uagv, version: 2.0.0}`
+(the interface name and version, 2.0.0 or 2.1.0, are optional), and each robot may give its
+`serial_number`, the last part of its MQTT topics (its id when left out):
+
+```yaml
+  - id: visitors
+    robot_type: vda5050
+    vda5050: {manufacturer: Sim, interface_name: fleet, version: 2.0.0}
+    robots:
+      - {id: v1, home: H5, serial_number: agv-1}
+```
 
 An unknown robot type, a footprint that is not a simple polygon or an action the robot type
 cannot perform stops the program naming the file, the line and the key. `fleetctl fleets`

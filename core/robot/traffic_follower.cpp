@@ -6,6 +6,21 @@
 
 namespace fleet::robot {
 
+TrafficPermit permit_of(model::TrafficGrant grant) {
+  TrafficPermit permit;
+  permit.version = grant.version;
+  permit.granted_index = grant.granted_index;
+  permit.granted_distance = grant.granted_distance;
+  permit.blocked_by = std::move(grant.blocked_by);
+  if (grant.status == "AREA_CLEAR") permit.area = TrafficPermit::Area::kClear;
+  if (grant.status == "AREA_WAITING") permit.area = TrafficPermit::Area::kWaiting;
+  if (!grant.instruction.empty()) {
+    permit.route = std::move(grant.route);
+    permit.siding = grant.instruction == "SIDING";
+  }
+  return permit;
+}
+
 using geometry::Vec2;
 
 namespace {

@@ -8,6 +8,7 @@
 
 #include "geometry/pose.hpp"
 #include "map/road_graph.hpp"
+#include "model/messages.hpp"
 #include "planning/route_planner.hpp"
 #include "robot/robot.hpp"
 
@@ -24,6 +25,9 @@ std::uint64_t first_route_version(std::chrono::system_clock::time_point now);
 /// manager's re-routes take odd ones (its version + 1), so the two never give one version to
 /// different routes.
 std::uint64_t next_own_route_version(std::uint64_t current);
+
+/// What the server's grant (model::TrafficGrant, idl/fleet.idl) tells the robot it is for.
+TrafficPermit permit_of(model::TrafficGrant grant);
 
 struct TrafficFollowerParams {
   /// Traffic control: report the road part of every route and drive only as far as the server

@@ -8,12 +8,14 @@ namespace fleet::vehicle {
 #define FLEET_ROBOT_TYPE(name) RobotType name##_type();
 #include "robot/robot_types.def"
 #undef FLEET_ROBOT_TYPE
+RobotType vda5050_type();
 
 const std::vector<RobotType>& robot_types() {
   static const std::vector<RobotType> types{
 #define FLEET_ROBOT_TYPE(name) name##_type(),
 #include "robot/robot_types.def"
 #undef FLEET_ROBOT_TYPE
+      vda5050_type(),
   };
   return types;
 }

@@ -20,9 +20,12 @@ struct RobotType {
   /// A place is handled only from a road at least this wide in front of it, metres (a stacker
   /// turns about its rear axle there to reverse in); 0: any road the vehicle fits.
   double handling_road_width = 0.0;
+  /// False for vehicles that run software of their own and are driven over VDA 5050 by
+  /// fleet-vda5050: no agent is started for them.
+  bool agent_driven = true;
 };
 
-/// The robot types the agent can build, in a stable order.
+/// The robot types: those the agent can build, then `vda5050`, in a stable order.
 const std::vector<RobotType>& robot_types();
 const RobotType* find_robot_type(std::string_view name);
 /// "forklift, ..." for messages.

@@ -16,7 +16,7 @@ fail() { echo "install_test: $*" >&2; exit 1; }
 
 prefix="$work/prefix"
 cmake --install "$build" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install failed"; }
-for f in bin/fleet-server bin/fleet-agent bin/fleetctl share/fleet/config/fleet.yaml \
+for f in bin/fleet-server bin/fleet-agent bin/fleetctl bin/fleet-vda5050 share/fleet/config/fleet.yaml \
          share/fleet/config/cyclonedds.xml share/fleet/maps/table_a.yaml share/fleet/maps/table_a.xodr \
          lib/systemd/system/fleet-server.service; do
   [ -e "$prefix/$f" ] || fail "cmake --install left out $f"
@@ -53,11 +53,11 @@ ls -d "$work"/state/fleet/runs/demo-* >/dev/null 2>&1 ||
 deb=$(ls "$work"/deb/*.deb)
 depends=$(dpkg-deb --field "$deb" Depends)
 echo "package $(basename "$deb"): Depends: $depends"
-for lib in libddsc0debian libompl libspdlog libyaml-cpp libsqlite3 passwd; do
+for lib in libddsc0debian libompl libspdlog libyaml-cpp libsqlite3 libpaho-mqttpp passwd; do
   grep -q "$lib" <<<"$depends" || fail "Depends does not name $lib: $depends"
 done
 contents=$(dpkg-deb --contents "$deb")
-for f in ./usr/bin/fleet-server ./usr/bin/fleetctl ./usr/share/fleet/config/fleet.yaml \
+for f in ./usr/bin/fleet-server ./usr/bin/fleetctl ./usr/bin/fleet-vda5050 ./usr/share/fleet/config/fleet.yaml \
          ./usr/share/fleet/maps/warehouse.xodr ./usr/lib/systemd/system/fleet-server.service; do
   grep -q " $f\$" <<<"$contents" || fail "the package holds no $f"
 done

@@ -43,10 +43,13 @@ class FleetHarness {
   std::string log_of(const std::string& name) const;
   cli::ProcessGroup& processes() { return processes_; }
   int domain() const { return domain_; }
+  const std::string& log_dir() const { return log_dir_; }
+  const std::string& config_path() const { return config_path_; }
+  /// The flags every process of the harness takes: --config, --domain, --site, --time-scale.
+  std::vector<std::string> common_args() const;
 
  private:
   std::string config_path_ = fleet::test::source_dir() + "/config/fleet.yaml";
-  std::vector<std::string> common_args() const;
   int domain_;
   double time_scale_;
   std::string site_;

@@ -1,0 +1,154 @@
+// Fleet as VDA 5050 master control over a real mosquitto broker: vda-5050-lib's virtual vehicles
+// beside Fleet's own agents on table_a (domains 111-113).
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli/vda5050_vehicles.hpp"
+#include "config/fleet_config.hpp"
+#include "fleet_harness.hpp"
+#include "map/site.hpp"
+#include "test_paths.hpp"
+
+using namespace fleet::testing;
+using nlohmann::json;
+
+namespace {
+
+const std::string kConfig = fleet::test::source_dir() + "/config/sites/table_a-vda5050.yaml";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The order as `fleetctl order show --json` gives it.
+json order_of(const FleetHarness& fleet, std::int64_t id) {
+  const auto shown = fleet.fleetctl({"--json", "order", "show", std::to_string(id)}, 30);
+  if (shown.exit_code != 0) return json::object();
+  return last_json_line(shown.out);
+}
+
+/// Waits until `done(order)` holds for order `id`, polling; false after `timeout_s`.
+bool wait_for_order(const FleetHarness& fleet, std::int64_t id, const std::function<bool(const json&)>& done,
+                    double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done(order_of(fleet, id))) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  return false;
+}
+
+/// tests/vda5050/check_messages.js on the broker: every order and instant action Fleet publishes
+/// checked against vda-5050-lib's validators, the official schemas of ../shared (when there) and
+/// the order rules (update ids, stitching, sequence ids, base before horizon).
+std::size_t start_message_check(FleetHarness& fleet, const std::string& broker) {
+  std::vector<std::string> argv{"node", fleet::test::source_dir() + "/tests/vda5050/check_messages.js", "--broker",
+                                "mqtt://" + broker.substr(broker.find("://") + 3)};
+  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
+  if (std::filesystem::exists(schemas)) argv.insert(argv.end(), {"--schemas", schemas});
+  argv.insert(argv.end(), {"--out", fleet.log_dir() + "/message-check.json"});
+  return fleet.processes().start("message check", argv, fleet.log_dir() + "/message-check.log");
+}
+
+/// Stops the check and gives its summary.
+json message_check_result(FleetHarness& fleet, std::size_t index) {
+  fleet.processes().signal(index, SIGTERM);
+  const std::string out = fleet.log_dir() + "/message-check.json";
+  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const std::string text = slurp(out);
+  return text.empty() ? json::object() : json::parse(text);
+}
+
+/// A fleet-server with the table_a-vda5050 configuration, and `vehicles` virtual VDA 5050 vehicles
+/// with their broker and fleet-vda5050, all stopped with the harness.
+struct VdaFleet {
+  FleetHarness fleet;
+  fleet::cli::Vda5050Vehicles vehicles;
+  std::size_t vehicles_process = 0;
+
+  VdaFleet(int domain, int count, const std::vector<std::string>& vehicle_args = {}) : fleet(domain, 1.0) {
+    fleet.use_config(kConfig);
+    fleet.start_server();
+    fleet::config::FleetConfig config = fleet::config::load_fleet_config(kConfig);
+    const fleet::map::Site site = fleet::map::load_site(fleet::test::source_dir() + "/maps/table_a.yaml");
+    std::vector<std::string> bridge{bin("fleet-vda5050")};
+    for (const auto& a : fleet.common_args()) bridge.push_back(a);
+    vehicles = fleet::cli::start_vda5050_vehicles(fleet.processes(), config, site, count, 1.0, bridge, fleet.log_dir(),
+                                                  vehicle_args);
+    vehicles_process = fleet.processes().children().size() - 1;
+  }
+};
+
+}  // namespace
+
+TEST(Vda5050, VehiclesOfAnotherMakerAndFleetsOwnAgentsDoOrdersTogether) {
+  // The soak's ground-truth watch reads the vehicles' reported positions (their SimTruth, from
+  // fleet-vda5050) beside the agents' truth: 0 collisions, 0 deadlocks, nothing lost.
+  const auto soak = run_command({bin("fleetctl"), "--domain", "111", "--config", kConfig, "soak", "--agents", "2",
+                                 "--vda5050-vehicles", "2", "--duration", "80", "--time-scale", "5", "--json"},
+                                240);
+  ASSERT_FALSE(soak.out.empty()) << soak.err;
+  const json summary = last_json_line(soak.out);
+  EXPECT_EQ(soak.exit_code, 0) << soak.err.substr(soak.err.size() > 3000 ? soak.err.size() - 3000 : 0);
+  EXPECT_EQ(summary["collisions"], 0);
+  EXPECT_EQ(summary["deadlocks"], 0);
+  EXPECT_EQ(summary["orders_lost"], 0);
+  EXPECT_GE(summary["orders_done_by_fleet"]["visitors"].get<int>(), 1) << summary.dump();
+  EXPECT_GE(summary["orders_done_by_fleet"]["forklifts"].get<int>(), 1) << summary.dump();
+}
+
+TEST(Vda5050, AKilledVehicleIsLostItsOrderGoesBackAndItComesBackToFinishIt) {
+  VdaFleet vda(112, 2);
+  const std::size_t check = start_message_check(vda.fleet, vda.vehicles.broker);
+  ASSERT_TRUE(vda.fleet.wait_for_robots({"v1", "v2"}));
+  const auto added =
+      vda.fleet.fleetctl({"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors"});
+  ASSERT_EQ(added.exit_code, 0) << added.err;
+  const std::int64_t id = last_json_line(added.out)["order_id"];
+  ASSERT_TRUE(wait_for_order(
+      vda.fleet, id, [](const json& o) { return o.value("phase", "") == "TO_PICK"; }, 30));
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // under way
+
+  vda.fleet.processes().signal(vda.vehicles_process, SIGKILL);  // the vehicles' process dies: no goodbye
+  ASSERT_TRUE(wait_for_order(
+      vda.fleet, id, [](const json& o) { return o.value("state", "") == "QUEUED" || o.value("state", "") == "FAILED"; },
+      30))
+      << order_of(vda.fleet, id).dump();
+  EXPECT_EQ(order_of(vda.fleet, id)["state"], "QUEUED") << "given back, not failed: it carried nothing";
+  const std::string bridge_log = slurp(vda.fleet.log_dir() + "/fleet-vda5050.log");
+  EXPECT_NE(bridge_log.find("is lost: connection CONNECTIONBROKEN"), std::string::npos) << bridge_log;
+
+  vda.fleet.processes().restart(vda.vehicles_process);  // back at their homes
+  EXPECT_TRUE(wait_for_order(
+      vda.fleet, id, [](const json& o) { return o.value("state", "") == "DONE"; }, 150))
+      << order_of(vda.fleet, id).dump();
+
+  const json checked = message_check_result(vda.fleet, check);
+  EXPECT_GT(checked.value("checked", 0), 10) << checked.dump();
+  EXPECT_EQ(checked.value("invalid_count", -1), 0) << checked.dump(2);
+  if (std::filesystem::exists(fleet::test::source_dir() + "/../shared/data/vda5050")) {
+    EXPECT_EQ(checked.value("schemas", ""), "official+lib");
+  }
+}
+
+TEST(Vda5050, AnOrderTheVehicleRefusesFailsWithTheVehiclesReason) {
+  VdaFleet vda(113, 1, {"--reject-orders", "agv-1"});
+  ASSERT_TRUE(vda.fleet.wait_for_robots({"v1"}));
+  const auto added = vda.fleet.fleetctl(
+      {"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors", "--wait"}, 120);
+  const json order = last_json_line(added.out);
+  EXPECT_EQ(order["state"], "FAILED") << added.out << added.err;
+  const std::string reason = order.value("reason", "");
+  EXPECT_NE(reason.find("vehicle refused VDA 5050 order"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("orderError"), std::string::npos) << reason;
+}
