@@ -201,7 +201,16 @@ SoakUsage::SoakUsage(FleetRun& run, double duration_s)
 void SoakUsage::sample(std::map<pid_t, Usage>& into) {
   for (const auto& child : run_.processes().children()) {
     if (!child.running) continue;
-    type_of_[child.pid] = child.name.starts_with("fleet-server") ? "server" : "agent";
+    // Fleet's own processes; the broker and the simulated VDA 5050 vehicles are the run's props.
+    if (child.name.starts_with("fleet-server")) {
+      type_of_[child.pid] = "server";
+    } else if (child.name.starts_with("fleet-agent")) {
+      type_of_[child.pid] = "agent";
+    } else if (child.name.starts_with("fleet-vda5050")) {
+      type_of_[child.pid] = "vda5050_bridge";
+    } else {
+      continue;
+    }
     if (const auto space = child.name.find(' '); space != std::string::npos) {
       robot_of_[child.pid] = child.name.substr(space + 1);
     }
@@ -256,6 +265,7 @@ SoakUsage::Figures SoakUsage::figures(double wall, int agents) const {
     cpu_s[type] += last_cpu - (begin != first_usage_.end() ? begin->second.cpu_s : 0.0);
   }
   alive_s["server"] = wall;
+  alive_s["vda5050_bridge"] = wall;
   alive_s["agent"] = wall * agents;
   Figures f;
   for (const auto& [type, g] : growth) f.growth_pct[type] = round_to(g, 0.1);

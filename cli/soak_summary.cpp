@@ -1,6 +1,7 @@
 // `fleetctl soak`'s summary: its figures as JSON, the reasons it fails, and the text it prints.
 
 #include <algorithm>
+#include <fstream>
 #include <ostream>
 
 #include "cli/soak_parts.hpp"
@@ -185,6 +186,10 @@ nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, cons
                          {"crashed", run.crashes()},
                          {"faults_skipped", seen.faults_skipped},
                          {"run_dir", run.run_dir()}};
+  // What fleet-vda5050 cost and how fast it passed grants on, when the run had VDA 5050 vehicles.
+  if (std::ifstream figures(run.run_dir() + "/vda5050-figures.json"); figures) {
+    summary["vda5050_bridge"] = nlohmann::json::parse(figures, nullptr, false);
+  }
   summary.update(fault_figures(*seen.faults));
   summary.update(collisions_and_deadlocks(run));
   summary.update(localization_figures(run));

@@ -113,7 +113,7 @@ Vda5050Vehicles start_vda5050_vehicles(ProcessGroup& processes, const config::Fl
   }
   Vda5050Vehicles out;
   out.broker = "tcp://127.0.0.1:" + std::to_string(port);
-  bridge_argv.insert(bridge_argv.end(), {"--broker", out.broker});
+  bridge_argv.insert(bridge_argv.end(), {"--broker", out.broker, "--figures", run_dir + "/vda5050-figures.json"});
   processes.start("fleet-vda5050", bridge_argv, run_dir + "/fleet-vda5050.log");
 
   // One Node.js process per fleet: a fleet's vehicles share an interface name and a maker.

@@ -24,7 +24,8 @@ struct Vda5050Vehicles {
 std::vector<std::pair<const config::FleetSpec*, const config::RobotSpec*>> pick_vda5050_vehicles(
     const config::FleetConfig& config, int count);
 
-/// Starts the broker, the bridge (`bridge_argv` plus --broker) and the vehicles in `processes`,
+/// Starts the broker, the bridge (`bridge_argv` plus --broker, and --figures into
+/// `run_dir`/vda5050-figures.json) and the vehicles in `processes`,
 /// logs in `run_dir`; `vehicle_args` go to every vehicles' process (tests: --reject-orders SERIAL). The vehicles run
 /// `time_scale` times faster than the wall clock, as the rest of the fleet (vda-5050-lib's time lapse). Throws naming
 /// what is missing (mosquitto, node, the vehicles' packages).

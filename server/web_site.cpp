@@ -147,6 +147,8 @@ json site_json(const WebSiteInfo& info) {
                    {"fp", json::array({fleet->footprint.length, fleet->footprint.width})},
                    {"poly", std::move(polygon)}};
       if (json forks = forks_json(*fleet); !forks.empty()) spec["forks"] = std::move(forks);
+      // A vehicle of another maker, driven over VDA 5050: its maker and serial number.
+      if (fleet->vda5050) spec["vda5050"] = fleet->vda5050->manufacturer + " " + robot->serial_number;
       robots.push_back(std::move(spec));
     }
     for (const auto& fleet : info.config->fleets) fleets.push_back({{"id", fleet.id}, {"type", fleet.robot_type}});

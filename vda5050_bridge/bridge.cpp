@@ -1,10 +1,14 @@
 #include "vda5050_bridge/bridge.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 #include "common/clock.hpp"
+#include "common/percentile.hpp"
 #include "dds/qos.hpp"
 #include "orders/order_kind.hpp"
 #include "robot/robot_factory.hpp"
@@ -16,10 +20,21 @@ using nlohmann::json;
 
 namespace {
 
-/// Wall seconds between the bridge's cycles.
-constexpr double kCycleWall = 0.05;
+/// Wall seconds between the bridge's cycles: a grant waits for the next cycle to be passed on.
+constexpr double kCycleWall = 0.02;
 /// A vehicle's bad messages are logged at most once a minute each.
 constexpr double kBadMessageLogEvery = 60.0;
+/// Grant-to-broker latencies kept for the figures at most.
+constexpr std::size_t kLatencySamples = 1000000;
+/// Wall seconds between the figures in the log.
+constexpr double kFiguresLogEvery = 60.0;
+
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
 
 std::string topic_prefix(const vda5050::VehicleAddress& a) {
   std::string out = vda5050::topic(a, "");
@@ -39,7 +54,8 @@ Bridge::Bridge(BridgeOptions options, Logger log)
       truth_writer_(participant_, dds::qos::live_state()),
       grant_reader_(participant_, dds::qos::live_state(), model::every_robot_partition()),
       order_reader_(participant_, dds::qos::latched_state()),
-      pallet_reader_(participant_, dds::qos::latched_state()) {
+      pallet_reader_(participant_, dds::qos::latched_state()),
+      control_reader_(participant_, dds::qos::latched_state()) {
   const std::uint64_t first_version = robot::first_route_version(std::chrono::system_clock::now());
   std::vector<std::string> subscriptions;
   for (const config::FleetSpec& fleet : options_.config.fleets) {
@@ -77,7 +93,13 @@ Bridge::Bridge(BridgeOptions options, Logger log)
 void Bridge::run(const std::atomic<bool>& stop) {
   SimClock clock(options_.time_scale);
   bool was_connected = false;
+  started_wall_ = SimClock::wall_now();
+  double next_figures = started_wall_ + kFiguresLogEvery;
   while (!stop) {
+    if (SimClock::wall_now() >= next_figures) {
+      next_figures += kFiguresLogEvery;
+      log_->info("figures: {}", figures().dump());
+    }
     const bool connected = mqtt_->connected();
     if (connected != was_connected) {
       if (connected) {
@@ -90,11 +112,36 @@ void Bridge::run(const std::atomic<bool>& stop) {
     cycle(SimClock::wall_now(), clock.now());
     std::this_thread::sleep_for(std::chrono::duration<double>(kCycleWall));
   }
+  const nlohmann::json f = figures();
+  log_->info("figures: {}", f.dump());
+  if (!options_.figures_file.empty()) std::ofstream(options_.figures_file) << f.dump(2) << "\n";
+}
+
+nlohmann::json Bridge::figures() const {
+  std::vector<double> latencies;
+  {
+    std::lock_guard lock(latency_mutex_);
+    latencies = grant_to_broker_s_;
+  }
+  const double wall = std::max(1e-9, SimClock::wall_now() - started_wall_);
+  const double cpu_pct = 100.0 * cpu_seconds() / wall;
+  const auto ms = [&](double q) {
+    return latencies.empty() ? 0.0 : std::round(common::percentile(latencies, q) * 1e5) / 100.0;
+  };
+  return {{"vehicles", vehicles_.size()},
+          {"wall_s", std::round(wall * 10.0) / 10.0},
+          {"cpu_pct", std::round(cpu_pct * 100.0) / 100.0},
+          {"cpu_pct_per_vehicle", std::round(cpu_pct / static_cast<double>(vehicles_.size()) * 1000.0) / 1000.0},
+          {"order_updates_timed", latencies.size()},
+          {"grant_to_broker_p50_ms", ms(0.5)},
+          {"grant_to_broker_p95_ms", ms(0.95)},
+          {"grant_to_broker_max_ms", ms(1.0)}};
 }
 
 void Bridge::cycle(double now_wall, double now_sim) {
   take_mqtt(now_wall);
   take_pallets();
+  take_controls();
   take_orders(now_sim);
   take_grants();
   for (Vehicle& v : vehicles_) {
@@ -192,7 +239,19 @@ void Bridge::send(Vehicle& v, double now_wall) {
     json message = vda5050::header(v.address, v.header_ids[out.name]++, now_wall);
     message.update(out.body);
     const std::string topic = vda5050::topic(v.address, out.name);
-    if (!mqtt_->publish(topic, message.dump(), 1)) {
+    bool published = false;
+    if (out.name == "order" && v.grant_source_wall >= 0.0) {
+      const double granted = v.grant_source_wall;
+      v.grant_source_wall = -1.0;
+      published = mqtt_->publish_acknowledged(topic, message.dump(), [this, granted] {
+        const double latency = SimClock::wall_now() - granted;
+        std::lock_guard lock(latency_mutex_);
+        if (grant_to_broker_s_.size() < kLatencySamples) grant_to_broker_s_.push_back(latency);
+      });
+    } else {
+      published = mqtt_->publish(topic, message.dump(), 1);
+    }
+    if (!published) {
       log_->warn("{}: could not publish {} (broker not connected)", v.master->id(), topic);
     } else if (out.name == "order") {
       log_->info("{}: order {} update {}: {} nodes, base through {}", v.master->id(),

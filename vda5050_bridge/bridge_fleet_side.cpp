@@ -13,6 +13,18 @@ void Bridge::take_pallets() {
   });
 }
 
+void Bridge::take_controls() {
+  control_reader_.take_data([&](model::RobotControl&& control) {
+    const auto found = by_robot_.find(control.robot_id);
+    if (found == by_robot_.end()) return;
+    Vehicle& v = vehicles_[found->second];
+    if (control.paused == v.master->paused()) return;
+    v.master->set_paused(control.paused);
+    log_->info("{}: {} by the operator ({} sent)", control.robot_id, control.paused ? "paused" : "resumed",
+               control.paused ? "startPause" : "stopPause");
+  });
+}
+
 void Bridge::take_orders(double now_sim) {
   order_reader_.take_data([&](model::OrderAssignment&& a) {
     const auto found = by_robot_.find(a.robot_id);
@@ -48,7 +60,7 @@ void Bridge::take_order(Vehicle& v, model::OrderAssignment&& a, double now_sim) 
   const auto kind = orders::parse_kind(a.kind.empty() ? "transport" : a.kind);
   std::string why = orders::AssignmentIntake::refusal_of(
       {kind ? "" : "unknown order kind '" + a.kind + "'", std::nullopt,
-       v.online ? "" : "vehicle " + v.address.serial_number + " is not online", false});
+       v.online ? "" : "vehicle " + v.address.serial_number + " is not online", master.paused()});
   if (why.empty()) {
     const auto load = load_at_.find(a.pick_area);
     why = master.submit({a.order_id, *kind, a.pick_area, a.pick_pose, a.drop_area, a.drop_pose,
@@ -71,7 +83,13 @@ void Bridge::take_grants() {
     if (!info.valid_data) return;
     const auto found = by_robot_.find(grant.robot_id);
     if (found == by_robot_.end()) return;
-    vehicles_[found->second].master->grant(robot::permit_of(std::move(grant)));
+    Vehicle& v = vehicles_[found->second];
+    const bool further = grant.version != v.grant_version || grant.granted_distance > v.grant_distance + 1e-9;
+    if (further && v.grant_source_wall < 0.0)
+      v.grant_source_wall = static_cast<double>(info.source_timestamp_ns) * 1e-9;
+    v.grant_version = grant.version;
+    v.grant_distance = grant.granted_distance;
+    v.master->grant(robot::permit_of(std::move(grant)));
   });
 }
 

@@ -22,6 +22,7 @@ options:
   --domain N           DDS domain id (default: dds.domain)
   --site NAME          site: maps/NAME.yaml (default: site)
   --time-scale K       sim_time = K x wall time (default: time_scale); the vehicles run in wall time
+  --figures FILE       at the end, write the bridge's CPU and grant-to-broker latency there (JSON)
   --set KEY=VALUE      any configuration key (repeatable)
   --verbose            log debug events too
   --help               this text
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
     auto config = app::read_config(args, kHelp, std::cout);
     if (!config) return 0;
     if (auto broker = args.value("broker")) config->settings.set("vda5050.broker", *broker, "--broker");
+    const std::string figures_file = args.value("figures").value_or("");
     const auto level = app::finish_args(args);
     std::vector<std::string> ids;
     for (const auto& [fleet, robot] : config->all_robots()) {
@@ -50,6 +52,7 @@ int main(int argc, char** argv) {
     app::set_run_options(options, *config);
     options.broker = config->settings.get_string("vda5050.broker");
     options.state_timeout_s = config->settings.get_double("vda5050.state_timeout_s");
+    options.figures_file = figures_file;
     options.config = std::move(*config);
     options.site = std::move(site);
     vda5050_bridge::Bridge bridge(std::move(options), make_logger("fleet-vda5050", "", level));

@@ -9,6 +9,21 @@ namespace fleet::vda5050_bridge {
 namespace {
 /// Messages kept for the loop at most: a loop that stalls loses the oldest, never memory.
 constexpr std::size_t kInboxLimit = 100000;
+
+/// Runs a function when the broker acknowledges one publication, then deletes itself.
+class AcknowledgementListener : public mqtt::iaction_listener {
+ public:
+  explicit AcknowledgementListener(std::function<void()> acknowledged) : acknowledged_(std::move(acknowledged)) {}
+  void on_success(const mqtt::token&) override {
+    acknowledged_();
+    delete this;
+  }
+  void on_failure(const mqtt::token&) override { delete this; }
+
+ private:
+  std::function<void()> acknowledged_;
+};
+
 }  // namespace
 
 MqttLink::MqttLink(const std::string& broker, const std::string& client_id, std::vector<std::string> subscriptions)
@@ -61,6 +76,19 @@ bool MqttLink::publish(const std::string& topic, const std::string& payload, int
     return true;
   } catch (const mqtt::exception&) {
     return false;  // lost the connection meanwhile; reconnecting
+  }
+}
+
+bool MqttLink::publish_acknowledged(const std::string& topic, const std::string& payload,
+                                    std::function<void()> acknowledged) {
+  if (!client_->is_connected()) return false;
+  auto* listener = new AcknowledgementListener(std::move(acknowledged));
+  try {
+    client_->publish(topic, payload.data(), payload.size(), 1, false, nullptr, *listener);
+    return true;
+  } catch (const mqtt::exception&) {
+    delete listener;  // never handed to the client
+    return false;
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -34,6 +35,9 @@ class MqttLink {
   int connections() const;
   /// False when not connected (the message is dropped).
   bool publish(const std::string& topic, const std::string& payload, int qos, bool retained = false);
+  /// The same at QoS 1; `acknowledged` runs on the client's thread when the broker has the
+  /// message (its PUBACK).
+  bool publish_acknowledged(const std::string& topic, const std::string& payload, std::function<void()> acknowledged);
   std::vector<MqttMessage> take();
 
  private:

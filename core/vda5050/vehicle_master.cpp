@@ -93,8 +93,22 @@ void VehicleMaster::take_state(const VehicleState& state) {
   if (state.errors.empty()) last_error_.clear();
 }
 
+void VehicleMaster::set_paused(bool paused) {
+  if (paused == paused_) return;
+  paused_ = paused;
+  messages_.push_back(
+      {"instantActions", instant_action_json(paused ? "startPause" : "stopPause",
+                                             id_ + "-pause-" + std::to_string(++instant_actions_), version_)});
+}
+
 void VehicleMaster::reconnected() {
   messages_.clear();
+  // A vehicle that restarted runs again: it stays paused only when told once more.
+  if (paused_) {
+    messages_.push_back(
+        {"instantActions",
+         instant_action_json("startPause", id_ + "-pause-" + std::to_string(++instant_actions_), version_)});
+  }
   leg_.reset();
   follower_.leave_road();
   if (stage_ != Stage::kIdle) needs_plan_ = true;
@@ -122,6 +136,7 @@ void VehicleMaster::phase(const std::string& name) {
 }
 
 std::string VehicleMaster::task_state() const {
+  if (paused_) return "PAUSED";  // as an agent's robot, so the operator sees it and can resume it
   switch (stage_) {
     case Stage::kIdle:
       return "IDLE";

@@ -62,6 +62,10 @@ class VehicleMaster {
   bool withdraw();
   void grant(const robot::TrafficPermit& permit);
   void take_state(const VehicleState& state);
+  /// The operator pauses or resumes the robot: startPause / stopPause to the vehicle, once each
+  /// change [VDA 5050, section 6.7].
+  void set_paused(bool paused);
+  bool paused() const { return paused_; }
   /// The vehicle is back after it was lost: whatever it knew of its order is gone (a restart) or
   /// stale. Messages not yet sent are dropped; the leg under way is planned and sent again.
   void reconnected();
@@ -77,7 +81,7 @@ class VehicleMaster {
   bool has_state() const { return state_.has_value(); }
   const geometry::Pose2& pose() const { return pose_; }
   double speed() const { return state_ ? state_->speed : 0.0; }
-  /// IDLE, TRACK_PATH, PICK_PALLET, DROP_PALLET, GO_HOME, WAITING: the agent's names.
+  /// IDLE, TRACK_PATH, PICK_PALLET, DROP_PALLET, GO_HOME, WAITING, PAUSED: the agent's names.
   std::string task_state() const;
   const std::optional<MasterOrder>& order() const { return order_; }
   int carried_load() const { return carried_; }
@@ -116,6 +120,8 @@ class VehicleMaster {
   std::string goal_id_;
   bool needs_plan_ = false;
   bool held_ = false;
+  bool paused_ = false;
+  std::uint32_t instant_actions_ = 0;
   bool phase_at_goal_sent_ = false;
   std::optional<ReleasedOrder> leg_;
   std::uint32_t legs_ = 0;

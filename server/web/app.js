@@ -271,14 +271,16 @@
     const extra = Object.keys(frame.robots).filter((id) => !known.has(id));
     extra.sort((a, b) => a.localeCompare(b, undefined, { numeric: true }));
     for (const id of extra) rows.push([id, frame.robots[id]]);
+    const makerOf = Object.fromEntries(site.robots.filter((s) => s.vda5050).map((s) => [s.id, s.vda5050]));
     el('robots').tBodies[0].innerHTML = rows.map(([id, r]) => {
       if (!r) return `<tr class="lost"><td>${esc(id)}</td><td colspan="4">not seen yet</td></tr>`;
       const paused = r.state === 'PAUSED';
       const health = r.health === 'alive' ? 'alive' : `${r.health} ${fmtAge(r.age)}`;
       const detail = r.detail ? `<span class="detail">${esc(r.detail)}</span>` : '';
       const mapNote = r.map && r.map !== site.site ? `<span class="detail">map ${esc(r.map)}</span>` : '';
+      const maker = makerOf[id] ? `<span class="detail" title="driven over VDA 5050">VDA 5050 ${esc(makerOf[id])}</span>` : '';
       return `<tr class="${r.health === 'lost' ? 'lost' : ''}" data-robot="${esc(id)}">` +
-        `<td><span class="dot" data-colour="${esc(robotsLayer.colourOf(r))}"></span>${esc(id)}</td>` +
+        `<td><span class="dot" data-colour="${esc(robotsLayer.colourOf(r))}"></span>${esc(id)}${maker}</td>` +
         `<td>${esc(r.state)}${detail}${mapNote}</td>` +
         `<td class="health-${esc(r.health)}">${esc(health)}</td>` +
         `<td>${r.order ? esc(r.order) : ''}</td>` +

@@ -285,5 +285,23 @@ TEST(VehicleMaster, ACancelledOrderIsCancelledOnTheVehicleOnce) {
   EXPECT_EQ(yard.orders.back()["nodes"].back()["nodeId"], "home-H1") << "on its way home";
 }
 
+TEST(VehicleMaster, PauseAndResumeAreSentOnceEachAndAgainToAVehicleThatCameBack) {
+  Yard yard;
+  const auto instant_actions = [&] {
+    std::vector<std::string> types;
+    for (const Outgoing& o : yard.master.take_messages()) {
+      if (o.name == "instantActions") types.push_back(o.body["actions"][0]["actionType"]);
+    }
+    return types;
+  };
+  yard.master.set_paused(true);
+  yard.master.set_paused(true);
+  EXPECT_EQ(instant_actions(), std::vector<std::string>{"startPause"});
+  yard.master.reconnected();
+  EXPECT_EQ(instant_actions(), std::vector<std::string>{"startPause"}) << "a restarted vehicle is told again";
+  yard.master.set_paused(false);
+  EXPECT_EQ(instant_actions(), std::vector<std::string>{"stopPause"});
+}
+
 }  // namespace
 }  // namespace fleet::vda5050
