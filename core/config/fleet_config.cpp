@@ -37,6 +37,7 @@ constexpr int kMaxCountedRobots = 10000;
 
 void add_robot(RobotSpec robot, const YAML::Node& node, const std::string& key, const std::string& source,
                FleetSpec& fleet, std::set<std::string>& robot_ids) {
+  if (fleet.vda5050 && robot.serial_number.empty()) robot.serial_number = robot.id;
   if (!robot_ids.insert(robot.id).second) {
     throw ConfigError(where(source, node) + ": key '" + key + ".id': duplicate robot id '" + robot.id + "'");
   }

@@ -173,3 +173,41 @@ TEST(FleetConfig, BadCountOrPatternIsRefused) {
                 .find("duplicate robot id 'x2'"),
             std::string::npos);
 }
+
+TEST(FleetConfig, AVda5050FleetNamesHowItsVehiclesAreReachedAndEachSerialDefaultsToTheId) {
+  const FleetConfig config = parse_fleet_config(R"(
+fleets:
+  - id: visitors
+    robot_type: vda5050
+    vda5050: {manufacturer: Sim}
+    robots: [{id: v1, home: H1, serial_number: agv-1}, {id: v2, home: H2}]
+  - id: more
+    robot_type: vda5050
+    vda5050: {manufacturer: Acme, interface_name: plant, version: 2.1.0}
+    robots: {count: 2, id: "m{n}"}
+)",
+                                                "t");
+  ASSERT_TRUE(config.fleets[0].vda5050);
+  EXPECT_EQ(config.fleets[0].vda5050->interface_name, "uagv");
+  EXPECT_EQ(config.fleets[0].vda5050->version, "2.0.0");
+  EXPECT_EQ(config.fleets[0].robots[0].serial_number, "agv-1");
+  EXPECT_EQ(config.fleets[0].robots[1].serial_number, "v2");
+  EXPECT_EQ(config.fleets[1].robots[1].serial_number, "m2") << "robots declared by count too";
+  EXPECT_EQ(config.fleets[1].vda5050->version, "2.1.0");
+}
+
+TEST(FleetConfig, Vda5050KeysAreCheckedAndOnlyForVda5050Fleets) {
+  const auto fleet = [](const std::string& body) {
+    return "fleets:\n  - id: f\n" + body + "    robots: [{id: r1, home: H1}]\n";
+  };
+  EXPECT_NE(message_of(fleet("    robot_type: vda5050\n")).find("'fleets[0].vda5050' must be a map"),
+            std::string::npos);
+  EXPECT_NE(message_of(fleet("    robot_type: vda5050\n    vda5050: {manufacturer: Sim, version: 3.0.0}\n"))
+                .find("'3.0.0' is not a VDA 5050 version Fleet speaks (2.0.0, 2.1.0)"),
+            std::string::npos);
+  EXPECT_NE(message_of(fleet("    robot_type: vda5050\n    vda5050: {manufacturer: S/m}\n")).find("reserve"),
+            std::string::npos);
+  EXPECT_NE(message_of(fleet("    robot_type: forklift\n    vda5050: {manufacturer: Sim}\n"))
+                .find("'fleets[0].vda5050' is only for robot type vda5050"),
+            std::string::npos);
+}
