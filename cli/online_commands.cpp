@@ -457,6 +457,17 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
     const model::ServerInfo info = require_server(client, connection);
     const auto states = client.robot_states(std::chrono::milliseconds(600));
     const SimClock clock(info.time_scale);
+    // Vehicles of other makers, driven over VDA 5050: their maker and serial number, from the
+    // configuration fleetctl reads (the server's when both read the same file).
+    std::map<std::string, std::string> vda5050_of;
+    try {
+      const config::FleetConfig config = config::load_fleet_config(command.config_file);
+      for (const auto& [fleet, robot] : config.all_robots()) {
+        if (fleet->vda5050) vda5050_of[robot->id] = fleet->vda5050->manufacturer + " " + robot->serial_number;
+      }
+    } catch (const std::exception&) {
+      // Without a readable configuration the robots are listed unmarked.
+    }
     nlohmann::json rows = nlohmann::json::array();
     std::vector<std::string> not_seen;
     for (const auto& id : info.robots) {
@@ -480,6 +491,10 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
                       {"localization_score", s.localization_score},
                       {"age_s", std::max(0.0, clock.now() - s.sim_time)},
                       {"health", "alive"}});
+      if (const auto v = vda5050_of.find(id); v != vda5050_of.end()) {
+        rows.back()["vda5050"] = v->second;
+        rows.back()["detail"] = s.detail;
+      }
     }
     if (command.json) {
       out << rows.dump() << "\n";
@@ -498,7 +513,12 @@ int robots_command(const CommandArgs& command, const Connection& connection, std
       }
       out << std::left << std::setw(8) << r["robot_id"].get<std::string>() << std::setw(14) << r.value("fleet_id", "-")
           << std::setw(15) << r.value("state", "-") << std::setw(24) << pose.str() << std::setw(7) << order.str()
-          << std::setw(7) << loc.str() << r["health"].get<std::string>() << "\n";
+          << std::setw(7) << loc.str() << r["health"].get<std::string>();
+      if (r.contains("vda5050")) {
+        out << "  VDA 5050 " << r["vda5050"].get<std::string>();
+        if (!r.value("detail", "").empty()) out << ": " << r["detail"].get<std::string>();
+      }
+      out << "\n";
     }
     if (rows.empty()) out << "no robot has reported to this server\n";
     if (!all && !not_seen.empty()) {

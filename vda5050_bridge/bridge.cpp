@@ -128,10 +128,14 @@ nlohmann::json Bridge::figures() const {
   const auto ms = [&](double q) {
     return latencies.empty() ? 0.0 : std::round(common::percentile(latencies, q) * 1e5) / 100.0;
   };
-  return {{"vehicles", vehicles_.size()},
+  // The vehicles it drove: a configuration may declare more than there are on the broker.
+  const auto driven = std::max<std::size_t>(
+      1, std::count_if(vehicles_.begin(), vehicles_.end(), [](const Vehicle& v) { return v.online || v.was_lost; }));
+  return {{"vehicles", driven},
+          {"vehicles_declared", vehicles_.size()},
           {"wall_s", std::round(wall * 10.0) / 10.0},
           {"cpu_pct", std::round(cpu_pct * 100.0) / 100.0},
-          {"cpu_pct_per_vehicle", std::round(cpu_pct / static_cast<double>(vehicles_.size()) * 1000.0) / 1000.0},
+          {"cpu_pct_per_vehicle", std::round(cpu_pct / static_cast<double>(driven) * 1000.0) / 1000.0},
           {"order_updates_timed", latencies.size()},
           {"grant_to_broker_p50_ms", ms(0.5)},
           {"grant_to_broker_p95_ms", ms(0.95)},
@@ -196,9 +200,12 @@ void Bridge::take_message(Vehicle& v, const std::string& kind, const std::string
     if (kind == "state") {
       v.master->take_state(vda5050::parse_state(message));
       v.last_state_wall = now_wall;
+      v.state_requested = false;
     } else if (kind == "visualization") {
       vda5050::VehicleState position;
       if (vda5050::read_visualization(message, position)) v.master->take_position(position);
+    } else if (kind == "factsheet") {
+      check_factsheet(v, message);
     } else if (kind == "connection") {
       v.connection = vda5050::parse_connection(message);
       log_->info("{} ({}): connection {}", v.master->id(), v.address.serial_number, v.connection);
@@ -212,7 +219,30 @@ void Bridge::take_message(Vehicle& v, const std::string& kind, const std::string
   }
 }
 
+void Bridge::check_factsheet(Vehicle& v, const json& message) {
+  const std::string text = message.dump();
+  if (text == v.factsheet) return;
+  v.factsheet = text;
+  const config::FleetSpec& fleet = *v.fleet;
+  const auto differences = vda5050::factsheet_differences(vda5050::parse_factsheet(message), fleet.footprint.length,
+                                                          fleet.footprint.width, fleet.profile.max_speed);
+  if (differences.empty()) {
+    log_->info("{} ({}): its factsheet agrees with fleet {}'s profile", v.master->id(), v.address.serial_number,
+               fleet.id);
+    return;
+  }
+  std::string joined;
+  for (const std::string& d : differences) joined += (joined.empty() ? "" : "; ") + d;
+  log_->warn("{} ({}): {}; Fleet plans with fleet {}'s profile ({})", v.master->id(), v.address.serial_number, joined,
+             fleet.id, options_.config.source);
+}
+
 void Bridge::watch_liveness(Vehicle& v, double now_wall) {
+  // Silent for half its timeout: ask for its state once before counting it lost.
+  if (v.online && !v.state_requested && now_wall - v.last_state_wall > 0.5 * options_.state_timeout_s) {
+    v.state_requested = true;
+    v.master->request("stateRequest");
+  }
   const bool fresh = v.last_state_wall >= 0.0 && now_wall - v.last_state_wall <= options_.state_timeout_s;
   const bool alive = fresh && v.connection != "OFFLINE" && v.connection != "CONNECTIONBROKEN" && mqtt_->connected() &&
                      v.master->has_state();
@@ -221,6 +251,7 @@ void Bridge::watch_liveness(Vehicle& v, double now_wall) {
   if (alive) {
     log_->info("{} ({}) is online{}", v.master->id(), v.address.serial_number, v.was_lost ? " again" : "");
     if (v.was_lost) v.master->reconnected();
+    v.master->request("factsheetRequest");
     return;
   }
   v.was_lost = true;

@@ -42,8 +42,8 @@ class Bridge {
   void run(const std::atomic<bool>& stop);
 
   /// What the bridge cost and how fast it passes grants on, since it started: its CPU (percent of
-  /// one core, and per vehicle), and the wall seconds from a grant that reaches further (its DDS
-  /// source time) to the broker's acknowledgement of the order update it released.
+  /// one core, and per vehicle it drove: each that was online at some time), and the wall seconds from a grant that
+  /// reaches further (its DDS source time) to the broker's acknowledgement of the order update it released.
   nlohmann::json figures() const;
 
  private:
@@ -58,6 +58,8 @@ class Bridge {
     bool was_lost = false;                            ///< online before, then lost
     std::map<std::string, std::uint32_t> header_ids;  ///< per topic
     double next_bad_message_log = 0.0;
+    std::string factsheet;         ///< the last factsheet read, to report a change once
+    bool state_requested = false;  ///< a stateRequest went out since the last state
     // The order as the server sees it.
     std::int64_t order_id = 0;
     std::uint32_t update_id = 0;
@@ -81,6 +83,7 @@ class Bridge {
   void take_pallets();
   void take_controls();
   void watch_liveness(Vehicle& v, double now_wall);
+  void check_factsheet(Vehicle& v, const nlohmann::json& message);
   void send(Vehicle& v, double now_wall);
   void report(Vehicle& v, const std::string& status, double now_sim, int pallet_id = -1,
               const geometry::Pose2& pallet_pose = {}, const std::string& reason = "");

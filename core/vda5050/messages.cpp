@@ -212,6 +212,41 @@ VehicleState parse_state(const json& message) {
   return s;
 }
 
+FactsheetFigures parse_factsheet(const json& message) {
+  if (!message.is_object()) throw MessageError("factsheet: not a JSON object");
+  FactsheetFigures f;
+  const auto physical = message.find("physicalParameters");
+  if (physical == message.end() || !physical->is_object()) return f;
+  const auto read = [&](const char* key, std::optional<double>& into) {
+    if (!physical->contains(key)) return;
+    const double v = number(*physical, key, "factsheet.physicalParameters");
+    if (v <= 0.0) throw MessageError(std::string("factsheet.physicalParameters: key '") + key + "' must be positive");
+    into = v;
+  };
+  read("length", f.length);
+  read("width", f.width);
+  read("speedMax", f.speed_max);
+  return f;
+}
+
+std::vector<std::string> factsheet_differences(const FactsheetFigures& sheet, double length, double width,
+                                               double speed_max) {
+  if (!sheet.length && !sheet.width && !sheet.speed_max) return {"its factsheet gives no physicalParameters"};
+  std::vector<std::string> out;
+  const auto compare = [&](const std::optional<double>& given, double planned, const char* what, const char* unit,
+                           double tolerance) {
+    if (!given || std::abs(*given - planned) <= tolerance) return;
+    char text[160];
+    std::snprintf(text, sizeof text, "its factsheet says %s %.3g %s, the fleet's profile %.3g %s", what, *given, unit,
+                  planned, unit);
+    out.emplace_back(text);
+  };
+  compare(sheet.length, length, "length", "m", 0.01);
+  compare(sheet.width, width, "width", "m", 0.01);
+  compare(sheet.speed_max, speed_max, "speedMax", "m/s", 0.01);
+  return out;
+}
+
 std::string parse_connection(const json& message) {
   if (!message.is_object()) throw MessageError("connection: not a JSON object");
   const std::string state = text(message, "connectionState", "connection");

@@ -102,6 +102,19 @@ struct VehicleState {
   bool loaded = false;
 };
 
+/// What Fleet checks of a vehicle's `factsheet` [VDA 5050, section 6.14]: its size and top speed.
+struct FactsheetFigures {
+  std::optional<double> length;     ///< physicalParameters.length, metres
+  std::optional<double> width;      ///< physicalParameters.width
+  std::optional<double> speed_max;  ///< physicalParameters.speedMax, m/s
+};
+/// MessageError when it is not an object or a figure is not a positive number.
+FactsheetFigures parse_factsheet(const nlohmann::json& message);
+/// How the factsheet differs from the profile Fleet plans with (`length` x `width` footprint
+/// extent, `speed_max`), one sentence each; "gives no physicalParameters" when it has none of them.
+std::vector<std::string> factsheet_differences(const FactsheetFigures& sheet, double length, double width,
+                                               double speed_max);
+
 /// Reads the position of a `visualization` message [VDA 5050, section 6.12] into `state`; false
 /// when it has none. MessageError as parse_state.
 bool read_visualization(const nlohmann::json& message, VehicleState& state);

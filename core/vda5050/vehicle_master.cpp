@@ -93,6 +93,12 @@ void VehicleMaster::take_state(const VehicleState& state) {
   if (state.errors.empty()) last_error_.clear();
 }
 
+void VehicleMaster::request(const std::string& type) {
+  messages_.push_back(
+      {"instantActions",
+       instant_action_json(type, id_ + "-" + type + "-" + std::to_string(++instant_actions_), version_)});
+}
+
 void VehicleMaster::set_paused(bool paused) {
   if (paused == paused_) return;
   paused_ = paused;

@@ -62,6 +62,8 @@ class VehicleMaster {
   bool withdraw();
   void grant(const robot::TrafficPermit& permit);
   void take_state(const VehicleState& state);
+  /// An instant action without parameters for the vehicle: stateRequest, factsheetRequest.
+  void request(const std::string& type);
   /// The operator pauses or resumes the robot: startPause / stopPause to the vehicle, once each
   /// change [VDA 5050, section 6.7].
   void set_paused(bool paused);

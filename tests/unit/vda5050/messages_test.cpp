@@ -131,5 +131,18 @@ TEST(Vda5050Messages, ABadStateNamesTheKey) {
   EXPECT_EQ(parse_connection(json{{"connectionState", "CONNECTIONBROKEN"}}), "CONNECTIONBROKEN");
 }
 
+TEST(Vda5050Messages, AFactsheetIsCheckedAgainstTheProfileFleetPlansWith) {
+  const FactsheetFigures sheet =
+      parse_factsheet(json::parse(R"({"physicalParameters": {"length": 1.2, "width": 0.8, "speedMax": 1.0}})"));
+  EXPECT_TRUE(factsheet_differences(sheet, 1.2, 0.8, 1.0).empty());
+  const auto off = factsheet_differences(sheet, 1.2, 0.6, 1.5);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(off[0], "its factsheet says width 0.8 m, the fleet's profile 0.6 m");
+  EXPECT_EQ(off[1], "its factsheet says speedMax 1 m/s, the fleet's profile 1.5 m/s");
+  EXPECT_EQ(factsheet_differences(parse_factsheet(json::object()), 1, 1, 1),
+            std::vector<std::string>{"its factsheet gives no physicalParameters"});
+  EXPECT_THROW(parse_factsheet(json::parse(R"({"physicalParameters": {"length": -1}})")), MessageError);
+}
+
 }  // namespace
 }  // namespace fleet::vda5050
