@@ -187,6 +187,7 @@ VehicleState parse_state(const json& message) {
   if (const auto p = message.find("paused"); p != message.end() && p->is_boolean()) s.paused = p->get<bool>();
   for (const json& n : list(message, "nodeStates", "state")) {
     s.node_sequence_ids.push_back(count(n, "sequenceId", "state.nodeStates"));
+    if (const auto r = n.find("released"); r != n.end() && r->is_boolean() && r->get<bool>()) ++s.released_nodes_left;
   }
   list(message, "edgeStates", "state");
   if (const auto p = message.find("agvPosition"); p != message.end() && !p->is_null()) {

@@ -91,6 +91,7 @@ struct VehicleState {
   std::string last_node_id;
   std::uint32_t last_node_sequence_id = 0;
   std::vector<std::uint32_t> node_sequence_ids;  ///< nodeStates still to pass
+  std::size_t released_nodes_left = 0;           ///< of them released (base); the rest is horizon
   bool driving = false;
   bool paused = false;
   bool has_position = false;

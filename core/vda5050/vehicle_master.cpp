@@ -158,9 +158,10 @@ std::string VehicleMaster::task_state() const {
 
 bool VehicleMaster::vehicle_stands_ready() const {
   if (!state_ || state_->driving) return false;
-  if (state_->node_sequence_ids.empty()) return true;
-  // Standing at the end of its base with only horizon left: a new order may replace it.
-  return leg_ && leg_->is_run_by(*state_) && state_->last_node_sequence_id == leg_->base_end_sequence();
+  // Standing at the end of its base with only horizon left (or none): a new order, started at
+  // that node with its sequence id, takes over. That holds also for an order the master has
+  // forgotten (the vehicle was lost meanwhile, its cancelOrder never sent).
+  return state_->released_nodes_left == 0;
 }
 
 void VehicleMaster::step(emulation::EmulatedRoutes& routes) {

@@ -87,6 +87,14 @@ struct VdaFleet {
                                                   vehicle_args);
     vehicles_process = fleet.processes().children().size() - 1;
   }
+
+  std::size_t process_named(const std::string& name) {
+    const auto& children = fleet.processes().children();
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      if (children[i].name == name) return i;
+    }
+    return children.size();
+  }
 };
 
 }  // namespace
@@ -139,6 +147,30 @@ TEST(Vda5050, AKilledVehicleIsLostItsOrderGoesBackAndItComesBackToFinishIt) {
   if (std::filesystem::exists(fleet::test::source_dir() + "/../shared/data/vda5050")) {
     EXPECT_EQ(checked.value("schemas", ""), "official+lib");
   }
+}
+
+TEST(Vda5050, WhenTheBrokerDiesItsVehiclesAreLostAndComeBackWithTheirOrders) {
+  VdaFleet vda(114, 1);
+  ASSERT_TRUE(vda.fleet.wait_for_robots({"v1"}));
+  const auto added =
+      vda.fleet.fleetctl({"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors"});
+  ASSERT_EQ(added.exit_code, 0) << added.err;
+  const std::int64_t id = last_json_line(added.out)["order_id"];
+  ASSERT_TRUE(wait_for_order(
+      vda.fleet, id, [](const json& o) { return o.value("phase", "") == "TO_PICK"; }, 30));
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+
+  const std::size_t broker = vda.process_named("mosquitto");
+  ASSERT_LT(broker, vda.fleet.processes().children().size());
+  vda.fleet.processes().signal(broker, SIGKILL);
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  vda.fleet.processes().restart(broker);  // the same port and configuration: the clients reconnect
+  EXPECT_TRUE(wait_for_order(
+      vda.fleet, id, [](const json& o) { return o.value("state", "") == "DONE"; }, 180))
+      << order_of(vda.fleet, id).dump();
+  const std::string bridge_log = slurp(vda.fleet.log_dir() + "/fleet-vda5050.log");
+  EXPECT_NE(bridge_log.find("is lost: the MQTT broker is gone"), std::string::npos) << bridge_log;
+  EXPECT_NE(bridge_log.find("is online again"), std::string::npos) << bridge_log;
 }
 
 TEST(Vda5050, AnOrderTheVehicleRefusesFailsWithTheVehiclesReason) {

@@ -56,6 +56,11 @@ struct TestVehicle {
       nodes.resize(base_end);
       for (const json& n : order["nodes"]) nodes.push_back(n);
     } else {
+      // Still in an order (a horizon left): a new order must start where the base ends.
+      if (nodes.size() > 1 && (order["nodes"][0]["nodeId"] != nodes[0]["nodeId"] ||
+                               order["nodes"][0]["sequenceId"] != nodes[0]["sequenceId"])) {
+        stitch_errors.push_back("a new order does not start at the active order's base end");
+      }
       nodes.clear();
       for (const json& n : order["nodes"]) nodes.push_back(n);
       const json& p = nodes.front()["nodePosition"];
@@ -115,7 +120,10 @@ struct TestVehicle {
     s.update_id = update_id;
     s.last_node_id = last_node_id;
     s.last_node_sequence_id = last_sequence;
-    for (std::size_t k = 1; k < nodes.size(); ++k) s.node_sequence_ids.push_back(nodes[k]["sequenceId"]);
+    for (std::size_t k = 1; k < nodes.size(); ++k) {
+      s.node_sequence_ids.push_back(nodes[k]["sequenceId"]);
+      if (nodes[k]["released"].get<bool>()) ++s.released_nodes_left;
+    }
     s.driving = driving;
     s.has_position = true;
     s.x = x;
@@ -283,6 +291,24 @@ TEST(VehicleMaster, ACancelledOrderIsCancelledOnTheVehicleOnce) {
   for (const Outgoing& o : yard.master.take_messages()) EXPECT_NE(o.name, "instantActions") << "sent once";
   ASSERT_FALSE(yard.orders.empty());
   EXPECT_EQ(yard.orders.back()["nodes"].back()["nodeId"], "home-H1") << "on its way home";
+}
+
+TEST(VehicleMaster, AVehicleBackFromBeingLostTakesTheOrderAgainStitchedWhereItWaits) {
+  Yard yard;
+  yard.vehicle.speed = 0.05;
+  yard.granted = 0.4;
+  ASSERT_EQ(yard.master.submit(transport("A5", "A1")), "");
+  for (int i = 0; i < 200; ++i) yard.step();  // waits at the end of its base, with a horizon
+  ASSERT_FALSE(yard.vehicle.nodes.size() < 2) << "a horizon is left";
+  // Lost: the server withdraws the order (the cancel never reaches the vehicle) and gives it back.
+  EXPECT_TRUE(yard.master.withdraw());
+  yard.master.reconnected();
+  ASSERT_EQ(yard.master.submit(transport("A5", "A1")), "");
+  yard.granted = 1e9;
+  for (int i = 0; i < 3000 && yard.master.order(); ++i) yard.step();
+  EXPECT_TRUE(yard.vehicle.stitch_errors.empty()) << yard.vehicle.stitch_errors.front();
+  ASSERT_FALSE(yard.events.empty());
+  EXPECT_EQ(yard.events.back().kind, MasterEvent::Kind::kDone) << yard.phases().back();
 }
 
 TEST(VehicleMaster, PauseAndResumeAreSentOnceEachAndAgainToAVehicleThatCameBack) {
