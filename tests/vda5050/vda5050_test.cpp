@@ -88,6 +88,19 @@ struct VdaFleet {
     vehicles_process = fleet.processes().children().size() - 1;
   }
 
+  /// A transport A5 -> A2 for the vehicles' fleet, taken and under way for a few seconds; its id,
+  /// 0 when it was not placed or not taken within 30 s.
+  std::int64_t order_under_way() {
+    const auto added = fleet.fleetctl({"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors"});
+    if (added.exit_code != 0) return 0;
+    const std::int64_t id = last_json_line(added.out)["order_id"];
+    if (!wait_for_order(
+            fleet, id, [](const json& o) { return o.value("phase", "") == "TO_PICK"; }, 30))
+      return 0;
+    std::this_thread::sleep_for(std::chrono::seconds(3));
+    return id;
+  }
+
   std::size_t process_named(const std::string& name) {
     const auto& children = fleet.processes().children();
     for (std::size_t i = 0; i < children.size(); ++i) {
@@ -119,13 +132,8 @@ TEST(Vda5050, AKilledVehicleIsLostItsOrderGoesBackAndItComesBackToFinishIt) {
   VdaFleet vda(112, 2);
   const std::size_t check = start_message_check(vda.fleet, vda.vehicles.broker);
   ASSERT_TRUE(vda.fleet.wait_for_robots({"v1", "v2"}));
-  const auto added =
-      vda.fleet.fleetctl({"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors"});
-  ASSERT_EQ(added.exit_code, 0) << added.err;
-  const std::int64_t id = last_json_line(added.out)["order_id"];
-  ASSERT_TRUE(wait_for_order(
-      vda.fleet, id, [](const json& o) { return o.value("phase", "") == "TO_PICK"; }, 30));
-  std::this_thread::sleep_for(std::chrono::seconds(3));  // under way
+  const std::int64_t id = vda.order_under_way();
+  ASSERT_NE(id, 0);
 
   vda.fleet.processes().signal(vda.vehicles_process, SIGKILL);  // the vehicles' process dies: no goodbye
   ASSERT_TRUE(wait_for_order(
@@ -152,13 +160,8 @@ TEST(Vda5050, AKilledVehicleIsLostItsOrderGoesBackAndItComesBackToFinishIt) {
 TEST(Vda5050, WhenTheBrokerDiesItsVehiclesAreLostAndComeBackWithTheirOrders) {
   VdaFleet vda(114, 1);
   ASSERT_TRUE(vda.fleet.wait_for_robots({"v1"}));
-  const auto added =
-      vda.fleet.fleetctl({"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors"});
-  ASSERT_EQ(added.exit_code, 0) << added.err;
-  const std::int64_t id = last_json_line(added.out)["order_id"];
-  ASSERT_TRUE(wait_for_order(
-      vda.fleet, id, [](const json& o) { return o.value("phase", "") == "TO_PICK"; }, 30));
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  const std::int64_t id = vda.order_under_way();
+  ASSERT_NE(id, 0);
 
   const std::size_t broker = vda.process_named("mosquitto");
   ASSERT_LT(broker, vda.fleet.processes().children().size());
