@@ -68,7 +68,10 @@ Bridge::Bridge(BridgeOptions options, Logger log)
       subscriptions.push_back(vda5050::topic(any, name));
     for (const config::RobotSpec& robot : fleet.robots) {
       const map::Home* home = options_.site->site.find_home(robot.home);
-      if (home == nullptr) throw std::invalid_argument("robot " + robot.id + ": home '" + robot.home + "' not on site");
+      if (home == nullptr) {
+        throw config::ConfigError(options_.config.source + ": robot " + robot.id + ": home '" + robot.home +
+                                  "' is not a home of site '" + options_.site->site.name + "'");
+      }
       Vehicle v;
       v.fleet = &fleet;
       v.address = {fleet.vda5050->interface_name, fleet.vda5050->version, fleet.vda5050->manufacturer,
@@ -82,7 +85,8 @@ Bridge::Bridge(BridgeOptions options, Logger log)
     }
   }
   if (vehicles_.empty()) {
-    throw std::invalid_argument(options_.config.source + " declares no fleet of robot type vda5050");
+    throw config::ConfigError(options_.config.source +
+                              " declares no fleet of robot type vda5050: fleet-vda5050 has no vehicle to drive");
   }
   std::sort(subscriptions.begin(), subscriptions.end());
   subscriptions.erase(std::unique(subscriptions.begin(), subscriptions.end()), subscriptions.end());
