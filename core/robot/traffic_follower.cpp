@@ -222,21 +222,27 @@ std::optional<std::size_t> TrafficFollower::segment_on_leg() const {
   return segment;
 }
 
-double TrafficFollower::room(Vec2 here, std::optional<ControllerLeg> leg) {
+std::optional<double> TrafficFollower::granted_end() const {
   if (!params_.traffic || road_points_.empty() || path_.size() < 2) return std::numeric_limits<double>::infinity();
-  path_s_ = path_position(here, leg);
-  if (permit_.version != version_ || permit_.granted_index < 0) {
-    // No grant for this route yet: stand still, not even turning on the spot; beside a lane a
-    // turn sweeps the footprint into it. The manager admits the robot once its entry is free.
-    return -path_s_ - 1e-9;
-  }
+  if (permit_.version != version_ || permit_.granted_index < 0) return std::nullopt;
   const bool whole_route = permit_.granted_index + 1 >= static_cast<int>(road_points_.size());
   if (whole_route && !in_siding_) return std::numeric_limits<double>::infinity();
-  if (params_.wait_off_road_for_room && permit_.granted_index == 0 && path_s_ < road_start_) return -path_s_ - 1e-9;
   double allowed = road_start_ + permit_.granted_distance;
   // On a siding, stop just short of its end: the follower would take the end for the goal.
   if (in_siding_) allowed = std::min(allowed, road_start_ + road_cum_.back() - params_.siding_end_margin);
-  return allowed - path_s_;
+  return allowed;
+}
+
+double TrafficFollower::room(Vec2 here, std::optional<ControllerLeg> leg) {
+  if (!params_.traffic || road_points_.empty() || path_.size() < 2) return std::numeric_limits<double>::infinity();
+  path_s_ = path_position(here, leg);
+  const std::optional<double> end = granted_end();
+  // No grant for this route yet: stand still, not even turning on the spot; beside a lane a turn
+  // sweeps the footprint into it. The manager admits the robot once its entry is free.
+  if (!end) return -path_s_ - 1e-9;
+  if (std::isinf(*end)) return *end;
+  if (params_.wait_off_road_for_room && permit_.granted_index == 0 && path_s_ < road_start_) return -path_s_ - 1e-9;
+  return *end - path_s_;
 }
 
 bool TrafficFollower::siding_timed_out(double t, bool held) {

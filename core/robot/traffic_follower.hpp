@@ -85,6 +85,10 @@ class TrafficFollower {
   /// this path) says which leg the robot is on; without it, a cusp counts as passed once the
   /// robot is within 3 cm of it.
   double room(geometry::Vec2 here, std::optional<ControllerLeg> leg = std::nullopt);
+  /// Metres along the path up to which the latest grant lets the robot drive, wherever it stands:
+  /// infinite when traffic is off, off the road or granted all the way; nothing before the first
+  /// grant of the route. room() is this less where the robot is.
+  std::optional<double> granted_end() const;
   /// Once a step with whether the robot stands `held` by traffic at sim time `t`. True when it
   /// has stood on its siding longer than siding_timeout with nobody calling it back (a manager
   /// restarted meanwhile has no record of the siding): it has left the siding, and the caller

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace fleet::vda5050 {
 
@@ -234,11 +233,6 @@ void VehicleMaster::plan_leg(emulation::EmulatedRoutes& routes) {
     follower_.adopt_plan(route);
   }
   needs_plan_ = false;
-  const std::vector<Vec2>& path = follower_.path();
-  path_cum_.assign(path.size(), 0.0);
-  for (std::size_t i = 1; i < path.size(); ++i)
-    path_cum_[i] = path_cum_[i - 1] + geometry::distance(path[i - 1], path[i]);
-  path_s_ = 0.0;
   std::vector<double> node_s;
   std::vector<OrderNode> nodes = leg_nodes(routes.graph(), node_s);
   const std::string order_id = (order_ ? std::to_string(order_->id) : id_ + "-home") + "-" + std::to_string(++legs_);
@@ -249,40 +243,13 @@ void VehicleMaster::plan_leg(emulation::EmulatedRoutes& routes) {
   leg_.emplace(order_id, map_id_, version_, std::move(nodes), std::move(node_s), first_sequence);
 }
 
-double VehicleMaster::path_position(Vec2 here) {
-  const std::vector<Vec2>& path = follower_.path();
-  double best = std::numeric_limits<double>::infinity();
-  double best_s = path_s_;
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    if (path_cum_[i] < path_s_ - 1e-9) continue;  // never back along the path
-    const Vec2 a = path[i - 1];
-    const Vec2 b = path[i];
-    const double length = path_cum_[i] - path_cum_[i - 1];
-    double t = 0.0;
-    if (length > 1e-9)
-      t = std::clamp(((here.x - a.x) * (b.x - a.x) + (here.y - a.y) * (b.y - a.y)) / (length * length), 0.0, 1.0);
-    const Vec2 p{a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t};
-    const double d = geometry::distance(p, here);
-    if (d < best - 1e-9) {
-      best = d;
-      best_s = std::max(path_s_, path_cum_[i - 1] + t * length);
-    }
-  }
-  path_s_ = best_s;
-  return path_s_;
-}
-
 void VehicleMaster::release() {
   if (!leg_) return;
-  const double room = follower_.room(pose_.position());
-  const double here = path_position(pose_.position());
-  held_ = room <= 0.0 && !state_->driving;
-  if (room < 0.0) return;  // no grant yet for this route
-  // A grant ends at a graph point; the vehicle's reported position is a little off the path.
-  const double granted = std::isinf(room) ? std::numeric_limits<double>::infinity() : here + room + 0.05;
-  if (auto message = leg_->release(granted)) {
-    messages_.push_back({"order", order_json(*message)});
-  }
+  held_ = follower_.room(pose_.position()) <= 0.0 && !state_->driving;
+  // The grant's end along the leg's path, where the vehicle stands or not: the nodes up to it.
+  const std::optional<double> granted = follower_.granted_end();
+  if (!granted) return;  // no grant yet for this route
+  if (auto message = leg_->release(*granted)) messages_.push_back({"order", order_json(*message)});
 }
 
 void VehicleMaster::follow_leg() {

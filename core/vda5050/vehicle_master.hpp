@@ -106,7 +106,6 @@ class VehicleMaster {
   void arrived();
   void fail(const std::string& reason);
   void phase(const std::string& name);
-  double path_position(geometry::Vec2 here);
 
   std::string id_;
   std::string version_;
@@ -128,8 +127,6 @@ class VehicleMaster {
   std::optional<ReleasedOrder> leg_;
   std::uint32_t legs_ = 0;
   robot::TrafficFollower follower_;
-  std::vector<double> path_cum_;
-  double path_s_ = 0.0;
   std::string last_error_;
   std::vector<std::string> reported_errors_;
   std::vector<Outgoing> messages_;
