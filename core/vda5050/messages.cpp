@@ -3,6 +3,8 @@
 #include <cmath>
 #include <ctime>
 
+#include "vda5050/json_read.hpp"
+
 namespace fleet::vda5050 {
 
 using nlohmann::json;
@@ -95,39 +97,7 @@ json instant_action_json(const std::string& type, const std::string& action_id, 
 
 namespace {
 
-const json& required(const json& object, const char* key, const std::string& where) {
-  const auto it = object.find(key);
-  if (it == object.end() || it->is_null()) throw MessageError(where + ": key '" + key + "' is missing");
-  return *it;
-}
-
-std::string text(const json& object, const char* key, const std::string& where) {
-  const json& value = required(object, key, where);
-  if (!value.is_string()) throw MessageError(where + ": key '" + key + "' must be a string, not " + value.dump());
-  return value.get<std::string>();
-}
-
-double number(const json& object, const char* key, const std::string& where) {
-  const json& value = required(object, key, where);
-  if (!value.is_number()) throw MessageError(where + ": key '" + key + "' must be a number, not " + value.dump());
-  const double v = value.get<double>();
-  if (!std::isfinite(v)) throw MessageError(where + ": key '" + key + "' is not finite");
-  return v;
-}
-
-std::uint32_t count(const json& object, const char* key, const std::string& where) {
-  const json& value = required(object, key, where);
-  if (!value.is_number_unsigned() && !(value.is_number_integer() && value.get<std::int64_t>() >= 0)) {
-    throw MessageError(where + ": key '" + key + "' must be a whole number >= 0, not " + value.dump());
-  }
-  return value.get<std::uint32_t>();
-}
-
-const json& list(const json& object, const char* key, const std::string& where) {
-  const json& value = required(object, key, where);
-  if (!value.is_array()) throw MessageError(where + ": key '" + key + "' must be a list");
-  return value;
-}
+using namespace json_read;
 
 std::vector<std::pair<std::string, std::string>> references(const json& error, const std::string& where) {
   std::vector<std::pair<std::string, std::string>> out;
