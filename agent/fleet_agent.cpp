@@ -15,13 +15,6 @@ constexpr double kMaxSleepWall = 0.02;       // the main loop's longest sleep be
 constexpr double kViewsStaleWall = 0.5;      // wall seconds without a NeighbourView: read SimTruth itself
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
 
-std::uint64_t robot_stream(const std::string& robot_id) {
-  // Each robot draws its noise from its own streams of the run's seed.
-  std::uint64_t h = 1469598103934665603ull;
-  for (char c : robot_id) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-  return h % 1000003 * 16;
-}
-
 }  // namespace
 
 FleetAgent::FleetAgent(AgentOptions options, Logger log)
@@ -32,7 +25,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       robot_(robot::make_robot(
           *fleet_, options_.config, options_.site,
           options_.site->site.find_home(options_.config.find_robot(options_.robot_id)->second->home)->pose,
-          options_.seed, robot_stream(options_.robot_id))),
+          options_.seed, robot::noise_stream_of(options_.robot_id))),
       map_loader_(options_.config, *fleet_, maps_dir()),
       step_lag_(robot_->step_period()),
       participant_(options_.domain),
@@ -53,7 +46,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
   traffic_ = options_.config.settings.get_bool("traffic.enabled");
   pose_delay_s_ = options_.config.settings.get_double("faults.pose_delay_ms") / 1000.0;
   pose_jitter_s_ = options_.config.settings.get_double("faults.pose_delay_jitter_ms") / 1000.0;
-  delay_rng_.seed(options_.seed * 31 + robot_stream(options_.robot_id));
+  delay_rng_.seed(options_.seed * 31 + robot::noise_stream_of(options_.robot_id));
   if (pose_delay_s_ > 0.0) {
     log_->warn("fault injection: RobotState published {:.0f} +- {:.0f} ms late", pose_delay_s_ * 1000.0,
                pose_jitter_s_ * 1000.0);

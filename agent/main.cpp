@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "agent/fleet_agent.hpp"
+#include "agent/vda5050_vehicle.hpp"
 #include "app/process.hpp"
 #include "model/names.hpp"
 
@@ -22,6 +23,11 @@ options:
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of every noise source (default: seed; the robot id is mixed in)
   --set KEY=VALUE      any configuration key (repeatable), e.g. --set traffic.enabled=false
+  --vda5050 BROKER     be a VDA 5050 vehicle instead: take orders from a master control on the
+                       MQTT broker tcp://HOST:PORT, speak no DDS (docs/vda5050.md)
+  --vda5050-manufacturer M  its manufacturer in topics and headers (default: Fleet)
+  --vda5050-interface I     its interface name (default: uagv)
+  --vda5050-version V       2.0.0 or 2.1.0 (default: 2.0.0)
   --verbose            log debug events too
   --help               this text
 
@@ -38,6 +44,13 @@ int main(int argc, char** argv) {
     if (!config) return 0;
     const auto id = args.value("id");
     if (!id) throw ArgError("--id ROBOT is required");
+    const auto broker = args.value("vda5050");
+    const vda5050::VehicleAddress address{args.value("vda5050-interface").value_or("uagv"),
+                                          args.value("vda5050-version").value_or("2.0.0"),
+                                          args.value("vda5050-manufacturer").value_or("Fleet"), *id};
+    if (address.version != "2.0.0" && address.version != "2.1.0") {
+      throw ArgError("--vda5050-version: '" + address.version + "' is neither 2.0.0 nor 2.1.0");
+    }
     const auto level = app::finish_args(args);
 
     const auto robot = config->find_robot(*id);
@@ -48,6 +61,20 @@ int main(int argc, char** argv) {
                      ")");
     }
     auto site_map = app::load_site(*config, {*id});
+    if (broker) {
+      agent::VehicleOptions options;
+      options.robot_id = *id;
+      options.broker = *broker;
+      options.address = address;
+      options.time_scale = config->settings.get_double("time_scale");
+      options.seed = static_cast<std::uint64_t>(config->settings.get_int("seed"));
+      options.config = std::move(*config);
+      options.site = std::move(site_map);
+      const std::atomic<bool>& stop = app::start_daemon();
+      agent::Vda5050Vehicle vehicle(std::move(options), make_logger("fleet-agent", *id, level));
+      vehicle.run(stop);
+      return 0;
+    }
     const std::atomic<bool>& stop = app::start_daemon();
 
     agent::AgentOptions options;

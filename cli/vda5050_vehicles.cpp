@@ -85,19 +85,9 @@ std::vector<std::pair<const config::FleetSpec*, const config::RobotSpec*>> pick_
   return picked;
 }
 
-Vda5050Vehicles start_vda5050_vehicles(ProcessGroup& processes, const config::FleetConfig& config,
-                                       const map::Site& site, int count, double time_scale,
-                                       std::vector<std::string> bridge_argv, const std::string& run_dir,
-                                       const std::vector<std::string>& vehicle_args) {
-  const auto picked = pick_vda5050_vehicles(config, count);
+std::string start_mqtt_broker(ProcessGroup& processes, const std::string& run_dir) {
   const std::string mosquitto = on_path("mosquitto", {"/usr/sbin"});
-  if (mosquitto.empty()) throw std::runtime_error("--vda5050-vehicles needs mosquitto (scripts/install-deps)");
-  const std::string node = on_path("node", {});
-  const std::string script = project_root() + "/tests/vda5050/virtual_agvs.js";
-  if (node.empty() || !std::filesystem::exists(project_root() + "/tests/vda5050/node_modules/vda-5050-lib")) {
-    throw std::runtime_error("--vda5050-vehicles needs Node.js and tests/vda5050's packages (scripts/install-deps)");
-  }
-
+  if (mosquitto.empty()) throw std::runtime_error("an MQTT broker needs mosquitto (scripts/install-deps)");
   const int port = free_loopback_port();
   const std::string conf = run_dir + "/mosquitto.conf";
   std::ofstream(conf) << "# The run's own broker: loopback only, anonymous, in memory.\nlistener " << port
@@ -111,8 +101,23 @@ Vda5050Vehicles start_vda5050_vehicles(ProcessGroup& processes, const config::Fl
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  return "tcp://127.0.0.1:" + std::to_string(port);
+}
+
+Vda5050Vehicles start_vda5050_vehicles(ProcessGroup& processes, const config::FleetConfig& config,
+                                       const map::Site& site, int count, double time_scale,
+                                       std::vector<std::string> bridge_argv, const std::string& run_dir,
+                                       const std::vector<std::string>& vehicle_args) {
+  const auto picked = pick_vda5050_vehicles(config, count);
+  const std::string node = on_path("node", {});
+  const std::string script = project_root() + "/tests/vda5050/virtual_agvs.js";
+  if (node.empty() || !std::filesystem::exists(project_root() + "/tests/vda5050/node_modules/vda-5050-lib")) {
+    throw std::runtime_error("--vda5050-vehicles needs Node.js and tests/vda5050's packages (scripts/install-deps)");
+  }
+
   Vda5050Vehicles out;
-  out.broker = "tcp://127.0.0.1:" + std::to_string(port);
+  out.broker = start_mqtt_broker(processes, run_dir);
+  const std::string port = out.broker.substr(out.broker.rfind(':') + 1);
   bridge_argv.insert(bridge_argv.end(), {"--broker", out.broker, "--figures", run_dir + "/vda5050-figures.json"});
   processes.start("fleet-vda5050", bridge_argv, run_dir + "/fleet-vda5050.log");
 
@@ -121,9 +126,9 @@ Vda5050Vehicles start_vda5050_vehicles(ProcessGroup& processes, const config::Fl
   for (const auto& [fleet, robot] : picked) {
     std::vector<std::string>& argv = argv_of[fleet];
     if (argv.empty()) {
-      argv = {node, script, "--broker", "mqtt://127.0.0.1:" + std::to_string(port), "--interface",
-              fleet->vda5050->interface_name, "--manufacturer", fleet->vda5050->manufacturer, "--speed",
-              std::to_string(config.top_speed(*fleet)), "--time-lapse", std::to_string(time_scale),
+      argv = {node, script, "--broker", "mqtt://127.0.0.1:" + port, "--interface", fleet->vda5050->interface_name,
+              "--manufacturer", fleet->vda5050->manufacturer, "--speed", std::to_string(config.top_speed(*fleet)),
+              "--time-lapse", std::to_string(time_scale),
               // Where it is between nodes five times a second (its state tells only at nodes).
               "--visualization-interval", "200"};
     }

@@ -24,6 +24,11 @@ struct Vda5050Vehicles {
 std::vector<std::pair<const config::FleetSpec*, const config::RobotSpec*>> pick_vda5050_vehicles(
     const config::FleetConfig& config, int count);
 
+/// Starts a mosquitto broker of the run's own on 127.0.0.1 (a free port, its configuration and
+/// log in `run_dir`) in `processes` and waits until it listens; its address, tcp://127.0.0.1:PORT.
+/// Throws when mosquitto is missing or does not listen within 10 s.
+std::string start_mqtt_broker(ProcessGroup& processes, const std::string& run_dir);
+
 /// Starts the broker, the bridge (`bridge_argv` plus --broker, and --figures into
 /// `run_dir`/vda5050-figures.json) and the vehicles in `processes`,
 /// logs in `run_dir`; `vehicle_args` go to every vehicles' process (tests: --reject-orders SERIAL). The vehicles run

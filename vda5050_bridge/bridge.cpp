@@ -90,7 +90,8 @@ Bridge::Bridge(BridgeOptions options, Logger log)
   }
   std::sort(subscriptions.begin(), subscriptions.end());
   subscriptions.erase(std::unique(subscriptions.begin(), subscriptions.end()), subscriptions.end());
-  mqtt_ = std::make_unique<MqttLink>(options_.broker, "fleet-vda5050-" + std::to_string(getpid()), subscriptions);
+  mqtt_ = std::make_unique<mqtt_link::MqttLink>(options_.broker, "fleet-vda5050-" + std::to_string(getpid()),
+                                                subscriptions);
   log_->info("master of {} VDA 5050 vehicles on {}", vehicles_.size(), options_.broker);
 }
 
@@ -178,7 +179,7 @@ void Bridge::cycle(double now_wall, double now_sim) {
 }
 
 void Bridge::take_mqtt(double now_wall) {
-  for (MqttMessage& m : mqtt_->take()) {
+  for (mqtt_link::MqttMessage& m : mqtt_->take()) {
     const auto slash = m.topic.rfind('/');
     if (slash == std::string::npos) continue;
     const std::string prefix = m.topic.substr(0, slash + 1);

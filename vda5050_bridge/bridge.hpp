@@ -13,10 +13,10 @@
 #include "dds/topics.hpp"
 #include "emulation/emulated_robot.hpp"
 #include "map/site_map.hpp"
+#include "mqtt_link/mqtt_link.hpp"
 #include "orders/assignment_intake.hpp"
 #include "vda5050/messages.hpp"
 #include "vda5050/vehicle_master.hpp"
-#include "vda5050_bridge/mqtt_link.hpp"
 
 namespace fleet::vda5050_bridge {
 
@@ -100,7 +100,7 @@ class Bridge {
   double started_wall_ = 0.0;
   mutable std::mutex latency_mutex_;
   std::vector<double> grant_to_broker_s_;  ///< filled on the MQTT client's thread
-  std::unique_ptr<MqttLink> mqtt_;
+  std::unique_ptr<mqtt_link::MqttLink> mqtt_;
   dds::Participant participant_;
   dds::Writer<model::RobotState> state_writer_;
   dds::Writer<model::OrderReport> report_writer_;

@@ -73,6 +73,12 @@ double lookahead_gap(const config::FleetConfig& config) {
   return traffic::reservation_margin(config) / 2.0;
 }
 
+std::uint64_t noise_stream_of(const std::string& robot_id) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (char c : robot_id) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return h % 1000003 * 16;
+}
+
 double fastest_fleet_speed(const config::FleetConfig& config) {
   double fastest = 0.0;
   for (const auto& fleet : config.fleets) fastest = std::max(fastest, fleet.profile.max_speed);

@@ -30,6 +30,10 @@ std::unique_ptr<Robot> make_robot(const config::FleetSpec& fleet, const config::
                                   std::shared_ptr<const map::SiteMap> site, const geometry::Pose2& home,
                                   std::uint64_t seed, std::uint64_t stream);
 
+/// The stream of the run's seed a robot draws its noise from (make_robot's `stream`): each robot
+/// its own, from its id.
+std::uint64_t noise_stream_of(const std::string& robot_id);
+
 /// The top speed of the fastest fleet's vehicles: how fast a neighbour not heard from lately may
 /// have driven, whatever its fleet.
 double fastest_fleet_speed(const config::FleetConfig& config);

@@ -96,7 +96,7 @@ std::optional<NodeOnSite> locate_node(const ReceivedNode& node, const map::Site&
 
 std::variant<VehicleJob, VehicleError> job_of(const std::string& order_id, const std::vector<ReceivedNode>& nodes,
                                               const std::vector<ReceivedEdge>& edges, const map::Site& site,
-                                              const map::RoadGraph& graph, bool transports,
+                                              const map::RoadGraph& graph, bool transports, bool carrying,
                                               const nlohmann::json& message) {
   VehicleJob job;
   job.order.order_id = order_id;
@@ -135,7 +135,7 @@ std::variant<VehicleJob, VehicleError> job_of(const std::string& order_id, const
         job.order.pick_area_id = area->id;
         job.order.pick_area = area->pose;
       } else {
-        if (pick == nullptr || drop != nullptr) {
+        if ((pick == nullptr && !carrying) || drop != nullptr) {
           return order_error("orderError", "a drop without a pick before it", message, refs);
         }
         drop = &a;

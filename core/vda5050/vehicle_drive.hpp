@@ -47,9 +47,10 @@ struct VehicleJob {
 /// The job for `nodes` (the order's nodes ahead, base and horizon), or the orderError (naming the
 /// action) or noRouteError (naming the node) that rejects the order. Actions are `pick` and `drop`
 /// at loading areas, only for a robot that transports (`transports`); a transport ends at its drop.
+/// `carrying`: the robot holds the load of a pick already done, so a drop needs no pick before it.
 std::variant<VehicleJob, VehicleError> job_of(const std::string& order_id, const std::vector<ReceivedNode>& nodes,
                                               const std::vector<ReceivedEdge>& edges, const map::Site& site,
-                                              const map::RoadGraph& graph, bool transports,
+                                              const map::RoadGraph& graph, bool transports, bool carrying,
                                               const nlohmann::json& message);
 
 /// The shortest way along `graph` from point `from` to point `to` (both included), empty when

@@ -14,16 +14,17 @@ namespace {
 
 constexpr std::size_t kInstantActionsKept = 20;
 
-std::vector<ReceivedAction> read_actions(const json& element, const std::string& where) {
+std::vector<ReceivedAction> read_action_list(const json& actions, const std::string& where) {
   std::vector<ReceivedAction> out;
-  const json& actions = list(element, "actions", where);
   for (std::size_t i = 0; i < actions.size(); ++i) {
     std::string at = where + ".actions[";
     at += std::to_string(i);
     at += ']';
     const json& a = actions[i];
     if (!a.is_object()) throw MessageError(at + " is not an object");
-    ReceivedAction action{text(a, "actionId", at), text(a, "actionType", at), text(a, "blockingType", at), {}};
+    // 2.0.0's instantActions schema names the type actionName; the text and every order say actionType.
+    const char* type_key = a.contains("actionType") || !a.contains("actionName") ? "actionType" : "actionName";
+    ReceivedAction action{text(a, "actionId", at), text(a, type_key, at), text(a, "blockingType", at), {}};
     if (action.blocking != "NONE" && action.blocking != "SOFT" && action.blocking != "HARD") {
       throw MessageError(at + ": blockingType '" + action.blocking + "' is none of NONE, SOFT, HARD");
     }
@@ -38,6 +39,10 @@ std::vector<ReceivedAction> read_actions(const json& element, const std::string&
     out.push_back(std::move(action));
   }
   return out;
+}
+
+std::vector<ReceivedAction> read_actions(const json& element, const std::string& where) {
+  return read_action_list(list(element, "actions", where), where);
 }
 
 ReceivedNode read_node(const json& n, const std::string& at) {
@@ -151,6 +156,22 @@ ReceivedOrder read_order(const json& message) {
   for (std::size_t i = 0; i < edges.size(); ++i) order.edges.push_back(read_edge(edges[i], indexed("edges", i)));
   check_graph(order);
   return order;
+}
+
+std::vector<ReceivedAction> read_instant_actions(const json& message) {
+  if (!message.is_object()) throw MessageError("the instant actions are not a JSON object");
+  std::vector<ReceivedAction> out;
+  bool found = false;
+  for (const char* key : {"actions", "instantActions"}) {
+    if (!message.contains(key)) continue;
+    found = true;
+    for (ReceivedAction& a : read_action_list(list(message, key, "instantActions"), key)) {
+      const bool seen = std::any_of(out.begin(), out.end(), [&](const ReceivedAction& b) { return b.id == a.id; });
+      if (!seen) out.push_back(std::move(a));
+    }
+  }
+  if (!found) throw MessageError("instantActions: key 'actions' is missing");
+  return out;
 }
 
 VehicleError order_error(const std::string& type, const std::string& description, const json& message,
@@ -324,9 +345,9 @@ json VehicleOrder::node_states() const {
   json out = json::array();
   for (const ReceivedNode& n : nodes_) {
     json state = {{"nodeId", n.id}, {"sequenceId", n.sequence}, {"released", n.released}};
-    if (n.has_position) {
-      state["nodePosition"] = {{"x", n.x}, {"y", n.y}, {"mapId", n.map_id}};
-      if (n.theta) state["nodePosition"]["theta"] = *n.theta;
+    // The 2.0.0 schema requires theta in a node state's position: without one, no position.
+    if (n.has_position && n.theta) {
+      state["nodePosition"] = {{"x", n.x}, {"y", n.y}, {"theta", *n.theta}, {"mapId", n.map_id}};
     }
     out.push_back(std::move(state));
   }

@@ -55,6 +55,10 @@ struct ReceivedOrder {
 /// after an unreleased one, action ids unique. MessageError naming the key otherwise.
 ReceivedOrder read_order(const nlohmann::json& message);
 
+/// The actions of an instantActions message, under `actions` (the schemas) or `instantActions`
+/// (what some 2.0 masters send), both when it has both, each id once. MessageError naming the key.
+std::vector<ReceivedAction> read_instant_actions(const nlohmann::json& message);
+
 /// An error as the vehicle reports it in its state's `errors`, with the references the
 /// specification asks for (topic, headerId, orderId, orderUpdateId and what else names the cause).
 VehicleError order_error(const std::string& type, const std::string& description, const nlohmann::json& message,

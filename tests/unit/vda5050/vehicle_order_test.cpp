@@ -147,28 +147,28 @@ TEST(VehicleDriveTest, JobsOfTransportsAndMovesAndWhatRejectsThem) {
     return std::vector<ReceivedNode>(o.nodes.begin() + 1, o.nodes.end());
   };
   json m = order("o1", 0, {"H1", "A1", "A2"}, 0, 100, {{1, action("a1", "pick")}, {2, action("a2", "drop")}});
-  auto job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, m);
+  auto job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
   EXPECT_EQ(std::get<VehicleJob>(job).order.kind, orders::OrderKind::kTransport);
   EXPECT_EQ(std::get<VehicleJob>(job).order.pick_area_id, "A1");
   EXPECT_EQ(std::get<VehicleJob>(job).goal_node, 4u);
 
-  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, false, m);
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, false, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleError>(job));
   EXPECT_EQ(std::get<VehicleError>(job).type, "orderError");
 
   m = order("o1", 0, {"H1", "A1"}, 0, 100, {{1, action("a1", "beep")}});
-  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, m);
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleError>(job));
   EXPECT_NE(std::get<VehicleError>(job).description.find("'beep'"), std::string::npos);
 
   m = order("o1", 0, {"H1", "nowhere"});
-  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, m);
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleError>(job));
   EXPECT_EQ(std::get<VehicleError>(job).type, "noRouteError");
 
   m = order("o1", 0, {"H1", "p3", "H2"});
-  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, m);
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
   EXPECT_EQ(std::get<VehicleJob>(job).order.kind, orders::OrderKind::kMove);
   EXPECT_EQ(std::get<VehicleJob>(job).order.drop_area_id, "H2");

@@ -12,9 +12,16 @@ namespace mqtt {
 class async_client;
 }
 
-namespace fleet::vda5050_bridge {
+namespace fleet::mqtt_link {
 
 struct MqttMessage {
+  std::string topic;
+  std::string payload;
+};
+
+/// A message the broker publishes for the client when its connection breaks without a
+/// disconnect (MQTT's last will), retained at QoS 1.
+struct LastWill {
   std::string topic;
   std::string payload;
 };
@@ -25,7 +32,8 @@ struct MqttMessage {
 class MqttLink {
  public:
   /// `broker`: tcp://HOST:PORT. Connects in the background; connected() tells.
-  MqttLink(const std::string& broker, const std::string& client_id, std::vector<std::string> subscriptions);
+  MqttLink(const std::string& broker, const std::string& client_id, std::vector<std::string> subscriptions,
+           std::optional<LastWill> will = std::nullopt);
   ~MqttLink();
   MqttLink(const MqttLink&) = delete;
   MqttLink& operator=(const MqttLink&) = delete;
@@ -49,4 +57,4 @@ class MqttLink {
   int connections_ = 0;
 };
 
-}  // namespace fleet::vda5050_bridge
+}  // namespace fleet::mqtt_link

@@ -1,10 +1,10 @@
-#include "vda5050_bridge/mqtt_link.hpp"
+#include "mqtt_link/mqtt_link.hpp"
 
 #include <mqtt/async_client.h>
 
 #include <chrono>
 
-namespace fleet::vda5050_bridge {
+namespace fleet::mqtt_link {
 
 namespace {
 /// Messages kept for the loop at most: a loop that stalls loses the oldest, never memory.
@@ -26,7 +26,8 @@ class AcknowledgementListener : public mqtt::iaction_listener {
 
 }  // namespace
 
-MqttLink::MqttLink(const std::string& broker, const std::string& client_id, std::vector<std::string> subscriptions)
+MqttLink::MqttLink(const std::string& broker, const std::string& client_id, std::vector<std::string> subscriptions,
+                   std::optional<LastWill> will)
     : client_(std::make_unique<mqtt::async_client>(broker, client_id, mqtt::create_options(MQTTVERSION_3_1_1))),
       subscriptions_(std::move(subscriptions)) {
   client_->set_connected_handler([this](const std::string&) { on_connected(); });
@@ -35,8 +36,9 @@ MqttLink::MqttLink(const std::string& broker, const std::string& client_id, std:
     if (inbox_.size() >= kInboxLimit) inbox_.pop_front();
     inbox_.push_back({message->get_topic(), message->to_string()});
   });
-  auto options = mqtt::connect_options_builder()
-                     .clean_session(true)
+  auto builder = mqtt::connect_options_builder();
+  if (will) builder.will(mqtt::message(will->topic, will->payload, 1, true));
+  auto options = builder.clean_session(true)
                      .keep_alive_interval(std::chrono::seconds(5))
                      .connect_timeout(std::chrono::seconds(5))
                      .automatic_reconnect(std::chrono::seconds(1), std::chrono::seconds(30))
@@ -99,4 +101,4 @@ std::vector<MqttMessage> MqttLink::take() {
   return out;
 }
 
-}  // namespace fleet::vda5050_bridge
+}  // namespace fleet::mqtt_link

@@ -1,0 +1,156 @@
+// One of Fleet's robots as a VDA 5050 vehicle (`fleet-agent --vda5050`) under a foreign master
+// control, vda-5050-lib's MasterController (tests/vda5050/foreign_master.js), over a real
+// mosquitto broker. No fleet-server: the master drives the robot.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli/vda5050_vehicles.hpp"
+#include "config/fleet_config.hpp"
+#include "fleet_harness.hpp"
+#include "map/site_map.hpp"
+#include "test_paths.hpp"
+#include "vda5050/vehicle_drive.hpp"
+
+using namespace fleet::testing;
+using nlohmann::json;
+
+namespace {
+
+const std::string kConfig = fleet::test::source_dir() + "/config/sites/table_a-vda5050.yaml";
+
+/// The lines of a JSON-lines log with "event" == `event`.
+std::vector<json> events(const std::string& log, const std::string& event) {
+  std::vector<json> out;
+  std::ifstream in(log);
+  for (std::string line; std::getline(in, line);) {
+    const json j = json::parse(line, nullptr, false);
+    if (j.is_object() && j.value("event", "") == event) out.push_back(j);
+  }
+  return out;
+}
+
+/// Waits until `log` has a line of `event` (true) or of "fail" or `timeout_s` passes (false).
+bool wait_for_event(const std::string& log, const std::string& event, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (!events(log, event).empty()) return true;
+    if (!events(log, "fail").empty()) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  return false;
+}
+
+json node_of(const std::string& id, const fleet::geometry::Pose2& pose, bool with_theta) {
+  json node = {{"id", id}, {"x", pose.x}, {"y", pose.y}};
+  if (with_theta) node["theta"] = pose.yaw;
+  return node;
+}
+
+int nearest_point(const fleet::map::RoadGraph& graph, fleet::geometry::Vec2 at) {
+  int best = 0;
+  for (const auto& p : graph.points) {
+    if (fleet::geometry::distance({p.x, p.y}, at) <
+        fleet::geometry::distance(
+            {graph.points[static_cast<std::size_t>(best)].x, graph.points[static_cast<std::size_t>(best)].y}, at)) {
+      best = p.id;
+    }
+  }
+  return best;
+}
+
+/// fl1's way from its home H1 to A1, drop at A2; `middle` a road point halfway to A1.
+json scenario(const std::string& serial) {
+  const fleet::map::SiteMap site = fleet::map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
+  const auto& graph = site.graph.graph;
+  const auto* home = site.site.find_home("H1");
+  const auto* pick = site.site.find_area("A1");
+  const auto* drop = site.site.find_area("A2");
+  const std::vector<int> way = fleet::vda5050::shortest_road(graph, nearest_point(graph, home->pose.position()),
+                                                             nearest_point(graph, pick->pose.position()));
+  const int middle = way.at(way.size() / 2);
+  const auto& m = graph.points[static_cast<std::size_t>(middle)];
+  std::string middle_id = "p";
+  middle_id += std::to_string(middle);
+  return {{"interface", "uagv"},
+          {"manufacturer", "Fleet"},
+          {"serial", serial},
+          {"map", "table_a"},
+          {"start", node_of("H1", home->pose, true)},
+          {"middle", node_of(middle_id, {m.x, m.y, 0.0}, false)},
+          {"pick", node_of("A1", pick->pose, true)},
+          {"drop", node_of("A2", drop->pose, true)}};
+}
+
+}  // namespace
+
+TEST(Vda5050, AForeignMasterDrivesAFleetRobotThroughBaseUpdatesAndErrors) {
+  FleetHarness fleet(114, 1.0);
+  auto& processes = fleet.processes();
+  const std::string broker = fleet::cli::start_mqtt_broker(processes, fleet.log_dir());
+  const std::string mqtt_url = "mqtt://" + broker.substr(broker.find("://") + 3);
+  // Every message the vehicle publishes, checked against the lib's validators and (when
+  // ../shared is there) the official 2.0.0 schemas.
+  std::vector<std::string> check{"node",     fleet::test::source_dir() + "/tests/vda5050/check_messages.js",
+                                 "--broker", mqtt_url,
+                                 "--topics", "state,connection,visualization"};
+  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
+  if (std::filesystem::exists(schemas)) check.insert(check.end(), {"--schemas", schemas});
+  check.insert(check.end(), {"--out", fleet.log_dir() + "/message-check.json"});
+  const std::size_t checker = processes.start("message check", check, fleet.log_dir() + "/message-check.log");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+
+  const std::size_t agent = processes.start(
+      "fleet-agent fl1",
+      {bin("fleet-agent"), "--config", kConfig, "--id", "fl1", "--time-scale", "3", "--vda5050", broker},
+      fleet.log_dir() + "/fleet-agent-fl1.log");
+  const std::string scenario_file = fleet.log_dir() + "/scenario.json";
+  std::ofstream(scenario_file) << scenario("fl1").dump(2);
+  const std::string master_log = fleet.log_dir() + "/foreign-master.log";
+  processes.start("foreign master",
+                  {"node", fleet::test::source_dir() + "/tests/vda5050/foreign_master.js", "--broker", mqtt_url,
+                   "--scenario", scenario_file},
+                  master_log);
+
+  ASSERT_TRUE(wait_for_event(master_log, "online", 60)) << "see " << master_log;
+  ASSERT_TRUE(wait_for_event(master_log, "base_end", 120)) << "see " << master_log;
+  EXPECT_EQ(events(master_log, "base_end").front()["horizon"], 2);
+  ASSERT_TRUE(wait_for_event(master_log, "finished", 300)) << "see " << master_log;
+  EXPECT_EQ(events(master_log, "finished").front()["lastNodeId"], "A2");
+  ASSERT_TRUE(wait_for_event(master_log, "passed", 60)) << "see " << master_log;
+  const json refused = events(master_log, "rejected").front()["errors"];
+  ASSERT_EQ(refused.size(), 4u);
+  const std::vector<std::string> types{"orderUpdateError", "orderUpdateError", "orderError", "noOrderToCancel"};
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    EXPECT_EQ(refused[i].value("errorType", ""), types[i]) << refused.dump();
+    EXPECT_FALSE(refused[i].value("errorDescription", "").empty()) << refused.dump();
+  }
+  EXPECT_TRUE(events(master_log, "malformed_state").empty()) << "see " << master_log;
+
+  // Killed, the vehicle's last will reaches the master: CONNECTIONBROKEN.
+  processes.signal(agent, SIGKILL);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  bool broken = false;
+  while (!broken && std::chrono::steady_clock::now() < deadline) {
+    for (const json& c : events(master_log, "connection")) broken = broken || c["state"] == "CONNECTIONBROKEN";
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_TRUE(broken) << "see " << master_log;
+
+  processes.signal(checker, SIGTERM);
+  const std::string out = fleet.log_dir() + "/message-check.json";
+  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::ifstream in(out);
+  const json result = json::parse(in, nullptr, false);
+  ASSERT_TRUE(result.is_object()) << "see " << fleet.log_dir() << "/message-check.log";
+  EXPECT_GT(result.value("checked", 0), 10) << result.dump();
+  EXPECT_EQ(result.value("invalid_count", -1), 0) << result.dump();
+}
