@@ -185,27 +185,11 @@ void Vda5050Vehicle::on_order(const json& message) {
   const bool under_way = job_ && intake != vda5050::OrderIntake::kNew;
   const auto job = vda5050::job_of(received.order_id, order_.nodes_taking(received, intake), received.edges, site.site,
                                    site.graph.graph, robot_->refusal(orders::OrderKind::kTransport).empty(),
-                                   under_way && picked_, message);
+                                   job_ && picked_, message);
   if (const auto* error = std::get_if<VehicleError>(&job)) return reject(*error);
-  const vda5050::VehicleJob& next = std::get<vda5050::VehicleJob>(job);
-  const bool same_job = under_way && next.goal_node == job_->goal_node && next.drop_action == job_->drop_action &&
-                        next.order.drop_area_id == job_->order.drop_area_id;
-  if (under_way && !same_job && job_->order.kind != orders::OrderKind::kMove) {
-    return reject(vda5050::order_error(
-        "orderUpdateError", "the update changes the transport under way (drop at " + job_->order.drop_area_id + ")",
-        message));
-  }
-  if (!same_job) {
-    if (job_ && !robot_->withdraw()) {
-      return reject(vda5050::order_error("orderError", "the robot cannot leave the job under way now", message));
-    }
-    job_.reset();
-    if (!start_job(next, message)) return;
-  } else {
-    job_->nodes = next.nodes;
-    job_->order.order_id = received.order_id;
-  }
-  if (intake == vda5050::OrderIntake::kNew) errors_.clear();
+  if (const auto error = take_job(std::get<vda5050::VehicleJob>(job), under_way, message)) return reject(*error);
+  // Order warnings stand until an order is accepted [VDA 5050, section 6.6.4].
+  std::erase_if(errors_, [](const VehicleError& e) { return e.type != "orderActionError"; });
   order_.take(received, intake);
   log_->info("order {} update {} taken ({}): base to node '{}'", received.order_id, received.update_id,
              intake == vda5050::OrderIntake::kNew      ? "new"
@@ -216,16 +200,42 @@ void Vda5050Vehicle::on_order(const json& message) {
   state_due_ = true;
 }
 
-bool Vda5050Vehicle::start_job(const vda5050::VehicleJob& job, const json& message) {
-  std::string why;
-  if (!robot_->submit(job.order, &why)) {
-    reject(vda5050::order_error("orderError", "the robot cannot take the order now: " + why, message));
-    return false;
+std::optional<VehicleError> Vda5050Vehicle::take_job(const vda5050::VehicleJob& next, bool under_way,
+                                                     const json& message) {
+  const auto error = [&](const char* type, const std::string& why) { return vda5050::order_error(type, why, message); };
+  // The drop of a transport whose pick came alone (picked, or still on the way to it).
+  const bool names_the_drop = job_ && job_->order.kind == orders::OrderKind::kTransport && job_->drop_action.empty() &&
+                              !next.drop_action.empty() &&
+                              (next.pick_action == job_->pick_action || (picked_ && next.pick_action.empty()));
+  const bool same_job = under_way && next.goal_node == job_->goal_node && next.drop_action == job_->drop_action &&
+                        (picked_ || next.pick_action == job_->pick_action);
+  if (names_the_drop) {
+    if (!robot_->set_drop(next.order.drop_area_id, next.order.drop_area)) {
+      return error("orderError", "this robot takes a pick and its drop only in one order");
+    }
+    job_->drop_action = next.drop_action;
+    job_->order.drop_area_id = next.order.drop_area_id;
+    job_->order.drop_area = next.order.drop_area;
+    job_->goal_node = next.goal_node;
+  } else if (!same_job) {
+    if (picked_ && job_) {
+      return error("orderError", "the robot carries a load: its next order drops it");
+    }
+    if (under_way && job_->order.kind != orders::OrderKind::kMove) {
+      return error("orderUpdateError", "the update changes the transport under way");
+    }
+    if (job_ && !robot_->withdraw()) return error("orderError", "the robot cannot leave the job under way now");
+    job_.reset();
+    std::string why;
+    if (!robot_->submit(next.order, &why)) return error("orderError", "the robot cannot take the order now: " + why);
+    job_ = next;
+    picked_ = false;
+    drive_ = vda5050::VehicleDrive{};
+    return std::nullopt;
   }
-  job_ = job;
-  picked_ = false;
-  drive_ = vda5050::VehicleDrive{};
-  return true;
+  job_->nodes = next.nodes;
+  job_->order.order_id = next.order.order_id;
+  return std::nullopt;
 }
 
 void Vda5050Vehicle::update_leg() {
@@ -305,6 +315,7 @@ void Vda5050Vehicle::handle_events() {
         if (!job_->drop_action.empty()) order_.set_action_status(job_->drop_action, "FINISHED");
         log_->info("order {}: done at node {}", order_.order_id(), order_.last_node_id());
         job_.reset();
+        picked_ = false;
         update_leg();
         state_due_ = true;
         break;
@@ -320,6 +331,7 @@ void Vda5050Vehicle::handle_events() {
                 e.text.empty() ? "the pick found no load" : e.text,
                 {{"topic", "order"}, {"orderId", order_.order_id()}}});
         job_.reset();
+        picked_ = false;
         update_leg();
         break;
       case K::kHome:

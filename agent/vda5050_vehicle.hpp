@@ -50,9 +50,10 @@ class Vda5050Vehicle {
   void on_order(const nlohmann::json& message);
   void on_instant_actions(const nlohmann::json& message);
   void instant_action(const vda5050::ReceivedAction& action, const nlohmann::json& message);
-  /// Runs `job` from now on: submits its order to the robot (false, with the error reported, when
-  /// the robot refuses it).
-  bool start_job(const vda5050::VehicleJob& job, const nlohmann::json& message);
+  /// Runs `next` from now on: the job under way goes on (a new base, or the drop of a pick that
+  /// came alone), or the robot is given `next`'s order. The error that refuses it otherwise.
+  std::optional<vda5050::VehicleError> take_job(const vda5050::VehicleJob& next, bool under_way,
+                                                const nlohmann::json& message);
   /// The leg being driven (to the pick, then to the drop) from the nodes ahead.
   void update_leg();
   /// Grants the robot its route up to the base end, and passes the nodes it has reached.

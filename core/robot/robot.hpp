@@ -123,6 +123,14 @@ class Robot {
   /// when the robot cannot stop it now (a load half taken up).
   virtual bool withdraw() = 0;
   virtual void set_paused(bool paused) = 0;
+  /// Where to drop the load of a transport submitted without its drop place (a VDA 5050 master
+  /// sends the pick and the drop as orders of their own). False when the robot runs no such
+  /// transport, or its type takes a transport only whole.
+  virtual bool set_drop(const std::string& area_id, const geometry::Pose2& area) {
+    (void)area_id;
+    (void)area;
+    return false;
+  }
 
   // --- the world as the agent hears it --------------------------------------------------------
   /// The server switched this robot to a revision of its site's map (see map::revision_mismatch);

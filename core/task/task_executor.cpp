@@ -69,6 +69,16 @@ bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
   return tr.accepted;
 }
 
+bool TaskExecutor::set_drop(const std::string& area_id, const Pose2& area) {
+  if (!order_ || order_->kind != orders::OrderKind::kTransport || !order_->drop_area_id.empty() || area_id.empty()) {
+    return false;
+  }
+  order_->drop_area_id = area_id;
+  order_->drop_area = area;
+  if (machine_.phase() == orders::OrderPhase::kToDrop) request_plan(PlanPurpose::kToDrop);
+  return true;
+}
+
 Pose2 TaskExecutor::item_pose(const Pose2& place) const {
   const double toward_road = place.yaw;
   return {place.x + params_.item_standoff * std::cos(toward_road),
@@ -96,6 +106,14 @@ Pose2 TaskExecutor::goal_for(PlanPurpose purpose) const {
 }
 
 void TaskExecutor::request_plan(PlanPurpose purpose) {
+  if (purpose == PlanPurpose::kToDrop && order_ && order_->drop_area_id.empty()) {
+    // No drop place yet (set_drop): stand with the load, no path.
+    pending_request_.reset();
+    active_purpose_ = purpose;
+    have_path_ = false;
+    follower_.clear();
+    return;
+  }
   PlanRequest req;
   req.id = next_request_id_++;
   req.purpose = purpose;

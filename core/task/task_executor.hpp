@@ -110,8 +110,12 @@ class TaskExecutor {
   TaskExecutor(ExecutorParams params, geometry::Pose2 home);
 
   /// Accepts the order in IDLE or GO_HOME; otherwise returns false and says why. A transport
-  /// order picks and drops; a move order drives to its place, which becomes the robot's home.
+  /// order picks and drops; a move order drives to its place, which becomes the robot's home. A
+  /// transport without a drop place (drop_area_id empty) stands with its load after the pick
+  /// until set_drop() names one.
   bool submit(const TaskOrder& order, std::string* why = nullptr);
+  /// The drop place of a transport submitted without one; false when there is no such transport.
+  bool set_drop(const std::string& area_id, const geometry::Pose2& area);
   void path_received(std::uint64_t request_id, std::vector<geometry::Pose2> path);
   void plan_failed(std::uint64_t request_id);
   void set_blocked(bool blocked);

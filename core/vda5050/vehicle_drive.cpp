@@ -89,8 +89,14 @@ std::optional<NodeOnSite> locate_node(const ReceivedNode& node, const map::Site&
   for (const map::LoadingArea& a : site.loading_areas) consider_place(a.id, a.pose);
   for (const map::Home& h : site.homes) consider_place(h.id, h.pose);
   if (!out.place.empty()) return out;
-  *why = "node '" + node.id + "' at (" + metres(node.x) + ", " + metres(node.y) + ") is within " + metres(tolerance) +
-         " m of no graph point, loading area or home of site '" + site.name + "'";
+  if (site.bounds.contains(given)) {
+    // A point of the master's own path off the roads (onto a road, into a place): the robot
+    // passes it on its own way there.
+    out.pose = {node.x, node.y, node.theta.value_or(0.0)};
+    return out;
+  }
+  *why = "node '" + node.id + "' at (" + metres(node.x) + ", " + metres(node.y) + ") lies outside site '" + site.name +
+         "'";
   return std::nullopt;
 }
 
@@ -146,14 +152,19 @@ std::variant<VehicleJob, VehicleError> job_of(const std::string& order_id, const
         job.order.kind = orders::OrderKind::kTransport;
       }
     }
-    if (drop != nullptr && job.goal_node != node.sequence) {
-      return order_error("orderError", "node '" + node.id + "' after the drop: a transport ends at its drop", message,
-                         {{"nodeId", node.id}});
+    const bool after_drop = drop != nullptr && job.goal_node != node.sequence;
+    const bool after_lone_pick = pick != nullptr && drop == nullptr && job.pick_node != node.sequence;
+    if (after_drop || after_lone_pick) {
+      return order_error("orderError",
+                         "node '" + node.id + "' after the " + (after_drop ? "drop" : "pick") +
+                             ": a transport ends at its drop, a pick without a drop at the pick",
+                         message, {{"nodeId", node.id}});
     }
   }
   if (pick != nullptr && drop == nullptr) {
-    return order_error("orderError", "a pick without a drop after it", message,
-                       {{"actionId", pick->id}, {"actionType", pick->type}});
+    // The pick alone: the robot stands with the load until an order with the drop comes.
+    job.order.kind = orders::OrderKind::kTransport;
+    job.goal_node = job.pick_node;
   }
   if (job.order.kind == orders::OrderKind::kMove && !job.nodes.empty()) {
     const NodeOnSite& goal = job.nodes.back();

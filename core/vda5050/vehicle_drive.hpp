@@ -29,12 +29,16 @@ struct NodeOnSite {
 
 /// Locates `node`: by its id when it names a graph point (`p<id>`), a loading area or a home;
 /// else by its position, on the nearest graph point or place within the node's allowed deviation
-/// (5 cm when it gives none). Without a place: nothing, and `why` says so.
+/// (5 cm when it gives none), else as a waypoint of the master's own path off the roads (no
+/// point, no place), which the robot passes on its own way. Nothing, and `why` says so, for a
+/// node without a position that names nothing of the site, or one outside the site.
 std::optional<NodeOnSite> locate_node(const ReceivedNode& node, const map::Site& site, const map::RoadGraph& graph,
                                       std::string* why);
 
 /// The job a robot runs for the nodes ahead of it: a move to the last node, or a transport
 /// picking at the node of a `pick` action and dropping at the node of the `drop` that follows.
+/// A pick alone is a transport whose drop comes with a later order (drop_action empty); a drop
+/// alone, the rest of the transport of a robot that carries the load (pick_action empty).
 struct VehicleJob {
   task::TaskOrder order;
   std::string pick_action;  ///< action ids; empty for a move

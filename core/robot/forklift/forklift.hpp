@@ -122,6 +122,9 @@ class Forklift : public Robot {
   /// False, with the order left running, once the pallet is on the forks: it cannot be cancelled
   /// then [Forklift thesis, section 6.4], and a robot that stopped with it would stand in the lane for good.
   bool withdraw() override;
+  bool set_drop(const std::string& area_id, const geometry::Pose2& area) override {
+    return executor_.set_drop(area_id, area);
+  }
   void set_paused(bool paused) override;
   bool set_obstacle(const std::string& id, bool enabled) override;
   /// The standing pallets. Pallets carried by other robots are left out; the one on these forks

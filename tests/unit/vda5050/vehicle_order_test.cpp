@@ -167,6 +167,31 @@ TEST(VehicleDriveTest, JobsOfTransportsAndMovesAndWhatRejectsThem) {
   ASSERT_TRUE(std::holds_alternative<VehicleError>(job));
   EXPECT_EQ(std::get<VehicleError>(job).type, "noRouteError");
 
+  // A pick alone: a transport whose drop comes later; a drop alone only for a robot that carries.
+  m = order("o1", 0, {"H1", "A1"}, 0, 100, {{1, action("a1", "pick")}});
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
+  ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
+  EXPECT_EQ(std::get<VehicleJob>(job).order.kind, orders::OrderKind::kTransport);
+  EXPECT_TRUE(std::get<VehicleJob>(job).order.drop_area_id.empty());
+  EXPECT_EQ(std::get<VehicleJob>(job).goal_node, 2u);
+  m = order("o2", 0, {"A1", "A2"}, 0, 100, {{1, action("a2", "drop")}});
+  job = job_of("o2", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
+  EXPECT_TRUE(std::holds_alternative<VehicleError>(job));
+  job = job_of("o2", nodes_of(m), {}, site.site, site.graph.graph, true, true, m);
+  ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
+  EXPECT_EQ(std::get<VehicleJob>(job).order.drop_area_id, "A2");
+
+  // A position on the site but on no road or place is a waypoint; one off the site is no route.
+  m = order("o1", 0, {"H1", "w", "H2"});
+  m["nodes"][1]["nodePosition"] = {{"x", 1.25}, {"y", 1.3}, {"mapId", "table_a"}};
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
+  ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
+  EXPECT_EQ(std::get<VehicleJob>(job).nodes.at(0).point, -1);
+  m["nodes"][1]["nodePosition"]["x"] = 40.0;
+  job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
+  ASSERT_TRUE(std::holds_alternative<VehicleError>(job));
+  EXPECT_NE(std::get<VehicleError>(job).description.find("outside site"), std::string::npos);
+
   m = order("o1", 0, {"H1", "p3", "H2"});
   job = job_of("o1", nodes_of(m), {}, site.site, site.graph.graph, true, false, m);
   ASSERT_TRUE(std::holds_alternative<VehicleJob>(job));
