@@ -191,11 +191,13 @@ void Vda5050Vehicle::on_order(const json& message) {
   // Order warnings stand until an order is accepted [VDA 5050, section 6.6.4].
   std::erase_if(errors_, [](const VehicleError& e) { return e.type != "orderActionError"; });
   order_.take(received, intake);
-  log_->info("order {} update {} taken ({}): base to node '{}'", received.order_id, received.update_id,
-             intake == vda5050::OrderIntake::kNew      ? "new"
-             : intake == vda5050::OrderIntake::kUpdate ? "update"
-                                                       : "stitched",
-             order_.base_end().id);
+  // Updates come with every grant that reaches further: the new orders at info, the rest at debug.
+  log_->log(intake == vda5050::OrderIntake::kNew ? spdlog::level::info : spdlog::level::debug,
+            "order {} update {} taken ({}): base to node '{}'", received.order_id, received.update_id,
+            intake == vda5050::OrderIntake::kNew      ? "new"
+            : intake == vda5050::OrderIntake::kUpdate ? "update"
+                                                      : "stitched",
+            order_.base_end().id);
   update_leg();
   state_due_ = true;
 }

@@ -1,10 +1,11 @@
-// One of Fleet's robots as a VDA 5050 vehicle (`fleet-agent --vda5050`) under a foreign master
-// control, vda-5050-lib's MasterController (tests/vda5050/foreign_master.js), over a real
-// mosquitto broker. No fleet-server: the master drives the robot.
+// Fleet's robots as VDA 5050 vehicles (`fleet-agent --vda5050`) over a real mosquitto broker:
+// under a foreign master control, vda-5050-lib's MasterController (tests/vda5050/foreign_master.js),
+// with no fleet-server; and under Fleet's own master control (fleet-vda5050) speaking 2.1.0.
 
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +66,31 @@ int nearest_point(const fleet::map::RoadGraph& graph, fleet::geometry::Vec2 at) 
   return best;
 }
 
+/// tests/vda5050/check_messages.js on `topics`: every message checked against the lib's
+/// validators and (when ../shared is there) the official schemas of its version.
+std::size_t start_message_check(FleetHarness& fleet, const std::string& mqtt_url, const std::string& topics) {
+  std::vector<std::string> check{
+      "node", fleet::test::source_dir() + "/tests/vda5050/check_messages.js", "--broker", mqtt_url, "--topics", topics};
+  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
+  if (std::filesystem::exists(schemas)) check.insert(check.end(), {"--schemas", schemas});
+  check.insert(check.end(), {"--out", fleet.log_dir() + "/message-check.json"});
+  const std::size_t checker = fleet.processes().start("message check", check, fleet.log_dir() + "/message-check.log");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  return checker;
+}
+
+/// Stops the check and gives its summary (an empty object when it wrote none).
+json message_check_result(FleetHarness& fleet, std::size_t checker) {
+  fleet.processes().signal(checker, SIGTERM);
+  const std::string out = fleet.log_dir() + "/message-check.json";
+  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::ifstream in(out);
+  const json result = json::parse(in, nullptr, false);
+  return result.is_object() ? result : json::object();
+}
+
 /// fl1's way from its home H1 to A1, drop at A2; `middle` a road point halfway to A1.
 json scenario(const std::string& serial) {
   const fleet::map::SiteMap site = fleet::map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
@@ -95,16 +121,8 @@ TEST(Vda5050, AForeignMasterDrivesAFleetRobotThroughBaseUpdatesAndErrors) {
   auto& processes = fleet.processes();
   const std::string broker = fleet::cli::start_mqtt_broker(processes, fleet.log_dir());
   const std::string mqtt_url = "mqtt://" + broker.substr(broker.find("://") + 3);
-  // Every message the vehicle publishes, checked against the lib's validators and (when
-  // ../shared is there) the official 2.0.0 schemas.
-  std::vector<std::string> check{"node",     fleet::test::source_dir() + "/tests/vda5050/check_messages.js",
-                                 "--broker", mqtt_url,
-                                 "--topics", "state,connection,visualization"};
-  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
-  if (std::filesystem::exists(schemas)) check.insert(check.end(), {"--schemas", schemas});
-  check.insert(check.end(), {"--out", fleet.log_dir() + "/message-check.json"});
-  const std::size_t checker = processes.start("message check", check, fleet.log_dir() + "/message-check.log");
-  std::this_thread::sleep_for(std::chrono::seconds(1));
+  // Every message the vehicle publishes, checked.
+  const std::size_t checker = start_message_check(fleet, mqtt_url, "state,connection,visualization");
 
   const std::size_t agent = processes.start(
       "fleet-agent fl1",
@@ -143,14 +161,57 @@ TEST(Vda5050, AForeignMasterDrivesAFleetRobotThroughBaseUpdatesAndErrors) {
   }
   EXPECT_TRUE(broken) << "see " << master_log;
 
-  processes.signal(checker, SIGTERM);
-  const std::string out = fleet.log_dir() + "/message-check.json";
-  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::ifstream in(out);
-  const json result = json::parse(in, nullptr, false);
-  ASSERT_TRUE(result.is_object()) << "see " << fleet.log_dir() << "/message-check.log";
+  const json result = message_check_result(fleet, checker);
   EXPECT_GT(result.value("checked", 0), 10) << result.dump();
+  EXPECT_EQ(result.value("invalid_count", -1), 0) << result.dump();
+}
+
+TEST(Vda5050, FleetAsMasterDrivesFleetRobotsAsVehiclesIn2_1_0) {
+  // fleet-server and fleet-vda5050 see two VDA 5050 vehicles of maker Fleet; each is a forklift
+  // of table_a-vda5050.yaml run by `fleet-agent --vda5050 --vda5050-version 2.1.0`.
+  FleetHarness fleet(115, 3.0);
+  fleet.use_config(fleet::test::source_dir() + "/config/sites/table_a-vda5050-fleet.yaml");
+  auto& processes = fleet.processes();
+  const std::string broker = fleet::cli::start_mqtt_broker(processes, fleet.log_dir());
+  const std::string mqtt_url = "mqtt://" + broker.substr(broker.find("://") + 3);
+  const std::size_t checker =
+      start_message_check(fleet, mqtt_url, "order,instantActions,state,connection,visualization");
+  fleet.start_server();
+  std::vector<std::string> bridge{bin("fleet-vda5050")};
+  for (const auto& a : fleet.common_args()) bridge.push_back(a);
+  bridge.insert(bridge.end(), {"--broker", broker});
+  processes.start("fleet-vda5050", bridge, fleet.log_dir() + "/fleet-vda5050.log");
+  for (const std::string id : {"fl1", "fl2"}) {
+    processes.start("fleet-agent " + id,
+                    {bin("fleet-agent"), "--config", kConfig, "--id", id, "--time-scale", "3", "--vda5050", broker,
+                     "--vda5050-version", "2.1.0"},
+                    fleet.log_dir() + "/fleet-agent-" + id + ".log");
+  }
+  ASSERT_TRUE(fleet.wait_for_robots({"f1", "f2"}, 60)) << "see " << fleet.log_dir();
+
+  std::vector<std::int64_t> ids;
+  for (const auto& [from, to] : {std::pair{"A1", "A2"}, std::pair{"A5", "A6"}}) {
+    const auto added = fleet.fleetctl({"--json", "order", "add", "--from", from, "--to", to});
+    ASSERT_EQ(added.exit_code, 0) << added.out << added.err;
+    ids.push_back(last_json_line(added.out)["order_id"]);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(240);
+  std::vector<std::string> status(ids.size());
+  while (std::chrono::steady_clock::now() < deadline) {
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const auto shown = fleet.fleetctl({"--json", "order", "show", std::to_string(ids[i])}, 30);
+      if (shown.exit_code == 0) status[i] = last_json_line(shown.out).value("state", "");
+    }
+    if (std::all_of(status.begin(), status.end(), [](const std::string& s) { return s == "DONE" || s == "FAILED"; })) {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    EXPECT_EQ(status[i], "DONE") << "order " << ids[i] << ": see " << fleet.log_dir();
+
+  // Both sides' messages, Fleet's orders and its vehicles' states, against the 2.1.0 schemas.
+  const json result = message_check_result(fleet, checker);
+  EXPECT_GT(result.value("checked", 0), 20) << result.dump();
   EXPECT_EQ(result.value("invalid_count", -1), 0) << result.dump();
 }
