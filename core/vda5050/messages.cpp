@@ -87,9 +87,11 @@ json order_json(const OrderMessage& order) {
   return out;
 }
 
-json instant_action_json(const std::string& type, const std::string& action_id, const std::string& version) {
-  json action = {
-      {"actionType", type}, {"actionId", action_id}, {"blockingType", "NONE"}, {"actionParameters", json::array()}};
+json instant_action_json(const std::string& type, const std::string& action_id, const std::string& version,
+                         const std::vector<std::pair<std::string, json>>& parameters) {
+  json list = json::array();
+  for (const auto& [key, value] : parameters) list.push_back({{"key", key}, {"value", value}});
+  json action = {{"actionType", type}, {"actionId", action_id}, {"blockingType", "NONE"}, {"actionParameters", list}};
   if (version == "2.0.0") action["actionName"] = type;
   const json actions = json::array({action});
   return {{"actions", actions}, {"instantActions", actions}};
@@ -123,6 +125,7 @@ void read_position(const json& p, const std::string& where, VehicleState& s) {
   s.map_id = text(p, "mapId", where);
   const auto initialized = p.find("positionInitialized");
   s.has_position = initialized == p.end() || !initialized->is_boolean() || initialized->get<bool>();
+  s.position_uninitialized = !s.has_position;
 }
 
 void read_velocity(const json& message, VehicleState& s) {

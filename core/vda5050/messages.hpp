@@ -65,10 +65,11 @@ struct OrderMessage {
 nlohmann::json order_json(const OrderMessage& order);
 
 /// An instant action [VDA 5050, section 6.7]: cancelOrder, startPause, stopPause, stateRequest,
-/// factsheetRequest. Written under `actions` (the 2.0 and 2.1 schemas) and `instantActions`
-/// (what some 2.0 vehicles read); for 2.0.0 each action carries its type as `actionType` (the
+/// factsheetRequest, initPosition (with `parameters`). Written under `actions` (the 2.0 and 2.1 schemas) and
+/// `instantActions` (what some 2.0 vehicles read); for 2.0.0 each action carries its type as `actionType` (the
 /// text, 2.1 and vehicles) and `actionName` (what the 2.0.0 schema requires).
-nlohmann::json instant_action_json(const std::string& type, const std::string& action_id, const std::string& version);
+nlohmann::json instant_action_json(const std::string& type, const std::string& action_id, const std::string& version,
+                                   const std::vector<std::pair<std::string, nlohmann::json>>& parameters = {});
 
 struct ActionStatus {
   std::string id;
@@ -95,6 +96,9 @@ struct VehicleState {
   bool driving = false;
   bool paused = false;
   bool has_position = false;
+  /// It reports a position it says is not initialised (positionInitialized false): it does not
+  /// know where it is (has_position is false then).
+  bool position_uninitialized = false;
   double x = 0.0, y = 0.0, theta = 0.0;
   std::string map_id;
   double speed = 0.0;  ///< |velocity|, m/s, 0 when not reported

@@ -90,30 +90,38 @@ void VehicleMaster::take_state(const VehicleState& state) {
     last_error_ = e.type + (e.description.empty() ? "" : ": " + e.description);
   }
   if (state.errors.empty()) last_error_.clear();
+  if (state.position_uninitialized && !init_position_sent_) {
+    instant(
+        "initPosition", "init",
+        {{"x", home_.x}, {"y", home_.y}, {"theta", home_.yaw}, {"mapId", map_id_}, {"lastNodeId", "home-" + home_id_}});
+  }
+  init_position_sent_ = state.position_uninitialized;
+}
+
+void VehicleMaster::instant(const std::string& type, const std::string& tag,
+                            const std::vector<std::pair<std::string, nlohmann::json>>& parameters) {
+  std::string action_id = id_;
+  action_id += '-';
+  action_id += tag;
+  action_id += '-';
+  action_id += std::to_string(++instant_actions_);
+  messages_.push_back({"instantActions", instant_action_json(type, action_id, version_, parameters)});
 }
 
 void VehicleMaster::request(const std::string& type) {
-  messages_.push_back(
-      {"instantActions",
-       instant_action_json(type, id_ + "-" + type + "-" + std::to_string(++instant_actions_), version_)});
+  instant(type, type);
 }
 
 void VehicleMaster::set_paused(bool paused) {
   if (paused == paused_) return;
   paused_ = paused;
-  messages_.push_back(
-      {"instantActions", instant_action_json(paused ? "startPause" : "stopPause",
-                                             id_ + "-pause-" + std::to_string(++instant_actions_), version_)});
+  instant(paused ? "startPause" : "stopPause", "pause");
 }
 
 void VehicleMaster::reconnected() {
   messages_.clear();
   // A vehicle that restarted runs again: it stays paused only when told once more.
-  if (paused_) {
-    messages_.push_back(
-        {"instantActions",
-         instant_action_json("startPause", id_ + "-pause-" + std::to_string(++instant_actions_), version_)});
-  }
+  if (paused_) instant("startPause", "pause");
   leg_.reset();
   follower_.leave_road();
   if (stage_ != Stage::kIdle) needs_plan_ = true;

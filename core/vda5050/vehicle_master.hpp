@@ -61,6 +61,9 @@ class VehicleMaster {
   /// Drops the order (cancelOrder to the vehicle) and goes home; false when a load is on board.
   bool withdraw();
   void grant(const robot::TrafficPermit& permit);
+  /// The vehicle's state. One that says its position is not initialised is told where it parks:
+  /// `initPosition` with its home's pose and node, once each time it says so [VDA 5050, section
+  /// 6.8.1].
   void take_state(const VehicleState& state);
   /// An instant action without parameters for the vehicle: stateRequest, factsheetRequest.
   void request(const std::string& type);
@@ -106,6 +109,9 @@ class VehicleMaster {
   void arrived();
   void fail(const std::string& reason);
   void phase(const std::string& name);
+  /// Queues an instant action of `type` for the vehicle, its id made of the robot id, `tag` and a count.
+  void instant(const std::string& type, const std::string& tag,
+               const std::vector<std::pair<std::string, nlohmann::json>>& parameters = {});
 
   std::string id_;
   std::string version_;
@@ -123,6 +129,7 @@ class VehicleMaster {
   bool held_ = false;
   bool paused_ = false;
   std::uint32_t instant_actions_ = 0;
+  bool init_position_sent_ = false;  ///< since it last said its position is not initialised
   bool phase_at_goal_sent_ = false;
   std::optional<ReleasedOrder> leg_;
   std::uint32_t legs_ = 0;

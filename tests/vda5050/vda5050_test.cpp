@@ -176,9 +176,15 @@ TEST(Vda5050, WhenTheBrokerDiesItsVehiclesAreLostAndComeBackWithTheirOrders) {
   EXPECT_NE(bridge_log.find("is online again"), std::string::npos) << bridge_log;
 }
 
-TEST(Vda5050, AnOrderTheVehicleRefusesFailsWithTheVehiclesReason) {
-  VdaFleet vda(113, 1, {"--reject-orders", "agv-1"});
+TEST(Vda5050, AVehicleLostInPlaceIsToldItsHomeAndAnOrderItRefusesFailsWithItsReason) {
+  // The vehicle also starts not knowing where it is: the master tells it its home (initPosition).
+  VdaFleet vda(113, 1, {"--reject-orders", "agv-1", "--lost-position", "agv-1"});
   ASSERT_TRUE(vda.fleet.wait_for_robots({"v1"}));
+  const std::string vehicles_log = vda.fleet.log_dir() + "/vda5050-vehicles-visitors.log";
+  for (int i = 0; i < 100 && slurp(vehicles_log).find("position_initialized") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_NE(slurp(vehicles_log).find("\"nodeId\":\"home-H5\""), std::string::npos) << slurp(vehicles_log);
   const auto added = vda.fleet.fleetctl(
       {"--json", "order", "add", "--from", "A5", "--to", "A2", "--fleet", "visitors", "--wait"}, 120);
   const json order = last_json_line(added.out);

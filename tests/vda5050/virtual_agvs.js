@@ -13,7 +13,7 @@
 //   node virtual_agvs.js --broker mqtt://127.0.0.1:18830 --interface fleet \
 //     --manufacturer Sim --vehicle AGV1,0,0,0,floor1 [--vehicle AGV2,0,5,0,floor1,n7] \
 //     [--speed 1.0] [--reject-orders AGV2] [--no-route AGV3] \
-//     [--state-interval MS] [--visualization-interval MS] [--time-lapse F]
+//     [--state-interval MS] [--visualization-interval MS] [--time-lapse F] [--lost-position AGV1]
 //
 // --vehicle SERIAL,X,Y,THETA,MAPID[,LASTNODEID]   (THETA in rad, [-pi, pi];
 //     LASTNODEID defaults to "" = "on no node yet")
@@ -21,6 +21,8 @@
 //     errorType "orderError" (references topic, headerId, orderId, orderUpdateId)
 // --no-route SERIAL       that vehicle rejects every order through the
 //     adapter's public isRouteTraversable hook: errorType "noRouteError"
+// --lost-position SERIAL  that vehicle starts not knowing where it is: positionInitialized
+//     false at (0, 0) until a master tells it (initPosition)
 //
 // SIGTERM/SIGINT: every vehicle publishes connection OFFLINE (retained) and
 // disconnects; exit 0. SIGKILL: the broker publishes each vehicle's last will,
@@ -60,6 +62,7 @@ function parseArgs(argv) {
         speed: undefined,
         reject: new Set(),
         noRoute: new Set(),
+        lostPosition: new Set(),
         stateInterval: undefined,
         visualizationInterval: undefined,
         timeLapse: undefined,
@@ -87,6 +90,7 @@ function parseArgs(argv) {
             case "--speed": opts.speed = num(a, next()); break;
             case "--reject-orders": opts.reject.add(next()); break;
             case "--no-route": opts.noRoute.add(next()); break;
+            case "--lost-position": opts.lostPosition.add(next()); break;
             case "--state-interval": opts.stateInterval = num(a, next()); break;
             case "--visualization-interval": opts.visualizationInterval = num(a, next()); break;
             case "--time-lapse": opts.timeLapse = num(a, next()); break;
@@ -129,9 +133,9 @@ function parseArgs(argv) {
     if (new Set(serials).size !== serials.length) {
         usage("duplicate vehicle serial numbers");
     }
-    for (const s of [...opts.reject, ...opts.noRoute]) {
+    for (const s of [...opts.reject, ...opts.noRoute, ...opts.lostPosition]) {
         if (!serials.includes(s)) {
-            usage(`--reject-orders/--no-route ${s}: no such --vehicle`);
+            usage(`--reject-orders/--no-route/--lost-position ${s}: no such --vehicle`);
         }
     }
     return opts;
@@ -362,6 +366,9 @@ async function main() {
         const adapterOptions = {
             initialPosition: { mapId: v.mapId, x: v.x, y: v.y, theta: v.theta, lastNodeId: v.lastNodeId },
         };
+        if (opts.lostPosition.has(v.serial)) {
+            adapterOptions.initialPosition = { mapId: v.mapId, x: 0, y: 0, theta: 0, lastNodeId: "", positionInitialized: false };
+        }
         if (opts.speed !== undefined) {
             adapterOptions.vehicleSpeed = opts.speed;
         }

@@ -329,5 +329,44 @@ TEST(VehicleMaster, PauseAndResumeAreSentOnceEachAndAgainToAVehicleThatCameBack)
   EXPECT_EQ(instant_actions(), std::vector<std::string>{"stopPause"});
 }
 
+TEST(VehicleMaster, AVehicleThatDoesNotKnowWhereItIsIsToldItsHomeOnce) {
+  Yard yard;
+  const json state = {
+      {"headerId", 1},
+      {"orderId", ""},
+      {"orderUpdateId", 0},
+      {"lastNodeId", ""},
+      {"lastNodeSequenceId", 0},
+      {"nodeStates", json::array()},
+      {"edgeStates", json::array()},
+      {"actionStates", json::array()},
+      {"driving", false},
+      {"errors", json::array()},
+      {"agvPosition", {{"x", 0.0}, {"y", 0.0}, {"theta", 0.0}, {"mapId", "table_a"}, {"positionInitialized", false}}}};
+  const auto init_positions = [&] {
+    std::vector<json> sent;
+    for (const Outgoing& o : yard.master.take_messages()) {
+      if (o.name == "instantActions" && o.body["actions"][0]["actionType"] == "initPosition") sent.push_back(o.body);
+    }
+    return sent;
+  };
+  yard.master.take_state(parse_state(state));
+  const std::vector<json> sent = init_positions();
+  ASSERT_EQ(sent.size(), 1u);
+  std::map<std::string, json> parameters;
+  for (const json& p : sent[0]["actions"][0]["actionParameters"]) parameters[p["key"]] = p["value"];
+  EXPECT_DOUBLE_EQ(parameters["x"].get<double>(), yard.home.x);
+  EXPECT_DOUBLE_EQ(parameters["theta"].get<double>(), yard.home.yaw);
+  EXPECT_EQ(parameters["lastNodeId"], "home-H1");
+  EXPECT_EQ(yard.master.pose().x, yard.home.x) << "an uninitialised position is not taken";
+  yard.master.take_state(parse_state(state));
+  EXPECT_TRUE(init_positions().empty()) << "told once";
+  json known = state;
+  known["agvPosition"]["positionInitialized"] = true;
+  yard.master.take_state(parse_state(known));
+  yard.master.take_state(parse_state(state));
+  EXPECT_EQ(init_positions().size(), 1u) << "lost again, told again";
+}
+
 }  // namespace
 }  // namespace fleet::vda5050
