@@ -34,6 +34,12 @@ std::uint32_t count(const json& object, const char* key, const std::string& wher
   return value.get<std::uint32_t>();
 }
 
+bool flag(const json& object, const char* key, const std::string& where) {
+  const json& value = required(object, key, where);
+  if (!value.is_boolean()) throw MessageError(where + ": key '" + key + "' must be true or false");
+  return value.get<bool>();
+}
+
 const json& list(const json& object, const char* key, const std::string& where) {
   const json& value = required(object, key, where);
   if (!value.is_array()) throw MessageError(where + ": key '" + key + "' must be a list");

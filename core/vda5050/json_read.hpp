@@ -15,6 +15,8 @@ std::string text(const nlohmann::json& object, const char* key, const std::strin
 double number(const nlohmann::json& object, const char* key, const std::string& where);
 /// A whole number >= 0.
 std::uint32_t count(const nlohmann::json& object, const char* key, const std::string& where);
+/// true or false.
+bool flag(const nlohmann::json& object, const char* key, const std::string& where);
 const nlohmann::json& list(const nlohmann::json& object, const char* key, const std::string& where);
 
 }  // namespace fleet::vda5050::json_read

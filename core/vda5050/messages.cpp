@@ -154,9 +154,7 @@ VehicleState parse_state(const json& message) {
   s.update_id = count(message, "orderUpdateId", "state");
   s.last_node_id = text(message, "lastNodeId", "state");
   s.last_node_sequence_id = count(message, "lastNodeSequenceId", "state");
-  const json& driving = required(message, "driving", "state");
-  if (!driving.is_boolean()) throw MessageError("state: key 'driving' must be true or false");
-  s.driving = driving.get<bool>();
+  s.driving = flag(message, "driving", "state");
   if (const auto p = message.find("paused"); p != message.end() && p->is_boolean()) s.paused = p->get<bool>();
   for (const json& n : list(message, "nodeStates", "state")) {
     s.node_sequence_ids.push_back(count(n, "sequenceId", "state.nodeStates"));

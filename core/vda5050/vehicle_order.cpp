@@ -50,9 +50,7 @@ ReceivedNode read_node(const json& n, const std::string& at) {
   ReceivedNode node;
   node.id = text(n, "nodeId", at);
   node.sequence = count(n, "sequenceId", at);
-  const json& released = required(n, "released", at);
-  if (!released.is_boolean()) throw MessageError(at + ": key 'released' must be true or false");
-  node.released = released.get<bool>();
+  node.released = flag(n, "released", at);
   if (const auto p = n.find("nodePosition"); p != n.end() && !p->is_null()) {
     const std::string where = at + ".nodePosition";
     node.has_position = true;
@@ -74,9 +72,7 @@ ReceivedEdge read_edge(const json& e, const std::string& at) {
   ReceivedEdge edge;
   edge.id = text(e, "edgeId", at);
   edge.sequence = count(e, "sequenceId", at);
-  const json& released = required(e, "released", at);
-  if (!released.is_boolean()) throw MessageError(at + ": key 'released' must be true or false");
-  edge.released = released.get<bool>();
+  edge.released = flag(e, "released", at);
   edge.start_node = text(e, "startNodeId", at);
   edge.end_node = text(e, "endNodeId", at);
   edge.actions = read_actions(e, at);

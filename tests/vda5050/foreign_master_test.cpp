@@ -16,6 +16,7 @@
 #include "config/fleet_config.hpp"
 #include "fleet_harness.hpp"
 #include "map/site_map.hpp"
+#include "message_check.hpp"
 #include "test_paths.hpp"
 #include "vda5050/vehicle_drive.hpp"
 
@@ -66,31 +67,6 @@ int nearest_point(const fleet::map::RoadGraph& graph, fleet::geometry::Vec2 at) 
   return best;
 }
 
-/// tests/vda5050/check_messages.js on `topics`: every message checked against the lib's
-/// validators and (when ../shared is there) the official schemas of its version.
-std::size_t start_message_check(FleetHarness& fleet, const std::string& mqtt_url, const std::string& topics) {
-  std::vector<std::string> check{
-      "node", fleet::test::source_dir() + "/tests/vda5050/check_messages.js", "--broker", mqtt_url, "--topics", topics};
-  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
-  if (std::filesystem::exists(schemas)) check.insert(check.end(), {"--schemas", schemas});
-  check.insert(check.end(), {"--out", fleet.log_dir() + "/message-check.json"});
-  const std::size_t checker = fleet.processes().start("message check", check, fleet.log_dir() + "/message-check.log");
-  std::this_thread::sleep_for(std::chrono::seconds(1));
-  return checker;
-}
-
-/// Stops the check and gives its summary (an empty object when it wrote none).
-json message_check_result(FleetHarness& fleet, std::size_t checker) {
-  fleet.processes().signal(checker, SIGTERM);
-  const std::string out = fleet.log_dir() + "/message-check.json";
-  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::ifstream in(out);
-  const json result = json::parse(in, nullptr, false);
-  return result.is_object() ? result : json::object();
-}
-
 /// fl1's way from its home H1 to A1, drop at A2; `middle` a road point halfway to A1.
 json scenario(const std::string& serial) {
   const fleet::map::SiteMap site = fleet::map::load_site_map(fleet::test::source_dir() + "/maps/table_a.yaml");
@@ -120,7 +96,7 @@ TEST(Vda5050, AForeignMasterDrivesAFleetRobotThroughBaseUpdatesAndErrors) {
   FleetHarness fleet(114, 1.0);
   auto& processes = fleet.processes();
   const std::string broker = fleet::cli::start_mqtt_broker(processes, fleet.log_dir());
-  const std::string mqtt_url = "mqtt://" + broker.substr(broker.find("://") + 3);
+  const std::string mqtt_url = mqtt_url_of(broker);
   // Every message the vehicle publishes, checked.
   const std::size_t checker = start_message_check(fleet, mqtt_url, "state,connection,visualization");
 
@@ -173,7 +149,7 @@ TEST(Vda5050, FleetAsMasterDrivesFleetRobotsAsVehiclesIn2_1_0) {
   fleet.use_config(fleet::test::source_dir() + "/config/sites/table_a-vda5050-fleet.yaml");
   auto& processes = fleet.processes();
   const std::string broker = fleet::cli::start_mqtt_broker(processes, fleet.log_dir());
-  const std::string mqtt_url = "mqtt://" + broker.substr(broker.find("://") + 3);
+  const std::string mqtt_url = mqtt_url_of(broker);
   const std::size_t checker =
       start_message_check(fleet, mqtt_url, "order,instantActions,state,connection,visualization");
   fleet.start_server();

@@ -14,6 +14,7 @@
 #include "config/fleet_config.hpp"
 #include "fleet_harness.hpp"
 #include "map/site.hpp"
+#include "message_check.hpp"
 #include "test_paths.hpp"
 
 using namespace fleet::testing;
@@ -44,29 +45,6 @@ bool wait_for_order(const FleetHarness& fleet, std::int64_t id, const std::funct
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
   return false;
-}
-
-/// tests/vda5050/check_messages.js on the broker: every order and instant action Fleet publishes
-/// checked against vda-5050-lib's validators, the official schemas of ../shared (when there) and
-/// the order rules (update ids, stitching, sequence ids, base before horizon).
-std::size_t start_message_check(FleetHarness& fleet, const std::string& broker) {
-  std::vector<std::string> argv{"node", fleet::test::source_dir() + "/tests/vda5050/check_messages.js", "--broker",
-                                "mqtt://" + broker.substr(broker.find("://") + 3)};
-  const std::string schemas = fleet::test::source_dir() + "/../shared/data/vda5050";
-  if (std::filesystem::exists(schemas)) argv.insert(argv.end(), {"--schemas", schemas});
-  argv.insert(argv.end(), {"--out", fleet.log_dir() + "/message-check.json"});
-  return fleet.processes().start("message check", argv, fleet.log_dir() + "/message-check.log");
-}
-
-/// Stops the check and gives its summary.
-json message_check_result(FleetHarness& fleet, std::size_t index) {
-  fleet.processes().signal(index, SIGTERM);
-  const std::string out = fleet.log_dir() + "/message-check.json";
-  for (int i = 0; i < 100 && !std::filesystem::exists(out); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  const std::string text = slurp(out);
-  return text.empty() ? json::object() : json::parse(text);
 }
 
 /// A fleet-server with the table_a-vda5050 configuration, and `vehicles` virtual VDA 5050 vehicles
@@ -130,7 +108,7 @@ TEST(Vda5050, VehiclesOfAnotherMakerAndFleetsOwnAgentsDoOrdersTogether) {
 
 TEST(Vda5050, AKilledVehicleIsLostItsOrderGoesBackAndItComesBackToFinishIt) {
   VdaFleet vda(112, 2);
-  const std::size_t check = start_message_check(vda.fleet, vda.vehicles.broker);
+  const std::size_t check = start_message_check(vda.fleet, mqtt_url_of(vda.vehicles.broker));
   ASSERT_TRUE(vda.fleet.wait_for_robots({"v1", "v2"}));
   const std::int64_t id = vda.order_under_way();
   ASSERT_NE(id, 0);
