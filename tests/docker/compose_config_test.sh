@@ -185,7 +185,7 @@ while read -r line; do
   done
 done < <(grep -E '^COPY ' <<<"$instructions")
 # The sources the build needs: the folders CMakeLists.txt adds (but the benchmarks), core/, cmake/.
-for dir in cmake core $(sed -n 's/^ *add_subdirectory(\([a-z_]*\))$/\1/p' CMakeLists.txt | grep -vx bench); do
+for dir in cmake core $(sed -n 's/^ *add_subdirectory(\([a-z0-9_]*\))$/\1/p' CMakeLists.txt | grep -vx bench); do
   grep -qw -- "$dir" <<<"$copied" || fail "Dockerfile does not copy $dir/, which the build needs"
 done
 # The runtime stage: the binaries the services run, maps/ and config/ under FLEET_HOME.
