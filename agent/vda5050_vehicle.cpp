@@ -357,12 +357,11 @@ void Vda5050Vehicle::on_instant_actions(const json& message) {
     }
     return reject(error);
   }
-  for (const vda5050::ReceivedAction& action : actions) instant_action(action, message);
+  for (const vda5050::ReceivedAction& action : actions) instant_action(action);
   state_due_ = true;
 }
 
-void Vda5050Vehicle::instant_action(const vda5050::ReceivedAction& action, const json& message) {
-  (void)message;
+void Vda5050Vehicle::instant_action(const vda5050::ReceivedAction& action) {
   const std::vector<std::pair<std::string, std::string>> refs{
       {"topic", "instantActions"}, {"actionId", action.id}, {"actionType", action.type}};
   std::string status = "FINISHED";

@@ -49,7 +49,7 @@ class Vda5050Vehicle {
   void handle_messages();
   void on_order(const nlohmann::json& message);
   void on_instant_actions(const nlohmann::json& message);
-  void instant_action(const vda5050::ReceivedAction& action, const nlohmann::json& message);
+  void instant_action(const vda5050::ReceivedAction& action);
   /// Runs `next` from now on: the job under way goes on (a new base, or the drop of a pick that
   /// came alone), or the robot is given `next`'s order. The error that refuses it otherwise.
   std::optional<vda5050::VehicleError> take_job(const vda5050::VehicleJob& next, bool under_way,

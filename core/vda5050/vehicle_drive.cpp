@@ -229,13 +229,12 @@ VehicleDrive::Led VehicleDrive::lead(const robot::TrafficRoute& route, const map
     led.route = route.points;
     node_index.clear();
   }
-  std::vector<double> along(led.route.size(), 0.0);
+  led.along.assign(led.route.size(), 0.0);
   for (std::size_t i = 1; i < led.route.size(); ++i) {
-    along[i] =
-        along[i - 1] + geometry::distance(position_of(graph, led.route[i - 1]), position_of(graph, led.route[i]));
+    led.along[i] =
+        led.along[i - 1] + geometry::distance(position_of(graph, led.route[i - 1]), position_of(graph, led.route[i]));
   }
-  for (const auto& [sequence, index] : node_index) led.node_at.emplace_back(sequence, along[index]);
-  led.length = along.back();
+  for (const auto& [sequence, index] : node_index) led.node_at.emplace_back(sequence, led.along[index]);
   return led;
 }
 
@@ -270,16 +269,13 @@ std::optional<robot::TrafficPermit> VehicleDrive::permit(const robot::TrafficRou
   }
   if (whole) {
     permit.granted_index = static_cast<int>(led_->route.size()) - 1;
-    permit.granted_distance = led_->length;
+    permit.granted_distance = led_->along.back();
     return permit;
   }
   if (!granted) return std::nullopt;
   permit.granted_distance = *granted;
   permit.granted_index = 0;
-  double along = 0.0;
-  for (std::size_t i = 1; i < led_->route.size(); ++i) {
-    along += geometry::distance(position_of(graph, led_->route[i - 1]), position_of(graph, led_->route[i]));
-    if (along > *granted + 1e-9) break;
+  for (std::size_t i = 1; i < led_->along.size() && led_->along[i] <= *granted + 1e-9; ++i) {
     permit.granted_index = static_cast<int>(i);
   }
   return permit;

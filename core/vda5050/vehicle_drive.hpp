@@ -81,7 +81,7 @@ class VehicleDrive {
     std::uint64_t own_version = 0;  ///< the robot's plan; own_version + 1 is the route handed over
     std::vector<int> route;
     std::vector<std::pair<std::uint32_t, double>> node_at;  ///< road node sequence -> metres along the route
-    double length = 0.0;
+    std::vector<double> along;                              ///< metres along the route to each of its points
   };
   /// Leads the robot's own route through the leg's road nodes.
   Led lead(const robot::TrafficRoute& route, const map::RoadGraph& graph) const;
