@@ -301,11 +301,12 @@ std::vector<CommandSpec> offline_commands() {
        "",
        false,
        {file("--instance", "FILE.json", true), integer("--steps", "N", 1, 1000000), integer("--window", "W", 1, 50),
-        choice("--planner", {"operations", "cells"}), value("--delay", "P,MIN,MAX"), seed(),
-        file("--output", "OUT.json")},
+        choice("--planner", {"operations", "cells"}), choice("--guidance", {"on", "off"}),
+        value("--delay", "P,MIN,MAX"), seed(), file("--output", "OUT.json")},
        "the coordination core on a League of Robot Runners 2023 instance in the\n"
        "competition's discrete model (default 1000 steps); --planner cells plans a\n"
        "next cell per robot instead of a sequence of actions (window 2, else 3);\n"
+       "--guidance off steers robots by the shortest way, not by guide paths;\n"
        "--delay holds each robot\n"
        "with probability P for MIN..MAX steps; --output writes the competition's\n"
        "output file; prints errands a step, planning time a step and the longest\n"

@@ -41,6 +41,7 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   settings.steps = static_cast<int>(flags.integer("steps").value_or(settings.steps));
   settings.window = static_cast<int>(flags.integer("window").value_or(settings.window));
   if (flags.value("planner") == "cells") settings.planner = coordination::GridPlanner::kCells;
+  settings.guidance = flags.value("guidance").value_or("on") == "on";
   if (settings.window == 0) settings.window = coordination::default_window(settings.planner);
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);
@@ -63,6 +64,7 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       {"window", settings.window},
       {"planner", settings.planner == coordination::GridPlanner::kCells ? "cells" : "operations"},
       {"seed", settings.seed},
+      {"guidance", settings.guidance && settings.planner == coordination::GridPlanner::kOperations},
       {"delay", {settings.delays.probability, settings.delays.min_steps, settings.delays.max_steps}},
       {"finished", result.finished},
       {"throughput", figures.throughput},

@@ -78,6 +78,14 @@ void GridOperationPibt::reached_goal(int robot) {
   }
 }
 
+int GridOperationPibt::actions_left(int robot, int cell, int heading) {
+  const int goal = robots_[static_cast<std::size_t>(robot)].goal;
+  if (guides_ != nullptr && guides_->goal(robot) == goal && guides_->has_path(robot)) {
+    return guides_->to(robot, cell, heading);
+  }
+  return distances_.to(goal, cell, heading);
+}
+
 bool GridOperationPibt::trace(const GridRobot& robot, const std::string& operation, Trace& out) const {
   out.cells.assign(1, robot.cell);
   out.headings.assign(1, robot.heading);
@@ -202,11 +210,11 @@ bool GridOperationPibt::plan_robot(int robot, int leave_by) {
           c.cost = step;
           break;
         }
-        const int left = distances_.to(r.goal, t.cells[s], t.headings[s]);
+        const int left = actions_left(robot, t.cells[s], t.headings[s]);
         c.progress += left >= HeadingDistances::kUnreachable ? kFarAway : left;
       }
       if (c.cost < 0) {
-        const int left = distances_.to(r.goal, t.cells.back(), t.headings.back());
+        const int left = actions_left(robot, t.cells.back(), t.headings.back());
         c.cost = left >= HeadingDistances::kUnreachable ? kFarAway : depth_ + left;
         // A robot that has stood long pays for standing on: two robots that want each other's
         // cells and cannot push each other out stand for good unless one goes round.

@@ -7,6 +7,7 @@
 
 #include "coordination/grid_map.hpp"
 #include "coordination/grid_pibt.hpp"
+#include "coordination/guide_paths.hpp"
 #include "coordination/heading_distances.hpp"
 
 namespace fleet::coordination {
@@ -39,6 +40,8 @@ class GridOperationPibt {
   std::vector<std::vector<int>> plan(const std::vector<GridRobot>& robots, int depth);
   /// Tells the planner a robot reached its goal: its priority starts over.
   void reached_goal(int robot);
+  /// Steers robots by their guide paths instead of the shortest way (nullptr: the shortest way).
+  void set_guide_paths(const GuidePaths* guides) { guides_ = guides; }
   /// The action letters of the operations for a depth (each effect once), cheapest to list first.
   static std::vector<std::string> operations(int depth);
 
@@ -58,10 +61,13 @@ class GridOperationPibt {
   void reserve(int robot, const Trace& t);
   void release(int robot);
   void stay(int robot);
+  /// Actions left for a robot from (cell, heading): by its guide path when it has one to its goal.
+  int actions_left(int robot, int cell, int heading);
   int holder(int step, int cell) const { return held_[static_cast<std::size_t>(step) * cells_ + cell]; }
 
   const GridMap& map_;
   HeadingDistances& distances_;
+  const GuidePaths* guides_ = nullptr;
   std::mt19937_64 rng_;
   std::vector<std::string> operations_;
   int depth_ = 0;

@@ -14,9 +14,11 @@ LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSet
       distances_(instance.map),
       cell_planner_(instance.map, distances_, settings.seed),
       operation_planner_(instance.map, distances_, settings.seed),
+      guides_(instance.map, static_cast<int>(instance.starts.size())),
       graph_(instance.map.cells(), static_cast<int>(instance.starts.size())),
       delay_rng_(settings.seed * 0x9E3779B97F4A7C15ULL + 1) {
   if (settings_.window <= 0) settings_.window = default_window(settings_.planner);
+  if (settings_.guidance && settings_.planner == GridPlanner::kOperations) operation_planner_.set_guide_paths(&guides_);
   const std::size_t n = instance.starts.size();
   robots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) robots_[i] = {instance.starts[i], 0, -1};
@@ -44,6 +46,24 @@ void LifelongGridRun::hand_out_errands() {
     }
     robots_[r].goal = assigned_[r].front().cell;
   }
+}
+
+void LifelongGridRun::update_guide_paths() {
+  if (!settings_.guidance || settings_.planner != GridPlanner::kOperations) return;
+  std::vector<int> cells(robots_.size());
+  std::vector<int> headings(robots_.size());
+  for (std::size_t r = 0; r < robots_.size(); ++r) {
+    const GridRobot& robot = robots_[r];
+    cells[r] = robot.cell;
+    headings[r] = robot.heading;
+    if (guides_.goal(static_cast<int>(r)) != robot.goal) {
+      guides_.assign(static_cast<int>(r), robot.cell, robot.heading, robot.goal);
+    } else {
+      guides_.advance(static_cast<int>(r), robot.cell);
+    }
+  }
+  const int refines = std::max(1, static_cast<int>(std::lround(settings_.guide_refine_share * robots_.size())));
+  guides_.refine(cells, headings, refines);
 }
 
 void LifelongGridRun::plan_and_load() {
@@ -181,6 +201,7 @@ bool LifelongGridRun::step() {
   const std::vector<bool> stalled = draw_delays();
   held_last_step_ = stalled;
   const auto start = std::chrono::steady_clock::now();
+  update_guide_paths();
   plan_and_load();
   std::vector<GridAction> actions = decide_actions(stalled);
   result_.planning_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -8,6 +8,7 @@
 #include "coordination/execution_graph.hpp"
 #include "coordination/grid_operation_pibt.hpp"
 #include "coordination/grid_pibt.hpp"
+#include "coordination/guide_paths.hpp"
 #include "coordination/heading_distances.hpp"
 #include "coordination/lorr_instance.hpp"
 
@@ -41,6 +42,11 @@ struct LifelongSettings {
   int window = 0;
   DelayModel delays;
   std::uint64_t seed = 1;
+  /// Steer the operation planner's robots by congestion-avoiding guide paths (GuidePaths).
+  bool guidance = true;
+  /// The share of the robots whose guide paths are searched again each step, in turn, from where
+  /// they stand and against the flow of the others' as it is by then.
+  double guide_refine_share = 0.1;
 };
 
 /// One errand as the output lists it.
@@ -88,6 +94,7 @@ class LifelongGridRun {
 
  private:
   void hand_out_errands();
+  void update_guide_paths();
   void plan_and_load();
   std::vector<GridAction> decide_actions(const std::vector<bool>& stalled);
   GridAction turn_towards(int robot, int heading) const;
@@ -100,6 +107,7 @@ class LifelongGridRun {
   HeadingDistances distances_;
   GridPibt cell_planner_;
   GridOperationPibt operation_planner_;
+  GuidePaths guides_;
   ExecutionGraph graph_;
   std::mt19937_64 delay_rng_;
   std::vector<GridRobot> robots_;
