@@ -46,7 +46,7 @@ struct LifelongSettings {
   bool guidance = true;
   /// The share of the robots whose guide paths are searched again each step, in turn, from where
   /// they stand and against the flow of the others' as it is by then.
-  double guide_refine_share = 0.1;
+  double guide_refine_share = 0.5;
 };
 
 /// One errand as the output lists it.
