@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -41,6 +42,15 @@ struct GridMap {
   int heading_between(int from, int to) const;
   /// "row,col" of a cell, for messages.
   std::string describe(int cell) const;
+  /// The states (cell x 4 + heading) one action before `state`: the cell behind by a forward move
+  /// (-1 when that is a wall or off the map) and the two quarter turns in place.
+  std::array<int, 3> predecessors(int state) const {
+    const int cell = state / kHeadings;
+    const int h = state % kHeadings;
+    const int behind = step(cell, (h + 2) % kHeadings);
+    return {behind >= 0 ? behind * kHeadings + h : -1, cell * kHeadings + clockwise(h),
+            cell * kHeadings + counter_clockwise(h)};
+  }
 };
 
 /// What `fleetctl map check` tells of a grid site: its free cells, how they hang together (four

@@ -128,13 +128,8 @@ void GuidePaths::build_field(int robot) {
   }
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const int state = queue[head];
-    const int cell = state / kHeadings;
-    const int h = state % kHeadings;
     const auto d = static_cast<std::uint16_t>(reached[static_cast<std::size_t>(state)] + 1);
-    const int behind = map_.step(cell, opposite(h));
-    const int predecessors[] = {behind >= 0 ? behind * kHeadings + h : -1, cell * kHeadings + clockwise(h),
-                                cell * kHeadings + counter_clockwise(h)};
-    for (const int p : predecessors) {
+    for (const int p : map_.predecessors(state)) {
       if (p < 0 || reached[static_cast<std::size_t>(p)] != kUnreachable) continue;
       reached[static_cast<std::size_t>(p)] = d;
       left[static_cast<std::size_t>(p)] = left[static_cast<std::size_t>(state)];

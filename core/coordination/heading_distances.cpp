@@ -26,13 +26,8 @@ const std::vector<std::uint16_t>& HeadingDistances::table(int goal) {
   // (cell, h +- 1) by a turn, each one action away.
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const int state = queue[head];
-    const int cell = state / kHeadings;
-    const int h = state % kHeadings;
     const std::uint16_t d = dist[state] + 1;
-    const int behind = map_.step(cell, (h + 2) % kHeadings);
-    const int predecessors[] = {behind >= 0 ? behind * kHeadings + h : -1, cell * kHeadings + clockwise(h),
-                                cell * kHeadings + counter_clockwise(h)};
-    for (int p : predecessors) {
+    for (const int p : map_.predecessors(state)) {
       if (p >= 0 && dist[p] == kUnreachable) {
         dist[p] = d;
         queue.push_back(p);
