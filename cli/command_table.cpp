@@ -302,11 +302,14 @@ std::vector<CommandSpec> offline_commands() {
        false,
        {file("--instance", "FILE.json", true), integer("--steps", "N", 1, 1000000), integer("--window", "W", 1, 50),
         choice("--planner", {"operations", "cells"}), choice("--guidance", {"on", "off"}),
+        integer("--lns-window", "H", 0, 64), integer("--lns-rounds", "N", 0, 100000), integer("--lns-size", "K", 1, 64),
         value("--delay", "P,MIN,MAX"), seed(), file("--output", "OUT.json")},
        "the coordination core on a League of Robot Runners 2023 instance in the\n"
        "competition's discrete model (default 1000 steps); --planner cells plans a\n"
        "next cell per robot instead of a sequence of actions (window 2, else 3);\n"
        "--guidance off steers robots by the shortest way, not by guide paths;\n"
+       "--lns-window H plans H steps and improves them by N (--lns-rounds, default\n"
+       "30 a robot) neighbourhood searches of K robots (--lns-size, default 8);\n"
        "--delay holds each robot\n"
        "with probability P for MIN..MAX steps; --output writes the competition's\n"
        "output file; prints errands a step, planning time a step and the longest\n"

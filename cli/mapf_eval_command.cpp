@@ -42,6 +42,9 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
   settings.window = static_cast<int>(flags.integer("window").value_or(settings.window));
   if (flags.value("planner") == "cells") settings.planner = coordination::GridPlanner::kCells;
   settings.guidance = flags.value("guidance").value_or("on") == "on";
+  settings.lns_window = static_cast<int>(flags.integer("lns-window").value_or(settings.lns_window));
+  settings.lns_rounds = static_cast<int>(flags.integer("lns-rounds").value_or(settings.lns_rounds));
+  settings.lns_size = static_cast<int>(flags.integer("lns-size").value_or(settings.lns_size));
   if (settings.window == 0) settings.window = coordination::default_window(settings.planner);
   settings.seed = flags.u64("seed").value_or(settings.seed);
   if (const auto delay = flags.value("delay")) settings.delays = parse_delay(*delay);
@@ -65,6 +68,7 @@ int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
       {"planner", settings.planner == coordination::GridPlanner::kCells ? "cells" : "operations"},
       {"seed", settings.seed},
       {"guidance", settings.guidance && settings.planner == coordination::GridPlanner::kOperations},
+      {"lns_window", settings.planner == coordination::GridPlanner::kOperations ? settings.lns_window : 0},
       {"delay", {settings.delays.probability, settings.delays.min_steps, settings.delays.max_steps}},
       {"finished", result.finished},
       {"throughput", figures.throughput},

@@ -79,11 +79,7 @@ void GridOperationPibt::reached_goal(int robot) {
 }
 
 int GridOperationPibt::actions_left(int robot, int cell, int heading) {
-  const int goal = robots_[static_cast<std::size_t>(robot)].goal;
-  if (guides_ != nullptr && guides_->goal(robot) == goal && guides_->has_path(robot)) {
-    return guides_->to(robot, cell, heading);
-  }
-  return distances_.to(goal, cell, heading);
+  return actions_to_goal(guides_, distances_, robot, robots_[static_cast<std::size_t>(robot)].goal, cell, heading);
 }
 
 bool GridOperationPibt::trace(const GridRobot& robot, const std::string& operation, Trace& out) const {

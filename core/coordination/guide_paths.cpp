@@ -10,12 +10,6 @@ namespace fleet::coordination {
 
 namespace {
 
-/// The weight of contraflow against vertex congestion in a move's cost. On the League of Robot
-/// Runners' random-32-32-20 (seeds 1-3, a tenth of the paths searched again a step), twice the
-/// paper's weight finishes 4 % more errands a step than once with 200 robots and 9 % more with
-/// 400, and four times no more than twice.
-constexpr int kContraflowWeight = 2;
-
 int opposite(int heading) {
   return (heading + 2) % kHeadings;
 }
@@ -36,7 +30,7 @@ int GuidePaths::move_cost(int cell, int heading) const {
   const int against = flow(next, opposite(heading));
   int crowd = 0;
   for (int h = 0; h < kHeadings; ++h) crowd += flow(next, h);
-  return 1 + kContraflowWeight * (along + 1) * against + crowd / 2;
+  return 1 + weights_.contraflow * (along + 1) * against + crowd * weights_.crowd_percent / 100;
 }
 
 std::vector<int> GuidePaths::search(int from, int heading, int goal) const {

@@ -8,6 +8,14 @@
 
 namespace fleet::coordination {
 
+namespace {
+
+/// Neighbourhoods the window search tries a step, per robot: 12 000 with 400 robots take a
+/// median of 0.12 s a step on 2 cores, a tenth of the competition's second.
+constexpr int kWindowSearchRoundsPerRobot = 30;
+
+}  // namespace
+
 LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSettings& settings)
     : instance_(instance),
       settings_(settings),
@@ -15,10 +23,17 @@ LifelongGridRun::LifelongGridRun(const LorrInstance& instance, const LifelongSet
       cell_planner_(instance.map, distances_, settings.seed),
       operation_planner_(instance.map, distances_, settings.seed),
       guides_(instance.map, static_cast<int>(instance.starts.size())),
+      lns_(instance.map, distances_, settings.seed + 1),
       graph_(instance.map.cells(), static_cast<int>(instance.starts.size())),
       delay_rng_(settings.seed * 0x9E3779B97F4A7C15ULL + 1) {
   if (settings_.window <= 0) settings_.window = default_window(settings_.planner);
-  if (settings_.guidance && settings_.planner == GridPlanner::kOperations) operation_planner_.set_guide_paths(&guides_);
+  if (settings_.lns_rounds <= 0)
+    settings_.lns_rounds = kWindowSearchRoundsPerRobot * static_cast<int>(instance.starts.size());
+  if (settings_.lns_window > 0) guides_.set_weights(kWindowSearchWeights);
+  if (settings_.guidance && settings_.planner == GridPlanner::kOperations) {
+    operation_planner_.set_guide_paths(&guides_);
+    lns_.set_guide_paths(&guides_);
+  }
   const std::size_t n = instance.starts.size();
   robots_.resize(n);
   for (std::size_t i = 0; i < n; ++i) robots_[i] = {instance.starts[i], 0, -1};
@@ -66,9 +81,51 @@ void LifelongGridRun::update_guide_paths() {
   guides_.refine(cells, headings, refines);
 }
 
+std::vector<std::vector<int>> LifelongGridRun::plan_window() {
+  auto cells = operation_planner_.plan(robots_, settings_.window);
+  const int horizon = settings_.lns_window;
+  if (horizon <= 0 || horizon < settings_.window) return cells;
+  // The operations' steps, standing after them to the window's end, start the search ...
+  const std::size_t n = robots_.size();
+  std::vector<WindowPath> plan(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    WindowPath& path = plan[r];
+    path.cells = cells[r];
+    int heading = robots_[r].heading;
+    path.headings.push_back(heading);
+    for (const char action : operation_planner_.operation(static_cast<int>(r))) {
+      if (action == 'R') heading = clockwise(heading);
+      if (action == 'C') heading = counter_clockwise(heading);
+      path.headings.push_back(heading);
+    }
+    path.headings.resize(path.cells.size(), heading);
+    path.cells.resize(static_cast<std::size_t>(horizon) + 1, path.cells.back());
+    path.headings.resize(static_cast<std::size_t>(horizon) + 1, path.headings.back());
+  }
+  // ... unless the last window plan, a step on, is cheaper: every robot stands where it planned.
+  bool on_plan = window_plan_.size() == n;
+  for (std::size_t r = 0; r < n && on_plan; ++r) {
+    on_plan = window_plan_[r].cells[1] == robots_[r].cell && window_plan_[r].headings[1] == robots_[r].heading;
+  }
+  if (on_plan) {
+    std::vector<WindowPath> shifted = window_plan_;
+    for (WindowPath& path : shifted) {
+      path.cells.erase(path.cells.begin());
+      path.headings.erase(path.headings.begin());
+      path.cells.push_back(path.cells.back());
+      path.headings.push_back(path.headings.back());
+    }
+    if (lns_.cost(robots_, shifted) < lns_.cost(robots_, plan)) plan = std::move(shifted);
+  }
+  lns_.improve(robots_, plan, settings_.lns_rounds, settings_.lns_size);
+  window_plan_ = plan;
+  for (std::size_t r = 0; r < n; ++r) cells[r] = plan[r].cells;
+  return cells;
+}
+
 void LifelongGridRun::plan_and_load() {
-  const auto cells = settings_.planner == GridPlanner::kCells ? cell_planner_.plan(robots_, settings_.window)
-                                                              : operation_planner_.plan(robots_, settings_.window);
+  const auto cells =
+      settings_.planner == GridPlanner::kCells ? cell_planner_.plan(robots_, settings_.window) : plan_window();
   std::vector<PlannedRoute> routes(robots_.size());
   for (std::size_t r = 0; r < robots_.size(); ++r) {
     PlannedRoute& route = routes[r];

@@ -11,6 +11,7 @@
 #include "coordination/guide_paths.hpp"
 #include "coordination/heading_distances.hpp"
 #include "coordination/lorr_instance.hpp"
+#include "coordination/window_lns.hpp"
 
 namespace fleet::coordination {
 
@@ -47,6 +48,12 @@ struct LifelongSettings {
   /// The share of the robots whose guide paths are searched again each step, in turn, from where
   /// they stand and against the flow of the others' as it is by then.
   double guide_refine_share = 0.5;
+  /// Steps of the window plan the operation planner's plan starts and large neighbourhood search
+  /// improves (WindowLns); 0: no search, the operations' steps are the plan.
+  int lns_window = 0;
+  /// Neighbourhoods searched each step (0: 30 a robot), and robots in each.
+  int lns_rounds = 0;
+  int lns_size = 8;
 };
 
 /// One errand as the output lists it.
@@ -95,6 +102,7 @@ class LifelongGridRun {
  private:
   void hand_out_errands();
   void update_guide_paths();
+  std::vector<std::vector<int>> plan_window();
   void plan_and_load();
   std::vector<GridAction> decide_actions(const std::vector<bool>& stalled);
   GridAction turn_towards(int robot, int heading) const;
@@ -108,6 +116,8 @@ class LifelongGridRun {
   GridPibt cell_planner_;
   GridOperationPibt operation_planner_;
   GuidePaths guides_;
+  WindowLns lns_;
+  std::vector<WindowPath> window_plan_;  ///< the last window plan, step 0 where the robots stood
   ExecutionGraph graph_;
   std::mt19937_64 delay_rng_;
   std::vector<GridRobot> robots_;

@@ -6,7 +6,7 @@
 #   startkit_replay_test.sh SOURCE_DIR BUILD_DIR
 # The data folder is $FLEET_LORR_DATA, by default SOURCE_DIR/../shared/data/lorr.
 # Cases: random-32-32-20 with 100 robots, the same with delays, warehouse_small with 60 robots,
-# each 200 steps: the replay must be valid, without errors, finish the same number of tasks and
+# random-32-32-20 with the window search and delays, each 200 steps: the replay must be valid, without errors, finish the same number of tasks and
 # move every robot as the file says. Then a file with one robot driven straight on for the whole
 # run must be rejected, which shows the replay can fail at all.
 # Exit 0 when all holds, 1 with the reason otherwise, 77 (skipped) when the data folder is absent.
@@ -233,6 +233,7 @@ fleet_case() {
 fleet_case random_100 "$random_instance"
 fleet_case random_100_delays "$random_instance" --delay 0.01,2,8
 fleet_case warehouse_small_60 "$warehouse_instance"
+fleet_case random_100_window_search_delays "$random_instance" --lns-window 6 --delay 0.01,2,8
 
 # The replay can fail: robot 0 of the first case drives forward at every step. 200 steps straight
 # on leave a 32 x 32 map, so it must hit an obstacle, another robot or the map's edge, and the

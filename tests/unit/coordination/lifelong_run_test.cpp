@@ -151,6 +151,28 @@ TEST(LifelongGridRun, BothPlannersKeepTheRulesWithEveryRobotOfARoomBusy) {
   }
 }
 
+TEST(LifelongGridRun, TheWindowSearchKeepsTheRulesWithEveryRobotOfARoomBusyAndDelayed) {
+  InstanceFolder folder;
+  folder.write("agents/room.agents", "9\n0\n1\n2\n3\n5\n12\n13\n14\n15\n");
+  folder.instance(R"({"mapFile": "maps/room.map", "agentFile": "agents/room.agents", "teamSize": 9,
+                      "taskFile": "tasks/room.tasks", "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"})");
+  const LorrInstance instance = load_lorr_instance(folder.path());
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    LifelongSettings settings;
+    settings.steps = 300;
+    settings.seed = seed;
+    settings.lns_window = 8;
+    settings.lns_rounds = 20;
+    settings.lns_size = 4;
+    settings.delays = {seed % 2 == 0 ? 0.05 : 0.0, 1, 4};
+    LifelongGridRun run(instance, settings);
+    const LifelongResult& result = run.run();
+    EXPECT_TRUE(result.errors.empty()) << "seed " << seed << ": " << result.errors.front();
+    EXPECT_EQ(result.wait_cycles, 0) << "seed " << seed;
+    EXPECT_GE(result.finished, 20) << "seed " << seed;
+  }
+}
+
 TEST(LifelongFigures, NearestRankPercentilesOfThePlanningTimes) {
   LifelongResult result;
   result.steps = 4;
