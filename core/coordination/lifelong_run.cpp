@@ -85,7 +85,7 @@ std::vector<std::vector<int>> LifelongGridRun::plan_window() {
   auto cells = operation_planner_.plan(robots_, settings_.window);
   const int horizon = settings_.lns_window;
   if (horizon <= 0 || horizon < settings_.window) return cells;
-  // The operations' steps, standing after them to the window's end, start the search ...
+  // The operations' steps, standing after them to the window's end, start the search.
   const std::size_t n = robots_.size();
   std::vector<WindowPath> plan(n);
   for (std::size_t r = 0; r < n; ++r) {
@@ -102,23 +102,7 @@ std::vector<std::vector<int>> LifelongGridRun::plan_window() {
     path.cells.resize(static_cast<std::size_t>(horizon) + 1, path.cells.back());
     path.headings.resize(static_cast<std::size_t>(horizon) + 1, path.headings.back());
   }
-  // ... unless the last window plan, a step on, is cheaper: every robot stands where it planned.
-  bool on_plan = window_plan_.size() == n;
-  for (std::size_t r = 0; r < n && on_plan; ++r) {
-    on_plan = window_plan_[r].cells[1] == robots_[r].cell && window_plan_[r].headings[1] == robots_[r].heading;
-  }
-  if (on_plan) {
-    std::vector<WindowPath> shifted = window_plan_;
-    for (WindowPath& path : shifted) {
-      path.cells.erase(path.cells.begin());
-      path.headings.erase(path.headings.begin());
-      path.cells.push_back(path.cells.back());
-      path.headings.push_back(path.headings.back());
-    }
-    if (lns_.cost(robots_, shifted) < lns_.cost(robots_, plan)) plan = std::move(shifted);
-  }
   lns_.improve(robots_, plan, settings_.lns_rounds, settings_.lns_size);
-  window_plan_ = plan;
   for (std::size_t r = 0; r < n; ++r) cells[r] = plan[r].cells;
   return cells;
 }

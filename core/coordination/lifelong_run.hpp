@@ -50,7 +50,7 @@ struct LifelongSettings {
   double guide_refine_share = 0.5;
   /// Steps of the window plan the operation planner's plan starts and large neighbourhood search
   /// improves (WindowLns); 0: no search, the operations' steps are the plan.
-  int lns_window = 0;
+  int lns_window = 6;
   /// Neighbourhoods searched each step (0: 30 a robot), and robots in each.
   int lns_rounds = 0;
   int lns_size = 8;
@@ -117,7 +117,6 @@ class LifelongGridRun {
   GridOperationPibt operation_planner_;
   GuidePaths guides_;
   WindowLns lns_;
-  std::vector<WindowPath> window_plan_;  ///< the last window plan, step 0 where the robots stood
   ExecutionGraph graph_;
   std::mt19937_64 delay_rng_;
   std::vector<GridRobot> robots_;

@@ -21,8 +21,8 @@ struct WindowPath {
 /// 4]: a few robots near one another are taken out of the plan and searched again, one at a time
 /// in a random order, by space-time A* over (cell, heading, step) round the paths of all the
 /// others; the new paths are kept when their summed cost is lower, otherwise the old ones are put
-/// back. The window is the rolling horizon of [Li 2021, section 4]: the plan covers H steps, the
-/// first is carried out and the rest, shifted by a step, starts the next search.
+/// back. The window is the rolling horizon of [Li 2021, section 4]: the plan covers H steps and
+/// only the first is carried out before the robots are planned again.
 ///
 /// A path's cost is the step at which it reaches the robot's goal, or H plus the actions left
 /// from where it ends when it does not (by the guide path when the robot has one). A plan is
