@@ -102,6 +102,7 @@ std::vector<std::vector<int>> LifelongGridRun::plan_window() {
     path.cells.resize(static_cast<std::size_t>(horizon) + 1, path.cells.back());
     path.headings.resize(static_cast<std::size_t>(horizon) + 1, path.headings.back());
   }
+  lns_.set_standstills(still_for_);
   lns_.improve(robots_, plan, settings_.lns_rounds, settings_.lns_size);
   for (std::size_t r = 0; r < n; ++r) cells[r] = plan[r].cells;
   return cells;

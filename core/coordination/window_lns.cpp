@@ -14,6 +14,9 @@ constexpr int kFarAway = 1 << 20;
 /// States a search may take from its queue before it gives up: bounds a search that finds no
 /// path in a crowded window.
 constexpr int kExpansionsPerSearch = 20000;
+/// Steps a robot with an errand may stand in one cell before a window in which it stands on costs
+/// it one more for each further step: a robot shut in by others whose goals it holds is let out.
+constexpr int kStoodBeforeMovingOn = 8;
 /// Robots drawn to find one whose path costs more than it would alone.
 constexpr int kDrawsForALateRobot = 8;
 
@@ -34,7 +37,14 @@ int WindowLns::path_cost(int robot, const WindowPath& path) {
   for (int t = 0; t <= horizon_; ++t) {
     if (path.cells[static_cast<std::size_t>(t)] == goal) return t;
   }
-  return horizon_ + actions_left(robot, path.cells.back(), path.headings.back());
+  return horizon_ + actions_left(robot, path.cells.back(), path.headings.back()) +
+         standing_penalty(robot, path.cells.back());
+}
+
+int WindowLns::standing_penalty(int robot, int end_cell) const {
+  const auto r = static_cast<std::size_t>(robot);
+  if (r >= stood_.size() || end_cell != robots_[r].cell || robots_[r].goal < 0) return 0;
+  return std::max(0, stood_[r] - kStoodBeforeMovingOn);
 }
 
 long WindowLns::cost(const std::vector<GridRobot>& robots, const std::vector<WindowPath>& plan) {
@@ -104,7 +114,7 @@ bool WindowLns::search(int robot, WindowPath& out) {
     best_g_[s] = g;
     parent_[s] = from;
     const int h = has_goal ? actions_left(robot, cell, heading) : 0;
-    open.emplace(g + h, -t, static_cast<int>(s));
+    open.emplace(g + h + (t == horizon_ ? standing_penalty(robot, cell) : 0), -t, static_cast<int>(s));
   };
   push(0, r.cell, r.heading, 0, -1);
   int found = -1;

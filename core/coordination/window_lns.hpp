@@ -34,6 +34,9 @@ class WindowLns {
 
   /// Steers the cost by guide paths (nullptr: the shortest way).
   void set_guide_paths(const GuidePaths* guides) { guides_ = guides; }
+  /// Steps each robot has stood in its cell with an errand: a path that ends where it has stood
+  /// long costs more for each step beyond eight (unset: nothing).
+  void set_standstills(const std::vector<int>& stood) { stood_ = stood; }
   /// Improves a valid plan for `robots` by `neighbourhoods` searches of at most `size` robots;
   /// a held robot keeps its path. Returns the plan's summed cost.
   long improve(const std::vector<GridRobot>& robots, std::vector<WindowPath>& plan, int neighbourhoods, int size);
@@ -44,6 +47,7 @@ class WindowLns {
 
  private:
   int path_cost(int robot, const WindowPath& path);
+  int standing_penalty(int robot, int end_cell) const;
   int actions_left(int robot, int cell, int heading);
   void occupy(int robot, const WindowPath& path);
   void vacate(int robot, const WindowPath& path);
@@ -60,6 +64,7 @@ class WindowLns {
   std::size_t cells_ = 0;
   int horizon_ = 0;
   std::vector<GridRobot> robots_;
+  std::vector<int> stood_;
   std::vector<WindowPath>* plan_ = nullptr;
   std::vector<int> occupied_;     ///< per step and cell: the robot there, -1
   std::vector<int> standing_at_;  ///< per cell: the robot that stands there now, -1

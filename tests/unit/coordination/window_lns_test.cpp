@@ -52,6 +52,30 @@ TEST(WindowLns, ARobotWithoutAnErrandStepsIntoTheSidingForOneThatMustPass) {
   EXPECT_EQ(plan[1].cells.back(), 10);
 }
 
+TEST(WindowLns, ARobotThatHasStoodLongGoesElsewhereRatherThanStandOnBehindAHeldOne) {
+  // A held robot stands in the only way to the goal: standing behind it costs least, until the
+  // robot has stood so long that standing on costs more than backing away.
+  const GridMap map = parse("......\n", 1, 6);
+  HeadingDistances distances(map);
+  std::vector<GridRobot> robots{{2, kEast, 5}, {3, kEast, -1}};
+  robots[1].held = true;
+  for (const int stood : {0, 30}) {
+    WindowLns lns(map, distances, 5);
+    lns.set_standstills({stood, 0});
+    std::vector<WindowPath> plan{standing(robots[0], 6), standing(robots[1], 6)};
+    const long before = lns.cost(robots, plan);
+    EXPECT_EQ(before, 6 + distances.to(5, 2, kEast) + std::max(0, stood - 8));
+    lns.improve(robots, plan, 20, 2);
+    std::string why;
+    ASSERT_TRUE(WindowLns::valid(map, plan, &why)) << why;
+    if (stood == 0) {
+      EXPECT_EQ(plan[0].cells.back(), 2) << "a robot that has not stood long waits behind the held one";
+    } else {
+      EXPECT_NE(plan[0].cells.back(), 2) << "a robot that has stood long goes elsewhere";
+    }
+  }
+}
+
 TEST(WindowLns, NeverRaisesTheCostAndKeepsEveryPlanValidInACrowdedRoom) {
   const GridMap map = parse("......\n.@..@.\n......\n..@...\n", 4, 6);
   HeadingDistances distances(map);
