@@ -126,50 +126,32 @@ TEST(LifelongGridRun, DelayedRobotsHoldUpOnlyThoseOrderedBehindThem) {
   }
 }
 
-TEST(LifelongGridRun, BothPlannersKeepTheRulesWithEveryRobotOfARoomBusy) {
+TEST(LifelongGridRun, EveryPlannerKeepsTheRulesWithEveryRobotOfARoomBusy) {
   // Nine robots in the 4 x 6 room's 20 free cells: most moves push someone.
   InstanceFolder folder;
   folder.write("agents/room.agents", "9\n0\n1\n2\n3\n5\n12\n13\n14\n15\n");
   folder.instance(R"({"mapFile": "maps/room.map", "agentFile": "agents/room.agents", "teamSize": 9,
                       "taskFile": "tasks/room.tasks", "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"})");
   const LorrInstance instance = load_lorr_instance(folder.path());
-  for (const GridPlanner planner : {GridPlanner::kCells, GridPlanner::kOperations}) {
+  // The cell planner, the operations alone, and the operations with the window search.
+  for (const int planner : {0, 1, 2}) {
     for (std::uint64_t seed = 1; seed <= 5; ++seed) {
       LifelongSettings settings;
       settings.steps = 300;
       settings.seed = seed;
-      settings.planner = planner;
-      settings.delays = {0.05, 1, 4};
+      settings.planner = planner == 0 ? GridPlanner::kCells : GridPlanner::kOperations;
+      if (planner == 1) settings.lns_window = 0;
+      settings.delays = {seed % 2 == 0 ? 0.0 : 0.05, 1, 4};
       LifelongGridRun run(instance, settings);
       const LifelongResult& result = run.run();
-      const std::string which =
-          (planner == GridPlanner::kCells ? "cells, seed " : "operations, seed ") + std::to_string(seed);
+      const std::string which = std::string(planner == 0   ? "cells"
+                                            : planner == 1 ? "operations"
+                                                           : "window search") +
+                                ", seed " + std::to_string(seed);
       EXPECT_TRUE(result.errors.empty()) << which << ": " << result.errors.front();
       EXPECT_EQ(result.wait_cycles, 0) << which;
       EXPECT_GE(result.finished, 20) << which;
     }
-  }
-}
-
-TEST(LifelongGridRun, TheWindowSearchKeepsTheRulesWithEveryRobotOfARoomBusyAndDelayed) {
-  InstanceFolder folder;
-  folder.write("agents/room.agents", "9\n0\n1\n2\n3\n5\n12\n13\n14\n15\n");
-  folder.instance(R"({"mapFile": "maps/room.map", "agentFile": "agents/room.agents", "teamSize": 9,
-                      "taskFile": "tasks/room.tasks", "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"})");
-  const LorrInstance instance = load_lorr_instance(folder.path());
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    LifelongSettings settings;
-    settings.steps = 300;
-    settings.seed = seed;
-    settings.lns_window = 8;
-    settings.lns_rounds = 20;
-    settings.lns_size = 4;
-    settings.delays = {seed % 2 == 0 ? 0.05 : 0.0, 1, 4};
-    LifelongGridRun run(instance, settings);
-    const LifelongResult& result = run.run();
-    EXPECT_TRUE(result.errors.empty()) << "seed " << seed << ": " << result.errors.front();
-    EXPECT_EQ(result.wait_cycles, 0) << "seed " << seed;
-    EXPECT_GE(result.finished, 20) << "seed " << seed;
   }
 }
 
