@@ -82,6 +82,12 @@ int GridOperationPibt::actions_left(int robot, int cell, int heading) {
   return actions_to_goal(guides_, distances_, robot, robots_[static_cast<std::size_t>(robot)].goal, cell, heading);
 }
 
+std::vector<int> GridOperationPibt::planned_headings(int robot) const {
+  Trace t;
+  trace(robots_[static_cast<std::size_t>(robot)], last_[static_cast<std::size_t>(robot)], t);
+  return t.headings;
+}
+
 bool GridOperationPibt::trace(const GridRobot& robot, const std::string& operation, Trace& out) const {
   out.cells.assign(1, robot.cell);
   out.headings.assign(1, robot.heading);

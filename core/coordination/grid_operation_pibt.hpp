@@ -38,8 +38,8 @@ class GridOperationPibt {
 
   /// Every robot's cells for steps 0..depth (step 0: where it stands).
   std::vector<std::vector<int>> plan(const std::vector<GridRobot>& robots, int depth);
-  /// The operation planned for a robot at the last plan (its action letters; empty before any).
-  const std::string& operation(int robot) const { return last_[static_cast<std::size_t>(robot)]; }
+  /// A robot's headings for steps 0..depth by the operation planned for it at the last plan.
+  std::vector<int> planned_headings(int robot) const;
   /// Tells the planner a robot reached its goal: its priority starts over.
   void reached_goal(int robot);
   /// Steers robots by their guide paths instead of the shortest way (nullptr: the shortest way).

@@ -91,14 +91,7 @@ std::vector<std::vector<int>> LifelongGridRun::plan_window() {
   for (std::size_t r = 0; r < n; ++r) {
     WindowPath& path = plan[r];
     path.cells = cells[r];
-    int heading = robots_[r].heading;
-    path.headings.push_back(heading);
-    for (const char action : operation_planner_.operation(static_cast<int>(r))) {
-      if (action == 'R') heading = clockwise(heading);
-      if (action == 'C') heading = counter_clockwise(heading);
-      path.headings.push_back(heading);
-    }
-    path.headings.resize(path.cells.size(), heading);
+    path.headings = operation_planner_.planned_headings(static_cast<int>(r));
     path.cells.resize(static_cast<std::size_t>(horizon) + 1, path.cells.back());
     path.headings.resize(static_cast<std::size_t>(horizon) + 1, path.headings.back());
   }

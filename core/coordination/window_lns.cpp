@@ -176,9 +176,14 @@ bool WindowLns::search(int robot, WindowPath& out) {
 std::vector<int> WindowLns::neighbourhood(int seed_robot, int size) {
   // The robots standing nearest the seed, by moves over the map: those whose paths it meets.
   std::vector<int> group{seed_robot};
-  std::vector<int> distance(cells_, -1);
-  std::vector<int> queue{robots_[static_cast<std::size_t>(seed_robot)].cell};
-  distance[static_cast<std::size_t>(queue.front())] = 0;
+  if (reached_.size() != cells_) reached_.assign(cells_, 0);
+  if (++reach_stamp_ == 0) {
+    std::fill(reached_.begin(), reached_.end(), 0);
+    reach_stamp_ = 1;
+  }
+  std::vector<int>& queue = reach_queue_;
+  queue.assign(1, robots_[static_cast<std::size_t>(seed_robot)].cell);
+  reached_[static_cast<std::size_t>(queue.front())] = reach_stamp_;
   for (std::size_t head = 0; head < queue.size() && static_cast<int>(group.size()) < size; ++head) {
     const int cell = queue[head];
     const int standing = standing_at_[static_cast<std::size_t>(cell)];
@@ -187,8 +192,8 @@ std::vector<int> WindowLns::neighbourhood(int seed_robot, int size) {
     }
     for (int h = 0; h < kHeadings; ++h) {
       const int next = map_.step(cell, h);
-      if (next < 0 || distance[static_cast<std::size_t>(next)] >= 0) continue;
-      distance[static_cast<std::size_t>(next)] = distance[static_cast<std::size_t>(cell)] + 1;
+      if (next < 0 || reached_[static_cast<std::size_t>(next)] == reach_stamp_) continue;
+      reached_[static_cast<std::size_t>(next)] = reach_stamp_;
       queue.push_back(next);
     }
   }

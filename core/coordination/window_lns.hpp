@@ -73,6 +73,10 @@ class WindowLns {
   std::vector<int> parent_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t stamp_ = 0;
+  // The neighbourhood's breadth-first search over cells, kept between neighbourhoods.
+  std::vector<std::uint32_t> reached_;
+  std::uint32_t reach_stamp_ = 0;
+  std::vector<int> reach_queue_;
 };
 
 }  // namespace fleet::coordination
