@@ -29,11 +29,12 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       map_loader_(options_.config, *fleet_, maps_dir()),
       step_lag_(robot_->step_period()),
       participant_(options_.domain),
-      state_writer_(participant_, dds::qos::robot_state()),
-      truth_writer_(participant_, dds::qos::live_state()),
-      report_writer_(participant_, dds::qos::latched_state()),
-      path_writer_(participant_, dds::qos::live_state()),
-      traffic_writer_(participant_, dds::qos::live_state()),
+      // Its own messages in its own partition: DDS Security grants a robot that partition alone.
+      state_writer_(participant_, dds::qos::robot_state(), model::robot_partition(options_.robot_id)),
+      truth_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
+      report_writer_(participant_, dds::qos::latched_state(), model::robot_partition(options_.robot_id)),
+      path_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
+      traffic_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       grant_reader_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
@@ -272,7 +273,8 @@ void FleetAgent::take_true_bodies(std::optional<model::NeighbourView>& latest) {
     }
     changed = true;
   } else if (!direct_truths_ && now_wall - last_view_wall_ > kViewsStaleWall) {
-    direct_truths_ = std::make_unique<dds::Reader<model::SimTruth>>(participant_, dds::qos::live_state());
+    direct_truths_ = std::make_unique<dds::Reader<model::SimTruth>>(participant_, dds::qos::live_state(),
+                                                                    dds::robot_report_partitions());
     log_->info("no NeighbourView for {:.1f} s: reading every robot's SimTruth until views come again", kViewsStaleWall);
   }
   if (direct_truths_) {

@@ -22,6 +22,8 @@ options:
   --site NAME          site: maps/NAME.yaml (default: site)
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of every noise source (default: seed; the robot id is mixed in)
+  --security DIR       join the DDS domain with DDS Security as robot ROBOT, with the credentials
+                       of DIR (fleetctl security init; default: dds.security, empty: without)
   --set KEY=VALUE      any configuration key (repeatable), e.g. --set traffic.enabled=false
   --vda5050 BROKER     be a VDA 5050 vehicle instead: take orders from a master control on the
                        MQTT broker tcp://HOST:PORT, speak no DDS (docs/vda5050.md)
@@ -76,6 +78,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::atomic<bool>& stop = app::start_daemon();
+    app::use_dds_security(*config, *id);
 
     agent::AgentOptions options;
     options.robot_id = *id;

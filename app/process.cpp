@@ -8,7 +8,9 @@
 #include "common/paths.hpp"
 #include "common/process_memory.hpp"
 #include "dds/environment.hpp"
+#include "dds/security.hpp"
 #include "model/names.hpp"
+#include "security/credentials.hpp"
 
 namespace fleet::app {
 
@@ -79,6 +81,16 @@ const std::atomic<bool>& start_daemon() {
   dds::use_fleet_dds_config();
   ProcessMemory::limit_arenas();
   return install_stop_handlers();
+}
+
+void use_dds_security(const config::FleetConfig& config, const std::string& identity) {
+  const std::string folder = config.settings.get_string("dds.security");
+  if (folder.empty()) return;
+  try {
+    dds::use_security(folder, identity);
+  } catch (const security::SecurityError& e) {
+    throw InputError(std::string("dds.security: ") + e.what());
+  }
 }
 
 int exit_code_of_current_exception(const std::string& program, std::ostream& err, bool help_hint) {

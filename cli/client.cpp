@@ -23,7 +23,7 @@ FleetClient::FleetClient(std::uint32_t domain)
       server_info_reader_(participant_, dds::qos::latched_state()),
       reply_reader_(participant_, dds::qos::latched_state()),
       order_info_reader_(participant_, dds::qos::latched_state()),
-      robot_state_reader_(participant_, dds::qos::live_state()),
+      robot_state_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
       obstacle_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()),
       request_writer_(participant_, dds::qos::requests()),

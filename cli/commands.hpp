@@ -44,5 +44,6 @@ int dock_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& 
 int pick_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // pick-eval
 int traffic_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // traffic-eval
 int mapf_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // mapf-eval
+int security_command(const CommandArgs& args, std::ostream& out, std::ostream& err);      // security init|check
 
 }  // namespace fleet::cli

@@ -22,6 +22,7 @@
 #include "common/args.hpp"
 #include "common/clock.hpp"
 #include "common/paths.hpp"
+#include "dds/security.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
 #include "vehicle/vehicle_types.hpp"
@@ -119,16 +120,20 @@ void FleetRun::throw_if_a_process_ended() {
 void FleetRun::start() {
   participant_ = std::make_unique<dds::Participant>(options_.domain);
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
-  truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state());
-  state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state());
+  truth_reader_ = std::make_unique<dds::Reader<model::SimTruth>>(*participant_, dds::qos::live_state(),
+                                                                 dds::robot_report_partitions());
+  state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(*participant_, dds::qos::live_state(),
+                                                                   dds::robot_report_partitions());
   grant_reader_ = std::make_unique<dds::Reader<model::TrafficGrant>>(*participant_, dds::qos::live_state(),
                                                                      model::every_robot_partition());
 
-  const std::vector<std::string> common{"--config",     options_.config_file,
-                                        "--domain",     std::to_string(options_.domain),
-                                        "--site",       options_.site,
-                                        "--time-scale", std::to_string(options_.time_scale),
-                                        "--seed",       std::to_string(options_.seed)};
+  std::vector<std::string> common{"--config",     options_.config_file,
+                                  "--domain",     std::to_string(options_.domain),
+                                  "--site",       options_.site,
+                                  "--time-scale", std::to_string(options_.time_scale),
+                                  "--seed",       std::to_string(options_.seed)};
+  // Each process presents its own credentials from the folder fleetctl presents the operator's.
+  if (!dds::security_folder().empty()) common.insert(common.end(), {"--security", dds::security_folder()});
   std::vector<std::string> server_argv{binary("fleet-server")};
   server_argv.insert(server_argv.end(), common.begin(), common.end());
   if (options_.auto_orders) server_argv.push_back("--auto-orders");
@@ -140,7 +145,7 @@ void FleetRun::start() {
   // One agent starts when the one before it publishes its state: an agent's start (its site, grids
   // and OctoMap) costs a few tenths of a CPU second, and 48 of them at once held the two cores for
   // seconds, the first agents' control steps with them.
-  dds::Reader<model::RobotState> came_up(*participant_, dds::qos::live_state());
+  dds::Reader<model::RobotState> came_up(*participant_, dds::qos::live_state(), dds::robot_report_partitions());
   std::set<std::string> up;
   const auto wait_until_up = [&](const std::string& id) {
     const auto give_up = std::chrono::steady_clock::now() + kAgentStartWait;

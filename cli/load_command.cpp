@@ -24,6 +24,7 @@
 #include "common/errors.hpp"
 #include "common/paths.hpp"
 #include "dds/qos.hpp"
+#include "dds/security.hpp"
 #include "map/site_map.hpp"
 #include "model/names.hpp"
 #include "robot/robot_factory.hpp"
@@ -296,6 +297,11 @@ LoadResult run_load(const LoadOptions& options, ProcessGroup& processes, Emulate
 
 int load_command(const CommandArgs& command, std::ostream& out, std::ostream& err, std::uint32_t domain) {
   const CommandFlags args("load", "", command.args);
+  if (!dds::security_folder().empty()) {
+    // Its emulated robots write for many robots from one participant, which DDS Security's
+    // per-robot partitions do not grant.
+    throw InputError("--security: fleetctl load does not run on a domain with DDS Security; run it without");
+  }
   config::FleetConfig config = config::load_fleet_config(command.config_file);
   LoadOptions options;
   options.robots = static_cast<int>(args.integer("robots").value_or(50));

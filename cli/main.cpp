@@ -19,8 +19,10 @@
 #include "config/fleet_config.hpp"
 #include "config/schema.hpp"
 #include "dds/environment.hpp"
+#include "dds/security.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
+#include "security/credentials.hpp"
 
 namespace {
 
@@ -85,6 +87,7 @@ int main(int argc, char** argv) {
     command.config_given = config_flag.has_value() || site_flag.has_value();
     command.source_dir = project_root();
     const auto domain_flag = args.integer("domain", 0, 232);
+    const auto security_flag = args.value("security");
     const auto timeout_flag = args.number("timeout", 0.1, 1e6);
     const double timeout_s = timeout_flag.value_or(3.0);
     const bool help = args.flag("help");
@@ -109,6 +112,7 @@ int main(int argc, char** argv) {
     if (name == "fleets") return fleets_command(command, out, err);
     if (name == "traffic-eval") return traffic_eval_command(command, out, err);
     if (name == "mapf-eval") return mapf_eval_command(command, out, err);
+    if (name == "security") return security_command(command, out, err);
     if (name == "config") {
       if (!command.args.empty() && command.args[0] == "keys") {
         const CommandFlags keys("config", "keys",
@@ -148,6 +152,15 @@ int main(int argc, char** argv) {
     connection.timeout = std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
     connection.timeout_given = timeout_flag.has_value();
     dds::use_fleet_dds_config();
+    // The operator's credentials for this process; demo and soak hand each process its own.
+    if (const std::string folder = security_flag.value_or(config.settings.get_string("dds.security"));
+        !folder.empty()) {
+      try {
+        dds::use_security(folder, "operator");
+      } catch (const security::SecurityError& e) {
+        throw InputError(std::string(security_flag ? "--security: " : "dds.security: ") + e.what());
+      }
+    }
 
     if (name == "order") return order_command(command, connection, out, err);
     if (name == "robots") return robots_command(command, connection, out, err);

@@ -411,7 +411,7 @@ int routing_age_command(const CommandArgs& command, const Connection& connection
     const model::ServerInfo info = require_server(client, connection);
     const SimClock clock(info.time_scale);
     dds::Participant& participant = client.participant();
-    dds::Reader<model::RobotState> direct(participant, dds::qos::live_state());
+    dds::Reader<model::RobotState> direct(participant, dds::qos::live_state(), dds::robot_report_partitions());
     dds::Reader<model::FleetView> routed(participant, dds::qos::live_state());
     std::vector<double> direct_ms, routed_ms;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);

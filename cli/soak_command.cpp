@@ -119,7 +119,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   // The soak's own DDS reader of the server's view, for when it marks robots lost.
   FleetClient client(domain);
   dds::Reader<model::FleetView> view_reader(client.participant(), dds::qos::live_state());
-  dds::Reader<model::OrderReport> report_reader(client.participant(), dds::qos::latched_state());
+  dds::Reader<model::OrderReport> report_reader(client.participant(), dds::qos::latched_state(),
+                                                dds::robot_report_partitions());
   std::map<std::string, bool> lost;
   SoakFaults faults(run, client, log, std::move(plan), obstacle_ids, site_maps, options.time_scale);
   seen.faults = &faults.records();

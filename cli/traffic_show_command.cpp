@@ -27,7 +27,8 @@ struct TrafficView {
 
 std::map<std::string, TrafficView> read_traffic(FleetClient& client, std::chrono::milliseconds window) {
   dds::Reader<model::TrafficGrant> grants(client.participant(), dds::qos::live_state(), model::every_robot_partition());
-  dds::Reader<model::TrafficRequest> requests(client.participant(), dds::qos::live_state());
+  dds::Reader<model::TrafficRequest> requests(client.participant(), dds::qos::live_state(),
+                                              dds::robot_report_partitions());
   std::map<std::string, TrafficView> views;
   const auto deadline = std::chrono::steady_clock::now() + window;
   while (std::chrono::steady_clock::now() < deadline) {

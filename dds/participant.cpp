@@ -1,18 +1,19 @@
 #include "dds/participant.hpp"
 
+#include "dds/security.hpp"
+
 namespace fleet::dds {
 
 dds_return_t check(dds_return_t rc, const std::string& what) {
-  if (rc < 0) throw DdsError(what + ": " + dds_strretcode(rc));
+  if (rc < 0) throw DdsError(what + ": " + dds_strretcode(rc) + refusal_hint(rc));
   return rc;
 }
 
-Participant::Participant(std::uint32_t domain)
-    : handle_(check(dds_create_participant(domain, nullptr, nullptr),
-                    "create DDS participant on domain " + std::to_string(domain))),
-      domain_(domain) {}
+Participant::Participant(std::uint32_t domain) : handle_(create_participant(domain)), domain_(domain) {}
 
-Participant::~Participant() { dds_delete(handle_); }
+Participant::~Participant() {
+  dds_delete(handle_);
+}
 
 dds_entity_t Participant::topic_for(const char* name, const dds_topic_descriptor_t* descriptor) {
   auto it = topics_.find(name);
@@ -25,24 +26,31 @@ dds_entity_t Participant::topic_for(const char* name, const dds_topic_descriptor
 
 namespace {
 
-dds_entity_t create_in(dds_entity_t participant, const std::string& partition, bool publisher) {
+dds_entity_t create_in(dds_entity_t participant, const std::vector<std::string>& partitions, bool publisher) {
   dds_qos_t* qos = dds_create_qos();
-  dds_qset_partition1(qos, partition.c_str());
+  std::vector<const char*> names;
+  for (const std::string& partition : partitions) names.push_back(partition.c_str());
+  dds_qset_partition(qos, static_cast<uint32_t>(names.size()), names.data());
   const dds_entity_t entity =
       publisher ? dds_create_publisher(participant, qos, nullptr) : dds_create_subscriber(participant, qos, nullptr);
   dds_delete_qos(qos);
-  return check(entity,
-               std::string(publisher ? "create publisher" : "create subscriber") + " in partition " + partition);
+  std::string listed;
+  for (const std::string& partition : partitions) listed += (listed.empty() ? "" : ", ") + partition;
+  return check(entity, std::string(publisher ? "create publisher" : "create subscriber") + " in partition " + listed);
 }
 
 }  // namespace
 
 dds_entity_t create_publisher_in(dds_entity_t participant, const std::string& partition) {
-  return create_in(participant, partition, true);
+  return create_in(participant, {partition}, true);
 }
 
 dds_entity_t create_subscriber_in(dds_entity_t participant, const std::string& partition) {
-  return create_in(participant, partition, false);
+  return create_in(participant, {partition}, false);
+}
+
+dds_entity_t create_subscriber_in(dds_entity_t participant, const std::vector<std::string>& partitions) {
+  return create_in(participant, partitions, false);
 }
 
 std::uint32_t matched_readers(dds_entity_t writer) {

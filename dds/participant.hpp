@@ -64,6 +64,8 @@ class Participant {
 /// that robot alone, not to every reader of the topic.
 dds_entity_t create_publisher_in(dds_entity_t participant, const std::string& partition);
 dds_entity_t create_subscriber_in(dds_entity_t participant, const std::string& partition);
+/// A subscriber in every one of `partitions`: its readers match writers in any of them.
+dds_entity_t create_subscriber_in(dds_entity_t participant, const std::vector<std::string>& partitions);
 
 /// Counts of matched remote endpoints.
 std::uint32_t matched_readers(dds_entity_t writer);
@@ -147,6 +149,11 @@ class Reader {
       : owner_(create_subscriber_in(participant.handle(), partition)),
         handle_(check(dds_create_reader(owner_, participant.template topic<T>(), qos.get(), nullptr),
                       std::string("create reader ") + TopicTraits<T>::name + " in partition " + partition)) {}
+  /// A reader in each of `partitions` (create_subscriber_in).
+  Reader(Participant& participant, const Qos& qos, const std::vector<std::string>& partitions)
+      : owner_(create_subscriber_in(participant.handle(), partitions)),
+        handle_(check(dds_create_reader(owner_, participant.template topic<T>(), qos.get(), nullptr),
+                      std::string("create reader ") + TopicTraits<T>::name)) {}
   ~Reader() { dds_delete(owner_ != 0 ? owner_ : handle_); }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -168,7 +175,8 @@ class Reader {
   /// when one passed since the last call. Poll often: between two calls only the last is named.
   std::optional<T> deadline_missed() {
     dds_requested_deadline_missed_status_t status;
-    if (dds_get_requested_deadline_missed_status(handle_, &status) != DDS_RETCODE_OK || status.total_count_change == 0) {
+    if (dds_get_requested_deadline_missed_status(handle_, &status) != DDS_RETCODE_OK ||
+        status.total_count_change == 0) {
       return std::nullopt;
     }
     T key;

@@ -74,10 +74,10 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
       command_reader_(participant_, dds::qos::requests()),
-      robot_state_reader_(participant_, dds::qos::robot_state()),
-      robot_path_reader_(participant_, dds::qos::live_state()),
-      truth_reader_(participant_, dds::qos::live_state()),
-      order_report_reader_(participant_, dds::qos::latched_state()),
+      robot_state_reader_(participant_, dds::qos::robot_state(), dds::robot_report_partitions()),
+      robot_path_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
+      truth_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
+      order_report_reader_(participant_, dds::qos::latched_state(), dds::robot_report_partitions()),
       waitset_(participant_),
       load_meter_(participant_) {
   reset_obstacles();

@@ -28,6 +28,8 @@ options:
   --site NAME          site to serve: maps/NAME.yaml (default: site)
   --time-scale K       sim_time = K x wall time (default: time_scale)
   --seed S             seed of the random order generator (default: seed)
+  --security DIR       join the DDS domain with DDS Security as 'server', with the credentials
+                       of DIR (fleetctl security init; default: dds.security, empty: without)
   --dispatch POLICY    ascending-id | nearest | optimal (default: server.dispatch_policy)
   --db FILE            SQLite database of orders (default: server.db_path, fleet.db in the state folder)
   --auto-orders        create random orders whenever a robot is free
@@ -108,6 +110,7 @@ int main(int argc, char** argv) {
     // Loaded once, road network and graph included: dispatch costs and the web view use them.
     const auto site_map = app::load_site(*config, robots);
     const std::atomic<bool>& stop = app::start_daemon();
+    app::use_dds_security(*config, "server");
 
     server::ServerOptions options;
     app::set_run_options(options, *config);

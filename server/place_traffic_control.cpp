@@ -44,7 +44,7 @@ PlaceTrafficControl::PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site,
       map_id_(std::move(map_id)),
       log_(std::move(log)),
       grants_(participant, log_),
-      request_reader_(participant, dds::qos::live_state()) {
+      request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
   log_->info("traffic control on (coordination core): {} places, plan step {:.2f} s", site_->zones.place_count(),
              traffic_.plan_period_s());
 }

@@ -40,7 +40,7 @@ TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager,
       map_id_(std::move(map_id)),
       log_(std::move(log)),
       grants_(participant, log_),
-      request_reader_(participant, dds::qos::live_state()) {
+      request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
   const auto& configuration = manager_->configuration();
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_->zones().place_count(),
              configuration.lookahead, configuration.one_way ? "on" : "off");

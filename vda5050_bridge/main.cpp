@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/process.hpp"
+#include "common/errors.hpp"
 #include "vda5050_bridge/bridge.hpp"
 
 namespace {
@@ -44,6 +45,13 @@ int main(int argc, char** argv) {
     std::vector<std::string> ids;
     for (const auto& [fleet, robot] : config->all_robots()) {
       if (fleet->vda5050) ids.push_back(robot->id);
+    }
+    if (!config->settings.get_string("dds.security").empty()) {
+      // It writes for every vehicle of its fleets from one participant, which DDS Security's
+      // per-robot partitions do not grant.
+      throw InputError(
+          "dds.security: fleet-vda5050 does not join a domain with DDS Security; run it without "
+          "--security");
     }
     auto site = app::load_site(*config, ids);
     const std::atomic<bool>& stop = app::start_daemon();

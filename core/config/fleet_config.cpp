@@ -211,8 +211,9 @@ void assign_homes(FleetConfig& config, const std::vector<std::string>& site_home
 }
 
 void apply_common_flags(Args& args, FleetConfig& config) {
-  for (const auto& [flag, key] : {std::pair{"domain", "dds.domain"}, std::pair{"site", "site"},
-                                  std::pair{"time-scale", "time_scale"}, std::pair{"seed", "seed"}}) {
+  for (const auto& [flag, key] :
+       {std::pair{"domain", "dds.domain"}, std::pair{"site", "site"}, std::pair{"time-scale", "time_scale"},
+        std::pair{"seed", "seed"}, std::pair{"security", "dds.security"}}) {
     if (auto v = args.value(flag)) config.settings.set(key, *v, std::string("--") + flag);
   }
   // --set KEY=VALUE, repeatable: any configuration key, checked against the schema like the file.

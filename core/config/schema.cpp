@@ -37,6 +37,9 @@ std::vector<KeySpec> make_schema() {
       text("site", "table_a", "site to load: maps/<site>.yaml"),
       number("time_scale", 1.0, "", 0.01, 100.0, "sim_time = time_scale x wall_time, read by every process"),
       integer("dds.domain", 0, "", 0, 232, "DDS domain id"),
+      text("dds.security", "",
+           "security folder made by fleetctl security init: every process joins the DDS domain with DDS Security, "
+           "presenting its own credentials from it (--security); empty: without"),
       integer("seed", 1, "", 0, 2147483647, "seed of every random engine; a run is reproducible from it"),
 
       // Server

@@ -62,7 +62,7 @@ void cross_the_table(int domain, const std::vector<std::string>& robots, const s
   cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
   ASSERT_TRUE(client.find_server(5000ms));
   EXPECT_NE(fleet.log_of("fleet-server").find(core_log), std::string::npos);
-  dds::Reader<model::SimTruth> truths(client.participant(), dds::qos::live_state());
+  dds::Reader<model::SimTruth> truths(client.participant(), dds::qos::live_state(), dds::robot_report_partitions());
   const std::vector<std::int64_t> ids = send_crossing_orders(client, robots, "traffic-test-");
   ASSERT_EQ(ids.size(), robots.size());
 
@@ -111,7 +111,7 @@ TEST(Traffic, ARobotPausedWhileItWaitsForTrafficDrivesOnWhenResumedAndEveryOrder
   ASSERT_TRUE(fleet.wait_for_robots(robots));
   cli::FleetClient client(static_cast<std::uint32_t>(fleet.domain()));
   ASSERT_TRUE(client.find_server(5000ms));
-  dds::Reader<model::RobotState> states(client.participant(), dds::qos::live_state());
+  dds::Reader<model::RobotState> states(client.participant(), dds::qos::live_state(), dds::robot_report_partitions());
   const std::vector<std::int64_t> ids = send_crossing_orders(client, robots, "pause-test-");
   ASSERT_EQ(ids.size(), robots.size());
 

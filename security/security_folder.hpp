@@ -1,0 +1,67 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "security/access_documents.hpp"
+
+namespace fleet::security {
+
+/// One process's name on the domain and what it may do there.
+struct Identity {
+  std::string name;  ///< "server", "operator" or a robot's id
+  Role role = Role::kRobot;
+};
+
+/// The identities of a site: the server, the operator (fleetctl) and each robot.
+std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids);
+
+/// The files of a security folder (made by `fleetctl security init`):
+///
+///     DIR/ca/identity_ca.pem, identity_ca_key.pem      signs every identity's certificate
+///     DIR/ca/permissions_ca.pem, permissions_ca_key.pem signs the governance and permissions
+///     DIR/governance.xml, governance.p7s
+///     DIR/identities/NAME/certificate.pem, key.pem, permissions.xml, permissions.p7s
+struct FolderLayout {
+  explicit FolderLayout(std::string folder) : dir(std::move(folder)) {}
+  std::string dir;
+  std::string identity_ca() const { return dir + "/ca/identity_ca.pem"; }
+  std::string identity_ca_key() const { return dir + "/ca/identity_ca_key.pem"; }
+  std::string permissions_ca() const { return dir + "/ca/permissions_ca.pem"; }
+  std::string permissions_ca_key() const { return dir + "/ca/permissions_ca_key.pem"; }
+  std::string governance() const { return dir + "/governance.p7s"; }
+  std::string identity_dir(const std::string& name) const { return dir + "/identities/" + name; }
+  std::string certificate(const std::string& name) const { return identity_dir(name) + "/certificate.pem"; }
+  std::string private_key(const std::string& name) const { return identity_dir(name) + "/key.pem"; }
+  std::string permissions(const std::string& name) const { return identity_dir(name) + "/permissions.p7s"; }
+};
+
+/// Makes the two authorities, the governance and each identity's key, certificate and
+/// permissions, all valid from now for `days`. An existing authority is kept unless `replace` is
+/// set: SecurityError names it otherwise. Keys are written readable by their owner alone.
+void init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace);
+
+/// When a credential of the folder stops being valid.
+struct Expiry {
+  std::string file;
+  std::string subject;
+  std::int64_t not_after = 0;  ///< seconds since 1970 (UTC)
+};
+
+/// Every certificate of the folder with its end of validity, soonest first.
+std::vector<Expiry> expiries(const std::string& dir);
+
+/// The files a participant of `identity` presents, each checked at `now` (seconds since 1970):
+/// present and readable, the certificate current, issued by the folder's identity authority and
+/// matching the key, the governance and permissions signed by its permissions authority.
+/// SecurityError names the file and what is wrong with it.
+struct ParticipantFiles {
+  std::string identity_ca, certificate, private_key, permissions_ca, governance, permissions;
+};
+ParticipantFiles participant_files(const std::string& dir, const std::string& identity, std::int64_t now);
+
+/// `seconds` since 1970 as YYYY-MM-DDTHH:MM:SS (UTC).
+std::string utc_time(std::int64_t seconds);
+
+}  // namespace fleet::security
