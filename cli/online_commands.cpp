@@ -378,9 +378,10 @@ int stats_command(const CommandArgs& command, const Connection& connection, std:
     const monitor::OrderStats s = monitor::order_stats(orders, SimClock(info.time_scale).now());
     nlohmann::json utilisation = nlohmann::json::object();
     for (const auto& [robot, share] : s.utilisation) utilisation[robot] = share;
-    const nlohmann::json doc{{"orders_by_state", s.by_state},          {"span_s", s.span_s},
-                             {"done_per_hour", s.done_per_hour},       {"order_time_mean_s", s.order_time_mean_s},
-                             {"order_time_p95_s", s.order_time_p95_s}, {"utilisation", utilisation}};
+    const nlohmann::json doc{{"orders_by_state", s.by_state},           {"span_s", s.span_s},
+                             {"done_per_hour", s.done_per_hour},        {"order_time_mean_s", s.order_time_mean_s},
+                             {"order_time_p95_s", s.order_time_p95_s},  {"utilisation", utilisation},
+                             {"refused_samples", info.refused_samples}, {"refused_senders", info.refused_senders}};
     if (command.json) {
       out << doc.dump() << "\n";
       return kExitOk;
@@ -391,7 +392,9 @@ int stats_command(const CommandArgs& command, const Connection& connection, std:
         << "order time: mean " << s.order_time_mean_s << " s, p95 " << s.order_time_p95_s << " s (sim)\n"
         << "utilisation:";
     for (const auto& [robot, share] : s.utilisation) out << " " << robot << " " << 100.0 * share << " %";
-    out << "\n";
+    out << "\nrefused samples: " << info.refused_samples << " (robots' messages from writers that may not speak "
+        << "for the robot they name)\n";
+    for (const std::string& sender : info.refused_senders) out << "  " << sender << "\n";
     return kExitOk;
   } catch (const CommandExit& e) {
     return report_failure(command.json, e.code, e.message, out, err);

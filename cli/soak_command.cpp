@@ -160,6 +160,8 @@ int soak_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   }
   faults.undo_all();
   usage.finish();
+  if (const auto info = client.find_server(std::chrono::milliseconds(500)))
+    seen.refused_samples = info->refused_samples;
   seen.wall = run.wall_seconds();
   run.stop();
   seen.usage = usage.figures(seen.wall, options.agents);

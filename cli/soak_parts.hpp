@@ -127,6 +127,7 @@ struct SoakObservations {
   std::map<std::int64_t, std::set<std::string>> done_by;  ///< order -> robots that reported DONE
   SoakUsage::Figures usage;
   double wall = 0.0;
+  std::int64_t refused_samples = 0;  ///< the server's count of robots' messages from the wrong writer
 };
 
 /// The soak's summary (what `--json` prints and summary.json keeps), with its "failures".

@@ -185,6 +185,7 @@ nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, cons
                          {"control_lag_p99_by_fleet", lag_by_fleet},
                          {"crashed", run.crashes()},
                          {"faults_skipped", seen.faults_skipped},
+                         {"refused_samples", seen.refused_samples},
                          {"run_dir", run.run_dir()}};
   // What fleet-vda5050 cost and how fast it passed grants on, when the run had VDA 5050 vehicles.
   if (std::ifstream figures(run.run_dir() + "/vda5050-figures.json"); figures) {

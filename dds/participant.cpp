@@ -65,6 +65,23 @@ std::uint32_t matched_writers(dds_entity_t reader) {
   return status.current_count;
 }
 
+std::vector<std::string> writer_partitions(dds_entity_t reader, dds_instance_handle_t publication) {
+  std::vector<std::string> partitions;
+  dds_builtintopic_endpoint_t* writer = dds_get_matched_publication_data(reader, publication);
+  if (writer == nullptr) return partitions;
+  uint32_t count = 0;
+  char** names = nullptr;
+  if (writer->qos != nullptr && dds_qget_partition(writer->qos, &count, &names)) {
+    for (uint32_t i = 0; i < count; ++i) {
+      partitions.emplace_back(names[i]);
+      dds_free(names[i]);
+    }
+    dds_free(names);
+  }
+  dds_builtintopic_free_endpoint(writer);
+  return partitions;
+}
+
 WaitSet::WaitSet(Participant& participant)
     : handle_(check(dds_create_waitset(participant.handle()), "create waitset")) {}
 

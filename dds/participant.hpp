@@ -33,7 +33,12 @@ struct SampleInfo {
   bool valid_data = true;  ///< false for instance-state changes (writer gone, disposed)
   bool alive = true;       ///< the instance still has a live writer
   std::int64_t source_timestamp_ns = 0;
+  dds_instance_handle_t publication_handle = 0;  ///< the writer that sent it (writer_partitions)
 };
+
+/// The partitions of the remote writer `publication` matched by `reader`; empty when it writes in
+/// the default partition, or is no longer matched.
+std::vector<std::string> writer_partitions(dds_entity_t reader, dds_instance_handle_t publication);
 
 /// A domain participant; owns every entity created through it.
 class Participant {

@@ -43,6 +43,10 @@ std::string file_uri(const std::string& path) {
 }  // namespace
 
 void use_security(const std::string& folder, const std::string& identity) {
+  if (folder.empty()) {
+    settings() = {};
+    return;
+  }
   const auto now = static_cast<std::int64_t>(std::time(nullptr));
   settings() = {folder, identity, security::participant_files(folder, identity, now)};
 }

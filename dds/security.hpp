@@ -10,7 +10,8 @@ namespace fleet::dds {
 /// Every participant this process creates from now on joins the domain with DDS Security,
 /// presenting the credentials of `identity` from the security folder `folder` (made by
 /// `fleetctl security init`). The files are checked here first: security::SecurityError names
-/// the one that is missing, unreadable, expired or not from the folder's authorities.
+/// the one that is missing, unreadable, expired or not from the folder's authorities. An empty
+/// `folder`: participants created from now on join without security.
 void use_security(const std::string& folder, const std::string& identity);
 
 /// The identity the process presents; empty when it joins without security.

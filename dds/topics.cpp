@@ -103,7 +103,8 @@ int take_samples(dds_entity_t reader, const std::function<void(Model&&, const Sa
     const int n = dds_take(reader, samples, infos, kBatch, kBatch);
     if (n <= 0) break;
     for (int i = 0; i < n; ++i) {
-      const SampleInfo info{infos[i].valid_data, infos[i].instance_state == DDS_IST_ALIVE, infos[i].source_timestamp};
+      const SampleInfo info{infos[i].valid_data, infos[i].instance_state == DDS_IST_ALIVE, infos[i].source_timestamp,
+                            infos[i].publication_handle};
       // Invalid samples carry only the key fields; the conversion tolerates empty strings.
       fn(from_wire(*static_cast<const Wire*>(samples[i])), info);
     }
@@ -125,11 +126,22 @@ fleet_msg_ServerInfo to_wire(const model::ServerInfo& v, Scratch& s) {
           s.string_seq(v.maps),
           v.time_scale,
           v.started_unix_ms,
-          s.string_seq(v.homes)};
+          s.string_seq(v.homes),
+          v.refused_samples,
+          s.string_seq(v.refused_senders)};
 }
 model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
-  return {text(w.server_id),  text(w.site), strings_of(w.loading_areas), strings_of(w.robots), strings_of(w.obstacles),
-          strings_of(w.maps), w.time_scale, w.started_unix_ms,           strings_of(w.homes)};
+  return {text(w.server_id),
+          text(w.site),
+          strings_of(w.loading_areas),
+          strings_of(w.robots),
+          strings_of(w.obstacles),
+          strings_of(w.maps),
+          w.time_scale,
+          w.started_unix_ms,
+          strings_of(w.homes),
+          w.refused_samples,
+          strings_of(w.refused_senders)};
 }
 
 fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
@@ -371,13 +383,25 @@ model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
 }
 
 fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
-  return {borrow(v.robot_id),          v.version,  int_seq(s, v.points),     v.progress,
-          s.string_seq(v.stopped_for), v.sim_time, s.point_seq(v.work_area), s.point_seq(v.arrival_area),
+  return {borrow(v.robot_id),
+          v.version,
+          int_seq(s, v.points),
+          v.progress,
+          s.string_seq(v.stopped_for),
+          v.sim_time,
+          s.point_seq(v.work_area),
+          s.point_seq(v.arrival_area),
           borrow(v.map_id)};
 }
 model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
-  return {text(w.robot_id),          w.version,  ints_of(w.points),      w.progress,
-          strings_of(w.stopped_for), w.sim_time, points_of(w.work_area), points_of(w.arrival_area),
+  return {text(w.robot_id),
+          w.version,
+          ints_of(w.points),
+          w.progress,
+          strings_of(w.stopped_for),
+          w.sim_time,
+          points_of(w.work_area),
+          points_of(w.arrival_area),
           text(w.map_id)};
 }
 

@@ -143,7 +143,9 @@ void FleetServer::publish_server_info() {
   for (const auto& o : options_.site.static_obstacles) info.obstacles.push_back(o.id);
   info.maps = options_.maps;
   info.time_scale = options_.time_scale;
-  info.started_unix_ms = static_cast<std::int64_t>(SimClock::wall_now() * 1000.0);
+  info.started_unix_ms = static_cast<std::int64_t>(started_wall_ * 1000.0);
+  info.refused_samples = gate_.refused();
+  info.refused_senders = gate_.refused_senders();
   server_info_writer_.write(info);
 }
 
@@ -210,9 +212,11 @@ void FleetServer::adopt(SiteDerivation derived) {
   // Routes on the old graph mean nothing on the new one: every agent replans and enters anew.
   traffic_.reset();
   if (derived.traffic) {
-    traffic_ = std::make_unique<TrafficControl>(std::move(derived.traffic), options_.site.name, participant_, log_);
+    traffic_ =
+        std::make_unique<TrafficControl>(std::move(derived.traffic), options_.site.name, participant_, gate_, log_);
   } else if (derived.places) {
-    traffic_ = std::make_unique<PlaceTrafficControl>(std::move(derived.places), options_.site.name, participant_, log_);
+    traffic_ =
+        std::make_unique<PlaceTrafficControl>(std::move(derived.places), options_.site.name, participant_, gate_, log_);
   }
 }
 
@@ -283,6 +287,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
       stages.lap("traffic update");
     }
     check_acknowledgements();
+    if (gate_.take_change()) publish_server_info();  // the refusals, for fleetctl stats
     // Automatic orders a few times a second: each round looks at every robot.
     if (auto_orders_ && SimClock::wall_now() - last_auto_orders_wall_ >= kAutoOrdersPeriodWall) {
       last_auto_orders_wall_ = SimClock::wall_now();
@@ -367,8 +372,16 @@ std::string FleetServer::validate_parking(const std::string& place, const std::s
 }
 
 void FleetServer::handle_robot_paths() {
-  robot_path_reader_.take_data([&](model::RobotPath&& path) { paths_[path.robot_id] = std::move(path); });
-  truth_reader_.take_data([&](model::SimTruth&& truth) { truths_[truth.robot_id] = std::move(truth); });
+  robot_path_reader_.take([&](model::RobotPath&& path, const dds::SampleInfo& info) {
+    if (info.valid_data && gate_.admit(robot_path_reader_.handle(), info, path.robot_id, "fleet/RobotPath")) {
+      paths_[path.robot_id] = std::move(path);
+    }
+  });
+  truth_reader_.take([&](model::SimTruth&& truth, const dds::SampleInfo& info) {
+    if (info.valid_data && gate_.admit(truth_reader_.handle(), info, truth.robot_id, "fleet/SimTruth")) {
+      truths_[truth.robot_id] = std::move(truth);
+    }
+  });
 }
 
 void FleetServer::handle_web_requests() {

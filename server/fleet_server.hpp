@@ -15,6 +15,7 @@
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
+#include "dds/security.hpp"
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
 #include "orders/area_ledger.hpp"
@@ -27,6 +28,7 @@
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
 #include "server/place_traffic_control.hpp"
+#include "server/sender_gate.hpp"
 #include "server/server_load.hpp"
 #include "server/site_derivation.hpp"
 #include "server/traffic_control.hpp"
@@ -194,6 +196,8 @@ class FleetServer {
 
   ServerOptions options_;
   Logger log_;
+  /// Takes the robots' own messages only from writers that may speak for them.
+  SenderGate gate_{!dds::security_identity().empty(), log_};
   OrderStore store_;
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
   std::map<std::string, planning::RoadDistances> travel_;

@@ -42,10 +42,13 @@ void FleetServer::record_load(orders::Load load) {
 }
 
 void FleetServer::handle_order_reports() {
-  order_report_reader_.take_data([&](model::OrderReport&& report) {
+  order_report_reader_.take([&](model::OrderReport&& report, const dds::SampleInfo& info) {
+    if (!info.valid_data || !gate_.admit(order_report_reader_.handle(), info, report.robot_id, "fleet/OrderState")) {
+      return;
+    }
     const Order* order = book_.find(report.order_id);
     if (!order) {
-      log_->warn("report on unknown order {} from {}", report.order_id, report.robot_id);
+      gate_.warn(info, "order", fmt::format("report on unknown order {} from {}", report.order_id, report.robot_id));
       return;
     }
     const orders::ReportFacts facts{.order_status = order->status,

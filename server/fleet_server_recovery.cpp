@@ -15,6 +15,7 @@ using orders::TransitionResult;
 
 void FleetServer::handle_robot_states() {
   robot_state_reader_.take([&](model::RobotState&& state, const dds::SampleInfo& info) {
+    if (!gate_.admit(robot_state_reader_.handle(), info, state.robot_id, "fleet/RobotState")) return;
     if (!info.valid_data) {
       // DDS liveliness: the robot's writer is gone (its 1 s liveliness lease lapsed or it
       // left). Only the key is valid in such a sample.
@@ -25,13 +26,16 @@ void FleetServer::handle_robot_states() {
       return;
     }
     if (!std::isfinite(state.pose.x) || !std::isfinite(state.pose.y) || !std::isfinite(state.pose.yaw)) {
-      log_->warn("robot {}: ignoring RobotState with a non-finite pose ({}, {}, {})", state.robot_id, state.pose.x,
-                 state.pose.y, state.pose.yaw);
+      gate_.warn(info, "pose",
+                 fmt::format("robot {}: ignoring RobotState with a non-finite pose ({}, {}, {})", state.robot_id,
+                             state.pose.x, state.pose.y, state.pose.yaw));
       return;
     }
     const auto known = options_.config.find_robot(state.robot_id);
     if (!known) {
-      log_->warn("ignoring RobotState of robot '{}', which is not in {}", state.robot_id, options_.config.source);
+      gate_.warn(
+          info, "robot",
+          fmt::format("ignoring RobotState of robot '{}', which is not in {}", state.robot_id, options_.config.source));
       return;
     }
     RobotEntry& robot = robots_[state.robot_id];

@@ -38,10 +38,11 @@ PlaceTrafficSite::PlaceTrafficSite(std::shared_ptr<const map::SiteMap> map,
       robot_types(configuration.robot_vehicle_types) {}
 
 PlaceTrafficControl::PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site, std::string map_id,
-                                         dds::Participant& participant, Logger log)
+                                         dds::Participant& participant, SenderGate& gate, Logger log)
     : site_(std::move(site)),
       traffic_(site_->traffic),
       map_id_(std::move(map_id)),
+      gate_(gate),
       log_(std::move(log)),
       grants_(participant, log_),
       request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
@@ -64,9 +65,11 @@ std::vector<std::string> PlaceTrafficControl::names_of(const std::vector<int>& r
   return names;
 }
 
-bool PlaceTrafficControl::usable(const model::TrafficRequest& request) {
+bool PlaceTrafficControl::usable(const model::TrafficRequest& request, const dds::SampleInfo& info) {
   if (request.robot_id.empty() || !std::isfinite(request.progress)) {
-    log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
+    gate_.warn(info, "progress",
+               fmt::format("traffic request from '{}' ignored: progress {} is not a number", request.robot_id,
+                           request.progress));
     return false;
   }
   if (request.map_id != map_id_) {
@@ -81,8 +84,9 @@ bool PlaceTrafficControl::usable(const model::TrafficRequest& request) {
   other_map_.erase(request.robot_id);
   for (const int point : request.points) {
     if (point < 0 || static_cast<std::size_t>(point) >= site_->zones.point_count()) {
-      log_->warn("traffic request from '{}' ignored: graph point {} does not exist ({} points)", request.robot_id,
-                 point, site_->zones.point_count());
+      gate_.warn(info, "point",
+                 fmt::format("traffic request from '{}' ignored: graph point {} does not exist ({} points)",
+                             request.robot_id, point, site_->zones.point_count()));
       return false;
     }
   }
@@ -95,8 +99,11 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
   constexpr double kSettleWall = 0.5;
   if (settle_until_wall_ < 0.0) settle_until_wall_ = now_wall + kSettleWall;
   if (now_wall < settle_until_wall_) return;
-  request_reader_.take_data([&](model::TrafficRequest&& request) {
-    if (!usable(request)) return;
+  request_reader_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
+    if (!info.valid_data || !gate_.admit(request_reader_.handle(), info, request.robot_id, "fleet/TrafficRequest")) {
+      return;
+    }
+    if (!usable(request, info)) return;
     const int id = number_of(request.robot_id);
     waiting_for_area_.erase(request.robot_id);
     if (request.points.empty()) {

@@ -12,6 +12,7 @@
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
 #include "server/grant_publisher.hpp"
+#include "server/sender_gate.hpp"
 #include "server/traffic_service.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_manager.hpp"
@@ -41,7 +42,7 @@ struct PlaceTrafficSite {
 class PlaceTrafficControl : public TrafficService {
  public:
   PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site, std::string map_id, dds::Participant& participant,
-                      Logger log);
+                      SenderGate& gate, Logger log);
 
   void handle_requests(double now_sim, double now_wall) override;
   void update(double now_sim, double now_wall) override;
@@ -52,7 +53,7 @@ class PlaceTrafficControl : public TrafficService {
  private:
   int number_of(const std::string& robot_id);
   /// Whether the request is one to act on; logs why not.
-  bool usable(const model::TrafficRequest& request);
+  bool usable(const model::TrafficRequest& request, const dds::SampleInfo& info);
   void work_beside_roads(const model::TrafficRequest& request, int id, double now_wall);
   std::vector<std::string> names_of(const std::vector<int>& robots) const;
   void report_wait_cycle(double now_sim);
@@ -60,6 +61,7 @@ class PlaceTrafficControl : public TrafficService {
   std::unique_ptr<PlaceTrafficSite> site_;
   coordination::PlaceTraffic& traffic_;
   std::string map_id_;
+  SenderGate& gate_;
   Logger log_;
   std::map<std::string, int> numbers_;
   std::vector<std::string> names_;

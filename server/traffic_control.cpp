@@ -35,9 +35,10 @@ const char* instruction_name(traffic::Instruction i) {
 }  // namespace
 
 TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id,
-                               dds::Participant& participant, Logger log)
+                               dds::Participant& participant, SenderGate& gate, Logger log)
     : manager_(std::move(manager)),
       map_id_(std::move(map_id)),
+      gate_(gate),
       log_(std::move(log)),
       grants_(participant, log_),
       request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
@@ -64,9 +65,14 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
   constexpr double kSettleWall = 0.5;
   if (settle_until_wall_ < 0.0) settle_until_wall_ = now_wall + kSettleWall;
   if (now_wall < settle_until_wall_) return;
-  request_reader_.take_data([&](model::TrafficRequest&& request) {
+  request_reader_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
+    if (!info.valid_data || !gate_.admit(request_reader_.handle(), info, request.robot_id, "fleet/TrafficRequest")) {
+      return;
+    }
     if (request.robot_id.empty() || !std::isfinite(request.progress)) {
-      log_->warn("traffic request from '{}' ignored: progress {} is not a number", request.robot_id, request.progress);
+      gate_.warn(info, "progress",
+                 fmt::format("traffic request from '{}' ignored: progress {} is not a number", request.robot_id,
+                             request.progress));
       return;
     }
     if (request.map_id != map_id_) {
@@ -85,8 +91,9 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       return point < 0 || static_cast<std::size_t>(point) >= manager_->zones().point_count();
     });
     if (bad_point != request.points.end()) {
-      log_->warn("traffic request from '{}' ignored: graph point {} does not exist ({} points)", request.robot_id,
-                 *bad_point, manager_->zones().point_count());
+      gate_.warn(info, "point",
+                 fmt::format("traffic request from '{}' ignored: graph point {} does not exist ({} points)",
+                             request.robot_id, *bad_point, manager_->zones().point_count()));
       return;
     }
     const int id = number_of(request.robot_id);

@@ -10,6 +10,7 @@
 #include "dds/topics.hpp"
 #include "map/road_graph.hpp"
 #include "server/grant_publisher.hpp"
+#include "server/sender_gate.hpp"
 #include "server/traffic_service.hpp"
 #include "traffic/traffic_manager.hpp"
 
@@ -22,7 +23,7 @@ class TrafficControl : public TrafficService {
   /// `manager` is built on the road graph of map `map_id` (server::derive_site, off the server
   /// loop on a map switch): requests for another map are ignored.
   TrafficControl(std::unique_ptr<traffic::TrafficManager> manager, std::string map_id, dds::Participant& participant,
-                 Logger log);
+                 SenderGate& gate, Logger log);
 
   /// Reads the agents' routes and progress (call every loop).
   void handle_requests(double now_sim, double now_wall) override;
@@ -70,6 +71,7 @@ class TrafficControl : public TrafficService {
   std::unique_ptr<traffic::TrafficManager> manager_;
   std::string map_id_;
   std::set<std::string> other_map_;  ///< robots whose last request was for another map (logged once)
+  SenderGate& gate_;
   Logger log_;
   std::map<std::string, int> numbers_;  ///< robot id -> the manager's integer id
   std::map<int, std::string> names_;

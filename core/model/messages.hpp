@@ -23,6 +23,10 @@ struct ServerInfo {
   double time_scale = 1.0;
   std::int64_t started_unix_ms = 0;
   std::vector<std::string> homes;  ///< parking places, where a move order may go too
+  /// Robots' own messages the server refused: their writer may not speak for the robot they name
+  /// (model::judge_sender).
+  std::int64_t refused_samples = 0;
+  std::vector<std::string> refused_senders;  ///< each refused writer once, described
 };
 
 struct OrderRequest {

@@ -2,15 +2,22 @@
 // credentials from a folder made by `fleetctl security init`, and processes without them or with
 // credentials of another authority or another role.
 
+#include "dds/security.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "common/clock.hpp"
+#include "dds/topics.hpp"
 #include "fleet_harness.hpp"
+#include "model/messages.hpp"
 
 using namespace fleet::testing;
 using nlohmann::json;
@@ -49,6 +56,36 @@ json robots_seen(const FleetHarness& fleet, const std::string& security, const s
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
   return robots;
+}
+
+/// Writes RobotStates naming each of `names` at 20 Hz for `seconds` from one writer in `partition`
+/// (empty: the default one), each at `x`, `y`.
+void write_states(int domain, const std::string& partition, const std::vector<std::string>& names, double x, double y,
+                  double seconds) {
+  fleet::dds::Participant participant(static_cast<std::uint32_t>(domain));
+  fleet::dds::Writer<fleet::model::RobotState> writer =
+      partition.empty()
+          ? fleet::dds::Writer<fleet::model::RobotState>(participant, fleet::dds::qos::robot_state())
+          : fleet::dds::Writer<fleet::model::RobotState>(participant, fleet::dds::qos::robot_state(), partition);
+  const fleet::SimClock clock(10.0);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    for (const std::string& name : names) {
+      fleet::model::RobotState state;
+      state.robot_id = name;
+      state.pose = {x, y, 0.0};
+      state.task_state = "IDLE";
+      state.sim_time = clock.now();
+      writer.write(state);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
+int lines_with(const std::string& text, const std::string& needle) {
+  int count = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++count;
+  return count;
 }
 
 bool lists(const json& robots, const std::string& id) {
@@ -127,4 +164,47 @@ TEST(Security, AProcessWithAMissingOrForeignFileStopsAtStartNamingIt) {
                                   30);
   EXPECT_EQ(server.exit_code, 2) << server.err;
   EXPECT_NE(server.err.find("certificate.pem: not issued by the identity authority"), std::string::npos) << server.err;
+}
+
+TEST(Security, ARobotWritingInAnotherRobotsNameIsRefusedAndCounted) {
+  const Credentials credentials("impostor");
+  FleetHarness fleet(134, 10.0);
+  fleet.start_server({"--security", credentials.dir()});
+  fleet.start_agent("fl1", {"--security", credentials.dir()});
+  ASSERT_TRUE(lists(robots_seen(fleet, credentials.dir(), "fl1", 40), "fl1")) << fleet.log_of("fleet-server");
+  // This process presents fl2's credentials and writes in fl2's own partition, naming fl1 at a
+  // pose fl1 is not at; a robot's permissions let it write nowhere else.
+  fleet::dds::use_security(credentials.dir(), "fl2");
+  write_states(134, fleet::model::robot_partition("fl2"), {"fl1"}, 0.77, 0.33, 3.0);
+  fleet::dds::use_security("", "");
+  const auto stats = fleet.fleetctl({"--security", credentials.dir(), "stats", "--json"}, 30);
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  const json figures = last_json_line(stats.out);
+  EXPECT_GT(figures["refused_samples"].get<long>(), 20) << stats.out;
+  ASSERT_EQ(figures["refused_senders"].size(), 1u) << stats.out;
+  EXPECT_NE(figures["refused_senders"][0].get<std::string>().find("naming 'fl1'"), std::string::npos) << stats.out;
+  EXPECT_EQ(lines_with(fleet.log_of("fleet-server"), "refused fleet/RobotState"), 1) << fleet.log_of("fleet-server");
+  for (const auto& robot : robots_seen(fleet, credentials.dir(), "fl1", 10)) {
+    if (robot["robot_id"] == "fl1") {
+      EXPECT_GT(std::hypot(robot["x"].get<double>() - 0.77, robot["y"].get<double>() - 0.33), 0.05);
+    }
+  }
+}
+
+TEST(Security, AWriterOfPosesThatAreNotNumbersGivesAFewLinesAMinute) {
+  FleetHarness fleet(135, 10.0);
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // 20 s at 20 Hz, in a live robot's name and a ghost's, from the default partition.
+  std::thread writer([&] { write_states(135, "", {"fl1", "ghost"}, nan, 1e308, 20.0); });
+  writer.join();
+  const std::string log = fleet.log_of("fleet-server");
+  const int pose_lines = lines_with(log, "non-finite pose");
+  EXPECT_GE(pose_lines, 1);
+  EXPECT_LE(pose_lines, 3) << log;  // the first, then one every ten seconds
+  const auto robots = fleet.fleetctl({"robots", "--json"}, 30);
+  EXPECT_EQ(robots.exit_code, 0) << robots.err;
+  EXPECT_FALSE(lists(last_json_line(robots.out), "ghost"));
 }
