@@ -19,6 +19,9 @@ constexpr int kExpansionsPerSearch = 20000;
 constexpr int kStoodBeforeMovingOn = 8;
 /// Robots drawn to find one whose path costs more than it would alone.
 constexpr int kDrawsForALateRobot = 8;
+/// Actions walked down a late robot's way to its goal to find the robots on it: four windows'
+/// worth, for the robots standing further on hold it up in the windows to come.
+constexpr int kActionsWalked = 24;
 
 }  // namespace
 
@@ -173,29 +176,63 @@ bool WindowLns::search(int robot, WindowPath& out) {
   return true;
 }
 
+int WindowLns::draw_late_robot(const std::vector<int>& movable, const std::vector<int>& costs,
+                               const std::vector<int>& least) {
+  // Of a few drawn, the first whose path costs more than it would alone: others hold it up.
+  int robot = movable[rng_() % movable.size()];
+  for (int draw = 1;
+       draw < kDrawsForALateRobot && costs[static_cast<std::size_t>(robot)] <= least[static_cast<std::size_t>(robot)];
+       ++draw) {
+    robot = movable[rng_() % movable.size()];
+  }
+  return robot;
+}
+
+void WindowLns::add_passing(int cell, std::vector<int>& group, int size) {
+  for (int t = 0; t <= horizon_ && static_cast<int>(group.size()) < size; ++t) {
+    const int robot = at(t, cell);
+    if (robot < 0 || in_group_[static_cast<std::size_t>(robot)] == reach_stamp_ ||
+        robots_[static_cast<std::size_t>(robot)].held) {
+      continue;
+    }
+    in_group_[static_cast<std::size_t>(robot)] = reach_stamp_;
+    group.push_back(robot);
+  }
+}
+
 std::vector<int> WindowLns::neighbourhood(int seed_robot, int size) {
-  // The robots standing nearest the seed, by moves over the map: those whose paths it meets.
-  std::vector<int> group{seed_robot};
   if (reached_.size() != cells_) reached_.assign(cells_, 0);
+  if (in_group_.size() != robots_.size()) in_group_.assign(robots_.size(), 0);
   if (++reach_stamp_ == 0) {
     std::fill(reached_.begin(), reached_.end(), 0);
+    std::fill(in_group_.begin(), in_group_.end(), 0);
     reach_stamp_ = 1;
   }
-  std::vector<int>& queue = reach_queue_;
-  queue.assign(1, robots_[static_cast<std::size_t>(seed_robot)].cell);
-  reached_[static_cast<std::size_t>(queue.front())] = reach_stamp_;
-  for (std::size_t head = 0; head < queue.size() && static_cast<int>(group.size()) < size; ++head) {
-    const int cell = queue[head];
-    const int standing = standing_at_[static_cast<std::size_t>(cell)];
-    if (standing >= 0 && standing != seed_robot && !robots_[static_cast<std::size_t>(standing)].held) {
-      group.push_back(standing);
+  // Down the seed's way to its goal, action by action (ties drawn at random), the robots whose
+  // paths pass the cells it would drive through [Li 2021b, section 4].
+  std::vector<int> group{seed_robot};
+  in_group_[static_cast<std::size_t>(seed_robot)] = reach_stamp_;
+  const GridRobot& seed = robots_[static_cast<std::size_t>(seed_robot)];
+  int cell = seed.cell;
+  int heading = seed.heading;
+  int left = actions_left(seed_robot, cell, heading);
+  for (int walked = 0; walked < kActionsWalked && left > 0 && left < kFarAway && static_cast<int>(group.size()) < size;
+       ++walked) {
+    const std::pair<int, int> options[] = {
+        {map_.step(cell, heading), heading}, {cell, clockwise(heading)}, {cell, counter_clockwise(heading)}};
+    int chosen = -1;
+    int ties = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (options[k].first < 0 || actions_left(seed_robot, options[k].first, options[k].second) != left - 1) continue;
+      if (rng_() % static_cast<unsigned>(++ties) == 0) chosen = k;
     }
-    for (int h = 0; h < kHeadings; ++h) {
-      const int next = map_.step(cell, h);
-      if (next < 0 || reached_[static_cast<std::size_t>(next)] == reach_stamp_) continue;
-      reached_[static_cast<std::size_t>(next)] = reach_stamp_;
-      queue.push_back(next);
-    }
+    if (chosen < 0) break;
+    cell = options[chosen].first;
+    heading = options[chosen].second;
+    --left;
+    if (reached_[static_cast<std::size_t>(cell)] == reach_stamp_) continue;
+    reached_[static_cast<std::size_t>(cell)] = reach_stamp_;
+    add_passing(cell, group, size);
   }
   return group;
 }
@@ -206,13 +243,11 @@ long WindowLns::improve(const std::vector<GridRobot>& robots, std::vector<Window
   plan_ = &plan;
   horizon_ = plan.empty() ? 0 : static_cast<int>(plan.front().cells.size()) - 1;
   occupied_.assign((static_cast<std::size_t>(horizon_) + 1) * cells_, -1);
-  standing_at_.assign(cells_, -1);
   std::vector<int> costs(plan.size());
   std::vector<int> least(plan.size(), 0);  ///< per robot: its cost alone on the map
   std::vector<int> movable;
   for (std::size_t r = 0; r < plan.size(); ++r) {
     occupy(static_cast<int>(r), plan[r]);
-    standing_at_[static_cast<std::size_t>(robots[r].cell)] = static_cast<int>(r);
     costs[r] = path_cost(static_cast<int>(r), plan[r]);
     if (robots[r].goal >= 0 && !robots[r].held) {
       movable.push_back(static_cast<int>(r));
@@ -223,14 +258,7 @@ long WindowLns::improve(const std::vector<GridRobot>& robots, std::vector<Window
   if (movable.empty()) return total;
   std::vector<WindowPath> kept;
   for (int round = 0; round < neighbourhoods; ++round) {
-    // Search round a robot its neighbours hold up: of a few drawn, the first that is late.
-    int seed_robot = movable[rng_() % movable.size()];
-    for (int draw = 1; draw < kDrawsForALateRobot &&
-                       costs[static_cast<std::size_t>(seed_robot)] <= least[static_cast<std::size_t>(seed_robot)];
-         ++draw) {
-      seed_robot = movable[rng_() % movable.size()];
-    }
-    std::vector<int> group = neighbourhood(seed_robot, size);
+    std::vector<int> group = neighbourhood(draw_late_robot(movable, costs, least), size);
     std::shuffle(group.begin(), group.end(), rng_);
     long before = 0;
     kept.clear();

@@ -24,6 +24,9 @@ struct WindowPath {
 /// back. The window is the rolling horizon of [Li 2021, section 4]: the plan covers H steps and
 /// only the first is carried out before the robots are planned again.
 ///
+/// A neighbourhood is a late robot and the robots whose paths lie on its way to its goal: the
+/// agent-based neighbourhood of [Li 2021b, section 4], the robots that keep it late.
+///
 /// A path's cost is the step at which it reaches the robot's goal, or H plus the actions left
 /// from where it ends when it does not (by the guide path when the robot has one). A plan is
 /// valid when no two robots are in one cell at a step, no two swap cells, and no ring of robots
@@ -55,7 +58,10 @@ class WindowLns {
   bool closes_ring(int robot, int from, int to, int step) const;
   /// Space-time A* for one robot round the occupied cells; false when no path keeps the rules.
   bool search(int robot, WindowPath& out);
+  int draw_late_robot(const std::vector<int>& movable, const std::vector<int>& costs, const std::vector<int>& least);
   std::vector<int> neighbourhood(int seed_robot, int size);
+  /// Adds the robots whose paths pass `cell` in the window, up to `size` in all.
+  void add_passing(int cell, std::vector<int>& group, int size);
 
   const GridMap& map_;
   HeadingDistances& distances_;
@@ -66,17 +72,16 @@ class WindowLns {
   std::vector<GridRobot> robots_;
   std::vector<int> stood_;
   std::vector<WindowPath>* plan_ = nullptr;
-  std::vector<int> occupied_;     ///< per step and cell: the robot there, -1
-  std::vector<int> standing_at_;  ///< per cell: the robot that stands there now, -1
+  std::vector<int> occupied_;  ///< per step and cell: the robot there, -1
   // The search's tables, kept between searches: per (step, cell, heading) state.
   std::vector<int> best_g_;
   std::vector<int> parent_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t stamp_ = 0;
-  // The neighbourhood's breadth-first search over cells, kept between neighbourhoods.
-  std::vector<std::uint32_t> reached_;
+  // The cells and robots a neighbourhood has taken in, by stamp, kept between neighbourhoods.
+  std::vector<std::uint32_t> reached_;   ///< per cell
+  std::vector<std::uint32_t> in_group_;  ///< per robot
   std::uint32_t reach_stamp_ = 0;
-  std::vector<int> reach_queue_;
 };
 
 }  // namespace fleet::coordination
