@@ -44,3 +44,15 @@ function(fleet_unit_test name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} fleet_test_paths GTest::gtest_main fleet_warnings)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
 endfunction()
+
+# fleet_test_labels(TARGET LABEL...): the labels of every test gtest_discover_tests finds in
+# TARGET. Its PROPERTIES cannot carry a list (CMake 3.25 writes "a;b" as two words, the second
+# taken for a property name), so the labels are set after discovery, from the test list it records.
+function(fleet_test_labels target)
+  list(JOIN ARGN ";" labels)
+  set(script ${CMAKE_CURRENT_BINARY_DIR}/${target}_labels.cmake)
+  file(WRITE ${script} "foreach(test IN LISTS ${target}_TESTS)\n"
+                       "  set_tests_properties(\"\${test}\" PROPERTIES LABELS \"${labels}\")\n"
+                       "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${script})
+endfunction()
