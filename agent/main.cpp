@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::atomic<bool>& stop = app::start_daemon();
-    app::use_dds_security(*config, *id);
+    app::use_dds_security(config->settings.get_string("dds.security"), *id, "dds.security");
 
     agent::AgentOptions options;
     options.robot_id = *id;

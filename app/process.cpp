@@ -83,13 +83,12 @@ const std::atomic<bool>& start_daemon() {
   return install_stop_handlers();
 }
 
-void use_dds_security(const config::FleetConfig& config, const std::string& identity) {
-  const std::string folder = config.settings.get_string("dds.security");
+void use_dds_security(const std::string& folder, const std::string& identity, const std::string& origin) {
   if (folder.empty()) return;
   try {
     dds::use_security(folder, identity);
   } catch (const security::SecurityError& e) {
-    throw InputError(std::string("dds.security: ") + e.what());
+    throw InputError(origin + ": " + e.what());
   }
 }
 

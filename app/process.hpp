@@ -38,10 +38,11 @@ bool stop_requested();
 /// arenas and installs the stop handlers. Returns the flag its loop runs until.
 const std::atomic<bool>& start_daemon();
 
-/// With dds.security set (--security DIR), every participant the process creates presents the
-/// credentials of `identity` from that folder (dds::use_security); InputError naming the file
-/// that is missing, unreadable, expired or from another authority. Without it, nothing.
-void use_dds_security(const config::FleetConfig& config, const std::string& identity);
+/// With a security `folder` (--security DIR, dds.security), every participant the process creates
+/// presents the credentials of `identity` from it (dds::use_security); InputError, prefixed by
+/// `origin` (where the folder was named), naming the file that is missing, unreadable, expired or
+/// from another authority. An empty folder: nothing.
+void use_dds_security(const std::string& folder, const std::string& identity, const std::string& origin);
 
 /// dds.domain, time_scale and seed of `config` into a process's options.
 template <class Options>

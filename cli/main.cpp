@@ -19,10 +19,8 @@
 #include "config/fleet_config.hpp"
 #include "config/schema.hpp"
 #include "dds/environment.hpp"
-#include "dds/security.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
-#include "security/credentials.hpp"
 
 namespace {
 
@@ -153,14 +151,8 @@ int main(int argc, char** argv) {
     connection.timeout_given = timeout_flag.has_value();
     dds::use_fleet_dds_config();
     // The operator's credentials for this process; demo and soak hand each process its own.
-    if (const std::string folder = security_flag.value_or(config.settings.get_string("dds.security"));
-        !folder.empty()) {
-      try {
-        dds::use_security(folder, "operator");
-      } catch (const security::SecurityError& e) {
-        throw InputError(std::string(security_flag ? "--security: " : "dds.security: ") + e.what());
-      }
-    }
+    app::use_dds_security(security_flag.value_or(config.settings.get_string("dds.security")), "operator",
+                          security_flag ? "--security" : "dds.security");
 
     if (name == "order") return order_command(command, connection, out, err);
     if (name == "robots") return robots_command(command, connection, out, err);

@@ -24,8 +24,7 @@ int init(const CommandArgs& args, const CommandFlags& flags, const std::string& 
   for (const auto& [fleet, robot] : config.all_robots()) robots.push_back(robot->id);
   const auto identities = security::site_identities(robots);
   const int days = static_cast<int>(flags.integer("days").value_or(kDefaultDays));
-  security::init_folder(dir, identities, days, flags.flag("force"));
-  const auto until = static_cast<std::int64_t>(std::time(nullptr)) + static_cast<std::int64_t>(days) * 86400;
+  const std::int64_t until = security::init_folder(dir, identities, days, flags.flag("force"));
   if (args.json) {
     nlohmann::json names = nlohmann::json::array();
     for (const auto& identity : identities) names.push_back(identity.name);

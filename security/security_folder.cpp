@@ -66,10 +66,6 @@ KeyPair authority(const std::string& certificate, const std::string& key, const 
   return made;
 }
 
-std::string document_of(const std::string& signed_path) {
-  return signed_path.substr(0, signed_path.size() - 4) + ".xml";
-}
-
 }  // namespace
 
 std::string utc_time(std::int64_t seconds) {
@@ -87,27 +83,29 @@ std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids)
   return identities;
 }
 
-void init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace) {
+std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace) {
   const FolderLayout files(dir);
   const KeyPair identity_ca =
       authority(files.identity_ca(), files.identity_ca_key(), "Fleet identity authority", days, replace);
   const KeyPair permissions_ca =
       authority(files.permissions_ca(), files.permissions_ca_key(), "Fleet permissions authority", days, replace);
   const std::string governance = governance_document();
-  write_text(document_of(files.governance()), governance, kPublic);
+  write_text(files.governance_text(), governance, kPublic);
   write_text(files.governance(), sign_document(permissions_ca, governance), kPublic);
   const std::int64_t now = static_cast<std::int64_t>(std::time(nullptr));
   const std::string not_before = utc_time(now - 60);
-  const std::string not_after = utc_time(now + static_cast<std::int64_t>(days) * 86400);
+  const std::int64_t until = now + static_cast<std::int64_t>(days) * 86400;
+  const std::string not_after = utc_time(until);
   for (const Identity& identity : identities) {
     const KeyPair credentials = issue_identity(identity_ca, identity.name, days);
     write_text(files.private_key(identity.name), credentials.private_key, kSecret);
     write_text(files.certificate(identity.name), credentials.certificate, kPublic);
     const std::string permissions =
         permissions_document(identity.name, grants_of(identity.role, identity.name), not_before, not_after);
-    write_text(document_of(files.permissions(identity.name)), permissions, kPublic);
+    write_text(files.permissions_text(identity.name), permissions, kPublic);
     write_text(files.permissions(identity.name), sign_document(permissions_ca, permissions), kPublic);
   }
+  return until;
 }
 
 std::vector<Expiry> expiries(const std::string& dir) {

@@ -31,16 +31,19 @@ struct FolderLayout {
   std::string permissions_ca() const { return dir + "/ca/permissions_ca.pem"; }
   std::string permissions_ca_key() const { return dir + "/ca/permissions_ca_key.pem"; }
   std::string governance() const { return dir + "/governance.p7s"; }
+  std::string governance_text() const { return dir + "/governance.xml"; }
   std::string identity_dir(const std::string& name) const { return dir + "/identities/" + name; }
   std::string certificate(const std::string& name) const { return identity_dir(name) + "/certificate.pem"; }
   std::string private_key(const std::string& name) const { return identity_dir(name) + "/key.pem"; }
   std::string permissions(const std::string& name) const { return identity_dir(name) + "/permissions.p7s"; }
+  std::string permissions_text(const std::string& name) const { return identity_dir(name) + "/permissions.xml"; }
 };
 
 /// Makes the two authorities, the governance and each identity's key, certificate and
 /// permissions, all valid from now for `days`. An existing authority is kept unless `replace` is
-/// set: SecurityError names it otherwise. Keys are written readable by their owner alone.
-void init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace);
+/// set: SecurityError names it otherwise. Keys are written readable by their owner alone. Returns
+/// the end of the permissions' validity (seconds since 1970, UTC).
+std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace);
 
 /// When a credential of the folder stops being valid.
 struct Expiry {

@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     // Loaded once, road network and graph included: dispatch costs and the web view use them.
     const auto site_map = app::load_site(*config, robots);
     const std::atomic<bool>& stop = app::start_daemon();
-    app::use_dds_security(*config, "server");
+    app::use_dds_security(config->settings.get_string("dds.security"), "server", "dds.security");
 
     server::ServerOptions options;
     app::set_run_options(options, *config);

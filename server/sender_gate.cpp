@@ -31,14 +31,14 @@ bool SenderGate::admit(dds_entity_t reader, const dds::SampleInfo& info, const s
                        const char* topic) {
   auto known = partitions_.find(info.publication_handle);
   if (known == partitions_.end()) {
-    if (!info.valid_data) return !refused_writers_.contains(info.publication_handle);
+    // No data and a writer never heard: nothing to judge it by (a refused writer is known).
+    if (!info.valid_data) return true;
     known = partitions_.emplace(info.publication_handle, dds::writer_partitions(reader, info.publication_handle)).first;
   }
   const model::SenderVerdict verdict = model::judge_sender(known->second, robot_id, secured_);
   if (verdict == model::SenderVerdict::kAccepted) return true;
   ++refused_;
   changed_ = true;
-  refused_writers_.insert(info.publication_handle);
   if (logged_.emplace(info.publication_handle, topic).second) {
     const std::string sender =
         std::string(topic) + " naming '" + robot_id + "' from a writer in " + listed(known->second);

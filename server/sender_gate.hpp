@@ -47,8 +47,7 @@ class SenderGate {
   std::shared_ptr<spdlog::logger> log_;
   LogLimiter limiter_;
   std::map<dds_instance_handle_t, std::vector<std::string>> partitions_;  ///< per writer seen
-  std::set<dds_instance_handle_t> refused_writers_;
-  std::set<std::pair<dds_instance_handle_t, std::string>> logged_;  ///< (writer, topic) refused and logged
+  std::set<std::pair<dds_instance_handle_t, std::string>> logged_;        ///< (writer, topic) refused and logged
   std::vector<std::string> senders_;
   std::int64_t refused_ = 0;
   bool changed_ = false;
