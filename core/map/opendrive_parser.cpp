@@ -154,6 +154,9 @@ std::optional<RoadLink> road_link(const Parser& p, const pugi::xml_node& node) {
   return link;
 }
 
+/// Forty full circles: see the spiral case below.
+constexpr double kMaxSpiralTurn = 250.0;
+
 Geometry geometry(const Parser& p, const pugi::xml_node& node) {
   Geometry g;
   g.line = p.line_of(node);
@@ -179,6 +182,14 @@ Geometry geometry(const Parser& p, const pugi::xml_node& node) {
     g.kind = GeometryKind::kSpiral;
     g.curv_start = p.number(shape, "curvStart");
     g.curv_end = p.number(shape, "curvEnd");
+    // A spiral is integrated numerically, at a cost that grows with its turn. No road turns
+    // forty full circles in one geometry; such a spiral is a broken file, refused by name.
+    const double turn = std::max(std::abs(g.curv_start), std::abs(g.curv_end)) * g.length;
+    if (!(turn <= kMaxSpiralTurn)) {
+      p.fail(shape, "curvEnd",
+             "the spiral turns up to " + std::to_string(turn) + " rad over its length " + std::to_string(g.length) +
+                 " m, more than the " + std::to_string(static_cast<int>(kMaxSpiralTurn)) + " rad a road geometry may");
+    }
   } else if (kind == "poly3") {
     g.kind = GeometryKind::kPoly3;
     g.a = p.number(shape, "a");

@@ -114,6 +114,17 @@ TEST(OpenDriveErrors, UnknownGeometryElementIsNamed) {
       "attribute 'pRange': 'degrees' is neither normalized nor arcLength");
 }
 
+// A spiral costs a numerical integral that grows with its turn; one turning more than forty full
+// circles is a broken file (the fuzzer's was 1e9 m long) and is refused instead of taking minutes.
+TEST(OpenDriveErrors, ASpiralTurningFortyCirclesIsRefused) {
+  EXPECT_HAS(error_of(road_xml(R"(s="0" x="0" y="0" hdg="0" length="1071390801")",
+                               R"(<spiral curvStart="0.008" curvEnd="0.0"/>)", "",
+                               R"(id="1" length="1071390801" junction="-1")")),
+             "maps/bad.xodr:8: <spiral> attribute 'curvEnd': the spiral turns up to 8571126");
+  EXPECT_EQ(error_of(road_xml(R"(s="0" x="0" y="0" hdg="0" length="10")", R"(<spiral curvStart="0" curvEnd="0.2"/>)")),
+            "");
+}
+
 /// The warnings of a file that parses.
 std::string warnings_of(const std::string& xml) {
   std::string all;
