@@ -176,7 +176,7 @@ int run_clients(const Options& o) {
     threads.emplace_back([&] {
       httplib::Client http("127.0.0.1", o.port);
       http.set_read_timeout(10, 0);
-      http.Get("/api/stream", [&](const char* data, std::size_t n) {
+      http.Get("/api/stream", {{"Authorization", "Bearer bench"}}, [&](const char* data, std::size_t n) {
         bytes += static_cast<long>(n);
         for (std::size_t i = 0; i + 1 < n; ++i) {
           if (data[i] == '\n' && data[i + 1] == '\n') ++events;
@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
   server::WebBridge bridge;
   server::WebOptions web_options;
   web_options.port = o.port;
-  web_options.token = "bench";
+  web_options.tokens = {"bench-viewer", "bench"};
   web_options.stream_hz = o.hz;
   web_options.max_stream_clients = std::max(32, o.clients + 4);
   auto log = make_logger("web_bench", "", spdlog::level::warn);

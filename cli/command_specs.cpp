@@ -284,12 +284,13 @@ std::vector<CommandSpec> offline_commands() {
        "init",
        "DIR",
        true,
-       {value("--site", "NAME"), integer("--days", "N", 1, 36500), on_off("--force")},
+       {value("--site", "NAME"), integer("--days", "N", 1, 36500), on_off("--force"), value("--web-hosts", "NAME,...")},
        "credentials for DDS Security in DIR: an identity and a permissions\n"
        "authority, the signed governance, and for the server, the operator and\n"
        "every robot of the site's fleets a key, a certificate and signed\n"
        "permissions, valid N days (default 365); --force replaces authorities\n"
-       "already in DIR (docs/security.md)"},
+       "already in DIR; an HTTPS certificate for the web view, for --web-hosts\n"
+       "(default localhost,127.0.0.1) (docs/security.md)"},
       {Group::kOffline,
        "security",
        "check",

@@ -25,6 +25,7 @@
 #include "dds/security.hpp"
 #include "map/site.hpp"
 #include "model/names.hpp"
+#include "security/security_folder.hpp"
 #include "vehicle/vehicle_types.hpp"
 
 namespace fleet::cli {
@@ -140,6 +141,12 @@ void FleetRun::start() {
   server_argv.insert(server_argv.end(),
                      {"--db", run_dir_ + "/fleet.db", "--http-port", std::to_string(options_.http_port)});
   if (!options_.api_token.empty()) server_argv.insert(server_argv.end(), {"--api-token", options_.api_token});
+  // With a security folder the web view is served over HTTPS with the folder's web certificate.
+  if (!dds::security_folder().empty() && options_.http_port > 0) {
+    const security::FolderLayout folder(dds::security_folder());
+    server_argv.insert(server_argv.end(),
+                       {"--http-tls-cert", folder.web_certificate(), "--http-tls-key", folder.web_key()});
+  }
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
   // One agent starts when the one before it publishes its state: an agent's start (its site, grids
@@ -371,9 +378,10 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
       << " on DDS domain " << domain << ", site " << options.site << ", time scale " << options.time_scale
       << ", automatic orders " << (options.auto_orders ? "on" : "off") << ".\n"
       << "  logs:    " << run.run_dir() << "/\n"
-      << (options.http_port > 0 ? "  web:     http://127.0.0.1:" + std::to_string(options.http_port) +
-                                      "/?token=" + options.api_token + "\n"
-                                : std::string())
+      << (options.http_port > 0
+              ? "  web:     " + std::string(dds::security_folder().empty() ? "http" : "https") +
+                    "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
+              : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"
       << "  order:   fleetctl --domain " << domain << " inject --count 1 --wait   (one order the fleet can take now)\n"
       << "  by hand: fleetctl --domain " << domain << " order add --from AREA --to AREA --wait"

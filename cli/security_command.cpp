@@ -4,6 +4,7 @@
 #include <ctime>
 #include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli/command_flags.hpp"
 #include "cli/commands.hpp"
@@ -24,20 +25,28 @@ int init(const CommandArgs& args, const CommandFlags& flags, const std::string& 
   for (const auto& [fleet, robot] : config.all_robots()) robots.push_back(robot->id);
   const auto identities = security::site_identities(robots);
   const int days = static_cast<int>(flags.integer("days").value_or(kDefaultDays));
-  const std::int64_t until = security::init_folder(dir, identities, days, flags.flag("force"));
+  std::vector<std::string> web_names = security::default_web_names();
+  if (const auto hosts = flags.value("web-hosts")) {
+    web_names.clear();
+    std::string name;
+    for (std::istringstream in(*hosts); std::getline(in, name, ',');) web_names.push_back(name);
+  }
+  const std::int64_t until = security::init_folder(dir, identities, days, flags.flag("force"), web_names);
   if (args.json) {
     nlohmann::json names = nlohmann::json::array();
     for (const auto& identity : identities) names.push_back(identity.name);
     out << nlohmann::json{{"folder", dir},
                           {"config", config.source},
                           {"identities", names},
+                          {"web_certificate", security::FolderLayout(dir).web_certificate()},
                           {"valid_until", security::utc_time(until)}}
                .dump()
         << "\n";
   } else {
     out << "credentials for " << identities.size() << " identities (server, operator and " << robots.size()
-        << " robots of " << config.source << ") in " << dir << ", valid until " << security::utc_time(until)
-        << " UTC\n";
+        << " robots of " << config.source << ") in " << dir << ", valid until " << security::utc_time(until) << " UTC\n"
+        << "the web view's HTTPS certificate and key: " << security::FolderLayout(dir).web_certificate() << ", "
+        << security::FolderLayout(dir).web_key() << "\n";
   }
   return kExitOk;
 }

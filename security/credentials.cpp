@@ -1,5 +1,6 @@
 #include "security/credentials.hpp"
 
+#include <arpa/inet.h>
 #include <openssl/bio.h>
 #include <openssl/err.h>
 #include <openssl/evp.h>
@@ -140,6 +141,32 @@ KeyPair issue_identity(const KeyPair& authority, const std::string& identity, in
   Key key = new_key();
   Cert cert = new_certificate(identity, key.get(), issuer.get(), days);
   if (X509_sign(cert.get(), issuer_key.get(), EVP_sha256()) == 0) fail("cannot sign the certificate of " + identity);
+  return {pem_of(cert.get()), pem_of(key.get())};
+}
+
+KeyPair issue_web_certificate(const KeyPair& authority, const std::vector<std::string>& names, int days) {
+  if (names.empty()) throw SecurityError("a web certificate needs at least one host name or address");
+  Cert issuer = parse_certificate(authority.certificate);
+  Key issuer_key = parse_key(authority.private_key);
+  if (!issuer || !issuer_key) fail("cannot read the identity authority");
+  Key key = new_key();
+  Cert cert = new_certificate(names.front(), key.get(), issuer.get(), days);
+  std::string alt_names;
+  for (const std::string& name : names) {
+    unsigned char address[16];
+    const bool is_address =
+        inet_pton(AF_INET, name.c_str(), address) == 1 || inet_pton(AF_INET6, name.c_str(), address) == 1;
+    if (name.empty() || (!is_address && name.find_first_of(",: \t") != std::string::npos)) {
+      throw SecurityError("'" + name + "' is neither a host name nor an address, for a web certificate");
+    }
+    if (!alt_names.empty()) alt_names += ',';
+    alt_names += is_address ? "IP:" : "DNS:";
+    alt_names += name;
+  }
+  add_extension(cert.get(), issuer.get(), NID_subject_alt_name, alt_names.c_str());
+  add_extension(cert.get(), issuer.get(), NID_ext_key_usage, "serverAuth");
+  add_extension(cert.get(), issuer.get(), NID_key_usage, "critical,digitalSignature,keyAgreement");
+  if (X509_sign(cert.get(), issuer_key.get(), EVP_sha256()) == 0) fail("cannot sign the web certificate");
   return {pem_of(cert.get()), pem_of(key.get())};
 }
 

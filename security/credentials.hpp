@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fleet::security {
 
@@ -25,6 +26,11 @@ KeyPair make_authority(const std::string& common_name, int days);
 /// A certificate for `identity` (subject CN=identity, O=Fleet) on a new EC prime256v1 key,
 /// signed by `authority`, valid from now for `days`.
 KeyPair issue_identity(const KeyPair& authority, const std::string& identity, int days);
+
+/// A TLS server certificate for the web view on a new EC prime256v1 key, signed by `authority`,
+/// valid from now for `days`: subject CN=names[0], a subjectAltName per name (an IP address or a
+/// DNS name, as a browser checks it), extended key usage serverAuth. `names` must not be empty.
+KeyPair issue_web_certificate(const KeyPair& authority, const std::vector<std::string>& names, int days);
 
 /// `document` signed by `signer` as clear-text S/MIME, as `openssl smime -sign -text` writes it
 /// (the form Cyclone DDS reads governance and permissions documents in).

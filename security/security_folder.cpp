@@ -83,7 +83,12 @@ std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids)
   return identities;
 }
 
-std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace) {
+std::vector<std::string> default_web_names() {
+  return {"localhost", "127.0.0.1"};
+}
+
+std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace,
+                         const std::vector<std::string>& web_names) {
   const FolderLayout files(dir);
   const KeyPair identity_ca =
       authority(files.identity_ca(), files.identity_ca_key(), "Fleet identity authority", days, replace);
@@ -105,6 +110,9 @@ std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& id
     write_text(files.permissions_text(identity.name), permissions, kPublic);
     write_text(files.permissions(identity.name), sign_document(permissions_ca, permissions), kPublic);
   }
+  const KeyPair web = issue_web_certificate(identity_ca, web_names, days);
+  write_text(files.web_key(), web.private_key, kSecret);
+  write_text(files.web_certificate(), web.certificate, kPublic);
   return until;
 }
 
@@ -117,6 +125,7 @@ std::vector<Expiry> expiries(const std::string& dir) {
       certificates.push_back(files.certificate(entry.path().filename().string()));
     }
   }
+  if (fs::exists(files.web_certificate())) certificates.push_back(files.web_certificate());
   std::vector<Expiry> out;
   for (const std::string& path : certificates) {
     const CertificateFacts facts = read_certificate(read_text(path), path);

@@ -23,6 +23,7 @@ std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids)
 ///     DIR/ca/permissions_ca.pem, permissions_ca_key.pem signs the governance and permissions
 ///     DIR/governance.xml, governance.p7s
 ///     DIR/identities/NAME/certificate.pem, key.pem, permissions.xml, permissions.p7s
+///     DIR/web/certificate.pem, key.pem                  the web view's HTTPS, by the identity authority
 struct FolderLayout {
   explicit FolderLayout(std::string folder) : dir(std::move(folder)) {}
   std::string dir;
@@ -37,13 +38,20 @@ struct FolderLayout {
   std::string private_key(const std::string& name) const { return identity_dir(name) + "/key.pem"; }
   std::string permissions(const std::string& name) const { return identity_dir(name) + "/permissions.p7s"; }
   std::string permissions_text(const std::string& name) const { return identity_dir(name) + "/permissions.xml"; }
+  std::string web_certificate() const { return dir + "/web/certificate.pem"; }
+  std::string web_key() const { return dir + "/web/key.pem"; }
 };
 
-/// Makes the two authorities, the governance and each identity's key, certificate and
-/// permissions, all valid from now for `days`. An existing authority is kept unless `replace` is
-/// set: SecurityError names it otherwise. Keys are written readable by their owner alone. Returns
-/// the end of the permissions' validity (seconds since 1970, UTC).
-std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace);
+/// The names a web certificate is made for when none are given: this host over loopback.
+std::vector<std::string> default_web_names();
+
+/// Makes the two authorities, the governance, each identity's key, certificate and permissions,
+/// and the web view's HTTPS certificate for `web_names`, all valid from now for `days`. An
+/// existing authority is kept unless `replace` is set: SecurityError names it otherwise. Keys are
+/// written readable by their owner alone. Returns the end of the permissions' validity (seconds
+/// since 1970, UTC).
+std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& identities, int days, bool replace,
+                         const std::vector<std::string>& web_names = default_web_names());
 
 /// When a credential of the folder stops being valid.
 struct Expiry {

@@ -35,8 +35,12 @@ options:
   --auto-orders        create random orders whenever a robot is free
   --http-port N        port of the web view and JSON API (default: server.http_port, 8080; 0: off)
   --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
-  --api-token TOKEN    token of the API's mutating calls (default: env FLEET_API_TOKEN, else
-                       server.api_token, else one generated at start and logged)
+  --api-token TOKEN    the operator's token: every call of the web API (default: env
+                       FLEET_API_TOKEN, else server.api_token, else one generated and logged)
+  --viewer-token TOKEN the viewer's token: the page's reading calls and live stream (default:
+                       env FLEET_VIEWER_TOKEN, else server.viewer_token, else generated, logged)
+  --http-tls-cert PEM  serve the web view over HTTPS with this certificate (server.http_tls_cert;
+  --http-tls-key PEM   with its key, server.http_tls_key; fleetctl security init writes a pair)
   --set KEY=VALUE      any configuration key (repeatable), e.g. --set traffic.enabled=false
   --verbose            log debug events too
   --help               this text
@@ -45,15 +49,22 @@ Logs go to stderr, one line per event; the web view's address with its token is 
 SIGINT or SIGTERM stops it cleanly.
 )";
 
-/// The API token of the web view, and where it came from: --api-token, then the environment,
-/// then the configuration file, then a fresh one.
-std::pair<std::string, std::string> choose_api_token(const std::optional<std::string>& token_flag,
-                                                     const config::FleetConfig& config) {
-  const char* env_token = std::getenv("FLEET_API_TOKEN");
-  if (token_flag && !token_flag->empty()) return {*token_flag, "--api-token"};
-  if (env_token && *env_token) return {env_token, "FLEET_API_TOKEN"};
-  if (const auto configured = config.settings.get_string("server.api_token"); !configured.empty()) {
-    return {configured, "server.api_token"};
+/// Where a web view token comes from: its flag, then the environment, then the configuration
+/// file, else a fresh one.
+struct TokenSource {
+  std::optional<std::string> flag_value;
+  const char* flag;
+  const char* env;
+  const char* key;
+};
+
+/// The token and where it came from.
+std::pair<std::string, std::string> choose_token(const TokenSource& source, const config::FleetConfig& config) {
+  const char* env_token = std::getenv(source.env);
+  if (source.flag_value && !source.flag_value->empty()) return {*source.flag_value, source.flag};
+  if (env_token && *env_token) return {env_token, source.env};
+  if (const auto configured = config.settings.get_string(source.key); !configured.empty()) {
+    return {configured, source.key};
   }
   return {server::generate_api_token(), "generated"};
 }
@@ -65,7 +76,7 @@ std::pair<std::string, std::string> choose_api_token(const std::optional<std::st
 /// only in `bridge`. `web_config` must outlive it.
 std::unique_ptr<server::WebServer> start_web_view(const server::ServerOptions& options,
                                                   const config::FleetConfig& web_config,
-                                                  const std::optional<std::string>& token_flag,
+                                                  const TokenSource& operator_source, const TokenSource& viewer_source,
                                                   server::WebBridge& bridge, const Logger& log) {
   const auto http_port = options.config.settings.get_int("server.http_port");
   if (http_port == 0) return nullptr;
@@ -73,20 +84,33 @@ std::unique_ptr<server::WebServer> start_web_view(const server::ServerOptions& o
   web_options.host = options.config.settings.get_string("server.http_host");
   web_options.port = static_cast<int>(http_port);
   web_options.stream_hz = options.config.settings.get_double("server.web_stream_hz");
-  const auto [token, token_source] = choose_api_token(token_flag, options.config);
-  web_options.token = token;
+  const auto [token, token_source] = choose_token(operator_source, options.config);
+  const auto [viewer, viewer_source_name] = choose_token(viewer_source, options.config);
+  web_options.tokens = {viewer, token};
+  web_options.tls_certificate = options.config.settings.get_string("server.http_tls_cert");
+  web_options.tls_key = options.config.settings.get_string("server.http_tls_key");
+  if (web_options.tls_certificate.empty() != web_options.tls_key.empty()) {
+    throw InputError(
+        "server.http_tls_cert and server.http_tls_key: HTTPS needs both (--http-tls-cert, --http-tls-key)");
+  }
+  if (viewer == token) {
+    throw InputError("the viewer's token (from " + viewer_source_name + ") is the operator's (from " + token_source +
+                     "): a viewer could change everything");
+  }
   server::WebSiteInfo info;
   info.site_map = options.site_map.get();
   info.config = &web_config;
   info.maps = options.maps;
-  const std::string url = "http://" + web_options.host + ":" + std::to_string(web_options.port) + "/";
+  const std::string url = std::string(web_options.tls_certificate.empty() ? "http" : "https") + "://" +
+                          web_options.host + ":" + std::to_string(web_options.port) + "/";
   auto web = std::make_unique<server::WebServer>(std::move(web_options), bridge, std::move(info), log);
   try {
     web->start();
   } catch (const std::runtime_error& e) {
     throw InputError(std::string(e.what()) + "; choose another port with --http-port (0: no web view)");
   }
-  log->info("web view: {}?token={} (API token {}; from {})", url, token, token, token_source);
+  log->info("web view: {}?token={} (the operator's token, from {}; the viewer's: {}?token={}, from {})", url, token,
+            token_source, url, viewer, viewer_source_name);
   return web;
 }
 
@@ -102,7 +126,11 @@ int main(int argc, char** argv) {
     if (args.flag("auto-orders")) config->settings.set("server.auto_orders", "true", "--auto-orders");
     if (auto v = args.value("http-port")) config->settings.set("server.http_port", *v, "--http-port");
     if (auto v = args.value("http-host")) config->settings.set("server.http_host", *v, "--http-host");
-    const std::optional<std::string> token_flag = args.value("api-token");
+    if (auto v = args.value("http-tls-cert")) config->settings.set("server.http_tls_cert", *v, "--http-tls-cert");
+    if (auto v = args.value("http-tls-key")) config->settings.set("server.http_tls_key", *v, "--http-tls-key");
+    const TokenSource operator_source{args.value("api-token"), "--api-token", "FLEET_API_TOKEN", "server.api_token"};
+    const TokenSource viewer_source{args.value("viewer-token"), "--viewer-token", "FLEET_VIEWER_TOKEN",
+                                    "server.viewer_token"};
     const auto level = app::finish_args(args);
 
     std::vector<std::string> robots;
@@ -128,7 +156,7 @@ int main(int argc, char** argv) {
     server::WebBridge bridge;
     // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
     const config::FleetConfig web_config = options.config;
-    auto web = start_web_view(options, web_config, token_flag, bridge, log);
+    auto web = start_web_view(options, web_config, operator_source, viewer_source, bridge, log);
     server::FleetServer fleet_server(std::move(options), log);
     if (web) fleet_server.attach_web(&bridge);
     fleet_server.run(stop);

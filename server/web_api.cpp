@@ -13,6 +13,7 @@
 #include "model/names.hpp"
 #include "orders/order_request_check.hpp"
 #include "orders/pick_lines.hpp"
+#include "server/web_gate.hpp"
 #include "server/web_http.hpp"
 
 namespace fleet::server {
@@ -21,8 +22,8 @@ using httplib::Request;
 using httplib::Response;
 using nlohmann::json;
 
-WebApi::WebApi(const WebOptions& options, WebBridge& bridge, const WebSiteInfo& site, Logger log)
-    : options_(options), bridge_(bridge), site_(site), log_(std::move(log)) {}
+WebApi::WebApi(const WebOptions& options, WebBridge& bridge, const WebSiteInfo& site, WebGate& gate, Logger log)
+    : options_(options), bridge_(bridge), site_(site), gate_(gate), log_(std::move(log)) {}
 
 void WebApi::install(httplib::Server& http) {
   // A POST or DELETE that announces no body (curl -X POST without -d) would keep cpp-httplib
@@ -67,23 +68,7 @@ void WebApi::install(httplib::Server& http) {
 }
 
 bool WebApi::authorized(const Request& req, Response& res) const {
-  std::string given;
-  const std::string header = req.get_header_value("Authorization");
-  if (header.rfind("Bearer ", 0) == 0) {
-    given = header.substr(7);
-  } else if (req.has_param("token")) {
-    given = req.get_param_value("token");
-  }
-  if (given.empty()) {
-    res.set_header("WWW-Authenticate", "Bearer");
-    send_error(res, 401, "token", "missing; send 'Authorization: Bearer TOKEN' or ?token=TOKEN");
-    return false;
-  }
-  if (!same_token(given, options_.token)) {
-    send_error(res, 403, "token", "wrong token");
-    return false;
-  }
-  return true;
+  return gate_.admit(req, res, model::WebRole::kOperator);
 }
 
 WebApi::Reply WebApi::ask(WebRequest request, Response& res) {

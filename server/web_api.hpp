@@ -21,13 +21,13 @@ struct Response;
 
 namespace fleet::server {
 
-/// Orders, obstacles, maps, robots and automatic orders over HTTP. Each call needs the token,
+/// Orders, obstacles, maps, robots and automatic orders over HTTP. Each call needs the operator's token,
 /// checks its input as fleetctl does (one check, in core/orders for orders) and hands the request
 /// to the server loop through the bridge, waiting for its answer.
 class WebApi {
  public:
   /// `site` is the web server's own: a map switch it sees is seen here.
-  WebApi(const WebOptions& options, WebBridge& bridge, const WebSiteInfo& site, Logger log);
+  WebApi(const WebOptions& options, WebBridge& bridge, const WebSiteInfo& site, WebGate& gate, Logger log);
   WebApi(const WebApi&) = delete;
   WebApi& operator=(const WebApi&) = delete;
 
@@ -36,7 +36,7 @@ class WebApi {
 
  private:
   using Reply = std::optional<model::RequestReply>;
-  /// Whether the request carries the token; answers 401 or 403 when it does not.
+  /// Whether the request carries the operator's token; answers 401 or 403 when it does not.
   bool authorized(const httplib::Request& req, httplib::Response& res) const;
   /// Hands a request to the server loop and waits for its answer (the same execute() as
   /// fleetctl's requests over DDS); none, after answering 503, when none came in time.
@@ -57,6 +57,7 @@ class WebApi {
   const WebOptions& options_;
   WebBridge& bridge_;
   const WebSiteInfo& site_;
+  WebGate& gate_;
   Logger log_;
   std::atomic<std::uint64_t> request_counter_{0};
 };

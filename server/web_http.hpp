@@ -1,6 +1,6 @@
 #pragma once
 // The web API's small HTTP pieces: JSON answers and errors that name the field, the body and its
-// fields read with a clear error, the token compared in constant time.
+// fields read with a clear error.
 
 #include <httplib.h>
 
@@ -9,9 +9,6 @@
 #include <string>
 
 namespace fleet::server {
-
-/// Compares without an early exit, so the time taken does not tell how much of a guess matched.
-bool same_token(const std::string& given, const std::string& expected);
 
 void send_json(httplib::Response& res, int status, const nlohmann::json& body);
 

@@ -1,6 +1,7 @@
 #include "server/web_server.hpp"
 
 #include <httplib.h>
+#include <openssl/ssl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "model/names.hpp"
 #include "server/web_api.hpp"
+#include "server/web_gate.hpp"
 #include "server/web_http.hpp"
 #include "server/web_json.hpp"
 
@@ -333,7 +335,15 @@ struct WebServer::Frame {
 
 WebServer::WebServer(WebOptions options, WebBridge& bridge, WebSiteInfo site, Logger log)
     : options_(std::move(options)), bridge_(bridge), site_(std::move(site)), log_(std::move(log)) {
-  if (options_.token.empty()) throw std::invalid_argument("web server: empty API token");
+  if (options_.tokens.operator_token.empty() || options_.tokens.viewer.empty()) {
+    throw std::invalid_argument("web server: an empty token (the viewer's and the operator's must both be set)");
+  }
+  if (options_.tokens.operator_token == options_.tokens.viewer) {
+    throw std::invalid_argument("web server: the viewer's token is the operator's: a viewer could change everything");
+  }
+  if (options_.tls_certificate.empty() != options_.tls_key.empty()) {
+    throw std::invalid_argument("web server: HTTPS needs both a certificate and its key");
+  }
   if (!site_.site_map) throw std::invalid_argument("web server: no site map");
   site_body_ = site_json(site_).dump();
 }
@@ -342,8 +352,26 @@ WebServer::~WebServer() {
   stop();
 }
 
+std::unique_ptr<httplib::Server> WebServer::make_http() const {
+  if (!tls()) return std::make_unique<httplib::Server>();
+  for (const auto& file : {options_.tls_certificate, options_.tls_key}) {
+    if (access(file.c_str(), R_OK) != 0) throw std::runtime_error("HTTPS: cannot read " + file);
+  }
+  auto https = std::make_unique<httplib::SSLServer>(options_.tls_certificate.c_str(), options_.tls_key.c_str());
+  if (!https->is_valid()) {
+    throw std::runtime_error("HTTPS: " + options_.tls_certificate + " and " + options_.tls_key +
+                             " are not a PEM certificate and its private key");
+  }
+  SSL_CTX_set_min_proto_version(https->ssl_context(), TLS1_2_VERSION);
+  return https;
+}
+
+std::uint64_t WebServer::failed_authentications() const {
+  return gate_ ? gate_->failures() : 0;
+}
+
 void WebServer::start() {
-  http_ = std::make_unique<httplib::Server>();
+  http_ = make_http();
   // Every stream client holds a thread while it listens; the rest serve the API and the page.
   const auto threads = static_cast<std::size_t>(options_.max_stream_clients + 8);
   http_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
@@ -359,8 +387,8 @@ void WebServer::start() {
   port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;
   if (port_ <= 0 || (options_.port != 0 && !http_->bind_to_port(options_.host, options_.port))) {
     http_.reset();
-    throw std::runtime_error("cannot listen on http://" + options_.host + ":" + std::to_string(options_.port) +
-                             ": the port is in use, or the address is not this host's");
+    throw std::runtime_error("cannot listen on " + std::string(tls() ? "https" : "http") + "://" + options_.host + ":" +
+                             std::to_string(options_.port) + ": the port is in use, or the address is not this host's");
   }
   stopping_ = false;
   pump_ = std::thread([this] { pump(); });
@@ -485,8 +513,13 @@ void WebServer::routes() {
     if (!serve_asset(req.matches[1], res)) send_error(res, 404, "", "no such file");
   });
 
-  // ---- reading ----
-  http.Get("/api/site", [this](const Request&, Response& res) {
+  // ---- reading: the viewer's token or the operator's ----
+  gate_ = std::make_unique<WebGate>(options_.tokens, log_);
+  const auto viewer = [this](const Request& req, Response& res) {
+    return gate_->admit(req, res, model::WebRole::kViewer);
+  };
+  http.Get("/api/site", [this, viewer](const Request& req, Response& res) {
+    if (!viewer(req, res)) return;
     std::string body;
     {
       std::lock_guard lock(site_mutex_);
@@ -494,11 +527,13 @@ void WebServer::routes() {
     }
     res.set_content(body, "application/json");
   });
-  http.Get("/api/fleets", [this](const Request&, Response& res) {
+  http.Get("/api/fleets", [this, viewer](const Request& req, Response& res) {
+    if (!viewer(req, res)) return;
     std::lock_guard lock(site_mutex_);
     send_json(res, 200, fleets_json(*site_.config));
   });
-  http.Get("/api/state", [this](const Request&, Response& res) {
+  http.Get("/api/state", [this, viewer](const Request& req, Response& res) {
+    if (!viewer(req, res)) return;
     const LiveSnapshot snapshot = bridge_.latest().first;
     json state = state_json(snapshot);
     // The map the robots drive on now (the server's snapshot is ahead of the served roads by at
@@ -509,9 +544,11 @@ void WebServer::routes() {
       std::lock_guard lock(site_mutex_);
       state["site"] = site_.site_map->site.name;
     }
+    state["failed_authentications"] = gate_->failures();
     send_json(res, 200, state);
   });
-  http.Get("/api/stream", [this](const Request&, Response& res) {
+  http.Get("/api/stream", [this, viewer](const Request& req, Response& res) {
+    if (!viewer(req, res)) return;
     if (stream_clients_.fetch_add(1) >= options_.max_stream_clients) {
       --stream_clients_;
       send_error(res, 503, "", "too many stream clients (" + std::to_string(options_.max_stream_clients) + ")");
@@ -539,7 +576,7 @@ void WebServer::routes() {
         [this](bool) { --stream_clients_; });
   });
 
-  api_ = std::make_unique<WebApi>(options_, bridge_, site_, log_);
+  api_ = std::make_unique<WebApi>(options_, bridge_, site_, *gate_, log_);
   api_->install(*http_);
 }
 

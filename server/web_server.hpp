@@ -18,6 +18,7 @@
 #include "common/logging.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "model/web_access.hpp"
 #include "server/web_bridge.hpp"
 
 namespace httplib {
@@ -27,14 +28,17 @@ class Server;
 namespace fleet::server {
 
 class WebApi;
+class WebGate;
 
 struct WebOptions {
   std::string host = "127.0.0.1";  ///< loopback unless configured otherwise
   int port = 8080;                 ///< 0: any free port (see WebServer::port())
-  std::string token;               ///< mutating calls need it; must not be empty
-  double stream_hz = 20.0;         ///< highest rate of stream frames, wall time
-  double reply_timeout_s = 5.0;    ///< how long a request waits for the server loop's answer
-  int max_stream_clients = 32;     ///< each holds one thread for as long as it listens
+  model::WebTokens tokens;         ///< the viewer's and the operator's; neither may be empty
+  std::string tls_certificate;     ///< PEM files: HTTPS (TLS 1.2 at least) when both are set
+  std::string tls_key;
+  double stream_hz = 20.0;       ///< highest rate of stream frames, wall time
+  double reply_timeout_s = 5.0;  ///< how long a request waits for the server loop's answer
+  int max_stream_clients = 32;   ///< each holds one thread for as long as it listens
 };
 
 /// Everything the page draws that never changes while the server runs, from the site file, its
@@ -104,11 +108,17 @@ class WebServer {
   /// The bound port (useful with port 0).
   int port() const { return port_; }
 
+  /// Whether it serves HTTPS.
+  bool tls() const { return !options_.tls_certificate.empty(); }
+  /// Failed authentications since start.
+  std::uint64_t failed_authentications() const;
+
   /// Stream frames built so far (one per new snapshot, shared by every client).
   std::uint64_t frames_built() const { return frames_built_.load(); }
 
  private:
   struct Frame;
+  std::unique_ptr<httplib::Server> make_http() const;
   void routes();
   void pump();
   std::shared_ptr<const Frame> wait_frame(std::uint64_t after, double timeout_s);
@@ -120,7 +130,8 @@ class WebServer {
   std::string site_body_;  ///< GET /api/site, serialized once per map
   std::mutex site_mutex_;  ///< site_body_ and site_.site_map, replaced when the map is switched
   std::vector<std::shared_ptr<const map::SiteMap>> maps_seen_;
-  std::unique_ptr<WebApi> api_;  ///< the calls that change something (web_api.hpp)
+  std::unique_ptr<WebGate> gate_;  ///< who may read and who may change (web_gate.hpp)
+  std::unique_ptr<WebApi> api_;    ///< the calls that change something (web_api.hpp)
   std::unique_ptr<httplib::Server> http_;
   int port_ = 0;
   std::thread listener_;

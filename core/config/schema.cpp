@@ -68,7 +68,15 @@ std::vector<KeySpec> make_schema() {
       integer("server.http_port", 8080, "", 0, 65535, "port of the web view and JSON API; 0 turns them off"),
       text("server.http_host", "127.0.0.1", "address the web view binds; keep loopback unless it must be reachable"),
       text("server.api_token", "",
-           "token the API's mutating calls need; env FLEET_API_TOKEN overrides it; empty: generated and logged"),
+           "the operator's token: every call of the API; env FLEET_API_TOKEN overrides it; empty: generated and "
+           "logged"),
+      text("server.viewer_token", "",
+           "the viewer's token: the API's reading calls and the live stream; env FLEET_VIEWER_TOKEN overrides it; "
+           "empty: generated and logged"),
+      text("server.http_tls_cert", "",
+           "PEM certificate of the web view: with server.http_tls_key it serves HTTPS (TLS 1.2 at least); empty: "
+           "HTTP"),
+      text("server.http_tls_key", "", "PEM private key of server.http_tls_cert"),
       number("server.web_stream_hz", 20.0, "Hz", 1.0, 50.0, "highest rate of the web view's live stream, wall time"),
 
       // Agent

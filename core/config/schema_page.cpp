@@ -40,8 +40,9 @@ Every Fleet process (fleet-server, fleet-agent, fleetctl) reads one YAML file,
    `server: {dispatch_policy: nearest}`;
 3. `--set KEY=VALUE` on any binary, and the flags that stand for keys: `--site`, `--time-scale`,
    `--seed`, `--domain`, and the binaries' own (`fleet-server --dispatch`, `--db`, `--http-port`);
-4. for `server.api_token`, the environment variable `FLEET_API_TOKEN` overrides the file, and
-   `fleet-server --api-token` overrides both.
+4. for `server.api_token` and `server.viewer_token`, the environment variables
+   `FLEET_API_TOKEN` and `FLEET_VIEWER_TOKEN` override the file, and `fleet-server --api-token`
+   and `--viewer-token` override both.
 
 An unknown key, a value of the wrong type or out of its range stops the program with a message
 naming the file, the line and the key.

@@ -361,6 +361,16 @@
     return data;
   }
 
+  // Reading needs the viewer's token or the operator's; the server logs both.
+  async function read(path) {
+    const res = await fetch(path, { headers: token ? { Authorization: `Bearer ${token}` } : {} });
+    if (res.status === 401 || res.status === 403) {
+      el('token-box').hidden = false;
+      throw new Error("the viewer's or the operator's token is needed (the server logs both)");
+    }
+    return res.json();
+  }
+
   function setHint(text) {
     el('hint').textContent = text;
     el('hint').classList.toggle('on', !!text);
@@ -450,8 +460,7 @@
     if (reloadingSite) return;
     reloadingSite = true;
     try {
-      const res = await fetch('/api/site');
-      site = await res.json();
+      site = await read('/api/site');
       el('site-name').textContent = `site ${site.site}`;
       el('map-select').innerHTML = site.maps.map((m) => `<option${m === site.site ? ' selected' : ''}>${esc(m)}</option>`).join('');
       fit();
@@ -471,7 +480,8 @@
   }
 
   function connect() {
-    const source = new EventSource('/api/stream');
+    // EventSource cannot send headers: the token goes in the query.
+    const source = new EventSource(`/api/stream?token=${encodeURIComponent(token)}`);
     const status = el('connection');
     source.addEventListener('full', (e) => {
       frame = JSON.parse(e.data);
@@ -565,18 +575,13 @@
         toast(`order ${b.dataset.order} cancelled`);
       } catch (err) { /* shown by api() */ }
     });
-    el('token-set').addEventListener('click', () => {
-      token = el('token-input').value.trim();
-      sessionStorage.setItem('fleet-token', token);
-      el('token-box').hidden = !!token;
-    });
-    if (!token) el('token-box').hidden = false;
     new ResizeObserver(fit).observe(canvas);
   }
 
+  let started = false;
   async function start() {
-    const res = await fetch('/api/site');
-    site = await res.json();
+    site = await read('/api/site');
+    started = true;
     el('site-name').textContent = `site ${site.site}`;
     document.title = `Fleet – ${site.site}`;
     el('map-select').innerHTML = site.maps.map((m) => `<option${m === site.site ? ' selected' : ''}>${esc(m)}</option>`).join('');
@@ -597,5 +602,12 @@
     toScreen(x, y) { return [X(x), Y(y)]; },
   };
 
+  el('token-set').addEventListener('click', () => {
+    token = el('token-input').value.trim();
+    sessionStorage.setItem('fleet-token', token);
+    el('token-box').hidden = !!token;
+    if (!started) start().catch((e) => toast(`cannot load the site: ${e.message}`, true));
+  });
+  if (!token) el('token-box').hidden = false;
   start().catch((e) => toast(`cannot load the site: ${e.message}`, true));
 })();

@@ -1,11 +1,16 @@
 // The web view end to end in a real browser: a real fleet-server and two fleet-agents over DDS,
 // Debian's chromium headless driven by playwright-core. The page loads; clicking an obstacle
 // reaches the agents; two clicks on loading areas create an order that ends DONE while the
-// robot's drawn position moves; a screenshot is saved with the output.
+// robot's drawn position moves; a screenshot is saved with the output. The page is served over
+// HTTPS with the web certificate of a security folder made by `fleetctl security init`: the test's
+// own requests check it against the folder's authority, the browser trusts that one key alone.
+// The viewer's token reads but cannot change anything (403).
 //
 // node e2e_test.js --bin BUILD/bin --source SOURCE_DIR --out OUTPUT_DIR [--domain N] [--port P]
 'use strict';
+const crypto = require('crypto');
 const fs = require('fs');
+const https = require('https');
 const path = require('path');
 const { spawn } = require('child_process');
 
@@ -17,8 +22,9 @@ const OUT = args.out || path.join(__dirname, 'e2e-output');
 const DOMAIN = Number(args.domain || 191);
 const PORT = Number(args.port || 18191);
 const TOKEN = 'e2e-token-' + process.pid;
+const VIEWER_TOKEN = 'e2e-viewer-' + process.pid;
 const TIME_SCALE = '10';
-const BASE = `http://127.0.0.1:${PORT}`;
+const BASE = `https://127.0.0.1:${PORT}`;
 
 if (!BIN) {
   console.error('usage: node e2e_test.js --bin BUILD/bin [--source DIR] [--out DIR]');
@@ -71,14 +77,43 @@ async function until(what, fn, timeoutMs) {
   }
   throw new Error(`timed out waiting for ${what}`);
 }
+// ---- HTTPS: the security folder's web certificate, checked against its identity authority ----
+const SECURITY = path.join(OUT, 'security');
+let authority = '';
+function request(method, urlPath, token, body) {
+  return new Promise((resolve, reject) => {
+    const req = https.request(`${BASE}${urlPath}`, {
+      method, ca: authority, headers: { Authorization: `Bearer ${token}`, 'Content-Type': 'application/json' },
+    }, (res) => {
+      let text = '';
+      res.on('data', (d) => { text += d; });
+      res.on('end', () => resolve({ status: res.statusCode, text }));
+    });
+    req.on('error', reject);
+    req.end(body);
+  });
+}
 async function state() {
-  const res = await fetch(`${BASE}/api/state`);
-  return res.json();
+  return JSON.parse((await request('GET', '/api/state', VIEWER_TOKEN)).text);
+}
+/// base64 SHA-256 of the certificate's public key: what chromium's SPKI allow-list takes.
+function spkiHash(pemFile) {
+  const key = new crypto.X509Certificate(fs.readFileSync(pemFile)).publicKey;
+  return crypto.createHash('sha256').update(key.export({ type: 'spki', format: 'der' })).digest('base64');
 }
 
 async function main() {
+  const init = start('fleetctl-security-init', [path.join(BIN, 'fleetctl'), '--config', path.join(SOURCE, 'config/fleet.yaml'),
+    'security', 'init', SECURITY, '--days', '2']);
+  await new Promise((resolve) => init.on('exit', resolve));
+  if (!check(init.exitCode === 0, 'fleetctl security init makes a folder with a web certificate')) {
+    throw new Error(logOf('fleetctl-security-init'));
+  }
+  authority = fs.readFileSync(path.join(SECURITY, 'ca/identity_ca.pem'));
+  const certificate = path.join(SECURITY, 'web/certificate.pem');
   start('fleet-server', [path.join(BIN, 'fleet-server'), ...common, '--db', path.join(OUT, 'fleet.db'),
-    '--http-port', String(PORT), '--api-token', TOKEN]);
+    '--http-port', String(PORT), '--api-token', TOKEN, '--viewer-token', VIEWER_TOKEN,
+    '--http-tls-cert', certificate, '--http-tls-key', path.join(SECURITY, 'web/key.pem')]);
   start('fleet-agent-fl1', [path.join(BIN, 'fleet-agent'), '--id', 'fl1', ...common]);
   start('fleet-agent-fl2', [path.join(BIN, 'fleet-agent'), '--id', 'fl2', ...common]);
   await until('both robots alive in /api/state', async () => {
@@ -86,7 +121,14 @@ async function main() {
     return s.robots.filter((r) => r.health === 'alive').length === 2;
   }, 60000);
 
-  const { context, close } = await launch();
+  // Roles over HTTPS: the viewer reads, and is refused a change.
+  const refused = await request('POST', '/api/auto-orders', VIEWER_TOKEN, JSON.stringify({ enabled: false }));
+  check(refused.status === 403 && refused.text.includes("the viewer's token does not allow"),
+    `the viewer's token cannot POST (${refused.status} ${refused.text})`);
+  const stranger = await request('GET', '/api/state', 'guess');
+  check(stranger.status === 403, `a wrong token reads nothing (${stranger.status})`);
+
+  const { context, close } = await launch({ trustedKeys: [spkiHash(certificate)] });
   try {
     const page = context.pages()[0] || (await context.newPage());
     const pageErrors = [];

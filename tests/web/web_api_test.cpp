@@ -25,6 +25,8 @@ namespace {
 constexpr int kDomain = 190;
 constexpr int kPort = 18190;  // unique to this test program
 const std::string kToken = "api-test-token";
+const std::string kViewerToken = "viewer-test-token";
+const httplib::Headers kViewer{{"Authorization", "Bearer " + kViewerToken}};
 
 json parse(const httplib::Result& r) {
   if (!r) return json();
@@ -36,7 +38,7 @@ json wait_state(httplib::Client& http, const std::function<bool(const json&)>& r
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   json state;
   while (std::chrono::steady_clock::now() < end) {
-    if (auto r = http.Get("/api/state"); r && r->status == 200) {
+    if (auto r = http.Get("/api/state", kViewer); r && r->status == 200) {
       state = json::parse(r->body, nullptr, false);
       if (!state.is_discarded() && ready(state)) return state;
     }
@@ -63,7 +65,7 @@ class WebApi : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     fleet_ = std::make_unique<FleetHarness>(kDomain, 10.0);
-    fleet_->start_server({"--http-port", std::to_string(kPort), "--api-token", kToken});
+    fleet_->start_server({"--http-port", std::to_string(kPort), "--api-token", kToken, "--viewer-token", kViewerToken});
     fleet_->start_agent("fl1");
     httplib::Client http("127.0.0.1", kPort);
     const json state = wait_state(http, [](const json& s) { return robot_in(s, "fl1") != nullptr; });
@@ -137,7 +139,7 @@ TEST_F(WebApi, ServesThePageAndItsFilesWithNothingFromElsewhere) {
 }
 
 TEST_F(WebApi, SiteHasRoadsGraphAreasObstaclesAnchorsAndHomes) {
-  const json site = parse(http_->Get("/api/site"));
+  const json site = parse(http_->Get("/api/site", kViewer));
   ASSERT_TRUE(site.is_object());
   EXPECT_EQ(site["site"], "table_a");
   EXPECT_DOUBLE_EQ(site["road_width"].get<double>(), 0.30);
@@ -186,8 +188,43 @@ TEST_F(WebApi, MutatingCallsNeedTheRightToken) {
   EXPECT_EQ(r->status, 200) << r->body;
 }
 
+TEST_F(WebApi, TheViewerReadsButChangesNothingAndStrangersReadNothing) {
+  for (const char* path : {"/api/site", "/api/state", "/api/fleets"}) {
+    expect_error(http_->Get(path), 401, "missing", "token");
+    expect_error(http_->Get(path, {{"Authorization", "Bearer guess"}}), 403, "wrong token", "token");
+    auto viewer = http_->Get(path, kViewer);
+    ASSERT_TRUE(viewer);
+    EXPECT_EQ(viewer->status, 200) << path;
+    auto op = http_->Get(path, {{"Authorization", "Bearer " + kToken}});
+    ASSERT_TRUE(op);
+    EXPECT_EQ(op->status, 200) << path << ": the operator may read too";
+  }
+  // The page's event stream sends the token in the query.
+  expect_error(http_->Get("/api/stream"), 401, "missing", "token");
+  expect_error(post("/api/auto-orders", R"({"enabled": false})", kViewerToken), 403,
+               "the viewer's token does not allow POST /api/auto-orders", "token");
+  expect_error(del("/api/orders/1", kViewerToken), 403, "the operator's does", "token");
+}
+
+TEST_F(WebApi, EachFailedAuthenticationInARowWaitsLonger) {
+  const auto timed = [&] {
+    const auto start = std::chrono::steady_clock::now();
+    expect_error(http_->Get("/api/state", {{"Authorization", "Bearer guess"}}), 403, "wrong token", "token");
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const auto failures = [&] { return parse(http_->Get("/api/state", kViewer))["failed_authentications"].get<int>(); };
+  const int before = failures();  // a success clears the address
+  const double first = timed();
+  const double second = timed();
+  const double third = timed();
+  EXPECT_GE(first, 0.1);
+  EXPECT_GE(second, 0.2);
+  EXPECT_GE(third, 0.4);
+  EXPECT_EQ(failures(), before + 3);
+}
+
 TEST_F(WebApi, NoCorsHeadersForOtherOrigins) {
-  httplib::Headers headers{{"Origin", "http://evil.example"}};
+  httplib::Headers headers{{"Origin", "http://evil.example"}, {"Authorization", "Bearer " + kViewerToken}};
   auto r = http_->Get("/api/state", headers);
   ASSERT_TRUE(r);
   EXPECT_FALSE(r->has_header("Access-Control-Allow-Origin"));
@@ -320,7 +357,7 @@ TEST_F(WebApi, AutoOrdersSwitchAndBadInput) {
 TEST_F(WebApi, StreamStartsWithAFullFrameThenSendsDiffs) {
   std::string text;
   int events = 0;
-  auto r = http_->Get("/api/stream", [&](const char* data, std::size_t length) {
+  auto r = http_->Get("/api/stream", kViewer, [&](const char* data, std::size_t length) {
     text.append(data, length);
     events = 0;
     for (std::size_t at = text.find("\n\n"); at != std::string::npos; at = text.find("\n\n", at + 2)) ++events;
@@ -345,7 +382,8 @@ TEST(WebApiStacker, ADockingStackerShowsItsTargetsAndTheDetectedPallet) {
   constexpr int kStackerPort = 18192;
   FleetHarness fleet(kStackerDomain, 5.0, "plant");
   fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
-  fleet.start_server({"--http-port", std::to_string(kStackerPort), "--api-token", kToken});
+  fleet.start_server(
+      {"--http-port", std::to_string(kStackerPort), "--api-token", kToken, "--viewer-token", kViewerToken});
   fleet.start_agent("st2");
   httplib::Client http("127.0.0.1", kStackerPort);
   http.set_read_timeout(10, 0);
@@ -355,7 +393,7 @@ TEST(WebApiStacker, ADockingStackerShowsItsTargetsAndTheDetectedPallet) {
   EXPECT_FALSE(st2_in(state)->contains("dock_targets")) << "parked in its bay";
 
   // The site: the stackers' tines run from the footprint's back end (x -0.85) to the chassis.
-  const json site = parse(http.Get("/api/site"));
+  const json site = parse(http.Get("/api/site", kViewer));
   json fg5;
   for (const auto& a : site["areas"]) {
     if (a["id"] == "FG5") fg5 = a;

@@ -45,10 +45,27 @@ TEST_F(SecurityFolder, EveryIdentityOfTheSiteGetsCredentialsThatCheckOut) {
     EXPECT_EQ(fs::status(files.private_key).permissions() & fs::perms::others_read, fs::perms::none) << identity;
   }
   const auto certificates = expiries(dir);
-  ASSERT_EQ(certificates.size(), 6u);  // two authorities and four identities
+  ASSERT_EQ(certificates.size(), 7u);  // two authorities, four identities and the web view
   for (const Expiry& c : certificates) {
     EXPECT_NEAR(static_cast<double>(c.not_after - now()), 30.0 * 86400.0, 120.0) << c.file;
   }
+}
+
+TEST_F(SecurityFolder, TheWebViewGetsAnHttpsCertificateForItsNamesFromTheIdentityAuthority) {
+  const std::string dir = folder("site");
+  init_folder(dir, site_identities({"fl-1"}), 30, false, {"fleet.plant.example", "10.0.0.5", "::1"});
+  const FolderLayout files(dir);
+  const auto text = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string certificate = text(files.web_certificate());
+  EXPECT_TRUE(issued_by(certificate, text(files.identity_ca())));
+  EXPECT_TRUE(key_matches(text(files.web_key()), certificate));
+  EXPECT_EQ(fs::status(files.web_key()).permissions() & fs::perms::others_read, fs::perms::none);
+  EXPECT_EQ(read_certificate(certificate, files.web_certificate()).subject, "O = Fleet, CN = fleet.plant.example");
+  EXPECT_THROW(init_folder(dir, site_identities({"fl-1"}), 30, true, {"two words"}), SecurityError);
+  EXPECT_THROW(init_folder(dir, site_identities({"fl-1"}), 30, true, {}), SecurityError);
 }
 
 TEST_F(SecurityFolder, AnExistingAuthorityIsKeptUnlessReplacingIsAsked) {
