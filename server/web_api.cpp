@@ -116,7 +116,8 @@ void WebApi::add_order(const Request& req, Response& res) {
   if (!body || !only_fields(*body, {"kind", "from", "to", "robot", "fleet", "priority", "lines"}, res)) return;
   const auto kind = string_field(*body, "kind", false, res);
   if (!kind) return;
-  const auto lines = string_field(*body, "lines", false, res);
+  // A pick list's CSV text is bounded by the body's size alone.
+  const auto lines = string_field(*body, "lines", false, res, std::string::npos);
   if (!lines) return;
   if (!lines->empty() && *kind != "pick") return send_error(res, 400, "lines", "lines are for kind pick");
   // A move has no pick area; a pick list names its places in its lines.
@@ -139,7 +140,8 @@ void WebApi::add_order(const Request& req, Response& res) {
   if (!fleet) return;
   long priority = 0;
   if (const auto it = body->find("priority"); it != body->end()) {
-    if (!it->is_number_integer()) return send_error(res, 400, "priority", "must be an integer, got " + it->dump());
+    if (!it->is_number_integer())
+      return send_error(res, 400, "priority", "must be an integer, got " + quoted_excerpt(*it));
     priority = it->get<long>();
   }
   // The server's own names for the map it serves (the same check it makes).

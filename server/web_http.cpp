@@ -29,7 +29,15 @@ std::optional<json> body_object(const httplib::Request& req, httplib::Response& 
   return body;
 }
 
-std::optional<std::string> string_field(const json& body, const char* name, bool required, httplib::Response& res) {
+std::string quoted_excerpt(const json& value) {
+  constexpr std::size_t kLongest = 60;
+  std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (text.size() > kLongest) text = text.substr(0, kLongest) + "... (" + std::to_string(text.size()) + " bytes)";
+  return text;
+}
+
+std::optional<std::string> string_field(const json& body, const char* name, bool required, httplib::Response& res,
+                                        std::size_t max_length) {
   const auto it = body.find(name);
   if (it == body.end() || it->is_null()) {
     if (required) {
@@ -39,7 +47,13 @@ std::optional<std::string> string_field(const json& body, const char* name, bool
     return std::string();
   }
   if (!it->is_string()) {
-    send_error(res, 400, name, "must be a string, got " + it->dump());
+    send_error(res, 400, name, "must be a string, got " + quoted_excerpt(*it));
+    return std::nullopt;
+  }
+  if (it->get_ref<const std::string&>().size() > max_length) {
+    send_error(res, 400, name,
+               "longer than " + std::to_string(max_length) + " bytes (" +
+                   std::to_string(it->get_ref<const std::string&>().size()) + ")");
     return std::nullopt;
   }
   if (required && it->get<std::string>().empty()) {
@@ -56,7 +70,7 @@ std::optional<bool> bool_field(const json& body, const char* name, httplib::Resp
     return std::nullopt;
   }
   if (!it->is_boolean()) {
-    send_error(res, 400, name, "must be true or false, got " + it->dump());
+    send_error(res, 400, name, "must be true or false, got " + quoted_excerpt(*it));
     return std::nullopt;
   }
   return it->get<bool>();
@@ -65,7 +79,8 @@ std::optional<bool> bool_field(const json& body, const char* name, httplib::Resp
 bool only_fields(const json& body, std::initializer_list<const char*> allowed, httplib::Response& res) {
   for (const auto& [key, value] : body.items()) {
     if (std::none_of(allowed.begin(), allowed.end(), [&](const char* name) { return key == name; })) {
-      send_error(res, 400, key, "unknown field; the fields are " + model::join({allowed.begin(), allowed.end()}));
+      const std::string named = key.size() > kMaxNameLength ? key.substr(0, kMaxNameLength) + "..." : key;
+      send_error(res, 400, named, "unknown field; the fields are " + model::join({allowed.begin(), allowed.end()}));
       return false;
     }
   }

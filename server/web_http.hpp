@@ -19,9 +19,16 @@ void send_error(httplib::Response& res, int status, const std::string& field, co
 /// naming the body.
 std::optional<nlohmann::json> body_object(const httplib::Request& req, httplib::Response& res);
 
-/// An optional string field; nullopt and an error response when it is there but not a string.
+/// The longest name (an area, robot, fleet, map or kind) a body may carry.
+constexpr std::size_t kMaxNameLength = 200;
+
+/// An optional string field; nullopt and an error response when it is there but not a string, or
+/// longer than `max_length` bytes.
 std::optional<std::string> string_field(const nlohmann::json& body, const char* name, bool required,
-                                        httplib::Response& res);
+                                        httplib::Response& res, std::size_t max_length = kMaxNameLength);
+
+/// A value as an error message may quote it: its JSON, cut after a few dozen characters.
+std::string quoted_excerpt(const nlohmann::json& value);
 
 /// A required boolean field; nullopt and an error response when it is missing or not a boolean.
 std::optional<bool> bool_field(const nlohmann::json& body, const char* name, httplib::Response& res);

@@ -40,9 +40,23 @@ std::vector<std::string> closest_names(const std::string& name, const std::vecto
   return out;
 }
 
+std::string excerpt(const std::string& text, std::size_t longest) {
+  if (text.size() <= longest) return text;
+  std::string start = text.substr(0, longest);
+  start += "... (";
+  start += std::to_string(text.size());
+  start += " characters)";
+  return start;
+}
+
 std::string unknown_name_message(const std::string& what, const std::string& name,
                                  const std::vector<std::string>& valid) {
   constexpr std::size_t kListAll = 12;
+  // The closest names cost an edit distance each, in the product of the two lengths.
+  constexpr std::size_t kLongestName = 200;
+  if (name.size() > kLongestName) {
+    return "unknown " + what + " '" + excerpt(name) + "'; no " + what + " has a name that long";
+  }
   if (valid.empty()) return "unknown " + what + " '" + name + "'; there are none";
   if (valid.size() <= kListAll) return "unknown " + what + " '" + name + "'; valid: " + join(valid);
   return "unknown " + what + " '" + name + "'; closest: " + join(closest_names(name, valid));

@@ -16,7 +16,11 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 std::vector<std::string> closest_names(const std::string& name, const std::vector<std::string>& candidates,
                                        std::size_t limit = 5);
 
-/// "unknown loading area 'NOPE'; valid: A1, A2" (or "closest: ..." when there are many).
+/// `text` as a message quotes it: whole up to `longest` characters, else its start and its length.
+std::string excerpt(const std::string& text, std::size_t longest = 60);
+
+/// "unknown loading area 'NOPE'; valid: A1, A2" (or "closest: ..." when there are many). A name
+/// longer than any name can be is quoted by its start, with no search for the closest.
 std::string unknown_name_message(const std::string& what, const std::string& name,
                                  const std::vector<std::string>& valid);
 

@@ -60,14 +60,14 @@ std::vector<PickLine> parse_pick_lines(std::string_view text, const std::string&
     if (lines.empty() && f.size() == 3 && f[0] == "place" && f[1] == "item" && f[2] == "quantity") continue;
     if (f.size() != 3) {
       throw InputError(at + ": expected place,item,quantity, got " + std::to_string(f.size()) + " field" +
-                       (f.size() == 1 ? "" : "s") + ": '" + content + "'");
+                       (f.size() == 1 ? "" : "s") + ": '" + model::excerpt(content) + "'");
     }
     if (f[0].empty()) throw InputError(at + ": the place is empty");
     if (f[1].empty()) throw InputError(at + ": the item is empty");
     int quantity = 0;
     const auto [ptr, ec] = std::from_chars(f[2].data(), f[2].data() + f[2].size(), quantity);
     if (ec != std::errc{} || ptr != f[2].data() + f[2].size() || quantity < 1) {
-      throw InputError(at + ": quantity '" + f[2] + "' is not a whole number of boxes >= 1");
+      throw InputError(at + ": quantity '" + model::excerpt(f[2]) + "' is not a whole number of boxes >= 1");
     }
     lines.push_back({f[0], f[1], quantity, number});
   }
