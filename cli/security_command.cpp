@@ -21,9 +21,12 @@ constexpr int kDefaultDays = 365;
 
 int init(const CommandArgs& args, const CommandFlags& flags, const std::string& dir, std::ostream& out) {
   const config::FleetConfig config = config::load_fleet_config(args.config_file);
-  std::vector<std::string> robots;
-  for (const auto& [fleet, robot] : config.all_robots()) robots.push_back(robot->id);
-  const auto identities = security::site_identities(robots);
+  std::vector<std::string> robots, vehicles;
+  for (const auto& [fleet, robot] : config.all_robots()) {
+    robots.push_back(robot->id);
+    if (fleet->vda5050) vehicles.push_back(robot->id);
+  }
+  const auto identities = security::site_identities(robots, vehicles);
   const int days = static_cast<int>(flags.integer("days").value_or(kDefaultDays));
   std::vector<std::string> web_names = security::default_web_names();
   if (const auto hosts = flags.value("web-hosts")) {
@@ -43,8 +46,9 @@ int init(const CommandArgs& args, const CommandFlags& flags, const std::string& 
                .dump()
         << "\n";
   } else {
-    out << "credentials for " << identities.size() << " identities (server, operator and " << robots.size()
-        << " robots of " << config.source << ") in " << dir << ", valid until " << security::utc_time(until) << " UTC\n"
+    out << "credentials for " << identities.size() << " identities (server, operator and " << robots.size() << " robots"
+        << (vehicles.empty() ? "" : ", and the VDA 5050 bridge") << " of " << config.source << ") in " << dir
+        << ", valid until " << security::utc_time(until) << " UTC\n"
         << "the web view's HTTPS certificate and key: " << security::FolderLayout(dir).web_certificate() << ", "
         << security::FolderLayout(dir).web_key() << "\n";
   }

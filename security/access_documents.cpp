@@ -36,7 +36,9 @@ const std::vector<std::string>& every_topic() {
   return topics;
 }
 
-std::vector<TopicGrant> grants_of(Role role, const std::string& robot_id) {
+std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& robots) {
+  std::vector<std::string> own;
+  for (const std::string& id : robots) own.push_back("robot." + id);
   switch (role) {
     case Role::kServer:
       return {{true, kServerPublishes, {"*"}},
@@ -44,17 +46,24 @@ std::vector<TopicGrant> grants_of(Role role, const std::string& robot_id) {
                {"fleet/OrderRequest", "fleet/Command", "fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
                 "fleet/TrafficRequest", "fleet/SimTruth"},
                {"*"}}};
-    case Role::kRobot: {
-      const std::string own = "robot." + robot_id;
+    case Role::kBridge:
+      // A bridge speaks for each of its vehicles as that vehicle's agent would; its vehicles'
+      // bodies are reported, not sensed, so it reads no other robot's truth.
       return {
-          {true, kRobotPublishes, {own}},
-          {false, {"fleet/TrafficGrant", "fleet/NeighbourView"}, {own}},
+          {true, kRobotPublishes, own},
+          {false, {"fleet/TrafficGrant", "fleet/NeighbourView"}, own},
+          {false,
+           {"fleet/Order", "fleet/MapAssignment", "fleet/StaticObstacles", "fleet/RobotControl", "fleet/PalletTruth"},
+           {""}}};
+    case Role::kRobot:
+      return {
+          {true, kRobotPublishes, own},
+          {false, {"fleet/TrafficGrant", "fleet/NeighbourView"}, own},
           {false,
            {"fleet/Order", "fleet/MapAssignment", "fleet/StaticObstacles", "fleet/RobotControl", "fleet/PalletTruth"},
            {""}},
           // Its simulated sensors see the other robots' true bodies.
           {false, {"fleet/SimTruth"}, {"", "robot.*"}}};
-    }
     case Role::kOperator:
       return {{true, kOperatorPublishes, {""}}, {false, every_topic(), {"*"}}};
   }

@@ -11,6 +11,7 @@ enum class Role {
   kServer,    ///< fleet-server: orders, grants, maps, views out; robot reports and requests in
   kRobot,     ///< one robot's agent: its reports, in its own partition alone
   kOperator,  ///< fleetctl: order requests and commands out; every topic in
+  kBridge,    ///< fleet-vda5050: its vehicles' reports, each in its robot's partition alone
 };
 
 /// Topics a role may publish or subscribe in the given partitions (patterns as DDS partitions
@@ -21,8 +22,8 @@ struct TopicGrant {
   std::vector<std::string> partitions;
 };
 
-/// The grants of `role`; `robot_id` names the robot of a kRobot.
-std::vector<TopicGrant> grants_of(Role role, const std::string& robot_id = "");
+/// The grants of `role`; `robots` names the robot of a kRobot, the vehicles of a kBridge.
+std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& robots = {});
 
 /// The subject name of an identity's certificate: `CN=<identity>,O=Fleet`.
 std::string subject_name(const std::string& identity);

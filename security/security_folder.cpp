@@ -77,9 +77,11 @@ std::string utc_time(std::int64_t seconds) {
   return text;
 }
 
-std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids) {
-  std::vector<Identity> identities{{"server", Role::kServer}, {"operator", Role::kOperator}};
-  for (const std::string& id : robot_ids) identities.push_back({id, Role::kRobot});
+std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids,
+                                      const std::vector<std::string>& vehicle_ids) {
+  std::vector<Identity> identities{{"server", Role::kServer, {}}, {"operator", Role::kOperator, {}}};
+  for (const std::string& id : robot_ids) identities.push_back({id, Role::kRobot, {id}});
+  if (!vehicle_ids.empty()) identities.push_back({kVda5050Identity, Role::kBridge, vehicle_ids});
   return identities;
 }
 
@@ -106,7 +108,7 @@ std::int64_t init_folder(const std::string& dir, const std::vector<Identity>& id
     write_text(files.private_key(identity.name), credentials.private_key, kSecret);
     write_text(files.certificate(identity.name), credentials.certificate, kPublic);
     const std::string permissions =
-        permissions_document(identity.name, grants_of(identity.role, identity.name), not_before, not_after);
+        permissions_document(identity.name, grants_of(identity.role, identity.robots), not_before, not_after);
     write_text(files.permissions_text(identity.name), permissions, kPublic);
     write_text(files.permissions(identity.name), sign_document(permissions_ca, permissions), kPublic);
   }

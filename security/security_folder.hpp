@@ -10,12 +10,18 @@ namespace fleet::security {
 
 /// One process's name on the domain and what it may do there.
 struct Identity {
-  std::string name;  ///< "server", "operator" or a robot's id
+  std::string name;  ///< "server", "operator", kVda5050Identity or a robot's id
   Role role = Role::kRobot;
+  std::vector<std::string> robots;  ///< the robot a kRobot speaks for, the vehicles of a kBridge
 };
 
-/// The identities of a site: the server, the operator (fleetctl) and each robot.
-std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids);
+/// The identity of fleet-vda5050, the bridge to the VDA 5050 vehicles of a site.
+inline constexpr const char* kVda5050Identity = "vda5050";
+
+/// The identities of a site: the server, the operator (fleetctl), each robot, and when the site
+/// has VDA 5050 vehicles (`vehicle_ids`), the bridge that speaks for them.
+std::vector<Identity> site_identities(const std::vector<std::string>& robot_ids,
+                                      const std::vector<std::string>& vehicle_ids = {});
 
 /// The files of a security folder (made by `fleetctl security init`):
 ///

@@ -41,6 +41,15 @@ std::string topic_prefix(const vda5050::VehicleAddress& a) {
   return out;
 }
 
+/// The partitions of the VDA 5050 vehicles of `config`, one per robot.
+std::vector<std::string> vehicle_partitions(const config::FleetConfig& config) {
+  std::vector<std::string> partitions;
+  for (const auto& [fleet, robot] : config.all_robots()) {
+    if (fleet->vda5050) partitions.push_back(model::robot_partition(robot->id));
+  }
+  return partitions;
+}
+
 }  // namespace
 
 Bridge::Bridge(BridgeOptions options, Logger log)
@@ -52,7 +61,7 @@ Bridge::Bridge(BridgeOptions options, Logger log)
       path_writer_(participant_, dds::qos::live_state()),
       traffic_writer_(participant_, dds::qos::live_state()),
       truth_writer_(participant_, dds::qos::live_state()),
-      grant_reader_(participant_, dds::qos::live_state(), model::every_robot_partition()),
+      grant_reader_(participant_, dds::qos::live_state(), vehicle_partitions(options_.config)),
       order_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()),
       control_reader_(participant_, dds::qos::latched_state()) {
@@ -79,6 +88,13 @@ Bridge::Bridge(BridgeOptions options, Logger log)
       v.master = std::make_unique<vda5050::VehicleMaster>(robot.id, fleet.vda5050->version, options_.site->site.name,
                                                           robot.home, home->pose, first_version);
       v.routes = routes;
+      // The vehicle's writers exist before its first sample, matched with their readers by then.
+      const std::string partition = model::robot_partition(robot.id);
+      state_writer_.open(partition);
+      report_writer_.open(partition);
+      path_writer_.open(partition);
+      traffic_writer_.open(partition);
+      truth_writer_.open(partition);
       by_robot_[robot.id] = vehicles_.size();
       by_topic_prefix_[topic_prefix(v.address)] = vehicles_.size();
       vehicles_.push_back(std::move(v));
@@ -267,7 +283,7 @@ void Bridge::watch_liveness(Vehicle& v, double now_wall) {
   // The server counts it lost at once: its RobotState instance is gone.
   model::RobotState gone;
   gone.robot_id = v.master->id();
-  state_writer_.unregister(gone);
+  state_writer_.open(model::robot_partition(gone.robot_id)).unregister(gone);
 }
 
 void Bridge::send(Vehicle& v, double now_wall) {

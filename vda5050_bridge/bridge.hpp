@@ -102,11 +102,13 @@ class Bridge {
   std::vector<double> grant_to_broker_s_;  ///< filled on the MQTT client's thread
   std::unique_ptr<mqtt_link::MqttLink> mqtt_;
   dds::Participant participant_;
-  dds::Writer<model::RobotState> state_writer_;
-  dds::Writer<model::OrderReport> report_writer_;
-  dds::Writer<model::RobotPath> path_writer_;
-  dds::Writer<model::TrafficRequest> traffic_writer_;
-  dds::Writer<model::SimTruth> truth_writer_;
+  // Each vehicle's reports go out in its robot's own partition, as an agent's do: with DDS
+  // Security that partition is what the server takes as the writer's identity.
+  dds::PartitionWriters<model::RobotState> state_writer_;
+  dds::PartitionWriters<model::OrderReport> report_writer_;
+  dds::PartitionWriters<model::RobotPath> path_writer_;
+  dds::PartitionWriters<model::TrafficRequest> traffic_writer_;
+  dds::PartitionWriters<model::SimTruth> truth_writer_;
   dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::PalletTruth> pallet_reader_;

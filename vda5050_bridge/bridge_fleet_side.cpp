@@ -41,7 +41,7 @@ void Bridge::take_order(Vehicle& v, model::OrderAssignment&& a, double now_sim) 
     case orders::IntakeStep::kIgnore:
       return;
     case orders::IntakeStep::kRepeatFinalReport:
-      report_writer_.write(*v.intake.final_report(a.order_id));
+      report_writer_.write(model::robot_partition(v.master->id()), *v.intake.final_report(a.order_id));
       return;
     case orders::IntakeStep::kWithdraw:
       if (master.withdraw()) {
@@ -75,6 +75,7 @@ void Bridge::take_order(Vehicle& v, model::OrderAssignment&& a, double now_sim) 
   }
   log_->warn("{} rejects order {}: {}", a.robot_id, a.order_id, why);
   report_writer_.write(
+      model::robot_partition(master.id()),
       {a.order_id, a.robot_id, "REJECTED", why, a.update_id, now_sim, master.carried_load() >= 0, -1, {}});
 }
 
@@ -99,9 +100,10 @@ void Bridge::report(Vehicle& v, const std::string& status, double now_sim, int p
   const model::OrderReport message{v.order_id,  v.master->id(), status,       reason,
                                    v.update_id, now_sim,        carried >= 0, pallet_id >= 0 ? pallet_id : carried,
                                    pallet_pose};
-  report_writer_.write(message);
+  const std::string partition = model::robot_partition(v.master->id());
+  report_writer_.write(partition, message);
   if (status == "DONE" || status == "FAILED") {
-    if (const auto dropped = v.intake.remember_end(message)) report_writer_.unregister(*dropped);
+    if (const auto dropped = v.intake.remember_end(message)) report_writer_.open(partition).unregister(*dropped);
   }
 }
 
@@ -121,21 +123,22 @@ void Bridge::publish(Vehicle& v, double now_sim) {
   state.order_id = v.order_id;
   state.carrying_pallet = master.carried_load() >= 0;
   state.sim_time = now_sim;
-  state_writer_.write(state);
+  const std::string partition = model::robot_partition(master.id());
+  state_writer_.write(partition, state);
   // The vehicle's body where it reports itself: what the simulated agents' sensors and the soak's
   // collision watch see of it. Its report is the only truth there is of a vehicle of another maker.
-  truth_writer_.write({master.id(), master.pose(), v.fleet->footprint, state.carrying_pallet, now_sim});
+  truth_writer_.write(partition, {master.id(), master.pose(), v.fleet->footprint, state.carrying_pallet, now_sim});
 
   const robot::TrafficRoute route = master.traffic_route();
   const bool new_route = route.version != v.sent_version;
   if (!(route.points.empty() && !new_route && v.sent_off_road)) {
-    traffic_writer_.write({master.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
-                           route.work_area, route.arrival_area, options_.site->site.name});
+    traffic_writer_.write(partition, {master.id(), route.version, route.points, route.progress, route.stopped_for,
+                                      now_sim, route.work_area, route.arrival_area, options_.site->site.name});
     v.sent_off_road = route.points.empty();
     v.sent_version = route.version;
   }
   if (master.path().size() != v.path_size || new_route) {
-    path_writer_.write({master.id(), master.path(), now_sim});
+    path_writer_.write(partition, {master.id(), master.path(), now_sim});
     v.path_size = master.path().size();
   }
 }

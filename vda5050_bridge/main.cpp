@@ -7,6 +7,7 @@
 
 #include "app/process.hpp"
 #include "common/errors.hpp"
+#include "security/security_folder.hpp"
 #include "vda5050_bridge/bridge.hpp"
 
 namespace {
@@ -23,6 +24,8 @@ options:
   --domain N           DDS domain id (default: dds.domain)
   --site NAME          site: maps/NAME.yaml (default: site)
   --time-scale K       sim_time = K x wall time (default: time_scale); the vehicles run in wall time
+  --security DIR       join the DDS domain with DDS Security as 'vda5050', with the credentials
+                       of DIR (fleetctl security init; default: dds.security, empty: without)
   --figures FILE       at the end, write the bridge's CPU and grant-to-broker latency there (JSON)
   --set KEY=VALUE      any configuration key (repeatable)
   --verbose            log debug events too
@@ -46,15 +49,10 @@ int main(int argc, char** argv) {
     for (const auto& [fleet, robot] : config->all_robots()) {
       if (fleet->vda5050) ids.push_back(robot->id);
     }
-    if (!config->settings.get_string("dds.security").empty()) {
-      // It writes for every vehicle of its fleets from one participant, which DDS Security's
-      // per-robot partitions do not grant.
-      throw InputError(
-          "dds.security: fleet-vda5050 does not join a domain with DDS Security; run it without "
-          "--security");
-    }
     auto site = app::load_site(*config, ids);
     const std::atomic<bool>& stop = app::start_daemon();
+    // One identity for the bridge, whose permissions grant the partitions of its vehicles alone.
+    app::use_dds_security(config->settings.get_string("dds.security"), security::kVda5050Identity, "dds.security");
 
     vda5050_bridge::BridgeOptions options;
     app::set_run_options(options, *config);

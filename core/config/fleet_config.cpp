@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -211,6 +212,11 @@ void assign_homes(FleetConfig& config, const std::vector<std::string>& site_home
 }
 
 void apply_common_flags(Args& args, FleetConfig& config) {
+  // A container or a service unit names its security folder once for every binary it runs; the
+  // flag still wins over it.
+  if (const char* folder = std::getenv("FLEET_SECURITY"); folder != nullptr && *folder != '\0') {
+    config.settings.set("dds.security", folder, "FLEET_SECURITY");
+  }
   for (const auto& [flag, key] :
        {std::pair{"domain", "dds.domain"}, std::pair{"site", "site"}, std::pair{"time-scale", "time_scale"},
         std::pair{"seed", "seed"}, std::pair{"security", "dds.security"}}) {

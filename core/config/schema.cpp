@@ -39,7 +39,8 @@ std::vector<KeySpec> make_schema() {
       integer("dds.domain", 0, "", 0, 232, "DDS domain id"),
       text("dds.security", "",
            "security folder made by fleetctl security init: every process joins the DDS domain with DDS Security, "
-           "presenting its own credentials from it (--security); empty: without"),
+           "presenting its own credentials from it (--security; env FLEET_SECURITY overrides the file); empty: "
+           "without"),
       integer("seed", 1, "", 0, 2147483647, "seed of every random engine; a run is reproducible from it"),
 
       // Server

@@ -42,7 +42,8 @@ Every Fleet process (fleet-server, fleet-agent, fleetctl) reads one YAML file,
    `--seed`, `--domain`, and the binaries' own (`fleet-server --dispatch`, `--db`, `--http-port`);
 4. for `server.api_token` and `server.viewer_token`, the environment variables
    `FLEET_API_TOKEN` and `FLEET_VIEWER_TOKEN` override the file, and `fleet-server --api-token`
-   and `--viewer-token` override both.
+   and `--viewer-token` override both; for `dds.security`, `FLEET_SECURITY` overrides the file
+   and `--security` overrides both.
 
 An unknown key, a value of the wrong type or out of its range stops the program with a message
 naming the file, the line and the key.

@@ -113,6 +113,31 @@ for service in server $robots; do
   fi
 done
 
+# ---- docker/compose.security.yaml over it: a security folder in every container, HTTPS ---------
+security_compose=docker/compose.security.yaml
+if ! config="$(FLEET_SECURITY_DIR=/srv/fleet-security docker-compose -f "$compose" -f "$security_compose" config 2>&1)"; then
+  echo "$config" >&2
+  fail "docker-compose refuses $compose with $security_compose"
+else
+  for service in server $robots; do
+    block="$(service_block "$service")"
+    grep -qx "      FLEET_SECURITY: /opt/fleet/security" <<<"$block" ||
+      fail "$service: $security_compose sets no FLEET_SECURITY=/opt/fleet/security"
+    grep -qx "      CYCLONEDDS_URI: $uri_in_image" <<<"$block" || fail "$service: $security_compose drops CYCLONEDDS_URI"
+    block_list "$service" volumes | grep -qx "/srv/fleet-security:/opt/fleet/security:ro" ||
+      fail "$service: $security_compose does not mount the folder read-only at /opt/fleet/security"
+    main=agent
+    [ "$service" = server ] && main=server
+    for flag in $(block_list "$service" command | grep '^--'); do
+      flag_documented "$main" "$flag" || fail "$service: no flag $flag in $main/ (with $security_compose)"
+    done
+  done
+  block_list server command | grep -qx -- "--http-tls-cert" || fail "server: $security_compose serves no HTTPS"
+fi
+if unset FLEET_SECURITY_DIR && docker-compose -f "$compose" -f "$security_compose" config >/dev/null 2>&1; then
+  fail "$security_compose is taken without FLEET_SECURITY_DIR"
+fi
+
 # ---- the Cyclone configuration the containers use ---------------------------------------------
 xml="config/${uri_in_image##*/config/}"
 if [ ! -f "$xml" ]; then

@@ -9,10 +9,12 @@
 # nothing touches the host's own interfaces or routes. The namespaces go when the script ends.
 #
 # usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--site S] [--time-scale X]
-#                                   [--json FILE] [--verbose]
+#                                   [--security DIR] [--json FILE] [--verbose]
 # Up to 4 agents run on table_a at time scale 10; more run on mid_warehouse at time scale 1, where
 # every agent has a home and the machine keeps up with them.
 # --verbose: debug logs of every process in the run directory (the soak's --verbose).
+# --security DIR: every process joins with DDS Security, its credentials from DIR (fleetctl
+# security init; docs/security.md), across the namespaces' links.
 set -euo pipefail
 
 duration=120
@@ -22,6 +24,7 @@ site=""
 time_scale=""
 json_out=""
 verbose=()
+security=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --duration) duration="$2"; shift 2 ;;
@@ -31,6 +34,7 @@ while [ $# -gt 0 ]; do
     --time-scale) time_scale="$2"; shift 2 ;;
     --json) json_out="$2"; shift 2 ;;
     --verbose) verbose=(--verbose); shift ;;
+    --security) security=(--security "$2"); shift 2 ;;
     *) echo "netns.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -97,7 +101,7 @@ export CYCLONEDDS_URI="file://$root/config/cyclonedds-compose.xml"
 echo "netns.sh: server in ${hosts[0]}, $agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
   "poses 20 +- 10 ms late; soak on $site at time scale $time_scale for $duration s" >&2
 set +e
-ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 soak --agents "$agents" --site "$site" --duration "$duration" \
+ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 "${security[@]}" soak --agents "$agents" --site "$site" --duration "$duration" \
   --time-scale "$time_scale" --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
   --set faults.pose_delay_ms=20 --set faults.pose_delay_jitter_ms=10 \
   --agent-wrap "ip netns exec ${tag}-a{n}" "${verbose[@]}" --json > "${json_out:-/dev/stdout}"

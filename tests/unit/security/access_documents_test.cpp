@@ -15,7 +15,7 @@ bool grants(const std::vector<TopicGrant>& all, bool publish, const std::string&
 }
 
 TEST(AccessDocuments, ARobotPublishesItsOwnMessagesInItsOwnPartitionAlone) {
-  const auto robot = grants_of(Role::kRobot, "fl-1");
+  const auto robot = grants_of(Role::kRobot, {"fl-1"});
   for (const char* topic :
        {"fleet/RobotState", "fleet/RobotPath", "fleet/OrderState", "fleet/TrafficRequest", "fleet/SimTruth"}) {
     EXPECT_TRUE(grants(robot, true, topic, "robot.fl-1")) << topic;
@@ -33,10 +33,27 @@ TEST(AccessDocuments, ARobotPublishesItsOwnMessagesInItsOwnPartitionAlone) {
   EXPECT_FALSE(grants(robot, false, "fleet/OrderRequest", ""));
 }
 
+TEST(AccessDocuments, TheVda5050BridgeSpeaksForItsVehiclesEachInItsOwnPartition) {
+  const auto bridge = grants_of(Role::kBridge, {"v1", "v2"});
+  for (const char* topic :
+       {"fleet/RobotState", "fleet/RobotPath", "fleet/OrderState", "fleet/TrafficRequest", "fleet/SimTruth"}) {
+    EXPECT_TRUE(grants(bridge, true, topic, "robot.v1")) << topic;
+    EXPECT_TRUE(grants(bridge, true, topic, "robot.v2")) << topic;
+    EXPECT_FALSE(grants(bridge, true, topic, "robot.fl1")) << topic;
+    EXPECT_FALSE(grants(bridge, true, topic, "")) << topic;
+    EXPECT_FALSE(grants(bridge, true, topic, "robot.*")) << topic;
+  }
+  EXPECT_TRUE(grants(bridge, false, "fleet/TrafficGrant", "robot.v2"));
+  EXPECT_FALSE(grants(bridge, false, "fleet/TrafficGrant", "robot.fl1"));
+  EXPECT_TRUE(grants(bridge, false, "fleet/Order", ""));
+  EXPECT_FALSE(grants(bridge, true, "fleet/OrderRequest", ""));
+  EXPECT_FALSE(grants(bridge, false, "fleet/SimTruth", "robot.*")) << "its vehicles report their bodies";
+}
+
 TEST(AccessDocuments, OnlyTheServerPublishesWhatTheServerOwnsAndOnlyTheOperatorOrders) {
   const auto server = grants_of(Role::kServer);
   const auto operator_ = grants_of(Role::kOperator);
-  const auto robot = grants_of(Role::kRobot, "r");
+  const auto robot = grants_of(Role::kRobot, {"r"});
   for (const char* topic : {"fleet/Order", "fleet/TrafficGrant", "fleet/NeighbourView", "fleet/MapAssignment",
                             "fleet/StaticObstacles", "fleet/OrderInfo", "fleet/PalletTruth"}) {
     EXPECT_TRUE(grants(server, true, topic, "*")) << topic;
@@ -51,7 +68,7 @@ TEST(AccessDocuments, OnlyTheServerPublishesWhatTheServerOwnsAndOnlyTheOperatorO
 
 TEST(AccessDocuments, PermissionsNameTheSubjectTheValidityAndDenyTheRest) {
   const std::string doc =
-      permissions_document("fl-1", grants_of(Role::kRobot, "fl-1"), "2026-12-06T00:00:00", "2027-12-06T00:00:00");
+      permissions_document("fl-1", grants_of(Role::kRobot, {"fl-1"}), "2026-12-06T00:00:00", "2027-12-06T00:00:00");
   EXPECT_NE(doc.find("<subject_name>CN=fl-1,O=Fleet</subject_name>"), std::string::npos);
   EXPECT_NE(doc.find("<not_before>2026-12-06T00:00:00</not_before>"), std::string::npos);
   EXPECT_NE(doc.find("<not_after>2027-12-06T00:00:00</not_after>"), std::string::npos);

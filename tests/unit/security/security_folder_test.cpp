@@ -51,6 +51,20 @@ TEST_F(SecurityFolder, EveryIdentityOfTheSiteGetsCredentialsThatCheckOut) {
   }
 }
 
+TEST_F(SecurityFolder, ASiteWithVda5050VehiclesGetsABridgeIdentityForThemAlone) {
+  const std::string dir = folder("site");
+  init_folder(dir, site_identities({"fl-1", "v1", "v2"}, {"v1", "v2"}), 30, false);
+  EXPECT_NO_THROW(participant_files(dir, kVda5050Identity, now()));
+  std::ifstream in(FolderLayout(dir).permissions_text(kVda5050Identity));
+  const std::string permissions(std::istreambuf_iterator<char>(in), {});
+  EXPECT_NE(permissions.find("<partition>robot.v1</partition>"), std::string::npos) << permissions;
+  EXPECT_NE(permissions.find("<partition>robot.v2</partition>"), std::string::npos) << permissions;
+  EXPECT_EQ(permissions.find("robot.fl-1"), std::string::npos) << permissions;
+  EXPECT_FALSE(fs::exists(folder("plain")));
+  init_folder(folder("plain"), site_identities({"fl-1"}), 30, false);
+  EXPECT_FALSE(fs::exists(FolderLayout(folder("plain")).identity_dir(kVda5050Identity)));
+}
+
 TEST_F(SecurityFolder, TheWebViewGetsAnHttpsCertificateForItsNamesFromTheIdentityAuthority) {
   const std::string dir = folder("site");
   init_folder(dir, site_identities({"fl-1"}), 30, false, {"fleet.plant.example", "10.0.0.5", "::1"});
