@@ -95,6 +95,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   restore_pallets();
   for (const auto& [fleet, robot] : options_.config.all_robots()) parked_at_[robot->id] = robot->home;
   restore_orders();
+  hold_unheard_robots();
   publish_site_state();
   publish_server_info();
   log_->info("serving site '{}' on DDS domain {} at time scale {}, dispatch '{}', automatic orders {}",
@@ -130,6 +131,19 @@ void FleetServer::restore_orders() {
   if (!stored.empty()) {
     log_->info("restored {} orders from {} ({} open); next order id {}", stored.size(), store_.path(), open,
                book_.next_id());
+  }
+}
+
+void FleetServer::hold_unheard_robots() {
+  if (!traffic_) return;
+  for (const auto& [id, pose] : body_memory_.before_start()) {
+    if (!options_.config.find_robot(id) || robots_.contains(id)) continue;
+    RobotEntry unheard;
+    unheard.id = id;
+    unheard.last.pose = pose;
+    traffic_->set_body(id, body_of(unheard));
+    log_->info("robot {} not heard from yet: its body is held where it last stood ({:.2f}, {:.2f})", id, pose.x,
+               pose.y);
   }
 }
 

@@ -28,6 +28,7 @@
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
 #include "server/place_traffic_control.hpp"
+#include "server/robot_body_memory.hpp"
 #include "server/sender_gate.hpp"
 #include "server/server_load.hpp"
 #include "server/site_derivation.hpp"
@@ -182,6 +183,9 @@ class FleetServer {
   void fail_with_pallet(std::int64_t order_id, const std::string& reason);
 
   void restore_orders();
+  /// After a restart: the robots stored as standing somewhere and not heard from yet keep their
+  /// bodies there in traffic control until they report.
+  void hold_unheard_robots();
   void restore_pallets();
   /// Records a load's new truth: in the ledger, stored, and published as PalletTruth.
   void record_load(orders::Load load);
@@ -199,6 +203,7 @@ class FleetServer {
   /// Takes the robots' own messages only from writers that may speak for them.
   SenderGate gate_{!dds::security_identity().empty(), log_};
   OrderStore store_;
+  RobotBodyMemory body_memory_{store_};  ///< where robots last stood, for a restarted server
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
   std::map<std::string, planning::RoadDistances> travel_;
   /// What orders may name on the site served, with each fleet's abilities and the places it

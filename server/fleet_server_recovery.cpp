@@ -187,6 +187,11 @@ void FleetServer::check_robot_health() {
   }
   check_orders_waiting_for_lost_robots(now);
   if (now - started_wall_ > orders::restart_grace_s(lost_after)) check_restored_orders();
+  std::map<std::string, geometry::Pose2> heard;
+  for (const auto& [id, robot] : robots_) {
+    if (robot.registered && !robot.lost) heard[id] = robot.last.pose;
+  }
+  body_memory_.remember(heard, now);
 }
 
 void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {
@@ -222,6 +227,11 @@ void FleetServer::check_restored_orders() {
     ghost.id = order.robot_id;
     ghost.registered = false;
     ghost.last.carrying_pallet = orders::restored_robot_carried_load(order.phase);
+    // Its body stays held where it last stood (hold_unheard_robots), not at the map's origin.
+    if (const auto stood = body_memory_.before_start().find(order.robot_id);
+        stood != body_memory_.before_start().end()) {
+      ghost.last.pose = stood->second;
+    }
     robot_lost(ghost, "not seen since the server restarted");
     break;  // book_ changed; the next pass handles the rest
   }

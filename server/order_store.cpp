@@ -39,6 +39,12 @@ CREATE TABLE IF NOT EXISTS order_events (
   robot_y REAL NOT NULL,
   PRIMARY KEY (order_id, seq)
 );
+CREATE TABLE IF NOT EXISTS robot_bodies (
+  robot_id TEXT PRIMARY KEY,
+  x REAL NOT NULL,
+  y REAL NOT NULL,
+  yaw REAL NOT NULL
+);
 CREATE TABLE IF NOT EXISTS pallets (
   id INTEGER PRIMARY KEY,
   x REAL NOT NULL,
@@ -288,6 +294,45 @@ std::vector<model::PalletTruth> OrderStore::load_pallets() const {
     p.area_id = text_column(stmt, 4);
     p.carried_by = text_column(stmt, 5);
     out.push_back(std::move(p));
+  }
+  sqlite3_finalize(stmt);
+  return out;
+}
+
+void OrderStore::save_robot_poses(const std::map<std::string, geometry::Pose2>& poses) {
+  if (poses.empty()) return;
+  exec("BEGIN IMMEDIATE");
+  sqlite3_stmt* stmt = nullptr;
+  try {
+    if (sqlite3_prepare_v2(db_, "INSERT OR REPLACE INTO robot_bodies (robot_id, x, y, yaw) VALUES (?, ?, ?, ?)", -1,
+                           &stmt, nullptr) != SQLITE_OK) {
+      throw StoreError(path_ + ": " + sqlite3_errmsg(db_));
+    }
+    for (const auto& [id, pose] : poses) {
+      sqlite3_bind_text(stmt, 1, id.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_bind_double(stmt, 2, pose.x);
+      sqlite3_bind_double(stmt, 3, pose.y);
+      sqlite3_bind_double(stmt, 4, pose.yaw);
+      const int rc = sqlite3_step(stmt);
+      sqlite3_reset(stmt);
+      if (rc != SQLITE_DONE) throw StoreError(path_ + ": " + sqlite3_errmsg(db_));
+    }
+    sqlite3_finalize(stmt);
+    exec("COMMIT");
+  } catch (const StoreError&) {
+    sqlite3_finalize(stmt);
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::map<std::string, geometry::Pose2> OrderStore::load_robot_poses() const {
+  std::map<std::string, geometry::Pose2> out;
+  sqlite3_stmt* stmt = nullptr;
+  sqlite3_prepare_v2(db_, "SELECT robot_id, x, y, yaw FROM robot_bodies", -1, &stmt, nullptr);
+  while (sqlite3_step(stmt) == SQLITE_ROW) {
+    out[text_column(stmt, 0)] = {sqlite3_column_double(stmt, 1), sqlite3_column_double(stmt, 2),
+                                 sqlite3_column_double(stmt, 3)};
   }
   sqlite3_finalize(stmt);
   return out;

@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -43,6 +44,11 @@ class OrderStore {
   /// Where each pallet stands or who carries it, so a restarted server keeps the truth.
   void save_pallet(const model::PalletTruth& pallet);
   std::vector<model::PalletTruth> load_pallets() const;
+
+  /// Where robots were last heard standing, so that a restarted server holds the bodies of the
+  /// robots it has not heard from yet. One transaction for all.
+  void save_robot_poses(const std::map<std::string, geometry::Pose2>& poses);
+  std::map<std::string, geometry::Pose2> load_robot_poses() const;
 
   const std::string& path() const { return path_; }
   /// The database's schema version (PRAGMA user_version) after the migrations on opening.

@@ -1,4 +1,5 @@
-// Faults that real fleets meet, with real processes: a server killed with SIGKILL and restarted,
+// Faults that real fleets meet, with real processes: a server killed with SIGKILL and restarted
+// (with a robot it has not heard from yet),
 // an agent killed mid-order, an agent that starts after obstacles were switched on, a search that
 // misses a pallet the server put down, a robot lost while it searches at the pick area.
 
@@ -239,6 +240,39 @@ TEST(Recovery, FrozenAgentMissesItsDeadlineIsStalledThenLostAndComesBack) {
         return after.find("robot fl1 (forklifts) is back") != std::string::npos;
       },
       10s))
+      << fleet.log_of("fleet-server");
+}
+
+// A robot whose messages are late after a server restart (a frozen process here; a secured
+// handshake over a lossy link in a plant) keeps its body where it last stood in the restarted
+// server's traffic control, so that no robot is granted a place it stands on meanwhile.
+TEST(Recovery, ARestartedServerHoldsTheBodyOfARobotNotHeardFromYetWhereItLastStood) {
+  FleetHarness fleet(96, 10.0);
+  fleet.start_server();
+  fleet.start_agent("fl1");
+  ASSERT_TRUE(fleet.wait_for_robots({"fl1"}));
+  std::this_thread::sleep_for(500ms);  // its pose stored (at most every 0.1 s)
+  fleet.processes().signal(1, SIGSTOP);
+  fleet.processes().signal(0, SIGKILL);
+  fleet.processes().reap();
+  fleet.processes().restart(0);
+  // fl1 stands at its home H1, (0.83, 0.82).
+  const std::regex held(
+      R"(robot fl1 not heard from yet: its body is held where it last stood \(([-\d.]+), ([-\d.]+)\))");
+  std::string log;  // outlives the match, which points into it
+  std::smatch where;
+  ASSERT_TRUE(eventually(
+      [&] {
+        log = fleet.log_of("fleet-server");
+        return std::regex_search(log, where, held);
+      },
+      10s))
+      << fleet.log_of("fleet-server");
+  EXPECT_NEAR(std::stod(where[1]), 0.83, 0.05);
+  EXPECT_NEAR(std::stod(where[2]), 0.82, 0.05);
+  fleet.processes().signal(1, SIGCONT);
+  EXPECT_TRUE(eventually(
+      [&] { return fleet.log_of("fleet-server").find("robot fl1 (forklifts) registered") != std::string::npos; }, 10s))
       << fleet.log_of("fleet-server");
 }
 

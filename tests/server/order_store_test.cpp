@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "orders/order_book.hpp"
+#include "server/robot_body_memory.hpp"
 
 using namespace fleet;
 
@@ -137,4 +138,30 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
   EXPECT_EQ(again[4].kind, orders::OrderKind::kPick);
   EXPECT_EQ(again[4].lines, "RB1,A1,1\nRB3,A3,1\n");
   EXPECT_EQ(again[3].drop_area, "H3");
+}
+
+TEST(RobotBodyMemory, WhereRobotsStoodSurvivesReopeningAndOnlyMovesAreWritten) {
+  const std::string path = fresh_db("bodies");
+  {
+    server::OrderStore store(path);
+    server::RobotBodyMemory memory(store);
+    EXPECT_TRUE(memory.before_start().empty());
+    memory.remember({{"fl1", {1.0, 2.0, 0.5}}, {"fl2", {3.0, 4.0, 0.0}}}, 10.0);
+    // Too soon after the last write: nothing is stored, however far fl1 went.
+    memory.remember({{"fl1", {1.5, 2.0, 0.5}}}, 10.05);
+    EXPECT_EQ(store.load_robot_poses().at("fl1").x, 1.0);
+    // A centimetre is not a move; half a metre is.
+    memory.remember({{"fl1", {1.5, 2.0, 0.5}}, {"fl2", {3.01, 4.0, 0.0}}}, 10.2);
+    EXPECT_EQ(store.load_robot_poses().at("fl1").x, 1.5);
+    EXPECT_EQ(store.load_robot_poses().at("fl2").x, 3.0);
+    // A quarter turn in place is.
+    memory.remember({{"fl2", {3.0, 4.0, 1.57}}}, 10.4);
+    EXPECT_NEAR(store.load_robot_poses().at("fl2").yaw, 1.57, 1e-9);
+  }
+  server::OrderStore reopened(path);
+  const server::RobotBodyMemory memory(reopened);
+  ASSERT_EQ(memory.before_start().size(), 2u);
+  EXPECT_EQ(memory.before_start().at("fl1").x, 1.5);
+  EXPECT_EQ(memory.before_start().at("fl1").y, 2.0);
+  EXPECT_EQ(memory.before_start().at("fl2").y, 4.0);
 }
