@@ -47,23 +47,20 @@ std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& rob
                 "fleet/TrafficRequest", "fleet/SimTruth"},
                {"*"}}};
     case Role::kBridge:
-      // A bridge speaks for each of its vehicles as that vehicle's agent would; its vehicles'
-      // bodies are reported, not sensed, so it reads no other robot's truth.
-      return {
+    case Role::kRobot: {
+      // A robot's agent, or a bridge for each of its vehicles: their messages in their own
+      // partitions, what the server sends them there and to everyone.
+      std::vector<TopicGrant> grants{
           {true, kRobotPublishes, own},
           {false, {"fleet/TrafficGrant", "fleet/NeighbourView"}, own},
           {false,
            {"fleet/Order", "fleet/MapAssignment", "fleet/StaticObstacles", "fleet/RobotControl", "fleet/PalletTruth"},
            {""}}};
-    case Role::kRobot:
-      return {
-          {true, kRobotPublishes, own},
-          {false, {"fleet/TrafficGrant", "fleet/NeighbourView"}, own},
-          {false,
-           {"fleet/Order", "fleet/MapAssignment", "fleet/StaticObstacles", "fleet/RobotControl", "fleet/PalletTruth"},
-           {""}},
-          // Its simulated sensors see the other robots' true bodies.
-          {false, {"fleet/SimTruth"}, {"", "robot.*"}}};
+      // An agent's simulated sensors see the other robots' true bodies; a bridge's vehicles report
+      // theirs, sensing none.
+      if (role == Role::kRobot) grants.push_back({false, {"fleet/SimTruth"}, {"", "robot.*"}});
+      return grants;
+    }
     case Role::kOperator:
       return {{true, kOperatorPublishes, {""}}, {false, every_topic(), {"*"}}};
   }

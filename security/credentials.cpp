@@ -11,6 +11,7 @@
 #include <openssl/x509v3.h>
 
 #include <ctime>
+#include <functional>
 #include <memory>
 
 namespace fleet::security {
@@ -134,23 +135,30 @@ KeyPair make_authority(const std::string& common_name, int days) {
   return {pem_of(cert.get()), pem_of(key.get())};
 }
 
-KeyPair issue_identity(const KeyPair& authority, const std::string& identity, int days) {
+namespace {
+
+/// A certificate for `subject_cn` on a new key, signed by `authority`, with the extensions
+/// `extend` adds (given the new certificate and its issuer).
+KeyPair issue_leaf(const KeyPair& authority, const std::string& subject_cn, int days,
+                   const std::function<void(X509*, X509*)>& extend) {
   Cert issuer = parse_certificate(authority.certificate);
   Key issuer_key = parse_key(authority.private_key);
   if (!issuer || !issuer_key) fail("cannot read the identity authority");
   Key key = new_key();
-  Cert cert = new_certificate(identity, key.get(), issuer.get(), days);
-  if (X509_sign(cert.get(), issuer_key.get(), EVP_sha256()) == 0) fail("cannot sign the certificate of " + identity);
+  Cert cert = new_certificate(subject_cn, key.get(), issuer.get(), days);
+  extend(cert.get(), issuer.get());
+  if (X509_sign(cert.get(), issuer_key.get(), EVP_sha256()) == 0) fail("cannot sign the certificate of " + subject_cn);
   return {pem_of(cert.get()), pem_of(key.get())};
+}
+
+}  // namespace
+
+KeyPair issue_identity(const KeyPair& authority, const std::string& identity, int days) {
+  return issue_leaf(authority, identity, days, [](X509*, X509*) {});
 }
 
 KeyPair issue_web_certificate(const KeyPair& authority, const std::vector<std::string>& names, int days) {
   if (names.empty()) throw SecurityError("a web certificate needs at least one host name or address");
-  Cert issuer = parse_certificate(authority.certificate);
-  Key issuer_key = parse_key(authority.private_key);
-  if (!issuer || !issuer_key) fail("cannot read the identity authority");
-  Key key = new_key();
-  Cert cert = new_certificate(names.front(), key.get(), issuer.get(), days);
   std::string alt_names;
   for (const std::string& name : names) {
     unsigned char address[16];
@@ -163,11 +171,11 @@ KeyPair issue_web_certificate(const KeyPair& authority, const std::vector<std::s
     alt_names += is_address ? "IP:" : "DNS:";
     alt_names += name;
   }
-  add_extension(cert.get(), issuer.get(), NID_subject_alt_name, alt_names.c_str());
-  add_extension(cert.get(), issuer.get(), NID_ext_key_usage, "serverAuth");
-  add_extension(cert.get(), issuer.get(), NID_key_usage, "critical,digitalSignature,keyAgreement");
-  if (X509_sign(cert.get(), issuer_key.get(), EVP_sha256()) == 0) fail("cannot sign the web certificate");
-  return {pem_of(cert.get()), pem_of(key.get())};
+  return issue_leaf(authority, names.front(), days, [&](X509* cert, X509* issuer) {
+    add_extension(cert, issuer, NID_subject_alt_name, alt_names.c_str());
+    add_extension(cert, issuer, NID_ext_key_usage, "serverAuth");
+    add_extension(cert, issuer, NID_key_usage, "critical,digitalSignature,keyAgreement");
+  });
 }
 
 std::string sign_document(const KeyPair& signer, const std::string& document) {

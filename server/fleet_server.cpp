@@ -137,7 +137,7 @@ void FleetServer::restore_orders() {
 void FleetServer::hold_unheard_robots() {
   if (!traffic_) return;
   for (const auto& [id, pose] : body_memory_.before_start()) {
-    if (!options_.config.find_robot(id) || robots_.contains(id)) continue;
+    if (!options_.config.find_robot(id)) continue;
     RobotEntry unheard;
     unheard.id = id;
     unheard.last.pose = pose;

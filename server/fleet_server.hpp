@@ -183,8 +183,8 @@ class FleetServer {
   void fail_with_pallet(std::int64_t order_id, const std::string& reason);
 
   void restore_orders();
-  /// After a restart: the robots stored as standing somewhere and not heard from yet keep their
-  /// bodies there in traffic control until they report.
+  /// After a restart (called while constructing, before any robot is heard): the robots stored as
+  /// standing somewhere keep their bodies there in traffic control until they report.
   void hold_unheard_robots();
   void restore_pallets();
   /// Records a load's new truth: in the ledger, stored, and published as PalletTruth.

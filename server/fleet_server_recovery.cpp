@@ -187,11 +187,13 @@ void FleetServer::check_robot_health() {
   }
   check_orders_waiting_for_lost_robots(now);
   if (now - started_wall_ > orders::restart_grace_s(lost_after)) check_restored_orders();
-  std::map<std::string, geometry::Pose2> heard;
-  for (const auto& [id, robot] : robots_) {
-    if (robot.registered && !robot.lost) heard[id] = robot.last.pose;
+  if (body_memory_.due(now)) {
+    std::map<std::string, geometry::Pose2> heard;
+    for (const auto& [id, robot] : robots_) {
+      if (robot.registered && !robot.lost) heard[id] = robot.last.pose;
+    }
+    body_memory_.remember(heard, now);
   }
-  body_memory_.remember(heard, now);
 }
 
 void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {

@@ -8,7 +8,7 @@ RobotBodyMemory::RobotBodyMemory(OrderStore& store)
     : store_(store), before_start_(store.load_robot_poses()), stored_(before_start_) {}
 
 void RobotBodyMemory::remember(const std::map<std::string, geometry::Pose2>& heard, double now_wall) {
-  if (now_wall < next_store_wall_) return;
+  if (!due(now_wall)) return;
   next_store_wall_ = now_wall + kEveryS;
   std::map<std::string, geometry::Pose2> moved;
   for (const auto& [id, pose] : heard) {

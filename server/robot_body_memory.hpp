@@ -25,6 +25,9 @@ class RobotBodyMemory {
   /// The poses stored before this server started.
   const std::map<std::string, geometry::Pose2>& before_start() const { return before_start_; }
 
+  /// Whether `remember` stores anything at `now_wall` (at most every kEveryS).
+  bool due(double now_wall) const { return now_wall >= next_store_wall_; }
+
   /// Stores the poses of `heard` that moved since they were last stored.
   void remember(const std::map<std::string, geometry::Pose2>& heard, double now_wall);
 
