@@ -14,6 +14,7 @@ namespace {
 constexpr double kMaxSleepWall = 0.02;       // the main loop's longest sleep between control steps
 constexpr double kViewsStaleWall = 0.5;      // wall seconds without a NeighbourView: read SimTruth itself
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
+constexpr double kRouteRepeatWall = 1.0;     // wall seconds between TrafficRequests of an unchanged route
 
 }  // namespace
 
@@ -35,6 +36,7 @@ FleetAgent::FleetAgent(AgentOptions options, Logger log)
       report_writer_(participant_, dds::qos::latched_state(), model::robot_partition(options_.robot_id)),
       path_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       traffic_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
+      progress_writer_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       grant_reader_(participant_, dds::qos::live_state(), model::robot_partition(options_.robot_id)),
       order_reader_(participant_, dds::qos::latched_state()),
       map_reader_(participant_, dds::qos::latched_state()),
@@ -417,19 +419,29 @@ void FleetAgent::flush_delayed_states() {
 void FleetAgent::publish_traffic(double now_sim) {
   if (!traffic_) return;
   robot::TrafficRoute route = robot_->traffic_route();
-  // A new route goes out at once; progress at the state rate (the caller's), and a route left
-  // (parked off the road) once.
-  // A work area goes out at the state rate too, until the server has answered and after.
-  const bool changed = route.version != last_traffic_.version || route.points.size() != last_traffic_.points.size() ||
-                       route.work_area.empty() != last_traffic_.work_area.empty();
+  // The route goes out at once when it changes, and once a second besides, so that a server that
+  // missed it (restarted, or the sample lost under later ones) has it again; between those, only
+  // the progress along it, at the state rate (the caller's): a route of a few hundred points at
+  // that rate filled a 2 Mbit/s link. A route left (parked off the road) goes out once; a work
+  // area with every sample, until the server has answered and after.
+  const bool changed = route.version != last_traffic_.version || route.points != last_traffic_.points ||
+                       route.work_area != last_traffic_.work_area || route.arrival_area != last_traffic_.arrival_area ||
+                       map_id_ != last_traffic_map_;
   if (!changed && now_sim == last_traffic_sim_) return;
   if (!changed && route.points.empty() && route.work_area.empty() && last_traffic_.points.empty() &&
       last_traffic_sim_ >= 0.0) {
     return;
   }
-  traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
-                         route.work_area, route.arrival_area, map_id_});
+  const double now_wall = SimClock::wall_now();
+  if (changed || now_wall - last_route_sent_wall_ >= kRouteRepeatWall) {
+    traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
+                           route.work_area, route.arrival_area, map_id_});
+    last_route_sent_wall_ = now_wall;
+  } else {
+    progress_writer_.write({options_.robot_id, route.version, route.progress, route.stopped_for, now_sim, map_id_});
+  }
   last_traffic_ = std::move(route);
+  last_traffic_map_ = map_id_;
   last_traffic_sim_ = now_sim;
 }
 

@@ -104,7 +104,9 @@ class FleetAgent {
   std::size_t last_path_size_ = 0;
   bool traffic_ = false;
   robot::TrafficRoute last_traffic_;
+  std::string last_traffic_map_;
   double last_traffic_sim_ = -1.0;
+  double last_route_sent_wall_ = -1e9;
   double grants_valid_from_sim_ = -1.0;  ///< grants stamped earlier are stale (drop_grant)
   // Fault injection (faults.pose_delay_ms): RobotState held back until its wall time is due.
   double pose_delay_s_ = 0.0;
@@ -118,6 +120,7 @@ class FleetAgent {
   dds::Writer<model::OrderReport> report_writer_;
   dds::Writer<model::RobotPath> path_writer_;
   dds::Writer<model::TrafficRequest> traffic_writer_;
+  dds::Writer<model::TrafficProgress> progress_writer_;
   /// Its traffic grants, in its own partition (model::robot_partition).
   dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;

@@ -29,6 +29,7 @@ EmulatedFleet::EmulatedFleet(EmulatedFleetOptions options, std::shared_ptr<const
       report_writer_(participant_, dds::qos::latched_state()),
       path_writer_(participant_, dds::qos::live_state()),
       traffic_writer_(participant_, dds::qos::live_state()),
+      progress_writer_(participant_, dds::qos::live_state()),
       grant_reader_(participant_, dds::qos::live_state(), model::every_robot_partition()),
       order_reader_(participant_, dds::qos::latched_state()),
       pallet_reader_(participant_, dds::qos::latched_state()) {
@@ -210,8 +211,17 @@ void EmulatedFleet::publish(std::size_t i, double now_sim) {
   const bool new_route = route.version != link.sent_version;
   // Off the road: the empty route goes out once, as an agent's.
   if (route.points.empty() && !new_route && link.sent_off_road) return;
-  traffic_writer_.write({robot.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
-                         route.work_area, route.arrival_area, options_.map_id});
+  // As an agent's: the route when it changes and once a second, its progress in between.
+  const double now_wall = unix_seconds();
+  if (new_route || route.points != link.sent_points || !route.work_area.empty() ||
+      now_wall - link.request_sent_wall >= 1.0) {
+    traffic_writer_.write({robot.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
+                           route.work_area, route.arrival_area, options_.map_id});
+    link.sent_points = route.points;
+    link.request_sent_wall = now_wall;
+  } else {
+    progress_writer_.write({robot.id(), route.version, route.progress, route.stopped_for, now_sim, options_.map_id});
+  }
   ++figures_.samples_out;
   link.sent_off_road = route.points.empty();
   if (new_route && !route.points.empty()) {

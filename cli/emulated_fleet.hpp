@@ -31,8 +31,8 @@ struct EmulatedFleetOptions {
 
 /// What the emulated fleet saw on the wire and on the floor.
 struct EmulatedFleetFigures {
-  std::int64_t samples_out = 0;             ///< RobotState, TrafficRequest, OrderReport and RobotPath written
-  std::int64_t samples_in = 0;              ///< TrafficGrant, Order and NeighbourView samples taken for these robots
+  std::int64_t samples_out = 0;  ///< RobotState, TrafficRequest or TrafficProgress, OrderReport and RobotPath written
+  std::int64_t samples_in = 0;   ///< TrafficGrant, Order and NeighbourView samples taken for these robots
   LatencyHistogram::Figures grant_latency;  ///< wall seconds from a new route to its first grant
   std::int64_t routes_sent = 0;
   std::int64_t routes_answered_late = 0;  ///< first grant later than two traffic cycles (wall)
@@ -68,7 +68,9 @@ class EmulatedFleet {
     std::vector<model::OrderReport> finished;  ///< the last final reports, repeated when asked again
     std::uint64_t sent_version = 0;
     bool sent_off_road = false;
-    double route_sent_wall = -1.0;  ///< unix time the route not yet granted went out, -1 when granted
+    double route_sent_wall = -1.0;    ///< unix time the route not yet granted went out, -1 when granted
+    std::vector<int> sent_points;     ///< the route's points as last sent in a TrafficRequest
+    double request_sent_wall = -1e9;  ///< unix time of the last TrafficRequest (progress goes between)
     std::size_t path_size = 0;
   };
 
@@ -101,6 +103,7 @@ class EmulatedFleet {
   dds::Writer<model::OrderReport> report_writer_;
   dds::Writer<model::RobotPath> path_writer_;
   dds::Writer<model::TrafficRequest> traffic_writer_;
+  dds::Writer<model::TrafficProgress> progress_writer_;
   dds::Reader<model::TrafficGrant> grant_reader_;
   dds::Reader<model::OrderAssignment> order_reader_;
   dds::Reader<model::PalletTruth> pallet_reader_;

@@ -15,6 +15,7 @@
 #include "cli/online_support.hpp"
 #include "common/args.hpp"
 #include "model/names.hpp"
+#include "model/traffic_requests.hpp"
 
 namespace fleet::cli {
 
@@ -29,11 +30,17 @@ std::map<std::string, TrafficView> read_traffic(FleetClient& client, std::chrono
   dds::Reader<model::TrafficGrant> grants(client.participant(), dds::qos::live_state(), model::every_robot_partition());
   dds::Reader<model::TrafficRequest> requests(client.participant(), dds::qos::live_state(),
                                               dds::robot_report_partitions());
+  dds::Reader<model::TrafficProgress> progress(client.participant(), dds::qos::live_state(),
+                                               dds::robot_report_partitions());
+  model::TrafficRequestJoin join;
   std::map<std::string, TrafficView> views;
   const auto deadline = std::chrono::steady_clock::now() + window;
   while (std::chrono::steady_clock::now() < deadline) {
     grants.take_data([&](model::TrafficGrant&& g) { views[g.robot_id].grant = std::move(g); });
-    requests.take_data([&](model::TrafficRequest&& r) { views[r.robot_id].request = std::move(r); });
+    requests.take_data([&](model::TrafficRequest&& r) { views[r.robot_id].request = join.route(std::move(r)); });
+    progress.take_data([&](model::TrafficProgress&& p) {
+      if (auto request = join.progress(p)) views[p.robot_id].request = std::move(*request);
+    });
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return views;
@@ -99,7 +106,8 @@ int traffic_show_command(const CommandArgs& command, const Connection& connectio
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     if (!rest.empty()) require_known("robot", rest[0], info.robots);
-    const auto views = read_traffic(client, std::chrono::milliseconds(1000));
+    // Agents repeat an unchanged route once a second: a window longer than that hears every one.
+    const auto views = read_traffic(client, std::chrono::milliseconds(1500));
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& [robot, view] : views) {
       if (rest.empty() || robot == rest[0]) rows.push_back(view_json(robot, view));

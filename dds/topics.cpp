@@ -405,6 +405,13 @@ model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
           text(w.map_id)};
 }
 
+fleet_msg_TrafficProgress to_wire(const model::TrafficProgress& v, Scratch& s) {
+  return {borrow(v.robot_id), v.version, v.progress, s.string_seq(v.stopped_for), v.sim_time, borrow(v.map_id)};
+}
+model::TrafficProgress from_wire(const fleet_msg_TrafficProgress& w) {
+  return {text(w.robot_id), w.version, w.progress, strings_of(w.stopped_for), w.sim_time, text(w.map_id)};
+}
+
 fleet_msg_TrafficGrant to_wire(const model::TrafficGrant& v, Scratch& s) {
   return {borrow(v.robot_id),
           v.version,
@@ -508,6 +515,7 @@ FLEET_DDS_TOPIC_IMPL(FleetView, fleet_msg_FleetView, "fleet/FleetView")
 FLEET_DDS_TOPIC_IMPL(NeighbourView, fleet_msg_NeighbourView, "fleet/NeighbourView")
 FLEET_DDS_TOPIC_IMPL(SimTruth, fleet_msg_SimTruth, "fleet/SimTruth")
 FLEET_DDS_TOPIC_IMPL(TrafficRequest, fleet_msg_TrafficRequest, "fleet/TrafficRequest")
+FLEET_DDS_TOPIC_IMPL(TrafficProgress, fleet_msg_TrafficProgress, "fleet/TrafficProgress")
 FLEET_DDS_TOPIC_IMPL(TrafficGrant, fleet_msg_TrafficGrant, "fleet/TrafficGrant")
 FLEET_DDS_TOPIC_IMPL(ServerLoad, fleet_msg_ServerLoad, "fleet/ServerLoad")
 

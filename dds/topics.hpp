@@ -19,11 +19,11 @@
 
 namespace fleet::dds {
 
-/// Where the robots' own messages (RobotState, RobotPath, OrderState, TrafficRequest, SimTruth)
-/// are read: each agent writes them in its robot's partition (model::robot_partition), so that
-/// DDS Security can grant a robot its own partition alone; the VDA 5050 bridge and the emulated
-/// robots of `fleetctl load`, which speak for many robots from one participant, write them in the
-/// default partition.
+/// Where the robots' own messages (RobotState, RobotPath, OrderState, TrafficRequest,
+/// TrafficProgress, SimTruth) are read: each agent writes them in its robot's partition
+/// (model::robot_partition), so that DDS Security can grant a robot its own partition alone; the
+/// VDA 5050 bridge and the emulated robots of `fleetctl load`, which speak for many robots from one
+/// participant, write them in the default partition.
 inline std::vector<std::string> robot_report_partitions() {
   return {"", model::every_robot_partition()};
 }
@@ -45,6 +45,7 @@ FLEET_DDS_TOPIC(FleetView)
 FLEET_DDS_TOPIC(NeighbourView)
 FLEET_DDS_TOPIC(SimTruth)
 FLEET_DDS_TOPIC(TrafficRequest)
+FLEET_DDS_TOPIC(TrafficProgress)
 FLEET_DDS_TOPIC(TrafficGrant)
 FLEET_DDS_TOPIC(ServerLoad)
 

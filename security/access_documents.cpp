@@ -14,8 +14,8 @@ const std::vector<std::string> kServerPublishes{"fleet/ServerInfo",    "fleet/Re
                                                 "fleet/OrderInfo",     "fleet/MapAssignment",   "fleet/RobotControl",
                                                 "fleet/PalletTruth",   "fleet/StaticObstacles", "fleet/FleetView",
                                                 "fleet/NeighbourView", "fleet/TrafficGrant",    "fleet/ServerLoad"};
-const std::vector<std::string> kRobotPublishes{"fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
-                                               "fleet/TrafficRequest", "fleet/SimTruth"};
+const std::vector<std::string> kRobotPublishes{"fleet/RobotState",     "fleet/RobotPath",       "fleet/OrderState",
+                                               "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth"};
 const std::vector<std::string> kOperatorPublishes{"fleet/OrderRequest", "fleet/Command"};
 
 std::string domains() {
@@ -44,7 +44,7 @@ std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& rob
       return {{true, kServerPublishes, {"*"}},
               {false,
                {"fleet/OrderRequest", "fleet/Command", "fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
-                "fleet/TrafficRequest", "fleet/SimTruth"},
+                "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth"},
                {"*"}}};
     case Role::kBridge:
     case Role::kRobot: {

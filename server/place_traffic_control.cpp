@@ -45,7 +45,7 @@ PlaceTrafficControl::PlaceTrafficControl(std::unique_ptr<PlaceTrafficSite> site,
       gate_(gate),
       log_(std::move(log)),
       grants_(participant, log_),
-      request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
+      requests_(participant, gate) {
   log_->info("traffic control on (coordination core): {} places, plan step {:.2f} s", site_->zones.place_count(),
              traffic_.plan_period_s());
 }
@@ -99,10 +99,7 @@ void PlaceTrafficControl::handle_requests(double /*now_sim*/, double now_wall) {
   constexpr double kSettleWall = 0.5;
   if (settle_until_wall_ < 0.0) settle_until_wall_ = now_wall + kSettleWall;
   if (now_wall < settle_until_wall_) return;
-  request_reader_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
-    if (!info.valid_data || !gate_.admit(request_reader_.handle(), info, request.robot_id, "fleet/TrafficRequest")) {
-      return;
-    }
+  requests_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
     if (!usable(request, info)) return;
     const int id = number_of(request.robot_id);
     waiting_for_area_.erase(request.robot_id);

@@ -13,6 +13,7 @@
 #include "map/site_map.hpp"
 #include "server/grant_publisher.hpp"
 #include "server/sender_gate.hpp"
+#include "server/traffic_intake.hpp"
 #include "server/traffic_service.hpp"
 #include "traffic/conflict_zones.hpp"
 #include "traffic/traffic_manager.hpp"
@@ -78,7 +79,7 @@ class PlaceTrafficControl : public TrafficService {
   std::string reported_cycle_;
   double settle_until_wall_ = -1.0;
   GrantPublisher grants_;
-  dds::Reader<model::TrafficRequest> request_reader_;
+  TrafficIntake requests_;
 };
 
 }  // namespace fleet::server

@@ -41,7 +41,7 @@ TrafficControl::TrafficControl(std::unique_ptr<traffic::TrafficManager> manager,
       gate_(gate),
       log_(std::move(log)),
       grants_(participant, log_),
-      request_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()) {
+      requests_(participant, gate) {
   const auto& configuration = manager_->configuration();
   log_->info("traffic control on: {} places, lookahead {:.2f} m, one-way corridors {}", manager_->zones().place_count(),
              configuration.lookahead, configuration.one_way ? "on" : "off");
@@ -65,10 +65,7 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
   constexpr double kSettleWall = 0.5;
   if (settle_until_wall_ < 0.0) settle_until_wall_ = now_wall + kSettleWall;
   if (now_wall < settle_until_wall_) return;
-  request_reader_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
-    if (!info.valid_data || !gate_.admit(request_reader_.handle(), info, request.robot_id, "fleet/TrafficRequest")) {
-      return;
-    }
+  requests_.take([&](model::TrafficRequest&& request, const dds::SampleInfo& info) {
     if (request.robot_id.empty() || !std::isfinite(request.progress)) {
       gate_.warn(info, "progress",
                  fmt::format("traffic request from '{}' ignored: progress {} is not a number", request.robot_id,

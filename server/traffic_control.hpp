@@ -11,6 +11,7 @@
 #include "map/road_graph.hpp"
 #include "server/grant_publisher.hpp"
 #include "server/sender_gate.hpp"
+#include "server/traffic_intake.hpp"
 #include "server/traffic_service.hpp"
 #include "traffic/traffic_manager.hpp"
 
@@ -96,7 +97,7 @@ class TrafficControl : public TrafficService {
   std::map<std::string, geometry::Polygon> bodies_;       ///< last known footprint of each robot
   std::map<std::string, geometry::Polygon> held_bodies_;  ///< the footprint its standing places were found for
   GrantPublisher grants_;
-  dds::Reader<model::TrafficRequest> request_reader_;
+  TrafficIntake requests_;
 };
 
 }  // namespace fleet::server

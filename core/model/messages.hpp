@@ -245,6 +245,17 @@ struct TrafficRequest {
   std::string map_id;
 };
 
+/// How far along route `version` of its last TrafficRequest a robot has driven: sent at the state
+/// rate between TrafficRequests, which carry the route only when it changes (and once a second).
+struct TrafficProgress {
+  std::string robot_id;
+  std::uint64_t version = 0;
+  double progress = 0.0;  ///< metres from the route's first point
+  std::vector<std::string> stopped_for;
+  double sim_time = 0.0;
+  std::string map_id;
+};
+
 /// The server's traffic grant for one robot (see traffic::Grant).
 struct TrafficGrant {
   std::string robot_id;

@@ -16,8 +16,8 @@ bool grants(const std::vector<TopicGrant>& all, bool publish, const std::string&
 
 TEST(AccessDocuments, ARobotPublishesItsOwnMessagesInItsOwnPartitionAlone) {
   const auto robot = grants_of(Role::kRobot, {"fl-1"});
-  for (const char* topic :
-       {"fleet/RobotState", "fleet/RobotPath", "fleet/OrderState", "fleet/TrafficRequest", "fleet/SimTruth"}) {
+  for (const char* topic : {"fleet/RobotState", "fleet/RobotPath", "fleet/OrderState", "fleet/TrafficRequest",
+                            "fleet/TrafficProgress", "fleet/SimTruth"}) {
     EXPECT_TRUE(grants(robot, true, topic, "robot.fl-1")) << topic;
     EXPECT_FALSE(grants(robot, true, topic, "")) << topic;
     EXPECT_FALSE(grants(robot, true, topic, "robot.*")) << topic;
