@@ -312,6 +312,18 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
 }
 
 bool ConflictZones::body_reaches_move(const Polygon& body, int type, int from, int to) const {
+  if (body.empty()) return false;
+  // Every region of the place lies within its reach of its position: a body whose bounding circle
+  // stays outside that circle overlaps none of them, without the polygon tests (the server asks
+  // this for every move of every route ahead of each robot waiting to enter the roads).
+  Vec2 centre{0.0, 0.0};
+  for (const Vec2& v : body) centre = centre + v;
+  centre = centre * (1.0 / static_cast<double>(body.size()));
+  const auto squared = [](Vec2 a, Vec2 b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); };
+  double radius_squared = 0.0;
+  for (const Vec2& v : body) radius_squared = std::max(radius_squared, squared(v, centre));
+  const double apart = std::sqrt(radius_squared) + reach(type, to);
+  if (squared(centre, position(to)) > apart * apart) return false;
   const auto& polygons = region(type, to);
   const auto& moves = region_moves(type, to);
   for (std::size_t k = 0; k < polygons.size(); ++k) {

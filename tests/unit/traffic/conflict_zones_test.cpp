@@ -104,5 +104,37 @@ TEST(ConflictZones, TableAJunctionsCoverTheirWholeCrossing) {
   }
 }
 
+TEST(ConflictZones, ABodyReachesAMoveExactlyWhenItOverlapsOneOfTheMovesRegions) {
+  // The bounding-circle rejection in body_reaches_move must never change the answer of the
+  // polygon tests: bodies of several sizes on a grid around a junction, against every move.
+  const map::RoadGraph g = testing::plus_junction();
+  const ConflictZones zones(g);
+  int reached = 0;
+  int not_reached = 0;
+  for (const double half : {0.05, 0.2, 0.6}) {
+    for (double x = -1.5; x <= 1.5; x += 0.1) {
+      for (double y = -1.5; y <= 1.5; y += 0.1) {
+        const geometry::Polygon body{
+            {x - half, y - half}, {x + half, y - half}, {x + half, y + half}, {x - half, y + half}};
+        for (int to = 0; to < static_cast<int>(zones.place_count()); ++to) {
+          for (const int from : zones.neighbours(to)) {
+            bool overlaps = false;
+            const auto& polygons = zones.region(0, to);
+            const auto& moves = zones.region_moves(0, to);
+            for (std::size_t k = 0; k < polygons.size(); ++k) {
+              const bool of_move = moves[k].before < 0 || moves[k].before == from;
+              overlaps = overlaps || (of_move && geometry::convex_polygons_overlap(body, polygons[k]));
+            }
+            ASSERT_EQ(zones.body_reaches_move(body, 0, from, to), overlaps) << x << ", " << y << " half " << half;
+            (overlaps ? reached : not_reached) += 1;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(reached, 100);
+  EXPECT_GT(not_reached, 100);
+}
+
 }  // namespace
 }  // namespace fleet::traffic
