@@ -150,6 +150,7 @@ void PlaceTraffic::try_to_enter(int robot) {
   // waits for this one, or whose route leads through its body, does not hold it up.
   const std::vector<int> first_move =
       r.places_within(static_cast<std::size_t>(here), body_length_[static_cast<std::size_t>(r.type)]);
+  const geometry::BoundingCircle body_circle = geometry::bounding_circle(r.body);
   for (int other = 0; other < robots(); ++other) {
     if (other == robot || !order_.present(other)) continue;
     const Robot& o = at(other);
@@ -170,7 +171,8 @@ void PlaceTraffic::try_to_enter(int robot) {
                                   o.places.end())
                : its_way;
     for (std::size_t k = 1; k < its_route.size() && !r.body.empty() && !waits_for_its_body; ++k) {
-      waits_for_its_body = zones_.body_reaches_move(r.body, o.type, its_route[k - 1], its_route[k]);
+      waits_for_its_body = zones_.may_reach(body_circle, o.type, its_route[k]) &&
+                           zones_.body_reaches_move(r.body, o.type, its_route[k - 1], its_route[k]);
     }
     if (!waits_for_its_body && conflicts_with(first_move)) blockers.push_back(other);
   }

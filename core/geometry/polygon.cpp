@@ -1,6 +1,7 @@
 #include "geometry/polygon.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace fleet::geometry {
@@ -165,6 +166,18 @@ Bounds bounding_box(const Polygon& polygon) {
     box.max_y = std::max(box.max_y, v.y);
   }
   return box;
+}
+
+BoundingCircle bounding_circle(const Polygon& polygon) {
+  BoundingCircle circle{vertex_centroid(polygon), 0.0};
+  double squared = 0.0;
+  for (const Vec2& v : polygon) {
+    const double dx = v.x - circle.centre.x;
+    const double dy = v.y - circle.centre.y;
+    squared = std::max(squared, dx * dx + dy * dy);
+  }
+  circle.radius = std::sqrt(squared);
+  return circle;
 }
 
 }  // namespace fleet::geometry

@@ -39,6 +39,13 @@ bool same_polygon(const Polygon& a, const Polygon& b, double tolerance);
 /// The mean of the polygon's vertices ({0, 0} for an empty one).
 Vec2 vertex_centroid(const Polygon& polygon);
 
+/// A circle holding every vertex of a polygon: centred on the vertices' mean, through the farthest.
+struct BoundingCircle {
+  Vec2 centre;
+  double radius = 0.0;
+};
+BoundingCircle bounding_circle(const Polygon& polygon);
+
 /// Overlap test for any two simple polygons: an edge of one crosses an edge of the other, or one
 /// lies inside the other.
 bool polygons_overlap(const Polygon& a, const Polygon& b);

@@ -312,18 +312,7 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
 }
 
 bool ConflictZones::body_reaches_move(const Polygon& body, int type, int from, int to) const {
-  if (body.empty()) return false;
-  // Every region of the place lies within its reach of its position: a body whose bounding circle
-  // stays outside that circle overlaps none of them, without the polygon tests (the server asks
-  // this for every move of every route ahead of each robot waiting to enter the roads).
-  Vec2 centre{0.0, 0.0};
-  for (const Vec2& v : body) centre = centre + v;
-  centre = centre * (1.0 / static_cast<double>(body.size()));
-  const auto squared = [](Vec2 a, Vec2 b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); };
-  double radius_squared = 0.0;
-  for (const Vec2& v : body) radius_squared = std::max(radius_squared, squared(v, centre));
-  const double apart = std::sqrt(radius_squared) + reach(type, to);
-  if (squared(centre, position(to)) > apart * apart) return false;
+  if (body.empty() || !may_reach(geometry::bounding_circle(body), type, to)) return false;
   const auto& polygons = region(type, to);
   const auto& moves = region_moves(type, to);
   for (std::size_t k = 0; k < polygons.size(); ++k) {
@@ -331,6 +320,14 @@ bool ConflictZones::body_reaches_move(const Polygon& body, int type, int from, i
     if (of_move && geometry::convex_polygons_overlap(body, polygons[k])) return true;
   }
   return false;
+}
+
+bool ConflictZones::may_reach(const geometry::BoundingCircle& body, int type, int place) const {
+  const Vec2 at = position(place);
+  const double dx = body.centre.x - at.x;
+  const double dy = body.centre.y - at.y;
+  const double apart = body.radius + reach(type, place);
+  return dx * dx + dy * dy <= apart * apart;
 }
 
 void ConflictZones::update_reach(std::size_t type) {

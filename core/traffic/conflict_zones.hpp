@@ -148,6 +148,10 @@ class ConflictZones {
   /// place's region for some ways through it and not others: a truck turning onto a lane swings
   /// over the stall beside it, one driving straight through does not.
   bool body_reaches_move(const geometry::Polygon& body, int type, int from, int to) const;
+  /// False when a body inside `body` cannot reach any region of `place` for `type`: every region
+  /// lies within reach(type, place) of the place's position, so circles apart rule it out without
+  /// the polygon tests.
+  bool may_reach(const geometry::BoundingCircle& body, int type, int place) const;
   /// The opposite lanes of `corridor` whose places conflict with it for `type` on `corridor` and
   /// `other_type` on the opposite lane (two lanes of one road: see OppositeLane).
   /// Whether any pair of lanes of one road conflicts (opposite_lanes is empty everywhere if not).
