@@ -110,7 +110,7 @@ void FleetServer::restore_orders() {
   book_ = orders::OrderBook(store_.next_id());
   long open = 0;
   for (Order order : stored) {
-    fill_steps(order);
+    orders::fill_steps(order, known_names());
     if (order.kind == orders::OrderKind::kMove && order.status == OrderStatus::kDone) {
       parked_at_[order.robot_id] = order.drop_area;
     }
@@ -350,39 +350,16 @@ bool FleetServer::registered(const std::string& robot_id) const {
   return it != robots_.end() && it->second.registered;
 }
 
-std::optional<std::string> FleetServer::not_seen(const std::string& robot_id) const {
-  if (registered(robot_id)) return std::nullopt;
-  std::vector<std::string> seen;
+std::set<std::string> FleetServer::registered_robots() const {
+  std::set<std::string> seen;
   for (const auto& [id, robot] : robots_) {
-    if (robot.registered) seen.push_back(id);
+    if (robot.registered) seen.insert(id);
   }
-  return "robot " + robot_id + " is configured but has not been seen: no fleet-agent --id " + robot_id +
-         " has reported to this server" + (seen.empty() ? std::string() : " (seen: " + model::join(seen) + ")");
+  return seen;
 }
 
 const orders::KnownNames& FleetServer::known_names() const {
   return *known_names_;
-}
-
-void FleetServer::fill_steps(Order& order) const {
-  const auto& names = known_names();
-  order.steps = orders::steps_of(
-      {std::string(orders::to_string(order.kind)), order.pick_area, order.drop_area, "", "", order.priority}, names);
-}
-
-std::string FleetServer::validate_parking(const std::string& place, const std::string& robot_id) const {
-  // A robot that has not reported stands nowhere yet: its configured home is free to park at.
-  for (const auto& [robot, parked] : parked_at_) {
-    if (parked == place && robot != robot_id && registered(robot)) {
-      return "parking place '" + place + "' is " + robot + "'s";
-    }
-  }
-  for (const auto& [id, o] : book_.all()) {
-    if (!orders::is_final(o.status) && o.kind == orders::OrderKind::kMove && o.drop_area == place) {
-      return "parking place '" + place + "' is promised to order " + std::to_string(id) + ", which goes there";
-    }
-  }
-  return "";
 }
 
 void FleetServer::handle_robot_paths() {

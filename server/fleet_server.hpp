@@ -21,9 +21,9 @@
 #include "orders/area_ledger.hpp"
 #include "orders/dispatch.hpp"
 #include "orders/order_book.hpp"
+#include "orders/order_intake.hpp"
 #include "orders/order_recovery.hpp"
 #include "orders/order_request_check.hpp"
-#include "orders/pick_lines.hpp"
 #include "planning/road_planner.hpp"
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
@@ -140,32 +140,24 @@ class FleetServer {
   model::RequestReply execute(const model::OrderRequest& request);
   /// A command's reply goes to `answer`: at once, or when a map switch it started is done.
   void execute(const model::Command& command, const Answer& answer);
-  /// A pick request with its pick list: checked whole, then one pick order per tour.
   /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
   /// has packing stations and an order changed since it last looked.
   void advance_packing_chain();
-  model::RequestReply execute_pick_list(const model::OrderRequest& request);
-  /// Cuts checked lines into tours and stores each as a pick order: (first order id, tours).
-  std::pair<std::int64_t, int> create_pick_tours(const std::vector<orders::PickLine>& lines,
-                                                 const model::OrderRequest& request);
   /// An automatic pick list while free pickers outnumber the queued pick orders.
   void create_auto_pick(long free_pickers);
-  /// The boxes each rack place has left for new pick orders: what the site declares, less what
-  /// every pick order not failed nor cancelled takes.
-  std::map<std::string, map::BoxStock> boxes_left() const;
+  /// What order intake reads of the server's state now: the book, the ledger, the names, the
+  /// site, who parks where, which robots reported and which are free, and its settings.
+  orders::IntakeView intake_view() const;
+  /// Adds the drafts an intake decided to the book in their order, each logged, stored and
+  /// published; the first one's id (0 when there is none).
+  std::int64_t add_orders(std::vector<orders::Order> drafts);
 
   /// The loading areas, robots and fleets an order request may name.
   const orders::KnownNames& known_names() const;
-  /// Why a move to `place` cannot be placed now (another robot parks there, or an open move goes
-  /// there), or empty.
-  std::string validate_parking(const std::string& place, const std::string& robot_id) const;
-  /// The order's VDA 5050 steps with the site's place heights.
-  void fill_steps(orders::Order& order) const;
   /// Whether `robot_id` has reported to this server (a lost robot too).
   bool registered(const std::string& robot_id) const;
-  /// Why a command or order naming `robot_id` is refused when that robot never reported to this
-  /// server; nothing when it has.
-  std::optional<std::string> not_seen(const std::string& robot_id) const;
+  /// The robots that have reported to this server (lost ones too).
+  std::set<std::string> registered_robots() const;
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
   /// when there is no way.
   double travel_cost(const std::string& robot_id, const std::string& place_id);

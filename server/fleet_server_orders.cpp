@@ -8,6 +8,7 @@
 
 #include "model/names.hpp"
 #include "orders/packing_chain.hpp"
+#include "orders/pick_lines.hpp"
 #include "orders/transport_areas.hpp"
 #include "server/fleet_server.hpp"
 
@@ -25,45 +26,48 @@ void FleetServer::handle_order_requests() {
 }
 
 model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
-  auto refuse = [&](const std::string& error) {
-    log_->warn("order request {} refused: {}", request.request_id, error);
-    return model::RequestReply{request.request_id, false, 0, error, 0};
-  };
-  if (request.kind == "pick" && !request.lines.empty()) return execute_pick_list(request);
-  const orders::OrderRequestFields fields{request.kind,     request.pick_area, request.drop_area,
-                                          request.robot_id, request.fleet_id,  request.priority};
-  if (const auto problem = orders::check_order_request(fields, known_names())) {
-    return refuse(problem->field + ": " + problem->message);
+  orders::IntakeDecision decision = orders::OrderIntake(intake_view()).decide(request);
+  if (!decision.reply.accepted) {
+    log_->warn("order request {} refused: {}", request.request_id, decision.reply.error);
+    return decision.reply;
   }
-  const orders::OrderKind kind = orders::kind_of(fields);
-  if (!request.robot_id.empty()) {
-    // An order for a robot that never reported would wait for it for good, unseen.
-    if (const auto why = not_seen(request.robot_id)) return refuse(*why);
+  decision.reply.order_id = add_orders(std::move(decision.drafts));
+  return decision.reply;
+}
+
+orders::IntakeView FleetServer::intake_view() const {
+  orders::IntakeView view{.book = book_,
+                          .ledger = ledger_,
+                          .names = known_names(),
+                          .site = options_.site,
+                          .parked_at = parked_at_,
+                          .registered = registered_robots(),
+                          .free_robots = {},
+                          .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
+                          .max_pickable_mass = orders::max_pickable_mass(options_.config)};
+  for (const auto& [id, robot] : robots_) {
+    if (robot_is_free(robot)) view.free_robots.insert(id);
   }
-  const std::string error = kind == orders::OrderKind::kMove
-                                ? validate_parking(request.drop_area, request.robot_id)
-                                : orders::why_not_transport(ledger_, book_, request.pick_area, request.drop_area);
-  if (!error.empty()) return refuse(error);
-  if (options_.config.settings.get_bool("server.reject_when_busy")) {
-    const bool any_free =
-        std::any_of(robots_.begin(), robots_.end(), [&](const auto& entry) { return robot_is_free(entry.second); });
-    if (!any_free) return refuse("no robot is free (server.reject_when_busy is on)");
+  return view;
+}
+
+std::int64_t FleetServer::add_orders(std::vector<Order> drafts) {
+  std::int64_t first = 0;
+  for (Order& draft : drafts) {
+    const Order& order = book_.create(std::move(draft), clock_.now());
+    if (first == 0) first = order.id;
+    if (order.lines.empty()) {
+      log_->info("order {} created: {} {} -> {} (request {})", order.id, orders::to_string(order.kind), order.pick_area,
+                 order.drop_area, order.request_id);
+    } else {
+      const int boxes = orders::boxes_of(order);
+      const std::size_t lines = orders::parse_pick_lines(order.lines, "pick tour").size();
+      log_->info("order {} created: pick tour of {} box{} from {} line{} to {} (request {})", order.id, boxes,
+                 boxes == 1 ? "" : "es", lines, lines == 1 ? "" : "s", order.drop_area, order.request_id);
+    }
+    publish_order(order);  // stored before the requester hears of it
   }
-  Order draft;
-  draft.kind = kind;
-  draft.request_id = request.request_id;
-  draft.pick_area = request.pick_area;
-  draft.drop_area = request.drop_area;
-  draft.fleet_id = request.fleet_id;
-  draft.robot_id = request.robot_id;
-  draft.robot_requested = !request.robot_id.empty();
-  draft.priority = request.priority;
-  fill_steps(draft);
-  const Order& order = book_.create(std::move(draft), clock_.now());
-  log_->info("order {} created: {} {} -> {} (request {})", order.id, orders::to_string(order.kind), order.pick_area,
-             order.drop_area, order.request_id);
-  publish_order(order);  // stored before the requester hears of it
-  return {request.request_id, true, order.id, "", 1};
+  return first;
 }
 
 void FleetServer::handle_commands() {
@@ -145,7 +149,7 @@ void FleetServer::execute(const model::Command& command, const Answer& answer) {
   } else if (command.verb == "pause" || command.verb == "resume") {
     if (!options_.config.find_robot(command.target)) {
       error = model::unknown_name_message("robot", command.target, known_names().robots);
-    } else if (const auto why = not_seen(command.target)) {
+    } else if (const auto why = orders::why_unseen(command.target, registered_robots())) {
       error = *why;
     } else {
       paused_[command.target] = command.verb == "pause";
@@ -204,7 +208,7 @@ void FleetServer::create_auto_orders() {
   draft.request_id = "auto";
   draft.pick_area = choice->pick;
   draft.drop_area = choice->drop;
-  fill_steps(draft);
+  orders::fill_steps(draft, names);
   const Order& order = book_.create(std::move(draft), clock_.now());
   log_->info("order {} created automatically: {} -> {}", order.id, order.pick_area, order.drop_area);
   publish_order(order);

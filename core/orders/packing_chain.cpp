@@ -73,11 +73,13 @@ StationFill station_fill(const OrderBook& book, const std::string& station) {
 }
 
 std::string station_for_tour(const map::Packing& packing, const AreaLedger& ledger, const OrderBook& book,
-                             const std::string& requested, int boxes) {
+                             const std::string& requested, int boxes, const std::map<std::string, int>& also_promised) {
   const auto has_room = [&](const std::string& station) {
     if (ledger.standing_on(station) == nullptr) return false;
     const StationFill fill = station_fill(book, station);
-    return !fill.pallet_leaving && fill.boxes_done + fill.boxes_promised + boxes <= packing.boxes_per_pallet;
+    const auto drafted = also_promised.find(station);
+    const int promised = fill.boxes_promised + (drafted == also_promised.end() ? 0 : drafted->second);
+    return !fill.pallet_leaving && fill.boxes_done + promised + boxes <= packing.boxes_per_pallet;
   };
   const auto& stations = packing.stations;
   const auto at = std::find(stations.begin(), stations.end(), requested);

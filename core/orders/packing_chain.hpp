@@ -5,6 +5,7 @@
 // order book and the ledger, so a restarted server picks the chain up where it stood.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,8 +33,11 @@ StationFill station_fill(const OrderBook& book, const std::string& station);
 /// Where a pick tour of `boxes` drops: `requested` when its pallet stands there, stays and has
 /// room for them; else the first station after it (in the site's order, wrapping round) that
 /// does; `requested` when none does (the tour's boxes then wait on the picker's tray for it).
+/// `also_promised` counts, by station, the boxes of tours drafted before this one that are not in
+/// `book` yet (the earlier tours of one pick list).
 std::string station_for_tour(const map::Packing& packing, const AreaLedger& ledger, const OrderBook& book,
-                             const std::string& requested, int boxes);
+                             const std::string& requested, int boxes,
+                             const std::map<std::string, int>& also_promised = {});
 
 /// Whether the automatic transports [Forklift thesis, section 3] may pick at or drop to `place`:
 /// not at a packing station, whose pallet only the chain moves (a pallet taken away half full
