@@ -6,6 +6,7 @@
 #include "common/errors.hpp"
 #include "common/paths.hpp"
 #include "common/process_memory.hpp"
+#include "model/traffic_requests.hpp"
 #include "orders/pick_lines.hpp"
 
 namespace fleet::agent {
@@ -14,7 +15,6 @@ namespace {
 constexpr double kMaxSleepWall = 0.02;       // the main loop's longest sleep between control steps
 constexpr double kViewsStaleWall = 0.5;      // wall seconds without a NeighbourView: read SimTruth itself
 constexpr double kMaxPublishHzWall = 100.0;  // RobotState and SimTruth, capped in wall rate at high time scales
-constexpr double kRouteRepeatWall = 1.0;     // wall seconds between TrafficRequests of an unchanged route
 
 }  // namespace
 
@@ -433,7 +433,7 @@ void FleetAgent::publish_traffic(double now_sim) {
     return;
   }
   const double now_wall = SimClock::wall_now();
-  if (changed || now_wall - last_route_sent_wall_ >= kRouteRepeatWall) {
+  if (changed || now_wall - last_route_sent_wall_ >= model::kRouteRepeatWallS) {
     traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
                            route.work_area, route.arrival_area, map_id_});
     last_route_sent_wall_ = now_wall;

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "dds/qos.hpp"
+#include "model/traffic_requests.hpp"
 #include "orders/order_kind.hpp"
 #include "robot/traffic_follower.hpp"
 
@@ -214,7 +215,7 @@ void EmulatedFleet::publish(std::size_t i, double now_sim) {
   // As an agent's: the route when it changes and once a second, its progress in between.
   const double now_wall = unix_seconds();
   if (new_route || route.points != link.sent_points || !route.work_area.empty() ||
-      now_wall - link.request_sent_wall >= 1.0) {
+      now_wall - link.request_sent_wall >= model::kRouteRepeatWallS) {
     traffic_writer_.write({robot.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
                            route.work_area, route.arrival_area, options_.map_id});
     link.sent_points = route.points;

@@ -106,8 +106,9 @@ int traffic_show_command(const CommandArgs& command, const Connection& connectio
     FleetClient client(connection.domain);
     const model::ServerInfo info = require_server(client, connection);
     if (!rest.empty()) require_known("robot", rest[0], info.robots);
-    // Agents repeat an unchanged route once a second: a window longer than that hears every one.
-    const auto views = read_traffic(client, std::chrono::milliseconds(1500));
+    // Half as long again as the agents take to repeat an unchanged route: every one is heard.
+    const auto views = read_traffic(client, std::chrono::duration_cast<std::chrono::milliseconds>(
+                                                std::chrono::duration<double>(1.5 * model::kRouteRepeatWallS)));
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& [robot, view] : views) {
       if (rest.empty() || robot == rest[0]) rows.push_back(view_json(robot, view));

@@ -33,8 +33,4 @@ std::optional<TrafficRequest> TrafficRequestJoin::progress(const TrafficProgress
   return last;
 }
 
-TrafficProgress progress_of(const TrafficRequest& request) {
-  return {request.robot_id, request.version, request.progress, request.stopped_for, request.sim_time, request.map_id};
-}
-
 }  // namespace fleet::model

@@ -29,7 +29,8 @@ class TrafficRequestJoin {
   std::map<std::string, TrafficRequest> last_;  ///< per robot: the last request, progress applied
 };
 
-/// The progress part of a request, as an agent sends it between requests.
-TrafficProgress progress_of(const TrafficRequest& request);
+/// Wall seconds between the TrafficRequests of an unchanged route, TrafficProgress going in
+/// between: whoever listens longer than this hears every robot's route.
+inline constexpr double kRouteRepeatWallS = 1.0;
 
 }  // namespace fleet::model
