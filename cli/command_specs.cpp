@@ -155,8 +155,8 @@ std::vector<CommandSpec> fleet_starting_commands() {
   };
 }
 
-/// Commands that read files and run the core alone, with no DDS.
-std::vector<CommandSpec> offline_commands() {
+/// Commands that read and draw sites, with no DDS.
+std::vector<CommandSpec> map_commands() {
   return {
       {Group::kOffline,
        "map",
@@ -185,6 +185,12 @@ std::vector<CommandSpec> offline_commands() {
         number("--since", "S", -1e12, 1e12)},
        "an SVG picture of a site; --tracks draws the robots' tracks a soak wrote\n"
        "beside a deadlock or collision report (from --since S sim seconds on)"},
+  };
+}
+
+/// Commands that evaluate a part on core/ alone, beside the theses' figures or a benchmark.
+std::vector<CommandSpec> evaluation_commands() {
+  return {
       {Group::kOffline,
        "loc-eval",
        "",
@@ -272,6 +278,13 @@ std::vector<CommandSpec> offline_commands() {
        "with probability P for MIN..MAX steps; --output writes the competition's\n"
        "output file; prints errands a step, planning time a step and the longest\n"
        "standstill (exit 1 when a step broke the rules or a wait cycle formed)"},
+  };
+}
+
+/// Commands that read or write files alone: the fleets of a configuration, security folders,
+/// the configuration keys, shell completion.
+std::vector<CommandSpec> tool_commands() {
+  return {
       {Group::kOffline,
        "fleets",
        "",

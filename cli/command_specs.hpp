@@ -52,7 +52,11 @@ inline FlagSpec process_seed() {
 std::vector<CommandSpec> server_commands();
 /// Commands that start processes of their own (demo, soak, load).
 std::vector<CommandSpec> fleet_starting_commands();
-/// Commands that read files alone.
-std::vector<CommandSpec> offline_commands();
+/// Commands that read and draw sites.
+std::vector<CommandSpec> map_commands();
+/// Commands that evaluate a part on core/ alone.
+std::vector<CommandSpec> evaluation_commands();
+/// Commands that read or write files alone (fleets, security, config keys, completion).
+std::vector<CommandSpec> tool_commands();
 
 }  // namespace fleet::cli::specs

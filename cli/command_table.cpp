@@ -18,7 +18,7 @@ using namespace specs;
 
 std::vector<CommandSpec> make_table() {
   std::vector<CommandSpec> table = server_commands();
-  for (auto* part : {fleet_starting_commands, offline_commands}) {
+  for (auto* part : {fleet_starting_commands, map_commands, evaluation_commands, tool_commands}) {
     for (CommandSpec& spec : part()) table.push_back(std::move(spec));
   }
   return table;

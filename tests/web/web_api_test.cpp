@@ -125,7 +125,7 @@ TEST_F(WebApi, ServesThePageAndItsFilesWithNothingFromElsewhere) {
   EXPECT_EQ(r->body.find("https://"), std::string::npos);
   EXPECT_NE(r->get_header_value("Content-Security-Policy").find("default-src 'self'"), std::string::npos);
   // Each file whole, as it lies in server/web.
-  for (const char* file : {"/app.js", "/robots.js", "/shapes.js", "/text.js", "/style.css"}) {
+  for (const char* file : {"/app.js", "/robots.js", "/tables.js", "/shapes.js", "/text.js", "/style.css"}) {
     auto f = http_->Get(file);
     ASSERT_TRUE(f) << file;
     EXPECT_EQ(f->status, 200) << file;
