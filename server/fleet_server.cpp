@@ -58,10 +58,9 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       log_(std::move(log)),
       store_(options_.db_path),
       clock_(options_.time_scale),
-      rng_(options_.seed),
-      policy_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
+      dispatcher_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
       ledger_(places_of(options_.site)),
-      auto_orders_(options_.config.settings.get_bool("server.auto_orders")),
+      auto_orders_(options_.config.settings.get_bool("server.auto_orders"), options_.seed),
       participant_(options_.domain),
       server_info_writer_(participant_, dds::qos::latched_state()),
       reply_writer_(participant_, dds::qos::latched_state()),
@@ -100,7 +99,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   publish_server_info();
   log_->info("serving site '{}' on DDS domain {} at time scale {}, dispatch '{}', automatic orders {}",
              options_.site.name, options_.domain, options_.time_scale,
-             options_.config.settings.get_string("server.dispatch_policy"), auto_orders_ ? "on" : "off");
+             options_.config.settings.get_string("server.dispatch_policy"), auto_orders_.on() ? "on" : "off");
 }
 
 FleetServer::~FleetServer() = default;
@@ -141,7 +140,7 @@ void FleetServer::hold_unheard_robots() {
     RobotEntry unheard;
     unheard.id = id;
     unheard.last.pose = pose;
-    traffic_->set_body(id, body_of(unheard));
+    traffic_->set_body(id, robots_.body_of(unheard));
     log_->info("robot {} not heard from yet: its body is held where it last stood ({:.2f}, {:.2f})", id, pose.x,
                pose.y);
   }
@@ -201,7 +200,7 @@ std::string FleetServer::robot_on_closed_road(const map::SiteMap& next, const st
   constexpr double kSamePointM = 0.02;  // a point the new graph has too
   const auto& old_points = options_.site_map->graph.graph.points;
   const auto& new_points = next.graph.graph.points;
-  for (const auto& [id, robot] : robots_) {
+  for (const auto& [id, robot] : robots_.entries()) {
     if (!robot.registered) continue;
     const geometry::Vec2 at = robot.last.pose.position();
     for (const auto& p : old_points) {
@@ -247,8 +246,8 @@ void FleetServer::finish_map_switch() {
       const std::string previous = options_.site.name;
       adopt(std::move(derived));
       // Where every robot stands, before any of them enters the new graph.
-      for (const auto& [id, robot] : robots_) {
-        if (traffic_ && robot.registered) traffic_->set_body(id, body_of(robot));  // lost ones too: still there
+      for (const auto& [id, robot] : robots_.entries()) {
+        if (traffic_ && robot.registered) traffic_->set_body(id, robots_.body_of(robot));  // lost ones too: still there
       }
       reset_obstacles();
       publish_map_and_obstacles();
@@ -302,11 +301,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     }
     check_acknowledgements();
     if (gate_.take_change()) publish_server_info();  // the refusals, for fleetctl stats
-    // Automatic orders a few times a second: each round looks at every robot.
-    if (auto_orders_ && SimClock::wall_now() - last_auto_orders_wall_ >= kAutoOrdersPeriodWall) {
-      last_auto_orders_wall_ = SimClock::wall_now();
-      create_auto_orders();
-    }
+    if (auto_orders_.due(SimClock::wall_now())) create_auto_orders();
     advance_packing_chain();
     stages.lap("orders");
     dispatch();
@@ -314,9 +309,7 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     publish_fleet_view();
     stages.lap("views");
     publish_web_snapshot();
-    const int reported = static_cast<int>(
-        std::count_if(robots_.begin(), robots_.end(), [](const auto& r) { return r.second.registered; }));
-    load_meter_.publish_when_due(SimClock::wall_now(), clock_.now(), reported);
+    load_meter_.publish_when_due(SimClock::wall_now(), clock_.now(), robots_.registered_count());
     memory.tick(SimClock::wall_now());
     stages.lap("web snapshot");
     if (stages.total_s() > kSlowLoopWall && log_->should_log(spdlog::level::debug)) {
@@ -343,19 +336,6 @@ void FleetServer::forget_old_replies() {
       ++it;
     }
   }
-}
-
-bool FleetServer::registered(const std::string& robot_id) const {
-  const auto it = robots_.find(robot_id);
-  return it != robots_.end() && it->second.registered;
-}
-
-std::set<std::string> FleetServer::registered_robots() const {
-  std::set<std::string> seen;
-  for (const auto& [id, robot] : robots_) {
-    if (robot.registered) seen.insert(id);
-  }
-  return seen;
 }
 
 const orders::KnownNames& FleetServer::known_names() const {
@@ -402,7 +382,7 @@ void FleetServer::publish_web_snapshot() {
   snap.sim_time = clock_.now();
   snap.time_scale = options_.time_scale;
   const double lost_after = options_.config.settings.get_double("server.robot_lost_after_s");
-  for (const auto& [id, robot] : robots_) {
+  for (const auto& [id, robot] : robots_.entries()) {
     if (!robot.registered) continue;
     RobotView view;
     view.state = robot.last;
@@ -446,25 +426,8 @@ void FleetServer::publish_web_snapshot() {
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
   snap.obstacle_enabled = obstacle_enabled_;
   snap.pallet_at = ledger_.occupancy();
-  snap.auto_orders = auto_orders_;
+  snap.auto_orders = auto_orders_.on();
   bridge_->publish(std::move(snap));
-}
-
-std::string FleetServer::robot_under(const map::StaticObstacle& obstacle) const {
-  for (const auto& [id, robot] : robots_) {
-    if (robot.registered && geometry::polygons_overlap(obstacle.polygon, body_of(robot))) return id;
-  }
-  return "";
-}
-
-geometry::Polygon FleetServer::body_of(const RobotEntry& robot) const {
-  const auto spec = options_.config.find_robot(robot.id);
-  if (!spec) return geometry::footprint_polygon(robot.last.pose, geometry::Footprint{});
-  // The fleet's footprint polygon where the robot stands; its convex hull, since the traffic
-  // manager's regions are convex (a hull covers every concave body).
-  std::vector<geometry::Vec2> corners;
-  for (const auto& p : spec->first->profile.footprint) corners.push_back(geometry::body_to_map(robot.last.pose, p));
-  return traffic::convex_hull(std::move(corners));
 }
 
 }  // namespace fleet::server

@@ -19,11 +19,14 @@
 #include "dds/topics.hpp"
 #include "map/site_map.hpp"
 #include "orders/area_ledger.hpp"
-#include "orders/dispatch.hpp"
+#include "orders/auto_orders.hpp"
+#include "orders/dispatcher.hpp"
 #include "orders/order_book.hpp"
 #include "orders/order_intake.hpp"
 #include "orders/order_recovery.hpp"
 #include "orders/order_request_check.hpp"
+#include "orders/recovery_watch.hpp"
+#include "orders/robot_roster.hpp"
 #include "planning/road_planner.hpp"
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
@@ -49,16 +52,7 @@ struct ServerOptions {
   std::vector<std::string> maps;
 };
 
-/// A robot as the server knows it: registered with its first RobotState.
-struct RobotEntry {
-  std::string id;
-  std::string fleet_id;
-  model::RobotState last;
-  double last_seen_wall = 0.0;  ///< wall seconds of the last RobotState
-  bool lost = false;
-  bool registered = false;
-  bool stalled = false;  ///< missed its RobotState deadline (DDS) and not heard from since
-};
+using orders::RobotEntry;
 
 /// An order as OrderInfo, with its whole history.
 model::OrderInfo info_of(const orders::Order& order);
@@ -143,8 +137,6 @@ class FleetServer {
   /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
   /// has packing stations and an order changed since it last looked.
   void advance_packing_chain();
-  /// An automatic pick list while free pickers outnumber the queued pick orders.
-  void create_auto_pick(long free_pickers);
   /// What order intake reads of the server's state now: the book, the ledger, the names, the
   /// site, who parks where, which robots reported and which are free, and its settings.
   orders::IntakeView intake_view() const;
@@ -154,21 +146,10 @@ class FleetServer {
 
   /// The loading areas, robots and fleets an order request may name.
   const orders::KnownNames& known_names() const;
-  /// Whether `robot_id` has reported to this server (a lost robot too).
-  bool registered(const std::string& robot_id) const;
-  /// The robots that have reported to this server (lost ones too).
-  std::set<std::string> registered_robots() const;
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
   /// when there is no way.
   double travel_cost(const std::string& robot_id, const std::string& place_id);
-  /// Whether a registered robot's body stands on loading area `place_id` (orders::body_stands_on).
-  bool robot_on_place(const std::string& place_id) const;
-  bool robot_is_free(const RobotEntry& robot) const;
   void robot_lost(RobotEntry& robot, const std::string& why);
-  /// The robot's footprint at its last reported pose.
-  geometry::Polygon body_of(const RobotEntry& robot) const;
-  /// A registered robot whose last reported footprint overlaps `obstacle`, or "".
-  std::string robot_under(const map::StaticObstacle& obstacle) const;
   /// A lost robot answers again: the orders that waited for it resume when it still carries
   /// their pallet, and fail when it does not (it was restarted).
   void resume_or_fail_waiting_orders(const model::RobotState& state);
@@ -210,23 +191,17 @@ class FleetServer {
   };
   std::optional<MapSwitch> map_switch_;
   SimClock clock_;
-  std::mt19937_64 rng_;
-  std::unique_ptr<orders::DispatchPolicy> policy_;
+  orders::Dispatcher dispatcher_;
   orders::OrderBook book_;
-  std::map<std::string, RobotEntry> robots_;
+  orders::RobotRoster robots_{options_.config};
   std::map<std::string, model::RobotPath> paths_;
-  orders::AreaLedger ledger_;                          ///< what stands where: the pallets' simulation truth
-  std::map<std::string, std::string> parked_at_;       ///< robot -> the parking place it goes home to
-  std::map<std::string, bool> obstacle_enabled_;       ///< obstacle id -> enabled
-  std::map<std::int64_t, double> awaiting_ack_since_;  ///< order id -> wall time it was (re)sent
-  /// Orders whose robot was lost with the pallet on its forks -> wall time it was lost. The pallet
-  /// is on that robot and nowhere else, so the order waits for it to come back with it.
-  std::map<std::int64_t, double> awaiting_lost_robot_;
-  std::map<std::int64_t, int> resends_;
+  orders::AreaLedger ledger_;                     ///< what stands where: the pallets' simulation truth
+  std::map<std::string, std::string> parked_at_;  ///< robot -> the parking place it goes home to
+  std::map<std::string, bool> obstacle_enabled_;  ///< obstacle id -> enabled
+  /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
+  orders::RecoveryWatch recovery_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
-  bool auto_orders_ = false;
-  static constexpr double kAutoOrdersPeriodWall = 0.05;
-  double last_auto_orders_wall_ = 0.0;
+  orders::AutoOrders auto_orders_;
   /// An order changed since the packing chain last looked: only then can it owe a transport.
   bool chain_stale_ = true;
   double last_fleet_view_wall_ = 0.0;
@@ -234,8 +209,6 @@ class FleetServer {
   double last_web_snapshot_wall_ = 0.0;
   WebBridge* bridge_ = nullptr;
   std::map<std::string, model::SimTruth> truths_;
-  std::map<std::string, bool> paused_;
-  std::map<std::string, double> rejected_at_wall_;  ///< robot -> wall time of its last rejection
 
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;

@@ -57,7 +57,7 @@ void FleetServer::handle_order_reports() {
                                     .current_update = report.update_id == order->update_id,
                                     .reported = report.status,
                                     .reports_carrying = report.carrying_pallet,
-                                    .reporter_registered = registered(report.robot_id)};
+                                    .reporter_registered = robots_.registered(report.robot_id)};
     switch (orders::judge_report(facts)) {
       case orders::ReportVerdict::kHandBack:
         if (hand_back(*order, report)) return;
@@ -85,7 +85,7 @@ void FleetServer::handle_order_reports() {
 void FleetServer::apply_report(const Order& order, const model::OrderReport& report) {
   const double now = clock_.now();
   const std::int64_t id = order.id;
-  awaiting_ack_since_.erase(id);
+  recovery_.settled(id);
   TransitionResult result = TransitionResult::kApplied;
   if (report.status == "ACCEPTED") {
     log_->info("order {} accepted by {}", id, report.robot_id);
@@ -94,7 +94,7 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
     log_->warn("order {} rejected by {}: {}", id, report.robot_id, report.reason);
     result = book_.requeue(id, now, "rejected by " + report.robot_id + ": " + report.reason);
     // Its published state may lag its real one: do not offer it another order at once.
-    rejected_at_wall_[report.robot_id] = SimClock::wall_now();
+    dispatcher_.rejected(report.robot_id, SimClock::wall_now());
   } else if (report.status == "DONE" && order.kind == orders::OrderKind::kMove) {
     result = book_.transition(id, OrderStatus::kDone, now);
     if (result == TransitionResult::kApplied) {

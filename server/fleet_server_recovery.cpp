@@ -19,8 +19,8 @@ void FleetServer::handle_robot_states() {
     if (!info.valid_data) {
       // DDS liveliness: the robot's writer is gone (its 1 s liveliness lease lapsed or it
       // left). Only the key is valid in such a sample.
-      auto it = robots_.find(state.robot_id);
-      if (!info.alive && it != robots_.end() && it->second.registered && !it->second.lost) {
+      auto it = robots_.entries().find(state.robot_id);
+      if (!info.alive && it != robots_.entries().end() && it->second.registered && !it->second.lost) {
         robot_lost(it->second, "DDS liveliness lost");
       }
       return;
@@ -38,7 +38,7 @@ void FleetServer::handle_robot_states() {
           fmt::format("ignoring RobotState of robot '{}', which is not in {}", state.robot_id, options_.config.source));
       return;
     }
-    RobotEntry& robot = robots_[state.robot_id];
+    RobotEntry& robot = robots_.entries()[state.robot_id];
     if (!robot.registered || robot.lost) {
       log_->info("robot {} ({}) {} at ({:.2f}, {:.2f}), state {}", state.robot_id, known->first->id,
                  robot.lost ? "is back" : "registered", state.pose.x, state.pose.y, state.task_state);
@@ -63,7 +63,7 @@ void FleetServer::handle_robot_states() {
     robot.stalled = false;
     robot.last_seen_wall = SimClock::wall_now();
     robot.last = std::move(state);
-    if (traffic_) traffic_->set_body(robot.id, body_of(robot));
+    if (traffic_) traffic_->set_body(robot.id, robots_.body_of(robot));
   });
 }
 
@@ -71,12 +71,12 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
   robot.lost = true;
   log_->warn("robot {} lost: {}", robot.id, why);
   // Where its body was last seen stays blocked: a dead robot is still in the way.
-  if (traffic_) traffic_->robot_lost(robot.id, body_of(robot), clock_.now());
+  if (traffic_) traffic_->robot_lost(robot.id, robots_.body_of(robot), clock_.now());
   if (const Order* order = book_.open_order_of(robot.id)) {
     const std::int64_t id = order->id;
     const bool boxes = orders::boxes_aboard(*order);
     if (orders::when_robot_lost({order->phase, robot.last.carrying_pallet, boxes}) == Recovery::kWait) {
-      awaiting_lost_robot_.emplace(id, SimClock::wall_now());
+      recovery_.wait_for_lost_robot(id, SimClock::wall_now());
       log_->warn("order {} waits for robot {}: lost {} (at most {:.0f} s)", id, robot.id,
                  robot.last.carrying_pallet ? "with the pallet on its forks"
                  : boxes                    ? "with the tour's boxes on its tray"
@@ -91,7 +91,7 @@ void FleetServer::robot_lost(RobotEntry& robot, const std::string& why) {
 void FleetServer::requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason) {
   if (book_.requeue(order_id, clock_.now(), reason) != TransitionResult::kApplied) return;
   log_->warn("order {} re-queued: {}", order_id, reason);
-  awaiting_ack_since_.erase(order_id);
+  recovery_.settled(order_id);
   publish_order(*book_.find(order_id));
   withdraw(*book_.find(order_id), robot_id);
 }
@@ -111,8 +111,7 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
   const Order& handed = *book_.find(id);
   log_->warn("order {} handed back to {}: it lifted the pallet at {} before the order's withdrawal reached it{}", id,
              report.robot_id, handed.pick_area, holder.empty() ? "" : " (taken from " + holder + ")");
-  awaiting_lost_robot_.erase(id);
-  resends_[id] = 0;
+  recovery_.handed_back(id);
   publish_order(handed);
   send_assignment(handed);
   return true;
@@ -121,7 +120,7 @@ bool FleetServer::hand_back(const Order& order, const model::OrderReport& report
 void FleetServer::fail_with_pallet(std::int64_t order_id, const std::string& reason) {
   if (book_.transition(order_id, OrderStatus::kFailed, clock_.now(), reason) != TransitionResult::kApplied) return;
   log_->warn("order {} failed: {}", order_id, reason);
-  awaiting_ack_since_.erase(order_id);
+  recovery_.settled(order_id);
   publish_order(*book_.find(order_id));
 }
 
@@ -141,30 +140,18 @@ void FleetServer::give_up_on_lost_robot(std::int64_t order_id, Recovery decision
 }
 
 void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
-  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
-    const Order* order = book_.find(it->first);
-    if (!order || order->robot_id != state.robot_id) {
-      ++it;
+  const orders::ReturningRobot robot{state.robot_id, state.order_id, state.carrying_pallet};
+  for (const orders::RecoveryStep& step : recovery_.robot_back(robot, book_, ledger_)) {
+    if (step.action == Recovery::kKeep) {
+      log_->info("order {} resumes: robot {} is back with it ({})", step.order_id, state.robot_id,
+                 state.carrying_pallet                                     ? "pallet on its forks"
+                 : orders::at_pick_place(book_.find(step.order_id)->phase) ? "still at the pick area"
+                                                                           : "pallet put down at the drop area");
       continue;
     }
-    const std::int64_t id = it->first;
-    it = awaiting_lost_robot_.erase(it);
-    const auto decision = orders::when_robot_back({.order_open = !orders::is_final(order->status),
-                                                   .reports_this_order = state.order_id == id,
-                                                   .robot_carries_load = ledger_.carried_by(state.robot_id) != nullptr,
-                                                   .reports_carrying = state.carrying_pallet,
-                                                   .phase = order->phase});
-    if (decision.action == Recovery::kForget) continue;
-    if (decision.action == Recovery::kKeep) {
-      log_->info("order {} resumes: robot {} is back with it ({})", id, state.robot_id,
-                 state.carrying_pallet                 ? "pallet on its forks"
-                 : orders::at_pick_place(order->phase) ? "still at the pick area"
-                                                       : "pallet put down at the drop area");
-      continue;
-    }
-    give_up_on_lost_robot(id, decision.action, "robot " + state.robot_id + " came back restarted",
+    give_up_on_lost_robot(step.order_id, step.action, "robot " + state.robot_id + " came back restarted",
                           "robot " + state.robot_id + " came back without the order's pallet (restarted)");
-    if (decision.withdraw) withdraw(*book_.find(id), state.robot_id);
+    if (step.withdraw) withdraw(*book_.find(step.order_id), state.robot_id);
   }
 }
 
@@ -174,13 +161,13 @@ void FleetServer::check_robot_health() {
   // DDS deadline on RobotState (0.5 s, dds::qos::robot_state): the robot is stalled — frozen,
   // or its link is — before its lease runs out and it is lost.
   while (const auto missed = robot_state_reader_.deadline_missed()) {
-    auto it = robots_.find(missed->robot_id);
-    if (it != robots_.end() && it->second.registered && !it->second.lost && !it->second.stalled) {
+    auto it = robots_.entries().find(missed->robot_id);
+    if (it != robots_.entries().end() && it->second.registered && !it->second.lost && !it->second.stalled) {
       it->second.stalled = true;
       log_->warn("robot {} stalled: no RobotState within its 0.5 s DDS deadline", it->first);
     }
   }
-  for (auto& [id, robot] : robots_) {
+  for (auto& [id, robot] : robots_.entries()) {
     if (robot.registered && !robot.lost && monitor::silent_too_long(now - robot.last_seen_wall, lost_after)) {
       robot_lost(robot, "no RobotState for " + std::to_string(now - robot.last_seen_wall).substr(0, 4) + " s");
     }
@@ -189,7 +176,7 @@ void FleetServer::check_robot_health() {
   if (now - started_wall_ > orders::restart_grace_s(lost_after)) check_restored_orders();
   if (body_memory_.due(now)) {
     std::map<std::string, geometry::Pose2> heard;
-    for (const auto& [id, robot] : robots_) {
+    for (const auto& [id, robot] : robots_.entries()) {
       if (robot.registered && !robot.lost) heard[id] = robot.last.pose;
     }
     body_memory_.remember(heard, now);
@@ -198,24 +185,10 @@ void FleetServer::check_robot_health() {
 
 void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {
   const double pallet_wait = options_.config.settings.get_double("server.lost_with_pallet_wait_s");
-  for (auto it = awaiting_lost_robot_.begin(); it != awaiting_lost_robot_.end();) {
-    const Order* order = book_.find(it->first);
-    const auto decision =
-        orders::when_waiting({.order_open = order && !orders::is_final(order->status),
-                              .waited_s = now_wall - it->second,
-                              .wait_limit_s = pallet_wait,
-                              .robot_carries_load = order && ledger_.carried_by(order->robot_id) != nullptr});
-    if (decision == Recovery::kWait) {
-      ++it;
-      continue;
-    }
-    const std::int64_t id = it->first;
-    it = awaiting_lost_robot_.erase(it);
-    if (decision == Recovery::kForget) continue;
-    const std::string robot_id = order->robot_id;
-    const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
-    give_up_on_lost_robot(id, decision, "robot " + robot_id + " lost for " + waited,
-                          "robot " + robot_id + " lost with the pallet for " + waited);
+  const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
+  for (const orders::RecoveryStep& step : recovery_.check_waiting(now_wall, pallet_wait, book_, ledger_)) {
+    give_up_on_lost_robot(step.order_id, step.action, "robot " + step.robot_id + " lost for " + waited,
+                          "robot " + step.robot_id + " lost with the pallet for " + waited);
   }
 }
 
@@ -224,8 +197,8 @@ void FleetServer::check_restored_orders() {
   // grace period the robot counts as lost, with the load on board when the order was past the lift.
   for (const auto& [order_id, order] : book_.all()) {
     if (orders::is_final(order.status) || order.status == OrderStatus::kQueued) continue;
-    if (robots_.contains(order.robot_id)) continue;
-    RobotEntry& ghost = robots_[order.robot_id];
+    if (robots_.entries().contains(order.robot_id)) continue;
+    RobotEntry& ghost = robots_.entries()[order.robot_id];
     ghost.id = order.robot_id;
     ghost.registered = false;
     ghost.last.carrying_pallet = orders::restored_robot_carried_load(order.phase);
@@ -240,39 +213,21 @@ void FleetServer::check_restored_orders() {
 }
 
 void FleetServer::check_acknowledgements() {
-  const double now = SimClock::wall_now();
   const double timeout = options_.config.settings.get_double("server.order_ack_timeout_s");
   const long limit = options_.config.settings.get_int("server.order_resend_limit");
-  for (auto it = awaiting_ack_since_.begin(); it != awaiting_ack_since_.end();) {
-    const std::int64_t id = it->first;
-    const Order* order = book_.find(id);
-    const auto sent_again = resends_.find(id);
-    const auto decision =
-        orders::when_unacknowledged({.still_assigned = order && order->status == OrderStatus::kAssigned,
-                                     .waited_s = now - it->second,
-                                     .timeout_s = timeout,
-                                     .resends = sent_again == resends_.end() ? 0 : sent_again->second,
-                                     .resend_limit = limit});
-    if (decision == Recovery::kWait) {
-      ++it;
-    } else if (decision == Recovery::kForget) {
-      it = awaiting_ack_since_.erase(it);
-    } else if (decision == Recovery::kResend) {
-      ++resends_[id];
-      log_->warn("order {} not acknowledged by {} within {} s; re-sending ({}/{})", id, order->robot_id, timeout,
-                 resends_[id], limit);
-      send_assignment(*order);
-      it->second = now;
-      ++it;
-    } else {
-      const std::string robot = order->robot_id;
-      book_.requeue(id, clock_.now(), "not acknowledged by " + robot);
-      log_->warn("order {} re-queued: never acknowledged by {}", id, robot);
-      publish_order(*book_.find(id));
-      withdraw(*book_.find(id), robot);
-      resends_.erase(id);
-      it = awaiting_ack_since_.erase(it);
+  const auto steps = recovery_.check_acknowledgements(SimClock::wall_now(), timeout, limit, book_);
+  for (const orders::RecoveryStep& step : steps) {
+    const Order& order = *book_.find(step.order_id);
+    if (step.action == Recovery::kResend) {
+      log_->warn("order {} not acknowledged by {} within {} s; re-sending ({}/{})", step.order_id, step.robot_id,
+                 timeout, step.resends, limit);
+      send_assignment(order);
+      continue;
     }
+    book_.requeue(step.order_id, clock_.now(), "not acknowledged by " + step.robot_id);
+    log_->warn("order {} re-queued: never acknowledged by {}", step.order_id, step.robot_id);
+    publish_order(order);
+    withdraw(order, step.robot_id);
   }
 }
 

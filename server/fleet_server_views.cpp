@@ -33,7 +33,7 @@ void FleetServer::publish_fleet_view() {
   const bool observed = fleet_view_writer_.matched() > 0;
   std::map<std::string, model::FleetView> views;
   std::vector<std::pair<std::string, model::RobotSnapshot>> snapshots;  // map id, robot
-  for (const auto& [id, robot] : robots_) {
+  for (const auto& [id, robot] : robots_.entries()) {
     if (!robot.registered) continue;
     const auto spec = options_.config.find_robot(id);
     model::RobotSnapshot snap;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/convex_hull.hpp"
 #include "sim/tricycle.hpp"
 
 namespace fleet::traffic {
@@ -14,22 +15,7 @@ using geometry::Polygon;
 using geometry::Vec2;
 
 geometry::Polygon convex_hull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  Polygon hull(2 * points.size());
-  std::size_t k = 0;
-  for (const Vec2& p : points) {
-    while (k >= 2 && geometry::cross(hull[k - 1] - hull[k - 2], p - hull[k - 2]) <= 0.0) --k;
-    hull[k++] = p;
-  }
-  const std::size_t lower = k + 1;
-  for (auto it = points.rbegin() + 1; it != points.rend(); ++it) {
-    while (k >= lower && geometry::cross(hull[k - 1] - hull[k - 2], *it - hull[k - 2]) <= 0.0) --k;
-    hull[k++] = *it;
-  }
-  hull.resize(k - 1);
-  return hull;
+  return geometry::convex_hull(std::move(points));
 }
 
 geometry::Polygon rectangle_footprint(const geometry::Footprint& footprint) {
@@ -136,7 +122,7 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
     types_.push_back({"default", rectangle_footprint(params.footprint)});
   }
   for (const VehicleType& type : types_) {
-    if (convex_hull(type.footprint).size() < 3) {
+    if (geometry::convex_hull(type.footprint).size() < 3) {
       throw std::invalid_argument("traffic vehicle type '" + type.name +
                                   "': the footprint needs three corners not on one line");
     }
@@ -199,7 +185,7 @@ ConflictZones::ConflictZones(const map::RoadGraph& graph, const ResourceParams& 
   for (std::size_t t = 0; t < types; ++t) {
     if (!types_[t].drive) continue;
     driven[t] = 1;
-    add_driven_bodies(graph, grown(convex_hull(types_[t].footprint), params_.margin / 2.0), t);
+    add_driven_bodies(graph, grown(geometry::convex_hull(types_[t].footprint), params_.margin / 2.0), t);
     update_reach(t);
   }
   for (std::size_t a = 0; a < types; ++a) {
@@ -273,7 +259,7 @@ void ConflictZones::build_places(const map::RoadGraph& graph, std::vector<std::v
 void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector<std::vector<int>>& adjacent,
                                   const std::vector<std::vector<int>>& members, std::size_t type) {
   const std::size_t places = members.size();
-  const Polygon body = grown(convex_hull(types_[type].footprint), params_.margin / 2.0);
+  const Polygon body = grown(geometry::convex_hull(types_[type].footprint), params_.margin / 2.0);
   const double tracking_x = types_[type].tracking_x;
   auto pos = [&](std::size_t i) { return Vec2{graph.points[i].x, graph.points[i].y}; };
   auto& region = region_[type];
@@ -293,7 +279,7 @@ void ConflictZones::build_regions(const map::RoadGraph& graph, const std::vector
         Polygon corners = sim::polygon_in_map({a.x, a.y, heading}, body);
         const Polygon far = sim::polygon_in_map({mid.x, mid.y, heading}, body);
         corners.insert(corners.end(), far.begin(), far.end());
-        region[p].push_back(convex_hull(std::move(corners)));
+        region[p].push_back(geometry::convex_hull(std::move(corners)));
         const int other = place_of_[static_cast<std::size_t>(j)];
         moves[p].push_back({other, other});
       }

@@ -1,0 +1,71 @@
+#include "orders/auto_orders.hpp"
+
+#include <algorithm>
+
+#include "orders/packing_chain.hpp"
+#include "orders/pick_lines.hpp"
+#include "orders/transport_areas.hpp"
+
+namespace fleet::orders {
+
+bool AutoOrders::due(double now_wall) {
+  if (!on_ || now_wall - last_round_wall_ < kPeriodWallS) return false;
+  last_round_wall_ = now_wall;
+  return true;
+}
+
+long AutoOrders::free_for(const IntakeView& view, OrderKind kind) {
+  const auto& abilities = view.names.abilities;
+  const auto can = [&](const std::string& robot_id) {
+    // Without abilities (a configuration that names none) every robot carries loads and nothing else.
+    if (abilities.empty()) return kind == OrderKind::kTransport;
+    const auto fleet = view.names.fleet_of_robot.find(robot_id);
+    if (fleet == view.names.fleet_of_robot.end()) return false;
+    const auto ability = std::find_if(abilities.begin(), abilities.end(),
+                                      [&](const FleetAbility& a) { return a.fleet_id == fleet->second; });
+    return ability != abilities.end() && !incapability(*ability, order_steps(kind, "", "")).has_value();
+  };
+  return std::count_if(view.free_robots.begin(), view.free_robots.end(), can);
+}
+
+std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
+  // The pick lists a warehouse system would send, one tour per free picker: boxes from the racks to
+  // the packing stations, whose full pallets then go on to expedition by the packing chain.
+  if (!view.site.packing || view.site.packing->stations.empty()) return {};
+  const long free_pickers = free_for(view, OrderKind::kPick);
+  if (free_pickers == 0) return {};
+  const auto queue = view.book.with_status(OrderStatus::kQueued);
+  const long queued =
+      std::count_if(queue.begin(), queue.end(), [](const Order* o) { return o->kind == OrderKind::kPick; });
+  if (free_pickers <= queued) return {};
+  const OrderIntake intake(view);
+  const auto lines =
+      choose_auto_pick_list(intake.boxes_left(), place_poses(view.site), view.max_pickable_mass, kTourBoxes, rng_);
+  if (!lines) return {};
+  model::OrderRequest request;
+  request.request_id = "auto";
+  request.kind = "pick";
+  request.drop_area = view.site.packing->stations.front();
+  return intake.pick_tours(*lines, request);
+}
+
+std::optional<Order> AutoOrders::transport(const IntakeView& view) {
+  if (!auto_transport_wanted(view.book, free_for(view, OrderKind::kTransport))) return std::nullopt;
+  const auto doable = [&](const std::string& pick, const std::string& drop) {
+    if (const auto& packing = view.site.packing;
+        packing && (!open_to_random_transports(*packing, pick) || !open_to_random_transports(*packing, drop))) {
+      return false;
+    }
+    return !check_order_request({"", pick, drop, "", "", 0}, view.names).has_value();
+  };
+  const auto choice = choose_auto_transport(view.ledger, view.book, rng_, doable);
+  if (!choice) return std::nullopt;
+  Order draft;
+  draft.request_id = "auto";
+  draft.pick_area = choice->pick;
+  draft.drop_area = choice->drop;
+  fill_steps(draft, view.names);
+  return draft;
+}
+
+}  // namespace fleet::orders

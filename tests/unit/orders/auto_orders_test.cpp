@@ -1,0 +1,125 @@
+#include "orders/auto_orders.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fleet::orders {
+namespace {
+
+/// Loading areas A1 (a pallet on it), A2 and A3 (empty); rack places R1 and R2 with boxes of item
+/// BX; packing station PS1 with a pallet. Forklifts fl1 and fl2 carry pallets, picker pk1 picks
+/// boxes; who is free is set per test.
+struct Yard {
+  map::Site site;
+  AreaLedger ledger;
+  OrderBook book;
+  KnownNames names;
+  std::map<std::string, std::string> parked_at;
+  std::set<std::string> free_robots;
+
+  Yard() {
+    std::vector<Place> places;
+    double x = 0.0;
+    for (const char* id : {"A1", "A2", "A3", "R1", "R2", "PS1"}) {
+      map::LoadingArea area;
+      area.id = id;
+      area.pose = {x, 0.0, 0.0};
+      x += 2.0;
+      if (area.id[0] == 'R') area.boxes = map::BoxStock{"BX", 5};
+      site.loading_areas.push_back(area);
+      places.push_back({area.id, area.pose});
+      names.areas.push_back(area.id);
+    }
+    site.packing = map::Packing{3, {"PS1"}, {"A3"}, {"A2"}};
+    names.robots = {"fl1", "fl2", "pk1"};
+    names.fleets = {"forklifts", "pickers"};
+    names.fleet_of_robot = {{"fl1", "forklifts"}, {"fl2", "forklifts"}, {"pk1", "pickers"}};
+    names.abilities = {{"forklifts", {"pick", "drop"}, 2.0, {}}, {"pickers", {"pickItem", "dropItem"}, 2.0, {}}};
+    ledger = AreaLedger(places);
+    ledger.record({1, "pallet", {}, "A1", ""});
+    ledger.record({2, "pallet", {}, "PS1", ""});
+  }
+
+  IntakeView view() const {
+    return {.book = book,
+            .ledger = ledger,
+            .names = names,
+            .site = site,
+            .parked_at = parked_at,
+            .registered = {"fl1", "fl2", "pk1"},
+            .free_robots = free_robots,
+            .reject_when_busy = false,
+            .max_pickable_mass = 5.0};
+  }
+};
+
+TEST(AutoOrders, ARoundIsDueOnlyWhenOnAndNotWithinThePeriod) {
+  AutoOrders off(false, 1);
+  EXPECT_FALSE(off.due(100.0));
+  AutoOrders source(true, 1);
+  EXPECT_TRUE(source.due(0.0));
+  EXPECT_FALSE(source.due(AutoOrders::kPeriodWallS / 2));
+  EXPECT_TRUE(source.due(AutoOrders::kPeriodWallS));
+  source.set_on(false);
+  EXPECT_FALSE(source.due(200.0));
+}
+
+TEST(AutoOrders, ATransportLeavesThePackingStationsAloneAndWaitsForAFreeCarrier) {
+  Yard yard;
+  AutoOrders source(true, 7);
+  yard.free_robots = {"pk1"};
+  EXPECT_FALSE(source.transport(yard.view())) << "a picker carries no pallet";
+  yard.free_robots = {"fl1"};
+  const auto draft = source.transport(yard.view());
+  ASSERT_TRUE(draft);
+  EXPECT_EQ(draft->request_id, "auto");
+  EXPECT_EQ(draft->pick_area, "A1") << "the only load not on a packing station";
+  EXPECT_NE(draft->drop_area, "PS1");
+  EXPECT_NE(draft->drop_area, "A1");
+  ASSERT_EQ(draft->steps.size(), 2u) << "the steps are filled";
+  yard.book.create(*draft, 0.0);
+  EXPECT_FALSE(source.transport(yard.view())) << "one queued transport for one free forklift";
+}
+
+TEST(AutoOrders, PickToursGoToThePackingStationWhileFreePickersOutnumberQueuedPicks) {
+  Yard yard;
+  AutoOrders source(true, 3);
+  yard.free_robots = {"fl1", "fl2"};
+  EXPECT_TRUE(source.pick_tours(yard.view()).empty()) << "no free picker";
+  yard.free_robots = {"pk1"};
+  const auto tours = source.pick_tours(yard.view());
+  ASSERT_FALSE(tours.empty());
+  for (const Order& tour : tours) {
+    EXPECT_EQ(tour.kind, OrderKind::kPick);
+    EXPECT_EQ(tour.drop_area, "PS1");
+    EXPECT_EQ(tour.request_id, "auto");
+    EXPECT_TRUE(tour.pick_area == "R1" || tour.pick_area == "R2") << tour.pick_area;
+  }
+  yard.book.create(tours.front(), 0.0);
+  EXPECT_TRUE(source.pick_tours(yard.view()).empty()) << "one queued pick order for one free picker";
+}
+
+TEST(AutoOrders, ASiteWithoutPackingStationsGetsNoPickTours) {
+  Yard yard;
+  yard.site.packing.reset();
+  yard.free_robots = {"pk1"};
+  AutoOrders source(true, 3);
+  EXPECT_TRUE(source.pick_tours(yard.view()).empty());
+}
+
+TEST(AutoOrders, TheSameSeedDrawsTheSameOrders) {
+  Yard yard;
+  yard.free_robots = {"fl1", "pk1"};
+  AutoOrders first(true, 11), second(true, 11);
+  const auto a = first.pick_tours(yard.view()), b = second.pick_tours(yard.view());
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].lines, b[i].lines);
+  EXPECT_EQ(first.transport(yard.view())->drop_area, second.transport(yard.view())->drop_area);
+}
+
+}  // namespace
+}  // namespace fleet::orders
