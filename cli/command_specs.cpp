@@ -196,10 +196,12 @@ std::vector<CommandSpec> evaluation_commands() {
        "",
        "",
        false,
-       {choice("--trajectory", {"square", "figure8", "table_a_loop", "rack_aisle"}),
+       {choice("--trajectory", {"square", "figure8", "table_a_loop", "rack_aisle", "plant_route"}),
         number("--duration", "S", 1e-3, 36000.0), seed(), number("--nlos", "F", 0.0, 1.0), file("--plot", "FILE.svg")},
        "localization on core/ alone: raw UWB vs EKF errors; rack_aisle: the picker on the\n"
-       "plant's rack aisle, localised by markers and wheel odometry (--nlos and --plot do not apply)"},
+       "plant's rack aisle, localised by markers and wheel odometry; plant_route: the same\n"
+       "picker on its round from parking to a rack, a packing station and back at 1 m/s\n"
+       "(--nlos and --plot do not apply to either)"},
       {Group::kOffline,
        "plan-eval",
        "",

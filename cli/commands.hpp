@@ -34,9 +34,9 @@ std::string known_site_path(const std::string& source_dir, const std::string& na
 // `out`, errors to `err`.
 int map_command(const CommandArgs& args, std::ostream& out, std::ostream& err);       // map check|sample|render
 int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);  // loc-eval
-/// loc-eval --trajectory rack_aisle: the picker's localization by markers.
-int marker_loc_eval_command(const CommandArgs& args, double duration, std::uint64_t seed, bool json, std::ostream& out,
-                            std::ostream& err);
+/// loc-eval --trajectory rack_aisle|plant_route: the picker's localization by markers.
+int marker_loc_eval_command(const CommandArgs& args, const std::string& trajectory, double duration, std::uint64_t seed,
+                            bool json, std::ostream& out, std::ostream& err);
 int plan_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // plan-eval
 int ctrl_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err);     // ctrl-eval
 int fleets_command(const CommandArgs& args, std::ostream& out, std::ostream& err);        // fleets

@@ -38,7 +38,7 @@ void print_row(std::ostream& out, const std::string& name, const eval::ErrorStat
 
 int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& err) {
   eval::LocEvalParams params;
-  bool rack_aisle = false;
+  std::string marker_trajectory;  // rack_aisle or plant_route: the picker's markers, not UWB
   std::string plot_file;
   bool json = args.json;
   int exit_code = kExitOk;
@@ -47,8 +47,8 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
   const CommandFlags& a = *parsed;
   try {
     if (const auto v = a.value("trajectory")) {
-      if (*v == "rack_aisle") {
-        rack_aisle = true;
+      if (*v == "rack_aisle" || *v == "plant_route") {
+        marker_trajectory = *v;
       } else {
         params.trajectory = eval::parse_trajectory(*v).value();  // the table's choices are the trajectories
       }
@@ -62,12 +62,13 @@ int loc_eval_command(const CommandArgs& args, std::ostream& out, std::ostream& e
     return kExitBadInput;
   }
 
-  if (rack_aisle) {
+  if (!marker_trajectory.empty()) {
     if (params.nlos_fraction > 0.0 || !plot_file.empty()) {
-      err << "loc-eval: --nlos and --plot apply to the UWB trajectories, not rack_aisle\n" << a.usage();
+      err << "loc-eval: --nlos and --plot apply to the UWB trajectories, not " << marker_trajectory << '\n'
+          << a.usage();
       return kExitBadInput;
     }
-    return marker_loc_eval_command(args, params.duration, params.seed, json, out, err);
+    return marker_loc_eval_command(args, marker_trajectory, params.duration, params.seed, json, out, err);
   }
 
   // Anchors from the demo site when it is readable; the same four corners otherwise.

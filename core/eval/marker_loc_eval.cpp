@@ -75,11 +75,18 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   std::vector<perception::Marker> markers;
   for (const auto& m : site_markers) markers.push_back({m.id, m.pose});
 
-  const Pose2 start{params.x_from, south_lane, 0.0};
+  if (!params.route.empty() && params.route.size() < 2) {
+    throw std::invalid_argument("marker loc-eval: a route needs at least two points");
+  }
+  const Pose2 start =
+      params.route.empty()
+          ? Pose2{params.x_from, south_lane, 0.0}
+          : Pose2{params.route[0].x, params.route[0].y,
+                  std::atan2(params.route[1].y - params.route[0].y, params.route[1].x - params.route[0].x)};
   sim::ForkliftParams body_params = sim::summit_xls_body_params();
   sim::ForkliftBody body(body_params, start, std::mt19937_64(params.seed));
   std::vector<geometry::Polygon> occluders = params.occluders;
-  if (occluders.empty()) {
+  if (occluders.empty() && params.route.empty()) {
     constexpr double kRackDepth = 1.2;
     for (const double face : {params.south_face_y, params.north_face_y}) {
       const double back = face == params.south_face_y ? face - kRackDepth : face + kRackDepth;
@@ -96,8 +103,13 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   cp.max_speed = params.speed;
   control::WaypointController controller(cp);
   // One lap east along the south face, one west along the north face; the base turns on the spot at each end.
-  const std::vector<std::vector<Vec2>> legs{{{params.x_to, south_lane}, {params.x_to, north_lane}},
-                                            {{params.x_from, north_lane}, {params.x_from, south_lane}}};
+  // A route is driven to its end and back.
+  std::vector<std::vector<Vec2>> legs{{{params.x_to, south_lane}, {params.x_to, north_lane}},
+                                      {{params.x_from, north_lane}, {params.x_from, south_lane}}};
+  if (!params.route.empty()) {
+    legs = {std::vector<Vec2>(params.route.begin() + 1, params.route.end()),
+            std::vector<Vec2>(params.route.rbegin() + 1, params.route.rend())};
+  }
   std::size_t leg = 0;
   controller.set_waypoints(legs[0]);
 
@@ -105,6 +117,7 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
   ErrorSamples ekf_errors;
   ErrorSamples odometry_errors;
   Vec2 last_position = start.position();
+  double worst = 0.0;
   const int steps = static_cast<int>(std::ceil(params.duration / kPeriod));
   for (int i = 1; i <= steps; ++i) {
     const double t = i * kPeriod;
@@ -113,6 +126,10 @@ MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params) {
     localizer.step(t, kPeriod, {cmd.vx, cmd.vy, cmd.omega}, body.wheel_speeds(), body.pose(),
                    std::hypot(body.twist().vx, body.twist().vy), body.twist().omega);
     ekf_errors.add(body.pose(), localizer.ekf().pose());
+    if (ekf_errors.position.back() >= worst) {
+      worst = ekf_errors.position.back();
+      r.worst_at = body.pose().position();
+    }
     odometry_errors.add(body.pose(), localizer.odometry());
     r.distance_m += geometry::distance(body.pose().position(), last_position);
     last_position = body.pose().position();

@@ -27,8 +27,12 @@ struct MarkerLocEvalParams {
   double x_to = 56.0;
   /// Markers on the site; empty means every marker of the plant's rack aisle 1 (pillars every 3.5 m).
   std::vector<map::Marker> markers;
-  /// What the cameras cannot see through (the site's racks); empty means the two rack rows of the aisle.
+  /// What the cameras cannot see through (the site's racks); empty means the two rack rows of the aisle
+  /// (none for a route).
   std::vector<geometry::Polygon> occluders;
+  /// A route to drive in place of the aisle laps: its points in order to the end, then back to the
+  /// start, again and again (loc-eval's plant_route). Empty: the aisle laps.
+  std::vector<geometry::Vec2> route;
   /// The cameras, encoders and filter, as the picker's agent runs them.
   localization::MarkerLocalizerParams localizer;
 };
@@ -53,13 +57,14 @@ struct MarkerLocEvalResult {
   int laps = 0;                           ///< aisle lengths driven
   std::vector<geometry::Pose2> truth;     ///< every 0.5 s
   std::vector<geometry::Pose2> estimate;  ///< every 0.5 s
+  geometry::Vec2 worst_at;                ///< where the body truly stood when the filter was farthest off
 };
 
 /// The plant's rack-aisle-1 markers: pillars every 3.5 m on both faces, facing into the aisle.
 std::vector<map::Marker> rack_aisle_markers(const MarkerLocEvalParams& params);
 
-/// Runs the evaluation. Throws std::invalid_argument for a non-positive duration or speed, or an aisle too
-/// narrow for the rack distance.
+/// Runs the evaluation. Throws std::invalid_argument for a non-positive duration or speed, an aisle too
+/// narrow for the rack distance, or a route of fewer than two points.
 MarkerLocEvalResult run_marker_loc_eval(const MarkerLocEvalParams& params);
 
 }  // namespace fleet::eval
