@@ -234,7 +234,11 @@ def racks():
 
 def markers():
     """AR markers: every 10 m along the open aisles and the corridor, on every front pillar in
-    the racks [Picker thesis, section 4.2.9.3]. Ids are the codes printed on them."""
+    the racks [Picker thesis, section 4.2.9.3]. Where the pickers work outside the racks (the
+    south cross aisle west of the racks, the packing area and their parking street) more than
+    the thesis's 10 m: every 5 m along the aisle and every 3.5 m on the south wall, as on the
+    pillars, since a marker's range error grows with the square of its distance. Ids are the
+    codes printed on them."""
     out = []
     for x in (5.0, 15.0, 25.0, 35.0, 45.0, 55.0):
         out.append((x, NORTH_Y - AISLE_LANE - 0.05, N, 2.0))
@@ -244,6 +248,10 @@ def markers():
     for y in (10.0, 20.0):
         out.append((0.05, y, E, 2.0))
         out.append((WIDTH - 0.05, y, W, 2.0))
+    for x in (10.0, 20.0, 30.0):
+        out.append((x, SOUTH_Y + AISLE_LANE + 0.05, S, 2.0))
+    for k in range(9):
+        out.append((3.5 * (k + 1), 0.05, N, 1.0))
     numbered = [(k + 1,) + m for k, m in enumerate(out)]
     for k, (row, face_y, into_aisle) in enumerate(rack_faces()):
         for j in range(BAYS + 1):
