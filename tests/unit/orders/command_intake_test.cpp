@@ -5,21 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "two_forklifts.hpp"
+
 namespace fleet::orders {
 namespace {
 
 /// Site "yard" with obstacle O1 (a 1 m square at (5, 5)) and its revision "yard_closed"; forklifts
 /// fl1 (reported, standing at the origin) and fl2 (not reported); order 1 queued, order 2 done.
 struct Yard {
-  config::FleetConfig config = config::parse_fleet_config(R"(
-fleets:
-  - id: forklifts
-    robot_type: forklift
-    profile:
-      footprint: {length: 1.0, width: 0.6}
-    robots: [{id: fl1, home: H1}, {id: fl2, home: H2}]
-)",
-                                                          "yard.yaml");
+  config::FleetConfig config = test::two_forklifts();
   map::Site site;
   std::vector<std::string> maps{"yard", "yard_closed"};
   OrderBook book;

@@ -1,3 +1,5 @@
+#include "orders/dispatch.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 #include <numeric>
 #include <random>
 
-#include "orders/dispatch.hpp"
 #include "orders/hungarian.hpp"
 
 using namespace fleet::orders;
@@ -91,11 +92,15 @@ TEST(Dispatch, OptimalBeatsGreedyOnTheClassicCase) {
     for (const auto& a : out) t += cost(a.robot_id, orders[static_cast<std::size_t>(a.order_id - 1)].pick_area);
     return t;
   };
-  EXPECT_DOUBLE_EQ(total(make_dispatch_policy("nearest")->assign(pointers(orders), {{"fl1", ""}, {"fl2", ""}}, cost)), 11.0);
-  EXPECT_DOUBLE_EQ(total(make_dispatch_policy("optimal")->assign(pointers(orders), {{"fl1", ""}, {"fl2", ""}}, cost)), 4.0);
+  EXPECT_DOUBLE_EQ(total(make_dispatch_policy("nearest")->assign(pointers(orders), {{"fl1", ""}, {"fl2", ""}}, cost)),
+                   11.0);
+  EXPECT_DOUBLE_EQ(total(make_dispatch_policy("optimal")->assign(pointers(orders), {{"fl1", ""}, {"fl2", ""}}, cost)),
+                   4.0);
 }
 
-TEST(Dispatch, UnknownPolicyNameThrows) { EXPECT_THROW(make_dispatch_policy("fastest"), std::invalid_argument); }
+TEST(Dispatch, UnknownPolicyNameThrows) {
+  EXPECT_THROW(make_dispatch_policy("fastest"), std::invalid_argument);
+}
 
 TEST(Hungarian, MatchesBruteForceOnRandomSmallCases) {
   std::mt19937_64 rng(7);
@@ -175,8 +180,8 @@ TEST(Dispatch, AnOrderNoFreeRobotCanDoHoldsNoSlotOfTheOptimalPolicy) {
   pick.drop_area = "P1";
   pick.steps = order_steps(OrderKind::kPick, "B1", "P1");
   const std::vector<Order> orders{pick, transport(2, "A1", 0.0)};
-  const auto out = make_dispatch_policy("optimal")->assign(
-      pointers(orders), {{"fk1", "forklifts", kForklifts}}, [](const std::string&, const std::string&) { return 1.0; });
+  const auto out = make_dispatch_policy("optimal")->assign(pointers(orders), {{"fk1", "forklifts", kForklifts}},
+                                                           [](const std::string&, const std::string&) { return 1.0; });
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].order_id, 2);
 }

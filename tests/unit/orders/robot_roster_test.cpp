@@ -6,21 +6,15 @@
 #include <set>
 #include <string>
 
+#include "two_forklifts.hpp"
+
 namespace fleet::orders {
 namespace {
 
 /// Forklifts fl1 and fl2, 1.0 m long and 0.6 m wide; fl1 has reported and stands at the origin
 /// facing +x, fl2 is entered but has not reported.
 struct Yard {
-  config::FleetConfig config = config::parse_fleet_config(R"(
-fleets:
-  - id: forklifts
-    robot_type: forklift
-    profile:
-      footprint: {length: 1.0, width: 0.6}
-    robots: [{id: fl1, home: H1}, {id: fl2, home: H2}]
-)",
-                                                          "yard.yaml");
+  config::FleetConfig config = test::two_forklifts();
   RobotRoster roster{config};
 
   Yard() {

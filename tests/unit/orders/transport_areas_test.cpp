@@ -145,9 +145,9 @@ TEST(TransportAreas, AutomaticOrdersAreOnlyPairsTheFilterAccepts) {
   std::mt19937_64 rng(3);
   int chosen = 0;
   for (int i = 0; i < 50; ++i) {
-    const auto choice = choose_auto_transport(site.ledger, site.book, rng, [](const std::string& pick, const std::string& drop) {
-      return pick == "A1" && drop == "A3";
-    });
+    const auto choice = choose_auto_transport(
+        site.ledger, site.book, rng,
+        [](const std::string& pick, const std::string& drop) { return pick == "A1" && drop == "A3"; });
     if (!choice) continue;
     ++chosen;
     EXPECT_EQ(choice->pick, "A1");
