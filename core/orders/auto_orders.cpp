@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "orders/dispatch.hpp"
 #include "orders/packing_chain.hpp"
 #include "orders/pick_lines.hpp"
 #include "orders/transport_areas.hpp"
@@ -21,9 +22,8 @@ long AutoOrders::free_for(const IntakeView& view, OrderKind kind) {
     if (abilities.empty()) return kind == OrderKind::kTransport;
     const auto fleet = view.names.fleet_of_robot.find(robot_id);
     if (fleet == view.names.fleet_of_robot.end()) return false;
-    const auto ability = std::find_if(abilities.begin(), abilities.end(),
-                                      [&](const FleetAbility& a) { return a.fleet_id == fleet->second; });
-    return ability != abilities.end() && !incapability(*ability, order_steps(kind, "", "")).has_value();
+    const FleetAbility* ability = ability_of(abilities, fleet->second);
+    return ability && !incapability(*ability, order_steps(kind, "", "")).has_value();
   };
   return std::count_if(view.free_robots.begin(), view.free_robots.end(), can);
 }

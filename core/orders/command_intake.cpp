@@ -24,6 +24,12 @@ CommandDecision take(CommandAction action, bool on = false, std::int64_t order_i
   return taken;
 }
 
+std::vector<std::string> configured_robots(const config::FleetConfig& config) {
+  std::vector<std::string> ids;
+  for (const auto& [fleet, robot] : config.all_robots()) ids.push_back(robot->id);
+  return ids;
+}
+
 bool on_or_off(const std::string& value) {
   return value == "on" || value == "off";
 }
@@ -79,8 +85,7 @@ CommandDecision switch_map(const model::Command& command, const CommandView& vie
   if (!one_robot) {
     return take(command.value == view.site.name ? CommandAction::kNone : CommandAction::kSwitchMap);
   }
-  std::vector<std::string> robot_ids;
-  for (const auto& [fleet, robot] : view.config.all_robots()) robot_ids.push_back(robot->id);
+  const std::vector<std::string> robot_ids = configured_robots(view.config);
   if (std::find(robot_ids.begin(), robot_ids.end(), command.target) == robot_ids.end()) {
     return refuse(model::unknown_name_message("robot", command.target, robot_ids));
   }
@@ -94,9 +99,7 @@ CommandDecision switch_map(const model::Command& command, const CommandView& vie
 
 CommandDecision pause_robot(const model::Command& command, const CommandView& view) {
   if (!view.config.find_robot(command.target)) {
-    std::vector<std::string> robot_ids;
-    for (const auto& [fleet, robot] : view.config.all_robots()) robot_ids.push_back(robot->id);
-    return refuse(model::unknown_name_message("robot", command.target, robot_ids));
+    return refuse(model::unknown_name_message("robot", command.target, configured_robots(view.config)));
   }
   if (const auto why = why_unseen(command.target, view.robots.registered_ids())) return refuse(*why);
   return take(CommandAction::kPauseRobot, command.verb == "pause");

@@ -31,6 +31,12 @@ bool robot_id_less(const std::string& a, const std::string& b) {
   return a.size() - i < b.size() - j;
 }
 
+const FleetAbility* ability_of(const std::vector<FleetAbility>& abilities, const std::string& fleet_id) {
+  const auto ability =
+      std::find_if(abilities.begin(), abilities.end(), [&](const FleetAbility& a) { return a.fleet_id == fleet_id; });
+  return ability == abilities.end() ? nullptr : &*ability;
+}
+
 bool eligible(const Order& order, const FreeRobot& robot) {
   if (order.robot_requested && order.robot_id != robot.id) return false;
   if (!order.fleet_id.empty() && order.fleet_id != robot.fleet_id) return false;
@@ -40,7 +46,8 @@ bool eligible(const Order& order, const FreeRobot& robot) {
 namespace {
 
 void sort_robots(std::vector<FreeRobot>& robots) {
-  std::sort(robots.begin(), robots.end(), [](const FreeRobot& a, const FreeRobot& b) { return robot_id_less(a.id, b.id); });
+  std::sort(robots.begin(), robots.end(),
+            [](const FreeRobot& a, const FreeRobot& b) { return robot_id_less(a.id, b.id); });
 }
 
 /// [Forklift thesis, section 3]: "Orders are sent to the forklifts based on ascending order of forklift id."

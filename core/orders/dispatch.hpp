@@ -44,6 +44,9 @@ std::unique_ptr<DispatchPolicy> make_dispatch_policy(std::string_view name);
 /// Natural order of robot ids, so that fl2 comes before fl10.
 bool robot_id_less(const std::string& a, const std::string& b);
 
+/// The ability of fleet `fleet_id` among `abilities`, nullptr when it has none.
+const FleetAbility* ability_of(const std::vector<FleetAbility>& abilities, const std::string& fleet_id);
+
 /// Whether `robot` may take `order`: its fleet can perform every step's actions (at their
 /// heights), and a requested robot or fleet, if any, is it.
 bool eligible(const Order& order, const FreeRobot& robot);

@@ -31,9 +31,9 @@ std::vector<Assignment> Dispatcher::round(const DispatchRound& in) const {
   std::vector<FreeRobot> free;
   for (const auto& [id, robot] : in.robots) {
     if (!takes_new_work(robot, in.book, in.now_wall)) continue;
-    const auto ability = std::find_if(in.abilities.begin(), in.abilities.end(),
-                                      [&](const FleetAbility& a) { return a.fleet_id == robot.fleet_id; });
-    if (ability != in.abilities.end()) free.emplace_back(robot.id, robot.fleet_id, *ability);
+    if (const FleetAbility* ability = ability_of(in.abilities, robot.fleet_id)) {
+      free.emplace_back(robot.id, robot.fleet_id, *ability);
+    }
   }
   if (free.empty()) return {};
   return policy_->assign(queue, std::move(free), in.cost);
