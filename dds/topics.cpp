@@ -220,7 +220,12 @@ fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
           {static_cast<uint32_t>(events.size()), static_cast<uint32_t>(events.size()), events.data(), false},
           borrow(v.kind),
           borrow(v.cause),
-          s.text(model::ids_text(v.caused_by))};
+          s.text(model::ids_text(v.caused_by)),
+          borrow(v.lines),
+          v.robot_requested,
+          v.update_id,
+          v.assigned_sim,
+          v.finished_sim};
 }
 model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
   model::OrderInfo v{w.order_id,
@@ -238,7 +243,12 @@ model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
                      {},
                      text(w.kind),
                      text(w.cause),
-                     model::parse_ids(text(w.caused_by)).value_or(std::vector<std::int64_t>{})};
+                     model::parse_ids(text(w.caused_by)).value_or(std::vector<std::int64_t>{}),
+                     text(w.lines),
+                     w.robot_requested,
+                     w.update_id,
+                     w.assigned_sim,
+                     w.finished_sim};
   for (uint32_t i = 0; i < w.history._length; ++i) {
     const auto& e = w.history._buffer[i];
     v.history.push_back(
@@ -446,6 +456,13 @@ fleet_msg_ServerLoad to_wire(const model::ServerLoad& v, Scratch&) {
           v.dispatch_p99_ms,
           v.dispatch_max_ms};
 }
+fleet_msg_SiteStateDocument to_wire(const model::SiteStateDocument& v, Scratch&) {
+  return {borrow(v.site), borrow(v.json)};
+}
+model::SiteStateDocument from_wire(const fleet_msg_SiteStateDocument& w) {
+  return {text(w.site), text(w.json)};
+}
+
 model::ServerLoad from_wire(const fleet_msg_ServerLoad& w) {
   return {text(w.server_id),
           w.sim_time,
@@ -518,5 +535,6 @@ FLEET_DDS_TOPIC_IMPL(TrafficRequest, fleet_msg_TrafficRequest, "fleet/TrafficReq
 FLEET_DDS_TOPIC_IMPL(TrafficProgress, fleet_msg_TrafficProgress, "fleet/TrafficProgress")
 FLEET_DDS_TOPIC_IMPL(TrafficGrant, fleet_msg_TrafficGrant, "fleet/TrafficGrant")
 FLEET_DDS_TOPIC_IMPL(ServerLoad, fleet_msg_ServerLoad, "fleet/ServerLoad")
+FLEET_DDS_TOPIC_IMPL(SiteStateDocument, fleet_msg_SiteStateDocument, "fleet/SiteState")
 
 }  // namespace fleet::dds

@@ -48,6 +48,7 @@ FLEET_DDS_TOPIC(TrafficRequest)
 FLEET_DDS_TOPIC(TrafficProgress)
 FLEET_DDS_TOPIC(TrafficGrant)
 FLEET_DDS_TOPIC(ServerLoad)
+FLEET_DDS_TOPIC(SiteStateDocument)
 
 }  // namespace fleet::dds
 

@@ -10,10 +10,10 @@ namespace {
 constexpr int kFirstDomain = 0;
 constexpr int kLastDomain = 230;
 
-const std::vector<std::string> kServerPublishes{"fleet/ServerInfo",    "fleet/RequestReply",    "fleet/Order",
-                                                "fleet/OrderInfo",     "fleet/MapAssignment",   "fleet/RobotControl",
-                                                "fleet/PalletTruth",   "fleet/StaticObstacles", "fleet/FleetView",
-                                                "fleet/NeighbourView", "fleet/TrafficGrant",    "fleet/ServerLoad"};
+const std::vector<std::string> kServerPublishes{
+    "fleet/ServerInfo",   "fleet/RequestReply", "fleet/Order",           "fleet/OrderInfo", "fleet/MapAssignment",
+    "fleet/RobotControl", "fleet/PalletTruth",  "fleet/StaticObstacles", "fleet/FleetView", "fleet/NeighbourView",
+    "fleet/TrafficGrant", "fleet/ServerLoad",   "fleet/SiteState"};
 const std::vector<std::string> kRobotPublishes{"fleet/RobotState",     "fleet/RobotPath",       "fleet/OrderState",
                                                "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth"};
 const std::vector<std::string> kOperatorPublishes{"fleet/OrderRequest", "fleet/Command"};
@@ -44,7 +44,9 @@ std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& rob
       return {{true, kServerPublishes, {"*"}},
               {false,
                {"fleet/OrderRequest", "fleet/Command", "fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
-                "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth"},
+                "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth",
+                // A standby server mirrors the active one.
+                "fleet/OrderInfo", "fleet/SiteState", "fleet/ServerLoad"},
                {"*"}}};
     case Role::kBridge:
     case Role::kRobot: {

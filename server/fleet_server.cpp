@@ -10,6 +10,7 @@
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/robot_health.hpp"
+#include "orders/order_info.hpp"
 #include "orders/order_request_check.hpp"
 #include "traffic/conflict_zones.hpp"
 
@@ -20,38 +21,7 @@ using orders::OrderStatus;
 
 namespace {
 constexpr double kReplyRetentionWallS = 30.0;  // a requester has this long to read its reply
-
-/// The site's loading areas as the places of the area ledger, in the site's order.
-std::vector<orders::Place> places_of(const map::Site& site) {
-  std::vector<orders::Place> places;
-  for (const auto& area : site.loading_areas) places.push_back({area.id, area.pose});
-  return places;
-}
 }  // namespace
-
-model::OrderInfo info_of(const Order& o) {
-  std::vector<model::OrderEvent> history;
-  for (const auto& e : o.history) {
-    history.push_back({e.sim_time, std::string(orders::to_string(e.status)), std::string(orders::to_string(e.phase)),
-                       e.robot_id, e.reason, e.robot_x, e.robot_y});
-  }
-  return {o.id,
-          o.request_id,
-          o.pick_area,
-          o.drop_area,
-          o.fleet_id,
-          o.robot_id,
-          std::string(orders::to_string(o.status)),
-          std::string(orders::to_string(o.phase)),
-          o.reason,
-          o.priority,
-          o.created_sim,
-          o.updated_sim,
-          std::move(history),
-          std::string(orders::to_string(o.kind)),
-          o.cause,
-          o.caused_by};
-}
 
 FleetServer::FleetServer(ServerOptions options, Logger log)
     : options_(std::move(options)),
@@ -59,7 +29,6 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       store_(options_.db_path),
       clock_(options_.time_scale),
       dispatcher_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
-      ledger_(places_of(options_.site)),
       auto_orders_(options_.config.settings.get_bool("server.auto_orders"), options_.seed),
       participant_(options_.domain),
       server_info_writer_(participant_, dds::qos::latched_state()),
@@ -70,6 +39,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       control_writer_(participant_, dds::qos::latched_state()),
       pallet_writer_(participant_, dds::qos::latched_state()),
       obstacle_writer_(participant_, dds::qos::latched_state()),
+      site_state_writer_(participant_, dds::qos::latched_state()),
       fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
       command_reader_(participant_, dds::qos::requests()),
@@ -79,7 +49,6 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       order_report_reader_(participant_, dds::qos::latched_state(), dds::robot_report_partitions()),
       waitset_(participant_),
       load_meter_(participant_) {
-  reset_obstacles();
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
@@ -91,8 +60,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   if (options_.maps.empty()) options_.maps = {options_.site.name};
   log_->info("maps of site '{}': {}", options_.site.name, model::join(options_.maps));
   started_wall_ = SimClock::wall_now();
-  restore_pallets();
-  for (const auto& [fleet, robot] : options_.config.all_robots()) parked_at_[robot->id] = robot->home;
+  restore_site_state();
   restore_orders();
   hold_unheard_robots();
   publish_site_state();
@@ -110,9 +78,6 @@ void FleetServer::restore_orders() {
   long open = 0;
   for (Order order : stored) {
     orders::fill_steps(order, known_names());
-    if (order.kind == orders::OrderKind::kMove && order.status == OrderStatus::kDone) {
-      parked_at_[order.robot_id] = order.drop_area;
-    }
     book_.restore(order);
     if (orders::is_final(order.status)) {
       order_info_writer_.write(info_of(order));
@@ -172,14 +137,14 @@ void FleetServer::publish_site_state() {
 void FleetServer::publish_map_and_obstacles() {
   for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
   for (const auto& obstacle : options_.site.static_obstacles) {
-    obstacle_writer_.write({obstacle.id, options_.site.name, obstacle_enabled_[obstacle.id], obstacle.polygon});
+    obstacle_writer_.write({obstacle.id, options_.site.name, site_.obstacle_enabled[obstacle.id], obstacle.polygon});
   }
 }
 
 void FleetServer::reset_obstacles() {
-  obstacle_enabled_.clear();
+  site_.obstacle_enabled.clear();
   for (const auto& obstacle : options_.site.static_obstacles)
-    obstacle_enabled_[obstacle.id] = obstacle.enabled_at_start;
+    site_.obstacle_enabled[obstacle.id] = obstacle.enabled_at_start;
 }
 
 std::string FleetServer::begin_map_switch(const model::Command& command, Answer answer) {
@@ -250,6 +215,8 @@ void FleetServer::finish_map_switch() {
         if (traffic_ && robot.registered) traffic_->set_body(id, robots_.body_of(robot));  // lost ones too: still there
       }
       reset_obstacles();
+      site_.map_id = options_.site.name;
+      save_site_state();
       publish_map_and_obstacles();
       publish_server_info();
       log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
@@ -424,8 +391,8 @@ void FleetServer::publish_web_snapshot() {
   snap.order_time_p95_s = common::percentile(std::move(durations), 0.95);
   const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
-  snap.obstacle_enabled = obstacle_enabled_;
-  snap.pallet_at = ledger_.occupancy();
+  snap.obstacle_enabled = site_.obstacle_enabled;
+  snap.pallet_at = site_.ledger.occupancy();
   snap.auto_orders = auto_orders_.on();
   bridge_->publish(std::move(snap));
 }

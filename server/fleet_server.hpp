@@ -22,11 +22,13 @@
 #include "orders/auto_orders.hpp"
 #include "orders/dispatcher.hpp"
 #include "orders/order_book.hpp"
+#include "orders/order_info.hpp"
 #include "orders/order_intake.hpp"
 #include "orders/order_recovery.hpp"
 #include "orders/order_request_check.hpp"
 #include "orders/recovery_watch.hpp"
 #include "orders/robot_roster.hpp"
+#include "orders/site_state.hpp"
 #include "planning/road_planner.hpp"
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
@@ -52,10 +54,8 @@ struct ServerOptions {
   std::vector<std::string> maps;
 };
 
+using orders::info_of;
 using orders::RobotEntry;
-
-/// An order as OrderInfo, with its whole history.
-model::OrderInfo info_of(const orders::Order& order);
 
 /// The command centre and message router [Forklift thesis, chapter 3]: takes orders, dispatches them,
 /// tracks robots, owns the site state (obstacles, pallets) and routes poses as FleetView.
@@ -75,7 +75,7 @@ class FleetServer {
   void publish_site_state();
   /// Every robot's map assignment and the current map's obstacles (latched).
   void publish_map_and_obstacles();
-  /// The current map's obstacles as its site file sets them at the start.
+  /// The current map's obstacles as its site file sets them at the start (not stored).
   void reset_obstacles();
   using Answer = std::function<void(const model::RequestReply&)>;
   /// Starts deriving map `command.value` (a revision of the site) off the loop; `answer` hears
@@ -159,7 +159,10 @@ class FleetServer {
   /// After a restart (called while constructing, before any robot is heard): the robots stored as
   /// standing somewhere keep their bodies there in traffic control until they report.
   void hold_unheard_robots();
-  void restore_pallets();
+  /// The site's state as the site file starts it, overridden by what the database holds.
+  void restore_site_state();
+  /// Stores the site's state whole (after each change, before anyone hears of it).
+  void save_site_state();
   /// Records a load's new truth: in the ledger, stored, and published as PalletTruth.
   void record_load(orders::Load load);
   /// Back to the queue, taken from `robot_id` (told to drop it), with `reason` in its history.
@@ -195,9 +198,8 @@ class FleetServer {
   orders::OrderBook book_;
   orders::RobotRoster robots_{options_.config};
   std::map<std::string, model::RobotPath> paths_;
-  orders::AreaLedger ledger_;                     ///< what stands where: the pallets' simulation truth
-  std::map<std::string, std::string> parked_at_;  ///< robot -> the parking place it goes home to
-  std::map<std::string, bool> obstacle_enabled_;  ///< obstacle id -> enabled
+  /// What stands where (the pallets' simulation truth), who parks where, which obstacles are on.
+  orders::SiteState site_;
   /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
   orders::RecoveryWatch recovery_;
   std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
@@ -219,6 +221,7 @@ class FleetServer {
   dds::Writer<model::RobotControl> control_writer_;
   dds::Writer<model::PalletTruth> pallet_writer_;
   dds::Writer<model::StaticObstacleState> obstacle_writer_;
+  dds::Writer<model::SiteStateDocument> site_state_writer_;  ///< for a standby to mirror
   dds::Writer<model::FleetView> fleet_view_writer_;
   /// One per robot, each in the robot's own partition (model::robot_partition).
   dds::PartitionWriters<model::NeighbourView> neighbour_writers_{participant_, dds::qos::live_state()};

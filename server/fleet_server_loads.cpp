@@ -1,4 +1,6 @@
 // The server's load truth (the area ledger) and the orders' reports that move loads.
+#include <algorithm>
+
 #include "orders/order_recovery.hpp"
 #include "server/fleet_server.hpp"
 
@@ -11,8 +13,11 @@ using orders::TransitionResult;
 namespace {
 constexpr const char* kPallet = "pallet";  // the only kind of load this simulation moves
 
-orders::Load load_of(const model::PalletTruth& pallet) {
-  return {pallet.pallet_id, kPallet, pallet.pose, pallet.area_id, pallet.carried_by};
+/// The site's loading areas as the places of the area ledger, in the site's order.
+std::vector<orders::Place> places_of(const map::Site& site) {
+  std::vector<orders::Place> places;
+  for (const auto& area : site.loading_areas) places.push_back({area.id, area.pose});
+  return places;
 }
 
 model::PalletTruth pallet_of(const orders::Load& load) {
@@ -20,24 +25,46 @@ model::PalletTruth pallet_of(const orders::Load& load) {
 }
 }  // namespace
 
-void FleetServer::restore_pallets() {
-  auto stored = store_.load_pallets();
-  if (stored.empty()) {
+void FleetServer::restore_site_state() {
+  site_ = orders::SiteState{options_.site.name, orders::AreaLedger(places_of(options_.site)), {}, {}};
+  for (const auto& [fleet, robot] : options_.config.all_robots()) site_.parked_at[robot->id] = robot->home;
+  reset_obstacles();
+  const std::optional<std::string> stored = store_.load_site_state();
+  if (!stored) {
     // A fresh database: the pallets of the site file, standing exactly on their areas.
     int next_id = 1;
     for (const auto& area : options_.site.loading_areas) {
-      if (area.pallet_at_start) stored.push_back({next_id++, area.pose, area.id, ""});
+      if (area.pallet_at_start) record_load({next_id++, kPallet, area.pose, area.id, ""});
     }
-  } else {
-    log_->info("restored {} pallets from {}", stored.size(), store_.path());
+    save_site_state();
+    return;
   }
-  for (const auto& pallet : stored) record_load(load_of(pallet));
+  orders::SiteNames names{options_.site.name, places_of(options_.site), {}, {}};
+  for (const auto& [fleet, robot] : options_.config.all_robots()) names.robots.insert(robot->id);
+  for (const auto& obstacle : options_.site.static_obstacles) names.obstacles.insert(obstacle.id);
+  orders::RestoredSiteState restored = orders::site_state_from_json(*stored, names, store_.path());
+  for (const auto& dropped : restored.dropped) log_->warn("site state in {}: {}", store_.path(), dropped);
+  site_.ledger = std::move(restored.state.ledger);
+  for (auto& [robot, place] : restored.state.parked_at) site_.parked_at[robot] = std::move(place);
+  for (const auto& [id, on] : restored.state.obstacle_enabled) site_.obstacle_enabled[id] = on;
+  for (const auto& [id, load] : site_.ledger.loads()) pallet_writer_.write(pallet_of(load));
+  save_site_state();  // as read against the site now, and published for a standby
+  log_->info("restored the site's state from {}: {} pallets, {} obstacles on", store_.path(),
+             site_.ledger.loads().size(),
+             std::count_if(site_.obstacle_enabled.begin(), site_.obstacle_enabled.end(),
+                           [](const auto& entry) { return entry.second; }));
+}
+
+void FleetServer::save_site_state() {
+  std::string json = orders::to_json(site_);
+  store_.save_site_state(json);
+  site_state_writer_.write({options_.site.name, std::move(json)});
 }
 
 void FleetServer::record_load(orders::Load load) {
   const model::PalletTruth pallet = pallet_of(load);
-  ledger_.record(std::move(load));
-  store_.save_pallet(pallet);
+  site_.ledger.record(std::move(load));
+  save_site_state();
   pallet_writer_.write(pallet);
 }
 
@@ -98,7 +125,8 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
   } else if (report.status == "DONE" && order.kind == orders::OrderKind::kMove) {
     result = book_.transition(id, OrderStatus::kDone, now);
     if (result == TransitionResult::kApplied) {
-      parked_at_[report.robot_id] = order.drop_area;
+      site_.parked_at[report.robot_id] = order.drop_area;
+      save_site_state();
       log_->info("order {} done: {} parks at {}", id, report.robot_id, order.drop_area);
     }
   } else if (report.status == "DONE" && order.kind == orders::OrderKind::kPick) {
@@ -138,11 +166,12 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
 void FleetServer::load_put_down(const Order& order, const model::OrderReport& report) {
   // The pallet stands where the robot really put it (simulation truth), so a sloppy drop makes
   // the next pick from that area harder.
-  auto placed = ledger_.put_down(report.pallet_id, report.pallet_pose, order.drop_area);
+  auto placed = site_.ledger.put_down(report.pallet_id, report.pallet_pose, order.drop_area);
   if (!placed) {
     log_->warn("order {} done by {} without naming the pallet it put down; pallet truth unchanged", order.id,
                report.robot_id);
-    ledger_.record_unnamed_drop(order.drop_area);
+    site_.ledger.record_unnamed_drop(order.drop_area);
+    save_site_state();
     return;
   }
   const auto* drop = options_.site.find_area(order.drop_area);
@@ -153,7 +182,9 @@ void FleetServer::load_put_down(const Order& order, const model::OrderReport& re
 }
 
 void FleetServer::pick_found_empty(const Order& order, const model::OrderReport& report) {
-  if (const auto* standing = ledger_.found_empty(order.pick_area)) {
+  const auto* standing = site_.ledger.found_empty(order.pick_area);
+  save_site_state();
+  if (standing) {
     log_->warn(
         "order {}: {} found loading area {} empty, but pallet {} stands there at ({:.3f}, {:.3f}) "
         "by the record; the area stays occupied",
@@ -162,7 +193,7 @@ void FleetServer::pick_found_empty(const Order& order, const model::OrderReport&
 }
 
 void FleetServer::load_lifted(const Order& order, const model::OrderReport& report) {
-  auto lifted = ledger_.lifted(report.robot_id, report.pallet_id, order.pick_area);
+  auto lifted = site_.ledger.lifted(report.robot_id, report.pallet_id, order.pick_area);
   if (!lifted) return;
   const int load_id = lifted->id;
   record_load(std::move(*lifted));
@@ -174,9 +205,9 @@ void FleetServer::return_pallet_of(const std::string& robot_id, const std::strin
   // nowhere, and a fleet that loses one pallet per crash soon has no work. Where a real fleet's
   // operator takes the pallet off the crashed robot and puts it back, the simulation puts it on
   // the order's pick area, or the first free one.
-  const orders::Load* carried = ledger_.carried_by(robot_id);
+  const orders::Load* carried = site_.ledger.carried_by(robot_id);
   if (!carried) return;
-  auto back = ledger_.returned_from(robot_id, preferred_area);
+  auto back = site_.ledger.returned_from(robot_id, preferred_area);
   if (!back) {
     log_->warn("pallet {} of restarted robot {} has no free loading area to go back to", carried->id, robot_id);
     return;

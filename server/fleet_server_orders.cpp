@@ -38,10 +38,10 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
 
 orders::IntakeView FleetServer::intake_view() const {
   orders::IntakeView view{.book = book_,
-                          .ledger = ledger_,
+                          .ledger = site_.ledger,
                           .names = known_names(),
                           .site = options_.site,
-                          .parked_at = parked_at_,
+                          .parked_at = site_.parked_at,
                           .registered = robots_.registered_ids(),
                           .free_robots = {},
                           .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
@@ -104,7 +104,8 @@ void FleetServer::execute(const model::Command& command, const Answer& answer) {
     }
     case orders::CommandAction::kSwitchObstacle: {
       const auto* obstacle = options_.site.find_obstacle(command.target);
-      obstacle_enabled_[obstacle->id] = decision.on;
+      site_.obstacle_enabled[obstacle->id] = decision.on;
+      save_site_state();
       obstacle_writer_.write({obstacle->id, options_.site.name, decision.on, obstacle->polygon});
       log_->info("static obstacle {} {}", command.target, command.value);
       break;
@@ -149,7 +150,7 @@ void FleetServer::dispatch() {
   const auto start = ServerLoadMeter::Clock::now();
   const orders::DispatchRound round{
       .book = book_,
-      .ledger = ledger_,
+      .ledger = site_.ledger,
       .robots = robots_.entries(),
       .abilities = known_names().abilities,
       .place_taken = place_taken,

@@ -141,7 +141,7 @@ void FleetServer::give_up_on_lost_robot(std::int64_t order_id, Recovery decision
 
 void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
   const orders::ReturningRobot robot{state.robot_id, state.order_id, state.carrying_pallet};
-  for (const orders::RecoveryStep& step : recovery_.robot_back(robot, book_, ledger_)) {
+  for (const orders::RecoveryStep& step : recovery_.robot_back(robot, book_, site_.ledger)) {
     if (step.action == Recovery::kKeep) {
       log_->info("order {} resumes: robot {} is back with it ({})", step.order_id, state.robot_id,
                  state.carrying_pallet                                     ? "pallet on its forks"
@@ -186,7 +186,7 @@ void FleetServer::check_robot_health() {
 void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {
   const double pallet_wait = options_.config.settings.get_double("server.lost_with_pallet_wait_s");
   const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
-  for (const orders::RecoveryStep& step : recovery_.check_waiting(now_wall, pallet_wait, book_, ledger_)) {
+  for (const orders::RecoveryStep& step : recovery_.check_waiting(now_wall, pallet_wait, book_, site_.ledger)) {
     give_up_on_lost_robot(step.order_id, step.action, "robot " + step.robot_id + " lost for " + waited,
                           "robot " + step.robot_id + " lost with the pallet for " + waited);
   }

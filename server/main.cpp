@@ -11,6 +11,7 @@
 #include "common/paths.hpp"
 #include "map/site_map.hpp"
 #include "server/fleet_server.hpp"
+#include "server/standby_mirror.hpp"
 #include "server/web_server.hpp"
 
 using namespace fleet;
@@ -33,6 +34,8 @@ options:
   --dispatch POLICY    ascending-id | nearest | optimal (default: server.dispatch_policy)
   --db FILE            SQLite database of orders (default: server.db_path, fleet.db in the state folder)
   --auto-orders        create random orders whenever a robot is free
+  --standby            start as a standby beside an active server: mirror its orders and site state
+                       into this server's --db, take over when it is gone (server.standby)
   --http-port N        port of the web view and JSON API (default: server.http_port, 8080; 0: off)
   --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
   --api-token TOKEN    the operator's token: every call of the web API (default: env
@@ -124,6 +127,7 @@ int main(int argc, char** argv) {
     if (auto v = args.value("dispatch")) config->settings.set("server.dispatch_policy", *v, "--dispatch");
     if (auto v = args.value("db")) config->settings.set("server.db_path", *v, "--db");
     if (args.flag("auto-orders")) config->settings.set("server.auto_orders", "true", "--auto-orders");
+    if (args.flag("standby")) config->settings.set("server.standby", "true", "--standby");
     if (auto v = args.value("http-port")) config->settings.set("server.http_port", *v, "--http-port");
     if (auto v = args.value("http-host")) config->settings.set("server.http_host", *v, "--http-host");
     if (auto v = args.value("http-tls-cert")) config->settings.set("server.http_tls_cert", *v, "--http-tls-cert");
@@ -152,6 +156,13 @@ int main(int argc, char** argv) {
     options.maps = map::site_revisions(options.site);
     auto log = make_logger("fleet-server", "", level);
     for (const std::string& warning : site_map->network.warnings) log->warn("road network: {}", warning);
+    if (options.config.settings.get_bool("server.standby")) {
+      // The mirror closes its database and leaves DDS before the server opens and joins them.
+      const bool active_gone =
+          server::StandbyMirror(options.domain, options.db_path, log)
+              .run_until_active_lost(stop, options.config.settings.get_double("server.standby_silence_s"));
+      if (!active_gone) return 0;
+    }
 
     server::WebBridge bridge;
     // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.

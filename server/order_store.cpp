@@ -65,6 +65,13 @@ constexpr const char* kMigrations[] = {
     // 3: an order the server created for the packing chain says why, and after which orders.
     "ALTER TABLE orders ADD COLUMN cause TEXT NOT NULL DEFAULT '';"
     "ALTER TABLE orders ADD COLUMN caused_by TEXT NOT NULL DEFAULT '';",
+    // 4: the site's state (orders::SiteState) is one JSON document; the pallets it held move into it.
+    "CREATE TABLE site_state (id INTEGER PRIMARY KEY CHECK (id = 1), json TEXT NOT NULL);"
+    "INSERT INTO site_state SELECT 1, json_object('version', 1, 'map', '', 'loads', json_group_array(json_object("
+    "'id', id, 'kind', 'pallet', 'x', x, 'y', y, 'yaw', yaw, 'place', area_id, 'carried_by', carried_by)), "
+    "'held_unnamed', json_array(), 'parked_at', json_object(), 'obstacles', json_object()) "
+    "FROM pallets HAVING COUNT(*) > 0;"
+    "DROP TABLE pallets;",
 };
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -88,7 +95,8 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
   sqlite3_busy_timeout(db_, 2000);
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=NORMAL");
-  exec(kSchema);
+  // The first schema, which the migrations then bring up to date; a database past it has its tables.
+  if (schema_version() == 0) exec(kSchema);
   migrate();
   auto prepare = [&](const char* sql, sqlite3_stmt** stmt) {
     if (sqlite3_prepare_v2(db_, sql, -1, stmt, nullptr) != SQLITE_OK) {
@@ -102,14 +110,14 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
       &upsert_);
   prepare("SELECT COUNT(*) FROM order_events WHERE order_id=?1", &count_events_);
   prepare("INSERT INTO order_events VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9)", &insert_event_);
-  prepare("INSERT OR REPLACE INTO pallets VALUES (?1,?2,?3,?4,?5,?6)", &upsert_pallet_);
+  prepare("INSERT OR REPLACE INTO site_state VALUES (1, ?1)", &upsert_site_state_);
 }
 
 OrderStore::~OrderStore() {
   sqlite3_finalize(upsert_);
   sqlite3_finalize(count_events_);
   sqlite3_finalize(insert_event_);
-  sqlite3_finalize(upsert_pallet_);
+  sqlite3_finalize(upsert_site_state_);
   sqlite3_close(db_);
 }
 
@@ -271,30 +279,18 @@ std::vector<orders::Order> OrderStore::load_all() const {
   return out;
 }
 
-void OrderStore::save_pallet(const model::PalletTruth& p) {
-  sqlite3_bind_int(upsert_pallet_, 1, p.pallet_id);
-  sqlite3_bind_double(upsert_pallet_, 2, p.pose.x);
-  sqlite3_bind_double(upsert_pallet_, 3, p.pose.y);
-  sqlite3_bind_double(upsert_pallet_, 4, p.pose.yaw);
-  sqlite3_bind_text(upsert_pallet_, 5, p.area_id.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_text(upsert_pallet_, 6, p.carried_by.c_str(), -1, SQLITE_TRANSIENT);
-  const int rc = sqlite3_step(upsert_pallet_);
-  sqlite3_reset(upsert_pallet_);
+void OrderStore::save_site_state(const std::string& json) {
+  sqlite3_bind_text(upsert_site_state_, 1, json.c_str(), static_cast<int>(json.size()), SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(upsert_site_state_);
+  sqlite3_reset(upsert_site_state_);
   if (rc != SQLITE_DONE) throw StoreError(path_ + ": " + sqlite3_errmsg(db_));
 }
 
-std::vector<model::PalletTruth> OrderStore::load_pallets() const {
-  std::vector<model::PalletTruth> out;
+std::optional<std::string> OrderStore::load_site_state() const {
+  std::optional<std::string> out;
   sqlite3_stmt* stmt = nullptr;
-  sqlite3_prepare_v2(db_, "SELECT id, x, y, yaw, area_id, carried_by FROM pallets ORDER BY id", -1, &stmt, nullptr);
-  while (sqlite3_step(stmt) == SQLITE_ROW) {
-    model::PalletTruth p;
-    p.pallet_id = sqlite3_column_int(stmt, 0);
-    p.pose = {sqlite3_column_double(stmt, 1), sqlite3_column_double(stmt, 2), sqlite3_column_double(stmt, 3)};
-    p.area_id = text_column(stmt, 4);
-    p.carried_by = text_column(stmt, 5);
-    out.push_back(std::move(p));
-  }
+  sqlite3_prepare_v2(db_, "SELECT json FROM site_state WHERE id = 1", -1, &stmt, nullptr);
+  if (sqlite3_step(stmt) == SQLITE_ROW) out = text_column(stmt, 0);
   sqlite3_finalize(stmt);
   return out;
 }

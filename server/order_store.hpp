@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -41,9 +42,10 @@ class OrderStore {
   /// One past the largest id ever stored (ids are never reused).
   std::int64_t next_id() const;
 
-  /// Where each pallet stands or who carries it, so a restarted server keeps the truth.
-  void save_pallet(const model::PalletTruth& pallet);
-  std::vector<model::PalletTruth> load_pallets() const;
+  /// The site's state (orders::to_json of an orders::SiteState), so a restarted server keeps the
+  /// truth of what stands where; nothing before the first save.
+  void save_site_state(const std::string& json);
+  std::optional<std::string> load_site_state() const;
 
   /// Where robots were last heard standing, so that a restarted server holds the bodies of the
   /// robots it has not heard from yet. One transaction for all.
@@ -62,7 +64,7 @@ class OrderStore {
   sqlite3_stmt* upsert_ = nullptr;
   sqlite3_stmt* count_events_ = nullptr;
   sqlite3_stmt* insert_event_ = nullptr;
-  sqlite3_stmt* upsert_pallet_ = nullptr;
+  sqlite3_stmt* upsert_site_state_ = nullptr;
 };
 
 }  // namespace fleet::server

@@ -65,6 +65,12 @@ std::vector<KeySpec> make_schema() {
            "SQLite database of orders and their events, relative to the state folder (FLEET_STATE_DIR; var/ "
            "in the source tree) unless absolute"),
       integer("server.order_resend_limit", 2, "", 0, 100, "re-sends of an unacknowledged order before it is re-queued"),
+      flag("server.standby", false,
+           "start as a standby (fleet-server --standby): mirror the active server's orders and site state into "
+           "server.db_path and take over when it is gone"),
+      number("server.standby_silence_s", 3.0, "s", 1.5, 60.0,
+             "wall seconds without the active server's ServerLoad (once a second) after which a standby takes over; "
+             "a dead server's liveliness lapses sooner, after 1 s"),
       // Web view and HTTP API (server/web_server.hpp)
       integer("server.http_port", 8080, "", 0, 65535, "port of the web view and JSON API; 0 turns them off"),
       text("server.http_host", "127.0.0.1", "address the web view binds; keep loopback unless it must be reachable"),

@@ -119,6 +119,11 @@ struct OrderInfo {
   std::string kind;                     ///< orders::OrderKind name
   std::string cause;                    ///< why the server created it itself (orders::Order::cause)
   std::vector<std::int64_t> caused_by;  ///< the orders it follows from
+  std::string lines;                    ///< a pick order's tour (orders::Order::lines)
+  bool robot_requested = false;         ///< robot_id was asked for, not chosen by dispatch
+  std::uint32_t update_id = 0;
+  double assigned_sim = 0.0;
+  double finished_sim = 0.0;
 };
 
 inline constexpr std::size_t kMaxOrderHistory = 64;
@@ -286,6 +291,12 @@ struct ServerLoad {
   double dispatch_p50_ms = 0.0;
   double dispatch_p99_ms = 0.0;
   double dispatch_max_ms = 0.0;
+};
+
+/// The site's state as the server stores it (orders::to_json of orders::SiteState).
+struct SiteStateDocument {
+  std::string site;
+  std::string json;
 };
 
 }  // namespace fleet::model

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -152,6 +153,17 @@ bool FleetHarness::wait_for_robots(const std::vector<std::string>& robot_ids, do
 
 std::string FleetHarness::log_of(const std::string& name) const {
   return slurp(log_dir_ + "/" + name + ".log");
+}
+
+/// Order ids each agent logged as done, with how often.
+std::map<std::int64_t, int> done_counts(const FleetHarness& fleet, const std::vector<std::string>& robots) {
+  std::map<std::int64_t, int> counts;
+  const std::regex done(R"(order (\d+) done: pallet placed)");
+  for (const auto& robot : robots) {
+    const std::string log = fleet.log_of("fleet-agent-" + robot);
+    for (std::sregex_iterator it(log.begin(), log.end(), done), end; it != end; ++it) ++counts[std::stoll((*it)[1])];
+  }
+  return counts;
 }
 
 }  // namespace fleet::testing

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -58,5 +60,8 @@ class FleetHarness {
 };
 
 std::string bin(const std::string& name);
+
+/// Order ids the agents of `robots` logged as done (pallet placed), with how often.
+std::map<std::int64_t, int> done_counts(const FleetHarness& fleet, const std::vector<std::string>& robots);
 
 }  // namespace fleet::testing

@@ -25,21 +25,6 @@ using namespace fleet;
 using namespace fleet::testing;
 using namespace std::chrono_literals;
 
-namespace {
-
-/// Order ids each agent logged as done, with how often.
-std::map<std::int64_t, int> done_counts(const FleetHarness& fleet, const std::vector<std::string>& robots) {
-  std::map<std::int64_t, int> counts;
-  const std::regex done(R"(order (\d+) done: pallet placed)");
-  for (const auto& robot : robots) {
-    const std::string log = fleet.log_of("fleet-agent-" + robot);
-    for (std::sregex_iterator it(log.begin(), log.end(), done), end; it != end; ++it) ++counts[std::stoll((*it)[1])];
-  }
-  return counts;
-}
-
-}  // namespace
-
 // A robot that puts its pallet down while the server is down (killed as the robot drops) reports
 // DONE to no one; its report is latched, so the restarted server hears it and ends the order.
 TEST(Recovery, AnOrderFinishedWhileTheServerWasDownIsDoneAfterTheRestart) {

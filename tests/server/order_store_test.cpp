@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "orders/order_book.hpp"
+#include "orders/site_state.hpp"
 #include "server/robot_body_memory.hpp"
 
 using namespace fleet;
@@ -101,7 +102,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
     sqlite3_close(db);
   }
   server::OrderStore store(path);
-  EXPECT_EQ(store.schema_version(), 3);
+  EXPECT_EQ(store.schema_version(), 4);
   const auto loaded = store.load_all();
   ASSERT_EQ(loaded.size(), 3u);
   for (const auto& o : loaded) EXPECT_EQ(o.kind, orders::OrderKind::kTransport) << o.id;
@@ -129,7 +130,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
   full.caused_by = {5};
   store.save(full);
   server::OrderStore reopened(path);
-  EXPECT_EQ(reopened.schema_version(), 3);
+  EXPECT_EQ(reopened.schema_version(), 4);
   const auto again = reopened.load_all();
   ASSERT_EQ(again.size(), 6u);
   EXPECT_EQ(again[5].cause, "the pallet at PS1 is full: 2 boxes from order 5");
@@ -138,6 +139,49 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
   EXPECT_EQ(again[4].kind, orders::OrderKind::kPick);
   EXPECT_EQ(again[4].lines, "RB1,A1,1\nRB3,A3,1\n");
   EXPECT_EQ(again[3].drop_area, "H3");
+}
+
+TEST(OrderStore, TheSiteStateIsStoredWholeAndReplaced) {
+  const std::string path = fresh_db("site-state");
+  {
+    server::OrderStore store(path);
+    EXPECT_FALSE(store.load_site_state().has_value()) << "a fresh database holds no state: the site file's applies";
+    store.save_site_state(R"({"first":1})");
+    store.save_site_state(R"({"second":2})");
+  }
+  server::OrderStore reopened(path);
+  EXPECT_EQ(reopened.load_site_state().value_or(""), R"({"second":2})");
+}
+
+TEST(OrderStore, PalletsOfADatabaseBeforeTheSiteStateMoveIntoIt) {
+  const std::string path = fresh_db("schema3-pallets");
+  {
+    server::OrderStore store(path);  // today's schema, then taken back to version 3 with its pallets table
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    const char* back = R"(
+DROP TABLE site_state;
+CREATE TABLE pallets (id INTEGER PRIMARY KEY, x REAL NOT NULL, y REAL NOT NULL, yaw REAL NOT NULL,
+  area_id TEXT NOT NULL, carried_by TEXT NOT NULL);
+INSERT INTO pallets VALUES (1, 1.5, 2.0, 0.25, 'A1', '');
+INSERT INTO pallets VALUES (2, 7.0, 3.0, -1.0, '', 'fk2');
+PRAGMA user_version=3;
+)";
+    ASSERT_EQ(sqlite3_exec(db, back, nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  server::OrderStore store(path);
+  EXPECT_EQ(store.schema_version(), 4);
+  const auto json = store.load_site_state();
+  ASSERT_TRUE(json.has_value());
+  const orders::SiteNames names{"site", {{"A1", {1.5, 2.0, 0.0}}, {"A2", {3, 0, 0}}}, {"fk2"}, {}};
+  const auto restored = orders::site_state_from_json(*json, names, path);
+  EXPECT_TRUE(restored.dropped.empty());
+  ASSERT_EQ(restored.state.ledger.loads().size(), 2u);
+  EXPECT_TRUE(restored.state.ledger.holds_load("A1"));
+  EXPECT_DOUBLE_EQ(restored.state.ledger.find(1)->pose.yaw, 0.25);
+  ASSERT_NE(restored.state.ledger.carried_by("fk2"), nullptr);
+  EXPECT_EQ(restored.state.ledger.carried_by("fk2")->id, 2);
 }
 
 TEST(RobotBodyMemory, WhereRobotsStoodSurvivesReopeningAndOnlyMovesAreWritten) {
