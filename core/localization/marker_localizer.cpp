@@ -54,13 +54,20 @@ void MarkerLocalizer::step(double t, double dt, const sim::BodyTwist& command, c
     const int other = perception::aim_at_nearest_marker(camera, ekf_.pose(), markers_, aimed_at);
     aimed_at = other >= 0 ? other : perception::aim_at_nearest_marker(camera, ekf_.pose(), markers_);
     const perception::CameraMount mount = camera.mount();
-    for (const auto& det : camera.capture(t, truth, markers_, speed)) {
+    // Each fusion takes the nearest marker in the frame, the one the camera is aimed at where it was decoded:
+    // a marker's range error grows with its distance, and one farther off in the same frame (or the first one
+    // listed) can be metres away.
+    auto detections = camera.capture(t, truth, markers_, speed);
+    std::sort(detections.begin(), detections.end(), [](const auto& a, const auto& b) { return a.d < b.d; });
+    bool fuse = t >= next_fusion_[c];
+    for (const auto& det : detections) {
       const auto marker =
           std::find_if(markers_.begin(), markers_.end(), [&](const perception::Marker& m) { return m.id == det.id; });
       if (marker == markers_.end()) continue;
       ++sightings_;
       if (std::find(seen_.begin(), seen_.end(), det.id) == seen_.end()) seen_.push_back(det.id);
-      if (t < next_fusion_[c]) continue;
+      if (!fuse) continue;
+      fuse = false;
       next_fusion_[c] = t + 1.0 / params_.fuse_rate_hz;
       const auto status = ekf_.update_marker({marker->pose.position(),
                                               {mount.x, mount.y},

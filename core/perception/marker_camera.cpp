@@ -39,13 +39,17 @@ MarkerCameraParams MarkerCameraParams::axis_ptz() {
   p.range_min = 0.5;             // Experiment 1 began seeing the wall marker at 2.4 m only because of its tilt
   p.range_max = 10.5;            // "still able to detect the marker beyond the distance of 10 meters"
   p.max_view_angle = 1.2;
-  // Distance error: ~0 up to 4 m, < 30 cm to 5.5 m, ~1 m near 10 m (Picker thesis, Fig. 4.7), read as 3 sigma. The
-  // curve drifts away from the truth smoothly rather than jittering, so most of it is systematic: per frame
-  // 1 cm + 0.001 d^2, per marker k d^2 with k of 0.003 /m (1 sigma): together 10 cm at 5.5 m and 33 cm at 10 m.
+  // Distance error [Picker thesis, section 4.2.9.2.1, Fig. 4.7]: the detected distance overlaps the lidar's up to
+  // almost 4 m ("a good pose of the robot till a distance of almost 4 meters"), then drifts away smoothly, below
+  // 30 cm to 5.5 m and about 1 m near 10 m, read as 3 sigma. A drift that smooth is systematic, so per marker:
+  // 1 cm at any range (its placement and printed size) and k (d - 4 m) beyond 4 m with k of 0.06 (1 sigma),
+  // 9 cm at 5.5 m and 36 cm at 10 m; per frame 1 cm + 0.001 d^2.
   p.sigma_d = 0.01;
   p.sigma_d_rel = 0.0;
   p.sigma_d_quadratic = 0.001;
-  p.sigma_d_bias_quadratic = 0.003;
+  p.sigma_d_bias = 0.01;
+  p.sigma_d_bias_beyond = 0.06;
+  p.exact_range = 4.0;
   p.sigma_alpha = 0.005;       // a few pixels of the marker's centre
   p.sigma_alpha_bias = 0.005;  // the marker's placement on its pillar, about 1 cm at 2 m
   p.sigma_gamma = 0.05;        // a marker's orientation at range is poor; the filter does not use it
@@ -56,7 +60,7 @@ MarkerCameraParams MarkerCameraParams::axis_ptz() {
 
 double MarkerCameraParams::distance_std(double d) const {
   const double frame = sigma_d + sigma_d_rel * d + sigma_d_quadratic * d * d;
-  return std::hypot(frame, sigma_d_bias_quadratic * d * d);
+  return std::hypot(frame, sigma_d_bias, sigma_d_bias_beyond * std::max(0.0, d - exact_range));
 }
 
 double MarkerCameraParams::bearing_std() const {
@@ -67,9 +71,11 @@ const MarkerCamera::Bias& MarkerCamera::bias_of(int marker_id) {
   auto it = biases_.find(marker_id);
   if (it != biases_.end()) return it->second;
   std::normal_distribution<double> gauss(0.0, 1.0);
-  const double k = gauss(bias_rng_) * params_.sigma_d_bias_quadratic;
-  const double a = gauss(bias_rng_) * params_.sigma_alpha_bias;
-  return biases_.emplace(marker_id, Bias{k, a}).first->second;
+  Bias bias;
+  bias.d = gauss(bias_rng_) * params_.sigma_d_bias;
+  bias.d_beyond = gauss(bias_rng_) * params_.sigma_d_bias_beyond;
+  bias.alpha = gauss(bias_rng_) * params_.sigma_alpha_bias;
+  return biases_.emplace(marker_id, bias).first->second;
 }
 
 void MarkerCamera::set_pan(double pan) {
@@ -145,8 +151,8 @@ std::vector<MarkerDetection> MarkerCamera::capture(double t, const Pose2& robot_
     if (u < params_.miss_rate + params_.miss_rate_per_speed * std::abs(speed)) continue;
     det.time = t;
     const Bias& bias = bias_of(marker.id);
-    det.d += nd * (params_.sigma_d + params_.sigma_d_rel * det.d + params_.sigma_d_quadratic * det.d * det.d) +
-             bias.d_quadratic * det.d * det.d;
+    det.d += nd * (params_.sigma_d + params_.sigma_d_rel * det.d + params_.sigma_d_quadratic * det.d * det.d) + bias.d +
+             bias.d_beyond * std::max(0.0, det.d - params_.exact_range);
     det.alpha = normalize_angle(det.alpha + na * params_.sigma_alpha + bias.alpha);
     det.gamma = normalize_angle(det.gamma + ng * params_.sigma_gamma);
     detections.push_back(det);

@@ -47,9 +47,12 @@ struct MarkerCameraParams {
   double sigma_d_rel = 0.01;       ///< extra distance noise proportional to d
   double sigma_d_quadratic = 0.0;  ///< extra distance noise proportional to d^2, per metre
   /// Systematic errors, fixed per marker for the whole run (its printed size and placement, the calibration):
-  /// a distance error k d^2 with k ~ N(0, sigma_d_bias_quadratic) per metre, and a bearing offset
-  /// ~ N(0, sigma_alpha_bias). Repeated frames of one marker do not average them away.
-  double sigma_d_bias_quadratic = 0.0;
+  /// a distance error b + k max(0, d - exact_range) with b ~ N(0, sigma_d_bias) metres and
+  /// k ~ N(0, sigma_d_bias_beyond) per metre, and a bearing offset ~ N(0, sigma_alpha_bias). Repeated frames
+  /// of one marker do not average them away.
+  double sigma_d_bias = 0.0;
+  double sigma_d_bias_beyond = 0.0;
+  double exact_range = 0.0;  ///< metres up to which the distance carries the constant bias b only
   double sigma_alpha_bias = 0.0;
   double sigma_alpha = 0.004;        ///< bearing noise, rad
   double sigma_gamma = 0.015;        ///< relative-yaw noise, rad (pose-from-square is the weakest)
@@ -104,7 +107,8 @@ class MarkerCamera {
   MarkerCameraParams params_;
   std::mt19937_64 rng_;
   struct Bias {
-    double d_quadratic = 0.0;
+    double d = 0.0;         ///< metres at any range
+    double d_beyond = 0.0;  ///< metres per metre beyond exact_range
     double alpha = 0.0;
   };
   /// The systematic errors of a marker, drawn on its first sighting from their own engine, so that they do not

@@ -234,10 +234,10 @@ def racks():
 
 def markers():
     """AR markers: every 10 m along the open aisles and the corridor, on every front pillar in
-    the racks [Picker thesis, section 4.2.9.3]. Where the pickers work outside the racks (the
-    south cross aisle west of the racks, the packing area and their parking street) more than
-    the thesis's 10 m: every 5 m along the aisle and every 3.5 m on the south wall, as on the
-    pillars, since a marker's range error grows with the square of its distance. Ids are the
+    the racks [Picker thesis, section 4.2.9.3]. Where the pickers work outside the racks more
+    than the thesis's 10 m, since a marker's range is exact only to about 4 m [Picker thesis,
+    section 4.2.9.2.1]: every 5 m along both cross aisles, every 3.5 m on the south wall, as on
+    the pillars, at the packing stations and along the middle aisle. Ids are the
     codes printed on them."""
     out = []
     for x in (5.0, 15.0, 25.0, 35.0, 45.0, 55.0):
@@ -252,6 +252,18 @@ def markers():
         out.append((x, SOUTH_Y + AISLE_LANE + 0.05, S, 2.0))
     for k in range(9):
         out.append((3.5 * (k + 1), 0.05, N, 1.0))
+    # Where pickers stand to drop boxes, on posts at the aisle end of each packing spur's stations,
+    # facing them; along the north cross aisle between the 10 m ones (the middle aisle's mouth
+    # is open, so its post stands at the corner); on the ends of the rack rows that face the
+    # middle aisle, and across it from rack aisle 1, where pickers turn in.
+    for x0 in PACKING_XS:
+        for side in (-1, 1):
+            out.append((x0 + side * 1.175, 5.0, S, 1.0))
+    for x in (10.0, 20.0, MID_X - 2.0, 40.0, 50.0):
+        out.append((x, NORTH_Y - AISLE_LANE - 0.05, N, 2.0))
+    for row in ("R1", "R2", "R3"):
+        out.append((RACK_X0 - 0.05, sum(RACK_ROWS[row]) / 2, W, 1.0))
+    out.append((MID_X - AISLE_LANE - 0.05, RACK_AISLE_Y, E, 1.0))
     numbered = [(k + 1,) + m for k, m in enumerate(out)]
     for k, (row, face_y, into_aisle) in enumerate(rack_faces()):
         for j in range(BAYS + 1):

@@ -116,19 +116,23 @@ TEST(PtzMarkerCamera, PansToTheNearestMarkerItCanDecodeAndSeesItThere) {
 }
 
 TEST(PtzMarkerCamera, DistanceErrorGrowsAsTheThesisMeasuredAndMotionCostsFrames) {
-  // Experiment 1 [Picker thesis, section 4.2.9.2.1, Fig. 4.7]: < 30 cm to 5.5 m, about 1 m near 10 m.
+  // Experiment 1 [Picker thesis, section 4.2.9.2.1, Fig. 4.7]: the detected distance overlaps the truth to
+  // almost 4 m, stays below 30 cm to 5.5 m and reaches about 1 m near 10 m. Each marker carries its own
+  // systematic error, so the figures are over 200 markers, ten frames of each.
   const auto errors_at = [](double d, double speed) {
     MarkerCamera cam(MarkerCameraParams::axis_ptz(), 7);
     cam.set_pan(-cam.params().camera_yaw);  // looking ahead along +x
-    const std::vector<Marker> wall{{10, {0.0, 0.0, std::numbers::pi}}};
     const Pose2 robot{-d - cam.params().camera_x, -cam.params().camera_y, 0.0};
     std::vector<double> err;
     int frames = 0;
-    for (int i = 0; i < 3000; ++i) {
-      const double t = i / 30.0;
-      if (!cam.frame_due(t)) continue;
-      ++frames;
-      for (const auto& det : cam.capture(t, robot, wall, speed)) err.push_back(std::abs(det.d - d));
+    double t = 0.0;
+    for (int id = 1; id <= 200; ++id) {
+      const std::vector<Marker> wall{{id, {0.0, 0.0, std::numbers::pi}}};
+      for (int i = 0; i < 10; ++i, t += 1.0 / 30.0) {
+        if (!cam.frame_due(t)) continue;
+        ++frames;
+        for (const auto& det : cam.capture(t, robot, wall, speed)) err.push_back(std::abs(det.d - d));
+      }
     }
     std::sort(err.begin(), err.end());
     return std::pair{err.empty() ? 1e9 : err[err.size() * 99 / 100], static_cast<double>(err.size()) / frames};
@@ -137,10 +141,11 @@ TEST(PtzMarkerCamera, DistanceErrorGrowsAsTheThesisMeasuredAndMotionCostsFrames)
   const auto [mid_p99, mid_rate] = errors_at(5.5, 0.3);
   const auto [far_p99, far_rate] = errors_at(10.0, 0.3);
   const auto [fast_p99, fast_rate] = errors_at(5.5, 1.0);
-  EXPECT_LT(near_p99, 0.12);
+  EXPECT_LT(near_p99, 0.08);
+  EXPECT_GT(mid_p99, 0.10);
   EXPECT_LT(mid_p99, 0.30);
-  EXPECT_GT(far_p99, 0.5);
-  EXPECT_LT(far_p99, 1.2);
+  EXPECT_GT(far_p99, 0.6);
+  EXPECT_LT(far_p99, 1.3);
   EXPECT_GT(near_rate, 0.85);
   EXPECT_LT(fast_rate, mid_rate - 0.1) << "frames dropped at 1.0 m/s (Fig. 4.8)";
   (void)fast_p99;
