@@ -264,6 +264,15 @@ def markers():
     for row in ("R1", "R2", "R3"):
         out.append((RACK_X0 - 0.05, sum(RACK_ROWS[row]) / 2, W, 1.0))
     out.append((MID_X - AISLE_LANE - 0.05, RACK_AISLE_Y, E, 1.0))
+    # The other edge of both cross aisles, between the markers of the first: from the lane beside
+    # a row of markers, the two nearest are seen more than 69° off their faces midway, too
+    # oblique to decode; across the aisle there is one in view. On the south cross aisle's south
+    # edge the packing stations' posts carry one on their aisle face; east of x = 33.5 the
+    # high-bay row's pillars do.
+    for x in (2.5, 6.825, 9.175, 12.5, 14.825, 17.175, 22.5, 25.0, 32.0):
+        out.append((x, SOUTH_Y - AISLE_LANE - 0.05, N, 1.0))
+    for x in (7.5, 12.5, 17.5, 32.5, 42.5, 47.5, 57.5):
+        out.append((x, NORTH_Y + AISLE_LANE + 0.05, S, 2.0))
     numbered = [(k + 1,) + m for k, m in enumerate(out)]
     for k, (row, face_y, into_aisle) in enumerate(rack_faces()):
         for j in range(BAYS + 1):
