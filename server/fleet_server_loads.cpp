@@ -34,9 +34,12 @@ void FleetServer::restore_site_state() {
     // A fresh database: the pallets of the site file, standing exactly on their areas.
     int next_id = 1;
     for (const auto& area : options_.site.loading_areas) {
-      if (area.pallet_at_start) record_load({next_id++, kPallet, area.pose, area.id, ""});
+      if (!area.pallet_at_start) continue;
+      orders::Load load{next_id++, kPallet, area.pose, area.id, ""};
+      pallet_writer_.write(pallet_of(load));
+      site_.ledger.record(std::move(load));
     }
-    save_site_state();
+    save_site_state();  // once for all of them
     return;
   }
   orders::SiteNames names{options_.site.name, places_of(options_.site), {}, {}};
