@@ -89,14 +89,7 @@ TEST(Recovery, ServerKilledMidRunAndRestartedLosesNoOrderAndRunsNoneTwice) {
   // The robots carry on under the restarted server: wait (at most 60 s) for two orders done.
   cli::FleetClient client(70);
   ASSERT_TRUE(client.find_server(5s));
-  std::map<std::int64_t, model::OrderInfo> orders;
-  const auto deadline = std::chrono::steady_clock::now() + 60s;
-  for (;;) {
-    orders = client.orders(1500ms);
-    long finished = 0;
-    for (const auto& [id, info] : orders) finished += info.state == "DONE";
-    if (finished >= 2 || std::chrono::steady_clock::now() > deadline) break;
-  }
+  const auto orders = orders_once_done(client, 2, 60s);
   ASSERT_FALSE(orders.empty());
   // Ids are contiguous from 1: none vanished.
   EXPECT_EQ(orders.begin()->first, 1);

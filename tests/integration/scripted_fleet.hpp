@@ -4,6 +4,7 @@
 // what the test makes them say.
 
 #include <chrono>
+#include <map>
 #include <optional>
 #include <string>
 #include <thread>
@@ -30,6 +31,20 @@ inline bool eventually(Predicate p, std::chrono::milliseconds timeout) {
     std::this_thread::sleep_for(20ms);
   }
   return p();
+}
+
+/// The orders as the server serving now publishes them, once `wanted` of them are DONE (or the
+/// time is up).
+inline std::map<std::int64_t, model::OrderInfo> orders_once_done(cli::FleetClient& client, long wanted,
+                                                                 std::chrono::seconds within) {
+  std::map<std::int64_t, model::OrderInfo> orders;
+  const auto deadline = std::chrono::steady_clock::now() + within;
+  for (;;) {
+    orders = client.orders(1500ms);
+    long finished = 0;
+    for (const auto& [id, info] : orders) finished += info.state == "DONE";
+    if (finished >= wanted || std::chrono::steady_clock::now() > deadline) return orders;
+  }
 }
 
 /// Asks the server for an order from A1 (which holds a pallet) to A2.

@@ -18,23 +18,6 @@ using namespace fleet;
 using namespace fleet::testing;
 using namespace std::chrono_literals;
 
-namespace {
-
-/// The orders as the server serving now publishes them, once `wanted` of them are DONE (or the time is up).
-std::map<std::int64_t, model::OrderInfo> orders_once_done(cli::FleetClient& client, long wanted,
-                                                          std::chrono::seconds within) {
-  std::map<std::int64_t, model::OrderInfo> orders;
-  const auto deadline = std::chrono::steady_clock::now() + within;
-  for (;;) {
-    orders = client.orders(1500ms);
-    long finished = 0;
-    for (const auto& [id, info] : orders) finished += info.state == "DONE";
-    if (finished >= wanted || std::chrono::steady_clock::now() > deadline) return orders;
-  }
-}
-
-}  // namespace
-
 TEST(Standby, TakesOverWhenTheActiveServerIsKilledAndLosesNoOrderAndRunsNoneTwice) {
   FleetHarness fleet(73, 10.0);
   fleet.start_server({"--auto-orders"});  // process 0: the active server
