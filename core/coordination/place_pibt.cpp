@@ -247,6 +247,7 @@ bool PlacePibt::give_way(int robot) {
     if (o.goal >= 0 && !o.held && moving &&
         std::any_of(its_way.begin(), its_way.end(), [&](int p) { return zones.conflict(r.type, wanted, o.type, p); })) {
       giving_way_to_[self] = giving_way_to;
+      lend_top_priority(giving_way_to);
       if (!back_off(robot, giving_way_to)) take(robot, r.place);
       return true;
     }
@@ -261,9 +262,18 @@ bool PlacePibt::give_way(int robot) {
     if (first_move_off(other, robot, path_ahead(robot, wanted), true) >= 0) continue;  // it can be pushed clear
     if (!back_off(robot, other)) return false;
     giving_way_to_[self] = other;
+    // The robot let out goes first from now until it has passed: robots further along its way out
+    // that would push it back in (more robots queued for the spur) are pushed out of it instead.
+    lend_top_priority(other);
     return true;
   }
   return false;
+}
+
+void PlacePibt::lend_top_priority(int robot) {
+  const double top = *std::max_element(priority_.begin(), priority_.end());
+  auto& own = priority_[static_cast<std::size_t>(robot)];
+  if (own < top) own = top + 1.0;
 }
 
 bool PlacePibt::back_off(int robot, int other) {
@@ -273,8 +283,24 @@ bool PlacePibt::back_off(int robot, int other) {
   const int its_move = best_move(other);
   if (its_move < 0 || !zones.conflict(o.type, its_move, r.type, r.place)) return false;
   std::vector<int> blockers;
-  const int move = first_move_off(robot, other, path_ahead(other, its_move), true);
-  if (move < 0 || check(robot, move, blockers) != Check::kFree) return false;
+  const std::vector<int> its_path = path_ahead(other, its_move);
+  int move = first_move_off(robot, other, its_path, true);
+  if (move < 0) {
+    // Boxed in behind (robots queued at a spur's mouth): it backs off through them, lending them
+    // its priority, as a robot wanting their places would [Okumura 2022, Algorithm 1].
+    move = first_move_off(robot, other, its_path, false);
+    if (move < 0) return false;
+    const auto self = static_cast<std::size_t>(robot);
+    if (check(robot, move, blockers) == Check::kBlocked) {
+      pushing_[self] = 1;
+      const std::vector<int> in_the_way = blockers;
+      for (const int standing : in_the_way) {
+        if (planned_[static_cast<std::size_t>(standing)] < 0) plan_robot(standing, robot, move);
+      }
+      pushing_[self] = 0;
+    }
+  }
+  if (check(robot, move, blockers) != Check::kFree) return false;
   take(robot, move);
   // The other follows at once, before robots of lower priority can take the place.
   if (planned_[static_cast<std::size_t>(other)] < 0 && check(other, its_move, blockers) == Check::kFree) {
@@ -343,6 +369,10 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const Cl
     const auto& ra = robots[static_cast<std::size_t>(a)];
     const auto& rb = robots[static_cast<std::size_t>(b)];
     if (ra.held != rb.held) return ra.held;
+    // A robot backing off for another goes on doing so before robots behind it push it back in.
+    const bool a_gives_way = giving_way_to_[static_cast<std::size_t>(a)] >= 0;
+    const bool b_gives_way = giving_way_to_[static_cast<std::size_t>(b)] >= 0;
+    if (a_gives_way != b_gives_way) return a_gives_way;
     return priority_[static_cast<std::size_t>(a)] > priority_[static_cast<std::size_t>(b)];
   });
   for (const int robot : order) {

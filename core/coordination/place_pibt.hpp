@@ -118,6 +118,9 @@ class PlacePibt {
   /// Robot takes one move off the way of `other`, which wants to pass where it stands, and other
   /// follows it; whether it could.
   bool back_off(int robot, int other);
+  /// Raises the robot's priority above every other's from the next plan on (a robot another
+  /// backs off for, until it reaches its goal).
+  void lend_top_priority(int robot);
   /// The robot's next places from `from` on, each its nearest to its goal.
   std::vector<int> path_ahead(int robot, int from) const;
   /// The first of robot's moves on a shortest way to a place clear of `path` (other's), not

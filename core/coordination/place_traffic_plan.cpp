@@ -25,8 +25,11 @@ void PlaceTraffic::reserve_entries() {
       const auto& waits = at(other).grant.waits_for;
       return std::find(waits.begin(), waits.end(), robot) != waits.end();
     };
-    const bool reserves = r.mode == Mode::kWaitingToEnter && r.way_out.empty() &&
-                          std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), waits_for_it);
+    // Once it holds its way, it holds it until it enters: the robots it pushes out of it wait for
+    // others on the way out, not for its body, and would come straight back in.
+    const bool reserves =
+        r.mode == Mode::kWaitingToEnter && r.way_out.empty() &&
+        (r.reserves_entry || std::any_of(r.entry_blockers.begin(), r.entry_blockers.end(), waits_for_it));
     if (reserves != r.reserves_entry) closed_stale_ = true;
     r.reserves_entry = reserves;
   }

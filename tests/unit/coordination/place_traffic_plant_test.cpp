@@ -143,25 +143,20 @@ TEST(PlaceTrafficPlant, EachReachTruckLeavesItsStallBetweenParkedNeighbours) {
 namespace fleet::coordination {
 namespace {
 
-// The pick spur west of the racks (x 8, y 2.3 to 5.3) is one lane with a dead end. A picker at its
-// end, done at a packing station, leaves for the racks; a forklift has come in behind it for the
-// full pallet at the spur's end; a picker stands at the spur's mouth on its way in to a station
-// and another comes along the road to one. Robots drive at 0.8 m/s and work 10 s at a station
-// standing beside the roads, as the fleet's do: the forklift backs out of the spur for the picker
-// at its end (the picker at the mouth pushed out of its way), and every robot is done within five
-// minutes.
-TEST(PlaceTrafficPlant, RobotsComingIntoThePickSpurLetTheOneAtItsEndOut) {
+/// A robot's trip through the pick spur: where it starts, then each place it drives to, working
+/// 10 s beside the roads at each but the last.
+struct SpurTrip {
+  const char* robot;
+  std::vector<geometry::Vec2> stops;
+  bool starts_working = false;  ///< at its first stop, beside the roads
+};
+
+/// Drives the trips through PlaceTraffic on the plant for `seconds` as the fleet's robots would
+/// (0.8 m/s, their own shortest routes, taking the routes they are handed) and expects every
+/// robot done and no wait cycle.
+void drive_spur_trips(const std::vector<SpurTrip>& trips, double seconds) {
   PlantTraffic plant;
   PlaceTraffic traffic(plant.lanes, plant.zones, {.speed = 0.8, .plan_ahead = 4, .seed = 1});
-  struct Trip {
-    const char* robot;
-    std::vector<geometry::Vec2> stops;  // where it starts, then each place it drives to
-    bool starts_working = false;        // at its first stop, beside the roads
-  };
-  const std::vector<Trip> trips{{"pk2", {{8.0, 2.4}, {20.0, 6.12}}, true},
-                                {"fk1", {{8.0, 4.6}, {8.0, 2.4}, {30.0, 6.12}}},
-                                {"pk3", {{7.72, 6.42}, {8.0, 4.1}, {25.0, 6.12}}},
-                                {"pk1", {{8.8, 7.88}, {8.0, 3.2}, {35.0, 6.12}}}};
   constexpr double kWorkS = 10.0;
   constexpr double kSpeed = 0.8;
   constexpr double kCycleS = 0.25;
@@ -195,7 +190,7 @@ TEST(PlaceTrafficPlant, RobotsComingIntoThePickSpurLetTheOneAtItsEndOut) {
     if (trips[i].starts_working) robots[i].body = body_at(i, trips[i].stops[0]);
     ASSERT_TRUE(start_leg(i)) << trips[i].robot;
   }
-  for (double t = 0.0; t < 300.0; t += kCycleS) {
+  for (double t = 0.0; t < seconds; t += kCycleS) {
     for (std::size_t i = 0; i < robots.size(); ++i) {
       State& r = robots[i];
       if (r.done) continue;
@@ -230,6 +225,32 @@ TEST(PlaceTrafficPlant, RobotsComingIntoThePickSpurLetTheOneAtItsEndOut) {
                                 << (grant.waits_for.empty() ? -1 : grant.waits_for[0]);
   }
   EXPECT_TRUE(traffic.wait_cycle().empty());
+}
+
+// The pick spur west of the racks (x 8, y 2.3 to 5.3) is one lane with a dead end. A picker at its
+// end, done at a packing station, leaves for the racks; a forklift has come in behind it for the
+// full pallet at the spur's end; a picker stands at the spur's mouth on its way in to a station
+// and another comes along the road to one. The forklift backs out of the spur for the picker at
+// its end (the picker at the mouth pushed out of its way), and every robot is done within five
+// minutes.
+TEST(PlaceTrafficPlant, RobotsComingIntoThePickSpurLetTheOneAtItsEndOut) {
+  drive_spur_trips({{"pk2", {{8.0, 2.4}, {20.0, 6.12}}, true},
+                    {"fk1", {{8.0, 4.6}, {8.0, 2.4}, {30.0, 6.12}}},
+                    {"pk3", {{7.72, 6.42}, {8.0, 4.1}, {25.0, 6.12}}},
+                    {"pk1", {{8.8, 7.88}, {8.0, 3.2}, {35.0, 6.12}}}},
+                   300.0);
+}
+
+// A forklift done at PS1, half-way down the spur, leaves for its parking place while another
+// forklift comes for the full pallet at PS3, the spur's end, and two pickers come along the road
+// behind it for PS2 and PS4: the three coming in make way for the one going out, and every robot
+// is done within five minutes.
+TEST(PlaceTrafficPlant, ThreeRobotsComingIntoThePickSpurLetOneOutFromItsMiddle) {
+  drive_spur_trips({{"fk2", {{8.0, 4.1}, {38.0, 29.1}}, true},
+                    {"fk1", {{9.0, 7.88}, {8.0, 2.7}, {30.0, 6.12}}},
+                    {"pk2", {{12.0, 7.88}, {8.0, 4.1}, {25.0, 6.12}}},
+                    {"pk1", {{15.0, 7.88}, {8.0, 2.7}, {35.0, 6.12}}}},
+                   300.0);
 }
 
 }  // namespace
