@@ -90,6 +90,14 @@ std::vector<CommandSpec> server_commands() {
        "every robot's traffic grant (status, how far, how long it waited) and whom it\n"
        "waits for; with ROBOT its chain of waits and the route points granted"},
       {Group::kServer,
+       "servers",
+       "",
+       "",
+       false,
+       {},
+       "the fleet's server processes: which is active, in which term and since when, and how\n"
+       "long ago each standby last heard it (a standby: fleet-server --standby)"},
+      {Group::kServer,
        "stats",
        "",
        "",
@@ -131,11 +139,13 @@ std::vector<CommandSpec> fleet_starting_commands() {
         number("--duration", "SECONDS=180", 1.0, 1e7), number("--time-scale", "K=10", 0.01, 100.0), process_seed(),
         choice("--traffic", {"on", "off"}), value("--faults", "LIST"), value("--set", "KEY=VALUE"),
         value("--agent-wrap", "WORDS"), integer("--http-port", "P=0", 0, 65535), on_off("--verbose"),
-        integer("--vda5050-vehicles", "N=0", 0, kMaxAgents)},
+        integer("--vda5050-vehicles", "N=0", 0, kMaxAgents), on_off("--standby"), value("--standby-wrap", "WORDS")},
        "the demo's fleet under ground-truth watch: collisions, deadlocks (an order\n"
        "without progress for 60 s sim), lost and duplicated orders; --faults all|none|\n"
-       "kill-agent,stall-agent,kill-server,obstacles,map-switch on a schedule from\n"
-       "--seed; exit 0 only when nothing was lost, duplicated, collided or deadlocked;\n"
+       "kill-agent,stall-agent,kill-server,obstacles,map-switch,kill-host on a schedule\n"
+       "from --seed; exit 0 only when nothing was lost, duplicated, collided or\n"
+       "deadlocked; --standby: a second server as standby (--standby-wrap WORDS before its\n"
+       "command), kill-host kills the active one, which comes back 5 s later as standby;\n"
        "--verbose: debug logs of every process in the run directory"},
       {Group::kStartsFleet,
        "load",

@@ -118,6 +118,27 @@ void FleetRun::throw_if_a_process_ended() {
   }
 }
 
+void FleetRun::start_standby(const std::vector<std::string>& common) {
+  std::vector<std::string> argv;
+  std::istringstream words(options_.standby_wrap);
+  for (std::string w; words >> w;) argv.push_back(w);
+  argv.push_back(binary("fleet-server"));
+  argv.insert(argv.end(), common.begin(), common.end());
+  if (options_.auto_orders) argv.push_back("--auto-orders");
+  argv.insert(argv.end(), {"--standby", "--db", run_dir_ + "/standby.db", "--http-port", "0"});
+  argv.insert(argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
+  argv.insert(argv.end(), {"--set", "server.id=server-2"});
+  servers_["server-2"] = processes_.start("fleet-server-2", argv, run_dir_ + "/fleet-server-2.log");
+}
+
+std::optional<double> FleetRun::grants_from_a_new_writer_since(double since) const {
+  std::optional<double> first;
+  for (const auto& [writer, heard_wall] : grant_writers_) {
+    if (heard_wall > since && (!first || heard_wall < *first)) first = heard_wall;
+  }
+  return first;
+}
+
 void FleetRun::start() {
   participant_ = std::make_unique<dds::Participant>(options_.domain);
   order_reader_ = std::make_unique<dds::Reader<model::OrderInfo>>(*participant_, dds::qos::latched_state());
@@ -127,6 +148,7 @@ void FleetRun::start() {
                                                                    dds::robot_report_partitions());
   grant_reader_ = std::make_unique<dds::Reader<model::TrafficGrant>>(*participant_, dds::qos::live_state(),
                                                                      model::every_robot_partition());
+  server_load_reader_ = std::make_unique<dds::Reader<model::ServerLoad>>(*participant_, dds::qos::live_state());
 
   std::vector<std::string> common{"--config",     options_.config_file,
                                   "--domain",     std::to_string(options_.domain),
@@ -148,7 +170,9 @@ void FleetRun::start() {
                        {"--http-tls-cert", folder.web_certificate(), "--http-tls-key", folder.web_key()});
   }
   server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
+  if (options_.standby) server_argv.insert(server_argv.end(), {"--set", "server.id=server-1"});
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
+  if (options_.standby) servers_["server-1"] = kServerIndex;
   // One agent starts when the one before it publishes its state: an agent's start (its site, grids
   // and OctoMap) costs a few tenths of a CPU second, and 48 of them at once held the two cores for
   // seconds, the first agents' control steps with them.
@@ -190,6 +214,7 @@ void FleetRun::start() {
                model::join(vda5050_.robot_ids), vda5050_.broker);
     for (const auto& id : vda5050_.robot_ids) wait_until_up(id);
   }
+  if (options_.standby) start_standby(common);
   started_ = std::chrono::steady_clock::now();
   start_sim_ = SimClock(options_.time_scale).now();
 
@@ -226,8 +251,14 @@ bool FleetRun::poll() {
     report_far_off_estimates();
   });
   // Who waits for whom, so a robot queued behind robots that move is not taken for a deadlock.
-  grant_reader_->take_data(
-      [&](model::TrafficGrant&& grant) { progress_.note_waiting_for(grant.robot_id, std::move(grant.blocked_by)); });
+  grant_reader_->take([&](model::TrafficGrant&& grant, const dds::SampleInfo& info) {
+    if (!info.valid_data) return;
+    grant_writers_.try_emplace(info.publication_handle, SimClock::wall_now());
+    progress_.note_waiting_for(grant.robot_id, std::move(grant.blocked_by));
+  });
+  server_load_reader_->take_data([&](model::ServerLoad&& load) {
+    if (load.active) active_server_ = load.server_id;
+  });
   truth_reader_->take_data([&](model::SimTruth&& truth) {
     tracks_.add(truth.robot_id, truth.pose, truth.sim_time);
     localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);

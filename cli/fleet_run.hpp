@@ -50,6 +50,11 @@ struct RunOptions {
   /// Simulated VDA 5050 vehicles of the configuration's fleets of robot type vda5050, with a
   /// broker and fleet-vda5050 (cli/vda5050_vehicles.hpp); 0: none.
   int vda5050_vehicles = 0;
+  /// A second server, `fleet-server --standby` on a database of its own, started after the agents
+  /// (the servers are server-1 and server-2).
+  bool standby = false;
+  /// Words put before the standby server's command line (its own host: "ip netns exec ...").
+  std::string standby_wrap;
 };
 
 /// How late one agent's control steps run against the clock (model::RobotState's control_lag).
@@ -105,6 +110,13 @@ class FleetRun {
   void expect_exit(std::size_t child_index) { expected_exits_.insert(child_index); }
   /// Index of the server (0) and of each agent (1..N) in processes().
   static constexpr std::size_t kServerIndex = 0;
+  /// With a standby: the index in processes() of each server by id (server-1, server-2).
+  const std::map<std::string, std::size_t>& servers() const { return servers_; }
+  /// The server heard last serving as active (its ServerLoad), empty before one was heard.
+  const std::string& active_server() const { return active_server_; }
+  /// The first wall time (wall_now) after `since` at which a grant came from a DDS writer not heard
+  /// before `since`: grants flowing from a server that took over.
+  std::optional<double> grants_from_a_new_writer_since(double since) const;
   /// Sim time (shared clock) when the run started.
   double start_sim() const { return start_sim_; }
   /// Children that ended on their own (not stopped by us), with how they ended.
@@ -120,6 +132,8 @@ class FleetRun {
   static constexpr std::chrono::seconds kAgentStartWait{10};
   /// Throws when a started process has ended, with the end of its log.
   void throw_if_a_process_ended();
+  /// Starts fleet-server --standby (server-2) with the run's `common` arguments.
+  void start_standby(const std::vector<std::string>& common);
   std::string binary(const std::string& name) const;
   /// With two pickers or more and racks on the site: the aisles between the racks to watch.
   void watch_pickers_in_aisles(const map::Site& site);
@@ -144,6 +158,11 @@ class FleetRun {
   std::unique_ptr<dds::Reader<model::SimTruth>> truth_reader_;
   std::unique_ptr<dds::Reader<model::RobotState>> state_reader_;
   std::unique_ptr<dds::Reader<model::TrafficGrant>> grant_reader_;
+  std::unique_ptr<dds::Reader<model::ServerLoad>> server_load_reader_;
+  std::map<std::string, std::size_t> servers_;
+  std::string active_server_;
+  /// Each DDS writer of grants by the wall time its first grant came (wall_now).
+  std::map<dds_instance_handle_t, double> grant_writers_;
   monitor::ProgressMonitor progress_;
   std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
   std::map<std::int64_t, model::OrderInfo> orders_;

@@ -264,7 +264,9 @@ LoadResult run_load(const LoadOptions& options, ProcessGroup& processes, Emulate
   while (!stop_requested()) {
     const double now_wall = SimClock::wall_now();
     emulated.run_until(clock.now());
-    load_reader.take_data([&](model::ServerLoad&& l) { r.server = std::move(l); });
+    load_reader.take_data([&](model::ServerLoad&& l) {
+      if (l.active) r.server = std::move(l);
+    });
     if (!processes.reap().empty()) {
       r.crashed = "fleet-server " + ProcessGroup::describe(processes.children().front().exit_status);
       break;

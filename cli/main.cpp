@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
     if (name == "robots") return robots_command(command, connection, out, err);
     if (name == "traffic") return traffic_show_command(command, connection, out, err);
     if (name == "stats") return stats_command(command, connection, out, err);
+    if (name == "servers") return servers_command(command, connection, out, err);
     if (name == "obstacle") return obstacle_command(command, connection, out, err);
     if (name == "pause" || name == "resume") return robot_control_command(name, command, connection, out, err);
     if (name == "auto-orders") return auto_orders_command(command, connection, out, err);

@@ -33,6 +33,8 @@ int order_watch(const std::vector<std::string>& args, const CommandArgs& command
 /// `inject`: random valid orders at a rate, or the rows of a CSV file.
 int inject_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 int robots_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
+/// `servers`: the fleet's server processes, which is active and since when, each standby's lag.
+int servers_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 /// `traffic show [ROBOT]`: every robot's grant and whom it waits for, or one robot's chain of waits.
 int traffic_show_command(const CommandArgs& args, const Connection& connection, std::ostream& out, std::ostream& err);
 

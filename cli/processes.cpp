@@ -28,6 +28,11 @@ std::size_t ProcessGroup::start(const std::string& name, const std::vector<std::
   return children_.size() - 1;
 }
 
+void ProcessGroup::restart_with(std::size_t index, std::vector<std::string> argv) {
+  children_.at(index).argv = std::move(argv);
+  restart(index);
+}
+
 void ProcessGroup::restart(std::size_t index) {
   Child& child = children_.at(index);
   const pid_t parent = getpid();

@@ -34,6 +34,8 @@ class ProcessGroup {
 
   /// Restarts an ended child with its original arguments.
   void restart(std::size_t index);
+  /// Restarts an ended child with `argv`, which it keeps for later restarts.
+  void restart_with(std::size_t index, std::vector<std::string> argv);
 
   /// Sends `signal` to one child.
   void signal(std::size_t index, int signal);

@@ -2,6 +2,7 @@
 // ground-truth watch — collisions, deadlocks, lost and duplicated orders — with faults injected
 // on a seeded schedule.
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <thread>
@@ -47,8 +48,14 @@ SoakRequest parse_soak(const CommandArgs& command, std::uint32_t domain) {
   options.http_port = static_cast<int>(args.integer("http-port").value_or(0));
   options.agent_wrap = args.value("agent-wrap").value_or("");
   options.vda5050_vehicles = static_cast<int>(args.integer("vda5050-vehicles").value_or(0));
+  options.standby = args.flag("standby");
+  options.standby_wrap = args.value("standby-wrap").value_or("");
+  if (!options.standby_wrap.empty() && !options.standby) throw ArgError("--standby-wrap: needs --standby");
   r.traffic = args.value("traffic").value_or(r.config.settings.get_bool("traffic.enabled") ? "on" : "off");
   r.kinds = monitor::parse_fault_list(args.value("faults").value_or("none"));
+  if (!options.standby && std::find(r.kinds.begin(), r.kinds.end(), monitor::FaultKind::kKillHost) != r.kinds.end()) {
+    throw ArgError("--faults: kill-host needs --standby (a second server to take over)");
+  }
   std::vector<std::string> settings{"traffic.enabled=" + std::string(r.traffic == "on" ? "true" : "false")};
   for (const std::string& v : args.values("set")) settings.push_back(v);
   if (args.flag("verbose")) {

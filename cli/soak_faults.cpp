@@ -46,6 +46,11 @@ void SoakFaults::robot_lost(const std::string& robot, double now_wall) {
 
 void SoakFaults::follow_recovery(const std::map<std::string, bool>& lost, double now_wall) {
   for (auto& f : faults_) {
+    if (f.kind == monitor::FaultKind::kKillHost && !f.detected) {
+      // Failed over once grants come from a DDS writer not heard before the kill: the new server's.
+      if (const auto flowing = run_.grants_from_a_new_writer_since(f.at_wall))
+        f.detected = f.recovered = *flowing - f.at_wall;
+    }
     if (f.recovered || f.order == 0) continue;
     auto it = run_.orders().find(f.order);
     if (it == run_.orders().end()) continue;
@@ -100,6 +105,8 @@ bool SoakFaults::inject(const monitor::ScheduledFault& fault, FaultRecord& recor
       run_.processes().signal(FleetRun::kServerIndex, SIGKILL);
       pending_.push_back({now_wall + kServerPauseWall, [this] { run_.processes().restart(FleetRun::kServerIndex); }});
       return true;
+    case monitor::FaultKind::kKillHost:
+      return kill_active_host(record, now_wall);
     case monitor::FaultKind::kObstacles: {
       // The server refuses an obstacle over a robot: the next one of the site is tried.
       for (std::size_t k = 0; k < obstacle_ids_.size() && record.target.empty(); ++k) {
@@ -131,6 +138,22 @@ bool SoakFaults::inject(const monitor::ScheduledFault& fault, FaultRecord& recor
     }
   }
   return false;
+}
+
+bool SoakFaults::kill_active_host(FaultRecord& record, double now_wall) {
+  const auto server = run_.servers().find(run_.active_server());
+  if (server == run_.servers().end() || !run_.processes().children()[server->second].running) return false;
+  const std::size_t index = server->second;
+  record.target = server->first;
+  run_.expect_exit(index);
+  run_.processes().signal(index, SIGKILL);
+  pending_.push_back({now_wall + kHostDownWall, [this, index] {
+                        // Its host is back: the server starts again as the other's standby.
+                        std::vector<std::string> argv = run_.processes().children()[index].argv;
+                        if (std::find(argv.begin(), argv.end(), "--standby") == argv.end()) argv.push_back("--standby");
+                        run_.processes().restart_with(index, std::move(argv));
+                      }});
+  return true;
 }
 
 bool SoakFaults::inject_agent_fault(const monitor::ScheduledFault& fault, FaultRecord& record, double now_wall) {

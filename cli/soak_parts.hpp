@@ -25,12 +25,16 @@ struct FaultRecord {
   std::string target;
   double at_wall = 0.0;
   double at_sim = 0.0;
-  std::int64_t order = 0;           ///< the robot's open order when it happened (agent faults)
-  std::optional<double> detected;   ///< the server marked the robot lost
+  std::int64_t order = 0;  ///< the robot's open order when it happened (agent faults)
+  /// Agent faults: the server marked the robot lost. kill-host: grants came from the server that
+  /// took over (the failover).
+  std::optional<double> detected;
   std::optional<double> recovered;  ///< its order re-queued, failed with a reason, or ended
 
   /// An agent killed or stopped: the server is to find its robot lost.
   bool on_agent() const { return kind == monitor::FaultKind::kKillAgent || kind == monitor::FaultKind::kStallAgent; }
+  /// A fault the fleet is to notice: an agent fault, or the active server's host killed.
+  bool to_detect() const { return on_agent() || kind == monitor::FaultKind::kKillHost; }
 };
 
 /// A soak's fault schedule carried out against its fleet: agents killed and stopped, the server
@@ -55,11 +59,14 @@ class SoakFaults {
 
   static constexpr double kKillPauseWall = 2.0;  ///< a killed agent stays down this long
   static constexpr double kStallWall = 3.0;      ///< a stopped agent stays frozen this long
+  static constexpr double kHostDownWall = 5.0;   ///< a killed server's host comes back after this long
 
  private:
   /// The fault, carried out; false when it cannot be now (its agent is down, the server refused).
   bool inject(const monitor::ScheduledFault& fault, FaultRecord& record, double now_wall, bool& retry);
   bool inject_agent_fault(const monitor::ScheduledFault& fault, FaultRecord& record, double now_wall);
+  /// The active server killed; its host comes back after kHostDownWall with the server as a standby.
+  bool kill_active_host(FaultRecord& record, double now_wall);
   /// A command the server carries out (obstacles, maps): its error, "" when it took it.
   std::string command_server(const std::string& verb, const std::string& target, const std::string& value);
   std::int64_t open_order_of(const std::string& robot) const;

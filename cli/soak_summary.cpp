@@ -24,15 +24,16 @@ long orders_done_twice(const FleetRun& run, const std::map<std::int64_t, std::se
   return duplicated;
 }
 
-/// The faults as JSON, with the p95 of detection and recovery and the agent faults never detected.
+/// The faults as JSON, with the p95 of detection and recovery, the faults never detected, and
+/// the failovers of kill-host (from the kill to grants from the server that took over).
 nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
-  std::vector<double> detect, recover;
+  std::vector<double> detect, recover, failover;
   long undetected = 0;
   nlohmann::json list = nlohmann::json::array();
   for (const auto& f : faults) {
-    if (f.on_agent()) {
+    if (f.to_detect()) {
       if (f.detected) {
-        detect.push_back(*f.detected);
+        (f.on_agent() ? detect : failover).push_back(*f.detected);
       } else {
         ++undetected;
       }
@@ -48,6 +49,9 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
           {"faults_undetected", undetected},
           {"detect_latency_p95_s", round_to(common::percentile(detect, 0.95), 0.001)},
           {"recovery_p95_s", round_to(common::percentile(recover, 0.95), 0.001)},
+          {"failovers", failover.size()},
+          {"failover_median_s", round_to(common::percentile(failover, 0.5), 0.001)},
+          {"failover_p95_s", round_to(common::percentile(failover, 0.95), 0.001)},
           {"faults", list}};
 }
 
@@ -132,7 +136,7 @@ std::vector<std::string> failures_of(const FleetRun& run, const RunOptions& opti
   if (!run.progress().deadlocks().empty())
     failures.push_back(std::to_string(run.progress().deadlocks().size()) + " deadlocks");
   if (!run.crashes().empty()) failures.push_back("crashed: " + model::join(run.crashes()));
-  if (undetected != 0) failures.push_back(std::to_string(undetected) + " agent faults never detected");
+  if (undetected != 0) failures.push_back(std::to_string(undetected) + " faults never detected");
   std::vector<std::string> unexplained;
   for (const auto& loss : unexplained_losses) {
     unexplained.push_back(fmt::format("{} at {:.0f} s sim", loss.robot_id, loss.at_sim));
@@ -213,7 +217,8 @@ void print_soak_summary(std::ostream& out, const FleetRun& run, const nlohmann::
       << "  pickers sharing an aisle: " << s["pickers_sharing_an_aisle"].dump() << "\n"
       << "  collisions: " << s["collisions"] << ", deadlocks: " << s["deadlocks"] << "\n"
       << "  faults: " << s["faults_injected"] << " injected, detection p95 " << s["detect_latency_p95_s"]
-      << " s, recovery p95 " << s["recovery_p95_s"]
+      << " s, recovery p95 " << s["recovery_p95_s"] << " s; failovers " << s["failovers"] << ", median "
+      << s["failover_median_s"] << " s, p95 " << s["failover_p95_s"]
       << " s; robots lost with no fault: " << s["robots_lost_without_a_fault"].size() << "\n"
       << "  memory growth (second half): " << s["rss_growth_pct"].dump() << " % over "
       << s["rss_measured_processes"].dump() << " processes, CPU: " << s["cpu_pct"].dump() << " % of a core\n"

@@ -1,5 +1,6 @@
 #include "dds/participant.hpp"
 
+#include "dds/qos.hpp"
 #include "dds/security.hpp"
 
 namespace fleet::dds {
@@ -18,8 +19,11 @@ Participant::~Participant() {
 dds_entity_t Participant::topic_for(const char* name, const dds_topic_descriptor_t* descriptor) {
   auto it = topics_.find(name);
   if (it != topics_.end()) return it->second;
+  // Readers and writers take the policies they do not set from their topic (Cyclone merges them
+  // in): ownership is set once here for the topics the server owns.
+  const Qos topic_qos = qos::server_owned(name) ? qos::server_owned_topic() : Qos();
   const dds_entity_t topic =
-      check(dds_create_topic(handle_, descriptor, name, nullptr, nullptr), std::string("create topic ") + name);
+      check(dds_create_topic(handle_, descriptor, name, topic_qos.get(), nullptr), std::string("create topic ") + name);
   topics_.emplace(name, topic);
   return topic;
 }

@@ -44,12 +44,20 @@ std::vector<std::string> writer_partitions(dds_entity_t reader, dds_instance_han
 class Participant {
  public:
   explicit Participant(std::uint32_t domain);
+  /// A participant whose writers take ownership strength `ownership_strength` (set_ownership_strength).
+  Participant(std::uint32_t domain, std::int32_t ownership_strength) : Participant(domain) {
+    ownership_strength_ = ownership_strength;
+  }
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
   dds_entity_t handle() const { return handle_; }
   std::uint32_t domain() const { return domain_; }
+  /// The ownership strength of the writers created after this call (qos::server_owned: a server
+  /// writes with its term); 0 by default.
+  void set_ownership_strength(std::int32_t strength) { ownership_strength_ = strength; }
+  std::int32_t ownership_strength() const { return ownership_strength_; }
 
   /// The topic for T, created once per participant.
   template <typename T>
@@ -61,6 +69,7 @@ class Participant {
   dds_entity_t topic_for(const char* name, const dds_topic_descriptor_t* descriptor);
   dds_entity_t handle_;
   std::uint32_t domain_;
+  std::int32_t ownership_strength_ = 0;
   std::map<std::string, dds_entity_t> topics_;
 };
 
@@ -80,19 +89,27 @@ template <typename T>
 class Writer {
  public:
   Writer(Participant& participant, const Qos& qos)
-      : handle_(check(dds_create_writer(participant.handle(), participant.template topic<T>(), qos.get(), nullptr),
+      : handle_(check(dds_create_writer(participant.handle(), participant.template topic<T>(),
+                                        with_strength(qos, participant).get(), nullptr),
                       std::string("create writer ") + TopicTraits<T>::name)) {}
   /// A writer in partition `partition` alone (create_publisher_in).
   Writer(Participant& participant, const Qos& qos, const std::string& partition)
       : owner_(create_publisher_in(participant.handle(), partition)),
-        handle_(check(dds_create_writer(owner_, participant.template topic<T>(), qos.get(), nullptr),
-                      std::string("create writer ") + TopicTraits<T>::name + " in partition " + partition)) {}
+        handle_(check(
+            dds_create_writer(owner_, participant.template topic<T>(), with_strength(qos, participant).get(), nullptr),
+            std::string("create writer ") + TopicTraits<T>::name + " in partition " + partition)) {}
   ~Writer() { dds_delete(owner_ != 0 ? owner_ : handle_); }
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
   /// False when the write failed (for example a reliable reader that stopped taking data).
   bool write(const T& value) { return TopicTraits<T>::write(handle_, value) >= 0; }
+  /// The writer's ownership strength (the participant's when it was created).
+  static Qos with_strength(const Qos& qos, const Participant& participant) {
+    Qos own(qos);
+    dds_qset_ownership_strength(own.get(), participant.ownership_strength());
+    return own;
+  }
   /// Forgets the instance keyed by `value` (its history leaves the writer); readers see it not alive.
   void unregister(const T& value) { TopicTraits<T>::unregister(handle_, value); }
   /// Marks the instance keyed by `value` as deleted for every reader.

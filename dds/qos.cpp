@@ -25,6 +25,23 @@ Qos robot_state() {
   return q;
 }
 
+bool server_owned(std::string_view topic_name) {
+  static constexpr std::string_view kServerOwned[] = {
+      "fleet/ServerInfo",    "fleet/RequestReply", "fleet/Order",         "fleet/OrderInfo",
+      "fleet/MapAssignment", "fleet/RobotControl", "fleet/PalletTruth",   "fleet/StaticObstacles",
+      "fleet/SiteState",     "fleet/FleetView",    "fleet/NeighbourView", "fleet/TrafficGrant"};
+  for (const std::string_view name : kServerOwned) {
+    if (name == topic_name) return true;
+  }
+  return false;
+}
+
+Qos server_owned_topic() {
+  Qos q;
+  dds_qset_ownership(q.get(), DDS_OWNERSHIP_EXCLUSIVE);
+  return q;
+}
+
 Qos requests() {
   Qos q;
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(1));

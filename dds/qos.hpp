@@ -2,6 +2,8 @@
 
 #include <dds/dds.h>
 
+#include <string_view>
+
 namespace fleet::dds {
 
 /// An owned dds_qos_t.
@@ -39,6 +41,16 @@ Qos robot_state();
 
 /// Requests (OrderRequest, Command, OrderState): reliable, volatile, keep-all bounded to 1000.
 Qos requests();
+
+/// Whether the server alone writes the topic (its orders, grants, views, the site's state): such
+/// topics are created with exclusive ownership, so every reader and writer of them takes it from
+/// the topic, and a reader takes each instance from its strongest live writer. Servers write with
+/// their term as ownership strength (Participant::set_ownership_strength): of an active server and
+/// one that took over from it, the robots follow the one that took over.
+bool server_owned(std::string_view topic_name);
+
+/// The topic QoS of a server-owned topic: exclusive ownership.
+Qos server_owned_topic();
 
 }  // namespace qos
 }  // namespace fleet::dds

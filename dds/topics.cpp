@@ -454,7 +454,12 @@ fleet_msg_ServerLoad to_wire(const model::ServerLoad& v, Scratch&) {
           v.dispatches,
           v.dispatch_p50_ms,
           v.dispatch_p99_ms,
-          v.dispatch_max_ms};
+          v.dispatch_max_ms,
+          v.term,
+          v.active,
+          v.took_over,
+          v.since_unix_ms,
+          v.active_heard_s_ago};
 }
 fleet_msg_SiteStateDocument to_wire(const model::SiteStateDocument& v, Scratch&) {
   return {borrow(v.site), borrow(v.json)};
@@ -477,7 +482,12 @@ model::ServerLoad from_wire(const fleet_msg_ServerLoad& w) {
           w.dispatches,
           w.dispatch_p50_ms,
           w.dispatch_p99_ms,
-          w.dispatch_max_ms};
+          w.dispatch_max_ms,
+          w.term,
+          w.active,
+          w.took_over,
+          w.since_unix_ms,
+          w.active_heard_s_ago};
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& rob
               {false,
                {"fleet/OrderRequest", "fleet/Command", "fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
                 "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth",
-                // A standby server mirrors the active one.
+                // A standby server mirrors the active one; every server hears the others.
                 "fleet/OrderInfo", "fleet/SiteState", "fleet/ServerLoad"},
                {"*"}}};
     case Role::kBridge:

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <thread>
 
 #include "common/percentile.hpp"
 #include "common/process_memory.hpp"
@@ -30,7 +32,12 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       clock_(options_.time_scale),
       dispatcher_(orders::make_dispatch_policy(options_.config.settings.get_string("server.dispatch_policy"))),
       auto_orders_(options_.config.settings.get_bool("server.auto_orders"), options_.seed),
-      participant_(options_.domain),
+      term_{.term = orders::next_term(store_.term(), options_.heard_term),
+            .took_over = options_.took_over,
+            .since_unix_ms = static_cast<std::int64_t>(SimClock::wall_now() * 1000.0),
+            .server_id = options_.server_id},
+      participant_(options_.domain, static_cast<std::int32_t>(std::min<std::int64_t>(
+                                        orders::strength(term_), std::numeric_limits<std::int32_t>::max()))),
       server_info_writer_(participant_, dds::qos::latched_state()),
       reply_writer_(participant_, dds::qos::latched_state()),
       order_writer_(participant_, dds::qos::latched_state()),
@@ -48,7 +55,10 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       truth_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
       order_report_reader_(participant_, dds::qos::latched_state(), dds::robot_report_partitions()),
       waitset_(participant_),
-      load_meter_(participant_) {
+      load_meter_(participant_, term_),
+      peers_(participant_, term_) {
+  store_.save_term(term_.term);
+  log_->info("serving as the active server {} in term {}", term_.server_id, term_.term);
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
                               robot_path_reader_.handle(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
@@ -228,14 +238,17 @@ void FleetServer::finish_map_switch() {
   done.answer({done.request_id, error.empty(), 0, error});
 }
 
-void FleetServer::run(const std::atomic<bool>& stop) {
+RunEnd FleetServer::run(const std::atomic<bool>& stop) {
   // A loop that takes longer than two traffic cycles answers requests late: it says where its
   // time went (debug log), which is what a late grant is read back from.
   constexpr double kSlowLoopWall = 0.1;
   ProcessMemory memory;
   LoopStages stages;
+  double last_loop_wall = SimClock::wall_now();
   while (!stop.load()) {
     waitset_.wait(std::chrono::milliseconds(5));
+    if (stepped_aside(stop, SimClock::wall_now() - last_loop_wall)) return RunEnd::kSteppedDown;
+    last_loop_wall = SimClock::wall_now();
     stages.start();
     handle_order_requests();
     handle_commands();
@@ -284,6 +297,32 @@ void FleetServer::run(const std::atomic<bool>& stop) {
     }
   }
   log_->info("stopping; {} orders known", book_.all().size());
+  return RunEnd::kStopped;
+}
+
+bool FleetServer::stepped_aside(const std::atomic<bool>& stop, double since_last_loop_s) {
+  // A server whose loop stood still for longer than its liveliness lease (its host froze, its
+  // link was cut) may have been taken over meanwhile: before it acts on anything, it listens for
+  // one ServerLoad period for an active server that outranks it.
+  constexpr double kLeaseS = 1.0;
+  constexpr double kListenS = 1.5;
+  double listen_until = SimClock::wall_now();
+  if (since_last_loop_s > kLeaseS) {
+    log_->warn(
+        "the server loop stood still for {:.1f} s, longer than its liveliness lease: listening for a server "
+        "that took over",
+        since_last_loop_s);
+    listen_until += kListenS;
+  }
+  for (;;) {
+    if (const auto other = peers_.outranking_active()) {
+      log_->warn("stepping down: server {} is active in term {} (this server's term {}); going on as its standby",
+                 other->server_id, other->term, term_.term);
+      return true;
+    }
+    if (stop.load() || SimClock::wall_now() >= listen_until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 void FleetServer::reply(const model::RequestReply& answer) {

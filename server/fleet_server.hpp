@@ -36,6 +36,7 @@
 #include "server/robot_body_memory.hpp"
 #include "server/sender_gate.hpp"
 #include "server/server_load.hpp"
+#include "server/server_peers.hpp"
 #include "server/site_derivation.hpp"
 #include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
@@ -52,7 +53,13 @@ struct ServerOptions {
   std::shared_ptr<const map::SiteMap> site_map;  ///< the site with its road graph
   /// The site and its revisions (map::site_revisions): the maps robots can be switched to.
   std::vector<std::string> maps;
+  std::string server_id;        ///< this process among the fleet's servers (server.id)
+  std::int64_t heard_term = 0;  ///< the highest term heard another server serve in (a standby's)
+  bool took_over = false;       ///< it becomes active by taking over from another server
 };
+
+/// How FleetServer::run ended.
+enum class RunEnd { kStopped, kSteppedDown };
 
 using orders::info_of;
 using orders::RobotEntry;
@@ -64,12 +71,18 @@ class FleetServer {
   FleetServer(ServerOptions options, Logger log);
   ~FleetServer();
 
-  /// Runs until `stop` becomes true.
-  void run(const std::atomic<bool>& stop);
+  /// Runs until `stop` becomes true, or until it hears another active server that outranks it
+  /// (orders::outranks): then it steps down and the process goes on as a standby.
+  RunEnd run(const std::atomic<bool>& stop);
 
   /// Connects the web view: the loop then publishes snapshots to it and carries out its
   /// requests. Call before run(); the bridge must outlive the server.
   void attach_web(WebBridge* bridge) { bridge_ = bridge; }
+
+ private:
+  /// Whether another active server outranks this one (orders::outranks), listened for a while
+  /// when the loop stood still `since_last_loop_s` beyond its liveliness lease.
+  bool stepped_aside(const std::atomic<bool>& stop, double since_last_loop_s);
 
  private:
   void publish_site_state();
@@ -212,6 +225,8 @@ class FleetServer {
   WebBridge* bridge_ = nullptr;
   std::map<std::string, model::SimTruth> truths_;
 
+  /// The term it serves in: one above every term it held or heard; its writers' ownership strength.
+  orders::ServerTerm term_;
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;
   dds::Writer<model::RequestReply> reply_writer_;
@@ -233,6 +248,7 @@ class FleetServer {
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::WaitSet waitset_;
   ServerLoadMeter load_meter_;
+  ServerPeers peers_;
   std::unique_ptr<TrafficService> traffic_;  ///< null when traffic.enabled is false
   double next_traffic_sim_ = 0.0;
   double last_traffic_wall_ = 0.0;

@@ -1,9 +1,13 @@
 // fleet-server: orders, dispatch, fleet registry, site state and pose routing over DDS.
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "app/process.hpp"
 #include "common/errors.hpp"
@@ -35,7 +39,8 @@ options:
   --db FILE            SQLite database of orders (default: server.db_path, fleet.db in the state folder)
   --auto-orders        create random orders whenever a robot is free
   --standby            start as a standby beside an active server: mirror its orders and site state
-                       into this server's --db, take over when it is gone (server.standby)
+                       into this server's --db, take over when it is gone (server.standby); an
+                       active server that hears another outrank it steps down to be its standby
   --http-port N        port of the web view and JSON API (default: server.http_port, 8080; 0: off)
   --http-host ADDR     address the web view binds (default: server.http_host, 127.0.0.1)
   --api-token TOKEN    the operator's token: every call of the web API (default: env
@@ -51,6 +56,14 @@ options:
 Logs go to stderr, one line per event; the web view's address with its token is one of them.
 SIGINT or SIGTERM stops it cleanly.
 )";
+
+/// This process's name among the fleet's servers: server.id, else the host name and process id.
+std::string server_id_of(const config::FleetConfig& config) {
+  if (std::string id = config.settings.get_string("server.id"); !id.empty()) return id;
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "host");
+  return std::string(host) + "-" + std::to_string(getpid());
+}
 
 /// Where a web view token comes from: its flag, then the environment, then the configuration
 /// file, else a fresh one.
@@ -156,23 +169,35 @@ int main(int argc, char** argv) {
     options.maps = map::site_revisions(options.site);
     auto log = make_logger("fleet-server", "", level);
     for (const std::string& warning : site_map->network.warnings) log->warn("road network: {}", warning);
-    if (options.config.settings.get_bool("server.standby")) {
-      // The mirror closes its database and leaves DDS before the server opens and joins them.
-      const bool active_gone =
-          server::StandbyMirror(options.domain, options.db_path, log)
-              .run_until_active_lost(stop, options.config.settings.get_double("server.standby_silence_s"));
-      if (!active_gone) return 0;
+    options.server_id = server_id_of(options.config);
+    // A standby mirrors until the active server is gone, then serves; an active server that hears
+    // another outrank it steps down and goes on as that one's standby.
+    bool standby = options.config.settings.get_bool("server.standby");
+    // A mirror that saw its active server die leaves DDS in the background: its writer lingers
+    // for acknowledgements the dead server never sends (Cyclone's writer linger, 1 s), which
+    // would hold up the takeover as long. Joined at the next takeover or at the end.
+    std::jthread retiring;
+    for (;;) {
+      if (standby) {
+        auto mirror = std::make_unique<server::StandbyMirror>(options.domain, options.db_path, options.server_id, log);
+        if (!mirror->run_until_active_lost(stop, options.config.settings.get_double("server.standby_silence_s"))) {
+          return 0;
+        }
+        options.heard_term = mirror->heard_term();
+        options.took_over = true;
+        retiring = std::jthread([retired = std::move(mirror)]() mutable { retired.reset(); });
+      }
+      server::WebBridge bridge;
+      // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
+      const config::FleetConfig web_config = options.config;
+      auto web = start_web_view(options, web_config, operator_source, viewer_source, bridge, log);
+      server::FleetServer fleet_server(options, log);
+      if (web) fleet_server.attach_web(&bridge);
+      const server::RunEnd end = fleet_server.run(stop);
+      if (web) web->stop();
+      if (end == server::RunEnd::kStopped) return 0;
+      standby = true;
     }
-
-    server::WebBridge bridge;
-    // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
-    const config::FleetConfig web_config = options.config;
-    auto web = start_web_view(options, web_config, operator_source, viewer_source, bridge, log);
-    server::FleetServer fleet_server(std::move(options), log);
-    if (web) fleet_server.attach_web(&bridge);
-    fleet_server.run(stop);
-    if (web) web->stop();
-    return 0;
   } catch (...) {
     return app::exit_code_of_current_exception("fleet-server", std::cerr, true);
   }

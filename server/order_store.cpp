@@ -72,6 +72,8 @@ constexpr const char* kMigrations[] = {
     "'held_unnamed', json_array(), 'parked_at', json_object(), 'obstacles', json_object()) "
     "FROM pallets HAVING COUNT(*) > 0;"
     "DROP TABLE pallets;",
+    // 5: the last term the server served in as active (orders::ServerTerm).
+    "CREATE TABLE server_term (id INTEGER PRIMARY KEY CHECK (id = 1), term INTEGER NOT NULL);",
 };
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -293,6 +295,19 @@ std::optional<std::string> OrderStore::load_site_state() const {
   if (sqlite3_step(stmt) == SQLITE_ROW) out = text_column(stmt, 0);
   sqlite3_finalize(stmt);
   return out;
+}
+
+void OrderStore::save_term(std::int64_t term) {
+  exec(("INSERT OR REPLACE INTO server_term (id, term) VALUES (1, " + std::to_string(term) + ")").c_str());
+}
+
+std::int64_t OrderStore::term() const {
+  std::int64_t term = 0;
+  sqlite3_stmt* stmt = nullptr;
+  sqlite3_prepare_v2(db_, "SELECT term FROM server_term WHERE id = 1", -1, &stmt, nullptr);
+  if (sqlite3_step(stmt) == SQLITE_ROW) term = sqlite3_column_int64(stmt, 0);
+  sqlite3_finalize(stmt);
+  return term;
 }
 
 void OrderStore::save_robot_poses(const std::map<std::string, geometry::Pose2>& poses) {

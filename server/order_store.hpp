@@ -47,6 +47,10 @@ class OrderStore {
   void save_site_state(const std::string& json);
   std::optional<std::string> load_site_state() const;
 
+  /// The last term this database's server served in as active (orders::ServerTerm); 0 before any.
+  void save_term(std::int64_t term);
+  std::int64_t term() const;
+
   /// Where robots were last heard standing, so that a restarted server holds the bodies of the
   /// robots it has not heard from yet. One transaction for all.
   void save_robot_poses(const std::map<std::string, geometry::Pose2>& poses);

@@ -14,7 +14,8 @@ double seconds(ServerLoadMeter::Clock::duration d) {
 
 }  // namespace
 
-ServerLoadMeter::ServerLoadMeter(dds::Participant& participant) : writer_(participant, dds::qos::live_state()) {}
+ServerLoadMeter::ServerLoadMeter(dds::Participant& participant, orders::ServerTerm term)
+    : writer_(participant, dds::qos::live_state()), term_(std::move(term)) {}
 
 void ServerLoadMeter::traffic_updated(Clock::duration spent) {
   traffic_cycle_.add(seconds(requests_since_cycle_ + spent));
@@ -32,9 +33,25 @@ void ServerLoadMeter::publish_when_due(double now_wall, double now_sim, int robo
   const auto traffic = traffic_cycle_.figures();
   const auto update = traffic_update_.figures();
   const auto dispatch = dispatch_.figures();
-  writer_.write({"fleet-server", now_sim, robots, traffic.count, traffic.p50_s * 1e3, traffic.p99_s * 1e3,
-                 traffic.max_s * 1e3, update.p50_s * 1e3, update.p99_s * 1e3, update.max_s * 1e3, dispatch.count,
-                 dispatch.p50_s * 1e3, dispatch.p99_s * 1e3, dispatch.max_s * 1e3});
+  writer_.write({.server_id = term_.server_id,
+                 .sim_time = now_sim,
+                 .robots = robots,
+                 .traffic_cycles = traffic.count,
+                 .traffic_cycle_p50_ms = traffic.p50_s * 1e3,
+                 .traffic_cycle_p99_ms = traffic.p99_s * 1e3,
+                 .traffic_cycle_max_ms = traffic.max_s * 1e3,
+                 .traffic_update_p50_ms = update.p50_s * 1e3,
+                 .traffic_update_p99_ms = update.p99_s * 1e3,
+                 .traffic_update_max_ms = update.max_s * 1e3,
+                 .dispatches = dispatch.count,
+                 .dispatch_p50_ms = dispatch.p50_s * 1e3,
+                 .dispatch_p99_ms = dispatch.p99_s * 1e3,
+                 .dispatch_max_ms = dispatch.max_s * 1e3,
+                 .term = term_.term,
+                 .active = true,
+                 .took_over = term_.took_over,
+                 .since_unix_ms = term_.since_unix_ms,
+                 .active_heard_s_ago = 0.0});
 }
 
 std::string LoopStages::describe() const {

@@ -7,6 +7,7 @@
 
 #include "common/latency_histogram.hpp"
 #include "dds/topics.hpp"
+#include "orders/server_term.hpp"
 
 namespace fleet::server {
 
@@ -15,7 +16,8 @@ namespace fleet::server {
 /// robots to match, as histograms since the start, published as ServerLoad once a second (wall).
 class ServerLoadMeter {
  public:
-  explicit ServerLoadMeter(dds::Participant& participant);
+  /// Published under `term`'s server id, as the active server of that term.
+  ServerLoadMeter(dds::Participant& participant, orders::ServerTerm term);
 
   using Clock = std::chrono::steady_clock;
   /// Time spent taking traffic requests, counted into the next cycle.
@@ -27,6 +29,7 @@ class ServerLoadMeter {
 
  private:
   dds::Writer<model::ServerLoad> writer_;
+  orders::ServerTerm term_;
   LatencyHistogram traffic_cycle_;
   LatencyHistogram traffic_update_;
   LatencyHistogram dispatch_;

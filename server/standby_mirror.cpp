@@ -1,5 +1,6 @@
 #include "server/standby_mirror.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -10,22 +11,26 @@
 
 namespace fleet::server {
 
-StandbyMirror::StandbyMirror(std::uint32_t domain, const std::string& db_path, Logger log)
+StandbyMirror::StandbyMirror(std::uint32_t domain, const std::string& db_path, std::string server_id, Logger log)
     : log_(std::move(log)),
       store_(db_path),
       participant_(domain),
       order_info_reader_(participant_, dds::qos::latched_state()),
       site_state_reader_(participant_, dds::qos::latched_state()),
-      load_reader_(participant_, dds::qos::live_state()) {
-  last_heard_wall_ = SimClock::wall_now();
-  log_->info("standby: mirroring the active server into {}", store_.path());
+      load_reader_(participant_, dds::qos::live_state()),
+      load_writer_(participant_, dds::qos::live_state()),
+      server_id_(std::move(server_id)) {
+  started_wall_ = last_heard_wall_ = SimClock::wall_now();
+  log_->info("standby {}: mirroring the active server into {}", server_id_, store_.path());
 }
 
 bool StandbyMirror::run_until_active_lost(const std::atomic<bool>& stop, double silence_s) {
   while (!stop) {
     mirror_orders();
     mirror_site_state();
-    if (active_gone(SimClock::wall_now(), silence_s)) return true;
+    const double now_wall = SimClock::wall_now();
+    if (active_gone(now_wall, silence_s)) return true;
+    publish_standing(now_wall);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
@@ -46,14 +51,31 @@ void StandbyMirror::mirror_site_state() {
   site_state_reader_.take_data([&](model::SiteStateDocument&& document) { store_.save_site_state(document.json); });
 }
 
+void StandbyMirror::publish_standing(double now_wall) {
+  if (now_wall - last_published_wall_ < 1.0) return;
+  last_published_wall_ = now_wall;
+  model::ServerLoad standing;
+  standing.server_id = server_id_;
+  standing.term = heard_term_;
+  standing.active = false;
+  standing.since_unix_ms = static_cast<std::int64_t>(started_wall_ * 1000.0);
+  standing.active_heard_s_ago = now_wall - last_heard_wall_;
+  load_writer_.write(standing);
+}
+
 bool StandbyMirror::active_gone(double now_wall, double silence_s) {
-  load_reader_.take([&](model::ServerLoad&&, const dds::SampleInfo& info) {
-    if (info.valid_data) {
-      if (!heard_) log_->info("standby: the active server is heard");
+  // Other standbys write ServerLoad too: only the active server's counts, and only its writer lost.
+  load_reader_.take([&](model::ServerLoad&& load, const dds::SampleInfo& info) {
+    if (info.valid_data && load.active && load.server_id != server_id_) {
+      if (!heard_ || load.server_id != active_id_) {
+        log_->info("standby: the active server {} is heard, in term {}", load.server_id, load.term);
+      }
       heard_ = true;
+      active_id_ = load.server_id;
+      heard_term_ = std::max(heard_term_, load.term);
       writer_lost_ = false;
       last_heard_wall_ = now_wall;
-    } else if (!info.alive) {
+    } else if (!info.valid_data && !info.alive && heard_ && load.server_id == active_id_) {
       writer_lost_ = true;
     }
   });

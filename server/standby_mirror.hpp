@@ -13,12 +13,13 @@ namespace fleet::server {
 /// A standby server before it takes over. It mirrors what the active server publishes into its own
 /// database: every order with its history (OrderInfo, rebuilt by orders::order_of) and the site's
 /// state (SiteState). It watches the active through its ServerLoad writer, whose liveliness lease
-/// is 1 s (dds::qos::live_state). The takeover is a server started on that database: the path a
-/// restarted server takes.
+/// is 1 s (dds::qos::live_state), and publishes a ServerLoad of its own (not active, the term it
+/// heard, how long ago it heard the active) for `fleetctl servers`. The takeover is a server
+/// started on that database, in the term above the one heard: the path a restarted server takes.
 class StandbyMirror {
  public:
   /// Opens (or creates) the standby's own database at `db_path` and joins DDS domain `domain`.
-  StandbyMirror(std::uint32_t domain, const std::string& db_path, Logger log);
+  StandbyMirror(std::uint32_t domain, const std::string& db_path, std::string server_id, Logger log);
 
   /// Mirrors until the active server is gone or `stop` becomes true; true when it is gone. Gone:
   /// its ServerLoad writer lost its liveliness, or no ServerLoad came for `silence_s` wall seconds,
@@ -26,10 +27,14 @@ class StandbyMirror {
   bool run_until_active_lost(const std::atomic<bool>& stop, double silence_s);
 
   long orders_mirrored() const { return orders_mirrored_; }
+  /// The highest term heard an active server serve in (0 when none was heard).
+  std::int64_t heard_term() const { return heard_term_; }
 
  private:
   void mirror_orders();
   void mirror_site_state();
+  /// Its own ServerLoad, once a second (wall).
+  void publish_standing(double now_wall);
   /// True once the active server is gone (see run_until_active_lost).
   bool active_gone(double now_wall, double silence_s);
 
@@ -39,6 +44,12 @@ class StandbyMirror {
   dds::Reader<model::OrderInfo> order_info_reader_;
   dds::Reader<model::SiteStateDocument> site_state_reader_;
   dds::Reader<model::ServerLoad> load_reader_;
+  dds::Writer<model::ServerLoad> load_writer_;
+  std::string server_id_;
+  std::string active_id_;  ///< the active server heard last
+  std::int64_t heard_term_ = 0;
+  double started_wall_ = 0.0;
+  double last_published_wall_ = 0.0;
   double last_heard_wall_ = 0.0;
   bool heard_ = false;
   bool writer_lost_ = false;

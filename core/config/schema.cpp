@@ -68,6 +68,9 @@ std::vector<KeySpec> make_schema() {
       flag("server.standby", false,
            "start as a standby (fleet-server --standby): mirror the active server's orders and site state into "
            "server.db_path and take over when it is gone"),
+      text("server.id", "",
+           "this server process's name among the fleet's servers (fleetctl servers; of two active servers in one "
+           "term, the greater id stays active); empty: the host name and the process id"),
       number("server.standby_silence_s", 3.0, "s", 1.5, 60.0,
              "wall seconds without the active server's ServerLoad (once a second) after which a standby takes over; "
              "a dead server's liveliness lapses sooner, after 1 s"),

@@ -291,6 +291,11 @@ struct ServerLoad {
   double dispatch_p50_ms = 0.0;
   double dispatch_p99_ms = 0.0;
   double dispatch_max_ms = 0.0;
+  std::int64_t term = 0;  ///< the term it serves in (active) or last heard served (standby)
+  bool active = false;
+  bool took_over = false;           ///< active: it became active by taking over from another server
+  std::int64_t since_unix_ms = 0;   ///< active: since it took its term; standby: since it began to mirror
+  double active_heard_s_ago = 0.0;  ///< standby: wall seconds since it last heard the active server
 };
 
 /// The site's state as the server stores it (orders::to_json of orders::SiteState).

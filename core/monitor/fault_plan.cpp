@@ -10,15 +10,25 @@ namespace fleet::monitor {
 namespace {
 constexpr FaultKind kAll[] = {FaultKind::kKillAgent, FaultKind::kStallAgent, FaultKind::kKillServer,
                               FaultKind::kObstacles, FaultKind::kMapSwitch};
-}
+/// Every kind a list may name: "all" and kill-host, which needs a standby server.
+constexpr FaultKind kNamed[] = {FaultKind::kKillAgent, FaultKind::kStallAgent, FaultKind::kKillServer,
+                                FaultKind::kObstacles, FaultKind::kMapSwitch,  FaultKind::kKillHost};
+}  // namespace
 
 const char* to_string(FaultKind kind) {
   switch (kind) {
-    case FaultKind::kKillAgent: return "kill-agent";
-    case FaultKind::kStallAgent: return "stall-agent";
-    case FaultKind::kKillServer: return "kill-server";
-    case FaultKind::kObstacles: return "obstacles";
-    case FaultKind::kMapSwitch: return "map-switch";
+    case FaultKind::kKillAgent:
+      return "kill-agent";
+    case FaultKind::kStallAgent:
+      return "stall-agent";
+    case FaultKind::kKillServer:
+      return "kill-server";
+    case FaultKind::kObstacles:
+      return "obstacles";
+    case FaultKind::kMapSwitch:
+      return "map-switch";
+    case FaultKind::kKillHost:
+      return "kill-host";
   }
   return "?";
 }
@@ -31,10 +41,12 @@ std::vector<FaultKind> parse_fault_list(const std::string& list) {
   while (start <= list.size()) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
     const std::string name = list.substr(start, comma - start);
-    const auto* found = std::find_if(std::begin(kAll), std::end(kAll), [&](FaultKind k) { return name == to_string(k); });
-    if (found == std::end(kAll)) {
+    const auto* found =
+        std::find_if(std::begin(kNamed), std::end(kNamed), [&](FaultKind k) { return name == to_string(k); });
+    if (found == std::end(kNamed)) {
       throw InputError("--faults: unknown fault '" + name +
-                       "'; choose all, none or a list of kill-agent, stall-agent, kill-server, obstacles, map-switch");
+                       "'; choose all, none or a list of kill-agent, stall-agent, kill-server, obstacles, map-switch, "
+                       "kill-host");
     }
     if (std::find(out.begin(), out.end(), *found) == out.end()) out.push_back(*found);
     start = comma + 1;
@@ -73,7 +85,7 @@ std::vector<RobotLoss> unexplained_losses(const std::vector<RobotLoss>& losses,
   for (const RobotLoss& loss : losses) {
     const bool explained = std::any_of(faults.begin(), faults.end(), [&](const InjectedFault& f) {
       const bool hits =
-          f.kind == FaultKind::kKillServer ||
+          f.kind == FaultKind::kKillServer || f.kind == FaultKind::kKillHost ||
           ((f.kind == FaultKind::kKillAgent || f.kind == FaultKind::kStallAgent) && f.robot_id == loss.robot_id);
       return hits && loss.at_wall >= f.at_wall && loss.at_wall - f.at_wall <= window_wall;
     });

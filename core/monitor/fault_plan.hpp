@@ -7,12 +7,13 @@
 namespace fleet::monitor {
 
 /// The faults a soak run can inject.
-enum class FaultKind { kKillAgent, kStallAgent, kKillServer, kObstacles, kMapSwitch };
+/// kKillHost kills the active one of two servers (a soak with a standby), as its host dying would.
+enum class FaultKind { kKillAgent, kStallAgent, kKillServer, kObstacles, kMapSwitch, kKillHost };
 
 const char* to_string(FaultKind kind);
-/// The kinds named by a `--faults` list: "none", "all", or comma-separated names
-/// (kill-agent, stall-agent, kill-server, obstacles, map-switch). InputError naming the
-/// unknown one otherwise.
+/// The kinds named by a `--faults` list: "none", "all" (every kind but kill-host), or
+/// comma-separated names (kill-agent, stall-agent, kill-server, obstacles, map-switch, kill-host).
+/// InputError naming the unknown one otherwise.
 std::vector<FaultKind> parse_fault_list(const std::string& list);
 
 struct ScheduledFault {

@@ -102,7 +102,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
     sqlite3_close(db);
   }
   server::OrderStore store(path);
-  EXPECT_EQ(store.schema_version(), 4);
+  EXPECT_EQ(store.schema_version(), 5);
   const auto loaded = store.load_all();
   ASSERT_EQ(loaded.size(), 3u);
   for (const auto& o : loaded) EXPECT_EQ(o.kind, orders::OrderKind::kTransport) << o.id;
@@ -130,7 +130,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
   full.caused_by = {5};
   store.save(full);
   server::OrderStore reopened(path);
-  EXPECT_EQ(reopened.schema_version(), 4);
+  EXPECT_EQ(reopened.schema_version(), 5);
   const auto again = reopened.load_all();
   ASSERT_EQ(again.size(), 6u);
   EXPECT_EQ(again[5].cause, "the pallet at PS1 is full: 2 boxes from order 5");
@@ -153,6 +153,18 @@ TEST(OrderStore, TheSiteStateIsStoredWholeAndReplaced) {
   EXPECT_EQ(reopened.load_site_state().value_or(""), R"({"second":2})");
 }
 
+TEST(OrderStore, TheServersTermSurvivesReopeningAndStartsAtNone) {
+  const std::string path = fresh_db("term");
+  {
+    server::OrderStore store(path);
+    EXPECT_EQ(store.term(), 0) << "a fresh database has served no term";
+    store.save_term(3);
+    store.save_term(4);
+  }
+  server::OrderStore reopened(path);
+  EXPECT_EQ(reopened.term(), 4);
+}
+
 TEST(OrderStore, PalletsOfADatabaseBeforeTheSiteStateMoveIntoIt) {
   const std::string path = fresh_db("schema3-pallets");
   {
@@ -161,6 +173,7 @@ TEST(OrderStore, PalletsOfADatabaseBeforeTheSiteStateMoveIntoIt) {
     ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
     const char* back = R"(
 DROP TABLE site_state;
+DROP TABLE server_term;
 CREATE TABLE pallets (id INTEGER PRIMARY KEY, x REAL NOT NULL, y REAL NOT NULL, yaw REAL NOT NULL,
   area_id TEXT NOT NULL, carried_by TEXT NOT NULL);
 INSERT INTO pallets VALUES (1, 1.5, 2.0, 0.25, 'A1', '');
@@ -171,7 +184,7 @@ PRAGMA user_version=3;
     sqlite3_close(db);
   }
   server::OrderStore store(path);
-  EXPECT_EQ(store.schema_version(), 4);
+  EXPECT_EQ(store.schema_version(), 5);
   const auto json = store.load_site_state();
   ASSERT_TRUE(json.has_value());
   const orders::SiteNames names{"site", {{"A1", {1.5, 2.0, 0.0}}, {"A2", {3, 0, 0}}}, {"fk2"}, {}};

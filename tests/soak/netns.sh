@@ -9,12 +9,16 @@
 # nothing touches the host's own interfaces or routes. The namespaces go when the script ends.
 #
 # usage (root): tests/soak/netns.sh [--duration S] [--loss P] [--agents N] [--site S] [--time-scale X]
-#                                   [--security DIR] [--json FILE] [--verbose]
+#                                   [--security DIR] [--standby] [--faults LIST] [--json FILE] [--verbose]
 # Up to 4 agents run on table_a at time scale 10; more run on mid_warehouse at time scale 1, where
 # every agent has a home and the machine keeps up with them.
 # --verbose: debug logs of every process in the run directory (the soak's --verbose).
 # --security DIR: every process joins with DDS Security, its credentials from DIR (fleetctl
 # security init; docs/security.md), across the namespaces' links.
+# --standby: a standby server in a namespace of its own (a second server host); with
+# --faults kill-host the active server is killed as its host dying would be, and comes back 5 s
+# later as the other's standby.
+# --faults LIST: the soak's faults (default kill-agent,stall-agent,kill-server,obstacles).
 set -euo pipefail
 
 duration=120
@@ -25,6 +29,8 @@ time_scale=""
 json_out=""
 verbose=()
 security=()
+standby=0
+faults="kill-agent,stall-agent,kill-server,obstacles"
 while [ $# -gt 0 ]; do
   case "$1" in
     --duration) duration="$2"; shift 2 ;;
@@ -35,6 +41,8 @@ while [ $# -gt 0 ]; do
     --json) json_out="$2"; shift 2 ;;
     --verbose) verbose=(--verbose); shift ;;
     --security) security=(--security "$2"); shift 2 ;;
+    --standby) standby=1; shift ;;
+    --faults) faults="$2"; shift 2 ;;
     *) echo "netns.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -59,6 +67,11 @@ tag="fleet$$"   # unique per run, so two runs never share namespaces
 hub="${tag}-hub"
 hosts=("${tag}-srv")
 for i in $(seq 1 "$agents"); do hosts+=("${tag}-a$i"); done
+standby_args=()
+if [ "$standby" = 1 ]; then
+  hosts+=("${tag}-srv2")
+  standby_args=(--standby --standby-wrap "ip netns exec ${tag}-srv2")
+fi
 
 cleanup() {
   for ns in "${hosts[@]}" "$hub"; do ip netns del "$ns" 2> /dev/null || true; done
@@ -83,7 +96,7 @@ for ns in "${hosts[@]}"; do
   ip -n "$ns" link set eth0 up
   # Multicast (Cyclone's discovery) goes out eth0.
   ip -n "$ns" route add 224.0.0.0/4 dev eth0
-  if [ "$ns" != "${hosts[0]}" ]; then
+  if [ "$ns" != "${hosts[0]}" ] && [ "$ns" != "${tag}-srv2" ]; then
     # Random loss both ways on every agent's link, and a 2 Mbit/s cap on what it sends.
     ip netns exec "$ns" iptables -A INPUT -i eth0 -m statistic --mode random --probability "$loss" -j DROP
     ip netns exec "$ns" iptables -A OUTPUT -o eth0 -m statistic --mode random --probability "$loss" -j DROP
@@ -98,11 +111,12 @@ for ns in "${hosts[@]}"; do
 done
 
 export CYCLONEDDS_URI="file://$root/config/cyclonedds-compose.xml"
-echo "netns.sh: server in ${hosts[0]}, $agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
+echo "netns.sh: server in ${hosts[0]}$([ "$standby" = 1 ] && echo ", standby in ${tag}-srv2")," \
+  "$agents agents in ${tag}-a1..a$agents; ${loss} loss each way, 2 Mbit/s," \
   "poses 20 +- 10 ms late; soak on $site at time scale $time_scale for $duration s" >&2
 set +e
 ip netns exec "${hosts[0]}" "$bin/fleetctl" --domain 7 "${security[@]}" soak --agents "$agents" --site "$site" --duration "$duration" \
-  --time-scale "$time_scale" --seed 7 --faults kill-agent,stall-agent,kill-server,obstacles \
+  --time-scale "$time_scale" --seed 7 --faults "$faults" "${standby_args[@]}" \
   --set faults.pose_delay_ms=20 --set faults.pose_delay_jitter_ms=10 \
   --agent-wrap "ip netns exec ${tag}-a{n}" "${verbose[@]}" --json > "${json_out:-/dev/stdout}"
 status=$?

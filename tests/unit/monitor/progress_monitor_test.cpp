@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 namespace fleet::monitor {
@@ -116,6 +117,9 @@ namespace {
 TEST(FaultPlan, ParsesListsAndNamesAnUnknownFault) {
   EXPECT_TRUE(parse_fault_list("none").empty());
   EXPECT_EQ(parse_fault_list("all").size(), 5u);
+  const auto all = parse_fault_list("all");
+  EXPECT_EQ(std::count(all.begin(), all.end(), FaultKind::kKillHost), 0) << "kill-host needs a standby: named only";
+  EXPECT_EQ(parse_fault_list("kill-host"), std::vector<FaultKind>{FaultKind::kKillHost});
   const auto two = parse_fault_list("kill-agent,obstacles,kill-agent");
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[0], FaultKind::kKillAgent);
