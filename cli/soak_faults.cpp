@@ -46,10 +46,14 @@ void SoakFaults::robot_lost(const std::string& robot, double now_wall) {
 
 void SoakFaults::follow_recovery(const std::map<std::string, bool>& lost, double now_wall) {
   for (auto& f : faults_) {
-    if (f.kind == monitor::FaultKind::kKillHost && !f.detected) {
-      // Failed over once grants come from a DDS writer not heard before the kill: the new server's.
-      if (const auto flowing = run_.grants_from_a_new_writer_since(f.at_wall))
-        f.detected = f.recovered = *flowing - f.at_wall;
+    const bool server_fault = f.kind == monitor::FaultKind::kKillHost || f.kind == monitor::FaultKind::kKillServer;
+    if (server_fault && !f.detected) {
+      // Served again once grants come from a DDS writer not heard before the kill: the server that
+      // took over, or the one restarted.
+      if (const auto flowing = run_.grants_from_a_new_writer_since(f.at_wall)) {
+        f.detected = *flowing - f.at_wall;
+        if (f.kind == monitor::FaultKind::kKillHost) f.recovered = f.detected;
+      }
     }
     if (f.recovered || f.order == 0) continue;
     auto it = run_.orders().find(f.order);

@@ -26,8 +26,8 @@ struct FaultRecord {
   double at_wall = 0.0;
   double at_sim = 0.0;
   std::int64_t order = 0;  ///< the robot's open order when it happened (agent faults)
-  /// Agent faults: the server marked the robot lost. kill-host: grants came from the server that
-  /// took over (the failover).
+  /// Agent faults: the server marked the robot lost. kill-host and kill-server: grants came from
+  /// the server that took over or was restarted.
   std::optional<double> detected;
   std::optional<double> recovered;  ///< its order re-queued, failed with a reason, or ended
 

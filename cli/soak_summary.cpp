@@ -24,10 +24,11 @@ long orders_done_twice(const FleetRun& run, const std::map<std::int64_t, std::se
   return duplicated;
 }
 
-/// The faults as JSON, with the p95 of detection and recovery, the faults never detected, and
-/// the failovers of kill-host (from the kill to grants from the server that took over).
+/// The faults as JSON, with the p95 of detection and recovery, the faults never detected, the
+/// failovers of kill-host (from the kill to grants from the server that took over) and the
+/// restarts of kill-server (to grants from the server restarted).
 nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
-  std::vector<double> detect, recover, failover;
+  std::vector<double> detect, recover, failover, restart;
   long undetected = 0;
   nlohmann::json list = nlohmann::json::array();
   for (const auto& f : faults) {
@@ -38,6 +39,7 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
         ++undetected;
       }
     }
+    if (f.kind == monitor::FaultKind::kKillServer && f.detected) restart.push_back(*f.detected);
     if (f.recovered) recover.push_back(*f.recovered);
     nlohmann::json j{{"kind", to_string(f.kind)}, {"target", f.target}, {"at_sim_s", round_to(f.at_sim, 0.1)}};
     if (f.order) j["order"] = f.order;
@@ -52,6 +54,9 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
           {"failovers", failover.size()},
           {"failover_median_s", round_to(common::percentile(failover, 0.5), 0.001)},
           {"failover_p95_s", round_to(common::percentile(failover, 0.95), 0.001)},
+          {"restarts", restart.size()},
+          {"restart_median_s", round_to(common::percentile(restart, 0.5), 0.001)},
+          {"restart_p95_s", round_to(common::percentile(restart, 0.95), 0.001)},
           {"faults", list}};
 }
 
@@ -218,7 +223,8 @@ void print_soak_summary(std::ostream& out, const FleetRun& run, const nlohmann::
       << "  collisions: " << s["collisions"] << ", deadlocks: " << s["deadlocks"] << "\n"
       << "  faults: " << s["faults_injected"] << " injected, detection p95 " << s["detect_latency_p95_s"]
       << " s, recovery p95 " << s["recovery_p95_s"] << " s; failovers " << s["failovers"] << ", median "
-      << s["failover_median_s"] << " s, p95 " << s["failover_p95_s"]
+      << s["failover_median_s"] << " s, p95 " << s["failover_p95_s"] << " s; restarts " << s["restarts"] << ", median "
+      << s["restart_median_s"] << " s, p95 " << s["restart_p95_s"]
       << " s; robots lost with no fault: " << s["robots_lost_without_a_fault"].size() << "\n"
       << "  memory growth (second half): " << s["rss_growth_pct"].dump() << " % over "
       << s["rss_measured_processes"].dump() << " processes, CPU: " << s["cpu_pct"].dump() << " % of a core\n"
