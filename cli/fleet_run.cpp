@@ -118,16 +118,29 @@ void FleetRun::throw_if_a_process_ended() {
   }
 }
 
+std::vector<std::string> FleetRun::server_command(const std::vector<std::string>& common, const std::string& db,
+                                                  int http_port) const {
+  std::vector<std::string> argv{binary("fleet-server")};
+  argv.insert(argv.end(), common.begin(), common.end());
+  if (options_.auto_orders) argv.push_back("--auto-orders");
+  argv.insert(argv.end(), {"--db", db, "--http-port", std::to_string(http_port)});
+  if (!options_.api_token.empty()) argv.insert(argv.end(), {"--api-token", options_.api_token});
+  // With a security folder the web view is served over HTTPS with the folder's web certificate.
+  if (!dds::security_folder().empty() && http_port > 0) {
+    const security::FolderLayout folder(dds::security_folder());
+    argv.insert(argv.end(), {"--http-tls-cert", folder.web_certificate(), "--http-tls-key", folder.web_key()});
+  }
+  argv.insert(argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
+  return argv;
+}
+
 void FleetRun::start_standby(const std::vector<std::string>& common) {
   std::vector<std::string> argv;
   std::istringstream words(options_.standby_wrap);
   for (std::string w; words >> w;) argv.push_back(w);
-  argv.push_back(binary("fleet-server"));
-  argv.insert(argv.end(), common.begin(), common.end());
-  if (options_.auto_orders) argv.push_back("--auto-orders");
-  argv.insert(argv.end(), {"--standby", "--db", run_dir_ + "/standby.db", "--http-port", "0"});
-  argv.insert(argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
-  argv.insert(argv.end(), {"--set", "server.id=server-2"});
+  const std::vector<std::string> server = server_command(common, run_dir_ + "/standby.db", 0);
+  argv.insert(argv.end(), server.begin(), server.end());
+  argv.insert(argv.end(), {"--standby", "--set", "server.id=server-2"});
   servers_["server-2"] = processes_.start("fleet-server-2", argv, run_dir_ + "/fleet-server-2.log");
 }
 
@@ -157,19 +170,7 @@ void FleetRun::start() {
                                   "--seed",       std::to_string(options_.seed)};
   // Each process presents its own credentials from the folder fleetctl presents the operator's.
   if (!dds::security_folder().empty()) common.insert(common.end(), {"--security", dds::security_folder()});
-  std::vector<std::string> server_argv{binary("fleet-server")};
-  server_argv.insert(server_argv.end(), common.begin(), common.end());
-  if (options_.auto_orders) server_argv.push_back("--auto-orders");
-  server_argv.insert(server_argv.end(),
-                     {"--db", run_dir_ + "/fleet.db", "--http-port", std::to_string(options_.http_port)});
-  if (!options_.api_token.empty()) server_argv.insert(server_argv.end(), {"--api-token", options_.api_token});
-  // With a security folder the web view is served over HTTPS with the folder's web certificate.
-  if (!dds::security_folder().empty() && options_.http_port > 0) {
-    const security::FolderLayout folder(dds::security_folder());
-    server_argv.insert(server_argv.end(),
-                       {"--http-tls-cert", folder.web_certificate(), "--http-tls-key", folder.web_key()});
-  }
-  server_argv.insert(server_argv.end(), options_.extra_server_args.begin(), options_.extra_server_args.end());
+  std::vector<std::string> server_argv = server_command(common, run_dir_ + "/fleet.db", options_.http_port);
   if (options_.standby) server_argv.insert(server_argv.end(), {"--set", "server.id=server-1"});
   processes_.start("fleet-server", server_argv, run_dir_ + "/fleet-server.log");
   if (options_.standby) servers_["server-1"] = kServerIndex;

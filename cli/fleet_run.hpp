@@ -132,6 +132,10 @@ class FleetRun {
   static constexpr std::chrono::seconds kAgentStartWait{10};
   /// Throws when a started process has ended, with the end of its log.
   void throw_if_a_process_ended();
+  /// fleet-server's command line with the run's `common` arguments, on database `db`, its web
+  /// view on `http_port` (0: off).
+  std::vector<std::string> server_command(const std::vector<std::string>& common, const std::string& db,
+                                          int http_port) const;
   /// Starts fleet-server --standby (server-2) with the run's `common` arguments.
   void start_standby(const std::vector<std::string>& common);
   std::string binary(const std::string& name) const;

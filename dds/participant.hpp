@@ -44,7 +44,8 @@ std::vector<std::string> writer_partitions(dds_entity_t reader, dds_instance_han
 class Participant {
  public:
   explicit Participant(std::uint32_t domain);
-  /// A participant whose writers take ownership strength `ownership_strength` (set_ownership_strength).
+  /// A participant whose writers take ownership strength `ownership_strength` (of the server-owned
+  /// topics, qos::server_owned: a server's orders::strength).
   Participant(std::uint32_t domain, std::int32_t ownership_strength) : Participant(domain) {
     ownership_strength_ = ownership_strength;
   }
@@ -54,9 +55,7 @@ class Participant {
 
   dds_entity_t handle() const { return handle_; }
   std::uint32_t domain() const { return domain_; }
-  /// The ownership strength of the writers created after this call (qos::server_owned: a server
-  /// writes with its term); 0 by default.
-  void set_ownership_strength(std::int32_t strength) { ownership_strength_ = strength; }
+  /// The ownership strength of its writers; 0 by default.
   std::int32_t ownership_strength() const { return ownership_strength_; }
 
   /// The topic for T, created once per participant.

@@ -45,8 +45,8 @@ Qos requests();
 /// Whether the server alone writes the topic (its orders, grants, views, the site's state): such
 /// topics are created with exclusive ownership, so every reader and writer of them takes it from
 /// the topic, and a reader takes each instance from its strongest live writer. Servers write with
-/// their term as ownership strength (Participant::set_ownership_strength): of an active server and
-/// one that took over from it, the robots follow the one that took over.
+/// a strength from their term (orders::strength, given to their dds::Participant): of an active
+/// server and one that took over from it, the robots follow the one that took over.
 bool server_owned(std::string_view topic_name);
 
 /// The topic QoS of a server-owned topic: exclusive ownership.

@@ -83,8 +83,6 @@ class FleetServer {
   /// Whether another active server outranks this one (orders::outranks), listened for a while
   /// when the loop stood still `since_last_loop_s` beyond its liveliness lease.
   bool stepped_aside(const std::atomic<bool>& stop, double since_last_loop_s);
-
- private:
   void publish_site_state();
   /// Every robot's map assignment and the current map's obstacles (latched).
   void publish_map_and_obstacles();

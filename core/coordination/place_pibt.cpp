@@ -193,13 +193,7 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
       return;
     }
     if (check(robot, candidate.place, blockers) == Check::kTaken) continue;
-    // Ask every robot standing in the way to move out of it (or at least away from it).
-    pushing_[self] = 1;
-    const std::vector<int> in_the_way = blockers;
-    for (const int other : in_the_way) {
-      if (planned_[static_cast<std::size_t>(other)] < 0) plan_robot(other, robot, candidate.place);
-    }
-    pushing_[self] = 0;
+    push_out_of_the_way(robot, candidate.place, blockers);
     if (check(robot, candidate.place, blockers) == Check::kFree) {
       take(robot, candidate.place);
       return;
@@ -209,6 +203,17 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   // conflicting with where an unplanned or in-progress robot stands), so a pusher that cannot
   // get its place tries its next candidate and at worst stays too.
   take(robot, r.place);
+}
+
+void PlacePibt::push_out_of_the_way(int robot, int place, const std::vector<int>& standing) {
+  // Every robot standing in the way is asked to move out of it (or at least away from it), the
+  // pusher in progress meanwhile so that none of them plans into its place.
+  const auto self = static_cast<std::size_t>(robot);
+  pushing_[self] = 1;
+  for (const int other : standing) {
+    if (planned_[static_cast<std::size_t>(other)] < 0) plan_robot(other, robot, place);
+  }
+  pushing_[self] = 0;
 }
 
 int PlacePibt::best_move(int robot) const {
@@ -290,15 +295,7 @@ bool PlacePibt::back_off(int robot, int other) {
     // its priority, as a robot wanting their places would [Okumura 2022, Algorithm 1].
     move = first_move_off(robot, other, its_path, false);
     if (move < 0) return false;
-    const auto self = static_cast<std::size_t>(robot);
-    if (check(robot, move, blockers) == Check::kBlocked) {
-      pushing_[self] = 1;
-      const std::vector<int> in_the_way = blockers;
-      for (const int standing : in_the_way) {
-        if (planned_[static_cast<std::size_t>(standing)] < 0) plan_robot(standing, robot, move);
-      }
-      pushing_[self] = 0;
-    }
+    if (check(robot, move, blockers) == Check::kBlocked) push_out_of_the_way(robot, move, blockers);
   }
   if (check(robot, move, blockers) != Check::kFree) return false;
   take(robot, move);

@@ -127,6 +127,9 @@ class PlacePibt {
   /// through other's body nor (around_standing) through robots standing; -1 when none is near.
   int first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing);
   void take(int robot, int place);
+  /// Robot wants `place`: each of the unplanned robots `standing` in its way is pushed (planned
+  /// with robot as its pusher) [Okumura 2022, Algorithm 1].
+  void push_out_of_the_way(int robot, int place, const std::vector<int>& standing);
   /// Whether a robot of `type` at `place` is in the way of `pusher`, which wants place `wanted`
   /// (conflicting with it; -1: none) or, off the roads, to enter them there or to sweep its area
   /// (ClosedPlaces::by_area).

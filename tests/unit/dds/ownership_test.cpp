@@ -45,11 +45,9 @@ TEST(Ownership, ServerOwnedTopicsAreExclusiveForEveryReaderAndWriterOthersShared
 // the weaker one writes after it.
 TEST(Ownership, AReaderTakesAnInstanceFromTheStrongerServerOnly) {
   dds::use_fleet_dds_config();
-  dds::Participant weaker(kDomain);
-  dds::Participant stronger(kDomain);
+  dds::Participant weaker(kDomain, 1);
+  dds::Participant stronger(kDomain, 2);
   dds::Participant robot(kDomain);
-  weaker.set_ownership_strength(1);
-  stronger.set_ownership_strength(2);
   dds::Writer<model::OrderInfo> weak_writer(weaker, dds::qos::latched_state());
   dds::Writer<model::OrderInfo> strong_writer(stronger, dds::qos::latched_state());
   dds::Reader<model::OrderInfo> reader(robot, dds::qos::latched_state());
