@@ -11,9 +11,9 @@ constexpr int kFirstDomain = 0;
 constexpr int kLastDomain = 230;
 
 const std::vector<std::string> kServerPublishes{
-    "fleet/ServerInfo",   "fleet/RequestReply", "fleet/Order",           "fleet/OrderInfo", "fleet/MapAssignment",
-    "fleet/RobotControl", "fleet/PalletTruth",  "fleet/StaticObstacles", "fleet/FleetView", "fleet/NeighbourView",
-    "fleet/TrafficGrant", "fleet/ServerLoad",   "fleet/SiteState"};
+    "fleet/ServerInfo",   "fleet/RequestReply", "fleet/Order",           "fleet/OrderInfo",    "fleet/MapAssignment",
+    "fleet/RobotControl", "fleet/PalletTruth",  "fleet/StaticObstacles", "fleet/FleetView",    "fleet/NeighbourView",
+    "fleet/TrafficGrant", "fleet/ServerLoad",   "fleet/SiteState",       "fleet/OrderHandover"};
 const std::vector<std::string> kRobotPublishes{"fleet/RobotState",     "fleet/RobotPath",       "fleet/OrderState",
                                                "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth"};
 const std::vector<std::string> kOperatorPublishes{"fleet/OrderRequest", "fleet/Command"};
@@ -46,7 +46,7 @@ std::vector<TopicGrant> grants_of(Role role, const std::vector<std::string>& rob
                {"fleet/OrderRequest", "fleet/Command", "fleet/RobotState", "fleet/RobotPath", "fleet/OrderState",
                 "fleet/TrafficRequest", "fleet/TrafficProgress", "fleet/SimTruth",
                 // A standby server mirrors the active one; every server hears the others.
-                "fleet/OrderInfo", "fleet/SiteState", "fleet/ServerLoad"},
+                "fleet/OrderInfo", "fleet/SiteState", "fleet/ServerLoad", "fleet/OrderHandover"},
                {"*"}}};
     case Role::kBridge:
     case Role::kRobot: {

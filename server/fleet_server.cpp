@@ -54,6 +54,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       robot_path_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
       truth_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
       order_report_reader_(participant_, dds::qos::latched_state(), dds::robot_report_partitions()),
+      handover_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_),
       load_meter_(participant_, term_),
       peers_(participant_, term_) {
@@ -84,7 +85,10 @@ FleetServer::~FleetServer() = default;
 
 void FleetServer::restore_orders() {
   const auto stored = store_.load_all();
-  book_ = orders::OrderBook(store_.next_id());
+  // A takeover begins the ids of its term's block: a server cut off from this one goes on in the
+  // block of an earlier term, and the two never hand out one id.
+  book_ = orders::OrderBook(term_.took_over ? std::max(store_.next_id(), orders::first_order_id(term_.term))
+                                            : store_.next_id());
   long open = 0;
   for (Order order : stored) {
     orders::fill_steps(order, known_names());
@@ -102,7 +106,7 @@ void FleetServer::restore_orders() {
     }
     order_info_writer_.write(info_of(order));
   }
-  if (!stored.empty()) {
+  if (!stored.empty() || term_.took_over) {
     log_->info("restored {} orders from {} ({} open); next order id {}", stored.size(), store_.path(), open,
                book_.next_id());
   }
@@ -257,6 +261,7 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
     handle_robot_states();
     handle_robot_paths();
     handle_order_reports();
+    handle_handed_over_orders();
     stages.lap("states");
     handle_web_requests();
     check_robot_health();

@@ -79,6 +79,11 @@ class FleetServer {
   /// requests. Call before run(); the bridge must outlive the server.
   void attach_web(WebBridge* bridge) { bridge_ = bridge; }
 
+  /// After it stepped down: the orders that changed since it last heard another server (a few
+  /// seconds before, for what was on the way), or since it became active when it never heard
+  /// one. What the other may not know, for it to merge (orders::merge_handed_over).
+  std::vector<model::OrderInfo> orders_to_hand_over() const;
+
  private:
   /// Whether another active server outranks this one (orders::outranks), listened for a while
   /// when the loop stood still `since_last_loop_s` beyond its liveliness lease.
@@ -106,6 +111,11 @@ class FleetServer {
   void handle_robot_states();
   void handle_robot_paths();
   void handle_order_reports();
+  /// Orders a server that stepped down hands over: merged into the book (orders::merge_handed_over).
+  void handle_handed_over_orders();
+  /// The pallet of a transport adopted from a server that stepped down, recorded where that
+  /// order took it (lifted, or put down at its drop area).
+  void follow_load_of(const orders::Order& adopted);
   /// A current report on an open order (orders::ReportVerdict::kApply): the lifecycle and the
   /// loads it moves.
   void apply_report(const orders::Order& order, const model::OrderReport& report);
@@ -244,6 +254,7 @@ class FleetServer {
   dds::Reader<model::RobotPath> robot_path_reader_;
   dds::Reader<model::SimTruth> truth_reader_;
   dds::Reader<model::OrderReport> order_report_reader_;
+  dds::Reader<model::OrderHandover> handover_reader_;
   dds::WaitSet waitset_;
   ServerLoadMeter load_meter_;
   ServerPeers peers_;

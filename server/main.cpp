@@ -177,9 +177,13 @@ int main(int argc, char** argv) {
     // for acknowledgements the dead server never sends (Cyclone's writer linger, 1 s), which
     // would hold up the takeover as long. Joined at the next takeover or at the end.
     std::jthread retiring;
+    // What a server that steps down changed while cut off, for the active one to merge.
+    std::vector<model::OrderInfo> handed_over;
     for (;;) {
       if (standby) {
         auto mirror = std::make_unique<server::StandbyMirror>(options.domain, options.db_path, options.server_id, log);
+        if (!handed_over.empty()) mirror->hand_over(std::move(handed_over));
+        handed_over.clear();
         if (!mirror->run_until_active_lost(stop, options.config.settings.get_double("server.standby_silence_s"))) {
           return 0;
         }
@@ -197,6 +201,7 @@ int main(int argc, char** argv) {
       if (web) web->stop();
       if (end == server::RunEnd::kStopped) return 0;
       standby = true;
+      handed_over = fleet_server.orders_to_hand_over();
     }
   } catch (...) {
     return app::exit_code_of_current_exception("fleet-server", std::cerr, true);

@@ -18,9 +18,16 @@ class ServerPeers {
   /// The active server heard since the last call that outranks this one, if any.
   std::optional<model::ServerLoad> outranking_active();
 
+  /// When this server last heard another before its latest silence of more than two ServerLoad
+  /// periods (wall seconds; 0 when it never heard one): what changed since may be news to the
+  /// others.
+  double silence_began_wall() const { return silence_began_wall_; }
+
  private:
   dds::Reader<model::ServerLoad> reader_;
   orders::ServerTerm self_;
+  double last_heard_wall_ = 0.0;
+  double silence_began_wall_ = 0.0;
 };
 
 }  // namespace fleet::server

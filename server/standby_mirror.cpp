@@ -19,6 +19,7 @@ StandbyMirror::StandbyMirror(std::uint32_t domain, const std::string& db_path, s
       site_state_reader_(participant_, dds::qos::latched_state()),
       load_reader_(participant_, dds::qos::live_state()),
       load_writer_(participant_, dds::qos::live_state()),
+      handover_writer_(participant_, dds::qos::latched_state()),
       server_id_(std::move(server_id)) {
   started_wall_ = last_heard_wall_ = SimClock::wall_now();
   log_->info("standby {}: mirroring the active server into {}", server_id_, store_.path());
@@ -36,8 +37,22 @@ bool StandbyMirror::run_until_active_lost(const std::atomic<bool>& stop, double 
   return false;
 }
 
+void StandbyMirror::hand_over(std::vector<model::OrderInfo> orders) {
+  for (model::OrderInfo& info : orders) {
+    handed_over_[info.order_id] = info.history.size();
+    handover_writer_.write(model::OrderHandover(std::move(info)));
+  }
+  log_->info("standby {}: handing over {} orders changed since it last heard another server", server_id_,
+             handed_over_.size());
+}
+
 void StandbyMirror::mirror_orders() {
   order_info_reader_.take_data([&](model::OrderInfo&& info) {
+    if (const auto handed = handed_over_.find(info.order_id);
+        handed != handed_over_.end() && info.history.size() >= std::min(handed->second, model::kMaxOrderHistory)) {
+      handed_over_.erase(handed);
+      if (handed_over_.empty()) log_->info("standby {}: the active server has every order handed over", server_id_);
+    }
     try {
       store_.save(orders::order_of(info));
       ++orders_mirrored_;

@@ -2,7 +2,9 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "common/logging.hpp"
 #include "dds/topics.hpp"
@@ -26,6 +28,11 @@ class StandbyMirror {
   /// also since the start (no active server to stand by for).
   bool run_until_active_lost(const std::atomic<bool>& stop, double silence_s);
 
+  /// Hands `orders` (what this server changed while cut off, FleetServer::orders_to_hand_over) to
+  /// the active server on fleet/OrderHandover, latched, so that it has them once it hears this
+  /// one; the mirror logs when the active server publishes each of them.
+  void hand_over(std::vector<model::OrderInfo> orders);
+
   long orders_mirrored() const { return orders_mirrored_; }
   /// The highest term heard an active server serve in (0 when none was heard).
   std::int64_t heard_term() const { return heard_term_; }
@@ -45,6 +52,9 @@ class StandbyMirror {
   dds::Reader<model::SiteStateDocument> site_state_reader_;
   dds::Reader<model::ServerLoad> load_reader_;
   dds::Writer<model::ServerLoad> load_writer_;
+  dds::Writer<model::OrderHandover> handover_writer_;
+  /// Orders handed over that the active server has not published since, by id: their history length.
+  std::map<std::int64_t, std::size_t> handed_over_;
   std::string server_id_;
   std::string active_id_;  ///< the active server heard last
   std::int64_t heard_term_ = 0;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/polygon.hpp"
@@ -127,6 +128,14 @@ struct OrderInfo {
 };
 
 inline constexpr std::size_t kMaxOrderHistory = 64;
+
+/// An order a server that stepped down hands over to the active one: its version of the order, on
+/// a topic of its own (fleet/OrderHandover, the wire type of OrderInfo) that every server writes
+/// and the active one reads.
+struct OrderHandover : OrderInfo {
+  OrderHandover() = default;
+  OrderHandover(OrderInfo info) : OrderInfo(std::move(info)) {}  // implicit: read back from the wire as one
+};
 
 struct RobotState {
   std::string robot_id;

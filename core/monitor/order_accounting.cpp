@@ -6,6 +6,7 @@
 
 #include "common/percentile.hpp"
 #include "orders/order.hpp"
+#include "orders/server_term.hpp"
 
 namespace fleet::monitor {
 
@@ -57,7 +58,24 @@ OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, 
   if (begin == orders.end()) return t;
   t.first_id = begin->first;
   t.last_id = orders.rbegin()->first;
-  t.created = static_cast<long>(t.last_id - t.first_id + 1);
+  // Ids run without a gap within a term's block (orders::first_order_id): a server that took
+  // over hands out its block from the block's first id on.
+  std::int64_t block = -1;
+  std::int64_t block_first = 0;
+  std::int64_t previous = 0;
+  const auto close_block = [&] {
+    if (block >= 0) t.created += static_cast<long>(previous - block_first + 1);
+  };
+  for (auto it = begin; it != orders.end(); ++it) {
+    const std::int64_t id_block = (it->first - 1) / orders::kOrderIdsPerTerm;
+    if (id_block != block) {
+      close_block();
+      block_first = block < 0 ? it->first : id_block * orders::kOrderIdsPerTerm + 1;
+      block = id_block;
+    }
+    previous = it->first;
+  }
+  close_block();
   for (auto it = begin; it != orders.end(); ++it) {
     const auto status = orders::parse_status(it->second.state);
     if (!status) continue;  // an unreadable state counts as lost below

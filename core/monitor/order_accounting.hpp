@@ -10,7 +10,7 @@ namespace fleet::monitor {
 
 /// Order counts of a run, from the server's OrderInfo records.
 struct OrderTally {
-  long created = 0;  ///< ids first..last: every id handed out in the run
+  long created = 0;  ///< every id handed out in the run: first..last within each term's block
   long done = 0;
   long failed = 0;
   long cancelled = 0;
@@ -35,8 +35,9 @@ struct OrderStats {
 OrderStats order_stats(const std::map<std::int64_t, model::OrderInfo>& orders, double now);
 
 /// Tallies orders with ids >= `first_id` (orders of earlier runs are left out). Ids are handed out
-/// increasing and never reused, so an id missing between the first and the last is an order that
-/// vanished.
+/// increasing and never reused, without a gap within a term's block (orders::first_order_id), so
+/// an id missing between the first and the last of a block, or from the start of a block after
+/// the first, is an order that vanished.
 OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, std::int64_t first_id = 1);
 
 /// Orders done, with ids >= `first_id`, by what they were: `transport` and `pick` as placed (by

@@ -18,4 +18,8 @@ std::int64_t next_term(std::int64_t stored, std::int64_t heard) {
   return std::max<std::int64_t>({stored, heard, 0}) + 1;
 }
 
+std::int64_t first_order_id(std::int64_t term) {
+  return (std::max<std::int64_t>(term, 1) - 1) * kOrderIdsPerTerm + 1;
+}
+
 }  // namespace fleet::orders

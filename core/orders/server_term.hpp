@@ -30,4 +30,13 @@ bool outranks(const ServerTerm& other, const ServerTerm& self);
 /// heard another server hold (`heard`).
 std::int64_t next_term(std::int64_t stored, std::int64_t heard);
 
+/// Order ids come in blocks of this many, one block per term.
+inline constexpr std::int64_t kOrderIdsPerTerm = 1'000'000;
+
+/// The first order id of a server that takes over in `term`: the start of the term's block, so
+/// that the server that took over and one cut off from it (which goes on in the block of an
+/// earlier term) never hand out the same id; (term - 1) x kOrderIdsPerTerm + 1. A server that
+/// becomes active without taking over goes on from the ids it has.
+std::int64_t first_order_id(std::int64_t term);
+
 }  // namespace fleet::orders

@@ -158,7 +158,7 @@ std::string FleetHarness::log_of(const std::string& name) const {
 /// Order ids each agent logged as done, with how often.
 std::map<std::int64_t, int> done_counts(const FleetHarness& fleet, const std::vector<std::string>& robots) {
   std::map<std::int64_t, int> counts;
-  const std::regex done(R"(order (\d+) done: pallet placed)");
+  const std::regex done(R"(order (\d+) done: )");
   for (const auto& robot : robots) {
     const std::string log = fleet.log_of("fleet-agent-" + robot);
     for (std::sregex_iterator it(log.begin(), log.end(), done), end; it != end; ++it) ++counts[std::stoll((*it)[1])];

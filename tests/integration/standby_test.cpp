@@ -12,7 +12,9 @@
 
 #include "cli/client.hpp"
 #include "fleet_harness.hpp"
+#include "monitor/order_accounting.hpp"
 #include "orders/order.hpp"
+#include "orders/server_term.hpp"
 #include "scripted_fleet.hpp"
 
 using namespace fleet;
@@ -67,9 +69,13 @@ TEST(Standby, TakesOverWhenTheActiveServerIsKilledAndLosesNoOrderAndRunsNoneTwic
   // The robots carry on under the standby: two more orders done.
   const auto orders = orders_once_done(client, done_before + 2, 90s);
   ASSERT_FALSE(orders.empty());
-  // Ids are contiguous from 1 across both servers: none vanished, none was given twice.
+  // Ids run from 1, then from the start of term 2's block for the standby that took over: none
+  // vanished, none was given twice.
   EXPECT_EQ(orders.begin()->first, 1);
-  EXPECT_EQ(static_cast<std::size_t>(orders.rbegin()->first), orders.size());
+  const auto tally = monitor::tally_orders(orders);
+  EXPECT_EQ(tally.lost, 0);
+  EXPECT_EQ(static_cast<std::size_t>(tally.created), orders.size());
+  EXPECT_GE(orders.rbegin()->first, orders::first_order_id(2)) << "the takeover's orders begin term 2's block";
   long done = 0;
   for (const auto& [id, info] : orders) {
     done += info.state == "DONE";
@@ -78,7 +84,9 @@ TEST(Standby, TakesOverWhenTheActiveServerIsKilledAndLosesNoOrderAndRunsNoneTwic
     EXPECT_LE(done_events, 1) << "order " << id;
   }
   EXPECT_GE(done, done_before + 2) << fleet.log_of("fleet-server-standby");
-  for (const auto& [id, count] : done_counts(fleet, robots)) EXPECT_EQ(count, 1) << "order " << id << " done twice";
+  const auto counts = done_counts(fleet, robots);
+  EXPECT_FALSE(counts.empty()) << "no order done in the robots' logs";
+  for (const auto& [id, count] : counts) EXPECT_EQ(count, 1) << "order " << id << " done twice";
   // Every order the active server had published is there, in a state no earlier than it was.
   for (const auto& [id, info] : before) {
     ASSERT_TRUE(orders.count(id)) << "order " << id << " lost in the takeover";
@@ -159,8 +167,13 @@ TEST(Standby, AFrozenActiveServerThatComesBackStepsDownAndStandsByForTheOneThatT
   const auto orders = orders_once_done(client, done_under_b + 1, 90s);
   ASSERT_FALSE(orders.empty());
   EXPECT_EQ(orders.begin()->first, 1);
-  EXPECT_EQ(static_cast<std::size_t>(orders.rbegin()->first), orders.size()) << "an order id given twice or lost";
-  for (const auto& [id, count] : done_counts(fleet, robots)) EXPECT_EQ(count, 1) << "order " << id << " done twice";
+  const auto tally = monitor::tally_orders(orders);
+  EXPECT_EQ(tally.lost, 0) << "an order id lost";
+  EXPECT_EQ(static_cast<std::size_t>(tally.created), orders.size()) << "an order id given twice or lost";
+  EXPECT_GE(orders.rbegin()->first, orders::first_order_id(3)) << "server a's takeover begins term 3's block";
+  const auto counts = done_counts(fleet, robots);
+  EXPECT_FALSE(counts.empty()) << "no order done in the robots' logs";
+  for (const auto& [id, count] : counts) EXPECT_EQ(count, 1) << "order " << id << " done twice";
   for (const auto& [id, info] : under_b) {
     ASSERT_TRUE(orders.count(id)) << "order " << id << " lost in the second takeover";
   }

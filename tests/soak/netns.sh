@@ -78,24 +78,12 @@ cleanup() {
 }
 trap cleanup EXIT
 
-ip netns add "$hub"
-ip -n "$hub" link add br0 type bridge
-ip -n "$hub" link set br0 up
-ip -n "$hub" link set lo up
+# shellcheck source=tests/soak/netns_hosts.sh
+. "$root/tests/soak/netns_hosts.sh"
+netns_hub "$hub"
 n=1
 for ns in "${hosts[@]}"; do
-  ip netns add "$ns"
-  ip -n "$ns" link set lo up
-  # The pair is created inside the host's namespace and one end moved to the hub, so no
-  # interface ever appears in the machine's own namespace.
-  ip -n "$ns" link add eth0 type veth peer name "p$n"
-  ip -n "$ns" link set "p$n" netns "$hub"
-  ip -n "$hub" link set "p$n" master br0
-  ip -n "$hub" link set "p$n" up
-  ip -n "$ns" addr add "10.77.0.$((n + 1))/24" dev eth0
-  ip -n "$ns" link set eth0 up
-  # Multicast (Cyclone's discovery) goes out eth0.
-  ip -n "$ns" route add 224.0.0.0/4 dev eth0
+  netns_host "$hub" "$ns" "$n" "10.77.0.$((n + 1))"
   if [ "$ns" != "${hosts[0]}" ] && [ "$ns" != "${tag}-srv2" ]; then
     # Random loss both ways on every agent's link, and a 2 Mbit/s cap on what it sends.
     ip netns exec "$ns" iptables -A INPUT -i eth0 -m statistic --mode random --probability "$loss" -j DROP

@@ -9,6 +9,7 @@
 #include "monitor/localization_watch.hpp"
 #include "monitor/order_accounting.hpp"
 #include "monitor/track_recorder.hpp"
+#include "orders/server_term.hpp"
 
 using namespace fleet;
 using namespace fleet::monitor;
@@ -57,6 +58,28 @@ TEST(OrderAccounting, GapsAreLostOrders) {
   EXPECT_EQ(t.lost, 1);  // order 5 vanished
   EXPECT_EQ(tally_orders(orders, 6).created, 2);
   EXPECT_EQ(tally_orders({}, 1).created, 0);
+}
+
+// A standby took over in term 2 and handed out the ids of its block; the server cut off from it
+// went on in term 1's. Between the blocks nothing is missing; the first id of term 2's block is.
+TEST(OrderAccounting, TermBlocksAreCountedEachFromItsStartAndTheGapBetweenThemIsNoLoss) {
+  std::map<std::int64_t, model::OrderInfo> orders;
+  auto add = [&](std::int64_t id) {
+    model::OrderInfo info;
+    info.order_id = id;
+    info.state = "DONE";
+    orders[id] = info;
+  };
+  for (std::int64_t id : {1, 2, 3, 4}) add(id);
+  const std::int64_t block = orders::first_order_id(2);
+  for (std::int64_t id : {block, block + 1}) add(id);
+  OrderTally t = tally_orders(orders, 1);
+  EXPECT_EQ(t.created, 6);
+  EXPECT_EQ(t.lost, 0);
+  orders.erase(block);
+  t = tally_orders(orders, 1);
+  EXPECT_EQ(t.created, 6);
+  EXPECT_EQ(t.lost, 1) << "the first order of the term that took over vanished";
 }
 
 TEST(OrderAccounting, DoneOrdersCountByKindWithTheServersOwnTransportsApart) {

@@ -1,0 +1,88 @@
+// The orders a server that stepped down hands over, merged into the active server's book; and
+// the ones this server hands over when it steps down itself.
+
+#include "common/errors.hpp"
+#include "orders/order_merge.hpp"
+#include "orders/order_recovery.hpp"
+#include "server/fleet_server.hpp"
+
+namespace fleet::server {
+
+using orders::Order;
+using orders::OrderStatus;
+
+std::vector<model::OrderInfo> FleetServer::orders_to_hand_over() const {
+  // Orders a few seconds older than the silence: what was on its way when the link went.
+  constexpr double kBeforeSilenceS = 5.0;
+  const double active_since = static_cast<double>(term_.since_unix_ms) / 1000.0;
+  const double since_wall = std::max(peers_.silence_began_wall(), active_since) - kBeforeSilenceS;
+  const double since_sim = since_wall * options_.time_scale;
+  std::vector<model::OrderInfo> handed;
+  for (const auto& [id, order] : book_.all()) {
+    if (order.updated_sim >= since_sim) handed.push_back(info_of(order));
+  }
+  return handed;
+}
+
+void FleetServer::handle_handed_over_orders() {
+  handover_reader_.take_data([&](model::OrderHandover&& info) {
+    Order theirs;
+    try {
+      theirs = orders::order_of(info);
+    } catch (const InputError& e) {
+      log_->error("order {} handed over by a server that stepped down is not taken: {}", info.order_id, e.what());
+      return;
+    }
+    orders::fill_steps(theirs, known_names());
+    const Order* own = book_.find(theirs.id);
+    const orders::MergeDecision decision = orders::merge_handed_over(own, theirs);
+    if (decision.ran_on_both_sides) {
+      log_->error("order {} ran on both sides of a partition (robot {} here, {} on the server that stepped down): {}",
+                  theirs.id, own ? own->robot_id : "", theirs.robot_id, decision.why);
+    }
+    if (decision.choice == orders::MergeChoice::kKeepOwn) {
+      log_->debug("order {} handed over: this server's version stays ({})", theirs.id, decision.why);
+      return;
+    }
+    // The robot this server gave it to drops it when the other side's run stands.
+    std::string withdraw_from;
+    if (own && (own->status == OrderStatus::kAssigned || own->status == OrderStatus::kActive) &&
+        own->robot_id != theirs.robot_id) {
+      withdraw_from = own->robot_id;
+    }
+    const bool moved_here =
+        own && (own->status == OrderStatus::kDone || orders::restored_robot_carried_load(own->phase));
+    book_.restore(theirs);
+    const Order& adopted = *book_.find(theirs.id);
+    if (!moved_here) follow_load_of(adopted);
+    if (!withdraw_from.empty()) withdraw(adopted, withdraw_from);
+    if (adopted.status == OrderStatus::kAssigned || adopted.status == OrderStatus::kActive) {
+      // As after a restart: its robot acknowledges and goes on when it is on it, refuses when it
+      // is busy with another (the order goes back to the queue), and counts as lost when unheard.
+      send_assignment(adopted);
+    }
+    publish_order(adopted);
+    log_->info("order {} handed over by a server that stepped down: {} {} ({})", adopted.id,
+               orders::to_string(adopted.status), adopted.robot_id.empty() ? "" : "by " + adopted.robot_id,
+               decision.why);
+  });
+}
+
+void FleetServer::follow_load_of(const Order& adopted) {
+  // The pallet a transport adopted from the other side moved there: this server's record follows,
+  // so that no order here goes for a pallet that is gone or onto a place that now holds one.
+  if (adopted.kind != orders::OrderKind::kTransport) return;
+  const bool done = adopted.status == OrderStatus::kDone;
+  if (!done && !(adopted.status == OrderStatus::kActive && orders::restored_robot_carried_load(adopted.phase))) return;
+  auto lifted = site_.ledger.lifted(adopted.robot_id, -1, adopted.pick_area);
+  if (!lifted) return;
+  const int load_id = lifted->id;
+  record_load(std::move(*lifted));
+  const auto* drop = options_.site.find_area(adopted.drop_area);
+  if (!done || drop == nullptr) return;
+  if (auto placed = site_.ledger.put_down(load_id, drop->pose, adopted.drop_area)) record_load(std::move(*placed));
+  log_->info("pallet {} recorded at {}: order {} moved it on the server that stepped down", load_id, adopted.drop_area,
+             adopted.id);
+}
+
+}  // namespace fleet::server
