@@ -124,12 +124,13 @@ std::vector<CommandSpec> fleet_starting_commands() {
        false,
        {integer("--agents", "N=4", 1, kMaxAgents), value("--site", "NAME"), number("--duration", "SECONDS", 0.0, 1e7),
         number("--time-scale", "K", 0.01, 100.0), process_seed(), integer("--http-port", "P=8080", 0, 65535),
-        on_off("--no-auto-orders"), integer("--vda5050-vehicles", "N=0", 0, kMaxAgents)},
+        on_off("--no-auto-orders"), integer("--vda5050-vehicles", "N=0", 0, kMaxAgents), on_off("--standby")},
        "one fleet-server and N fleet-agents with automatic orders (off with\n"
        "--no-auto-orders); Ctrl-C or --duration (wall seconds) stops them all\n"
        "and prints a summary; the web view's address (with its token) is printed at start;\n"
        "--vda5050-vehicles N adds N simulated VDA 5050 vehicles driven by fleet-vda5050\n"
-       "over a broker of the run's own (docs/vda5050.md)"},
+       "over a broker of the run's own (docs/vda5050.md); --standby adds a second server\n"
+       "as standby, which takes over when the first is killed (its web view on the next port)"},
       {Group::kStartsFleet,
        "soak",
        "",

@@ -138,7 +138,9 @@ void FleetRun::start_standby(const std::vector<std::string>& common) {
   std::vector<std::string> argv;
   std::istringstream words(options_.standby_wrap);
   for (std::string w; words >> w;) argv.push_back(w);
-  const std::vector<std::string> server = server_command(common, run_dir_ + "/standby.db", 0);
+  // Its web view, on the port after the active one's, opens when it takes over.
+  const std::vector<std::string> server =
+      server_command(common, run_dir_ + "/standby.db", options_.http_port > 0 ? options_.http_port + 1 : 0);
   argv.insert(argv.end(), server.begin(), server.end());
   argv.insert(argv.end(), {"--standby", "--set", "server.id=server-2"});
   servers_["server-2"] = processes_.start("fleet-server-2", argv, run_dir_ + "/fleet-server-2.log");
@@ -387,6 +389,7 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
   options.api_token = random_token();
   options.auto_orders = !args.flag("no-auto-orders");
   options.vda5050_vehicles = static_cast<int>(args.integer("vda5050-vehicles").value_or(0));
+  options.standby = args.flag("standby");
   if (!std::filesystem::exists(map::site_path(maps_dir(), options.site))) {
     throw ArgError("--site: " + model::unknown_name_message("site", options.site, map::site_names(maps_dir())));
   }
@@ -414,6 +417,12 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
               ? "  web:     " + std::string(dds::security_folder().empty() ? "http" : "https") +
                     "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
               : std::string())
+      << (options.standby ? "  standby: server-2 mirrors server-1 and takes over when it is gone" +
+                                std::string(options.http_port > 0 ? " (its web view then on port " +
+                                                                        std::to_string(options.http_port + 1) + ")"
+                                                                  : "") +
+                                "; fleetctl --domain " + std::to_string(domain) + " servers\n"
+                          : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"
       << "  order:   fleetctl --domain " << domain << " inject --count 1 --wait   (one order the fleet can take now)\n"
       << "  by hand: fleetctl --domain " << domain << " order add --from AREA --to AREA --wait"
