@@ -17,11 +17,14 @@ PlacePibt::PlacePibt(PlaceGraph& graph, std::uint64_t seed)
   for (const auto& type : graph.zones().params().vehicle_types) backs_up_.push_back(type.backs_up ? 1 : 0);
 }
 
+bool PlacePibt::backs_up(int type) const {
+  const auto t = static_cast<std::size_t>(type);
+  return t >= backs_up_.size() || backs_up_[t] != 0;
+}
+
 const std::vector<int>& PlacePibt::moves_back(int type, int place) const {
   static const std::vector<int> kNone;
-  const auto t = static_cast<std::size_t>(type);
-  const bool backs_up = t >= backs_up_.size() || backs_up_[t] != 0;
-  return backs_up ? graph_.predecessors(type, place) : kNone;
+  return backs_up(type) ? graph_.predecessors(type, place) : kNone;
 }
 
 void PlacePibt::reached_goal(int robot) {
@@ -146,6 +149,11 @@ void PlacePibt::plan_robot(int robot, int pusher, int wanted) {
   auto add = [&](int place) {
     const Check c = check(robot, place, blockers);
     if (c == Check::kTaken) return;
+    if (!pushed && place != r.place && meets_head_on(robot, place)) {
+      // It waits outside rather than turn away from its way.
+      candidates.push_back({r.place, 0, candidate_cost(robot, place), 0, 0U});
+      return;
+    }
     int in_the_way = 0;
     if (pushed && in_way_of(r.type, place, pusher, wanted)) {
       if (way_out >= kFar || moves_out(robot, place, pusher, wanted) >= way_out) return;
@@ -306,6 +314,40 @@ bool PlacePibt::back_off(int robot, int other) {
   return true;
 }
 
+bool PlacePibt::meets_head_on(int robot, int place) const {
+  constexpr double kNear = 10.0;  // metres: farther robots' ways ahead (12 places) do not reach
+  const auto& zones = graph_.zones();
+  const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
+  if (r.goal < 0 || r.held) return false;
+  const auto in_way_ahead = [&](int type, int at, const std::vector<int>& way, int way_type) {
+    // The way's first place is where its robot stands: one following it is not in its way.
+    return std::any_of(way.begin() + (way.empty() ? 0 : 1), way.end(),
+                       [&](int q) { return zones.conflict(type, at, way_type, q); });
+  };
+  std::vector<int> own_way;
+  const geometry::Vec2 at = zones.position(r.place);
+  // Two robots that back up sort a meeting out by backing off (give_way); one that cannot must
+  // not meet another at all. Most fleets have none that cannot: then nothing is looked at.
+  const bool against_all = !backs_up(r.type);
+  const std::size_t count = against_all ? robots_.size() : forward_only_.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = against_all ? k : static_cast<std::size_t>(forward_only_[k]);
+    const PlaceRobot& o = robots_[i];
+    const auto other = static_cast<int>(i);
+    if (other == robot || o.place < 0 || ways_[i].size() < 2) continue;
+    if (geometry::distance(zones.position(o.place), at) > kNear) continue;
+    if (!in_way_ahead(r.type, place, ways_[i], o.type) || in_way_ahead(r.type, r.place, ways_[i], o.type)) continue;
+    if (own_way.empty()) own_way = path_ahead(robot, place);
+    const int o_at = planned_[i] >= 0 ? planned_[i] : o.place;
+    if (std::any_of(own_way.begin(), own_way.end(), [&](int q) {
+          return zones.conflict(r.type, q, o.type, o.place) || zones.conflict(r.type, q, o.type, o_at);
+        })) {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<int> PlacePibt::path_ahead(int robot, int from) const {
   constexpr std::size_t kPlaces = 12;
   const PlaceRobot& r = robots_[static_cast<std::size_t>(robot)];
@@ -372,8 +414,16 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const Cl
     if (a_gives_way != b_gives_way) return a_gives_way;
     return priority_[static_cast<std::size_t>(a)] > priority_[static_cast<std::size_t>(b)];
   });
+  ways_.assign(n, {});
+  forward_only_.clear();
   for (const int robot : order) {
-    if (robots[static_cast<std::size_t>(robot)].held) take(robot, robots[static_cast<std::size_t>(robot)].place);
+    const PlaceRobot& r = robots[static_cast<std::size_t>(robot)];
+    if (!backs_up(r.type)) forward_only_.push_back(robot);
+    if (r.held) {
+      take(robot, r.place);
+    } else if (r.goal >= 0) {
+      ways_[static_cast<std::size_t>(robot)] = path_ahead(robot, r.place);
+    }
   }
   // A robot waiting beside the roads to enter them, or to sweep its area, pushes those standing
   // in its way out of it.

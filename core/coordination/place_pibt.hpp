@@ -123,6 +123,12 @@ class PlacePibt {
   void lend_top_priority(int robot);
   /// The robot's next places from `from` on, each its nearest to its goal.
   std::vector<int> path_ahead(int robot, int from) const;
+  /// Whether robot's move to `place` meets another robot head-on where their ways share the road
+  /// (a single-lane stretch, a bend where a long body swings over the other lane): the move puts
+  /// it in the other's way ahead while the other stands (or is planned) in its own, and it was not
+  /// in the other's way before. The first in keeps the stretch; the other waits outside it. Only
+  /// where one of the two cannot back up: two that can sort a meeting out by backing off.
+  bool meets_head_on(int robot, int place) const;
   /// The first of robot's moves on a shortest way to a place clear of `path` (other's), not
   /// through other's body nor (around_standing) through robots standing; -1 when none is near.
   int first_move_off(int robot, int other, const std::vector<int>& path, bool around_standing);
@@ -153,6 +159,8 @@ class PlacePibt {
   /// Plans a robot with an errand stays put before it backs up, where that is free, rather than stand.
   static constexpr int kStandingBeforeBackingUp = 12;
 
+  /// Whether robots of the type back up (traffic::VehicleType::backs_up; true without types).
+  bool backs_up(int type) const;
   /// The places the robot backs up to from `place` along its lane: none for a type that does
   /// not back up (traffic::VehicleType::backs_up).
   const std::vector<int>& moves_back(int type, int place) const;
@@ -161,10 +169,12 @@ class PlacePibt {
   std::vector<std::uint8_t> backs_up_;  ///< by vehicle type
   std::mt19937_64 rng_;
   std::vector<double> priority_;
-  std::vector<int> last_place_;      ///< per robot: its place at the last plan
-  std::vector<int> standing_plans_;  ///< per robot: plans in a row it stayed at its place with an errand
-  std::vector<int> giving_way_to_;   ///< per robot: the robot it backed off for at the last plan, -1
-  std::vector<PlaceRobot> robots_;   ///< the state being planned from
+  std::vector<int> last_place_;         ///< per robot: its place at the last plan
+  std::vector<int> standing_plans_;     ///< per robot: plans in a row it stayed at its place with an errand
+  std::vector<int> giving_way_to_;      ///< per robot: the robot it backed off for at the last plan, -1
+  std::vector<int> forward_only_;       ///< the robots on the roads whose type does not back up
+  std::vector<std::vector<int>> ways_;  ///< per robot: its places ahead at this plan (path_ahead), none when held
+  std::vector<PlaceRobot> robots_;      ///< the state being planned from
   const ClosedPlaces* closed_ = nullptr;
   std::vector<int> standing_;      ///< per place: the robot standing there, -1
   std::vector<int> planned_at_;    ///< per place: the robot planned there, -1

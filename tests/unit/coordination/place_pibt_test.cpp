@@ -119,6 +119,39 @@ TEST(PlacePibt, ATypeThatDoesNotBackUpIsNeverMovedBackAlongItsLane) {
   }
 }
 
+// A tricycle (it does not back up) waits at a branch to turn into a single-lane corridor down
+// which a forklift comes towards it: it keeps out until the forklift is through the junction,
+// rather than drive in nose to nose with it (the forklift would have to back off the whole way).
+TEST(PlacePibt, ARobotThatCannotBackUpWaitsOutsideAStretchOneComesDownTowardsIt) {
+  traffic::testing::GraphBuilder b;
+  b.road(-1.0, 0.0, 0.0, 0.0);
+  b.road(0.0, 0.0, 2.0, 0.0);
+  b.road(0.0, -1.0, 0.0, 0.0);
+  traffic::ResourceParams params = forklift_params();
+  const geometry::Polygon body = traffic::rectangle_footprint(params.footprint);
+  params.vehicle_types = {{"forklift", body, 0.0, {}, true}, {"tricycle", body, 0.0, {}, false}};
+  const traffic::ConflictZones zones(b.graph(), params);
+  const auto at = [&](double x, double y) { return zones.place_of(traffic::testing::point_at(b.graph(), x, y)); };
+  PlaceGraph graph(b.graph(), zones);
+  PlacePibt planner(graph, 3);
+  const std::vector<int> goals{at(1.8, 0.0), at(-0.8, 0.0)};
+  std::vector<PlaceRobot> robots{{1, at(0.0, -0.8), goals[0], false}, {0, at(1.4, 0.0), goals[1], false}};
+  bool nose_to_nose = false;
+  int step = 0;
+  for (; step < 200 && (robots[0].place != goals[0] || robots[1].place != goals[1]); ++step) {
+    const std::vector<int> next = planner.plan(robots);
+    ASSERT_EQ(broken_step_rule(zones, robots, next), "") << "step " << step;
+    for (std::size_t i = 0; i < robots.size(); ++i) robots[i].place = next[i];
+    const geometry::Vec2 tricycle = zones.position(robots[0].place);
+    const geometry::Vec2 forklift = zones.position(robots[1].place);
+    // Both on the corridor, the forklift east of the tricycle: it has not come through yet.
+    nose_to_nose = nose_to_nose || (tricycle.x > 0.05 && forklift.x > tricycle.x);
+  }
+  EXPECT_FALSE(nose_to_nose) << "the tricycle drove into the corridor towards the forklift";
+  EXPECT_EQ(robots[0].place, goals[0]);
+  EXPECT_EQ(robots[1].place, goals[1]);
+}
+
 // Two robots meet head-on in a single-lane corridor with a siding: the one pushed backs into the
 // siding and both get through.
 TEST(PlacePibt, HeadOnInACorridorOneStepsIntoTheSiding) {
