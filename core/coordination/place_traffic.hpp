@@ -139,8 +139,10 @@ class PlaceTraffic {
   std::vector<int> closers_of(int robot, int type, int place, int from) const;
   /// The robots a plan step that keeps `robot` standing keeps it for: those whose place or next
   /// place conflicts with the place its route leads on to (none when the plan moves it, or it is
-  /// held, or has no errand).
-  std::vector<int> kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next) const;
+  /// held, or has no errand). `stands` and `goes`: per place, the robot planned from it and the
+  /// robot planned into it, -1.
+  std::vector<int> kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next,
+                           const std::vector<int>& stands, const std::vector<int>& goes) const;
   /// The place of the robot's current visit, then those it is about to drive into: its planned
   /// visits, and its route's on from the last of them, as far as one body length.
   std::vector<int> way_ahead(int robot) const;

@@ -96,7 +96,16 @@ void PlaceTraffic::plan_step() {
   }
   const std::vector<int> next = planner_.plan(planned, &closures_.closed());
   ++plan_step_;
-  for (int robot = 0; robot < robots(); ++robot) at(robot).kept_by = kept_by(robot, planned, next);
+  // Who stands and who goes where, by place: a robot kept standing looks up those in its way
+  // among the places conflicting with its next one rather than asking every robot.
+  std::vector<int> stands(zones_.place_count(), -1);
+  std::vector<int> goes(zones_.place_count(), -1);
+  for (std::size_t i = 0; i < planned.size(); ++i) {
+    if (planned[i].place < 0) continue;
+    stands[static_cast<std::size_t>(planned[i].place)] = static_cast<int>(i);
+    if (next[i] >= 0) goes[static_cast<std::size_t>(next[i])] = static_cast<int>(i);
+  }
+  for (int robot = 0; robot < robots(); ++robot) at(robot).kept_by = kept_by(robot, planned, next, stands, goes);
   for (int robot = 0; robot < robots(); ++robot) {
     const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
     const int to = next[static_cast<std::size_t>(robot)];
@@ -118,20 +127,22 @@ void PlaceTraffic::plan_step() {
   }
 }
 
-std::vector<int> PlaceTraffic::kept_by(int robot, const std::vector<PlaceRobot>& planned,
-                                       const std::vector<int>& next) const {
+std::vector<int> PlaceTraffic::kept_by(int robot, const std::vector<PlaceRobot>& planned, const std::vector<int>& next,
+                                       const std::vector<int>& stands, const std::vector<int>& goes) const {
   const PlaceRobot& p = planned[static_cast<std::size_t>(robot)];
   if (p.place < 0 || p.preferred < 0 || p.held || next[static_cast<std::size_t>(robot)] != p.place) return {};
   std::vector<int> in_the_way;
-  for (int other = 0; other < robots(); ++other) {
-    const PlaceRobot& o = planned[static_cast<std::size_t>(other)];
-    const int its_next = next[static_cast<std::size_t>(other)];
-    if (other == robot || o.place < 0) continue;
-    if (zones_.conflict(p.type, p.preferred, o.type, o.place) ||
-        (its_next >= 0 && zones_.conflict(p.type, p.preferred, o.type, its_next))) {
-      in_the_way.push_back(other);
+  for (int other_type = 0; other_type < static_cast<int>(zones_.type_count()); ++other_type) {
+    for (const int q : zones_.conflicts(p.type, p.preferred, other_type)) {
+      for (const int other : {stands[static_cast<std::size_t>(q)], goes[static_cast<std::size_t>(q)]}) {
+        if (other >= 0 && other != robot && planned[static_cast<std::size_t>(other)].type == other_type) {
+          in_the_way.push_back(other);
+        }
+      }
     }
   }
+  std::sort(in_the_way.begin(), in_the_way.end());
+  in_the_way.erase(std::unique(in_the_way.begin(), in_the_way.end()), in_the_way.end());
   return in_the_way;
 }
 
