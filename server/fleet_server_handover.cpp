@@ -1,6 +1,8 @@
 // The orders a server that stepped down hands over, merged into the active server's book; and
 // the ones this server hands over when it steps down itself.
 
+#include <optional>
+
 #include "common/errors.hpp"
 #include "orders/order_merge.hpp"
 #include "orders/order_recovery.hpp"
@@ -44,18 +46,19 @@ void FleetServer::handle_handed_over_orders() {
       log_->debug("order {} handed over: this server's version stays ({})", theirs.id, decision.why);
       return;
     }
-    // The robot this server gave it to drops it when the other side's run stands.
-    std::string withdraw_from;
+    // The robot this server gave it to drops it when the other side's run stands: told with the
+    // version it was given (its update id), which the adopted one replaces in the book.
+    std::optional<Order> withdrawn;
     if (own && (own->status == OrderStatus::kAssigned || own->status == OrderStatus::kActive) &&
         own->robot_id != theirs.robot_id) {
-      withdraw_from = own->robot_id;
+      withdrawn = *own;
     }
     const bool moved_here =
         own && (own->status == OrderStatus::kDone || orders::restored_robot_carried_load(own->phase));
     book_.restore(theirs);
     const Order& adopted = *book_.find(theirs.id);
     if (!moved_here) follow_load_of(adopted);
-    if (!withdraw_from.empty()) withdraw(adopted, withdraw_from);
+    if (withdrawn) withdraw(*withdrawn, withdrawn->robot_id);
     if (adopted.status == OrderStatus::kAssigned || adopted.status == OrderStatus::kActive) {
       // As after a restart: its robot acknowledges and goes on when it is on it, refuses when it
       // is busy with another (the order goes back to the queue), and counts as lost when unheard.
