@@ -49,8 +49,7 @@ void FleetServer::handle_handed_over_orders() {
     // The robot this server gave it to drops it when the other side's run stands: told with the
     // version it was given (its update id), which the adopted one replaces in the book.
     std::optional<Order> withdrawn;
-    if (own && (own->status == OrderStatus::kAssigned || own->status == OrderStatus::kActive) &&
-        own->robot_id != theirs.robot_id) {
+    if (own && orders::with_a_robot(own->status) && own->robot_id != theirs.robot_id) {
       withdrawn = *own;
     }
     const bool moved_here =
@@ -59,7 +58,7 @@ void FleetServer::handle_handed_over_orders() {
     const Order& adopted = *book_.find(theirs.id);
     if (!moved_here) follow_load_of(adopted);
     if (withdrawn) withdraw(*withdrawn, withdrawn->robot_id);
-    if (adopted.status == OrderStatus::kAssigned || adopted.status == OrderStatus::kActive) {
+    if (orders::with_a_robot(adopted.status)) {
       // As after a restart: its robot acknowledges and goes on when it is on it, refuses when it
       // is busy with another (the order goes back to the queue), and counts as lost when unheard.
       send_assignment(adopted);

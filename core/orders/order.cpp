@@ -37,6 +37,10 @@ bool is_final(OrderStatus status) {
   return status == OrderStatus::kDone || status == OrderStatus::kFailed || status == OrderStatus::kCancelled;
 }
 
+bool with_a_robot(OrderStatus status) {
+  return status == OrderStatus::kAssigned || status == OrderStatus::kActive;
+}
+
 bool is_legal_transition(OrderStatus from, OrderStatus to) {
   using S = OrderStatus;
   switch (from) {

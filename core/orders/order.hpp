@@ -28,6 +28,8 @@ std::optional<OrderStatus> parse_status(std::string_view text);
 std::optional<OrderPhase> parse_phase(std::string_view text);
 
 bool is_final(OrderStatus status);
+/// ASSIGNED or ACTIVE: a robot has the order.
+bool with_a_robot(OrderStatus status);
 
 /// Only these transitions happen; anything else is refused and logged by the caller.
 ///   QUEUED   -> ASSIGNED | CANCELLED | FAILED

@@ -75,9 +75,7 @@ TransitionResult OrderBook::set_phase(std::int64_t id, OrderPhase phase, double 
 TransitionResult OrderBook::requeue(std::int64_t id, double now_sim, const std::string& reason) {
   auto it = orders_.find(id);
   if (it == orders_.end()) return TransitionResult::kUnknownOrder;
-  if (it->second.status != OrderStatus::kAssigned && it->second.status != OrderStatus::kActive) {
-    return TransitionResult::kIllegal;
-  }
+  if (!with_a_robot(it->second.status)) return TransitionResult::kIllegal;
   const auto result = transition(id, OrderStatus::kQueued, now_sim, reason);
   ++it->second.update_id;
   return result;

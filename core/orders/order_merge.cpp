@@ -30,10 +30,6 @@ bool same_history(const Order& a, const Order& b) {
   return true;
 }
 
-bool with_a_robot(const Order& order) {
-  return order.status == OrderStatus::kAssigned || order.status == OrderStatus::kActive;
-}
-
 }  // namespace
 
 MergeDecision merge_handed_over(const Order* own, const Order& theirs) {
@@ -46,8 +42,8 @@ MergeDecision merge_handed_over(const Order* own, const Order& theirs) {
     return {MergeChoice::kKeepOwn, done_twice, "ended on both servers"};
   }
   // Given to a robot on each side, it ran (or began to) twice; the further run stands.
-  const bool both_ran = (with_a_robot(*own) || is_final(own->status)) &&
-                        (with_a_robot(theirs) || is_final(theirs.status)) && own->robot_id != theirs.robot_id &&
+  const bool both_ran = (with_a_robot(own->status) || is_final(own->status)) &&
+                        (with_a_robot(theirs.status) || is_final(theirs.status)) && own->robot_id != theirs.robot_id &&
                         !own->robot_id.empty() && !theirs.robot_id.empty();
   if (other > mine) return {MergeChoice::kAdopt, both_ran, "further on the server that stepped down"};
   if (other < mine) return {MergeChoice::kKeepOwn, both_ran, "further on this server"};
