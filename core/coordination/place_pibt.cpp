@@ -340,7 +340,8 @@ bool PlacePibt::meets_head_on(int robot, int place) const {
     if (own_way.empty()) own_way = path_ahead(robot, place);
     const int o_at = planned_[i] >= 0 ? planned_[i] : o.place;
     if (std::any_of(own_way.begin(), own_way.end(), [&](int q) {
-          return zones.conflict(r.type, q, o.type, o.place) || zones.conflict(r.type, q, o.type, o_at);
+          return zones.conflict(r.type, q, o.type, o.place) ||
+                 (o_at != o.place && zones.conflict(r.type, q, o.type, o_at));
         })) {
       return true;
     }
@@ -419,10 +420,14 @@ std::vector<int> PlacePibt::plan(const std::vector<PlaceRobot>& robots, const Cl
   for (const int robot : order) {
     const PlaceRobot& r = robots[static_cast<std::size_t>(robot)];
     if (!backs_up(r.type)) forward_only_.push_back(robot);
-    if (r.held) {
-      take(robot, r.place);
-    } else if (r.goal >= 0) {
-      ways_[static_cast<std::size_t>(robot)] = path_ahead(robot, r.place);
+    if (r.held) take(robot, r.place);
+  }
+  // The ways ahead serve meets_head_on alone, which looks at none without a robot that cannot
+  // back up.
+  if (!forward_only_.empty()) {
+    for (const int robot : order) {
+      const PlaceRobot& r = robots[static_cast<std::size_t>(robot)];
+      if (!r.held && r.goal >= 0) ways_[static_cast<std::size_t>(robot)] = path_ahead(robot, r.place);
     }
   }
   // A robot waiting beside the roads to enter them, or to sweep its area, pushes those standing
