@@ -91,6 +91,7 @@ wait_for() {
   done
 }
 logged() { grep -q -- "$2" "$run_dir/$1.log"; }
+robots_report() { ctl "$host_a" robots | grep -q fl2; }
 # add HOST FROM TO: a transport order placed on HOST's side; prints its id.
 add() {
   ctl "$1" --json order add --from "$2" --to "$3" | python3 -c 'import json, sys; print(json.load(sys.stdin)["order_id"])'
@@ -109,7 +110,7 @@ start server-b "$host_b" "$bin/fleet-server" "${common[@]}" --db "$run_dir/b.db"
 start agent-fl1 "$host_a" "$bin/fleet-agent" --id fl1 "${common[@]}"
 start agent-fl2 "$host_a" "$bin/fleet-agent" --id fl2 "${common[@]}"
 wait_for 20 "server b hearing server a" logged server-b "the active server server-a is heard"
-wait_for 30 "both robots reporting" bash -c "ip netns exec $host_a $bin/fleetctl --domain $domain robots | grep -q fl2"
+wait_for 30 "both robots reporting" robots_report
 
 before=$(add "$host_a" A1 A2)
 [ -n "$before" ] || fail "order A1 -> A2 not taken"
