@@ -138,7 +138,7 @@ void FleetRun::start_standby(const std::vector<std::string>& common) {
   std::vector<std::string> argv;
   std::istringstream words(options_.standby_wrap);
   for (std::string w; words >> w;) argv.push_back(w);
-  // Its web view, on the port after the active one's, opens when it takes over.
+  // Its web view is on the port after the active one's: read-only while it stands by.
   const std::vector<std::string> server =
       server_command(common, run_dir_ + "/standby.db", options_.http_port > 0 ? options_.http_port + 1 : 0);
   argv.insert(argv.end(), server.begin(), server.end());
@@ -418,8 +418,9 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                     "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
               : std::string())
       << (options.standby ? "  standby: server-2 mirrors server-1 and takes over when it is gone" +
-                                std::string(options.http_port > 0 ? " (its web view then on port " +
-                                                                        std::to_string(options.http_port + 1) + ")"
+                                std::string(options.http_port > 0 ? " (its web view on port " +
+                                                                        std::to_string(options.http_port + 1) +
+                                                                        ", read-only until then)"
                                                                   : "") +
                                 "; fleetctl --domain " + std::to_string(domain) + " servers\n"
                           : std::string())

@@ -438,6 +438,7 @@ void FleetServer::publish_web_snapshot() {
   snap.obstacle_enabled = site_.obstacle_enabled;
   snap.pallet_at = site_.ledger.occupancy();
   snap.auto_orders = auto_orders_.on();
+  snap.server_id = options_.server_id;
   bridge_->publish(std::move(snap));
 }
 

@@ -13,20 +13,16 @@ using orders::TransitionResult;
 namespace {
 constexpr const char* kPallet = "pallet";  // the only kind of load this simulation moves
 
-/// The site's loading areas as the places of the area ledger, in the site's order.
-std::vector<orders::Place> places_of(const map::Site& site) {
-  std::vector<orders::Place> places;
-  for (const auto& area : site.loading_areas) places.push_back({area.id, area.pose});
-  return places;
-}
-
 model::PalletTruth pallet_of(const orders::Load& load) {
   return {load.id, load.pose, load.place, load.carried_by};
 }
 }  // namespace
 
 void FleetServer::restore_site_state() {
-  site_ = orders::SiteState{options_.site.name, orders::AreaLedger(places_of(options_.site)), {}, {}};
+  std::vector<std::string> robots;
+  for (const auto& [fleet, robot] : options_.config.all_robots()) robots.push_back(robot->id);
+  const orders::SiteNames names = orders::site_names_of(options_.site, robots);
+  site_ = orders::SiteState{options_.site.name, orders::AreaLedger(names.places), {}, {}};
   for (const auto& [fleet, robot] : options_.config.all_robots()) site_.parked_at[robot->id] = robot->home;
   reset_obstacles();
   const std::optional<std::string> stored = store_.load_site_state();
@@ -42,9 +38,6 @@ void FleetServer::restore_site_state() {
     save_site_state();  // once for all of them
     return;
   }
-  orders::SiteNames names{options_.site.name, places_of(options_.site), {}, {}};
-  for (const auto& [fleet, robot] : options_.config.all_robots()) names.robots.insert(robot->id);
-  for (const auto& obstacle : options_.site.static_obstacles) names.obstacles.insert(obstacle.id);
   orders::RestoredSiteState restored = orders::site_state_from_json(*stored, names, store_.path());
   for (const auto& dropped : restored.dropped) log_->warn("site state in {}: {}", store_.path(), dropped);
   site_.ledger = std::move(restored.state.ledger);

@@ -179,27 +179,32 @@ int main(int argc, char** argv) {
     std::jthread retiring;
     // What a server that steps down changed while cut off, for the active one to merge.
     std::vector<model::OrderInfo> handed_over;
+    // One web view for the process: read-only while it stands by, the fleet's once it serves.
+    server::WebBridge bridge;
+    // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
+    const config::FleetConfig web_config = options.config;
+    auto web = start_web_view(options, web_config, operator_source, viewer_source, bridge, log);
     for (;;) {
       if (standby) {
         auto mirror = std::make_unique<server::StandbyMirror>(options.domain, options.db_path, options.server_id, log);
+        if (web) mirror->show_on(bridge, {options.site_map, &web_config, options.time_scale, options.server_id});
         if (!handed_over.empty()) mirror->hand_over(std::move(handed_over));
         handed_over.clear();
         if (!mirror->run_until_active_lost(stop, options.config.settings.get_double("server.standby_silence_s"))) {
+          if (web) web->stop();
           return 0;
         }
         options.heard_term = mirror->heard_term();
         options.took_over = true;
         retiring = std::jthread([retired = std::move(mirror)]() mutable { retired.reset(); });
       }
-      server::WebBridge bridge;
-      // A copy: the server takes the options, the web view reads robots and fleets for as long as it runs.
-      const config::FleetConfig web_config = options.config;
-      auto web = start_web_view(options, web_config, operator_source, viewer_source, bridge, log);
       server::FleetServer fleet_server(options, log);
       if (web) fleet_server.attach_web(&bridge);
       const server::RunEnd end = fleet_server.run(stop);
-      if (web) web->stop();
-      if (end == server::RunEnd::kStopped) return 0;
+      if (end == server::RunEnd::kStopped) {
+        if (web) web->stop();
+        return 0;
+      }
       standby = true;
       handed_over = fleet_server.orders_to_hand_over();
     }

@@ -32,6 +32,7 @@ bool StandbyMirror::run_until_active_lost(const std::atomic<bool>& stop, double 
     const double now_wall = SimClock::wall_now();
     if (active_gone(now_wall, silence_s)) return true;
     publish_standing(now_wall);
+    show(now_wall);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
@@ -46,6 +47,19 @@ void StandbyMirror::hand_over(std::vector<model::OrderInfo> orders) {
              handed_over_.size());
 }
 
+void StandbyMirror::show_on(WebBridge& bridge, StandbyView::Site site) {
+  view_ = std::make_unique<StandbyView>(bridge, std::move(site));
+  state_reader_ = std::make_unique<dds::Reader<model::RobotState>>(participant_, dds::qos::live_state(),
+                                                                   dds::robot_report_partitions());
+}
+
+void StandbyMirror::show(double now_wall) {
+  if (!view_) return;
+  state_reader_->take_data([&](model::RobotState&& state) { view_->robot(state, now_wall); });
+  view_->active_server(active_id_);
+  view_->serve(now_wall);
+}
+
 void StandbyMirror::mirror_orders() {
   order_info_reader_.take_data([&](model::OrderInfo&& info) {
     if (const auto handed = handed_over_.find(info.order_id);
@@ -53,6 +67,7 @@ void StandbyMirror::mirror_orders() {
       handed_over_.erase(handed);
       if (handed_over_.empty()) log_->info("standby {}: the active server has every order handed over", server_id_);
     }
+    if (view_) view_->order(info);
     try {
       store_.save(orders::order_of(info));
       ++orders_mirrored_;
@@ -63,7 +78,13 @@ void StandbyMirror::mirror_orders() {
 }
 
 void StandbyMirror::mirror_site_state() {
-  site_state_reader_.take_data([&](model::SiteStateDocument&& document) { store_.save_site_state(document.json); });
+  site_state_reader_.take_data([&](model::SiteStateDocument&& document) {
+    store_.save_site_state(document.json);
+    if (!view_) return;
+    const std::string before = view_->problem();
+    view_->site_state(document.json);
+    if (!view_->problem().empty() && view_->problem() != before) log_->warn("standby view: {}", view_->problem());
+  });
 }
 
 void StandbyMirror::publish_standing(double now_wall) {

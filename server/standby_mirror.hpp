@@ -3,12 +3,14 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/logging.hpp"
 #include "dds/topics.hpp"
 #include "server/order_store.hpp"
+#include "server/standby_view.hpp"
 
 namespace fleet::server {
 
@@ -33,6 +35,9 @@ class StandbyMirror {
   /// one; the mirror logs when the active server publishes each of them.
   void hand_over(std::vector<model::OrderInfo> orders);
 
+  /// Shows what it mirrors on a web view, read-only, from now on (StandbyView).
+  void show_on(WebBridge& bridge, StandbyView::Site site);
+
   long orders_mirrored() const { return orders_mirrored_; }
   /// The highest term heard an active server serve in (0 when none was heard).
   std::int64_t heard_term() const { return heard_term_; }
@@ -40,6 +45,8 @@ class StandbyMirror {
  private:
   void mirror_orders();
   void mirror_site_state();
+  /// The web view's robots and snapshot, and its answers to requests.
+  void show(double now_wall);
   /// Its own ServerLoad, once a second (wall).
   void publish_standing(double now_wall);
   /// True once the active server is gone (see run_until_active_lost).
@@ -53,6 +60,9 @@ class StandbyMirror {
   dds::Reader<model::ServerLoad> load_reader_;
   dds::Writer<model::ServerLoad> load_writer_;
   dds::Writer<model::OrderHandover> handover_writer_;
+  /// The web view's, when there is one: the robots as they report.
+  std::unique_ptr<StandbyView> view_;
+  std::unique_ptr<dds::Reader<model::RobotState>> state_reader_;
   /// Orders handed over that the active server has not published since, by id: their history length.
   std::map<std::int64_t, std::size_t> handed_over_;
   std::string server_id_;

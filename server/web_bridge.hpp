@@ -48,6 +48,10 @@ struct LiveSnapshot {
   long orders_failed = 0;
   double orders_per_hour = 0.0;   ///< done orders per sim hour since the server started
   double order_time_p95_s = 0.0;  ///< sim seconds from creation to DONE, p95
+  std::string server_id;          ///< the server whose view this is
+  /// A standby's view: what it mirrors, read-only; `active_server` is the one it stands by for.
+  bool standby = false;
+  std::string active_server;
 };
 
 /// A request from the web side for the server loop to carry out.

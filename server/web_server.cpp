@@ -121,7 +121,10 @@ json globals_json(const LiveSnapshot& s) {
               {"orders_done", s.orders_done},
               {"orders_failed", s.orders_failed},
               {"orders_per_hour", round_places(s.orders_per_hour, 1)},
-              {"order_time_p95_s", round_places(s.order_time_p95_s, 1)}};
+              {"order_time_p95_s", round_places(s.order_time_p95_s, 1)},
+              {"server", s.server_id},
+              {"standby", s.standby},
+              {"active_server", s.active_server}};
 }
 
 const json kEmptyObject = json::object();

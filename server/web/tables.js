@@ -17,6 +17,12 @@ globalThis.fleetTables = (() => {
     el('order-p95').textContent = g.orders_done ? fmtAge(g.order_time_p95_s) : '–';
     el('orders-done').textContent = g.orders_done ?? '–';
     el('orders-failed').textContent = g.orders_failed ?? '–';
+    // A standby's view is read-only: it shows what it mirrors and the active server takes requests.
+    const role = el('server-role');
+    role.hidden = !g.standby;
+    if (g.standby) {
+      role.textContent = g.active_server ? `standby of ${g.active_server}: read-only` : 'standby: read-only';
+    }
     const auto = el('auto-orders');
     if (document.activeElement !== auto) auto.checked = !!g.auto_orders;
 
