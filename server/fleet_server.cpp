@@ -21,10 +21,6 @@ namespace fleet::server {
 using orders::Order;
 using orders::OrderStatus;
 
-namespace {
-constexpr double kReplyRetentionWallS = 30.0;  // a requester has this long to read its reply
-}  // namespace
-
 FleetServer::FleetServer(ServerOptions options, Logger log)
     : options_(std::move(options)),
       log_(std::move(log)),
@@ -39,20 +35,13 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       participant_(options_.domain, static_cast<std::int32_t>(std::min<std::int64_t>(
                                         orders::strength(term_), std::numeric_limits<std::int32_t>::max()))),
       server_info_writer_(participant_, dds::qos::latched_state()),
-      reply_writer_(participant_, dds::qos::latched_state()),
       order_writer_(participant_, dds::qos::latched_state()),
       order_info_writer_(participant_, dds::qos::latched_state()),
       map_writer_(participant_, dds::qos::latched_state()),
       control_writer_(participant_, dds::qos::latched_state()),
-      pallet_writer_(participant_, dds::qos::latched_state()),
-      obstacle_writer_(participant_, dds::qos::latched_state()),
-      site_state_writer_(participant_, dds::qos::latched_state()),
-      fleet_view_writer_(participant_, dds::qos::live_state()),
       request_reader_(participant_, dds::qos::requests()),
       command_reader_(participant_, dds::qos::requests()),
       robot_state_reader_(participant_, dds::qos::robot_state(), dds::robot_report_partitions()),
-      robot_path_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
-      truth_reader_(participant_, dds::qos::live_state(), dds::robot_report_partitions()),
       order_report_reader_(participant_, dds::qos::latched_state(), dds::robot_report_partitions()),
       handover_reader_(participant_, dds::qos::latched_state()),
       waitset_(participant_),
@@ -61,7 +50,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   store_.save_term(term_.term);
   log_->info("serving as the active server {} in term {}", term_.server_id, term_.term);
   for (dds_entity_t reader : {request_reader_.handle(), command_reader_.handle(), robot_state_reader_.handle(),
-                              robot_path_reader_.handle(), order_report_reader_.handle()}) {
+                              routing_.path_reader(), order_report_reader_.handle()}) {
     waitset_.attach(reader);
   }
   adopt(derive_site(options_.site_map, options_.config));
@@ -71,7 +60,7 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   if (options_.maps.empty()) options_.maps = {options_.site.name};
   log_->info("maps of site '{}': {}", options_.site.name, model::join(options_.maps));
   started_wall_ = SimClock::wall_now();
-  restore_site_state();
+  site_keeper_.restore(options_.site, options_.config);
   restore_orders();
   hold_unheard_robots();
   publish_site_state();
@@ -150,15 +139,7 @@ void FleetServer::publish_site_state() {
 
 void FleetServer::publish_map_and_obstacles() {
   for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
-  for (const auto& obstacle : options_.site.static_obstacles) {
-    obstacle_writer_.write({obstacle.id, options_.site.name, site_.obstacle_enabled[obstacle.id], obstacle.polygon});
-  }
-}
-
-void FleetServer::reset_obstacles() {
-  site_.obstacle_enabled.clear();
-  for (const auto& obstacle : options_.site.static_obstacles)
-    site_.obstacle_enabled[obstacle.id] = obstacle.enabled_at_start;
+  site_keeper_.publish_obstacles(options_.site);
 }
 
 std::string FleetServer::begin_map_switch(const model::Command& command, Answer answer) {
@@ -228,9 +209,7 @@ void FleetServer::finish_map_switch() {
       for (const auto& [id, robot] : robots_.entries()) {
         if (traffic_ && robot.registered) traffic_->set_body(id, robots_.body_of(robot));  // lost ones too: still there
       }
-      reset_obstacles();
-      site_.map_id = options_.site.name;
-      save_site_state();
+      site_keeper_.switched_to(options_.site);
       publish_map_and_obstacles();
       publish_server_info();
       log_->info("map switched from '{}' to '{}' for every robot", previous, options_.site.name);
@@ -259,13 +238,13 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
     finish_map_switch();
     stages.lap("requests");
     handle_robot_states();
-    handle_robot_paths();
+    routing_.take_reports(gate_);
     handle_order_reports();
     handle_handed_over_orders();
     stages.lap("states");
     handle_web_requests();
     check_robot_health();
-    forget_old_replies();
+    replies_.forget_old();
     stages.lap("web");
     if (traffic_) {
       // Traffic cycles at 20 Hz of sim time, at most 100 Hz of wall time at high time scales.
@@ -291,7 +270,7 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
     stages.lap("orders");
     dispatch();
     stages.lap("dispatch");
-    publish_fleet_view();
+    routing_.publish_when_due(robots_, options_.site.name);
     stages.lap("views");
     publish_web_snapshot();
     load_meter_.publish_when_due(SimClock::wall_now(), clock_.now(), robots_.registered_count());
@@ -330,40 +309,8 @@ bool FleetServer::stepped_aside(const std::atomic<bool>& stop, double since_last
   }
 }
 
-void FleetServer::reply(const model::RequestReply& answer) {
-  reply_writer_.write(answer);
-  replies_written_[answer.request_id] = SimClock::wall_now();
-}
-
-void FleetServer::forget_old_replies() {
-  // Replies are latched only long enough for their requester to read them; unregistering keeps
-  // the writer's history bounded.
-  const double now = SimClock::wall_now();
-  for (auto it = replies_written_.begin(); it != replies_written_.end();) {
-    if (now - it->second > kReplyRetentionWallS) {
-      reply_writer_.unregister({it->first, false, 0, ""});
-      it = replies_written_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-}
-
 const orders::KnownNames& FleetServer::known_names() const {
   return *known_names_;
-}
-
-void FleetServer::handle_robot_paths() {
-  robot_path_reader_.take([&](model::RobotPath&& path, const dds::SampleInfo& info) {
-    if (info.valid_data && gate_.admit(robot_path_reader_.handle(), info, path.robot_id, "fleet/RobotPath")) {
-      paths_[path.robot_id] = std::move(path);
-    }
-  });
-  truth_reader_.take([&](model::SimTruth&& truth, const dds::SampleInfo& info) {
-    if (info.valid_data && gate_.admit(truth_reader_.handle(), info, truth.robot_id, "fleet/SimTruth")) {
-      truths_[truth.robot_id] = std::move(truth);
-    }
-  });
 }
 
 void FleetServer::handle_web_requests() {
@@ -397,8 +344,8 @@ void FleetServer::publish_web_snapshot() {
     if (!robot.registered) continue;
     RobotView view;
     view.state = robot.last;
-    if (auto t = truths_.find(id); t != truths_.end()) view.truth = t->second;
-    if (auto p = paths_.find(id); p != paths_.end()) view.path = p->second.points;
+    view.truth = routing_.truth_of(id);
+    view.path = routing_.path_of(id);
     if (const auto spec = options_.config.find_robot(id)) view.footprint = spec->first->footprint;
     const double silent_wall = now_wall - robot.last_seen_wall;
     view.health = std::string(monitor::to_string(monitor::robot_health(
@@ -435,8 +382,8 @@ void FleetServer::publish_web_snapshot() {
   snap.order_time_p95_s = common::percentile(std::move(durations), 0.95);
   const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
-  snap.obstacle_enabled = site_.obstacle_enabled;
-  snap.pallet_at = site_.ledger.occupancy();
+  snap.obstacle_enabled = site_keeper_.state().obstacle_enabled;
+  snap.pallet_at = site_keeper_.state().ledger.occupancy();
   snap.auto_orders = auto_orders_.on();
   snap.server_id = options_.server_id;
   bridge_->publish(std::move(snap));

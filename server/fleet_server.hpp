@@ -33,11 +33,14 @@
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
 #include "server/place_traffic_control.hpp"
+#include "server/reply_desk.hpp"
 #include "server/robot_body_memory.hpp"
+#include "server/robot_routing.hpp"
 #include "server/sender_gate.hpp"
 #include "server/server_load.hpp"
 #include "server/server_peers.hpp"
 #include "server/site_derivation.hpp"
+#include "server/site_keeper.hpp"
 #include "server/traffic_control.hpp"
 #include "server/web_bridge.hpp"
 
@@ -91,8 +94,6 @@ class FleetServer {
   void publish_site_state();
   /// Every robot's map assignment and the current map's obstacles (latched).
   void publish_map_and_obstacles();
-  /// The current map's obstacles as its site file sets them at the start (not stored).
-  void reset_obstacles();
   using Answer = std::function<void(const model::RequestReply&)>;
   /// Starts deriving map `command.value` (a revision of the site) off the loop; `answer` hears
   /// of it once finish_map_switch() has switched every robot onto it, or refused. Returns why
@@ -109,36 +110,20 @@ class FleetServer {
   void handle_order_requests();
   void handle_commands();
   void handle_robot_states();
-  void handle_robot_paths();
   void handle_order_reports();
   /// Orders a server that stepped down hands over: merged into the book (orders::merge_handed_over).
   void handle_handed_over_orders();
-  /// The pallet of a transport adopted from a server that stepped down, recorded where that
-  /// order took it (lifted, or put down at its drop area).
-  void follow_load_of(const orders::Order& adopted);
   /// A current report on an open order (orders::ReportVerdict::kApply): the lifecycle and the
   /// loads it moves.
   void apply_report(const orders::Order& order, const model::OrderReport& report);
-  void load_put_down(const orders::Order& order, const model::OrderReport& report);
-  void load_lifted(const orders::Order& order, const model::OrderReport& report);
-  /// The robot found the pick area empty: it is marked free unless a pallet stands there by the record.
-  void pick_found_empty(const orders::Order& order, const model::OrderReport& report);
   void check_robot_health();
   /// Gives up on orders whose lost robot did not come back in time (server.lost_with_pallet_wait_s).
   void check_orders_waiting_for_lost_robots(double now_wall);
   /// Counts robots of restored orders lost when they have not reported since the restart.
   void check_restored_orders();
-  /// Unregisters replies their requester has had time to read.
-  void forget_old_replies();
   void check_acknowledgements();
   void create_auto_orders();
   void dispatch();
-  void publish_fleet_view();
-  /// Simulation only: the true bodies within the view's radius of its robot's true body.
-  void add_true_bodies(model::NeighbourView& view, const geometry::Pose2& estimate) const;
-  /// Each robot's NeighbourView: the robots of its map within server.neighbour_radius.
-  void publish_neighbour_views(const std::vector<std::pair<std::string, model::RobotSnapshot>>& snapshots,
-                               double now_wall);
   void handle_web_requests();
   void publish_web_snapshot();
 
@@ -150,7 +135,6 @@ class FleetServer {
   /// Hands the order back to the robot that reported it with its pallet lifted
   /// (orders::ReportVerdict::kHandBack). False when the book refuses: the report is then stale.
   bool hand_back(const orders::Order& order, const model::OrderReport& report);
-  void reply(const model::RequestReply& answer);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
   /// A command's reply goes to `answer`: at once, or when a map switch it started is done.
@@ -180,15 +164,8 @@ class FleetServer {
   /// After a restart (called while constructing, before any robot is heard): the robots stored as
   /// standing somewhere keep their bodies there in traffic control until they report.
   void hold_unheard_robots();
-  /// The site's state as the site file starts it, overridden by what the database holds.
-  void restore_site_state();
-  /// Stores the site's state whole (after each change, before anyone hears of it).
-  void save_site_state();
-  /// Records a load's new truth: in the ledger, stored, and published as PalletTruth.
-  void record_load(orders::Load load);
   /// Back to the queue, taken from `robot_id` (told to drop it), with `reason` in its history.
   void requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason);
-  void return_pallet_of(const std::string& robot_id, const std::string& preferred_area);
   /// The lost robot of a waiting order came back restarted, or did not come back in time: the
   /// order is re-queued when the robot had not lifted the pallet (pallet truth), else failed and
   /// the pallet put back.
@@ -218,43 +195,32 @@ class FleetServer {
   orders::Dispatcher dispatcher_;
   orders::OrderBook book_;
   orders::RobotRoster robots_{options_.config};
-  std::map<std::string, model::RobotPath> paths_;
-  /// What stands where (the pallets' simulation truth), who parks where, which obstacles are on.
-  orders::SiteState site_;
   /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
   orders::RecoveryWatch recovery_;
-  std::map<std::string, double> replies_written_;  ///< request id -> wall time, to unregister later
   orders::AutoOrders auto_orders_;
   /// An order changed since the packing chain last looked: only then can it owe a transport.
   bool chain_stale_ = true;
-  double last_fleet_view_wall_ = 0.0;
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;
   WebBridge* bridge_ = nullptr;
-  std::map<std::string, model::SimTruth> truths_;
 
   /// The term it serves in: one above every term it held or heard; its writers' ownership strength.
   orders::ServerTerm term_;
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;
-  dds::Writer<model::RequestReply> reply_writer_;
   dds::Writer<model::OrderAssignment> order_writer_;
   dds::Writer<model::OrderInfo> order_info_writer_;
   dds::Writer<model::MapAssignment> map_writer_;
   dds::Writer<model::RobotControl> control_writer_;
-  dds::Writer<model::PalletTruth> pallet_writer_;
-  dds::Writer<model::StaticObstacleState> obstacle_writer_;
-  dds::Writer<model::SiteStateDocument> site_state_writer_;  ///< for a standby to mirror
-  dds::Writer<model::FleetView> fleet_view_writer_;
-  /// One per robot, each in the robot's own partition (model::robot_partition).
-  dds::PartitionWriters<model::NeighbourView> neighbour_writers_{participant_, dds::qos::live_state()};
   dds::Reader<model::OrderRequest> request_reader_;
   dds::Reader<model::Command> command_reader_;
   dds::Reader<model::RobotState> robot_state_reader_;
-  dds::Reader<model::RobotPath> robot_path_reader_;
-  dds::Reader<model::SimTruth> truth_reader_;
   dds::Reader<model::OrderReport> order_report_reader_;
   dds::Reader<model::OrderHandover> handover_reader_;
+  RobotRouting routing_{participant_, options_.config, clock_};
+  ReplyDesk replies_{participant_};
+  /// What stands where (the pallets' simulation truth), who parks where, which obstacles are on.
+  SiteKeeper site_keeper_{participant_, store_, log_};
   dds::WaitSet waitset_;
   ServerLoadMeter load_meter_;
   ServerPeers peers_;

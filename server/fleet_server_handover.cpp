@@ -56,7 +56,7 @@ void FleetServer::handle_handed_over_orders() {
         own && (own->status == OrderStatus::kDone || orders::restored_robot_carried_load(own->phase));
     book_.restore(theirs);
     const Order& adopted = *book_.find(theirs.id);
-    if (!moved_here) follow_load_of(adopted);
+    if (!moved_here) site_keeper_.follow(adopted, options_.site);
     if (withdrawn) withdraw(*withdrawn, withdrawn->robot_id);
     if (orders::with_a_robot(adopted.status)) {
       // As after a restart: its robot acknowledges and goes on when it is on it, refuses when it
@@ -68,23 +68,6 @@ void FleetServer::handle_handed_over_orders() {
                orders::to_string(adopted.status), adopted.robot_id.empty() ? "" : "by " + adopted.robot_id,
                decision.why);
   });
-}
-
-void FleetServer::follow_load_of(const Order& adopted) {
-  // The pallet a transport adopted from the other side moved there: this server's record follows,
-  // so that no order here goes for a pallet that is gone or onto a place that now holds one.
-  if (adopted.kind != orders::OrderKind::kTransport) return;
-  const bool done = adopted.status == OrderStatus::kDone;
-  if (!done && !(adopted.status == OrderStatus::kActive && orders::restored_robot_carried_load(adopted.phase))) return;
-  auto lifted = site_.ledger.lifted(adopted.robot_id, -1, adopted.pick_area);
-  if (!lifted) return;
-  const int load_id = lifted->id;
-  record_load(std::move(*lifted));
-  const auto* drop = options_.site.find_area(adopted.drop_area);
-  if (!done || drop == nullptr) return;
-  if (auto placed = site_.ledger.put_down(load_id, drop->pose, adopted.drop_area)) record_load(std::move(*placed));
-  log_->info("pallet {} recorded at {}: order {} moved it on the server that stepped down", load_id, adopted.drop_area,
-             adopted.id);
 }
 
 }  // namespace fleet::server

@@ -22,7 +22,7 @@ using orders::TransitionResult;
 void FleetServer::handle_order_requests() {
   request_reader_.take_data([&](model::OrderRequest&& request) {
     const model::RequestReply answer = execute(request);
-    reply(answer);
+    replies_.reply(answer);
   });
 }
 
@@ -38,10 +38,10 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
 
 orders::IntakeView FleetServer::intake_view() const {
   orders::IntakeView view{.book = book_,
-                          .ledger = site_.ledger,
+                          .ledger = site_keeper_.state().ledger,
                           .names = known_names(),
                           .site = options_.site,
-                          .parked_at = site_.parked_at,
+                          .parked_at = site_keeper_.state().parked_at,
                           .registered = robots_.registered_ids(),
                           .free_robots = {},
                           .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
@@ -74,7 +74,7 @@ std::int64_t FleetServer::add_orders(std::vector<Order> drafts) {
 
 void FleetServer::handle_commands() {
   command_reader_.take_data([&](model::Command&& command) {
-    execute(command, [this](const model::RequestReply& answer) { reply(answer); });
+    execute(command, [this](const model::RequestReply& answer) { replies_.reply(answer); });
   });
 }
 
@@ -104,9 +104,7 @@ void FleetServer::execute(const model::Command& command, const Answer& answer) {
     }
     case orders::CommandAction::kSwitchObstacle: {
       const auto* obstacle = options_.site.find_obstacle(command.target);
-      site_.obstacle_enabled[obstacle->id] = decision.on;
-      save_site_state();
-      obstacle_writer_.write({obstacle->id, options_.site.name, decision.on, obstacle->polygon});
+      site_keeper_.switch_obstacle(*obstacle, options_.site.name, decision.on);
       log_->info("static obstacle {} {}", command.target, command.value);
       break;
     }
@@ -150,7 +148,7 @@ void FleetServer::dispatch() {
   const auto start = ServerLoadMeter::Clock::now();
   const orders::DispatchRound round{
       .book = book_,
-      .ledger = site_.ledger,
+      .ledger = site_keeper_.state().ledger,
       .robots = robots_.entries(),
       .abilities = known_names().abilities,
       .place_taken = place_taken,

@@ -12,7 +12,7 @@ void FleetServer::advance_packing_chain() {
   chain_stale_ = false;
   // Each transport is created before the next is looked for; a handful per cycle at most.
   for (int i = 0; i < 4; ++i) {
-    auto due = orders::next_chain_transport(*options_.site.packing, site_.ledger, book_);
+    auto due = orders::next_chain_transport(*options_.site.packing, site_keeper_.state().ledger, book_);
     if (!due) return;
     orders::Order draft;
     draft.request_id = "packing";

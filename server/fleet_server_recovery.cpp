@@ -42,7 +42,7 @@ void FleetServer::handle_robot_states() {
     if (!robot.registered || robot.lost) {
       log_->info("robot {} ({}) {} at ({:.2f}, {:.2f}), state {}", state.robot_id, known->first->id,
                  robot.lost ? "is back" : "registered", state.pose.x, state.pose.y, state.task_state);
-      if (!robot.registered) neighbour_writers_.open(model::robot_partition(state.robot_id));
+      if (!robot.registered) routing_.open_view_of(state.robot_id);
       // A robot that comes back may still report an order the server has moved on from:
       // tell it so (the latched Order carries the cancellation).
       if (state.order_id != 0) {
@@ -136,12 +136,12 @@ void FleetServer::give_up_on_lost_robot(std::int64_t order_id, Recovery decision
   }
   const std::string pick_area = order->pick_area;
   fail_with_pallet(order_id, failure);
-  return_pallet_of(robot_id, pick_area);
+  site_keeper_.return_pallet_of(robot_id, pick_area);
 }
 
 void FleetServer::resume_or_fail_waiting_orders(const model::RobotState& state) {
   const orders::ReturningRobot robot{state.robot_id, state.order_id, state.carrying_pallet};
-  for (const orders::RecoveryStep& step : recovery_.robot_back(robot, book_, site_.ledger)) {
+  for (const orders::RecoveryStep& step : recovery_.robot_back(robot, book_, site_keeper_.state().ledger)) {
     if (step.action == Recovery::kKeep) {
       log_->info("order {} resumes: robot {} is back with it ({})", step.order_id, state.robot_id,
                  state.carrying_pallet                                     ? "pallet on its forks"
@@ -186,7 +186,8 @@ void FleetServer::check_robot_health() {
 void FleetServer::check_orders_waiting_for_lost_robots(double now_wall) {
   const double pallet_wait = options_.config.settings.get_double("server.lost_with_pallet_wait_s");
   const std::string waited = std::to_string(static_cast<int>(pallet_wait)) + " s";
-  for (const orders::RecoveryStep& step : recovery_.check_waiting(now_wall, pallet_wait, book_, site_.ledger)) {
+  for (const orders::RecoveryStep& step :
+       recovery_.check_waiting(now_wall, pallet_wait, book_, site_keeper_.state().ledger)) {
     give_up_on_lost_robot(step.order_id, step.action, "robot " + step.robot_id + " lost for " + waited,
                           "robot " + step.robot_id + " lost with the pallet for " + waited);
   }

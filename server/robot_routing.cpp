@@ -1,12 +1,10 @@
-// What the server tells about where the robots are: the full FleetView for observers (the soak's
-// watch, fleetctl routing-age) and, for each agent, the NeighbourView of the robots near it.
+#include "server/robot_routing.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "dds/qos.hpp"
 #include "robot/neighbour_memory.hpp"
-#include "server/fleet_server.hpp"
 
 namespace fleet::server {
 
@@ -22,20 +20,56 @@ constexpr double kViewsCompleteAfterWall = 3.0;
 
 }  // namespace
 
-void FleetServer::publish_fleet_view() {
+RobotRouting::RobotRouting(dds::Participant& participant, const config::FleetConfig& config, const SimClock& clock)
+    : config_(config),
+      clock_(clock),
+      path_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()),
+      truth_reader_(participant, dds::qos::live_state(), dds::robot_report_partitions()),
+      fleet_view_writer_(participant, dds::qos::live_state()),
+      neighbour_writers_(participant, dds::qos::live_state()) {}
+
+void RobotRouting::take_reports(SenderGate& gate) {
+  path_reader_.take([&](model::RobotPath&& path, const dds::SampleInfo& info) {
+    if (info.valid_data && gate.admit(path_reader_.handle(), info, path.robot_id, "fleet/RobotPath")) {
+      paths_[path.robot_id] = std::move(path);
+    }
+  });
+  truth_reader_.take([&](model::SimTruth&& truth, const dds::SampleInfo& info) {
+    if (info.valid_data && gate.admit(truth_reader_.handle(), info, truth.robot_id, "fleet/SimTruth")) {
+      truths_[truth.robot_id] = std::move(truth);
+    }
+  });
+}
+
+void RobotRouting::open_view_of(const std::string& robot_id) {
+  neighbour_writers_.open(model::robot_partition(robot_id));
+}
+
+std::vector<geometry::Vec2> RobotRouting::path_of(const std::string& robot_id) const {
+  const auto p = paths_.find(robot_id);
+  return p != paths_.end() ? p->second.points : std::vector<geometry::Vec2>{};
+}
+
+std::optional<model::SimTruth> RobotRouting::truth_of(const std::string& robot_id) const {
+  const auto t = truths_.find(robot_id);
+  if (t == truths_.end()) return std::nullopt;
+  return t->second;
+}
+
+void RobotRouting::publish_when_due(const orders::RobotRoster& robots, const std::string& default_map) {
   const double now_wall = SimClock::wall_now();
-  const double period_wall = std::max(
-      1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / options_.config.settings.get_double("server.fleet_view_hz")));
-  if (now_wall - last_fleet_view_wall_ < period_wall) return;
-  last_fleet_view_wall_ = now_wall;
+  const double period_wall =
+      std::max(1.0 / kMaxRoutingHzWall, clock_.to_wall(1.0 / config_.settings.get_double("server.fleet_view_hz")));
+  if (now_wall - last_published_wall_ < period_wall) return;
+  last_published_wall_ = now_wall;
   // Paths go to observers only, and only when one listens: hundreds of robots with routes of
   // hundreds of points make megabytes a view.
   const bool observed = fleet_view_writer_.matched() > 0;
   std::map<std::string, model::FleetView> views;
-  std::vector<std::pair<std::string, model::RobotSnapshot>> snapshots;  // map id, robot
-  for (const auto& [id, robot] : robots_.entries()) {
+  Snapshots snapshots;
+  for (const auto& [id, robot] : robots.entries()) {
     if (!robot.registered) continue;
-    const auto spec = options_.config.find_robot(id);
+    const auto spec = config_.find_robot(id);
     model::RobotSnapshot snap;
     snap.robot_id = id;
     snap.fleet_id = robot.fleet_id;
@@ -44,7 +78,7 @@ void FleetServer::publish_fleet_view() {
     snap.speed = robot.last.speed;
     snap.task_state = robot.lost ? "LOST" : robot.last.task_state;
     snap.sim_time = robot.last.sim_time;
-    const std::string map_id = robot.last.map_id.empty() ? options_.site.name : robot.last.map_id;
+    const std::string map_id = robot.last.map_id.empty() ? default_map : robot.last.map_id;
     if (observed) {
       auto& view = views[map_id];
       view.map_id = map_id;
@@ -58,12 +92,12 @@ void FleetServer::publish_fleet_view() {
   publish_neighbour_views(snapshots, now_wall);
 }
 
-void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::string, model::RobotSnapshot>>& snapshots,
-                                          double now_wall) {
-  const double radius = options_.config.settings.get_double("server.neighbour_radius");
+void RobotRouting::publish_neighbour_views(const Snapshots& snapshots, double now_wall) {
+  const double radius = config_.settings.get_double("server.neighbour_radius");
   const double complete_after_wall =
       std::max(kViewsCompleteAfterWall, clock_.to_wall(robot::NeighbourMemory::kForgetAfterS));
-  const bool complete = now_wall - started_wall_ >= complete_after_wall;
+  if (first_published_wall_ == 0.0) first_published_wall_ = now_wall;
+  const bool complete = now_wall - first_published_wall_ >= complete_after_wall;
   // By x, so that each robot looks only at the strip of robots within the radius along x.
   std::vector<std::size_t> by_x(snapshots.size());
   for (std::size_t i = 0; i < by_x.size(); ++i) by_x[i] = i;
@@ -85,7 +119,7 @@ void FleetServer::publish_neighbour_views(const std::vector<std::pair<std::strin
   }
 }
 
-void FleetServer::add_true_bodies(model::NeighbourView& view, const geometry::Pose2& estimate) const {
+void RobotRouting::add_true_bodies(model::NeighbourView& view, const geometry::Pose2& estimate) const {
   // Simulation only. Each agent's simulated sensors see the true bodies of the robots near its
   // own true body; relayed here, an agent receives one view instead of every robot's SimTruth.
   const auto own = truths_.find(view.robot_id);
