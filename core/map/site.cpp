@@ -249,6 +249,17 @@ void read_obstacles_and_racks(const Reader& r, const YAML::Node& root, Site& sit
   }
 }
 
+/// The rack that covers `marker`'s face: the point a camera looks at, just in front of it along
+/// its yaw (as perception::MarkerCamera does), lies in or on it. Nothing for a marker on a face.
+const Rack* rack_in_front_of(const Site& site, const Marker& marker) {
+  const geometry::Vec2 normal{std::cos(marker.pose.yaw), std::sin(marker.pose.yaw)};
+  const geometry::Vec2 face = marker.pose.position() + 0.05 * normal;
+  for (const Rack& rack : site.racks) {
+    if (geometry::segment_intersects_polygon(face, face + 0.5 * normal, rack.polygon)) return &rack;
+  }
+  return nullptr;
+}
+
 void read_anchors_homes_markers(const Reader& r, const YAML::Node& root, Site& site) {
   std::set<std::string> anchor_ids;
   const YAML::Node anchors = r.list(root, "uwb_anchors");
@@ -292,6 +303,11 @@ void read_anchors_homes_markers(const Reader& r, const YAML::Node& root, Site& s
     if (markers[i]["z"]) marker.z = r.number_value(markers[i]["z"], key + ".z");
     if (!site.bounds.contains(marker.pose.position()))
       r.fail(markers[i], key, "marker " + std::to_string(code) + " lies outside the bounds");
+    if (const Rack* buried = rack_in_front_of(site, marker)) {
+      r.fail(markers[i], key,
+             "marker " + std::to_string(code) + " lies inside rack " + buried->id +
+                 ": no camera sees its face; put it on the rack's face, facing out (yaw)");
+    }
     site.markers.push_back(marker);
   }
 }

@@ -58,6 +58,17 @@ TEST(Site, ObstacleOutsideTheAreaIsRefused) {
   EXPECT_NE(msg.find("obstacle 'O1' lies outside the bounds"), std::string::npos) << msg;
 }
 
+TEST(Site, AMarkerInsideARackIsRefusedAndOneOnItsFaceIsTaken) {
+  const std::string rack = "racks:\n  - {id: L1, polygon: [[1, 2], [2.5, 2], [2.5, 2.15], [1, 2.15]]}\n";
+  // 5 cm into the rack, facing out of it: a camera's line of sight ends inside the rack.
+  const std::string msg = message_of(kBounds + rack + "markers:\n  - {id: 13, x: 2, y: 2.05, yaw: -1.570796}\n");
+  EXPECT_NE(msg.find("marker 13 lies inside rack L1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("markers[0]"), std::string::npos) << msg;
+  const Site site =
+      parse_site(kBounds + rack + "markers:\n  - {id: 13, x: 2, y: 2, yaw: -1.570796}\n", "maps/good.yaml");
+  EXPECT_EQ(site.markers.size(), 1u);
+}
+
 TEST(Site, PlacesOfferPickAndDropOnTheFloorUnlessTheySayOtherwise) {
   const Site site = parse_site(kBounds +
                                    "loading_areas:\n"
