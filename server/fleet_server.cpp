@@ -7,7 +7,6 @@
 #include <limits>
 #include <thread>
 
-#include "common/percentile.hpp"
 #include "common/process_memory.hpp"
 #include "model/names.hpp"
 #include "monitor/order_accounting.hpp"
@@ -328,7 +327,6 @@ void FleetServer::handle_web_requests() {
 
 void FleetServer::publish_web_snapshot() {
   constexpr double kWebHzWall = 20.0;
-  constexpr std::size_t kRecentEndedOrders = 50;
   if (!bridge_) return;
   const double now_wall = SimClock::wall_now();
   if (now_wall - last_web_snapshot_wall_ < 1.0 / kWebHzWall) return;
@@ -360,26 +358,7 @@ void FleetServer::publish_web_snapshot() {
     }
     snap.robots.push_back(std::move(view));
   }
-  std::vector<const Order*> ended;
-  std::vector<double> durations;
-  for (const auto& [id, order] : book_.all()) {
-    if (!orders::is_final(order.status)) {
-      snap.orders.push_back(info_of(order));
-    } else {
-      ended.push_back(&order);
-    }
-    if (order.status == OrderStatus::kDone) {
-      ++snap.orders_done;
-      durations.push_back(order.finished_sim - order.created_sim);
-    }
-    if (order.status == OrderStatus::kFailed) ++snap.orders_failed;
-  }
-  for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size();
-       ++i) {
-    snap.orders.push_back(info_of(*ended[i]));
-  }
-  // The same p95 as `fleetctl stats`, so the page and the CLI agree.
-  snap.order_time_p95_s = common::percentile(std::move(durations), 0.95);
+  fill_orders(book_.all(), snap);
   const double hours = (snap.sim_time - started_wall_ * options_.time_scale) / 3600.0;
   snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
   snap.obstacle_enabled = site_keeper_.state().obstacle_enabled;

@@ -24,9 +24,7 @@ SiteKeeper::SiteKeeper(dds::Participant& participant, OrderStore& store, Logger 
       site_state_writer_(participant, dds::qos::latched_state()) {}
 
 void SiteKeeper::restore(const map::Site& site, const config::FleetConfig& config) {
-  std::vector<std::string> robots;
-  for (const auto& [fleet, robot] : config.all_robots()) robots.push_back(robot->id);
-  const orders::SiteNames names = orders::site_names_of(site, robots);
+  const orders::SiteNames names = orders::site_names_of(site, config);
   state_ = orders::SiteState{site.name, orders::AreaLedger(names.places), {}, {}};
   for (const auto& [fleet, robot] : config.all_robots()) state_.parked_at[robot->id] = robot->home;
   reset_obstacles(site);

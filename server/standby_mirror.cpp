@@ -67,9 +67,10 @@ void StandbyMirror::mirror_orders() {
       handed_over_.erase(handed);
       if (handed_over_.empty()) log_->info("standby {}: the active server has every order handed over", server_id_);
     }
-    if (view_) view_->order(info);
     try {
-      store_.save(orders::order_of(info));
+      const orders::Order order = orders::order_of(info);
+      store_.save(order);
+      if (view_) view_->order(order);
       ++orders_mirrored_;
     } catch (const InputError& e) {
       log_->warn("standby: order {} not mirrored: {}", info.order_id, e.what());

@@ -4,22 +4,13 @@
 #include <vector>
 
 #include "common/errors.hpp"
-#include "common/percentile.hpp"
 #include "monitor/robot_health.hpp"
-#include "orders/order.hpp"
-#include "orders/site_state.hpp"
 #include "traffic/order_names.hpp"
 
 namespace fleet::server {
 
 namespace {
 constexpr double kHzWall = 5.0;
-constexpr std::size_t kRecentEndedOrders = 50;  // as the active server's view
-
-bool is_open(const model::OrderInfo& info) {
-  const auto status = orders::parse_status(info.state);
-  return status && !orders::is_final(*status);
-}
 }  // namespace
 
 StandbyView::StandbyView(WebBridge& bridge, Site site)
@@ -27,20 +18,18 @@ StandbyView::StandbyView(WebBridge& bridge, Site site)
       site_(std::move(site)),
       // The web API checks requests against them before it hands them on, as on the active server.
       known_names_(
-          std::make_shared<const orders::KnownNames>(traffic::order_request_names(*site_.config, *site_.site_map))) {}
+          std::make_shared<const orders::KnownNames>(traffic::order_request_names(*site_.config, *site_.site_map))),
+      site_names_(orders::site_names_of(site_.site_map->site, *site_.config)) {}
 
-void StandbyView::order(const model::OrderInfo& info) {
-  if (info.state == "DONE") done_durations_[info.order_id] = info.finished_sim - info.created_sim;
-  sim_time_ = std::max(sim_time_, info.updated_sim);
-  orders_[info.order_id] = info;
+void StandbyView::order(const orders::Order& order) {
+  sim_time_ = std::max(sim_time_, order.updated_sim);
+  orders_.insert_or_assign(order.id, order);
 }
 
 void StandbyView::site_state(const std::string& json) {
-  std::vector<std::string> robots;
-  for (const auto& [fleet, robot] : site_.config->all_robots()) robots.push_back(robot->id);
   try {
-    const orders::RestoredSiteState read = orders::site_state_from_json(
-        json, orders::site_names_of(site_.site_map->site, robots), "the active server's site state");
+    const orders::RestoredSiteState read =
+        orders::site_state_from_json(json, site_names_, "the active server's site state");
     obstacle_enabled_ = read.state.obstacle_enabled;
     pallet_at_ = read.state.ledger.occupancy();
     problem_.clear();
@@ -81,30 +70,14 @@ void StandbyView::publish(double now_wall) {
     view.age_s = std::max(0.0, sim_time_ - heard.state.sim_time);
     snap.robots.push_back(std::move(view));
   }
-  std::vector<const model::OrderInfo*> ended;
-  for (const auto& [id, info] : orders_) {
-    if (is_open(info)) {
-      snap.orders.push_back(info);
-    } else {
-      ended.push_back(&info);
-    }
-    if (info.state == "FAILED") ++snap.orders_failed;
-  }
-  for (std::size_t i = ended.size() > kRecentEndedOrders ? ended.size() - kRecentEndedOrders : 0; i < ended.size();
-       ++i) {
-    snap.orders.push_back(*ended[i]);
-  }
-  std::vector<double> durations;
-  for (const auto& [id, d] : done_durations_) durations.push_back(d);
-  snap.orders_done = static_cast<long>(durations.size());
+  fill_orders(orders_, snap);
   // Per sim hour since the first order it mirrored was created: the standby did not see the start.
   if (!orders_.empty()) {
     double first_created = sim_time_;
-    for (const auto& [id, info] : orders_) first_created = std::min(first_created, info.created_sim);
+    for (const auto& [id, order] : orders_) first_created = std::min(first_created, order.created_sim);
     const double hours = (sim_time_ - first_created) / 3600.0;
     snap.orders_per_hour = hours > 0 ? snap.orders_done / hours : 0.0;
   }
-  snap.order_time_p95_s = common::percentile(std::move(durations), 0.95);
   snap.obstacle_enabled = obstacle_enabled_;
   snap.pallet_at = pallet_at_;
   bridge_.publish(std::move(snap));

@@ -8,6 +8,8 @@
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
 #include "model/messages.hpp"
+#include "orders/order.hpp"
+#include "orders/site_state.hpp"
 #include "server/web_bridge.hpp"
 
 namespace fleet::server {
@@ -26,7 +28,8 @@ class StandbyView {
 
   StandbyView(WebBridge& bridge, Site site);
 
-  void order(const model::OrderInfo& info);
+  /// An order as mirrored (orders::order_of of its OrderInfo).
+  void order(const orders::Order& order);
   /// The site's state as the active server wrote it (orders::to_json); a document this site cannot
   /// read is left out with `problem` set.
   void site_state(const std::string& json);
@@ -51,8 +54,8 @@ class StandbyView {
   WebBridge& bridge_;
   Site site_;
   std::shared_ptr<const orders::KnownNames> known_names_;
-  std::map<std::int64_t, model::OrderInfo> orders_;
-  std::map<std::int64_t, double> done_durations_;  ///< sim s from creation to DONE, by order
+  orders::SiteNames site_names_;  ///< what the site states are read against
+  std::map<std::int64_t, orders::Order> orders_;
   std::map<std::string, Heard> robots_;
   std::map<std::string, bool> obstacle_enabled_;
   std::map<std::string, bool> pallet_at_;

@@ -11,6 +11,7 @@
 #include "geometry/polygon.hpp"
 #include "map/site_map.hpp"
 #include "model/messages.hpp"
+#include "orders/order.hpp"
 #include "orders/order_request_check.hpp"
 
 namespace fleet::server {
@@ -53,6 +54,11 @@ struct LiveSnapshot {
   bool standby = false;
   std::string active_server;
 };
+
+/// Puts `orders` into `snapshot` as both servers' views show them: every open order and the 50
+/// most recent ended ones, the counts of DONE and FAILED orders, and the p95 order time (the same
+/// p95 as `fleetctl stats`, so the page and the CLI agree).
+void fill_orders(const std::map<std::int64_t, orders::Order>& orders, LiveSnapshot& snapshot);
 
 /// A request from the web side for the server loop to carry out.
 using WebRequest = std::variant<model::OrderRequest, model::Command>;

@@ -150,8 +150,9 @@ RestoredSiteState site_state_from_json(std::string_view text, const SiteNames& s
   return out;
 }
 
-SiteNames site_names_of(const map::Site& site, const std::vector<std::string>& robots) {
-  SiteNames names{site.name, {}, {robots.begin(), robots.end()}, {}};
+SiteNames site_names_of(const map::Site& site, const config::FleetConfig& config) {
+  SiteNames names{site.name, {}, {}, {}};
+  for (const auto& [fleet, robot] : config.all_robots()) names.robots.insert(robot->id);
   for (const auto& area : site.loading_areas) names.places.push_back({area.id, area.pose});
   for (const auto& obstacle : site.static_obstacles) names.obstacles.insert(obstacle.id);
   return names;

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "config/fleet_config.hpp"
 #include "map/site.hpp"
 #include "orders/area_ledger.hpp"
 
@@ -35,8 +36,9 @@ struct SiteNames {
   std::set<std::string> obstacles;  ///< the static obstacles of `map_id`
 };
 
-/// The names of `site` (its loading areas as places, its static obstacles) with `robots`.
-SiteNames site_names_of(const map::Site& site, const std::vector<std::string>& robots);
+/// The names of `site` (its loading areas as places, its static obstacles) with the robots of
+/// `config`.
+SiteNames site_names_of(const map::Site& site, const config::FleetConfig& config);
 
 /// A stored state read back, and what it named that the site no longer has: each such entry is
 /// left out and said in one sentence, for the log.
