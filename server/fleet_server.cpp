@@ -34,8 +34,6 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
       participant_(options_.domain, static_cast<std::int32_t>(std::min<std::int64_t>(
                                         orders::strength(term_), std::numeric_limits<std::int32_t>::max()))),
       server_info_writer_(participant_, dds::qos::latched_state()),
-      order_writer_(participant_, dds::qos::latched_state()),
-      order_info_writer_(participant_, dds::qos::latched_state()),
       map_writer_(participant_, dds::qos::latched_state()),
       control_writer_(participant_, dds::qos::latched_state()),
       request_reader_(participant_, dds::qos::requests()),
@@ -61,8 +59,11 @@ FleetServer::FleetServer(ServerOptions options, Logger log)
   started_wall_ = SimClock::wall_now();
   site_keeper_.restore(options_.site, options_.config);
   restore_orders();
-  hold_unheard_robots();
-  publish_site_state();
+  recovery_.hold_unheard_robots();
+  // [Forklift thesis, section 3]: the map is assigned at the start; obstacles are forwarded when they
+  // change and when robots start (latched topics give late joiners the current set).
+  for (const auto& [fleet, robot] : options_.config.all_robots()) control_writer_.write({robot->id, false});
+  publish_map_and_obstacles();
   publish_server_info();
   log_->info("serving site '{}' on DDS domain {} at time scale {}, dispatch '{}', automatic orders {}",
              options_.site.name, options_.domain, options_.time_scale,
@@ -82,7 +83,7 @@ void FleetServer::restore_orders() {
     orders::fill_steps(order, known_names());
     book_.restore(order);
     if (orders::is_final(order.status)) {
-      order_info_writer_.write(info_of(order));
+      wire_.announce(order);
       continue;
     }
     ++open;
@@ -90,26 +91,13 @@ void FleetServer::restore_orders() {
       // Assigned before the restart: offer it to its robot again. A robot still working on it
       // acknowledges and goes on; its latched OrderState tells us how far it got, also if it
       // finished while we were down.
-      send_assignment(order);
+      wire_.assign(order);
     }
-    order_info_writer_.write(info_of(order));
+    wire_.announce(order);
   }
   if (!stored.empty() || term_.took_over) {
     log_->info("restored {} orders from {} ({} open); next order id {}", stored.size(), store_.path(), open,
                book_.next_id());
-  }
-}
-
-void FleetServer::hold_unheard_robots() {
-  if (!traffic_) return;
-  for (const auto& [id, pose] : body_memory_.before_start()) {
-    if (!options_.config.find_robot(id)) continue;
-    RobotEntry unheard;
-    unheard.id = id;
-    unheard.last.pose = pose;
-    traffic_->set_body(id, robots_.body_of(unheard));
-    log_->info("robot {} not heard from yet: its body is held where it last stood ({:.2f}, {:.2f})", id, pose.x,
-               pose.y);
   }
 }
 
@@ -129,13 +117,6 @@ void FleetServer::publish_server_info() {
   server_info_writer_.write(info);
 }
 
-void FleetServer::publish_site_state() {
-  // [Forklift thesis, section 3]: the map is assigned at the start; obstacles are forwarded when they
-  // change and when robots start (latched topics give late joiners the current set).
-  for (const auto& [fleet, robot] : options_.config.all_robots()) control_writer_.write({robot->id, false});
-  publish_map_and_obstacles();
-}
-
 void FleetServer::publish_map_and_obstacles() {
   for (const auto& [fleet, robot] : options_.config.all_robots()) map_writer_.write({robot->id, options_.site.name});
   site_keeper_.publish_obstacles(options_.site);
@@ -148,31 +129,6 @@ std::string FleetServer::begin_map_switch(const model::Command& command, Answer 
                           std::async(std::launch::async, load_revision, options_.site, command.value, options_.config),
                           std::move(answer)};
   log_->info("switching to map '{}': deriving its graphs and traffic zones", command.value);
-  return "";
-}
-
-std::string FleetServer::robot_on_closed_road(const map::SiteMap& next, const std::string& map_id) const {
-  // A robot standing on a road the new map closes would be off its graph with no way back onto
-  // it: it waited there until the map was switched back. Refused, as an obstacle over a robot is.
-  if (!options_.site_map) return "";
-  constexpr double kOnRoadM = 0.15;     // half a lane: the robot stands on that road
-  constexpr double kSamePointM = 0.02;  // a point the new graph has too
-  const auto& old_points = options_.site_map->graph.graph.points;
-  const auto& new_points = next.graph.graph.points;
-  for (const auto& [id, robot] : robots_.entries()) {
-    if (!robot.registered) continue;
-    const geometry::Vec2 at = robot.last.pose.position();
-    for (const auto& p : old_points) {
-      if (geometry::distance(at, {p.x, p.y}) > kOnRoadM) continue;
-      const bool kept = std::any_of(new_points.begin(), new_points.end(), [&](const auto& q) {
-        return geometry::distance({p.x, p.y}, {q.x, q.y}) <= kSamePointM;
-      });
-      if (!kept) {
-        return fmt::format("robot {} stands at ({:.2f}, {:.2f}) on a road map '{}' closes: switch once it has left", id,
-                           at.x, at.y, map_id);
-      }
-    }
-  }
   return "";
 }
 
@@ -200,7 +156,11 @@ void FleetServer::finish_map_switch() {
   try {
     SiteDerivation derived = done.derived.get();
     // Where the robots stand now, not when the switch was asked for.
-    error = robot_on_closed_road(*derived.site_map, done.map_id);
+    std::map<std::string, geometry::Vec2> standing;
+    for (const auto& [id, robot] : robots_.entries()) {
+      if (robot.registered) standing[id] = robot.last.pose.position();
+    }
+    if (options_.site_map) error = robot_on_closed_road(*options_.site_map, *derived.site_map, done.map_id, standing);
     if (error.empty()) {
       const std::string previous = options_.site.name;
       adopt(std::move(derived));
@@ -242,7 +202,7 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
     handle_handed_over_orders();
     stages.lap("states");
     handle_web_requests();
-    check_robot_health();
+    recovery_.check(SimClock::wall_now(), started_wall_);
     replies_.forget_old();
     stages.lap("web");
     if (traffic_) {
@@ -262,7 +222,7 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
       }
       stages.lap("traffic update");
     }
-    check_acknowledgements();
+    recovery_.check_acknowledgements();
     if (gate_.take_change()) publish_server_info();  // the refusals, for fleetctl stats
     if (auto_orders_.due(SimClock::wall_now())) create_auto_orders();
     advance_packing_chain();

@@ -32,9 +32,11 @@
 #include "planning/road_planner.hpp"
 #include "planning/road_travel.hpp"
 #include "server/order_store.hpp"
+#include "server/order_wire.hpp"
 #include "server/place_traffic_control.hpp"
 #include "server/reply_desk.hpp"
 #include "server/robot_body_memory.hpp"
+#include "server/robot_recovery.hpp"
 #include "server/robot_routing.hpp"
 #include "server/sender_gate.hpp"
 #include "server/server_load.hpp"
@@ -91,7 +93,6 @@ class FleetServer {
   /// Whether another active server outranks this one (orders::outranks), listened for a while
   /// when the loop stood still `since_last_loop_s` beyond its liveliness lease.
   bool stepped_aside(const std::atomic<bool>& stop, double since_last_loop_s);
-  void publish_site_state();
   /// Every robot's map assignment and the current map's obstacles (latched).
   void publish_map_and_obstacles();
   using Answer = std::function<void(const model::RequestReply&)>;
@@ -102,8 +103,6 @@ class FleetServer {
   /// Switches every robot onto the map begin_map_switch() derived, once it is ready (call every
   /// loop): the map, the fleets' graphs and a new traffic manager.
   void finish_map_switch();
-  /// Why no switch onto `next` now: a robot stands on a road it closes (empty: none does).
-  std::string robot_on_closed_road(const map::SiteMap& next, const std::string& map_id) const;
   /// Takes a derived site as the server's own (at the start and on a map switch).
   void adopt(SiteDerivation derived);
   void publish_server_info();
@@ -116,25 +115,11 @@ class FleetServer {
   /// A current report on an open order (orders::ReportVerdict::kApply): the lifecycle and the
   /// loads it moves.
   void apply_report(const orders::Order& order, const model::OrderReport& report);
-  void check_robot_health();
-  /// Gives up on orders whose lost robot did not come back in time (server.lost_with_pallet_wait_s).
-  void check_orders_waiting_for_lost_robots(double now_wall);
-  /// Counts robots of restored orders lost when they have not reported since the restart.
-  void check_restored_orders();
-  void check_acknowledgements();
   void create_auto_orders();
   void dispatch();
   void handle_web_requests();
   void publish_web_snapshot();
 
-  void publish_order(const orders::Order& order);
-  void send_assignment(const orders::Order& order);
-  /// Tells `robot_id` to drop `order` (VDA 5050 style: with the order's update id, so a late
-  /// duplicate of an older assignment cannot undo it).
-  void withdraw(const orders::Order& order, const std::string& robot_id);
-  /// Hands the order back to the robot that reported it with its pallet lifted
-  /// (orders::ReportVerdict::kHandBack). False when the book refuses: the report is then stale.
-  bool hand_back(const orders::Order& order, const model::OrderReport& report);
   /// Carries out an order request or a command from DDS or the web view; the reply says how.
   model::RequestReply execute(const model::OrderRequest& request);
   /// A command's reply goes to `answer`: at once, or when a map switch it started is done.
@@ -154,23 +139,7 @@ class FleetServer {
   /// Metres along the road graph from a robot to where it stands to pick from `area_id`; +inf
   /// when there is no way.
   double travel_cost(const std::string& robot_id, const std::string& place_id);
-  void robot_lost(RobotEntry& robot, const std::string& why);
-  /// A lost robot answers again: the orders that waited for it resume when it still carries
-  /// their pallet, and fail when it does not (it was restarted).
-  void resume_or_fail_waiting_orders(const model::RobotState& state);
-  void fail_with_pallet(std::int64_t order_id, const std::string& reason);
-
   void restore_orders();
-  /// After a restart (called while constructing, before any robot is heard): the robots stored as
-  /// standing somewhere keep their bodies there in traffic control until they report.
-  void hold_unheard_robots();
-  /// Back to the queue, taken from `robot_id` (told to drop it), with `reason` in its history.
-  void requeue_taken_from(std::int64_t order_id, const std::string& robot_id, const std::string& reason);
-  /// The lost robot of a waiting order came back restarted, or did not come back in time: the
-  /// order is re-queued when the robot had not lifted the pallet (pallet truth), else failed and
-  /// the pallet put back.
-  void give_up_on_lost_robot(std::int64_t order_id, orders::Recovery decision, const std::string& why,
-                             const std::string& failure);
 
   ServerOptions options_;
   Logger log_;
@@ -196,10 +165,8 @@ class FleetServer {
   orders::OrderBook book_;
   orders::RobotRoster robots_{options_.config};
   /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
-  orders::RecoveryWatch recovery_;
+  orders::RecoveryWatch watch_;
   orders::AutoOrders auto_orders_;
-  /// An order changed since the packing chain last looked: only then can it owe a transport.
-  bool chain_stale_ = true;
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;
   WebBridge* bridge_ = nullptr;
@@ -208,8 +175,6 @@ class FleetServer {
   orders::ServerTerm term_;
   dds::Participant participant_;
   dds::Writer<model::ServerInfo> server_info_writer_;
-  dds::Writer<model::OrderAssignment> order_writer_;
-  dds::Writer<model::OrderInfo> order_info_writer_;
   dds::Writer<model::MapAssignment> map_writer_;
   dds::Writer<model::RobotControl> control_writer_;
   dds::Reader<model::OrderRequest> request_reader_;
@@ -221,10 +186,23 @@ class FleetServer {
   ReplyDesk replies_{participant_};
   /// What stands where (the pallets' simulation truth), who parks where, which obstacles are on.
   SiteKeeper site_keeper_{participant_, store_, log_};
+  /// Null when traffic.enabled is false; replaced on a map switch.
+  std::unique_ptr<TrafficService> traffic_;
+  /// Stores each order and tells the robots and the other servers.
+  OrderWire wire_{participant_, store_, book_, robots_, watch_, options_.site};
+  RobotRecovery recovery_{{.config = options_.config,
+                           .clock = clock_,
+                           .log = log_,
+                           .book = book_,
+                           .robots = robots_,
+                           .watch = watch_,
+                           .site_keeper = site_keeper_,
+                           .wire = wire_,
+                           .body_memory = body_memory_,
+                           .traffic = traffic_}};
   dds::WaitSet waitset_;
   ServerLoadMeter load_meter_;
   ServerPeers peers_;
-  std::unique_ptr<TrafficService> traffic_;  ///< null when traffic.enabled is false
   double next_traffic_sim_ = 0.0;
   double last_traffic_wall_ = 0.0;
 };

@@ -57,13 +57,13 @@ void FleetServer::handle_handed_over_orders() {
     book_.restore(theirs);
     const Order& adopted = *book_.find(theirs.id);
     if (!moved_here) site_keeper_.follow(adopted, options_.site);
-    if (withdrawn) withdraw(*withdrawn, withdrawn->robot_id);
+    if (withdrawn) wire_.withdraw(*withdrawn, withdrawn->robot_id);
     if (orders::with_a_robot(adopted.status)) {
       // As after a restart: its robot acknowledges and goes on when it is on it, refuses when it
       // is busy with another (the order goes back to the queue), and counts as lost when unheard.
-      send_assignment(adopted);
+      wire_.assign(adopted);
     }
-    publish_order(adopted);
+    wire_.publish(adopted);
     log_->info("order {} handed over by a server that stepped down: {} {} ({})", adopted.id,
                orders::to_string(adopted.status), adopted.robot_id.empty() ? "" : "by " + adopted.robot_id,
                decision.why);

@@ -67,7 +67,7 @@ std::int64_t FleetServer::add_orders(std::vector<Order> drafts) {
       log_->info("order {} created: pick tour of {} box{} from {} line{} to {} (request {})", order.id, boxes,
                  boxes == 1 ? "" : "es", lines, lines == 1 ? "" : "s", order.drop_area, order.request_id);
     }
-    publish_order(order);  // stored before the requester hears of it
+    wire_.publish(order);  // stored before the requester hears of it
   }
   return first;
 }
@@ -98,8 +98,8 @@ void FleetServer::execute(const model::Command& command, const Answer& answer) {
         break;
       }
       log_->info("order {} cancelled by operator", order.id);
-      publish_order(order);
-      if (was_assigned) withdraw(order, order.robot_id);
+      wire_.publish(order);
+      if (was_assigned) wire_.withdraw(order, order.robot_id);
       break;
     }
     case orders::CommandAction::kSwitchObstacle: {
@@ -160,9 +160,9 @@ void FleetServer::dispatch() {
     if (book_.assign(assignment.order_id, assignment.robot_id, clock_.now()) != TransitionResult::kApplied) continue;
     const Order& order = *book_.find(assignment.order_id);
     log_->info("order {} assigned to {}", order.id, order.robot_id);
-    recovery_.assigned(order.id);
-    publish_order(order);
-    send_assignment(order);
+    watch_.assigned(order.id);
+    wire_.publish(order);
+    wire_.assign(order);
   }
   load_meter_.dispatched(ServerLoadMeter::Clock::now() - start);
 }
@@ -180,59 +180,6 @@ double FleetServer::travel_cost(const std::string& robot_id, const std::string& 
   const auto planner = travel_.find(robot->second.fleet_id);
   if (planner == travel_.end()) return std::numeric_limits<double>::infinity();
   return planner->second.travel(robot->second.last.pose, approach);
-}
-
-void FleetServer::withdraw(const Order& order, const std::string& robot_id) {
-  model::OrderAssignment msg;
-  msg.order_id = order.id;
-  msg.robot_id = robot_id;
-  msg.update_id = order.update_id;
-  msg.cancelled = true;
-  order_writer_.write(msg);
-  // An ended order must not stay on the latched topic (see publish_order): the robot has the
-  // withdrawal once it is written, a robot that comes back later is told again on its return.
-  if (orders::is_final(order.status)) order_writer_.unregister(msg);
-}
-
-void FleetServer::send_assignment(const Order& order) {
-  model::OrderAssignment msg;
-  msg.order_id = order.id;
-  msg.robot_id = order.robot_id;
-  msg.pick_area = order.pick_area;
-  msg.drop_area = order.drop_area;
-  if (const auto* pick = options_.site.find_area(order.pick_area)) msg.pick_pose = pick->pose;
-  if (const auto* drop = options_.site.find_area(order.drop_area)) {
-    // A move to a loading area ends where a vehicle stands to handle its load, not on the load.
-    msg.drop_pose =
-        order.kind == orders::OrderKind::kMove ? drop->approach_pose(options_.site.approach_distance) : drop->pose;
-  }
-  if (const auto* parking = options_.site.find_home(order.drop_area);
-      parking && order.kind == orders::OrderKind::kMove) {
-    msg.drop_pose = parking->pose;
-  }
-  msg.kind = std::string(orders::to_string(order.kind));
-  msg.lines = order.lines;
-  msg.update_id = order.update_id;
-  order_writer_.write(msg);
-  recovery_.sent(order.id, SimClock::wall_now());
-}
-
-void FleetServer::publish_order(const Order& order) {
-  if (auto robot = robots_.entries().find(order.robot_id);
-      robot != robots_.entries().end() && !order.history.empty() && !order.history.back().robot_id.empty()) {
-    book_.locate_last_event(order.id, robot->second.last.pose.x, robot->second.last.pose.y);
-  }
-  // Written before anyone is told: a crash after this line loses nothing that was announced.
-  store_.save(order);
-  order_info_writer_.write(info_of(order));
-  chain_stale_ = true;
-  if (orders::is_final(order.status)) {
-    // A finished order leaves the latched Order topic, so an agent that restarts never receives
-    // it again; OrderInfo keeps the record.
-    model::OrderAssignment key;
-    key.order_id = order.id;
-    order_writer_.unregister(key);
-  }
 }
 
 }  // namespace fleet::server

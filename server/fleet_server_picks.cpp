@@ -8,8 +8,8 @@
 namespace fleet::server {
 
 void FleetServer::advance_packing_chain() {
-  if (!options_.site.packing || !chain_stale_) return;
-  chain_stale_ = false;
+  // Only an order that changed since the chain last looked can make it owe a transport.
+  if (!wire_.take_change() || !options_.site.packing) return;
   // Each transport is created before the next is looked for; a handful per cycle at most.
   for (int i = 0; i < 4; ++i) {
     auto due = orders::next_chain_transport(*options_.site.packing, site_keeper_.state().ledger, book_);
@@ -23,7 +23,7 @@ void FleetServer::advance_packing_chain() {
     orders::fill_steps(draft, known_names());
     const orders::Order& order = book_.create(std::move(draft), clock_.now());
     log_->info("order {} created: {} -> {}, {}", order.id, order.pick_area, order.drop_area, order.cause);
-    publish_order(order);
+    wire_.publish(order);
   }
 }
 

@@ -30,7 +30,7 @@ void FleetServer::handle_order_reports() {
                                     .reporter_registered = robots_.registered(report.robot_id)};
     switch (orders::judge_report(facts)) {
       case orders::ReportVerdict::kHandBack:
-        if (hand_back(*order, report)) return;
+        if (recovery_.hand_back(*order, report)) return;
         [[fallthrough]];
       case orders::ReportVerdict::kStale:
         // A late duplicate or a report from a robot the order was taken from (VDA 5050 style).
@@ -43,7 +43,7 @@ void FleetServer::handle_order_reports() {
       case orders::ReportVerdict::kWithdraw:
         log_->warn("order {} is {}, but {} reports {}: told it to drop the order", order->id,
                    orders::to_string(order->status), report.robot_id, report.status);
-        withdraw(*order, report.robot_id);
+        wire_.withdraw(*order, report.robot_id);
         return;
       case orders::ReportVerdict::kApply:
         apply_report(*order, report);
@@ -55,7 +55,7 @@ void FleetServer::handle_order_reports() {
 void FleetServer::apply_report(const Order& order, const model::OrderReport& report) {
   const double now = clock_.now();
   const std::int64_t id = order.id;
-  recovery_.settled(id);
+  watch_.settled(id);
   TransitionResult result = TransitionResult::kApplied;
   if (report.status == "ACCEPTED") {
     log_->info("order {} accepted by {}", id, report.robot_id);
@@ -102,7 +102,7 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
                orders::to_string(book_.find(id)->status), report.status, report.robot_id);
     return;
   }
-  publish_order(*book_.find(id));
+  wire_.publish(*book_.find(id));
 }
 
 }  // namespace fleet::server

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config/fleet_config.hpp"
+#include "geometry/pose.hpp"
 #include "map/site_map.hpp"
 #include "orders/order_request_check.hpp"
 #include "planning/road_travel.hpp"
@@ -35,5 +36,11 @@ SiteDerivation derive_site(std::shared_ptr<const map::SiteMap> site_map, const c
 /// same site (map::revision_mismatch) and derives it. Throws std::runtime_error with the reason
 /// for the operator.
 SiteDerivation load_revision(const map::Site& current, const std::string& map_id, const config::FleetConfig& config);
+
+/// Why robots may not be switched from `current` onto map `map_id` (`next`) now: a robot of
+/// `standing` (robot id -> where it stands) is on a road `next` closes, where it would be off its
+/// graph with no way back onto it. Empty when none is.
+std::string robot_on_closed_road(const map::SiteMap& current, const map::SiteMap& next, const std::string& map_id,
+                                 const std::map<std::string, geometry::Vec2>& standing);
 
 }  // namespace fleet::server

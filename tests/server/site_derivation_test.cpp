@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -81,4 +82,29 @@ TEST(SiteDerivation, AMapThatIsMissingOrNotARevisionIsRefusedWithTheReason) {
   EXPECT_FALSE(other_site.empty());
   EXPECT_EQ(other_site, map::revision_mismatch(
                             table_a.site, map::load_site_map(fleet::test::source_path("/maps/table_b.yaml")).site));
+}
+
+TEST(SiteDerivation, ASwitchIsRefusedWhileARobotStandsOnARoadTheNewMapCloses) {
+  const map::SiteMap table_a = map::load_site_map(fleet::test::source_path("/maps/table_a.yaml"));
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/fleet.yaml"));
+  const server::SiteDerivation closed = server::load_revision(table_a.site, "table_a_north_closed", config);
+  const auto& new_points = closed.site_map->graph.graph.points;
+  auto kept = [&](const auto& p) {
+    return std::any_of(new_points.begin(), new_points.end(), [&](const auto& q) {
+      return geometry::distance({p.x, p.y}, {q.x, q.y}) <= 0.02;
+    });
+  };
+  const auto& old_points = table_a.graph.graph.points;
+  const auto gone = std::find_if(old_points.begin(), old_points.end(), [&](const auto& p) { return !kept(p); });
+  const auto stays = std::find_if(old_points.begin(), old_points.end(), kept);
+  ASSERT_NE(gone, old_points.end());
+  ASSERT_NE(stays, old_points.end());
+
+  const std::string refused = server::robot_on_closed_road(
+      table_a, *closed.site_map, "table_a_north_closed", {{"fl2", {stays->x, stays->y}}, {"fl1", {gone->x, gone->y}}});
+  EXPECT_NE(refused.find("robot fl1 stands at"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("map 'table_a_north_closed' closes"), std::string::npos) << refused;
+  EXPECT_EQ(
+      server::robot_on_closed_road(table_a, *closed.site_map, "table_a_north_closed", {{"fl2", {stays->x, stays->y}}}),
+      "");
 }
