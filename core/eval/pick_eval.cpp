@@ -15,6 +15,7 @@
 #include "common/percentile.hpp"
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "orders/loader_job.hpp"
 #include "orders/pick_lines.hpp"
 #include "perception/marker_camera.hpp"
 #include "planning/plan_eval.hpp"
@@ -428,26 +429,10 @@ LoaderCycleResult run_loader_cycle(const PlantPicker& plant, const std::vector<o
   robot::PickerArmWork arm =
       robot::make_picker_arm_work(plant.picker.box_camera, layout, seed_of(params.seed, kLoaderStream));
   PickerRoads roads(plant);
-  // The picker no longer returns anywhere between loads, so it visits the places as one walk:
-  // from the first place in aisle order, always on to the nearest by road (the aisles are one way).
-  std::vector<orders::PickLine> left;
-  for (const orders::PickTour& t :
-       orders::plan_tours(lines, static_cast<int>(l.deck.size()), orders::place_poses(plant.site.site))) {
-    left.insert(left.end(), t.lines.begin(), t.lines.end());
-  }
-  std::vector<orders::PickLine> walk;
-  while (!left.empty()) {
-    std::size_t next = 0;
-    if (!walk.empty()) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < left.size(); ++k) {
-        const double d = left[k].place == walk.back().place ? 0.0 : roads.distance(walk.back().place, left[k].place);
-        if (d < nearest) nearest = d, next = k;
-      }
-    }
-    walk.push_back(left[next]);
-    left.erase(left.begin() + static_cast<std::ptrdiff_t>(next));
-  }
+  // The picker no longer returns anywhere between loads, so it visits the places as one walk.
+  const std::vector<orders::PickLine> walk =
+      orders::loader_walk(lines, static_cast<int>(l.deck.size()), orders::place_poses(plant.site.site),
+                          [&](const std::string& from, const std::string& to) { return roads.distance(from, to); });
   std::vector<map::BoxStock> pallet;
   std::string at;
   for (const orders::PickLine& line : walk) {
