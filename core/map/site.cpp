@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/marker_sight.hpp"
+
 namespace fleet::map {
 
 namespace {
@@ -249,11 +251,11 @@ void read_obstacles_and_racks(const Reader& r, const YAML::Node& root, Site& sit
   }
 }
 
-/// The rack that covers `marker`'s face: the point a camera looks at, just in front of it along
-/// its yaw (as perception::MarkerCamera does), lies in or on it. Nothing for a marker on a face.
+/// The rack that covers `marker`'s face: the point a camera looks at (geometry::marker_sight_point)
+/// lies in or on it. Nothing for a marker on a face.
 const Rack* rack_in_front_of(const Site& site, const Marker& marker) {
   const geometry::Vec2 normal{std::cos(marker.pose.yaw), std::sin(marker.pose.yaw)};
-  const geometry::Vec2 face = marker.pose.position() + 0.05 * normal;
+  const geometry::Vec2 face = geometry::marker_sight_point(marker.pose);
   for (const Rack& rack : site.racks) {
     if (geometry::segment_intersects_polygon(face, face + 0.5 * normal, rack.polygon)) return &rack;
   }

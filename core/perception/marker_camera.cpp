@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/marker_sight.hpp"
+
 namespace fleet::perception {
 
 using geometry::angle_diff;
@@ -118,8 +120,7 @@ bool MarkerCamera::ideal_measurement(const Pose2& robot_truth, const Marker& mar
   // A marker seen from behind its face cannot be decoded: the face normal must point at the camera.
   const Vec2 normal{std::cos(marker.pose.yaw), std::sin(marker.pose.yaw)};
   if (geometry::dot(normal, cam.position() - marker.pose.position()) <= 0.0) return false;
-  // The marker is fixed to a structure's face: look at a point just in front of it.
-  const Vec2 face = marker.pose.position() + 0.05 * normal;
+  const Vec2 face = geometry::marker_sight_point(marker.pose);
   for (const auto& occluder : occluders_) {
     if (geometry::segment_intersects_polygon(cam.position(), face, occluder)) return false;
   }
