@@ -13,6 +13,7 @@
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
+#include "orders/loader_job.hpp"
 #include "outside_regions.hpp"
 #include "road_to_itself.hpp"
 #include "robot/robot_factory.hpp"
@@ -558,4 +559,39 @@ TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt
   // It reaches across the corridor's far lane, where the forklift stood.
   const geometry::Pose2 pk4 = plant.site->site.find_area("PK4")->pose;
   EXPECT_TRUE(geometry::contains(held, {pk4.x, 17.85}));
+}
+
+// A loader job's transporter stands behind the picker, facing away, its forks towards it
+// (orders::transporter_pose): a move order to that pose reverses it in like into a bay, in the
+// rack aisles' lanes on either face.
+TEST(Stacker, ReversesIntoThePoseBehindAPickerAtARackPlace) {
+  PlantStacker plant;
+  for (const std::string place : {"RB2", "RB7", "RB13"}) {
+    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
+    // Where the picker stands to pick there: 1 m out, side-on, the place on its left.
+    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
+                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
+    // A stacker's pallet centre lies 0.35 m behind its body's (forks 1.15 m, pallet 1.2 m): with
+    // it 1.0 m behind the picker's centre, the pallet's near edge stands 7.5 cm behind the 0.65 m
+    // base, its first row where the arm reaches (0.55 m behind the base's centre).
+    const geometry::Pose2 goal = orders::transporter_pose(picker, -1.0, 0.35);
+    auto stacker = plant.make("PT2");
+    stacker->set_standing_loads(plant.loads);
+    task::TaskOrder order;
+    order.order_id = "9";
+    order.kind = orders::OrderKind::kMove;
+    order.drop_area_id = "behind " + place;
+    order.drop_area = goal;
+    std::string why;
+    ASSERT_TRUE(stacker->submit(order, &why)) << why;
+    bool done = false;
+    for (int i = 0; i < 20 * 240 && !done; ++i) {
+      stacker->step();
+      for (const auto& e : stacker->take_events()) done = done || e.kind == RobotEvent::Kind::kDone;
+    }
+    ASSERT_TRUE(done) << place << ": " << stacker->status().task_state << " (" << stacker->status().detail << ")";
+    const geometry::Pose2 at = stacker->status().truth;
+    EXPECT_LT(geometry::distance(at.position(), goal.position()), 0.06) << place;
+    EXPECT_LT(std::abs(geometry::angle_diff(at.yaw, goal.yaw)), 0.035) << place;
+  }
 }
