@@ -19,6 +19,12 @@ Vec2 heading_of(double yaw) {
   return {std::cos(yaw), std::sin(yaw)};
 }
 
+/// The rear axle's pose when the body's centre stands at `centre`.
+Pose2 rear_axle_at(const Pose2& centre, const sim::TricycleGeometry& g) {
+  const Vec2 rear = centre.position() - g.centre_x() * heading_of(centre.yaw);
+  return {rear.x, rear.y, centre.yaw};
+}
+
 // How far a lane's heading may differ from the pallet row's for a docking run to start on it, rad.
 constexpr double kLaneAlongRow = 0.35;
 // A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
@@ -112,9 +118,17 @@ bool Stacker::submit(const task::TaskOrder& order, std::string* why) {
   if (order_) return refuse("busy with order " + order_->order_id);
   if (carried_ >= 0) return refuse("carries pallet " + std::to_string(carried_));
   if (const std::string no = refusal(order.kind); !no.empty()) return refuse(no);
-  const StackerEvent event = order.kind == orders::OrderKind::kMove ? StackerEvent::kMove : StackerEvent::kTransport;
+  StackerEvent event = order.kind == orders::OrderKind::kMove ? StackerEvent::kMove : StackerEvent::kTransport;
+  // A few metres straight back along its line (a loader's transporter moving up behind its
+  // picker): backed there directly, where a route would take it round the loop to dock again.
+  constexpr double kMoveUpM = 8.0;
+  if (event == StackerEvent::kMove && state_ == StackerState::kIdle &&
+      control::straight_behind(estimate_, rear_axle_at(order.drop_area, config_.body.geometry), kMoveUpM)) {
+    event = StackerEvent::kMoveUp;
+  }
   if (!next_stacker_state(state_, event)) return refuse(std::string("busy: ") + to_string(state_));
   order_ = order;
+  moving_up_ = event == StackerEvent::kMoveUp;
   fire(event);
   return true;
 }
@@ -140,7 +154,7 @@ void Stacker::set_site(std::shared_ptr<const map::SiteMap> site, std::shared_ptr
 
 void Stacker::set_traffic_grant(const TrafficPermit& permit) {
   if (permit.area != TrafficPermit::Area::kNone) {
-    if (law_ && !work_area_.empty()) {
+    if ((law_ || back_) && !work_area_.empty()) {
       area_clear_ = permit.area == TrafficPermit::Area::kClear;
       if (!area_clear_) reports_.held_by_traffic(permit.blocked_by);
     }
@@ -153,7 +167,7 @@ TrafficRoute Stacker::traffic_route() const {
   TrafficRoute r = nav_.follower().route();
   if (nav_.follower().on_road()) r.stopped_for = nav_.safety().stopped_for(time_, estimate().position());
   if (nav_.follower().on_road() && !nav_.follower().in_siding()) r.arrival_area = arrival_area_;
-  if (!nav_.follower().on_road() && law_) r.work_area = work_area_;
+  if (!nav_.follower().on_road() && (law_ || back_)) r.work_area = work_area_;
   if (nav_.follower().before_road() && !way_out_.empty()) r.work_area = way_out_;
   return r;
 }
@@ -174,6 +188,7 @@ void Stacker::enter(StackerState state) {
   const orders::OrderPhase from_phase = phase_of(from);
   state_ = state;
   law_.reset();
+  back_.reset();
   detector_.reset();
   held_by_traffic_ = false;
   blocked_ = false;
@@ -183,7 +198,12 @@ void Stacker::enter(StackerState state) {
   }
   if (state == StackerState::kDocking || state == StackerState::kPlacing || state == StackerState::kParking) {
     if (state != from) dock_attempts_ = 0;
-    start_docking();
+    if (moving_up_ && state == StackerState::kParking) {
+      start_moving_up();
+    } else {
+      moving_up_ = false;
+      start_docking();
+    }
   }
   if (state == StackerState::kLifting || state == StackerState::kLowering) forks_done_at_ = time_ + config_.lift_time;
   if (state != from) reports_.state_changed(order_id().value_or(""), to_string(state), false);
@@ -382,6 +402,8 @@ void Stacker::step() {
     drive();
   } else if (law_) {
     dock();
+  } else if (back_) {
+    move_up();
   } else if (state_ == StackerState::kLifting || state_ == StackerState::kLowering) {
     apply({0.0, body_.state().theta_steer});
     handle_forks();

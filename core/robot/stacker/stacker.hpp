@@ -10,6 +10,7 @@
 
 #include "control/docking_law.hpp"
 #include "control/docking_run.hpp"
+#include "control/straight_back.hpp"
 #include "control/tricycle_pursuit.hpp"
 #include "map/site_map.hpp"
 #include "perception/stacker_cameras.hpp"
@@ -38,7 +39,8 @@ struct StackerConfig {
   double pose_rate_hz = 10.0;
   double pose_blend = 0.1;  ///< share of each sensor reading blended into the estimate
   double control_rate_hz = 20.0;
-  double lift_time = 4.0;  ///< forks up or down, s (an SPE200's 0.1 m/s over a pallet's clearance)
+  control::StraightBackParams move_up;  ///< a loader's transporter backing up behind its picker
+  double lift_time = 4.0;               ///< forks up or down, s (an SPE200's 0.1 m/s over a pallet's clearance)
   /// Bays, places and docking areas: a docking that failed at a drop place or a bay is tried
   /// again from target 1 this many times before the stacker stands and reports it.
   int max_dock_attempts = 3;
@@ -114,6 +116,9 @@ class Stacker : public Robot {
   void dock();
   void handle_forks();
   void start_docking();
+  /// A move order straight back along its line (StackerEvent::kMoveUp): no route, no turn.
+  void start_moving_up();
+  void move_up();
   /// The docking law's settings for the docking, placing or parking the state leads to.
   control::DockingParams docking_params() const;
   /// The corners of the footprints the docking manoeuvre of `law` sweeps from `here` (rear axle):
@@ -162,6 +167,8 @@ class Stacker : public Robot {
   bool need_route_ = false;
   double next_route_try_ = 0.0;
   std::optional<control::DockingLaw> law_;
+  std::optional<control::StraightBack> back_;  ///< moving up straight back instead of docking
+  bool moving_up_ = false;                     ///< the move order under way is a move up
   std::optional<perception::StackerCameraDetector> detector_;
   std::optional<geometry::Pose2> detected_pallet_;  ///< the cameras' latest find, until a frame finds nothing
   int dock_attempts_ = 0;

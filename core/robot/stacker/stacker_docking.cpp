@@ -209,6 +209,40 @@ void Stacker::dock() {
   apply(out.command);
 }
 
+void Stacker::start_moving_up() {
+  const sim::TricycleGeometry& g = config_.body.geometry;
+  const Vec2 goal = order_->drop_area.position() - g.centre_x() * heading_of(order_->drop_area.yaw);
+  back_.emplace(Pose2{goal.x, goal.y, order_->drop_area.yaw}, config_.move_up, g.wheelbase);
+  reports_.set_detail("moving up");
+  // What it sweeps: its body from where it stands back to the goal, along its line.
+  work_area_.clear();
+  const double length = back_->left(estimate_);
+  constexpr double kSampleM = 0.25;
+  const int samples = static_cast<int>(std::ceil(length / kSampleM));
+  for (int i = 1; i <= samples; ++i) {
+    const double t = std::min(1.0, i * kSampleM / length);
+    add_swept_body(work_area_, estimate_.position() + t * (goal - estimate_.position()), order_->drop_area.yaw);
+  }
+  // Without traffic control nobody holds the area for it: it goes at once.
+  area_clear_ = !config_.traffic;
+}
+
+void Stacker::move_up() {
+  if (!area_clear_) {
+    apply({0.0, body_.state().theta_steer});
+    return;
+  }
+  const sim::TricycleCommand command = back_->update(estimate_, step_period());
+  if (!back_->done()) {
+    apply(command);
+    return;
+  }
+  apply({0.0, body_.state().theta_steer});
+  finish_order({RobotEvent::Kind::kDone, order_->order_id, order_->drop_area_id, -1, {}});
+  moving_up_ = false;
+  fire(StackerEvent::kDocked);
+}
+
 void Stacker::handle_forks() {
   if (time_ < forks_done_at_) return;
   const Pose2& truth = body_.pose();

@@ -14,6 +14,7 @@ using E = StackerEvent;
 constexpr std::array kTable{
     StackerTransition{S::kIdle, E::kTransport, S::kToPick},
     StackerTransition{S::kIdle, E::kMove, S::kToPlace},
+    StackerTransition{S::kIdle, E::kMoveUp, S::kParking},
     StackerTransition{S::kToHome, E::kTransport, S::kToPick},
     StackerTransition{S::kToHome, E::kMove, S::kToPlace},
     StackerTransition{S::kParking, E::kTransport, S::kToPick},
@@ -68,6 +69,8 @@ const char* to_string(StackerEvent event) {
   switch (event) {
     case E::kTransport:
       return "transport";
+    case E::kMoveUp:
+      return "MOVE_UP";
     case E::kMove:
       return "move";
     case E::kRouteEnded:

@@ -26,6 +26,7 @@ enum class StackerState {
 enum class StackerEvent {
   kTransport,   ///< a transport order was accepted
   kMove,        ///< a move order was accepted
+  kMoveUp,      ///< a move order whose place lies straight behind the forks, on its line: it backs there
   kRouteEnded,  ///< the route's end is reached
   kDocked,      ///< the docking law finished (forks in, pallet put, or parked)
   kDockFailed,  ///< the docking law gave up (pallet not found, forks off the pockets, timeout)

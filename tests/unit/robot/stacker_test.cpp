@@ -39,7 +39,7 @@ constexpr StackerState kStates[] = {StackerState::kIdle,     StackerState::kToPi
                                     StackerState::kParking};
 constexpr StackerEvent kEvents[] = {StackerEvent::kTransport, StackerEvent::kMove,       StackerEvent::kRouteEnded,
                                     StackerEvent::kDocked,    StackerEvent::kDockFailed, StackerEvent::kForksUp,
-                                    StackerEvent::kForksDown, StackerEvent::kCancel};
+                                    StackerEvent::kForksDown, StackerEvent::kCancel,     StackerEvent::kMoveUp};
 
 TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEventAndEveryStateIsReached) {
   const auto table = robot::stacker_transition_table();
@@ -594,4 +594,55 @@ TEST(Stacker, ReversesIntoThePoseBehindAPickerAtARackPlace) {
     EXPECT_LT(geometry::distance(at.position(), goal.position()), 0.06) << place;
     EXPECT_LT(std::abs(geometry::angle_diff(at.yaw, goal.yaw)), 0.035) << place;
   }
+}
+
+// Behind a picker that moved on to the next place along the aisle, the transporter backs up
+// 3.5 m straight along its line, forks first (StackerEvent::kMoveUp): no route round the loop.
+TEST(Stacker, MovesUpStraightBackBehindAPickerThatMovedOn) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2");
+  stacker->set_standing_loads(plant.loads);
+  const auto behind = [&](const std::string& place) {
+    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
+    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
+                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
+    return orders::transporter_pose(picker, -1.0, 0.35);
+  };
+  double seconds = 0.0, metres = 0.0;
+  bool swept = false;
+  const auto run = [&](const std::string& place) {
+    task::TaskOrder order;
+    order.order_id = place;
+    order.kind = orders::OrderKind::kMove;
+    order.drop_area_id = "behind " + place;
+    order.drop_area = behind(place);
+    std::string why;
+    if (!stacker->submit(order, &why)) return why;
+    const double start = stacker->status().time;
+    geometry::Vec2 last = stacker->status().truth.position();
+    metres = 0.0;
+    swept = false;
+    for (int i = 0; i < 20 * 240; ++i) {
+      swept = swept || !stacker->traffic_route().work_area.empty();
+      stacker->step();
+      metres += geometry::distance(last, stacker->status().truth.position());
+      last = stacker->status().truth.position();
+      for (const auto& e : stacker->take_events()) {
+        if (e.kind == RobotEvent::Kind::kDone) {
+          seconds = stacker->status().time - start;
+          return std::string();
+        }
+      }
+    }
+    return std::string("not there: ") + stacker->status().task_state + " (" + stacker->status().detail + ")";
+  };
+  ASSERT_EQ(run("RB2"), "");
+  // The picker walks on to RB1, 3.5 m further west; the stacker faces east, its forks west.
+  ASSERT_EQ(run("RB1"), "");
+  const geometry::Pose2 at = stacker->status().truth;
+  EXPECT_LT(geometry::distance(at.position(), behind("RB1").position()), 0.03);
+  EXPECT_LT(std::abs(geometry::angle_diff(at.yaw, behind("RB1").yaw)), 0.035);
+  EXPECT_LT(metres, 3.7) << "straight back, not round the loop";
+  EXPECT_LT(seconds, 14.0);
+  EXPECT_TRUE(swept) << "traffic is told what the move sweeps";
 }

@@ -1,0 +1,46 @@
+#pragma once
+// A stacker moving up forks first along its own line: a loader's transporter following its picker
+// to the next stop in a rack aisle, a few metres straight back, where a route and a docking would
+// take it round the loop and turn it twice.
+
+#include "geometry/pose.hpp"
+#include "sim/tricycle.hpp"
+
+namespace fleet::control {
+
+struct StraightBackParams {
+  double max_speed = 0.4;     ///< m/s, backwards (the docking law's fork-in goes at 0.2)
+  double acceleration = 0.3;  ///< m/s², speeding up and slowing down
+  double lateral_gain = 1.5;  ///< rad of heading towards the line per metre off it
+  double heading_gain = 2.0;  ///< 1/s: yaw rate per rad of heading error
+  double tolerance = 0.01;    ///< m: the rear axle this close to the goal along the line is there
+};
+
+/// Drives the rear axle backwards to `goal` (the rear axle's pose there) along the goal's line:
+/// the heading turned towards the line by the lateral error, the speed trapezoidal. The stacker
+/// must start on that line facing along it, the goal behind it (straight_behind).
+class StraightBack {
+ public:
+  StraightBack(const geometry::Pose2& goal, StraightBackParams params, double wheelbase);
+
+  /// The wheel command for the rear axle's estimate `rear`; stands once the goal is reached.
+  sim::TricycleCommand update(const geometry::Pose2& rear, double dt);
+  bool done() const { return done_; }
+  /// Metres left along the line from `rear` to the goal (negative: past it).
+  double left(const geometry::Pose2& rear) const;
+
+ private:
+  geometry::Pose2 goal_;
+  StraightBackParams params_;
+  double wheelbase_;
+  double speed_ = 0.0;  ///< m/s, the magnitude of the last command
+  bool done_ = false;
+};
+
+/// Whether a stacker whose rear axle stands at `rear` can reach `goal` (the rear axle's pose
+/// there) straight back: on its line within `max_offset` metres, facing the same way within
+/// `max_yaw` rad, and between 0.05 m and `max_distance` metres behind it.
+bool straight_behind(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance,
+                     double max_offset = 0.10, double max_yaw = 0.05);
+
+}  // namespace fleet::control
