@@ -53,6 +53,12 @@ TaskExecutor::TaskExecutor(ExecutorParams params, Pose2 home)
       place_(params.place, params.geometry) {}
 
 bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
+  if (order_ && order_->loader && order.loader && order.order_id == order_->order_id) {
+    // An update (VDA 5050 style): the walk stays, more of it is released.
+    order_->released = order.released;
+    order_->pallet = order.pallet;
+    return true;
+  }
   if (!machine_.accepts_orders()) {
     if (why) *why = std::string("order not accepted in ") + to_string(machine_.state());
     return false;
@@ -265,7 +271,8 @@ void TaskExecutor::items_done(bool ok, const std::string& reason) {
     fire(Event::kItemsDropped);
   } else {
     ++item_line_;
-    fire(item_line_ < order_->items.size() ? Event::kItemsPicked : Event::kTourPicked);
+    const bool last = item_line_ >= order_->items.size();
+    fire(!last ? Event::kItemsPicked : order_->loader ? Event::kWalkLoaded : Event::kTourPicked);
   }
 }
 

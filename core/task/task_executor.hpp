@@ -37,6 +37,14 @@ struct TaskOrder {
   geometry::Pose2 drop_area;
   orders::OrderKind kind = orders::OrderKind::kTransport;
   std::vector<ItemStop> items{};
+  /// A pick order worked as a loader (docs/loader.md): each stop's boxes go on the
+  /// pallet of a transporter standing behind the robot, and the order ends at the last stop.
+  bool loader = false;
+  /// A loader's arm works only the stops before this one; at a later stop it stands until an
+  /// update of the order releases it (its transporter stands behind it).
+  std::size_t released = std::numeric_limits<std::size_t>::max();
+  /// Which transporter's pallet stands behind it: a new one holds no box yet.
+  int pallet = 0;
 };
 
 enum class PlanPurpose { kToPick, kToDrop, kHome, kToPlace };
@@ -112,7 +120,8 @@ class TaskExecutor {
   /// Accepts the order in IDLE or GO_HOME; otherwise returns false and says why. A transport
   /// order picks and drops; a move order drives to its place, which becomes the robot's home. A
   /// transport without a drop place (drop_area_id empty) stands with its load after the pick
-  /// until set_drop() names one.
+  /// until set_drop() names one. The loader order under way is updated by one of the same id:
+  /// the stops released and the pallet behind it.
   bool submit(const TaskOrder& order, std::string* why = nullptr);
   /// The drop place of a transport submitted without one; false when there is no such transport.
   bool set_drop(const std::string& area_id, const geometry::Pose2& area);

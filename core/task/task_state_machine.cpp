@@ -45,6 +45,8 @@ constexpr std::array kTable = {
     TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kAtItems, S::kPickItems, P::kPicking, F::kStartItems},
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kItemsPicked, S::kTrackPath, P::kToPick, F::kPlanToPick},
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kTourPicked, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
+    // A loader's boxes are on its transporters' pallets: the walk ends at its last place.
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kWalkLoaded, S::kGoHome, P::kNone, F::kFinishOrder},
     TransitionRow{S::kTrackPath, kOnly, P::kToDrop, E::kAtItems, S::kDropItems, P::kDropping, F::kStartItems},
     TransitionRow{S::kDropItems, kAny, P::kNone, E::kItemsDropped, S::kGoHome, P::kNone, F::kFinishOrder},
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kItemsFailed, S::kError, P::kNone, F::kFail},
@@ -151,6 +153,8 @@ const char* to_string(Event e) {
       return "at_items";
     case E::kItemsPicked:
       return "items_picked";
+    case E::kWalkLoaded:
+      return "WALK_LOADED";
     case E::kTourPicked:
       return "tour_picked";
     case E::kItemsDropped:

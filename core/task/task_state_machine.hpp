@@ -51,6 +51,7 @@ enum class Event {
   kAtItems,       ///< a pick order's path ended beside the place of its line, or of its drop
   kItemsPicked,   ///< the arm took the line's boxes; lines are left
   kTourPicked,    ///< the arm took the last line's boxes
+  kWalkLoaded,    ///< a loader's arm set the walk's last boxes on the transporter behind it: no station
   kItemsDropped,  ///< the arm put every box down on the drop place
   kItemsFailed,   ///< the arm could not pick or drop (no box found, out of reach); carries a reason
 };

@@ -27,7 +27,16 @@ void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Sit
       executor.items_done(false, "place " + stop.place_id + " holds no boxes");
       return;
     }
-    work = arm_.pick(*area->boxes, stop.quantity, tray_);
+    if (order.loader && executor.item_line() >= order.released) {
+      reports.set_detail("waiting for its transporter behind it");
+      return;
+    }
+    if (order.loader && order.pallet != deck_pallet_) {
+      deck_.clear();  // a new transporter moved up: its pallet is empty
+      deck_pallet_ = order.pallet;
+    }
+    work = order.loader ? deck_arm_.pick(*area->boxes, stop.quantity, deck_)
+                        : arm_.pick(*area->boxes, stop.quantity, tray_);
   } else {
     work = arm_.drop(tray_, 0);
   }

@@ -31,6 +31,10 @@ struct PickerArmLayout {
   /// bottom centre, base frame, m. Stacked, they would come too near the arm's base column for
   /// the joint limits of [Picker thesis, Table 10]; so a tour carries as many boxes as it has slots.
   std::vector<Eigen::Vector3d> tray{{-0.25, 0.15, 0.40}, {-0.25, -0.15, 0.40}};
+  /// Where a loader sets boxes on the pallet of the transporter behind it, raised to the tray's
+  /// height, its near edge just behind the base (orders::transporter_pose): the row the arm
+  /// reaches, 0.55 m behind the base's centre, three across (pick-eval's loader deck).
+  std::vector<Eigen::Vector3d> deck{{-0.55, 0.25, 0.40}, {-0.55, -0.25, 0.40}, {-0.55, 0.0, 0.40}};
 };
 
 /// The arm's time for one stop, or why it cannot work there.

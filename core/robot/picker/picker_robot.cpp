@@ -28,8 +28,11 @@ PickerConfig picker_robot_config(const config::FleetConfig& config, const config
 
 std::unique_ptr<Robot> make_picker(const RobotBuild& build) {
   const PickerConfig config = picker_robot_config(build.config, build.fleet, *build.site);
-  auto arm = std::make_unique<PickerArmStops>(make_picker_arm_work(
-      config.box_camera, config.arm_layout, build.seed ^ (build.stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL));
+  const std::uint64_t seed = build.seed ^ (build.stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL;
+  PickerArmLayout deck_layout = config.arm_layout;
+  deck_layout.tray = deck_layout.deck;
+  auto arm = std::make_unique<PickerArmStops>(make_picker_arm_work(config.box_camera, config.arm_layout, seed),
+                                              make_picker_arm_work(config.box_camera, deck_layout, seed ^ 0xdec0ULL));
   return std::make_unique<Forklift>(config.base, build.site, build.home, build.seed, build.stream, std::move(arm));
 }
 

@@ -106,6 +106,58 @@ TEST(PickerBase, DrivesAPickTourPicksEachLinesBoxesAndPutsThemDownAtThePackingSt
             << " s picking, " << dropping_s << " s dropping\n";
 }
 
+// A loader's walk (docs/loader.md): the boxes go on the pallet of the transporter
+// behind it, a stop only once the order's update releases it, and the order ends at the last
+// place, with no drive to a packing station.
+TEST(PickerBase, AsALoaderSetsEachReleasedStopsBoxesBehindItAndEndsAtTheLastPlace) {
+  const PlantPicker plant;
+  auto picker = plant.make("PP1");
+  const auto& site = plant.site->site;
+  task::TaskOrder walk{"4", "RB1", site.find_area("RB1")->pose, "", {}, orders::OrderKind::kPick};
+  walk.items = {{"RB1", site.find_area("RB1")->pose, "A1", 2}, {"RB3", site.find_area("RB3")->pose, "A3", 1}};
+  walk.loader = true;
+  walk.released = 1;
+  std::string why;
+  ASSERT_TRUE(picker->submit(walk, &why)) << why;
+  bool done = false, waited = false, updated = false;
+  double picking_s = 0.0, waiting_s = 0.0;
+  std::set<std::string> states;
+  while (!done && picker->status().time < 600.0) {
+    test::grant_everything(*picker);
+    picker->step();
+    const std::string state = picker->status().task_state;
+    states.insert(state);
+    const bool at_second = geometry::distance(picker->status().truth.position(), {41.2, 10.6}) < 0.15;
+    if (state == "PICK_ITEMS" && picker->status().detail == "waiting for its transporter behind it") {
+      ASSERT_TRUE(at_second) << "it waits at the second place, not the first";
+      waited = true;
+      waiting_s += picker->step_period();
+      if (waiting_s > 10.0 && !updated) {
+        // Its transporter moved up behind it: the update releases the second stop, on a new pallet.
+        task::TaskOrder update = walk;
+        update.released = 2;
+        update.pallet = 1;
+        ASSERT_TRUE(picker->submit(update, &why)) << why;
+        updated = true;
+      }
+    } else if (state == "PICK_ITEMS") {
+      picking_s += picker->step_period();
+    }
+    for (const auto& e : picker->take_events()) {
+      ASSERT_NE(e.kind, RobotEvent::Kind::kFailed) << e.text;
+      done = done || e.kind == RobotEvent::Kind::kDone;
+    }
+  }
+  ASSERT_TRUE(done) << picker->status().task_state << " (" << picker->status().detail << ")";
+  EXPECT_TRUE(waited);
+  EXPECT_GE(waiting_s, 10.0);
+  EXPECT_FALSE(states.contains("DROP_ITEMS")) << "no packing station";
+  EXPECT_LT(geometry::distance(picker->status().truth.position(), {41.2, 10.6}), 0.5) << "it ends at RB3";
+  // Three boxes, each located, picked and set on the pallet once.
+  EXPECT_GT(picking_s, 3 * 5.0);
+  std::cout << "picker as a loader: 3 boxes at 2 places, arm " << picking_s << " s, waited " << waiting_s << " s\n";
+}
+
 TEST(PickerBase, TakesNoTransports) {
   const PlantPicker plant;
   auto picker = plant.make("PP2");

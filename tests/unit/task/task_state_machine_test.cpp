@@ -108,6 +108,12 @@ TEST(TaskStateMachine, APickTourVisitsEachLineThenDropsEverything) {
   expect(m, Event::kAtItems, State::kDropItems, OrderPhase::kDropping, Effect::kStartItems);
   expect(m, Event::kItemsDropped, State::kGoHome, OrderPhase::kNone, Effect::kFinishOrder);
 
+  // A loader's boxes are on its transporters' pallets: its walk ends at the last place.
+  TaskStateMachine loader;
+  expect(loader, Event::kOrder, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
+  expect(loader, Event::kAtItems, State::kPickItems, OrderPhase::kPicking, Effect::kStartItems);
+  expect(loader, Event::kWalkLoaded, State::kGoHome, OrderPhase::kNone, Effect::kFinishOrder);
+
   TaskStateMachine failing = machine_in(State::kDropItems);
   const Transition tr = failing.handle(Event::kItemsFailed, "box 2 of A1 onto the pallet: out of reach");
   EXPECT_EQ(tr.to, State::kError);
