@@ -118,6 +118,10 @@ void FleetAgent::handle_orders() {
         withdraw(assignment.order_id);
         return;
       case orders::IntakeStep::kAcknowledgeAgain:
+        if (assignment.loader && order_->assignment.loader && assignment.update_id > order_->assignment.update_id) {
+          update_loader_walk(assignment);
+          return;
+        }
         // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
         // and repeat where we are.
         order_->assignment.update_id = assignment.update_id;
@@ -129,6 +133,24 @@ void FleetAgent::handle_orders() {
         return;
     }
   });
+}
+
+void FleetAgent::update_loader_walk(const model::OrderAssignment& assignment) {
+  // The walk stays; more of it is released, or a new transporter moved up behind the robot.
+  task::TaskOrder update;
+  update.order_id = std::to_string(assignment.order_id);
+  update.kind = orders::OrderKind::kPick;
+  update.loader = true;
+  update.released = assignment.released_stops;
+  update.pallet = assignment.pallet;
+  std::string why;
+  if (!robot_->submit(update, &why)) {
+    log_->warn("order {}: update {} not taken: {}", assignment.order_id, assignment.update_id, why);
+    return;
+  }
+  order_->assignment = assignment;
+  log_->info("order {} updated: {} stop{} released, pallet {} behind", assignment.order_id, assignment.released_stops,
+             assignment.released_stops == 1 ? "" : "s", assignment.pallet);
 }
 
 void FleetAgent::withdraw(std::int64_t order_id) {
@@ -156,6 +178,9 @@ void FleetAgent::consider(const model::OrderAssignment& assignment) {
                              assignment.drop_area,
                              assignment.drop_pose,
                              kind.value_or(orders::OrderKind::kTransport)};
+  task_order.loader = assignment.loader;
+  task_order.released = assignment.released_stops;
+  task_order.pallet = assignment.pallet;
   orders::NewOrderChecks checks;
   if (!kind) {
     checks.invalid = "unknown order kind '" + assignment.kind + "'";

@@ -52,6 +52,8 @@ class FleetAgent {
   std::string item_stops(const model::OrderAssignment& assignment, std::vector<task::ItemStop>& stops) const;
 
   void handle_orders();
+  /// A loader walk the robot runs, updated by the server: the stops released, the pallet behind it.
+  void update_loader_walk(const model::OrderAssignment& assignment);
   /// The server withdraws the order the robot runs.
   void withdraw(std::int64_t order_id);
   /// A new order: checked against the intake's rules, then submitted to the robot or rejected.

@@ -168,16 +168,25 @@ model::RequestReply from_wire(const fleet_msg_RequestReply& w) {
 }
 
 fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
-  return {v.order_id,          borrow(v.robot_id),     borrow(v.pick_area), wire_pose(v.pick_pose),
-          borrow(v.drop_area), wire_pose(v.drop_pose), v.update_id,         v.cancelled,
-          borrow(v.kind),      borrow(v.lines)};
+  return {v.order_id,
+          borrow(v.robot_id),
+          borrow(v.pick_area),
+          wire_pose(v.pick_pose),
+          borrow(v.drop_area),
+          wire_pose(v.drop_pose),
+          v.update_id,
+          v.cancelled,
+          borrow(v.kind),
+          borrow(v.lines),
+          v.loader,
+          v.released_stops,
+          v.pallet};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
-  return {w.order_id,        text(w.robot_id),
-          text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose),
-          w.update_id,       w.cancelled,
-          text(w.kind),      text(w.lines)};
+  return {w.order_id,        text(w.robot_id),        text(w.pick_area), model_pose(w.pick_pose),
+          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled,
+          text(w.kind),      text(w.lines),           w.loader,          w.released_stops,
+          w.pallet};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {

@@ -69,6 +69,11 @@ struct OrderAssignment {
   bool cancelled = false;
   std::string kind;   ///< orders::OrderKind name; a move drives to drop_area / drop_pose and stays
   std::string lines;  ///< pick: the tour's lines as CSV, place,item,quantity, in driving order
+  /// Pick: a loader's walk (docs/loader.md), each stop's boxes onto the pallet of the transporter
+  /// behind the robot; the order ends at the last stop.
+  bool loader = false;
+  std::uint32_t released_stops = 0;  ///< loader: the arm works the first released_stops stops only
+  int pallet = 0;                    ///< loader: which transporter's pallet stands behind it
 };
 
 /// An agent's report on its order.

@@ -154,3 +154,33 @@ TEST(Topics, AnOrderReportItsWriterUnregistersIsNotReplayedToAServerThatJoinsLat
   }
   EXPECT_EQ(heard, std::vector<std::int64_t>{21});
 }
+
+TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
+  dds::use_fleet_dds_config();
+  dds::Participant participant(kDomain);
+  dds::Writer<model::OrderAssignment> writer(participant, dds::qos::latched_state());
+  dds::Reader<model::OrderAssignment> reader(participant, dds::qos::latched_state());
+  model::OrderAssignment sent;
+  sent.order_id = 7;
+  sent.robot_id = "pk1";
+  sent.kind = "pick";
+  sent.lines = "RB1,A1,2\nRB3,A3,1\n";
+  sent.update_id = 4;
+  sent.loader = true;
+  sent.released_stops = 2;
+  sent.pallet = 3;
+  ASSERT_TRUE(writer.wait_for_readers(1, std::chrono::seconds(5)));
+  ASSERT_TRUE(writer.write(sent));
+  std::optional<model::OrderAssignment> taken;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!taken && std::chrono::steady_clock::now() < end) {
+    reader.take_data([&](model::OrderAssignment&& order) { taken = std::move(order); });
+    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(taken);
+  EXPECT_TRUE(taken->loader);
+  EXPECT_EQ(taken->released_stops, 2u);
+  EXPECT_EQ(taken->pallet, 3);
+  EXPECT_EQ(taken->lines, sent.lines);
+  EXPECT_EQ(taken->update_id, 4u);
+}
