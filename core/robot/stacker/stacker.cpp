@@ -221,7 +221,7 @@ bool Stacker::plan_route() {
     return true;
   }
   const Pose2 prior = dock_prior();
-  const Vec2 goal = approach_of(prior);
+  const Vec2 goal = sweeps_.approach_of(prior);
   // From the body's centre (the pose the traffic manager knows) to where the rear axle starts the
   // docking; the rear axle then follows the path from its projection onto it.
   planning::Route route =
@@ -238,7 +238,7 @@ bool Stacker::plan_route() {
   // aisle it waits for its work area as it arrives, like a robot beside the roads.
   arrival_area_.clear();
   if (state_ == StackerState::kToPick || state_ == StackerState::kToDrop) {
-    arrival_area_ = arrival_manoeuvre(nav_.follower().path());
+    arrival_area_ = sweeps_.arrival(nav_.follower().path(), docking_params(), dock_prior());
   }
   at_siding_end_ = false;
   note_way_out();
@@ -251,7 +251,9 @@ void Stacker::note_way_out() {
   // the route's places cover the body.
   constexpr double kBesideTheRoad = 0.3;  // metres of path before the road's first point
   way_out_.clear();
-  if (config_.traffic && nav_.follower().road_start() > kBesideTheRoad) way_out_ = way_out_area();
+  if (config_.traffic && nav_.follower().road_start() > kBesideTheRoad) {
+    way_out_ = sweeps_.way_out(nav_.follower().path(), estimate_, nav_.follower().road_start());
+  }
 }
 
 double Stacker::clearance_ahead() const {

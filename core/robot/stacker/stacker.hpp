@@ -18,6 +18,7 @@
 #include "robot/order_reporter.hpp"
 #include "robot/robot.hpp"
 #include "robot/stacker/stacker_job.hpp"
+#include "robot/stacker/stacker_sweeps.hpp"
 #include "sim/tricycle.hpp"
 #include "task/task_executor.hpp"
 #include "vehicle/profile.hpp"
@@ -121,21 +122,6 @@ class Stacker : public Robot {
   void move_up();
   /// The docking law's settings for the docking, placing or parking the state leads to.
   control::DockingParams docking_params() const;
-  /// The corners of the footprints the docking manoeuvre of `law` sweeps from `here` (rear axle):
-  /// target 1, the pivot at target 2, the realignment stand-off and the docked pose, grown by the
-  /// safety gap (TrafficRoute::work_area).
-  std::vector<geometry::Vec2> manoeuvre_area(const control::DockingLaw& law, const geometry::Pose2& here) const;
-  /// The same for the manoeuvre at the end of `path` (the rear axle's), with the body standing
-  /// there: what traffic holds as the route's arrival area, so nobody is granted into it while the
-  /// stacker drives up to it (TrafficRoute::arrival_area).
-  std::vector<geometry::Vec2> arrival_manoeuvre(const std::vector<geometry::Vec2>& path) const;
-  /// Adds the corners of the footprint with its rear axle at `rear` heading `yaw`, grown by the
-  /// safety gap: one body of a swept area.
-  void add_swept_body(std::vector<geometry::Vec2>& corners, geometry::Vec2 rear, double yaw) const;
-  /// The corners of the footprints the way out of a dock or bay onto the road sweeps: turning
-  /// about the rear axle towards the path, then along it to 1 m past the road's start, grown by
-  /// the safety gap (TrafficRoute::work_area while on that way).
-  std::vector<geometry::Vec2> way_out_area() const;
   /// way_out_ for the path just adopted.
   void note_way_out();
   double clearance_ahead() const;
@@ -143,8 +129,6 @@ class Stacker : public Robot {
   void apply(const sim::TricycleCommand& command);
   /// Where the docking law starts from for the current state: the place (or bay) pose it docks to.
   geometry::Pose2 dock_prior() const;
-  /// The rear-axle position the route ends at: target 1's stand-off in front of `prior`.
-  geometry::Vec2 approach_of(const geometry::Pose2& prior) const;
   perception::PalletRow pallet_row(const geometry::Pose2& place, double base_height) const;
   void finish_order(RobotEvent event);
   void update_centre();
@@ -152,6 +136,7 @@ class Stacker : public Robot {
   StackerConfig config_;
   geometry::Pose2 home_;
   geometry::Footprint footprint_;
+  StackerSweeps sweeps_{config_};
   Navigation nav_;
   sim::Tricycle body_;
   geometry::Pose2 estimate_;  ///< rear axle
@@ -175,8 +160,8 @@ class Stacker : public Robot {
   std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
   std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
   bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
-  std::vector<geometry::Vec2> way_out_;               ///< way_out_area() of the route it leaves a dock or bay by
-  std::vector<geometry::Vec2> arrival_area_;          ///< arrival_manoeuvre() of the route to its docking
+  std::vector<geometry::Vec2> way_out_;               ///< what the way out of a dock or bay onto its route sweeps
+  std::vector<geometry::Vec2> arrival_area_;          ///< what the docking at the end of its route sweeps
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

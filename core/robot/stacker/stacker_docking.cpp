@@ -23,12 +23,6 @@ Pose2 reframe(const Pose2& from_vehicle, const Pose2& to_vehicle, const Pose2& p
   return geometry::body_pose_to_map(to_vehicle, geometry::map_pose_to_body(from_vehicle, pose));
 }
 
-/// Where the docked pallet's centre lies ahead of the rear axle: the fork tips are at the pocket
-/// depth beyond the entry face.
-double carried_offset(const control::DockingParams& d, const sim::TricycleGeometry& g) {
-  return g.fork_tip_x() + d.pocket_depth - 0.5 * d.pallet.depth;
-}
-
 }  // namespace
 
 Pose2 Stacker::dock_prior() const {
@@ -51,12 +45,6 @@ Pose2 Stacker::dock_prior() const {
       return {p.x, p.y, stand.yaw};
     }
   }
-}
-
-Vec2 Stacker::approach_of(const Pose2& prior) const {
-  const control::DockingParams& d = config_.docking;
-  const double out = 0.5 * d.pallet.depth + d.target2_standoff + d.target1_extra_standoff;
-  return prior.position() + out * heading_of(prior.yaw);
 }
 
 perception::PalletRow Stacker::pallet_row(const Pose2& place, double base_height) const {
@@ -97,49 +85,9 @@ void Stacker::start_docking() {
   reports_.set_detail("");
   shown_phase_.reset();
   detected_pallet_.reset();
-  work_area_ = manoeuvre_area(*law_, estimate_);
+  work_area_ = sweeps_.docking(*law_, estimate_, prior);
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
-}
-
-void Stacker::add_swept_body(std::vector<Vec2>& corners, Vec2 rear, double yaw) const {
-  const Vec2 centre = rear + config_.body.geometry.centre_x() * heading_of(yaw);
-  const auto body = geometry::footprint_polygon({centre.x, centre.y, yaw}, footprint_, config_.work_area_margin);
-  corners.insert(corners.end(), body.begin(), body.end());
-}
-
-std::vector<Vec2> Stacker::arrival_manoeuvre(const std::vector<Vec2>& path) const {
-  if (path.size() < 2) return {};
-  // The rear axle ends the route at its last point, heading along its last leg.
-  const Vec2 end = path.back();
-  const Vec2 before = path[path.size() - 2];
-  const Pose2 there{end.x, end.y, std::atan2(end.y - before.y, end.x - before.x)};
-  const control::DockingLaw law(docking_params(), dock_prior(), there);
-  std::vector<Vec2> corners = manoeuvre_area(law, there);
-  add_swept_body(corners, there.position(), there.yaw);
-  return corners;
-}
-
-std::vector<Vec2> Stacker::manoeuvre_area(const control::DockingLaw& law, const Pose2& here) const {
-  const sim::TricycleGeometry& g = config_.body.geometry;
-  std::vector<Vec2> corners;
-  const auto add = [&](Vec2 rear, double yaw) { add_swept_body(corners, rear, yaw); };
-  // Not where it stands: its body holds that already, and the robots queued up behind it touch it.
-  // The run starts with the rear axle short of target 2 and never backs past it.
-  const auto [target1, target2] = law.targets();
-  add(target1, here.yaw);
-  // The pivot about the rear axle at target 2, from the heading along the row to the docked one.
-  const Pose2 prior = dock_prior();
-  const double turn = geometry::angle_diff(prior.yaw, here.yaw);
-  constexpr int kPivotSamples = 8;
-  for (int i = 0; i <= kPivotSamples; ++i) add(target2, here.yaw + turn * i / kPivotSamples);
-  // Realigning, it drives out along the axis to the realignment stand-off; docked, it stands in
-  // the place.
-  const control::DockingParams& d = config_.docking;
-  const Vec2 face = prior.position() + 0.5 * d.pallet.depth * heading_of(prior.yaw);
-  add(face + d.realign_standoff * heading_of(prior.yaw), prior.yaw);
-  add(prior.position() - carried_offset(d, g) * heading_of(prior.yaw), prior.yaw);
-  return corners;
 }
 
 DockingView Stacker::docking_view() const {
@@ -214,15 +162,7 @@ void Stacker::start_moving_up() {
   const Vec2 goal = order_->drop_area.position() - g.centre_x() * heading_of(order_->drop_area.yaw);
   back_.emplace(Pose2{goal.x, goal.y, order_->drop_area.yaw}, config_.move_up, g.wheelbase);
   reports_.set_detail("moving up");
-  // What it sweeps: its body from where it stands back to the goal, along its line.
-  work_area_.clear();
-  const double length = back_->left(estimate_);
-  constexpr double kSampleM = 0.25;
-  const int samples = static_cast<int>(std::ceil(length / kSampleM));
-  for (int i = 1; i <= samples; ++i) {
-    const double t = std::min(1.0, i * kSampleM / length);
-    add_swept_body(work_area_, estimate_.position() + t * (goal - estimate_.position()), order_->drop_area.yaw);
-  }
+  work_area_ = sweeps_.straight_back(estimate_, goal, order_->drop_area.yaw);
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
 }
