@@ -45,6 +45,10 @@ struct TaskOrder {
   std::size_t released = std::numeric_limits<std::size_t>::max();
   /// Which transporter's pallet stands behind it: a new one holds no box yet.
   int pallet = 0;
+  /// A transport with no drop place yet (a stacker's): where to stand with the load meanwhile, the
+  /// body's centre (a loader's transporter behind its picker). An update of the same order moves
+  /// it, or names the drop place.
+  std::optional<geometry::Pose2> stand{};
 };
 
 enum class PlanPurpose { kToPick, kToDrop, kHome, kToPlace };

@@ -29,6 +29,9 @@ Pose2 rear_axle_at(const Pose2& centre, const sim::TricycleGeometry& g) {
 constexpr double kLaneAlongRow = 0.35;
 // A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
 constexpr double kSameEnd = 0.05;
+// A place this far straight behind its forks, on its own line, is backed to directly (moving up
+// behind a loader), where a route would take it round the loop to dock again, metres.
+constexpr double kMoveUpM = 8.0;
 
 NavigationParams navigation_params(const StackerConfig& c) {
   return {.grid_resolution = c.grid_resolution,
@@ -115,19 +118,28 @@ bool Stacker::submit(const task::TaskOrder& order, std::string* why) {
     if (why) *why = std::move(text);
     return false;
   };
+  if (order_ && order.order_id == order_->order_id && order.kind == orders::OrderKind::kTransport) {
+    // An update (VDA 5050 style) of the transport under way: where to stand with its load, or
+    // its drop place; carried out once it holds the load (hold()).
+    if (!order_->drop_area_id.empty()) return refuse("order " + order.order_id + " names its drop place already");
+    if (order.stand) order_->stand = order.stand;
+    if (!order.drop_area_id.empty()) {
+      order_->drop_area_id = order.drop_area_id;
+      order_->drop_area = order.drop_area;
+    }
+    return true;
+  }
   if (order_) return refuse("busy with order " + order_->order_id);
   if (carried_ >= 0) return refuse("carries pallet " + std::to_string(carried_));
   if (const std::string no = refusal(order.kind); !no.empty()) return refuse(no);
   StackerEvent event = order.kind == orders::OrderKind::kMove ? StackerEvent::kMove : StackerEvent::kTransport;
-  // A few metres straight back along its line (a loader's transporter moving up behind its
-  // picker): backed there directly, where a route would take it round the loop to dock again.
-  constexpr double kMoveUpM = 8.0;
   if (event == StackerEvent::kMove && state_ == StackerState::kIdle &&
       control::straight_behind(estimate_, rear_axle_at(order.drop_area, config_.body.geometry), kMoveUpM)) {
     event = StackerEvent::kMoveUp;
   }
   if (!next_stacker_state(state_, event)) return refuse(std::string("busy: ") + to_string(state_));
   order_ = order;
+  stood_at_.reset();
   moving_up_ = event == StackerEvent::kMoveUp;
   fire(event);
   return true;
@@ -196,9 +208,10 @@ void Stacker::enter(StackerState state) {
     need_route_ = true;
     next_route_try_ = time_;
   }
-  if (state == StackerState::kDocking || state == StackerState::kPlacing || state == StackerState::kParking) {
+  if (state == StackerState::kDocking || state == StackerState::kPlacing || state == StackerState::kParking ||
+      state == StackerState::kStanding) {
     if (state != from) dock_attempts_ = 0;
-    if (moving_up_ && state == StackerState::kParking) {
+    if (moving_up_ && (state == StackerState::kParking || state == StackerState::kStanding)) {
       start_moving_up();
     } else {
       moving_up_ = false;
@@ -349,6 +362,19 @@ void Stacker::drive() {
   apply(out.command);
 }
 
+void Stacker::hold() {
+  if (!order_->drop_area_id.empty()) {
+    fire(StackerEvent::kDrop);
+    return;
+  }
+  const auto same = [](const Pose2& a, const Pose2& b) {
+    return geometry::distance(a.position(), b.position()) < 1e-6 && std::abs(geometry::angle_diff(a.yaw, b.yaw)) < 1e-6;
+  };
+  if (!order_->stand || (stood_at_ && same(*stood_at_, *order_->stand))) return;
+  moving_up_ = control::straight_behind(estimate_, rear_axle_at(*order_->stand, config_.body.geometry), kMoveUpM);
+  fire(moving_up_ ? StackerEvent::kStandBack : StackerEvent::kStand);
+}
+
 void Stacker::update_sensors() {
   if (time_ >= next_pose_reading_) {
     next_pose_reading_ = time_ + 1.0 / config_.pose_rate_hz;
@@ -409,6 +435,9 @@ void Stacker::step() {
   } else if (state_ == StackerState::kLifting || state_ == StackerState::kLowering) {
     apply({0.0, body_.state().theta_steer});
     handle_forks();
+  } else if (state_ == StackerState::kHolding) {
+    apply({0.0, body_.state().theta_steer});
+    hold();
   } else {
     apply({0.0, body_.state().theta_steer});
   }

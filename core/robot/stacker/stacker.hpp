@@ -120,6 +120,9 @@ class Stacker : public Robot {
   /// A move order straight back along its line (StackerEvent::kMoveUp): no route, no turn.
   void start_moving_up();
   void move_up();
+  /// Holding its load with no drop place yet: goes where the order now has it stand, or on to the
+  /// drop place once the order names one.
+  void hold();
   /// The docking law's settings for the docking, placing or parking the state leads to.
   control::DockingParams docking_params() const;
   /// way_out_ for the path just adopted.
@@ -153,7 +156,9 @@ class Stacker : public Robot {
   double next_route_try_ = 0.0;
   std::optional<control::DockingLaw> law_;
   std::optional<control::StraightBack> back_;  ///< moving up straight back instead of docking
-  bool moving_up_ = false;                     ///< the move order under way is a move up
+  bool moving_up_ = false;
+  std::optional<geometry::Pose2> stood_at_;  ///< the order's stand it reached last, holding its load ///< the move
+                                             ///< order under way is a move up
   std::optional<perception::StackerCameraDetector> detector_;
   std::optional<geometry::Pose2> detected_pallet_;  ///< the cameras' latest find, until a frame finds nothing
   int dock_attempts_ = 0;

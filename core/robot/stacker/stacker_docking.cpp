@@ -37,8 +37,12 @@ Pose2 Stacker::dock_prior() const {
       return order_ ? order_->drop_area : home_;
     default: {
       // A bay is docked to like a pallet place: the pallet that would sit on the forks when the
-      // stacker stands at the bay's pose.
-      const Pose2 stand = order_ && order_->kind == orders::OrderKind::kMove ? order_->drop_area : home_;
+      // stacker stands at the bay's pose. A stand with its load is reversed into the same way.
+      const bool standing =
+          (state_ == StackerState::kToStand || state_ == StackerState::kStanding) && order_ && order_->stand;
+      const Pose2 stand = standing                                             ? *order_->stand
+                          : order_ && order_->kind == orders::OrderKind::kMove ? order_->drop_area
+                                                                               : home_;
       const double back = 0.5 * (config_.body.geometry.front_x() + config_.body.geometry.fork_tip_x()) -
                           carried_offset(config_.docking, config_.body.geometry);
       const Vec2 p = stand.position() - back * heading_of(stand.yaw);
@@ -128,6 +132,8 @@ void Stacker::dock() {
       finish_order({RobotEvent::Kind::kDone, order_->order_id, order_->drop_area_id, -1, {}});
     } else if (state_ == StackerState::kParking) {
       reports_.add({RobotEvent::Kind::kHome, "", "", -1, {}});
+    } else if (state_ == StackerState::kStanding) {
+      stood_at_ = order_->stand;
     }
     fire(StackerEvent::kDocked);
     return;
@@ -159,10 +165,11 @@ void Stacker::dock() {
 
 void Stacker::start_moving_up() {
   const sim::TricycleGeometry& g = config_.body.geometry;
-  const Vec2 goal = order_->drop_area.position() - g.centre_x() * heading_of(order_->drop_area.yaw);
-  back_.emplace(Pose2{goal.x, goal.y, order_->drop_area.yaw}, config_.move_up, g.wheelbase);
+  const Pose2 target = state_ == StackerState::kStanding ? *order_->stand : order_->drop_area;
+  const Vec2 goal = target.position() - g.centre_x() * heading_of(target.yaw);
+  back_.emplace(Pose2{goal.x, goal.y, target.yaw}, config_.move_up, g.wheelbase);
   reports_.set_detail("moving up");
-  work_area_ = sweeps_.straight_back(estimate_, goal, order_->drop_area.yaw);
+  work_area_ = sweeps_.straight_back(estimate_, goal, target.yaw);
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
 }
@@ -178,8 +185,12 @@ void Stacker::move_up() {
     return;
   }
   apply({0.0, body_.state().theta_steer});
-  finish_order({RobotEvent::Kind::kDone, order_->order_id, order_->drop_area_id, -1, {}});
   moving_up_ = false;
+  if (state_ == StackerState::kStanding) {
+    stood_at_ = order_->stand;
+  } else {
+    finish_order({RobotEvent::Kind::kDone, order_->order_id, order_->drop_area_id, -1, {}});
+  }
   fire(StackerEvent::kDocked);
 }
 
@@ -209,7 +220,7 @@ void Stacker::handle_forks() {
     }
     carried_ = nearest;
     reports_.add({RobotEvent::Kind::kLifted, order_->order_id, "", carried_, {}});
-    fire(StackerEvent::kForksUp);
+    fire(order_->drop_area_id.empty() ? StackerEvent::kHold : StackerEvent::kForksUp);
     return;
   }
   const RobotEvent done{

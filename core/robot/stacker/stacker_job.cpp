@@ -35,6 +35,15 @@ constexpr std::array kTable{
     StackerTransition{S::kParking, E::kDocked, S::kIdle},
     StackerTransition{S::kParking, E::kDockFailed, S::kParking},
     StackerTransition{S::kParking, E::kCancel, S::kToHome},
+    // A transport whose drop place comes later (a loader's transporter): it stands with its load
+    // where the order says until the order names the drop place.
+    StackerTransition{S::kLifting, E::kHold, S::kHolding},
+    StackerTransition{S::kHolding, E::kStand, S::kToStand},
+    StackerTransition{S::kHolding, E::kStandBack, S::kStanding},
+    StackerTransition{S::kHolding, E::kDrop, S::kToDrop},
+    StackerTransition{S::kToStand, E::kRouteEnded, S::kStanding},
+    StackerTransition{S::kStanding, E::kDocked, S::kHolding},
+    StackerTransition{S::kStanding, E::kDockFailed, S::kStanding},
 };
 
 }  // namespace
@@ -61,6 +70,12 @@ const char* to_string(StackerState state) {
       return "GO_HOME";
     case S::kParking:
       return "PARKING";
+    case S::kHolding:
+      return "HOLDING";
+    case S::kToStand:
+      return "TO_STAND";
+    case S::kStanding:
+      return "STANDING";
   }
   return "?";
 }
@@ -85,6 +100,14 @@ const char* to_string(StackerEvent event) {
       return "forks down";
     case E::kCancel:
       return "cancel";
+    case E::kHold:
+      return "hold";
+    case E::kStand:
+      return "stand";
+    case E::kStandBack:
+      return "stand back";
+    case E::kDrop:
+      return "drop";
   }
   return "?";
 }
@@ -105,6 +128,9 @@ orders::OrderPhase stacker_phase(StackerState state) {
     case S::kLifting:
       return orders::OrderPhase::kPicking;
     case S::kToDrop:
+    case S::kHolding:
+    case S::kToStand:
+    case S::kStanding:
       return orders::OrderPhase::kToDrop;
     case S::kPlacing:
     case S::kLowering:
@@ -120,7 +146,8 @@ orders::OrderPhase stacker_phase(StackerState state) {
 }
 
 bool drives_route(StackerState state) {
-  return state == S::kToPick || state == S::kToDrop || state == S::kToPlace || state == S::kToHome;
+  return state == S::kToPick || state == S::kToDrop || state == S::kToPlace || state == S::kToHome ||
+         state == S::kToStand;
 }
 
 }  // namespace fleet::robot

@@ -21,6 +21,9 @@ enum class StackerState {
   kToPlace,   ///< on the roads to a move order's place
   kToHome,    ///< on the roads home
   kParking,   ///< reversing into its stall (home or a move order's place)
+  kHolding,   ///< a transport with no drop place yet: standing with its load
+  kToStand,   ///< on the roads with its load to where the order has it stand
+  kStanding,  ///< reversing with its load into that stand, or moving up straight back to it
 };
 
 enum class StackerEvent {
@@ -33,6 +36,10 @@ enum class StackerEvent {
   kForksUp,     ///< the load is lifted
   kForksDown,   ///< the load is down and the forks free
   kCancel,      ///< the server withdrew the order
+  kHold,        ///< the load is lifted and the order names no drop place yet
+  kStand,       ///< the order has it stand elsewhere with its load: a route there
+  kStandBack,   ///< the order has it stand straight behind its forks, on its line
+  kDrop,        ///< the order names its drop place
 };
 
 const char* to_string(StackerState state);

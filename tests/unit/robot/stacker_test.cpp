@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -36,10 +37,13 @@ namespace {
 constexpr StackerState kStates[] = {StackerState::kIdle,     StackerState::kToPick,  StackerState::kDocking,
                                     StackerState::kLifting,  StackerState::kToDrop,  StackerState::kPlacing,
                                     StackerState::kLowering, StackerState::kToPlace, StackerState::kToHome,
-                                    StackerState::kParking};
+                                    StackerState::kParking,  StackerState::kHolding, StackerState::kToStand,
+                                    StackerState::kStanding};
 constexpr StackerEvent kEvents[] = {StackerEvent::kTransport, StackerEvent::kMove,       StackerEvent::kRouteEnded,
                                     StackerEvent::kDocked,    StackerEvent::kDockFailed, StackerEvent::kForksUp,
-                                    StackerEvent::kForksDown, StackerEvent::kCancel,     StackerEvent::kMoveUp};
+                                    StackerEvent::kForksDown, StackerEvent::kCancel,     StackerEvent::kMoveUp,
+                                    StackerEvent::kHold,      StackerEvent::kStand,      StackerEvent::kStandBack,
+                                    StackerEvent::kDrop};
 
 TEST(StackerJob, EveryRowIsTheOnlyWayFromItsStateOnItsEventAndEveryStateIsReached) {
   const auto table = robot::stacker_transition_table();
@@ -282,8 +286,13 @@ TEST(Stacker, RefusesPickItemAndASecondOrder) {
   EXPECT_FALSE(stacker->refusal(orders::OrderKind::kPick).empty());
   std::string why;
   ASSERT_TRUE(stacker->submit(plant.transport("FG1", "EX1"), &why));
-  EXPECT_FALSE(stacker->submit(plant.transport("FG3", "EX5"), &why));
+  task::TaskOrder second = plant.transport("FG3", "EX5");
+  second.order_id = "8";
+  EXPECT_FALSE(stacker->submit(second, &why));
   EXPECT_NE(why.find("busy with order 7"), std::string::npos) << why;
+  // The same order again is an update of it; one that names its drop place has nothing to update.
+  EXPECT_FALSE(stacker->submit(plant.transport("FG1", "EX3"), &why));
+  EXPECT_EQ(why, "order 7 names its drop place already");
 }
 
 }  // namespace
@@ -645,4 +654,62 @@ TEST(Stacker, MovesUpStraightBackBehindAPickerThatMovedOn) {
   EXPECT_LT(metres, 3.7) << "straight back, not round the loop";
   EXPECT_LT(seconds, 14.0);
   EXPECT_TRUE(swept) << "traffic is told what the move sweeps";
+}
+
+// A loader's transporter: it lifts a pallet with no drop place named, stands with it behind the
+// picker at RB2 (its route, then reversing in), moves up behind RB1 straight back, and takes the
+// pallet to EX1 once the order names it, each step an update of the one transport.
+TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlace) {
+  PlantStacker plant;
+  auto stacker = plant.make("PT2");
+  stacker->set_standing_loads(plant.loads);
+  const auto behind = [&](const std::string& place) {
+    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
+    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
+                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
+    return orders::transporter_pose(picker, -1.0, 0.35);
+  };
+  task::TaskOrder order = plant.transport("FG5", "EX1");
+  order.drop_area_id.clear();
+  order.drop_area = {};
+  std::string why;
+  ASSERT_TRUE(stacker->submit(order, &why)) << why;
+  int lifted = -1, put_down = -1;
+  const auto run_until = [&](const std::function<bool()>& there, double seconds) {
+    const double end = stacker->status().time + seconds;
+    while (stacker->status().time < end && !there()) {
+      stacker->step();
+      for (const auto& e : stacker->take_events()) {
+        if (e.kind == RobotEvent::Kind::kLifted) lifted = e.load_id;
+        if (e.kind == RobotEvent::Kind::kDone) put_down = e.load_id;
+        if (e.kind == RobotEvent::Kind::kFailed) ADD_FAILURE() << e.text;
+      }
+    }
+    return there();
+  };
+  const auto holding = [&] { return stacker->state() == StackerState::kHolding; };
+  ASSERT_TRUE(run_until(holding, 200.0)) << stacker->status().task_state << " (" << stacker->status().detail << ")";
+  EXPECT_EQ(lifted, plant.load_at.at("FG5"));
+
+  for (const std::string place : {"RB2", "RB1"}) {
+    task::TaskOrder update = order;
+    update.stand = behind(place);
+    ASSERT_TRUE(stacker->submit(update, &why)) << why;
+    const double start = stacker->status().time;
+    stacker->step();
+    ASSERT_TRUE(run_until(holding, 240.0)) << place << ": " << stacker->status().task_state;
+    const geometry::Pose2 at = stacker->status().truth;
+    EXPECT_LT(geometry::distance(at.position(), behind(place).position()), 0.06) << place;
+    EXPECT_EQ(stacker->status().carried_load, lifted) << place;
+    if (place == "RB1") {
+      EXPECT_LT(stacker->status().time - start, 15.0) << "moved up straight back";
+    }
+  }
+  task::TaskOrder drop = order;
+  drop.drop_area_id = "EX1";
+  drop.drop_area = plant.site->site.find_area("EX1")->pose;
+  ASSERT_TRUE(stacker->submit(drop, &why)) << why;
+  ASSERT_TRUE(run_until([&] { return put_down >= 0; }, 300.0))
+      << stacker->status().task_state << " (" << stacker->status().detail << ")";
+  EXPECT_EQ(put_down, lifted);
 }
