@@ -118,12 +118,9 @@ void FleetAgent::handle_orders() {
         withdraw(assignment.order_id);
         return;
       case orders::IntakeStep::kAcknowledgeAgain:
-        if (assignment.loader && order_->assignment.loader && assignment.update_id > order_->assignment.update_id) {
-          update_loader_walk(assignment);
-          return;
-        }
-        // Re-sent because our acknowledgement was lost or the server restarted: acknowledge again
-        // and repeat where we are.
+        if (assignment.update_id > order_->assignment.update_id) update_running_order(assignment);
+        // Re-sent because our acknowledgement was lost or the server restarted, or updated:
+        // acknowledge again and repeat where we are.
         order_->assignment.update_id = assignment.update_id;
         report("ACCEPTED");
         if (!order_->phase.empty()) report(order_->phase);
@@ -135,22 +132,37 @@ void FleetAgent::handle_orders() {
   });
 }
 
-void FleetAgent::update_loader_walk(const model::OrderAssignment& assignment) {
-  // The walk stays; more of it is released, or a new transporter moved up behind the robot.
-  task::TaskOrder update;
-  update.order_id = std::to_string(assignment.order_id);
-  update.kind = orders::OrderKind::kPick;
-  update.loader = true;
+void FleetAgent::update_running_order(const model::OrderAssignment& assignment) {
+  // What an update may change: a loader walk's release (more stops, a new transporter behind
+  // it); where a transport with no drop area yet stands with its load, or its drop area.
+  const model::OrderAssignment& running = order_->assignment;
+  const bool loader = assignment.loader && running.loader;
+  const bool transport = running.drop_area.empty() && (assignment.stand || !assignment.drop_area.empty());
+  if (!loader && !transport) return;
+  task::TaskOrder update{std::to_string(assignment.order_id),
+                         assignment.pick_area,
+                         assignment.pick_pose,
+                         assignment.drop_area,
+                         assignment.drop_pose,
+                         loader ? orders::OrderKind::kPick : orders::OrderKind::kTransport};
+  update.loader = loader;
   update.released = assignment.released_stops;
   update.pallet = assignment.pallet;
+  update.stand = assignment.stand;
   std::string why;
   if (!robot_->submit(update, &why)) {
     log_->warn("order {}: update {} not taken: {}", assignment.order_id, assignment.update_id, why);
     return;
   }
   order_->assignment = assignment;
-  log_->info("order {} updated: {} stop{} released, pallet {} behind", assignment.order_id, assignment.released_stops,
-             assignment.released_stops == 1 ? "" : "s", assignment.pallet);
+  if (loader) {
+    log_->info("order {} updated: {} stop{} released, pallet {} behind", assignment.order_id, assignment.released_stops,
+               assignment.released_stops == 1 ? "" : "s", assignment.pallet);
+  } else {
+    log_->info("order {} updated: {}", assignment.order_id,
+               assignment.drop_area.empty() ? std::string("stand elsewhere with the load")
+                                            : "drop at " + assignment.drop_area);
+  }
 }
 
 void FleetAgent::withdraw(std::int64_t order_id) {
@@ -181,6 +193,7 @@ void FleetAgent::consider(const model::OrderAssignment& assignment) {
   task_order.loader = assignment.loader;
   task_order.released = assignment.released_stops;
   task_order.pallet = assignment.pallet;
+  task_order.stand = assignment.stand;
   orders::NewOrderChecks checks;
   if (!kind) {
     checks.invalid = "unknown order kind '" + assignment.kind + "'";

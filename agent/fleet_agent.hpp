@@ -52,8 +52,9 @@ class FleetAgent {
   std::string item_stops(const model::OrderAssignment& assignment, std::vector<task::ItemStop>& stops) const;
 
   void handle_orders();
-  /// A loader walk the robot runs, updated by the server: the stops released, the pallet behind it.
-  void update_loader_walk(const model::OrderAssignment& assignment);
+  /// The order the robot runs, updated by the server: a loader walk's release, or where a
+  /// transport with no drop area yet stands with its load, or its drop area.
+  void update_running_order(const model::OrderAssignment& assignment);
   /// The server withdraws the order the robot runs.
   void withdraw(std::int64_t order_id);
   /// A new order: checked against the intake's rules, then submitted to the robot or rejected.

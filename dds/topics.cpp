@@ -180,13 +180,18 @@ fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
           borrow(v.lines),
           v.loader,
           v.released_stops,
-          v.pallet};
+          v.pallet,
+          v.stand.has_value(),
+          wire_pose(v.stand.value_or(geometry::Pose2{}))};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
-  return {w.order_id,        text(w.robot_id),        text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose), w.update_id,       w.cancelled,
-          text(w.kind),      text(w.lines),           w.loader,          w.released_stops,
-          w.pallet};
+  return {w.order_id,        text(w.robot_id),
+          text(w.pick_area), model_pose(w.pick_pose),
+          text(w.drop_area), model_pose(w.drop_pose),
+          w.update_id,       w.cancelled,
+          text(w.kind),      text(w.lines),
+          w.loader,          w.released_stops,
+          w.pallet,          w.standing ? std::optional(model_pose(w.stand_pose)) : std::nullopt};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {

@@ -74,6 +74,8 @@ struct OrderAssignment {
   bool loader = false;
   std::uint32_t released_stops = 0;  ///< loader: the arm works the first released_stops stops only
   int pallet = 0;                    ///< loader: which transporter's pallet stands behind it
+  /// A transport with no drop area yet: where to stand with the load meanwhile (the body's centre).
+  std::optional<geometry::Pose2> stand{};
 };
 
 /// An agent's report on its order.

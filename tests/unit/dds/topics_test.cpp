@@ -183,4 +183,31 @@ TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
   EXPECT_EQ(taken->pallet, 3);
   EXPECT_EQ(taken->lines, sent.lines);
   EXPECT_EQ(taken->update_id, 4u);
+  EXPECT_FALSE(taken->stand);
+}
+
+TEST(Topics, AnOrderComesBackWithWhereItsTransportStands) {
+  dds::use_fleet_dds_config();
+  dds::Participant participant(kDomain);
+  dds::Writer<model::OrderAssignment> writer(participant, dds::qos::latched_state());
+  dds::Reader<model::OrderAssignment> reader(participant, dds::qos::latched_state());
+  model::OrderAssignment sent;
+  sent.order_id = 8;
+  sent.robot_id = "st1";
+  sent.kind = "transport";
+  sent.pick_area = "FG5";
+  sent.stand = geometry::Pose2{39.18, 10.6, 0.0};
+  ASSERT_TRUE(writer.wait_for_readers(1, std::chrono::seconds(5)));
+  ASSERT_TRUE(writer.write(sent));
+  std::optional<model::OrderAssignment> taken;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!taken && std::chrono::steady_clock::now() < end) {
+    reader.take_data([&](model::OrderAssignment&& order) { taken = std::move(order); });
+    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(taken);
+  ASSERT_TRUE(taken->stand);
+  EXPECT_DOUBLE_EQ(taken->stand->x, 39.18);
+  EXPECT_DOUBLE_EQ(taken->stand->y, 10.6);
+  EXPECT_TRUE(taken->drop_area.empty());
 }
