@@ -49,6 +49,8 @@ class Runner:
         if proc.returncode not in ((0, 1) if accept_exit_1 else (0,)) or not lines:
             raise RuntimeError(f"exit {proc.returncode}: {proc.stderr.strip().splitlines()[-1:]}")
         doc = json.loads(lines[-1])
+        if "error" in doc:
+            raise RuntimeError(doc["error"])  # fleetctl's own reason, e.g. a tool the run needs is missing
         doc["_exit"] = proc.returncode
         return doc
 
