@@ -15,16 +15,6 @@ using geometry::Vec2;
 
 namespace {
 
-Vec2 heading_of(double yaw) {
-  return {std::cos(yaw), std::sin(yaw)};
-}
-
-/// The rear axle's pose when the body's centre stands at `centre`.
-Pose2 rear_axle_at(const Pose2& centre, const sim::TricycleGeometry& g) {
-  const Vec2 rear = centre.position() - g.centre_x() * heading_of(centre.yaw);
-  return {rear.x, rear.y, centre.yaw};
-}
-
 // How far a lane's heading may differ from the pallet row's for a docking run to start on it, rad.
 constexpr double kLaneAlongRow = 0.35;
 // A route ending within this of the stacker's own plan's end ends where the docking starts, metres.
@@ -67,11 +57,7 @@ Stacker::Stacker(const StackerConfig& config, std::shared_ptr<const map::SiteMap
       home_(home),
       footprint_{config.body.geometry.length, config.body.geometry.width},
       nav_(navigation_params(config), std::move(site), footprint_),
-      body_(config.body,
-            [&] {
-              const Vec2 rear = home.position() - config.body.geometry.centre_x() * heading_of(home.yaw);
-              return Pose2{rear.x, rear.y, home.yaw};
-            }()),
+      body_(config.body, rear_axle_at(home, config.body.geometry)),
       rng_(seed * 0x9e3779b97f4a7c15ULL + stream) {
   estimate_ = body_.pose();
   update_centre();

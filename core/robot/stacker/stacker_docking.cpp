@@ -13,10 +13,6 @@ using geometry::Vec2;
 
 namespace {
 
-Vec2 heading_of(double yaw) {
-  return {std::cos(yaw), std::sin(yaw)};
-}
-
 /// A pose of the true map frame seen from the estimated one: the same pose relative to the
 /// vehicle. A camera measures relative to the vehicle; the frame it is put in is the estimate's.
 Pose2 reframe(const Pose2& from_vehicle, const Pose2& to_vehicle, const Pose2& pose) {
@@ -166,10 +162,10 @@ void Stacker::dock() {
 void Stacker::start_moving_up() {
   const sim::TricycleGeometry& g = config_.body.geometry;
   const Pose2 target = state_ == StackerState::kStanding ? *order_->stand : order_->drop_area;
-  const Vec2 goal = target.position() - g.centre_x() * heading_of(target.yaw);
-  back_.emplace(Pose2{goal.x, goal.y, target.yaw}, config_.move_up, g.wheelbase);
+  const Pose2 goal = rear_axle_at(target, g);
+  back_.emplace(goal, config_.move_up, g.wheelbase);
   reports_.set_detail("moving up");
-  work_area_ = sweeps_.straight_back(estimate_, goal, target.yaw);
+  work_area_ = sweeps_.straight_back(estimate_, goal.position(), goal.yaw);
   // Without traffic control nobody holds the area for it: it goes at once.
   area_clear_ = !config_.traffic;
 }

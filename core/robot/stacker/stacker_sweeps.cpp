@@ -10,13 +10,14 @@ namespace fleet::robot {
 using geometry::Pose2;
 using geometry::Vec2;
 
-namespace {
-
 Vec2 heading_of(double yaw) {
   return {std::cos(yaw), std::sin(yaw)};
 }
 
-}  // namespace
+Pose2 rear_axle_at(const Pose2& centre, const sim::TricycleGeometry& geometry) {
+  const Vec2 rear = centre.position() - geometry.centre_x() * heading_of(centre.yaw);
+  return {rear.x, rear.y, centre.yaw};
+}
 
 double carried_offset(const control::DockingParams& docking, const sim::TricycleGeometry& geometry) {
   return geometry.fork_tip_x() + docking.pocket_depth - 0.5 * docking.pallet.depth;

@@ -13,6 +13,11 @@ namespace fleet::robot {
 
 struct StackerConfig;
 
+/// The unit vector along heading `yaw`.
+geometry::Vec2 heading_of(double yaw);
+/// The rear axle's pose (the control reference) when the body's centre stands at `centre`.
+geometry::Pose2 rear_axle_at(const geometry::Pose2& centre, const sim::TricycleGeometry& geometry);
+
 /// Where the docked pallet's centre lies ahead of the rear axle: the fork tips are at the pocket
 /// depth beyond the entry face.
 double carried_offset(const control::DockingParams& docking, const sim::TricycleGeometry& geometry);

@@ -20,20 +20,25 @@ namespace {
 
 constexpr std::uint32_t kDomain = 194;  // no other test uses it
 
-/// `sent` written, and what a reader of the same participant takes of it.
-std::optional<model::RobotState> round_trip(const model::RobotState& sent) {
+/// `sent` written with `qos`, and what a reader of the same participant takes of it.
+template <typename Message>
+std::optional<Message> round_trip(const Message& sent, const dds::Qos& qos) {
   dds::use_fleet_dds_config();
   dds::Participant participant(kDomain);
-  dds::Writer<model::RobotState> writer(participant, dds::qos::robot_state());
-  dds::Reader<model::RobotState> reader(participant, dds::qos::robot_state());
+  dds::Writer<Message> writer(participant, qos);
+  dds::Reader<Message> reader(participant, qos);
   if (!writer.wait_for_readers(1, std::chrono::seconds(5)) || !writer.write(sent)) return std::nullopt;
-  std::optional<model::RobotState> taken;
+  std::optional<Message> taken;
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
   while (!taken && std::chrono::steady_clock::now() < end) {
-    reader.take_data([&](model::RobotState&& state) { taken = std::move(state); });
+    reader.take_data([&](Message&& message) { taken = std::move(message); });
     if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return taken;
+}
+
+std::optional<model::RobotState> round_trip(const model::RobotState& sent) {
+  return round_trip(sent, dds::qos::robot_state());
 }
 
 model::RobotState docking_stacker() {
@@ -156,10 +161,6 @@ TEST(Topics, AnOrderReportItsWriterUnregistersIsNotReplayedToAServerThatJoinsLat
 }
 
 TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
-  dds::use_fleet_dds_config();
-  dds::Participant participant(kDomain);
-  dds::Writer<model::OrderAssignment> writer(participant, dds::qos::latched_state());
-  dds::Reader<model::OrderAssignment> reader(participant, dds::qos::latched_state());
   model::OrderAssignment sent;
   sent.order_id = 7;
   sent.robot_id = "pk1";
@@ -169,14 +170,7 @@ TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
   sent.loader = true;
   sent.released_stops = 2;
   sent.pallet = 3;
-  ASSERT_TRUE(writer.wait_for_readers(1, std::chrono::seconds(5)));
-  ASSERT_TRUE(writer.write(sent));
-  std::optional<model::OrderAssignment> taken;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!taken && std::chrono::steady_clock::now() < end) {
-    reader.take_data([&](model::OrderAssignment&& order) { taken = std::move(order); });
-    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  const auto taken = round_trip(sent, dds::qos::latched_state());
   ASSERT_TRUE(taken);
   EXPECT_TRUE(taken->loader);
   EXPECT_EQ(taken->released_stops, 2u);
@@ -187,24 +181,13 @@ TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
 }
 
 TEST(Topics, AnOrderComesBackWithWhereItsTransportStands) {
-  dds::use_fleet_dds_config();
-  dds::Participant participant(kDomain);
-  dds::Writer<model::OrderAssignment> writer(participant, dds::qos::latched_state());
-  dds::Reader<model::OrderAssignment> reader(participant, dds::qos::latched_state());
   model::OrderAssignment sent;
   sent.order_id = 8;
   sent.robot_id = "st1";
   sent.kind = "transport";
   sent.pick_area = "FG5";
   sent.stand = geometry::Pose2{39.18, 10.6, 0.0};
-  ASSERT_TRUE(writer.wait_for_readers(1, std::chrono::seconds(5)));
-  ASSERT_TRUE(writer.write(sent));
-  std::optional<model::OrderAssignment> taken;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!taken && std::chrono::steady_clock::now() < end) {
-    reader.take_data([&](model::OrderAssignment&& order) { taken = std::move(order); });
-    if (!taken) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  const auto taken = round_trip(sent, dds::qos::latched_state());
   ASSERT_TRUE(taken);
   ASSERT_TRUE(taken->stand);
   EXPECT_DOUBLE_EQ(taken->stand->x, 39.18);

@@ -131,6 +131,18 @@ struct PlantStacker {
     o.drop_area = site->site.find_area(to)->pose;
     return o;
   }
+
+  /// Where a loader's transporter stands behind the picker picking at rack place `place`: the
+  /// picker 1 m out, side-on, the place on its left; the stacker's pallet centre (0.35 m behind
+  /// its body's: forks 1.15 m, pallet 1.2 m) 1.0 m behind the picker's centre, so the pallet's near
+  /// edge stands 7.5 cm behind the 0.65 m base, its first row where the arm reaches (0.55 m behind
+  /// the base's centre).
+  geometry::Pose2 behind_picker_at(const std::string& place) const {
+    const geometry::Pose2 p = site->site.find_area(place)->pose;
+    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
+                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
+    return orders::transporter_pose(picker, -1.0, 0.35);
+  }
 };
 
 TEST(Stacker, DocksToAFinishedGoodsPalletCarriesItToExpeditionAndParksInItsBay) {
@@ -576,14 +588,7 @@ TEST(Stacker, OnItsRouteItNamesTheAreaItsDockingWillSweepSoNobodyIsGrantedIntoIt
 TEST(Stacker, ReversesIntoThePoseBehindAPickerAtARackPlace) {
   PlantStacker plant;
   for (const std::string place : {"RB2", "RB7", "RB13"}) {
-    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
-    // Where the picker stands to pick there: 1 m out, side-on, the place on its left.
-    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
-                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
-    // A stacker's pallet centre lies 0.35 m behind its body's (forks 1.15 m, pallet 1.2 m): with
-    // it 1.0 m behind the picker's centre, the pallet's near edge stands 7.5 cm behind the 0.65 m
-    // base, its first row where the arm reaches (0.55 m behind the base's centre).
-    const geometry::Pose2 goal = orders::transporter_pose(picker, -1.0, 0.35);
+    const geometry::Pose2 goal = plant.behind_picker_at(place);
     auto stacker = plant.make("PT2");
     stacker->set_standing_loads(plant.loads);
     task::TaskOrder order;
@@ -611,12 +616,7 @@ TEST(Stacker, MovesUpStraightBackBehindAPickerThatMovedOn) {
   PlantStacker plant;
   auto stacker = plant.make("PT2");
   stacker->set_standing_loads(plant.loads);
-  const auto behind = [&](const std::string& place) {
-    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
-    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
-                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
-    return orders::transporter_pose(picker, -1.0, 0.35);
-  };
+  const auto behind = [&](const std::string& place) { return plant.behind_picker_at(place); };
   double seconds = 0.0, metres = 0.0;
   bool swept = false;
   const auto run = [&](const std::string& place) {
@@ -663,12 +663,7 @@ TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlac
   PlantStacker plant;
   auto stacker = plant.make("PT2");
   stacker->set_standing_loads(plant.loads);
-  const auto behind = [&](const std::string& place) {
-    const geometry::Pose2 p = plant.site->site.find_area(place)->pose;
-    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
-                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
-    return orders::transporter_pose(picker, -1.0, 0.35);
-  };
+  const auto behind = [&](const std::string& place) { return plant.behind_picker_at(place); };
   task::TaskOrder order = plant.transport("FG5", "EX1");
   order.drop_area_id.clear();
   order.drop_area = {};
