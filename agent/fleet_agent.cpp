@@ -414,6 +414,8 @@ void FleetAgent::publish_state(double now_sim) {
   state.order_id = order_ ? order_->assignment.order_id : 0;
   state.carrying_pallet = status.carried_load >= 0;
   state.sim_time = now_sim;
+  state.walk_stop = status.walk_stop;
+  state.boxes_loaded = status.boxes_loaded;
   robot::DockingView docking = robot_->docking_view();
   state.docking_targets = std::move(docking.targets);
   state.detected_pallet = docking.detected_pallet;

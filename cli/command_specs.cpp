@@ -19,11 +19,15 @@ std::vector<CommandSpec> server_commands() {
        "",
        false,
        {choice("--kind", {"transport", "move", "pick"}, "K"), value("--from", "AREA"), value("--to", "PLACE", true),
-        value("--lines", "FILE.csv"), integer("--priority", "P", orders::kMinPriority, orders::kMaxPriority),
-        value("--robot", "R"), value("--fleet", "F"), on_off("--wait")},
+        value("--lines", "FILE.csv"), choice("--handling", {"tray", "loader", "auto"}, "H"),
+        integer("--priority", "P", orders::kMinPriority, orders::kMaxPriority), value("--robot", "R"),
+        value("--fleet", "F"), on_off("--wait")},
        "create an order, print its id: a transport --from AREA --to AREA (the default\n"
        "kind), a move --to PARKING (go there and stay), a pick --lines FILE.csv --to\n"
        "PLACE (place,item,quantity per line; one order per tour, their ids printed);\n"
+       "--handling loader works the list as one walk, each box set on the pallet of a\n"
+       "stacker behind the picker (no --to; auto: loader when a stacker and an empty\n"
+       "pallet are free, else tray);\n"
        "only fleets that can do its actions take it (exit 2 when none can, or for a\n"
        "line no place can give); --wait follows it to its end (exit 0 DONE, 1 FAILED\n"
        "or CANCELLED)"},

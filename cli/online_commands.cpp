@@ -49,11 +49,16 @@ int order_add(const CommandFlags& args, const CommandArgs& command, const Connec
     request.lines = text.str();
     lines = orders::parse_pick_lines(request.lines, *lines_file);
   }
+  request.handling = args.value("handling").value_or("");
+  if (!request.handling.empty() && !lines_file) throw ArgError("--handling is for --kind pick --lines");
+  const bool loader = request.handling == "loader";
   if (move && !to) throw ArgError("order add --kind move needs --to PLACE (a parking place)");
-  if (lines_file && !to) throw ArgError("order add --kind pick --lines needs --to PLACE (where the boxes go)");
+  if (lines_file && !to && !loader) {
+    throw ArgError("order add --kind pick --lines needs --to PLACE (where the boxes go), or --handling loader");
+  }
   if (!move && !lines_file && (!from || !to)) throw ArgError("order add needs --from AREA and --to AREA");
   request.pick_area = lines_file ? lines.front().place : from.value_or("");
-  request.drop_area = *to;
+  request.drop_area = to.value_or("");
   const long priority = args.integer("priority").value_or(0);
   request.priority = static_cast<int>(priority);
   request.robot_id = args.value("robot").value_or("");
@@ -78,7 +83,8 @@ int order_add(const CommandFlags& args, const CommandArgs& command, const Connec
                                                    {"to", "--to"},       {"robot", "--robot"},
                                                    {"fleet", "--fleet"}, {"priority", "--priority"}};
   if (const auto problem = orders::check_order_request(
-          {request.kind, request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority}, names)) {
+          {request.kind, request.pick_area, request.drop_area, request.robot_id, request.fleet_id, priority, loader},
+          names)) {
     throw ArgError((lines_file && problem->field == "from" ? std::string("--lines") : flag_of.at(problem->field)) +
                    ": " + problem->message);
   }
@@ -89,7 +95,7 @@ int order_add(const CommandFlags& args, const CommandArgs& command, const Connec
       throw ArgError(*why);
     }
     const auto poses = orders::place_poses(site.site);
-    if (const auto tours = orders::plan_tours(lines, orders::kTourBoxes, poses).size(); wait && tours > 1) {
+    if (const auto tours = orders::plan_tours(lines, orders::kTourBoxes, poses).size(); wait && tours > 1 && !loader) {
       throw ArgError("--wait follows one order; these lines make " + std::to_string(tours) + " tours of at most " +
                      std::to_string(orders::kTourBoxes) + " boxes");
     }

@@ -145,12 +145,12 @@ model::ServerInfo from_wire(const fleet_msg_ServerInfo& w) {
 }
 
 fleet_msg_OrderRequest to_wire(const model::OrderRequest& v, Scratch&) {
-  return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id),
-          borrow(v.robot_id),   v.priority,          borrow(v.kind),      borrow(v.lines)};
+  return {borrow(v.request_id), borrow(v.pick_area), borrow(v.drop_area), borrow(v.fleet_id), borrow(v.robot_id),
+          v.priority,           borrow(v.kind),      borrow(v.lines),     borrow(v.handling)};
 }
 model::OrderRequest from_wire(const fleet_msg_OrderRequest& w) {
-  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id),
-          text(w.robot_id),   w.priority,        text(w.kind),      text(w.lines)};
+  return {text(w.request_id), text(w.pick_area), text(w.drop_area), text(w.fleet_id), text(w.robot_id),
+          w.priority,         text(w.kind),      text(w.lines),     text(w.handling)};
 }
 
 fleet_msg_Command to_wire(const model::Command& v, Scratch&) {
@@ -239,7 +239,8 @@ fleet_msg_OrderInfo to_wire(const model::OrderInfo& v, Scratch& s) {
           v.robot_requested,
           v.update_id,
           v.assigned_sim,
-          v.finished_sim};
+          v.finished_sim,
+          v.loader};
 }
 model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
   model::OrderInfo v{w.order_id,
@@ -262,7 +263,8 @@ model::OrderInfo from_wire(const fleet_msg_OrderInfo& w) {
                      w.robot_requested,
                      w.update_id,
                      w.assigned_sim,
-                     w.finished_sim};
+                     w.finished_sim,
+                     w.loader};
   for (uint32_t i = 0; i < w.history._length; ++i) {
     const auto& e = w.history._buffer[i];
     v.history.push_back(
@@ -286,6 +288,8 @@ fleet_msg_RobotState to_wire(const model::RobotState& v, Scratch& s) {
   w.order_id = v.order_id;
   w.carrying_pallet = v.carrying_pallet;
   w.sim_time = v.sim_time;
+  w.walk_stop = v.walk_stop;
+  w.boxes_loaded = v.boxes_loaded;
   // The IDL bounds the targets at two: target 1 and target 2.
   constexpr std::size_t kMaxDockingTargets = 2;
   const std::size_t targets = std::min(v.docking_targets.size(), kMaxDockingTargets);
@@ -313,6 +317,8 @@ model::RobotState from_wire(const fleet_msg_RobotState& w) {
   v.order_id = w.order_id;
   v.carrying_pallet = w.carrying_pallet;
   v.sim_time = w.sim_time;
+  v.walk_stop = w.walk_stop;
+  v.boxes_loaded = w.boxes_loaded;
   v.docking_targets = points_of(w.docking_targets);
   v.detected_pallet = pose_of(w.detected_pallet);
   v.control_lag_p50 = w.control_lag_p50;

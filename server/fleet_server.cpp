@@ -226,6 +226,7 @@ RunEnd FleetServer::run(const std::atomic<bool>& stop) {
     if (gate_.take_change()) publish_server_info();  // the refusals, for fleetctl stats
     if (auto_orders_.due(SimClock::wall_now())) create_auto_orders();
     advance_packing_chain();
+    advance_loader_jobs();
     stages.lap("orders");
     dispatch();
     stages.lap("dispatch");

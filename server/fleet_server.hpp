@@ -21,6 +21,7 @@
 #include "orders/area_ledger.hpp"
 #include "orders/auto_orders.hpp"
 #include "orders/dispatcher.hpp"
+#include "orders/loader_desk.hpp"
 #include "orders/order_book.hpp"
 #include "orders/order_info.hpp"
 #include "orders/order_intake.hpp"
@@ -127,6 +128,9 @@ class FleetServer {
   /// Creates the transports the packing chain owes (orders::next_chain_transport), if the site
   /// has packing stations and an order changed since it last looked.
   void advance_packing_chain();
+  /// Carries out what the loader desk decides for the loader jobs (orders::LoaderDesk): the
+  /// transports their pallets need, and each update of their orders.
+  void advance_loader_jobs();
   /// What order intake reads of the server's state now: the book, the ledger, the names, the
   /// site, who parks where, which robots reported and which are free, and its settings.
   orders::IntakeView intake_view() const;
@@ -148,7 +152,8 @@ class FleetServer {
   OrderStore store_;
   RobotBodyMemory body_memory_{store_};  ///< where robots last stood, for a restarted server
   /// Road-graph travel cost for dispatch, per fleet on the lanes its vehicle fits.
-  std::map<std::string, planning::RoadDistances> travel_;
+  /// Mutable: it caches the distance fields it computed.
+  mutable std::map<std::string, planning::RoadDistances> travel_;
   /// What orders may name on the site served, with each fleet's abilities and the places it
   /// cannot reach (server::derive_site).
   std::shared_ptr<const orders::KnownNames> known_names_;
@@ -167,6 +172,7 @@ class FleetServer {
   /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
   orders::RecoveryWatch watch_;
   orders::AutoOrders auto_orders_;
+  orders::LoaderDesk loader_desk_{{.transporter_fleet = orders::loader_fleet(options_.config)}};
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;
   WebBridge* bridge_ = nullptr;

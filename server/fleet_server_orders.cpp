@@ -45,7 +45,20 @@ orders::IntakeView FleetServer::intake_view() const {
                           .registered = robots_.registered_ids(),
                           .free_robots = {},
                           .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
-                          .max_pickable_mass = orders::max_pickable_mass(options_.config)};
+                          .max_pickable_mass = orders::max_pickable_mass(options_.config),
+                          .loader_fleet = orders::loader_fleet(options_.config)};
+  // A loader walk goes on to the nearest place by the pickers' roads.
+  for (const auto& fleet : options_.config.fleets) {
+    const auto roads = travel_.find(fleet.id);
+    if (fleet.robot_type != "picker" || roads == travel_.end()) continue;
+    view.place_distance = [this, roads](const std::string& from, const std::string& to) {
+      const auto* a = options_.site.find_area(from);
+      const auto* b = options_.site.find_area(to);
+      if (a == nullptr || b == nullptr) return std::numeric_limits<double>::infinity();
+      return roads->second.travel(orders::picker_stop_pose(a->pose, 1.0), orders::picker_stop_pose(b->pose, 1.0));
+    };
+    break;
+  }
   const double now_wall = SimClock::wall_now();
   for (const auto& [id, robot] : robots_.entries()) {
     if (dispatcher_.takes_new_work(robot, book_, now_wall)) view.free_robots.insert(id);
@@ -64,8 +77,9 @@ std::int64_t FleetServer::add_orders(std::vector<Order> drafts) {
     } else {
       const int boxes = orders::boxes_of(order);
       const std::size_t lines = orders::parse_pick_lines(order.lines, "pick tour").size();
-      log_->info("order {} created: pick tour of {} box{} from {} line{} to {} (request {})", order.id, boxes,
-                 boxes == 1 ? "" : "es", lines, lines == 1 ? "" : "s", order.drop_area, order.request_id);
+      log_->info("order {} created: pick {} of {} box{} from {} line{}{} (request {})", order.id,
+                 order.loader ? "walk" : "tour", boxes, boxes == 1 ? "" : "es", lines, lines == 1 ? "" : "s",
+                 order.loader ? ", onto stackers' pallets" : " to " + order.drop_area, order.request_id);
     }
     wire_.publish(order);  // stored before the requester hears of it
   }

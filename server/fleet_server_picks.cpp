@@ -27,4 +27,32 @@ void FleetServer::advance_packing_chain() {
   }
 }
 
+void FleetServer::advance_loader_jobs() {
+  const auto actions = loader_desk_.step(
+      {.book = book_, .robots = robots_.entries(), .site = options_.site, .ledger = site_keeper_.state().ledger});
+  if (traffic_) traffic_->set_partners(loader_desk_.partners());
+  for (const orders::LoaderAction& action : actions) {
+    if (action.kind == orders::LoaderAction::Kind::kCreate) {
+      orders::Order draft = action.draft;
+      orders::fill_steps(draft, known_names());
+      const orders::Order& order = book_.create(std::move(draft), clock_.now());
+      log_->info("order {} created: {} from {} for {}", order.id, orders::to_string(order.kind), order.pick_area,
+                 order.cause);
+      loader_desk_.transport_created(order);
+      wire_.publish(order);
+      continue;
+    }
+    const orders::Order* before = book_.find(action.order_id);
+    if (before == nullptr) continue;
+    orders::Order revised = *before;
+    revised.drop_area = action.revision.drop_area;
+    orders::fill_steps(revised, known_names());
+    if (!book_.revise(action.order_id, action.revision, std::move(revised.steps))) continue;
+    const orders::Order& order = *book_.find(action.order_id);
+    log_->info("order {} update {} to {}: {}", order.id, order.update_id, order.robot_id, action.why);
+    wire_.publish(order);
+    wire_.assign(order);
+  }
+}
+
 }  // namespace fleet::server

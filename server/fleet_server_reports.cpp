@@ -74,8 +74,11 @@ void FleetServer::apply_report(const Order& order, const model::OrderReport& rep
   } else if (report.status == "DONE" && order.kind == orders::OrderKind::kPick) {
     // Boxes, not the pallets they stood on: the pallet ledger is unchanged.
     result = book_.transition(id, OrderStatus::kDone, now);
-    if (result == TransitionResult::kApplied)
+    if (result == TransitionResult::kApplied && order.loader) {
+      log_->info("order {} done: {} set its last boxes on the pallet behind it", id, report.robot_id);
+    } else if (result == TransitionResult::kApplied) {
       log_->info("order {} done: {} put its boxes down at {}", id, report.robot_id, order.drop_area);
+    }
   } else if (report.status == "DONE") {
     result = book_.transition(id, OrderStatus::kDone, now);
     if (result == TransitionResult::kApplied) site_keeper_.put_down(order, report, options_.site);

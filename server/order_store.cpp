@@ -74,6 +74,8 @@ constexpr const char* kMigrations[] = {
     "DROP TABLE pallets;",
     // 5: the last term the server served in as active (orders::ServerTerm).
     "CREATE TABLE server_term (id INTEGER PRIMARY KEY CHECK (id = 1), term INTEGER NOT NULL);",
+    // 6: a pick order worked as a loader walk, and the transports of its pallets.
+    "ALTER TABLE orders ADD COLUMN loader INTEGER NOT NULL DEFAULT 0;",
 };
 
 std::string text_column(sqlite3_stmt* stmt, int column) {
@@ -106,8 +108,8 @@ OrderStore::OrderStore(const std::string& path) : path_(path) {
     }
   };
   prepare(
-      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20) "
-      "ON CONFLICT(id) DO UPDATE SET robot_id=?6, status=?9, phase=?10, reason=?11, update_id=?12, "
+      "INSERT INTO orders VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21) "
+      "ON CONFLICT(id) DO UPDATE SET drop_area=?4, robot_id=?6, status=?9, phase=?10, reason=?11, update_id=?12, "
       "updated_sim=?14, assigned_sim=?15, finished_sim=?16",
       &upsert_);
   prepare("SELECT COUNT(*) FROM order_events WHERE order_id=?1", &count_events_);
@@ -184,6 +186,7 @@ void OrderStore::save(const orders::Order& o) {
     sqlite3_bind_text(upsert_, 18, o.lines.c_str(), -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(upsert_, 19, o.cause.c_str(), -1, SQLITE_TRANSIENT);
     sqlite3_bind_text(upsert_, 20, model::ids_text(o.caused_by).c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_int(upsert_, 21, o.loader ? 1 : 0);
     step(upsert_);
 
     sqlite3_bind_int64(count_events_, 1, o.id);
@@ -218,7 +221,7 @@ std::vector<orders::Order> OrderStore::load_all() const {
       db_,
       "SELECT id, request_id, pick_area, drop_area, fleet_id, robot_id, robot_requested, priority, "
       "status, phase, reason, update_id, created_sim, updated_sim, assigned_sim, finished_sim, kind, lines, "
-      "cause, caused_by FROM orders ORDER BY id",
+      "cause, caused_by, loader FROM orders ORDER BY id",
       -1, &stmt, nullptr);
   while (sqlite3_step(stmt) == SQLITE_ROW) {
     orders::Order o;
@@ -255,6 +258,7 @@ std::vector<orders::Order> OrderStore::load_all() const {
                        "', not order ids");
     }
     o.caused_by = *caused_by;
+    o.loader = sqlite3_column_int(stmt, 20) != 0;
     out.push_back(std::move(o));
   }
   sqlite3_finalize(stmt);

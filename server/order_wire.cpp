@@ -53,6 +53,10 @@ void OrderWire::assign(const orders::Order& order) {
   }
   msg.kind = std::string(orders::to_string(order.kind));
   msg.lines = order.lines;
+  msg.loader = order.loader && order.kind == orders::OrderKind::kPick;
+  msg.released_stops = order.released_stops;
+  msg.pallet = order.pallet;
+  msg.stand = order.stand;
   msg.update_id = order.update_id;
   order_writer_.write(msg);
   recovery_.sent(order.id, SimClock::wall_now());

@@ -146,7 +146,8 @@ void PlaceTrafficControl::work_beside_roads(const model::TrafficRequest& request
   answer.version = request.version;
   answer.sim_time = request.sim_time;
   if (!working_.contains(request.robot_id)) {
-    const std::vector<int> blockers = traffic_.robots_in_area(id, swept);
+    std::vector<int> blockers = traffic_.robots_in_area(id, swept);
+    std::erase_if(blockers, [&](int b) { return partners(names_[static_cast<std::size_t>(b)], request.robot_id); });
     if (!blockers.empty()) {
       traffic_.stand(id, body != bodies_.end() ? body->second : geometry::Polygon{}, swept);
       waiting_for_area_[request.robot_id] = swept;

@@ -287,6 +287,17 @@ void TrafficControl::wait_to_enter(const model::TrafficRequest& request, std::ve
   grants_.publish(std::move(wait), now_wall);
 }
 
+void TrafficControl::set_partners(std::map<std::string, std::string> partners) {
+  std::set<std::pair<int, int>> pairs;
+  for (const auto& [a, b] : partners) {
+    const auto first = numbers_.find(a);
+    const auto second = numbers_.find(b);
+    if (first != numbers_.end() && second != numbers_.end()) pairs.insert({first->second, second->second});
+  }
+  manager_->set_partners(std::move(pairs));
+  TrafficService::set_partners(std::move(partners));
+}
+
 std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon& area) const {
   // A standing robot counts by what traffic holds for it: its body, or the area of its manoeuvre.
   std::map<int, geometry::Polygon> bodies;
@@ -297,7 +308,9 @@ std::vector<int> TrafficControl::robots_in_area(int id, const geometry::Polygon&
     const bool standing = manager_->frozen(number->second) && held != held_bodies_.end();
     bodies[number->second] = standing ? held->second : polygon;
   }
-  return manager_->holders_in_area(id, area, bodies);
+  std::vector<int> holders = manager_->holders_in_area(id, area, bodies);
+  std::erase_if(holders, [&](int h) { return partners(names_.at(h), names_.at(id)); });
+  return holders;
 }
 
 bool TrafficControl::way_out_clear(const model::TrafficRequest& request, int id, double now_sim, double now_wall) {

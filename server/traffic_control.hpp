@@ -37,6 +37,7 @@ class TrafficControl : public TrafficService {
   /// a route — parked, or not admitted yet — holds the places its body overlaps. A robot's first
   /// body opens the writer of its grants, so that its reader has matched by the first grant.
   void set_body(const std::string& robot_id, const geometry::Polygon& body) override;
+  void set_partners(std::map<std::string, std::string> partners) override;
 
   const std::map<std::string, TrafficStatus>& status() const override { return status_; }
 

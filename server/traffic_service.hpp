@@ -31,6 +31,21 @@ class TrafficService {
   /// Where a robot that answers stands now (its footprint at its reported pose).
   virtual void set_body(const std::string& robot_id, const geometry::Polygon& body) = 0;
   virtual const std::map<std::string, TrafficStatus>& status() const = 0;
+
+  /// Robots that work together at one place, each to its partner (a loader and the transporter
+  /// behind it, orders::LoaderDesk::partners): neither's body keeps the other's manoeuvre beside
+  /// the roads from starting.
+  virtual void set_partners(std::map<std::string, std::string> partners) { partners_ = std::move(partners); }
+
+ protected:
+  bool partners(const std::string& a, const std::string& b) const {
+    const auto ab = partners_.find(a);
+    const auto ba = partners_.find(b);
+    return (ab != partners_.end() && ab->second == b) || (ba != partners_.end() && ba->second == a);
+  }
+
+ private:
+  std::map<std::string, std::string> partners_;
 };
 
 }  // namespace fleet::server

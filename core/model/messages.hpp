@@ -39,6 +39,9 @@ struct OrderRequest {
   int priority = 0;
   std::string kind;   ///< orders::OrderKind name; empty: transport
   std::string lines;  ///< pick: the pick list as CSV, place,item,quantity per line
+  /// pick: how its boxes travel (orders::parse_handling): tray (to a packing station), loader
+  /// (onto a transporter's pallet behind the picker, docs/loader.md) or auto; empty: tray.
+  std::string handling{};
 };
 
 struct Command {
@@ -132,6 +135,7 @@ struct OrderInfo {
   std::uint32_t update_id = 0;
   double assigned_sim = 0.0;
   double finished_sim = 0.0;
+  bool loader = false;  ///< orders::Order::loader
 };
 
 inline constexpr std::size_t kMaxOrderHistory = 64;
@@ -158,6 +162,10 @@ struct RobotState {
   std::int64_t order_id = 0;
   bool carrying_pallet = false;
   double sim_time = 0.0;
+  /// A picker on a loader walk (docs/loader.md): the stop it stands at (-1 while it drives or
+  /// has none), and the boxes its arm has set on transporters' pallets in the order so far.
+  int walk_stop = -1;
+  int boxes_loaded = 0;
   /// While the robot docks (a stacker): where its rear axle is steered to before the final
   /// approach, target 1 then target 2, and the pallet its cameras detect (centre and entry-axis
   /// yaw), in the frame of `pose`. Empty otherwise.

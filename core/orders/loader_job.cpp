@@ -85,6 +85,11 @@ int LoaderJob::room() const {
   return run ? capacity_ - run->boxes : 0;
 }
 
+std::string LoaderJob::current_transporter() const {
+  const PalletRun* run = current_run();
+  return run ? run->transporter_id : std::string();
+}
+
 int LoaderJob::next_stop() const {
   int stop = 0;
   while (stop < static_cast<int>(walk_.size()) && left_at(stop) == 0) ++stop;

@@ -110,11 +110,16 @@ class LoaderJob {
   int boxes_loaded() const;
   /// The first stop not fully loaded (walk().size() once every one is).
   int next_stop() const;
+  /// Every stop loaded or left.
+  bool all_loaded() const { return next_stop() >= static_cast<int>(walk_.size()); }
+  /// Boxes of stop `stop` still to load (0 for a stop left).
+  int left_at(int stop) const;
+  /// Boxes the current transporter's pallet still takes (0 without one).
+  int room() const;
+  /// The transporter whose pallet stands behind the picker, or empty.
+  std::string current_transporter() const;
 
  private:
-  bool all_loaded() const { return next_stop() >= static_cast<int>(walk_.size()); }
-  int left_at(int stop) const;
-  int room() const;
   /// The current run (the pallet behind the picker), or null.
   PalletRun* current_run();
   const PalletRun* current_run() const;

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/pose.hpp"
 #include "orders/order_kind.hpp"
 
 namespace fleet::orders {
@@ -78,6 +79,15 @@ struct Order {
   /// The orders this one follows from: the pick orders that filled the pallet it takes away, or
   /// the transport that took away the pallet it replaces.
   std::vector<std::int64_t> caused_by;
+
+  // A loader job (docs/loader.md): its pick order and the transports that carry its pallets, and
+  // what the job tells their robots beyond the places (orders::LoaderDesk revises them).
+  /// A pick order worked as a loader walk, or a transport carrying a loader job's pallet.
+  bool loader = false;
+  std::uint32_t released_stops = 0;  ///< loader pick: the arm works the first released_stops stops
+  int pallet = 0;                    ///< loader pick: whose pallet stands behind the picker (a transport's id)
+  /// Loader transport with no drop area yet: where its robot stands with the pallet (its centre).
+  std::optional<geometry::Pose2> stand{};
 
   /// The place the robot drives to first: the pick area, or a move's destination.
   const std::string& first_place() const { return kind == OrderKind::kMove ? drop_area : pick_area; }

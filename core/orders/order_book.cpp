@@ -81,6 +81,30 @@ TransitionResult OrderBook::requeue(std::int64_t id, double now_sim, const std::
   return result;
 }
 
+std::vector<const Order*> OrderBook::open_orders() const {
+  std::vector<const Order*> out;
+  out.reserve(unfinished_.size());
+  for (const std::int64_t id : unfinished_) out.push_back(&orders_.at(id));
+  return out;
+}
+
+OrderRevision revision_of(const Order& order) {
+  return {order.released_stops, order.pallet, order.stand, order.drop_area};
+}
+
+bool OrderBook::revise(std::int64_t id, const OrderRevision& revision, std::vector<OrderStep> steps) {
+  auto it = orders_.find(id);
+  if (it == orders_.end() || !with_a_robot(it->second.status) || revision_of(it->second) == revision) return false;
+  Order& order = it->second;
+  order.released_stops = revision.released_stops;
+  order.pallet = revision.pallet;
+  order.stand = revision.stand;
+  order.drop_area = revision.drop_area;
+  order.steps = std::move(steps);
+  ++order.update_id;
+  return true;
+}
+
 void OrderBook::locate_last_event(std::int64_t id, double x, double y) {
   auto it = orders_.find(id);
   if (it == orders_.end() || it->second.history.empty()) return;

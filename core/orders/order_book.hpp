@@ -14,6 +14,18 @@ namespace fleet::orders {
 /// Outcome of a requested transition.
 enum class TransitionResult { kApplied, kUnknownOrder, kIllegal };
 
+/// What a loader job may change of an order under way (orders::LoaderDesk).
+struct OrderRevision {
+  std::uint32_t released_stops = 0;
+  int pallet = 0;
+  std::optional<geometry::Pose2> stand{};
+  std::string drop_area;
+  bool operator==(const OrderRevision&) const = default;
+};
+
+/// The revision an order stands at now.
+OrderRevision revision_of(const Order& order);
+
 /// Every order the server knows, keyed by id. Ids are handed out increasing and never reused;
 /// `next_id` is restored from persistence so this also holds across restarts.
 class OrderBook {
@@ -38,6 +50,12 @@ class OrderBook {
   /// Sends an ASSIGNED or ACTIVE order back to the queue, with the reason.
   TransitionResult requeue(std::int64_t id, double now_sim, const std::string& reason);
 
+  /// Tells an ASSIGNED or ACTIVE loader job order's robot something new (VDA 5050 style: an
+  /// update of the same order): the fields of `revision` replace the order's, and its update id
+  /// goes up; `steps` are its VDA 5050 steps with the drop place revised (fill_steps). False,
+  /// with nothing changed, when they are the order's already or it has no robot.
+  bool revise(std::int64_t id, const OrderRevision& revision, std::vector<OrderStep> steps);
+
   /// Where the robot was at the order's latest event.
   void locate_last_event(std::int64_t id, double x, double y);
 
@@ -45,6 +63,8 @@ class OrderBook {
   std::vector<const Order*> with_status(OrderStatus status) const;
   /// Queued orders by priority (high first), then age (old first).
   std::vector<const Order*> queue() const;
+  /// Every order not final, by id.
+  std::vector<const Order*> open_orders() const;
   /// The open (not final) order held by a robot, if any.
   const Order* open_order_of(const std::string& robot_id) const;
   const std::map<std::int64_t, Order>& all() const { return orders_; }

@@ -43,6 +43,7 @@ model::OrderInfo info_of(const Order& o) {
   info.cause = o.cause;
   info.caused_by = o.caused_by;
   info.lines = o.lines;
+  info.loader = o.loader;
   info.robot_requested = o.robot_requested;
   info.update_id = o.update_id;
   info.assigned_sim = o.assigned_sim;
@@ -58,6 +59,7 @@ Order order_of(const model::OrderInfo& info) {
   o.pick_area = info.pick_area;
   o.drop_area = info.drop_area;
   o.lines = info.lines;
+  o.loader = info.loader;
   o.fleet_id = info.fleet_id;
   o.robot_id = info.robot_id;
   o.robot_requested = info.robot_requested;

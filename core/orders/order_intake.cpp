@@ -79,9 +79,12 @@ IntakeDecision OrderIntake::decide_pick_list(const model::OrderRequest& request)
   } catch (const InputError& e) {
     return refuse(request, std::string("lines: ") + e.what());
   }
+  const std::variant<bool, std::string> loader = loader_handling(request);
+  if (const auto* why = std::get_if<std::string>(&loader)) return refuse(request, "handling: " + *why);
+  const bool as_loader = std::get<bool>(loader);
   // The order's places and fleet as a pick from the first line's place.
-  const OrderRequestFields fields{request.kind,     lines.front().place, request.drop_area,
-                                  request.robot_id, request.fleet_id,    request.priority};
+  const OrderRequestFields fields{request.kind,     lines.front().place, request.drop_area, request.robot_id,
+                                  request.fleet_id, request.priority,    as_loader};
   if (const auto problem = check_order_request(fields, view_.names)) {
     return refuse(request, problem->field + ": " + problem->message);
   }
@@ -91,6 +94,7 @@ IntakeDecision OrderIntake::decide_pick_list(const model::OrderRequest& request)
   if (const auto why = check_pick_lines(lines, view_.site.area_ids(), boxes_left(), view_.max_pickable_mass, source)) {
     return refuse(request, "lines: " + *why);
   }
+  if (as_loader) return {{request.request_id, true, 0, "", 1}, {loader_order(lines, request)}};
   IntakeDecision decision{{request.request_id, true, 0, "", 0}, pick_tours(lines, request)};
   decision.reply.order_count = static_cast<int>(decision.drafts.size());
   return decision;
@@ -121,6 +125,63 @@ std::vector<Order> OrderIntake::pick_tours(const std::vector<PickLine>& lines,
     drafts.push_back(std::move(draft));
   }
   return drafts;
+}
+
+std::string loader_fleet(const config::FleetConfig& config) {
+  for (const auto& fleet : config.fleets) {
+    if (fleet.robot_type == "stacker") return fleet.id;
+  }
+  return "";
+}
+
+std::variant<bool, std::string> OrderIntake::loader_handling(const model::OrderRequest& request) const {
+  const std::string& handling = request.handling;
+  if (handling.empty() || handling == "tray") return false;
+  if (handling != "loader" && handling != "auto") {
+    return "unknown handling '" + handling + "': tray (to a packing station), loader or auto";
+  }
+  const bool possible = !view_.loader_fleet.empty() && view_.site.packing &&
+                        !view_.site.packing->empty_pallets_from.empty() && !view_.site.packing->full_pallets_to.empty();
+  if (handling == "loader") {
+    if (!possible) {
+      return std::string(
+                 "a loader walk needs a stacker fleet and a site with empty pallet places and expedition "
+                 "places (packing: empty_pallets_from, full_pallets_to); site '") +
+             view_.site.name + "' or its fleets lack them";
+    }
+    return true;
+  }
+  if (!possible) return false;
+  // auto: a loader walk when a transporter is free and an empty pallet stands for it.
+  const bool transporter_free = std::any_of(view_.free_robots.begin(), view_.free_robots.end(), [&](const auto& id) {
+    const auto fleet = view_.names.fleet_of_robot.find(id);
+    return fleet != view_.names.fleet_of_robot.end() && fleet->second == view_.loader_fleet;
+  });
+  const bool pallet_free =
+      std::any_of(view_.site.packing->empty_pallets_from.begin(), view_.site.packing->empty_pallets_from.end(),
+                  [&](const std::string& place) { return view_.ledger.holds_load(place); });
+  return transporter_free && pallet_free;
+}
+
+Order OrderIntake::loader_order(const std::vector<PickLine>& lines, const model::OrderRequest& request) const {
+  const auto poses = place_poses(view_.site);
+  const PlaceDistance straight = [&](const std::string& from, const std::string& to) {
+    return geometry::distance(poses.at(from).position(), poses.at(to).position());
+  };
+  const std::vector<PickLine> walk =
+      loader_walk(lines, kLoaderPalletBoxes, poses, view_.place_distance ? view_.place_distance : straight);
+  Order draft;
+  draft.kind = OrderKind::kPick;
+  draft.request_id = request.request_id;
+  draft.pick_area = walk.front().place;
+  draft.lines = pick_lines_csv(walk);
+  draft.fleet_id = request.fleet_id;
+  draft.robot_id = request.robot_id;
+  draft.robot_requested = !request.robot_id.empty();
+  draft.priority = request.priority;
+  draft.loader = true;
+  fill_steps(draft, view_.names);
+  return draft;
 }
 
 std::map<std::string, map::BoxStock> OrderIntake::boxes_left() const {

@@ -9,11 +9,14 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
+#include "config/fleet_config.hpp"
 #include "map/site.hpp"
 #include "model/messages.hpp"
 #include "orders/area_ledger.hpp"
+#include "orders/loader_job.hpp"
 #include "orders/order_book.hpp"
 #include "orders/order_request_check.hpp"
 #include "orders/pick_lines.hpp"
@@ -31,7 +34,17 @@ struct IntakeView {
   std::set<std::string> free_robots;                    ///< registered robots that would take new work now
   bool reject_when_busy = false;                        ///< server.reject_when_busy
   double max_pickable_mass = 0.0;                       ///< max_pickable_mass of the configuration, kg
+  /// The fleet that carries a loader job's pallets (loader_fleet()); empty: no pick list can be
+  /// worked as a loader walk.
+  std::string loader_fleet{};
+  /// Road metres between two places for the picker, to order a loader walk; straight metres
+  /// when null.
+  PlaceDistance place_distance{};
 };
+
+/// The fleet of `config` whose robots carry a loader job's pallets: the first of robot type
+/// stacker; empty when there is none.
+std::string loader_fleet(const config::FleetConfig& config);
 
 /// The intake's answer to one request: the reply, and on acceptance the orders to add, in order.
 struct IntakeDecision {
@@ -68,6 +81,11 @@ class OrderIntake {
 
  private:
   IntakeDecision decide_pick_list(const model::OrderRequest& request) const;
+  /// Whether a checked pick list is worked as a loader walk: its request's handling, `auto`
+  /// deciding by what is free; or why it cannot be.
+  std::variant<bool, std::string> loader_handling(const model::OrderRequest& request) const;
+  /// The list as one loader walk (docs/loader.md): one pick order, no drop place.
+  Order loader_order(const std::vector<PickLine>& lines, const model::OrderRequest& request) const;
   /// The draft of a checked transport or move.
   Order draft_of(const model::OrderRequest& request, OrderKind kind) const;
   static IntakeDecision refuse(const model::OrderRequest& request, const std::string& error);

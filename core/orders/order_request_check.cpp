@@ -18,8 +18,7 @@ double height_of(const KnownNames& names, const std::string& place) {
   return it == names.heights.end() ? 0.0 : it->second;
 }
 
-std::optional<RequestProblem> check_places(OrderKind kind, const OrderRequestFields& request,
-                                           const KnownNames& names) {
+std::optional<RequestProblem> check_places(OrderKind kind, const OrderRequestFields& request, const KnownNames& names) {
   if (kind == OrderKind::kMove) {
     if (!request.from.empty()) {
       return RequestProblem{"from", "a move order has no pick area: it goes to its destination and stays there"};
@@ -27,13 +26,15 @@ std::optional<RequestProblem> check_places(OrderKind kind, const OrderRequestFie
     std::vector<std::string> places = names.areas;
     places.insert(places.end(), names.homes.begin(), names.homes.end());
     if (request.to.empty()) return RequestProblem{"to", "missing: the destination, one of " + model::join(places)};
-    if (!known(places, request.to)) return RequestProblem{"to", model::unknown_name_message("place", request.to, places)};
+    if (!known(places, request.to))
+      return RequestProblem{"to", model::unknown_name_message("place", request.to, places)};
     return std::nullopt;
   }
   if (request.from.empty()) return RequestProblem{"from", "missing: the pick area, one of " + model::join(names.areas)};
   if (!known(names.areas, request.from)) {
     return RequestProblem{"from", model::unknown_name_message("loading area", request.from, names.areas)};
   }
+  if (request.to.empty() && kind == OrderKind::kPick && request.loader) return std::nullopt;
   if (request.to.empty()) return RequestProblem{"to", "missing: the drop area, one of " + model::join(names.areas)};
   if (!known(names.areas, request.to)) {
     return RequestProblem{"to", model::unknown_name_message("loading area", request.to, names.areas)};
@@ -76,7 +77,8 @@ std::optional<RequestProblem> check_capability(const OrderRequestFields& request
   }
   const auto why = why_no_fleet(candidates, steps);
   if (!why) return std::nullopt;
-  if (!request.robot.empty()) return RequestProblem{"robot", request.robot + " is of fleet " + pinned_fleet + ": " + *why};
+  if (!request.robot.empty())
+    return RequestProblem{"robot", request.robot + " is of fleet " + pinned_fleet + ": " + *why};
   if (!request.fleet.empty()) return RequestProblem{"fleet", *why};
   return RequestProblem{"kind", "a " + std::string(to_string(kind_of(request))) + " order: " + *why};
 }

@@ -29,6 +29,8 @@ struct OrderRequestFields {
   std::string robot;  ///< empty: any
   std::string fleet;  ///< empty: any
   long priority = 0;
+  /// A pick list worked as a loader walk: its boxes go on transporters' pallets, with no drop place.
+  bool loader = false;
 };
 
 /// The names a request may use, and what each fleet can do.

@@ -52,6 +52,9 @@ std::map<std::string, geometry::Pose2> place_poses(const map::Site& site);
 
 /// Boxes a picker carries on one tour: the two slots of its tray (robot::PickerArmLayout).
 inline constexpr int kTourBoxes = 2;
+/// Boxes a loader sets on one transporter's pallet: the row behind its base the arm reaches,
+/// three across (robot::PickerArmLayout::deck).
+inline constexpr int kLoaderPalletBoxes = 3;
 
 /// A picker's round: lines picked one after the other, then dropped together.
 struct PickTour {

@@ -16,6 +16,14 @@ class ItemHandler {
   /// stands at and answers it (TaskExecutor::items_done), telling people what it does on
   /// `reports`; does nothing in any other state.
   virtual void step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) = 0;
+
+  /// On a loader walk (docs/loader.md): the stop it stands at (-1 while it drives), and the boxes
+  /// set on transporters' pallets in the order under way.
+  struct LoaderProgress {
+    int walk_stop = -1;
+    int boxes_loaded = 0;
+  };
+  virtual LoaderProgress loader_progress() const { return {}; }
 };
 
 }  // namespace fleet::robot

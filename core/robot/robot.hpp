@@ -101,6 +101,10 @@ struct RobotStatus {
   int carried_load = -1;  ///< the id of the load it carries, -1 when none
   geometry::Footprint footprint;
   bool held_by_traffic = false;  ///< it stands at the end of what traffic granted it
+  /// A picker on a loader walk (ItemHandler::LoaderProgress): the stop it stands at, -1 while it
+  /// drives; the boxes set on transporters' pallets in the order so far.
+  int walk_stop = -1;
+  int boxes_loaded = 0;
 };
 
 class Navigation;  // robot/navigation.hpp

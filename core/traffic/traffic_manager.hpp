@@ -4,6 +4,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -89,7 +90,7 @@ struct Grant {
   int granted_index = 0;
   double granted_distance = 0.0;
   GrantStatus status = GrantStatus::kMoving;
-  double waited_s = 0.0;        ///< how long the robot has been waiting, 0 when not waiting
+  double waited_s = 0.0;  ///< how long the robot has been waiting, 0 when not waiting
   /// Robot ids holding the road beyond the grant, and entrants whose claim keeps it out (it will
   /// wait for them).
   std::vector<int> blocked_by;
@@ -228,6 +229,11 @@ class TrafficManager {
   /// standing robot itself is never sent anywhere. Empty: it waits no more. Dropped with the
   /// robot and when it sends a route.
   void wait_for_area(int robot_id, std::vector<int> blockers);
+  /// Robots that work together at one place (a loader and the transporter behind it), by id, each
+  /// pair once: neither is kept out of a place by what the other holds. The desk that pairs them
+  /// orders their moves (the transporter moves up ahead of its picker), the two stand closer than
+  /// any two others by design, and each one's own safety check keeps it off the other's body.
+  void set_partners(std::set<std::pair<int, int>> pairs) { partners_ = std::move(pairs); }
   /// The robot turns off its route's last point `goal_point` into a place beside the road (a
   /// forklift into a rack place or its home) and sweeps `area` (convex) doing so: a long body
   /// turning there swings across the lane it arrives on and into the one beside it. Its grant
@@ -342,7 +348,7 @@ class TrafficManager {
     double progress = 0.0;
     int first_held = 0;
     int grant_end = 0;
-    std::vector<int> trail;      ///< places of a previous route still held
+    std::vector<int> trail;  ///< places of a previous route still held
     /// The part of `trail` granted on that route beyond where the robot stood when it was sent a
     /// new one: it may still drive into them until it reports driving the new route.
     std::vector<int> trail_ahead;
@@ -488,6 +494,10 @@ class TrafficManager {
   std::vector<Robot*> slots_;                    ///< robots by slot (position in id order), rebuilt each update
   double now_ = 0.0;                             ///< time of the update in progress
   std::vector<TrafficEvent> removed_;            ///< removals since the last update, reported by it
+  std::set<std::pair<int, int>> partners_;
+  bool partnered(int a, int b) const {
+    return partners_.contains({a, b}) || partners_.contains({b, a});
+  }  ///< set_partners
 
   /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
   struct CorridorSpan {

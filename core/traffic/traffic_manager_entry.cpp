@@ -97,6 +97,7 @@ std::vector<int> TrafficManager::earlier_entry_claims(int point, int robot_id, d
 TrafficManager::Entry TrafficManager::entry_for(int point, int robot_id, double now) const {
   Entry entry;
   entry.blockers = holders_in_conflict(point, robot_id);
+  std::erase_if(entry.blockers, [&](int id) { return partnered(robot_id, id); });
   const auto self = robots_.find(robot_id);
   if (!entry.blockers.empty() && self != robots_.end() && self->second.frozen) {
     if (holds_place_of(robot_id, point)) {

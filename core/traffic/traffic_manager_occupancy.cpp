@@ -259,6 +259,13 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
     }
   }
   if (zones_->has_opposite_lanes()) opposite_lane_blockers(slot, places, index, d, blockers);
+  // Nothing its partner holds keeps it (set_partners): the two move as one, and each one's own
+  // safety check keeps it off the other's body.
+  if (!partners_.empty()) {
+    const auto partner = [&](int w) { return partnered(self.id, slots_[static_cast<std::size_t>(w)]->id); };
+    blockers.erase(std::remove_if(blockers.begin() + static_cast<std::ptrdiff_t>(before), blockers.end(), partner),
+                   blockers.end());
+  }
   return blockers.size() == before;
 }
 

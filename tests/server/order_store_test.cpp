@@ -102,7 +102,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
     sqlite3_close(db);
   }
   server::OrderStore store(path);
-  EXPECT_EQ(store.schema_version(), 5);
+  EXPECT_EQ(store.schema_version(), 6);
   const auto loaded = store.load_all();
   ASSERT_EQ(loaded.size(), 3u);
   for (const auto& o : loaded) EXPECT_EQ(o.kind, orders::OrderKind::kTransport) << o.id;
@@ -130,7 +130,7 @@ INSERT INTO order_events VALUES (2,1,3.5,'ASSIGNED','','fl2','',0.5,0.5);
   full.caused_by = {5};
   store.save(full);
   server::OrderStore reopened(path);
-  EXPECT_EQ(reopened.schema_version(), 5);
+  EXPECT_EQ(reopened.schema_version(), 6);
   const auto again = reopened.load_all();
   ASSERT_EQ(again.size(), 6u);
   EXPECT_EQ(again[5].cause, "the pallet at PS1 is full: 2 boxes from order 5");
@@ -151,6 +151,26 @@ TEST(OrderStore, TheSiteStateIsStoredWholeAndReplaced) {
   }
   server::OrderStore reopened(path);
   EXPECT_EQ(reopened.load_site_state().value_or(""), R"({"second":2})");
+}
+
+// A loader job's order keeps what it is, and a drop place named by an update of it.
+TEST(OrderStore, ALoaderOrderAndItsRevisedDropPlaceSurviveReopening) {
+  const std::string path = fresh_db("loader");
+  {
+    server::OrderStore store(path);
+    orders::Order transport;
+    transport.id = 7;
+    transport.pick_area = "PK1";
+    transport.loader = true;
+    store.save(transport);
+    transport.drop_area = "EX1";
+    store.save(transport);
+  }
+  server::OrderStore reopened(path);
+  const auto orders = reopened.load_all();
+  ASSERT_EQ(orders.size(), 1u);
+  EXPECT_TRUE(orders[0].loader);
+  EXPECT_EQ(orders[0].drop_area, "EX1");
 }
 
 TEST(OrderStore, TheServersTermSurvivesReopeningAndStartsAtNone) {
@@ -174,6 +194,7 @@ TEST(OrderStore, PalletsOfADatabaseBeforeTheSiteStateMoveIntoIt) {
     const char* back = R"(
 DROP TABLE site_state;
 DROP TABLE server_term;
+ALTER TABLE orders DROP COLUMN loader;
 CREATE TABLE pallets (id INTEGER PRIMARY KEY, x REAL NOT NULL, y REAL NOT NULL, yaw REAL NOT NULL,
   area_id TEXT NOT NULL, carried_by TEXT NOT NULL);
 INSERT INTO pallets VALUES (1, 1.5, 2.0, 0.25, 'A1', '');
@@ -184,7 +205,7 @@ PRAGMA user_version=3;
     sqlite3_close(db);
   }
   server::OrderStore store(path);
-  EXPECT_EQ(store.schema_version(), 5);
+  EXPECT_EQ(store.schema_version(), 6);
   const auto json = store.load_site_state();
   ASSERT_TRUE(json.has_value());
   const orders::SiteNames names{"site", {{"A1", {1.5, 2.0, 0.0}}, {"A2", {3, 0, 0}}}, {"fk2"}, {}};

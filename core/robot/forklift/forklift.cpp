@@ -134,6 +134,7 @@ void Forklift::set_standing_loads(const std::map<int, Pose2>& standing) {
 }
 
 RobotStatus Forklift::status() const {
+  const ItemHandler::LoaderProgress loading = items_ ? items_->loader_progress() : ItemHandler::LoaderProgress{};
   return {.time = time(),
           .truth = sim_.truth(),
           .estimate = sim_.estimate(),
@@ -145,7 +146,9 @@ RobotStatus Forklift::status() const {
           .order_id = order_id(),
           .carried_load = carried_pallet_,
           .footprint = footprint(),
-          .held_by_traffic = held_by_traffic_};
+          .held_by_traffic = held_by_traffic_,
+          .walk_stop = loading.walk_stop,
+          .boxes_loaded = loading.boxes_loaded};
 }
 
 std::optional<std::string> Forklift::order_id() const {

@@ -7,18 +7,31 @@ namespace fleet::robot {
 
 void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) {
   const task::State state = executor.state();
+  const task::TaskOrder* running = executor.order() ? &*executor.order() : nullptr;
+  if (running == nullptr || !running->loader) {
+    progress_ = {};
+    progress_order_.clear();
+  } else if (running->order_id != progress_order_) {
+    progress_ = {};
+    progress_order_ = running->order_id;
+  }
   if (state != task::State::kPickItems && state != task::State::kDropItems) {
     done_at_.reset();
+    progress_.walk_stop = -1;
     return;
+  }
+  const task::TaskOrder& order = *running;
+  if (order.loader && state == task::State::kPickItems) {
+    progress_.walk_stop = static_cast<int>(executor.item_line());
   }
   if (done_at_) {
     if (t < *done_at_) return;
     done_at_.reset();
     if (state == task::State::kDropItems) tray_.clear();
+    if (order.loader && state == task::State::kPickItems) progress_.boxes_loaded += boxes_at_work_;
     executor.items_done(true);
     return;
   }
-  const task::TaskOrder& order = *executor.order();
   ArmWork work;
   if (state == task::State::kPickItems) {
     const task::ItemStop& stop = order.items.at(executor.item_line());
@@ -45,6 +58,7 @@ void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Sit
     return;
   }
   done_at_ = t + work.duration;
+  boxes_at_work_ = work.boxes;
   reports.set_detail((state == task::State::kPickItems ? "arm picks " : "arm puts down ") + std::to_string(work.boxes) +
                      " box" + (work.boxes == 1 ? "" : "es") + " in " +
                      std::to_string(static_cast<int>(std::lround(work.duration))) + " s");

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "robot/item_handler.hpp"
@@ -19,6 +20,7 @@ class PickerArmStops : public ItemHandler {
   /// `deck_arm` plans onto the transporter's pallet: the same arm with the deck as its tray.
   PickerArmStops(PickerArmWork arm, PickerArmWork deck_arm) : arm_(std::move(arm)), deck_arm_(std::move(deck_arm)) {}
   void step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) override;
+  LoaderProgress loader_progress() const override { return progress_; }
 
  private:
   PickerArmWork arm_;
@@ -27,6 +29,9 @@ class PickerArmStops : public ItemHandler {
   std::vector<map::BoxStock> deck_;  ///< the boxes on the transporter's pallet behind it
   int deck_pallet_ = -1;             ///< whose pallet deck_ is (TaskOrder::pallet)
   std::optional<double> done_at_;    ///< sim time the arm's work at this stop ends
+  int boxes_at_work_ = 0;            ///< boxes the arm moves in the work that ends at done_at_
+  std::string progress_order_;       ///< the loader order progress_ counts for
+  LoaderProgress progress_;
 };
 
 }  // namespace fleet::robot

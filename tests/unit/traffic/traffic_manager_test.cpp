@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "map/site_map.hpp"
 #include "test_grants.hpp"
@@ -139,6 +140,30 @@ TEST(TrafficManager, ReleasesByDistanceTravelledBeforeTheNextNode) {
   m.update(0.5);
   held = m.held_places(7);
   EXPECT_TRUE(std::binary_search(held.begin(), held.end(), m.zones().place_of(road[1])));
+}
+
+// A loader and the transporter behind it are partners: what one holds keeps the other out of
+// nothing, where any other robot would wait.
+TEST(TrafficManager, PartnersAreNotKeptOutByWhatTheOtherHolds) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 2.0, 0.0);
+  std::map<bool, int> granted;
+  for (const bool partnered : {false, true}) {
+    TrafficManager m(b.graph());
+    // Robot 1 stands at the far end of the road; robot 2 wants to drive the whole road.
+    const std::vector<int> end(road.end() - 3, road.end());
+    ASSERT_EQ(m.submit_route({1, 1, end}, 0.0), SubmitStatus::kAccepted);
+    m.update(0.0);
+    if (partnered) m.set_partners({{2, 1}});
+    ASSERT_EQ(m.submit_route({2, 1, road}, 0.0), SubmitStatus::kAccepted);
+    const auto update = m.update(0.1);
+    const Grant* two = grant_of(update, 2);
+    ASSERT_NE(two, nullptr);
+    const bool kept_out = std::find(two->blocked_by.begin(), two->blocked_by.end(), 1) != two->blocked_by.end();
+    EXPECT_EQ(kept_out, !partnered);
+    granted[partnered] = two->granted_index;
+  }
+  EXPECT_GT(granted[true], granted[false]);
 }
 
 /// Two-way roads whose entry claims act after 8 s: the setting of the entry-claim tests.

@@ -1,0 +1,238 @@
+#include "orders/loader_desk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "orders/pick_lines.hpp"
+
+namespace fleet::orders {
+
+geometry::Pose2 picker_stop_pose(const geometry::Pose2& place, double standoff) {
+  return {place.x + standoff * std::cos(place.yaw), place.y + standoff * std::sin(place.yaw),
+          geometry::normalize_angle(place.yaw + std::numbers::pi / 2)};
+}
+
+void LoaderDesk::transport_created(const Order& transport) {
+  for (const std::int64_t pick : transport.caused_by) {
+    if (auto it = jobs_.find(pick); it != jobs_.end()) it->second.transports[transport.id] = {};
+  }
+}
+
+const LoaderJob* LoaderDesk::job_of(std::int64_t pick_id) const {
+  const auto it = jobs_.find(pick_id);
+  return it == jobs_.end() ? nullptr : &it->second.job;
+}
+
+std::map<std::string, std::string> LoaderDesk::partners() const {
+  std::map<std::string, std::string> pairs;
+  for (const auto& [id, entry] : jobs_) {
+    if (entry.job.picker_id().empty()) continue;
+    // The one behind the picker, and one leaving from there: it starts beside the picker.
+    for (const PalletRun& run : entry.job.runs()) {
+      if (!run.delivered && !run.lost) pairs[run.transporter_id] = entry.job.picker_id();
+    }
+  }
+  return pairs;
+}
+
+std::vector<std::int64_t> LoaderDesk::jobs() const {
+  std::vector<std::int64_t> ids;
+  for (const auto& [id, entry] : jobs_) ids.push_back(id);
+  return ids;
+}
+
+std::vector<LoaderAction> LoaderDesk::step(const LoaderView& view) {
+  std::vector<LoaderAction> actions;
+  // A loader pick order's job begins once a picker has it.
+  for (const Order* order : view.book.open_orders()) {
+    if (!order->loader || order->kind != OrderKind::kPick || !with_a_robot(order->status) ||
+        jobs_.contains(order->id)) {
+      continue;
+    }
+    jobs_.emplace(order->id,
+                  Entry{LoaderJob(parse_pick_lines(order->lines, "loader order " + std::to_string(order->id)),
+                                  layout_.pallet_boxes, order->robot_id),
+                        {},
+                        false});
+  }
+  for (auto it = jobs_.begin(); it != jobs_.end();) {
+    Entry& entry = it->second;
+    const Order* pick = view.book.find(it->first);
+    if (pick == nullptr) {
+      it = jobs_.erase(it);
+      continue;
+    }
+    take_picker_facts(entry, *pick, view);
+    take_transport_facts(entry, view);
+    if (entry.job.done()) {
+      it = jobs_.erase(it);
+      continue;
+    }
+    ask_for_transporter(entry, *pick, view, actions);
+    revise_orders(entry, *pick, view, actions);
+    ++it;
+  }
+  return actions;
+}
+
+void LoaderDesk::take_picker_facts(Entry& entry, const Order& pick, const LoaderView& view) const {
+  LoaderJob& job = entry.job;
+  if (is_final(pick.status)) {
+    if (entry.ended) return;
+    entry.ended = true;
+    // DONE: the walk ends at its last stop, every box on a pallet. FAILED or CANCELLED: the stops
+    // not loaded are left, their boxes at their places. Either way the pallets go to expedition.
+    while (!job.all_loaded()) {
+      const int stop = job.next_stop();
+      const int left = job.left_at(stop);
+      if (pick.status == OrderStatus::kDone && left <= job.room()) {
+        job.loaded(stop, left);
+      } else {
+        job.stop_failed(stop);
+      }
+    }
+    return;
+  }
+  const auto robot = view.robots.find(pick.robot_id);
+  if (robot == view.robots.end() || pick.robot_id != job.picker_id()) return;
+  const model::RobotState& state = robot->second.last;
+  if (state.order_id != pick.id) return;
+  if (state.walk_stop >= 0) job.picker_at(pick.robot_id, state.walk_stop);
+  // Boxes the arm set on a pallet since the last look went on the stop under way: the picker
+  // works only the stop released, and only with its transporter's pallet behind it.
+  int fresh = state.boxes_loaded - job.boxes_loaded();
+  while (fresh > 0 && !job.all_loaded()) {
+    const int stop = job.next_stop();
+    const int boxes = std::min({fresh, job.left_at(stop), job.room()});
+    if (boxes <= 0) break;
+    job.loaded(stop, boxes);
+    fresh -= boxes;
+  }
+}
+
+void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) const {
+  LoaderJob& job = entry.job;
+  for (auto& [id, transport] : entry.transports) {
+    const Order* order = view.book.find(id);
+    if (order == nullptr) continue;
+    if (transport.robot_id.empty()) {
+      if (!with_a_robot(order->status) || !job.wants_transporter()) continue;
+      transport.robot_id = order->robot_id;
+      job.add_transporter(transport.robot_id);
+    }
+    if (order->status == OrderStatus::kDone) {
+      job.delivered(transport.robot_id);
+      continue;
+    }
+    const auto robot = view.robots.find(transport.robot_id);
+    const bool lost = robot != view.robots.end() && robot->second.lost;
+    if (order->status == OrderStatus::kFailed || order->status == OrderStatus::kCancelled || lost) {
+      job.robot_lost(transport.robot_id);
+      continue;
+    }
+    // Standing with its pallet (HOLDING) where it was sent: behind the picker's stop.
+    if (robot == view.robots.end() || !order->stand || transport.stand_stop < 0) continue;
+    const model::RobotState& state = robot->second.last;
+    if (state.task_state == "HOLDING" &&
+        geometry::distance(state.pose.position(), order->stand->position()) < layout_.in_place_m) {
+      job.transporter_in_place(transport.robot_id, transport.stand_stop);
+    }
+  }
+}
+
+void LoaderDesk::ask_for_transporter(const Entry& entry, const Order& pick, const LoaderView& view,
+                                     std::vector<LoaderAction>& actions) const {
+  if (!entry.job.wants_transporter() || is_final(pick.status)) return;
+  for (const auto& [id, transport] : entry.transports) {
+    const Order* order = view.book.find(id);
+    if (order && transport.robot_id.empty() && !is_final(order->status)) return;  // asked already
+  }
+  if (!view.site.packing) return;
+  const std::string source = free_place(view.site.packing->empty_pallets_from, true, view);
+  if (source.empty()) return;  // asked again once an empty pallet stands free
+  Order draft;
+  draft.request_id = "loader";
+  draft.kind = OrderKind::kTransport;
+  draft.pick_area = source;
+  draft.fleet_id = layout_.transporter_fleet;
+  draft.loader = true;
+  draft.priority = pick.priority + 1;  // the picker waits for it
+  draft.cause = "pallet " + std::to_string(entry.job.runs().size() + 1) + " of loader order " + std::to_string(pick.id);
+  draft.caused_by = {pick.id};
+  actions.push_back({.kind = LoaderAction::Kind::kCreate, .draft = std::move(draft), .why = "an empty pallet"});
+}
+
+void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView& view,
+                               std::vector<LoaderAction>& actions) const {
+  const LoaderJob& job = entry.job;
+  const auto revise = [&](const Order& order, const OrderRevision& revision, std::string why) {
+    if (with_a_robot(order.status) && revision != revision_of(order)) {
+      actions.push_back(
+          {.kind = LoaderAction::Kind::kRevise, .order_id = order.id, .revision = revision, .why = std::move(why)});
+    }
+  };
+  const auto stand_behind = [&](int stop) {
+    const map::LoadingArea* place = view.site.find_area(job.walk().at(stop).place);
+    const geometry::Pose2 picker = picker_stop_pose(place->pose, layout_.item_standoff);
+    return transporter_pose(picker, layout_.deck_x, layout_.pallet_x);
+  };
+  for (const LoaderInstruction& instruction : job.instructions()) {
+    if (instruction.robot_id == job.picker_id() && !is_final(pick.status)) {
+      if (instruction.task != LoaderTask::kLoad) continue;
+      OrderRevision revision = revision_of(pick);
+      revision.released_stops = std::max<std::uint32_t>(revision.released_stops, instruction.stop + 1);
+      for (const auto& [id, transport] : entry.transports) {
+        if (transport.robot_id == job.current_transporter()) revision.pallet = static_cast<int>(id);
+      }
+      revise(pick, revision, "stop " + std::to_string(instruction.stop + 1) + " released");
+      continue;
+    }
+    for (auto& [id, transport] : entry.transports) {
+      const Order* order = view.book.find(id);
+      if (transport.robot_id != instruction.robot_id || order == nullptr || is_final(order->status)) continue;
+      OrderRevision revision = revision_of(*order);
+      std::string why;
+      switch (instruction.task) {
+        case LoaderTask::kFollow:
+          revision.stand = stand_behind(instruction.stop);
+          transport.stand_stop = instruction.stop;
+          why = "stand behind the picker at " + job.walk().at(instruction.stop).place;
+          break;
+        case LoaderTask::kDeliver:
+        case LoaderTask::kRelease: {
+          if (!view.site.packing) continue;
+          // A full pallet goes to expedition; an empty one, not needed after all, goes back.
+          const bool full = instruction.task == LoaderTask::kDeliver;
+          if (revision.drop_area.empty()) {
+            revision.drop_area = free_place(
+                full ? view.site.packing->full_pallets_to : view.site.packing->empty_pallets_from, false, view);
+          }
+          if (revision.drop_area.empty()) continue;  // once a place is free
+          revision.stand.reset();
+          transport.stand_stop = -1;
+          why = (full ? "deliver the pallet to " : "take the empty pallet back to ") + revision.drop_area;
+          break;
+        }
+        default:
+          continue;
+      }
+      revise(*order, revision, std::move(why));
+    }
+  }
+}
+
+std::string LoaderDesk::free_place(const std::vector<std::string>& places, bool with_load,
+                                   const LoaderView& view) const {
+  for (const std::string& place : places) {
+    if (view.ledger.holds_load(place) != with_load) continue;
+    const auto open = view.book.open_orders();
+    if (std::none_of(open.begin(), open.end(),
+                     [&](const Order* o) { return o->pick_area == place || o->drop_area == place; })) {
+      return place;
+    }
+  }
+  return {};
+}
+
+}  // namespace fleet::orders

@@ -1,0 +1,110 @@
+#pragma once
+// The server's side of the loader jobs (docs/loader.md): for each pick order worked as a loader
+// walk it keeps a LoaderJob, feeds it what the book and the robots' states show, asks for the
+// transports its pallets need and turns its instructions into revisions of the job's orders. It
+// decides; the server carries its actions out.
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "geometry/pose.hpp"
+#include "map/site.hpp"
+#include "orders/area_ledger.hpp"
+#include "orders/loader_job.hpp"
+#include "orders/order_book.hpp"
+#include "orders/pick_lines.hpp"
+#include "orders/robot_roster.hpp"
+
+namespace fleet::orders {
+
+/// Where the two robots of a loader job stand, and how many boxes a pallet takes.
+struct LoaderLayout {
+  /// Boxes a transporter's pallet takes: the row the picker's arm reaches, three across
+  /// (PickerArmLayout::deck).
+  int pallet_boxes = kLoaderPalletBoxes;
+  /// The picker's centre out from a rack place's pose, side-on (task::ExecutorParams::item_standoff).
+  double item_standoff = 1.0;
+  /// The pallet's centre along the picker's heading from the picker's centre: behind it, its
+  /// near edge just behind the 0.65 m base, its first row where the arm reaches.
+  double deck_x = -1.0;
+  /// A stacker's pallet centre behind its body's centre (forks 1.15 m, a 1.2 m pallet).
+  double pallet_x = 0.35;
+  /// A transporter STANDING this near the pose it was sent to is in place behind the picker.
+  double in_place_m = 0.25;
+  /// The fleet whose robots carry the pallets (a stacker fleet).
+  std::string transporter_fleet;
+};
+
+/// Where the picker stands to pick at a rack place whose pose is `place`: `standoff` metres out
+/// towards the road, side-on, the place on its left (as the pick tour's stops).
+geometry::Pose2 picker_stop_pose(const geometry::Pose2& place, double standoff);
+
+/// What the desk reads each time it looks.
+struct LoaderView {
+  const OrderBook& book;
+  const std::map<std::string, RobotEntry>& robots;
+  const map::Site& site;
+  const AreaLedger& ledger;
+};
+
+/// What the server is to do for a loader job.
+struct LoaderAction {
+  enum class Kind {
+    kCreate,  ///< add `draft` (a transport for the job's next pallet) to the book
+    kRevise,  ///< tell order `order_id`'s robot `revision` (OrderBook::revise)
+  };
+  Kind kind = Kind::kRevise;
+  Order draft{};
+  std::int64_t order_id = 0;
+  OrderRevision revision{};
+  std::string why;  ///< for the log
+};
+
+class LoaderDesk {
+ public:
+  explicit LoaderDesk(LoaderLayout layout) : layout_(std::move(layout)) {}
+
+  /// Looks at every loader job once: what the robots did since, then what each is to do now.
+  std::vector<LoaderAction> step(const LoaderView& view);
+
+  /// The server added a kCreate action's draft to the book as `transport`.
+  void transport_created(const Order& transport);
+
+  /// The job of pick order `pick_id`, or null (not a loader order, not assigned yet, or over).
+  const LoaderJob* job_of(std::int64_t pick_id) const;
+  /// The robots that work together now, each transporter to its picker: the one behind the
+  /// picker, and one leaving with a full pallet until it has delivered it.
+  std::map<std::string, std::string> partners() const;
+  /// Pick orders whose job is under way.
+  std::vector<std::int64_t> jobs() const;
+
+ private:
+  struct Transport {
+    std::string robot_id;  ///< once assigned and added to the job
+    int stand_stop = -1;   ///< the stop behind which its current stand pose lies
+  };
+  struct Entry {
+    LoaderJob job;
+    std::map<std::int64_t, Transport> transports;  ///< the job's transport orders, by id
+    bool ended = false;                            ///< the pick order ended: no stop is left to load
+  };
+
+  /// What the pick order and its robot show: the picker's stop and the boxes it loaded.
+  void take_picker_facts(Entry& entry, const Order& pick, const LoaderView& view) const;
+  /// What the transports and their robots show: joined, in place, delivered, lost.
+  void take_transport_facts(Entry& entry, const LoaderView& view) const;
+  /// A transport for the next pallet, when the job wants one and none is waiting for a robot.
+  void ask_for_transporter(const Entry& entry, const Order& pick, const LoaderView& view,
+                           std::vector<LoaderAction>& actions) const;
+  /// The revisions the job's instructions ask for.
+  void revise_orders(Entry& entry, const Order& pick, const LoaderView& view, std::vector<LoaderAction>& actions) const;
+  /// A place of `places` that holds a load (`with_load`) or none, promised to no open order.
+  std::string free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view) const;
+
+  LoaderLayout layout_;
+  std::map<std::int64_t, Entry> jobs_;  ///< by pick order id
+};
+
+}  // namespace fleet::orders

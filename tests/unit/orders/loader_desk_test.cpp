@@ -1,0 +1,252 @@
+// The server's loader desk on the plant: the transports a loader job asks for, the updates it
+// sends its robots as they report, and how the job ends (docs/loader.md).
+#include "orders/loader_desk.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "map/site_map.hpp"
+#include "orders/order_intake.hpp"
+#include "test_paths.hpp"
+
+namespace fleet::orders {
+namespace {
+
+// The plant's site, its pallets where they stand at the start, and a book and robots the test
+// moves on as the server and the agents would.
+struct Plant {
+  map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
+  AreaLedger ledger;
+  OrderBook book;
+  std::map<std::string, RobotEntry> robots;
+  LoaderDesk desk{{.transporter_fleet = "stackers"}};
+
+  Plant() {
+    std::vector<Place> places;
+    for (const auto& area : site.site.loading_areas) places.push_back({area.id, area.pose});
+    ledger = AreaLedger(places);
+    int id = 1;
+    for (const auto& area : site.site.loading_areas) {
+      if (area.pallet_at_start)
+        ledger.record({.id = id++, .kind = "pallet", .pose = area.pose, .place = area.id, .carried_by = ""});
+    }
+  }
+
+  std::vector<LoaderAction> step() {
+    auto actions = desk.step({.book = book, .robots = robots, .site = site.site, .ledger = ledger});
+    // The server's part: the transports into the book, the revisions onto the orders.
+    for (const LoaderAction& action : actions) {
+      if (action.kind == LoaderAction::Kind::kCreate) {
+        desk.transport_created(book.create(action.draft, 0.0));
+      } else {
+        book.revise(action.order_id, action.revision, {});
+      }
+    }
+    return actions;
+  }
+
+  RobotEntry& robot(const std::string& id, const std::string& fleet) {
+    RobotEntry& entry = robots[id];
+    entry.id = id;
+    entry.fleet_id = fleet;
+    entry.registered = true;
+    entry.last.robot_id = id;
+    return entry;
+  }
+
+  /// A transporter standing with its pallet where its order sends it.
+  void holds_at_stand(const Order& transport) {
+    RobotEntry& s = robots.at(transport.robot_id);
+    s.last.task_state = "HOLDING";
+    s.last.pose = *transport.stand;
+  }
+};
+
+std::vector<const Order*> transports_of(const OrderBook& book, std::int64_t pick) {
+  std::vector<const Order*> out;
+  for (const auto& [id, o] : book.all()) {
+    if (o.kind == OrderKind::kTransport && o.caused_by == std::vector<std::int64_t>{pick}) out.push_back(&o);
+  }
+  return out;
+}
+
+TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
+  Plant plant;
+  // Four boxes at two rack places: three fill the first pallet, the fourth goes on the second.
+  Order draft;
+  draft.kind = OrderKind::kPick;
+  draft.loader = true;
+  draft.pick_area = "RB2";
+  draft.lines = "RB2,A2,2\nRB3,A3,1\nRB3,A3,1\n";
+  const std::int64_t pick = plant.book.create(draft, 0.0).id;
+  plant.robot("picker1", "pickers");
+  ASSERT_EQ(plant.book.assign(pick, "picker1", 0.0), TransitionResult::kApplied);
+
+  // The picker has it: the job asks for a transporter with an empty pallet from a PK place.
+  auto actions = plant.step();
+  ASSERT_EQ(actions.size(), 1u);
+  ASSERT_EQ(actions[0].kind, LoaderAction::Kind::kCreate);
+  auto transports = transports_of(plant.book, pick);
+  ASSERT_EQ(transports.size(), 1u);
+  const std::int64_t first = transports[0]->id;
+  EXPECT_EQ(transports[0]->pick_area, "PK1");
+  EXPECT_TRUE(transports[0]->drop_area.empty());
+  EXPECT_EQ(transports[0]->fleet_id, "stackers");
+  EXPECT_TRUE(transports[0]->loader);
+  // Asked once: no second transport while the first waits for a robot.
+  plant.step();
+  EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
+
+  // A stacker takes it: sent to stand behind the picker's first stop; the four boxes do not fit
+  // its pallet, so the next transporter is asked for at once, from the next free PK place.
+  plant.robot("stacker1", "stackers");
+  ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
+  plant.step();
+  const Order& t1 = *plant.book.find(first);
+  ASSERT_TRUE(t1.stand.has_value());
+  const geometry::Pose2 rb2 = plant.site.site.find_area("RB2")->pose;
+  const geometry::Pose2 expected = transporter_pose(picker_stop_pose(rb2, 1.0), -1.0, 0.35);
+  EXPECT_NEAR(t1.stand->x, expected.x, 1e-9);
+  EXPECT_NEAR(t1.stand->y, expected.y, 1e-9);
+  transports = transports_of(plant.book, pick);
+  ASSERT_EQ(transports.size(), 2u);
+  const std::int64_t second = transports[1]->id;
+  EXPECT_EQ(transports[1]->pick_area, "PK4");  // PK1 is promised to the first
+
+  // Nothing is released before both stand in place.
+  RobotEntry& picker = plant.robots.at("picker1");
+  picker.last.order_id = pick;
+  picker.last.walk_stop = 0;
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 0u);
+  plant.holds_at_stand(t1);
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 1u);
+  EXPECT_EQ(plant.book.find(pick)->pallet, static_cast<int>(first));
+
+  // Two boxes on the pallet: the transporter follows to RB3, where the third is released once it
+  // stands there.
+  picker.last.walk_stop = -1;
+  picker.last.boxes_loaded = 2;
+  plant.step();
+  const geometry::Pose2 behind_rb2 = *plant.book.find(first)->stand;
+  EXPECT_GT(geometry::distance(behind_rb2.position(), expected.position()), 1.0);
+  picker.last.walk_stop = 1;
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 1u);
+  plant.holds_at_stand(*plant.book.find(first));
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 2u);
+
+  // The pallet is full: it goes to a free expedition place, and the second stacker moves up.
+  plant.robot("stacker2", "stackers");
+  ASSERT_EQ(plant.book.assign(second, "stacker2", 0.0), TransitionResult::kApplied);
+  picker.last.boxes_loaded = 3;
+  picker.last.walk_stop = 2;
+  plant.step();
+  EXPECT_EQ(plant.book.find(first)->drop_area, "EX1");
+  EXPECT_FALSE(plant.book.find(first)->stand.has_value());
+  ASSERT_TRUE(plant.book.find(second)->stand.has_value());
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 2u);
+  plant.holds_at_stand(*plant.book.find(second));
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 3u);
+  EXPECT_EQ(plant.book.find(pick)->pallet, static_cast<int>(second));
+
+  // The walk ends at its last stop (the picker's order DONE): the second pallet leaves too.
+  ASSERT_EQ(plant.book.transition(pick, OrderStatus::kDone, 0.0), TransitionResult::kApplied);
+  picker.last = {};
+  plant.step();
+  EXPECT_EQ(plant.book.find(second)->drop_area, "EX3");  // EX2 holds a pallet, EX1 is promised
+  const LoaderJob* job = plant.desk.job_of(pick);
+  ASSERT_NE(job, nullptr);
+  EXPECT_EQ(job->boxes_loaded(), 4);
+  ASSERT_EQ(job->runs().size(), 2u);
+  EXPECT_EQ(job->runs()[0].boxes, 3);
+  EXPECT_EQ(job->runs()[1].boxes, 1);
+
+  // Both delivered: the job is over.
+  for (const std::int64_t t : {first, second}) {
+    ASSERT_EQ(plant.book.set_phase(t, OrderPhase::kToDrop, 0.0), TransitionResult::kApplied);
+    ASSERT_EQ(plant.book.transition(t, OrderStatus::kDone, 0.0), TransitionResult::kApplied);
+  }
+  plant.step();
+  EXPECT_EQ(plant.desk.job_of(pick), nullptr);
+}
+
+// A picker whose order fails mid-walk leaves the stops not loaded at their places; the boxes
+// already on the pallet go to expedition.
+TEST(LoaderDesk, AFailedWalkSendsThePalletItFilledToExpedition) {
+  Plant plant;
+  Order draft;
+  draft.kind = OrderKind::kPick;
+  draft.loader = true;
+  draft.pick_area = "RB2";
+  draft.lines = "RB2,A2,1\nRB3,A3,1\n";
+  const std::int64_t pick = plant.book.create(draft, 0.0).id;
+  plant.robot("picker1", "pickers");
+  plant.book.assign(pick, "picker1", 0.0);
+  plant.step();
+  const std::int64_t first = transports_of(plant.book, pick).at(0)->id;
+  plant.robot("stacker1", "stackers");
+  plant.book.assign(first, "stacker1", 0.0);
+  plant.step();
+  EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);  // two boxes fit one pallet
+  plant.holds_at_stand(*plant.book.find(first));
+  RobotEntry& picker = plant.robots.at("picker1");
+  picker.last.order_id = pick;
+  picker.last.walk_stop = 0;
+  plant.step();
+  picker.last.boxes_loaded = 1;
+  picker.last.walk_stop = -1;
+  plant.step();
+  ASSERT_EQ(plant.book.transition(pick, OrderStatus::kFailed, 0.0, "arm fault"), TransitionResult::kApplied);
+  plant.step();
+  EXPECT_EQ(plant.book.find(first)->drop_area, "EX1");
+  EXPECT_EQ(plant.desk.job_of(pick)->boxes_loaded(), 1);
+}
+
+// The intake works a pick list as one loader walk when asked, with no drop place; and refuses
+// it, naming the field, where the site has no stacker fleet.
+TEST(LoaderDesk, IntakeMakesOneLoaderWalkOrRefusesWithoutAStackerFleet) {
+  Plant plant;
+  const config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  const KnownNames names = known_names(config, plant.site.site);
+  const std::map<std::string, std::string> parked;
+  IntakeView view{.book = plant.book,
+                  .ledger = plant.ledger,
+                  .names = names,
+                  .site = plant.site.site,
+                  .parked_at = parked,
+                  .registered = {},
+                  .free_robots = {},
+                  .reject_when_busy = false,
+                  .max_pickable_mass = max_pickable_mass(config),
+                  .loader_fleet = loader_fleet(config),
+                  .place_distance = {}};
+  model::OrderRequest request;
+  request.request_id = "r1";
+  request.kind = "pick";
+  request.lines = "RB3,A3,1\nRB2,A2,2\nRB2,A2,2\n";
+  request.handling = "loader";
+  const IntakeDecision taken = OrderIntake(view).decide(request);
+  ASSERT_TRUE(taken.reply.accepted) << taken.reply.error;
+  ASSERT_EQ(taken.drafts.size(), 1u);
+  EXPECT_TRUE(taken.drafts[0].loader);
+  EXPECT_TRUE(taken.drafts[0].drop_area.empty());
+  // Merged by place, cut at three boxes a pallet, in aisle order.
+  EXPECT_EQ(taken.drafts[0].lines.substr(0, 4), "RB2,");
+  EXPECT_EQ(parse_pick_lines(taken.drafts[0].lines, "walk").size(), 3u);
+
+  view.loader_fleet.clear();
+  const IntakeDecision refused = OrderIntake(view).decide(request);
+  EXPECT_FALSE(refused.reply.accepted);
+  EXPECT_NE(refused.reply.error.find("handling: a loader walk needs a stacker fleet"), std::string::npos)
+      << refused.reply.error;
+  request.handling = "forks";
+  EXPECT_NE(OrderIntake(view).decide(request).reply.error.find("unknown handling 'forks'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fleet::orders
