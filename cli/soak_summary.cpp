@@ -60,6 +60,15 @@ nlohmann::json fault_figures(const std::vector<FaultRecord>& faults) {
           {"faults", list}};
 }
 
+nlohmann::json picking_json(const monitor::PickingFigures& f) {
+  return {{"pick_orders_done", f.pick_orders_done},
+          {"loader_jobs_done", f.loader_jobs_done},
+          {"boxes_picked", f.boxes_picked},
+          {"boxes_loaded", f.boxes_loaded},
+          {"picker_hours", round_to(f.picker_hours, 0.001)},
+          {"items_per_picker_hour", round_to(f.items_per_hour, 0.1)}};
+}
+
 /// Robots lost with no fault behind them: a process that stood still or a link that broke.
 std::vector<monitor::RobotLoss> unexplained_losses(const SoakObservations& seen) {
   std::vector<monitor::InjectedFault> injected;
@@ -175,6 +184,7 @@ nlohmann::json soak_summary(const FleetRun& run, const RunOptions& options, cons
                          {"orders_done_by_fleet", run.done_by_fleet()},
                          {"orders_done_by_kind", monitor::done_by_kind(run.orders(), tally.first_id)},
                          {"pickers_sharing_an_aisle", aisle_share_figures(run)},
+                         {"picking", picking_json(monitor::picking_figures(run.orders(), tally.first_id))},
                          {"orders_duplicated", orders_done_twice(run, seen.done_by)},
                          {"max_wait_s", round_to(run.progress().max_wait_s(now_sim), 0.1)},
                          {"order_time_mean_s", round_to(stats.order_time_mean_s, 0.1)},
@@ -219,6 +229,10 @@ void print_soak_summary(std::ostream& out, const FleetRun& run, const nlohmann::
       << "  order time: mean " << s["order_time_mean_s"] << " s, p95 " << s["order_time_p95_s"]
       << " s sim; longest wait " << s["max_wait_s"] << " s\n"
       << "  localization error (estimate against truth): " << s["localization_error"].dump() << "\n"
+      << "  picking: " << s["picking"]["items_per_picker_hour"] << " items an hour per working picker ("
+      << s["picking"]["boxes_picked"] << " boxes in " << s["picking"]["pick_orders_done"] << " pick orders, "
+      << s["picking"]["loader_jobs_done"] << " of them loader jobs with " << s["picking"]["boxes_loaded"]
+      << " boxes loaded)\n"
       << "  pickers sharing an aisle: " << s["pickers_sharing_an_aisle"].dump() << "\n"
       << "  collisions: " << s["collisions"] << ", deadlocks: " << s["deadlocks"] << "\n"
       << "  faults: " << s["faults_injected"] << " injected, detection p95 " << s["detect_latency_p95_s"]

@@ -47,6 +47,10 @@ std::vector<KeySpec> make_schema() {
       choice("server.dispatch_policy", "ascending-id", {"ascending-id", "nearest", "optimal"},
              "how queued orders are matched with free robots"),
       flag("server.auto_orders", false, "create random orders whenever a robot is free [Forklift thesis, section 3]"),
+      choice("server.auto_pick_handling", "tray", {"tray", "loader", "auto"},
+             "how the automatic pick lists travel: tours to a packing station on the picker's tray, or walks whose "
+             "boxes go on the pallet of a stacker behind the picker (docs/loader.md); auto: loader when a stacker "
+             "and an empty pallet are free"),
       flag("server.reject_when_busy", false,
            "reject manual orders while no robot is free (the Forklift thesis's mode) instead of queueing them"),
       number("server.fleet_view_hz", 20.0, "Hz", 1.0, 100.0,

@@ -6,6 +6,7 @@
 
 #include "common/percentile.hpp"
 #include "orders/order.hpp"
+#include "orders/pick_lines.hpp"
 #include "orders/server_term.hpp"
 
 namespace fleet::monitor {
@@ -111,6 +112,27 @@ std::map<std::string, long> done_by_kind(const std::map<std::int64_t, model::Ord
     }
   }
   return done;
+}
+
+PickingFigures picking_figures(const std::map<std::int64_t, model::OrderInfo>& orders, std::int64_t first_id) {
+  PickingFigures f;
+  for (auto it = orders.lower_bound(first_id); it != orders.end(); ++it) {
+    const model::OrderInfo& o = it->second;
+    if (o.kind != "pick" || o.state != "DONE") continue;
+    long boxes = 0;
+    for (const auto& line : orders::parse_pick_lines(o.lines, "order " + std::to_string(o.order_id))) {
+      boxes += line.quantity;
+    }
+    ++f.pick_orders_done;
+    f.boxes_picked += boxes;
+    if (o.loader) {
+      ++f.loader_jobs_done;
+      f.boxes_loaded += boxes;
+    }
+    f.picker_hours += std::max(0.0, o.finished_sim - o.assigned_sim) / 3600.0;
+  }
+  f.items_per_hour = f.picker_hours > 0.0 ? static_cast<double>(f.boxes_picked) / f.picker_hours : 0.0;
+  return f;
 }
 
 }  // namespace fleet::monitor

@@ -47,4 +47,15 @@ OrderTally tally_orders(const std::map<std::int64_t, model::OrderInfo>& orders, 
 std::map<std::string, long> done_by_kind(const std::map<std::int64_t, model::OrderInfo>& orders,
                                          std::int64_t first_id = 1);
 
+/// What the pickers did, over the pick orders with ids >= `first_id` that are DONE.
+struct PickingFigures {
+  long pick_orders_done = 0;
+  long loader_jobs_done = 0;    ///< of them, walks worked as loader jobs (docs/loader.md)
+  long boxes_picked = 0;        ///< boxes of the done pick orders
+  long boxes_loaded = 0;        ///< of them, set on transporters' pallets by loaders
+  double picker_hours = 0.0;    ///< sim hours from assignment to end of the done pick orders
+  double items_per_hour = 0.0;  ///< boxes_picked / picker_hours: items an hour per working picker
+};
+PickingFigures picking_figures(const std::map<std::int64_t, model::OrderInfo>& orders, std::int64_t first_id = 1);
+
 }  // namespace fleet::monitor

@@ -39,12 +39,18 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
       std::count_if(queue.begin(), queue.end(), [](const Order* o) { return o->kind == OrderKind::kPick; });
   if (free_pickers <= queued) return {};
   const OrderIntake intake(view);
-  const auto lines =
-      choose_auto_pick_list(intake.boxes_left(), place_poses(view.site), view.max_pickable_mass, kTourBoxes, rng_);
-  if (!lines) return {};
   model::OrderRequest request;
   request.request_id = "auto";
   request.kind = "pick";
+  request.handling = handling_;
+  const auto as_loader = intake.loader_handling(request);
+  const bool loader = std::holds_alternative<bool>(as_loader) && std::get<bool>(as_loader);
+  // A loader walk fills a few pallets; a tray tour carries what the tray holds.
+  const int boxes = loader ? kLoaderWalkBoxes : kTourBoxes;
+  const auto lines =
+      choose_auto_pick_list(intake.boxes_left(), place_poses(view.site), view.max_pickable_mass, boxes, rng_);
+  if (!lines) return {};
+  if (loader) return {intake.loader_order(*lines, request)};
   request.drop_area = view.site.packing->stations.front();
   return intake.pick_tours(*lines, request);
 }

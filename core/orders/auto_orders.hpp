@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "orders/order.hpp"
@@ -20,7 +21,9 @@ class AutoOrders {
   static constexpr double kPeriodWallS = 0.05;
 
   /// `seed` draws the places and pick lists, so that a seeded run repeats.
-  AutoOrders(bool on, std::uint64_t seed) : on_(on), rng_(seed) {}
+  /// `pick_handling`: how its pick lists travel (server.auto_pick_handling: tray, loader, auto).
+  AutoOrders(bool on, std::uint64_t seed, std::string pick_handling = "tray")
+      : on_(on), rng_(seed), handling_(std::move(pick_handling)) {}
 
   bool on() const { return on_; }
   void set_on(bool on) { on_ = on; }
@@ -29,7 +32,8 @@ class AutoOrders {
   bool due(double now_wall);
 
   /// A pick list for the free pickers of `view`, cut into tours (OrderIntake::pick_tours), to the
-  /// site's first packing station; none when the site has no packing station, free pickers do not
+  /// site's first packing station, or as one loader walk of kLoaderWalkBoxes boxes when its
+  /// handling says so; none when the site has no packing station, free pickers do not
   /// outnumber the queued pick orders, or the racks have nothing left to pick.
   std::vector<Order> pick_tours(const IntakeView& view);
 
@@ -44,6 +48,7 @@ class AutoOrders {
 
   bool on_;
   std::mt19937_64 rng_;
+  std::string handling_;
   double last_round_wall_ = -1e300;
 };
 

@@ -70,6 +70,11 @@ class OrderIntake {
 
   /// Takes or refuses `request`.
   IntakeDecision decide(const model::OrderRequest& request) const;
+  /// Whether a checked pick list is worked as a loader walk: its request's handling, `auto`
+  /// deciding by what is free; or why it cannot be.
+  std::variant<bool, std::string> loader_handling(const model::OrderRequest& request) const;
+  /// The list as one loader walk (docs/loader.md): one pick order, no drop place.
+  Order loader_order(const std::vector<PickLine>& lines, const model::OrderRequest& request) const;
   /// Checked lines cut into tours, one pick order draft each, in the order they are to be added.
   std::vector<Order> pick_tours(const std::vector<PickLine>& lines, const model::OrderRequest& request) const;
   /// The boxes each rack place has left for new pick orders: what the site declares, less what
@@ -81,11 +86,7 @@ class OrderIntake {
 
  private:
   IntakeDecision decide_pick_list(const model::OrderRequest& request) const;
-  /// Whether a checked pick list is worked as a loader walk: its request's handling, `auto`
-  /// deciding by what is free; or why it cannot be.
-  std::variant<bool, std::string> loader_handling(const model::OrderRequest& request) const;
-  /// The list as one loader walk (docs/loader.md): one pick order, no drop place.
-  Order loader_order(const std::vector<PickLine>& lines, const model::OrderRequest& request) const;
+
   /// The draft of a checked transport or move.
   Order draft_of(const model::OrderRequest& request, OrderKind kind) const;
   static IntakeDecision refuse(const model::OrderRequest& request, const std::string& error);

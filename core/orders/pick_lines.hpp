@@ -55,6 +55,8 @@ inline constexpr int kTourBoxes = 2;
 /// Boxes a loader sets on one transporter's pallet: the row behind its base the arm reaches,
 /// three across (robot::PickerArmLayout::deck).
 inline constexpr int kLoaderPalletBoxes = 3;
+/// Boxes of an automatic loader walk: three pallets.
+inline constexpr int kLoaderWalkBoxes = 3 * kLoaderPalletBoxes;
 
 /// A picker's round: lines picked one after the other, then dropped together.
 struct PickTour {

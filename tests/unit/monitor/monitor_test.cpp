@@ -108,6 +108,35 @@ TEST(OrderAccounting, DoneOrdersCountByKindWithTheServersOwnTransportsApart) {
   EXPECT_EQ(done_by_kind({}).at("chained"), 0);
 }
 
+// Items an hour per working picker: the boxes of the done pick orders over the hours the pickers
+// spent on them, from assignment to end.
+TEST(OrderAccounting, PickingFiguresCountBoxesOverThePickersHoursOnTheirOrders) {
+  std::map<std::int64_t, model::OrderInfo> orders;
+  const auto add = [&](std::int64_t id, const std::string& state, const std::string& lines, bool loader,
+                       double assigned, double finished) {
+    model::OrderInfo& o = orders[id];
+    o.order_id = id;
+    o.kind = "pick";
+    o.state = state;
+    o.lines = lines;
+    o.loader = loader;
+    o.assigned_sim = assigned;
+    o.finished_sim = finished;
+  };
+  add(1, "DONE", "RB1,A1,2\n", false, 0.0, 1800.0);             // a tray tour: 2 boxes in half an hour
+  add(2, "DONE", "RB1,A1,3\nRB3,A3,3\n", true, 100.0, 1900.0);  // a loader walk: 6 boxes in half an hour
+  add(3, "FAILED", "RB2,A2,1\n", true, 0.0, 50.0);
+  add(4, "ACTIVE", "RB2,A2,1\n", true, 0.0, 0.0);
+  const PickingFigures f = picking_figures(orders);
+  EXPECT_EQ(f.pick_orders_done, 2);
+  EXPECT_EQ(f.loader_jobs_done, 1);
+  EXPECT_EQ(f.boxes_picked, 8);
+  EXPECT_EQ(f.boxes_loaded, 6);
+  EXPECT_NEAR(f.picker_hours, 1.0, 1e-12);
+  EXPECT_NEAR(f.items_per_hour, 8.0, 1e-12);
+  EXPECT_EQ(picking_figures(orders, 2).boxes_picked, 6);
+}
+
 TEST(LocalizationWatch, ComparesEachEstimateWithTheTruthOfTheSameStampAndGroupsByFleet) {
   LocalizationWatch watch;
   watch.note_truth("pk1", {1.0, 0.0, 0.0}, 10.0);
