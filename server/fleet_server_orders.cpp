@@ -55,7 +55,9 @@ orders::IntakeView FleetServer::intake_view() const {
       const auto* a = options_.site.find_area(from);
       const auto* b = options_.site.find_area(to);
       if (a == nullptr || b == nullptr) return std::numeric_limits<double>::infinity();
-      return roads->second.travel(orders::picker_stop_pose(a->pose, 1.0), orders::picker_stop_pose(b->pose, 1.0));
+      const double standoff = orders::LoaderLayout{}.item_standoff;
+      return roads->second.travel(orders::picker_stop_pose(a->pose, standoff),
+                                  orders::picker_stop_pose(b->pose, standoff));
     };
     break;
   }

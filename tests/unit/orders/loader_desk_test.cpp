@@ -106,7 +106,9 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   const Order& t1 = *plant.book.find(first);
   ASSERT_TRUE(t1.stand.has_value());
   const geometry::Pose2 rb2 = plant.site.site.find_area("RB2")->pose;
-  const geometry::Pose2 expected = transporter_pose(picker_stop_pose(rb2, 1.0), -1.0, 0.35);
+  const LoaderLayout layout;
+  const geometry::Pose2 expected =
+      transporter_pose(picker_stop_pose(rb2, layout.item_standoff), layout.deck_x, layout.pallet_x);
   EXPECT_NEAR(t1.stand->x, expected.x, 1e-9);
   EXPECT_NEAR(t1.stand->y, expected.y, 1e-9);
   transports = transports_of(plant.book, pick);

@@ -10,7 +10,7 @@
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
-#include "orders/loader_job.hpp"
+#include "orders/loader_desk.hpp"
 #include "robot/robot_factory.hpp"
 #include "robot/stacker/stacker.hpp"
 #include "test_paths.hpp"
@@ -63,10 +63,9 @@ struct PlantStacker {
   /// edge stands 7.5 cm behind the 0.65 m base, its first row where the arm reaches (0.55 m behind
   /// the base's centre).
   geometry::Pose2 behind_picker_at(const std::string& place) const {
-    const geometry::Pose2 p = site->site.find_area(place)->pose;
-    const geometry::Pose2 picker{p.x + std::cos(p.yaw), p.y + std::sin(p.yaw),
-                                 geometry::normalize_angle(p.yaw + std::numbers::pi / 2)};
-    return orders::transporter_pose(picker, -1.0, 0.35);
+    const orders::LoaderLayout layout;
+    const geometry::Pose2 picker = orders::picker_stop_pose(site->site.find_area(place)->pose, layout.item_standoff);
+    return orders::transporter_pose(picker, layout.deck_x, layout.pallet_x);
   }
 };
 
