@@ -165,6 +165,16 @@ std::string VehicleMaster::task_state() const {
 
 bool VehicleMaster::vehicle_stands_ready() const {
   if (!state_ || state_->driving) return false;
+  // A leg sent that the vehicle has not reported yet (nor refused): its state predates that
+  // order, so it does not tell whether the vehicle stands ready; a new order sent now would
+  // meet the leg running and be refused.
+  if (leg_ && leg_->sent() && state_->order_id != leg_->order_id()) {
+    const bool refused = std::any_of(state_->errors.begin(), state_->errors.end(), [&](const VehicleError& e) {
+      return std::any_of(e.references.begin(), e.references.end(),
+                         [&](const auto& r) { return r.first == "orderId" && r.second == leg_->order_id(); });
+    });
+    if (!refused) return false;
+  }
   // Standing at the end of its base with only horizon left (or none): a new order, started at
   // that node with its sequence id, takes over. That holds also for an order the master has
   // forgotten (the vehicle was lost meanwhile, its cancelOrder never sent).
