@@ -109,6 +109,21 @@ nlohmann::json last_json_line(const std::string& text) {
   return nlohmann::json::parse(text.substr(from, end - from + 1));
 }
 
+nlohmann::json orders_until(FleetHarness& fleet, const std::function<bool(const nlohmann::json&)>& done,
+                            double timeout_s) {
+  nlohmann::json rows;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < end) {
+    const auto list = fleet.fleetctl({"--json", "order", "list"}, 30);
+    if (list.exit_code == 0) {
+      rows = last_json_line(list.out);
+      if (done(rows)) return rows;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+  }
+  return rows;
+}
+
 std::vector<std::string> FleetHarness::common_args() const {
   return {"--config", config_path_, "--domain",     std::to_string(domain_),
           "--site",   site_,        "--time-scale", std::to_string(time_scale_)};

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,6 +21,12 @@ struct CommandResult {
 
 /// The last line of a command's output as JSON (what `--json` ends with).
 nlohmann::json last_json_line(const std::string& text);
+
+class FleetHarness;
+/// Polls `fleetctl order list` until `done` holds for its rows or `timeout_s` (wall) passes; the
+/// rows last read.
+nlohmann::json orders_until(FleetHarness& fleet, const std::function<bool(const nlohmann::json&)>& done,
+                            double timeout_s);
 
 /// Runs a command to its end (with a wall-clock limit), capturing stdout and stderr.
 CommandResult run_command(const std::vector<std::string>& argv, double timeout_s = 120.0);

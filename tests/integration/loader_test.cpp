@@ -15,26 +15,6 @@
 using namespace fleet::testing;
 using nlohmann::json;
 
-namespace {
-
-/// The orders from `fleetctl order list` once `done` holds for them, or when `timeout_s` (wall)
-/// has passed.
-json orders_until(FleetHarness& fleet, const std::function<bool(const json&)>& done, double timeout_s) {
-  json rows;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    const auto list = fleet.fleetctl({"--json", "order", "list"}, 30);
-    if (list.exit_code == 0) {
-      rows = last_json_line(list.out);
-      if (done(rows)) return rows;
-    }
-    std::this_thread::sleep_for(std::chrono::seconds(2));
-  }
-  return rows;
-}
-
-}  // namespace
-
 TEST(Loader, APickerFillsTwoStackersPalletsAndBothGoToExpedition) {
   FleetHarness fleet(97, 10.0, "plant");
   fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");

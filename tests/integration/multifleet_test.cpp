@@ -130,21 +130,6 @@ TEST(MultiFleet, APickerDrivesAPickListsTourAndBadLinesAreNamed) {
       << more.err;
 }
 
-/// Polls `fleetctl order list` until `done` holds for its rows or `timeout_s` (wall) passes.
-json orders_until(FleetHarness& fleet, const std::function<bool(const json&)>& done, double timeout_s) {
-  json rows;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    const auto list = fleet.fleetctl({"--json", "order", "list"}, 30);
-    if (list.exit_code == 0) {
-      rows = last_json_line(list.out);
-      if (done(rows)) return rows;
-    }
-    std::this_thread::sleep_for(std::chrono::seconds(2));
-  }
-  return rows;
-}
-
 TEST(MultiFleet, APickerFillsAPackingPalletAndAStackerTakesItToExpeditionAndBringsAnEmptyOne) {
   // The plant's packing pallets take 4 boxes: two 2-box tours fill PS9's, on the south cross aisle.
   // The server then orders the full pallet to a free expedition place and an empty one from the
