@@ -224,9 +224,9 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
 
 std::string LoaderDesk::free_place(const std::vector<std::string>& places, bool with_load,
                                    const LoaderView& view) const {
+  const auto open = view.book.open_orders();
   for (const std::string& place : places) {
     if (view.ledger.holds_load(place) != with_load) continue;
-    const auto open = view.book.open_orders();
     if (std::none_of(open.begin(), open.end(),
                      [&](const Order* o) { return o->pick_area == place || o->drop_area == place; })) {
       return place;
