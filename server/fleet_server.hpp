@@ -172,7 +172,9 @@ class FleetServer {
   /// Assignments awaiting acknowledgement, and orders waiting for their lost robot.
   orders::RecoveryWatch watch_;
   orders::AutoOrders auto_orders_;
-  orders::LoaderDesk loader_desk_{{.transporter_fleet = orders::loader_fleet(options_.config)}};
+  orders::LoaderDesk loader_desk_{
+      {.pallet_boxes = static_cast<int>(options_.config.settings.get_int("server.loader_pallet_boxes")),
+       .transporter_fleet = orders::loader_fleet(options_.config)}};
   double started_wall_ = 0.0;
   double last_web_snapshot_wall_ = 0.0;
   WebBridge* bridge_ = nullptr;

@@ -51,6 +51,9 @@ std::vector<KeySpec> make_schema() {
              "how the automatic pick lists travel: tours to a packing station on the picker's tray, or walks whose "
              "boxes go on the pallet of a stacker behind the picker (docs/loader.md); auto: loader when a stacker "
              "and an empty pallet are free"),
+      integer("server.loader_pallet_boxes", 6, "boxes", 1, 6,
+              "boxes a loader sets on one transporter's pallet before it goes to expedition: the picker's arm "
+              "reaches a row of three behind it, two layers high (docs/loader.md)"),
       flag("server.reject_when_busy", false,
            "reject manual orders while no robot is free (the Forklift thesis's mode) instead of queueing them"),
       number("server.fleet_view_hz", 20.0, "Hz", 1.0, 100.0,

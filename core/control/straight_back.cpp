@@ -16,36 +16,46 @@ geometry::Vec2 from_goal(const geometry::Pose2& goal, const geometry::Pose2& rea
 
 }  // namespace
 
-StraightBack::StraightBack(const geometry::Pose2& goal, StraightBackParams params, double wheelbase)
-    : goal_(goal), params_(params), wheelbase_(wheelbase) {}
+StraightBack::StraightBack(const geometry::Pose2& goal, StraightBackParams params, double wheelbase, bool forward)
+    : goal_(goal), forward_(forward), params_(params), wheelbase_(wheelbase) {}
 
 double StraightBack::left(const geometry::Pose2& rear) const {
-  return from_goal(goal_, rear).x;
+  const double x = from_goal(goal_, rear).x;
+  return forward_ ? -x : x;
 }
 
 sim::TricycleCommand StraightBack::update(const geometry::Pose2& rear, double dt) {
   const geometry::Vec2 off = from_goal(goal_, rear);
-  if (done_ || off.x <= params_.tolerance) {
+  const double to_go = left(rear);
+  if (done_ || to_go <= params_.tolerance) {
     done_ = true;
     speed_ = 0.0;
     return {0.0, 0.0};
   }
   // Trapezoidal: up at the acceleration, down so that it stands at the goal.
-  const double stopping = std::sqrt(2.0 * params_.acceleration * off.x);
+  const double stopping = std::sqrt(2.0 * params_.acceleration * to_go);
   speed_ = std::min({params_.max_speed, stopping, speed_ + params_.acceleration * dt});
   speed_ = std::max(speed_, 0.02);  // creeps the last millimetres
   // Backwards the lateral error y changes at -v sin(heading error): turning the heading towards
-  // +y when the axle is off to the left brings it back onto the line.
+  // +y when the axle is off to the left brings it back onto the line; forwards, away from it.
   const double heading_error = geometry::angle_diff(rear.yaw, goal_.yaw);
-  const double wanted = std::asin(std::clamp(params_.lateral_gain * off.y, -0.5, 0.5));
+  const double towards = std::asin(std::clamp(params_.lateral_gain * off.y, -0.5, 0.5));
+  const double wanted = forward_ ? -towards : towards;
   const double yaw_rate = params_.heading_gain * (wanted - heading_error);
-  return sim::inverse_kinematics({-speed_, yaw_rate}, wheelbase_);
+  return sim::inverse_kinematics({forward_ ? speed_ : -speed_, yaw_rate}, wheelbase_);
 }
 
 bool straight_behind(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance, double max_offset,
                      double max_yaw) {
   const geometry::Vec2 off = from_goal(goal, rear);
   return off.x >= 0.05 && off.x <= max_distance && std::abs(off.y) <= max_offset &&
+         std::abs(geometry::angle_diff(rear.yaw, goal.yaw)) <= max_yaw;
+}
+
+bool straight_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance, double max_offset,
+                    double max_yaw) {
+  const geometry::Vec2 off = from_goal(goal, rear);
+  return -off.x >= 0.05 && -off.x <= max_distance && std::abs(off.y) <= max_offset &&
          std::abs(geometry::angle_diff(rear.yaw, goal.yaw)) <= max_yaw;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// A stacker moving up forks first along its own line: a loader's transporter following its picker
-// to the next stop in a rack aisle, a few metres straight back, where a route and a docking would
-// take it round the loop and turn it twice.
+// A stacker moving up along its own line: a loader's transporter going on to the next stop in a
+// rack aisle, a few metres straight ahead or forks first straight back, where a route and a docking
+// would take it round the loop and turn it twice.
 
 #include "geometry/pose.hpp"
 #include "sim/tricycle.hpp"
@@ -21,16 +21,18 @@ struct StraightBackParams {
 /// must start on that line facing along it, the goal behind it (straight_behind).
 class StraightBack {
  public:
-  StraightBack(const geometry::Pose2& goal, StraightBackParams params, double wheelbase);
+  /// `forward`: the goal lies ahead on the line (straight_ahead), driven to forwards.
+  StraightBack(const geometry::Pose2& goal, StraightBackParams params, double wheelbase, bool forward = false);
 
   /// The wheel command for the rear axle's estimate `rear`; stands once the goal is reached.
   sim::TricycleCommand update(const geometry::Pose2& rear, double dt);
   bool done() const { return done_; }
-  /// Metres left along the line from `rear` to the goal (negative: past it).
+  /// Metres left along the line from `rear` to the goal, in the direction of travel (negative: past it).
   double left(const geometry::Pose2& rear) const;
 
  private:
   geometry::Pose2 goal_;
+  bool forward_ = false;
   StraightBackParams params_;
   double wheelbase_;
   double speed_ = 0.0;  ///< m/s, the magnitude of the last command
@@ -42,5 +44,8 @@ class StraightBack {
 /// `max_yaw` rad, and between 0.05 m and `max_distance` metres behind it.
 bool straight_behind(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance,
                      double max_offset = 0.10, double max_yaw = 0.05);
+/// The same with the goal ahead of the rear axle on its line.
+bool straight_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance,
+                    double max_offset = 0.10, double max_yaw = 0.05);
 
 }  // namespace fleet::control

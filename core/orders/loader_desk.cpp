@@ -144,6 +144,9 @@ void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) cons
 void LoaderDesk::ask_for_transporter(const Entry& entry, const Order& pick, const LoaderView& view,
                                      std::vector<LoaderAction>& actions) const {
   if (!entry.job.wants_transporter() || is_final(pick.status)) return;
+  // The next pallet is asked for once the current one has left: a stacker holding its empty
+  // pallet at its PK place meanwhile keeps the PK row from the stackers behind it.
+  if (!entry.job.current_transporter().empty()) return;
   for (const auto& [id, transport] : entry.transports) {
     const Order* order = view.book.find(id);
     if (order && transport.robot_id.empty() && !is_final(order->status)) return;  // asked already
@@ -179,13 +182,19 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
   };
   for (const LoaderInstruction& instruction : job.instructions()) {
     if (instruction.robot_id == job.picker_id() && !is_final(pick.status)) {
-      if (instruction.task != LoaderTask::kLoad) continue;
+      // The stop is released once its pallet stands behind it; the pallet named is the one behind
+      // the picker or on its way there (none between two transporters: the picker makes way).
       OrderRevision revision = revision_of(pick);
-      revision.released_stops = std::max<std::uint32_t>(revision.released_stops, instruction.stop + 1);
+      const bool released = instruction.task == LoaderTask::kLoad || instruction.task == LoaderTask::kGoToStop;
+      if (released) revision.released_stops = std::max<std::uint32_t>(revision.released_stops, instruction.stop + 1);
+      revision.pallet = 0;
       for (const auto& [id, transport] : entry.transports) {
-        if (transport.robot_id == job.current_transporter()) revision.pallet = static_cast<int>(id);
+        if (!transport.robot_id.empty() && transport.robot_id == job.current_transporter()) {
+          revision.pallet = static_cast<int>(id);
+        }
       }
-      revise(pick, revision, "stop " + std::to_string(instruction.stop + 1) + " released");
+      revise(pick, revision,
+             released ? "stop " + std::to_string(instruction.stop + 1) + " released" : "the pallet behind it changed");
       continue;
     }
     for (auto& [id, transport] : entry.transports) {

@@ -21,8 +21,8 @@ namespace fleet::orders {
 
 /// Where the two robots of a loader job stand, and how many boxes a pallet takes.
 struct LoaderLayout {
-  /// Boxes a transporter's pallet takes: the row the picker's arm reaches, three across
-  /// (PickerArmLayout::deck).
+  /// Boxes a transporter's pallet takes: the row the picker's arm reaches, three across and two
+  /// layers high (PickerArmLayout::deck; server.loader_pallet_boxes).
   int pallet_boxes = kLoaderPalletBoxes;
   /// The picker's centre out from a rack place's pose, side-on (task::ExecutorParams::item_standoff).
   double item_standoff = 1.0;

@@ -238,11 +238,14 @@ std::vector<LoaderInstruction> LoaderJob::instructions() const {
       picker.task = LoaderTask::kRelease;
     } else if (transporter_lost_) {
       picker.task = LoaderTask::kWait;
-    } else if (picker_at_ == stop && transporter_at_ == stop && left_at(stop) <= room()) {
-      picker = {picker_id_, LoaderTask::kLoad, stop, left_at(stop)};
+    } else if (transporter_at_ == stop && left_at(stop) <= room()) {
+      // The stop is released once the pallet stands behind it: the picker drives in behind the
+      // transporter, never the other way round (on a one-way lane it could not pass the picker).
+      picker = picker_at_ == stop ? LoaderInstruction{picker_id_, LoaderTask::kLoad, stop, left_at(stop)}
+                                  : LoaderInstruction{picker_id_, LoaderTask::kGoToStop, stop, 0};
     } else {
-      // Driving there, or standing there until its transporter is in place behind it.
-      picker = {picker_id_, LoaderTask::kGoToStop, stop, 0};
+      // Where it stands behind the pallet moving up, or out of the aisle for a new one.
+      picker = {picker_id_, LoaderTask::kWait, stop, 0};
     }
     out.push_back(picker);
   }

@@ -34,12 +34,13 @@ geometry::Pose2 transporter_pose(const geometry::Pose2& picker, double deck_x, d
 
 /// What a robot of a loader job is to do now.
 enum class LoaderTask {
-  kGoToStop,    ///< picker: drive to stand beside the stop's place
+  kGoToStop,    ///< picker: drive to stand beside the stop's place (its transporter stands behind it)
   kLoad,        ///< picker: set the stop's boxes on the transporter's pallet (both stand in place)
   kFollow,      ///< transporter: stand behind the picker's stop, its pallet at the arm's height
   kWaitBehind,  ///< next transporter: stand behind the current one, ready to move up
   kDeliver,     ///< transporter: take its pallet to expedition
-  kWait,        ///< stand clear of the aisle until the partner is back or replaced
+  kWait,        ///< picker: until its transporter stands behind `stop` (or, -1, one takes over);
+                ///< transporter: until a picker takes over
   kRelease,     ///< out of the job: free for other work
 };
 const char* to_string(LoaderTask task);
@@ -62,9 +63,9 @@ struct PalletRun {
 };
 
 /// A loader job's progress and its rules. Stops are done in order; a stop's boxes go on one
-/// pallet (a walk's line never holds more than a pallet). The picker loads only when it stands at
-/// the stop and the current transporter stands behind it with room for the stop's boxes; else the
-/// transporter leaves full and the next one moves up. A lost robot leaves the job to a robot of
+/// pallet (a walk's line never holds more than a pallet). The picker drives to a stop only once
+/// the current transporter stands behind it with room for the stop's boxes, and loads when it
+/// stands there; else the transporter leaves full and the next one moves up. A lost robot leaves the job to a robot of
 /// its fleet: the boxes on a lost transporter's pallet stay on that pallet (its run), the boxes a
 /// lost picker held were never counted (they go back to their place).
 class LoaderJob {

@@ -169,7 +169,7 @@ Order OrderIntake::loader_order(const std::vector<PickLine>& lines, const model:
     return geometry::distance(poses.at(from).position(), poses.at(to).position());
   };
   const std::vector<PickLine> walk =
-      loader_walk(lines, kLoaderPalletBoxes, poses, view_.place_distance ? view_.place_distance : straight);
+      loader_walk(lines, view_.loader_pallet_boxes, poses, view_.place_distance ? view_.place_distance : straight);
   Order draft;
   draft.kind = OrderKind::kPick;
   draft.request_id = request.request_id;

@@ -37,6 +37,8 @@ struct IntakeView {
   /// The fleet that carries a loader job's pallets (loader_fleet()); empty: no pick list can be
   /// worked as a loader walk.
   std::string loader_fleet{};
+  /// Boxes on one of its pallets: a loader walk's stops are cut to fit one (server.loader_pallet_boxes).
+  int loader_pallet_boxes = kLoaderPalletBoxes;
   /// Road metres between two places for the picker, to order a loader walk; straight metres
   /// when null.
   PlaceDistance place_distance{};

@@ -53,10 +53,10 @@ std::map<std::string, geometry::Pose2> place_poses(const map::Site& site);
 /// Boxes a picker carries on one tour: the two slots of its tray (robot::PickerArmLayout).
 inline constexpr int kTourBoxes = 2;
 /// Boxes a loader sets on one transporter's pallet: the row behind its base the arm reaches,
-/// three across (robot::PickerArmLayout::deck).
-inline constexpr int kLoaderPalletBoxes = 3;
-/// Boxes of an automatic loader walk: three pallets.
-inline constexpr int kLoaderWalkBoxes = 3 * kLoaderPalletBoxes;
+/// three across, two layers high (robot::PickerArmLayout::deck; server.loader_pallet_boxes).
+inline constexpr int kLoaderPalletBoxes = 6;
+/// Boxes of an automatic loader walk: one pallet.
+inline constexpr int kLoaderWalkBoxes = kLoaderPalletBoxes;
 
 /// A picker's round: lines picked one after the other, then dropped together.
 struct PickTour {

@@ -59,6 +59,9 @@ bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
     order_->pallet = order.pallet;
     return true;
   }
+  waiting_for_release_ = false;
+  release_wait_home_ = false;
+  loaded_pallet_ = 0;
   if (!machine_.accepts_orders()) {
     if (why) *why = std::string("order not accepted in ") + to_string(machine_.state());
     return false;
@@ -132,6 +135,41 @@ void TaskExecutor::request_plan(PlanPurpose purpose) {
   follower_.clear();
 }
 
+bool TaskExecutor::waits_in_place() const {
+  return item_line_ > 0 && order_->pallet != 0 && order_->pallet == loaded_pallet_;
+}
+
+void TaskExecutor::hold_for_release() {
+  waiting_for_release_ = true;
+  release_wait_home_ = !waits_in_place();
+  if (release_wait_home_) {
+    request_plan(PlanPurpose::kHome);
+    if (blocked_) fire(Event::kBlocked);
+    return;
+  }
+  pending_request_.reset();
+  active_request_id_ = 0;
+  active_purpose_ = PlanPurpose::kToPick;
+  have_path_ = false;
+  follower_.clear();
+  fire(Event::kBlocked);
+}
+
+void TaskExecutor::follow_release() {
+  if (!waiting_for_release_ || !order_) return;
+  const State s = machine_.state();
+  if (s != State::kTrackPath && s != State::kWaiting) return;
+  if (item_line_ < order_->released) {
+    waiting_for_release_ = false;
+    release_wait_home_ = false;
+    request_plan(PlanPurpose::kToPick);
+    if (s == State::kTrackPath && blocked_) fire(Event::kBlocked);
+  } else if (!release_wait_home_ && !waits_in_place()) {
+    release_wait_home_ = true;
+    request_plan(PlanPurpose::kHome);
+  }
+}
+
 void TaskExecutor::report(TaskReport::Kind kind, const std::string& area, const std::string& detail) {
   TaskReport r;
   r.kind = kind;
@@ -143,6 +181,7 @@ void TaskExecutor::report(TaskReport::Kind kind, const std::string& area, const 
 
 void TaskExecutor::end_order(TaskReport::Kind kind, const std::string& area, const std::string& detail) {
   report(kind, area, detail);
+  waiting_for_release_ = false;
   order_.reset();
   request_plan(PlanPurpose::kHome);
 }
@@ -166,6 +205,10 @@ void TaskExecutor::apply(const Transition& tr) {
       waiting_for_plan_ = false;
       // A pick order comes back here for each of its lines; it was accepted once.
       if (item_line_ == 0) report(TaskReport::Kind::kAccepted, order_->pick_area_id);
+      if (order_->loader && item_line_ >= order_->released) {
+        hold_for_release();
+        break;
+      }
       request_plan(PlanPurpose::kToPick);
       // Taken while waiting for traffic on the way home: wait on until the road is granted.
       if (blocked_) fire(Event::kBlocked);
@@ -226,6 +269,7 @@ void TaskExecutor::apply(const Transition& tr) {
       pick_.stop();
       place_.stop();
       report(TaskReport::Kind::kFailed, {}, machine_.error_reason());
+      waiting_for_release_ = false;
       order_.reset();
       pending_request_.reset();
       active_request_id_ = 0;
@@ -241,10 +285,10 @@ void TaskExecutor::apply(const Transition& tr) {
         place_.start(order_->drop_area, now_);
       }
       // Back from WAITING or PAUSED: if the blockage is still there, wait again.
-      if ((blocked_ || waiting_for_plan_) &&
+      if ((blocked_ || waiting_for_plan_ || stands_for_release()) &&
           (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome)) {
         fire(Event::kBlocked);
-      } else if (machine_.state() == State::kWaiting && !blocked_ && !waiting_for_plan_) {
+      } else if (machine_.state() == State::kWaiting && !blocked_ && !waiting_for_plan_ && !stands_for_release()) {
         // Paused while waiting, and what it waited for (a grant, a clear road, a plan) came
         // during the pause: set_blocked and path_received only unblock a robot in WAITING, so
         // the resume must, or the robot stands on a road the traffic manager granted it.
@@ -270,6 +314,7 @@ void TaskExecutor::items_done(bool ok, const std::string& reason) {
   } else if (s == State::kDropItems) {
     fire(Event::kItemsDropped);
   } else {
+    if (order_->loader) loaded_pallet_ = order_->pallet;
     ++item_line_;
     const bool last = item_line_ >= order_->items.size();
     fire(!last ? Event::kItemsPicked : order_->loader ? Event::kWalkLoaded : Event::kTourPicked);
@@ -314,7 +359,7 @@ void TaskExecutor::set_blocked(bool blocked) {
   blocked_ = blocked;
   if (blocked && (machine_.state() == State::kTrackPath || machine_.state() == State::kGoHome)) {
     fire(Event::kBlocked);
-  } else if (!blocked && machine_.state() == State::kWaiting && !waiting_for_plan_) {
+  } else if (!blocked && machine_.state() == State::kWaiting && !waiting_for_plan_ && !stands_for_release()) {
     fire(Event::kUnblocked);
   }
 }
@@ -322,6 +367,8 @@ void TaskExecutor::set_blocked(bool blocked) {
 void TaskExecutor::replan() {
   const State s = machine_.state();
   // Waiting counts too, whether for a plan or on a blocked road: the new plan may lead around.
+  // Not a loader standing for its release: it has nowhere to go yet.
+  if (stands_for_release()) return;
   if (s == State::kTrackPath || s == State::kGoHome || s == State::kWaiting) {
     request_plan(active_purpose_);
   }
@@ -371,6 +418,7 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
   now_ = in.time;
   TaskOutput out;
   out.fork_up = fork_up_;
+  follow_release();
 
   switch (machine_.state()) {
     case State::kIdle:
@@ -396,7 +444,9 @@ TaskOutput TaskExecutor::step(const TaskInput& in) {
           request_plan(active_purpose_);
           break;
         }
-        if (machine_.state() == State::kGoHome) {
+        if (waiting_for_release_) {
+          fire(Event::kBlocked);  // home, where it waits for its stop to be released
+        } else if (machine_.state() == State::kGoHome) {
           fire(Event::kHomeReached);
         } else {
           fire(order_ && order_->kind == orders::OrderKind::kPick ? Event::kAtItems : Event::kPathEnded);

@@ -40,8 +40,10 @@ struct TaskOrder {
   /// A pick order worked as a loader (docs/loader.md): each stop's boxes go on the
   /// pallet of a transporter standing behind the robot, and the order ends at the last stop.
   bool loader = false;
-  /// A loader's arm works only the stops before this one; at a later stop it stands until an
-  /// update of the order releases it (its transporter stands behind it).
+  /// A loader drives to and works only the stops before this one: it waits for an update of the
+  /// order that releases the next (its transporter stands behind that stop). It waits where it
+  /// stands while the pallet it loaded last moves up; for a new pallet, or none, it waits at home,
+  /// out of the aisle the new transporter drives into.
   std::size_t released = std::numeric_limits<std::size_t>::max();
   /// Which transporter's pallet stands behind it: a new one holds no box yet.
   int pallet = 0;
@@ -169,6 +171,16 @@ class TaskExecutor {
   Transition fire(Event e, const std::string& reason = {});
   void apply(const Transition& tr);
   void request_plan(PlanPurpose purpose);
+  /// A loader's next stop is not released: wait for it where it stands or at home.
+  void hold_for_release();
+  /// While waiting for a release: drive to the stop once released, or home once the pallet it
+  /// waited behind has left.
+  void follow_release();
+  /// The pallet the loader set its last boxes on is the one to come behind the next stop: it
+  /// moves up, and the loader waits where it stands.
+  bool waits_in_place() const;
+  /// Waiting for a release where it stands: no path to follow, nothing to plan.
+  bool stands_for_release() const { return waiting_for_release_ && !release_wait_home_; }
   geometry::Pose2 goal_for(PlanPurpose purpose) const;
   void report(TaskReport::Kind kind, const std::string& area, const std::string& detail = {});
   /// Reports how the order ended, forgets it and asks for the way home.
@@ -189,6 +201,12 @@ class TaskExecutor {
   bool have_path_ = false;
   bool blocked_ = false;
   bool waiting_for_plan_ = false;
+  /// A loader whose next stop is not released yet (TaskOrder::released): it stands, or drives
+  /// home to wait there (release_wait_home_).
+  bool waiting_for_release_ = false;
+  bool release_wait_home_ = false;
+  /// The pallet the loader set its last boxes on (TaskOrder::pallet), 0 before the first.
+  int loaded_pallet_ = 0;
   double last_request_time_ = 0.0;
   double now_ = 0.0;
   double last_time_ = std::numeric_limits<double>::quiet_NaN();

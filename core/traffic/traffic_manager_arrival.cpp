@@ -74,7 +74,9 @@ std::vector<int> TrafficManager::arrival_blockers(const Robot& robot) const {
   std::vector<int> out;
   const auto& area = robot.arrival_area;
   for (const auto& [id, other] : robots_) {
-    if (id == robot.id) continue;
+    // Its partner stands where the two work together (set_partners): the picker arrives beside
+    // the transporter's pallet.
+    if (id == robot.id || partnered(robot.id, id)) continue;
     const bool waits_for_it =
         other.wait_since >= 0.0 && std::binary_search(other.blocked_by.begin(), other.blocked_by.end(), robot.id);
     if (waits_for_it && !other.frozen) continue;

@@ -18,7 +18,7 @@ using nlohmann::json;
 TEST(Loader, APickerFillsTwoStackersPalletsAndBothGoToExpedition) {
   FleetHarness fleet(97, 10.0, "plant");
   fleet.use_config(fleet::test::source_dir() + "/config/sites/plant.yaml");
-  fleet.start_server();
+  fleet.start_server({"--set", "server.loader_pallet_boxes=3"});
   for (const char* robot : {"pk1", "st1", "st2"}) fleet.start_agent(robot);
   ASSERT_TRUE(fleet.wait_for_robots({"pk1", "st1", "st2"}));
   const std::string dir = ::testing::TempDir();

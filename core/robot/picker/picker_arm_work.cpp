@@ -1,5 +1,6 @@
 #include "robot/picker/picker_arm_work.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -55,9 +56,19 @@ std::vector<Eigen::Vector2d> PickerArmWork::base_moves(double box_x) const {
 }
 
 std::string PickerArmWork::tray_refusal(int quantity, const std::vector<map::BoxStock>& tray) const {
-  if (tray.size() + static_cast<std::size_t>(quantity) <= layout_.tray.size()) return {};
-  return "the tray holds " + std::to_string(layout_.tray.size()) + " boxes, " + std::to_string(tray.size()) +
-         " on it, " + std::to_string(quantity) + " more asked for";
+  const std::size_t holds = layout_.tray.size() * static_cast<std::size_t>(std::max(layout_.tray_layers, 1));
+  if (tray.size() + static_cast<std::size_t>(quantity) <= holds) return {};
+  return "the tray holds " + std::to_string(holds) + " boxes, " + std::to_string(tray.size()) + " on it, " +
+         std::to_string(quantity) + " more asked for";
+}
+
+Eigen::Vector3d PickerArmWork::tray_bottom(const std::vector<map::BoxStock>& tray, std::size_t index) const {
+  const std::size_t slots = layout_.tray.size();
+  Eigen::Vector3d bottom = layout_.tray.at(index % slots);
+  for (std::size_t below = index % slots; below < index && below < tray.size(); below += slots) {
+    bottom.z() += tray[below].height;
+  }
+  return bottom;
 }
 
 bool PickerArmWork::pick_box(const map::BoxStock& stock, const perception::BoxMarker& truth,
@@ -88,7 +99,7 @@ bool PickerArmWork::pick_box(const map::BoxStock& stock, const perception::BoxMa
   }
   work.duration += at.norm() / layout_.slide_speed;  // back beside the pallet's middle
   const arm::MotionPlan stowed =
-      planner_.plan_drop(box_of(stock), {tray_bottom(tray.size()), 0.0}, picked.plate_yaw_on_box);
+      planner_.plan_drop(box_of(stock), {tray_bottom(tray, tray.size()), 0.0}, picked.plate_yaw_on_box);
   if (!stowed.ok) {
     work.reason = which + " onto the tray: " + stowed.reason;
     return false;
@@ -124,7 +135,7 @@ ArmWork PickerArmWork::drop(const std::vector<map::BoxStock>& tray, int on_palle
   for (std::size_t i = tray.size(); i-- > 0;) {
     const map::BoxStock& stock = tray[i];
     const std::string which = "box " + std::to_string(i + 1) + " of " + stock.item;
-    const Eigen::Vector3d top = tray_bottom(i) + Eigen::Vector3d(0.0, 0.0, stock.height);
+    const Eigen::Vector3d top = tray_bottom(tray, i) + Eigen::Vector3d(0.0, 0.0, stock.height);
     const arm::MotionPlan taken = planner_.plan_pick({box_of(stock), top, 0.0});
     if (!taken.ok) {
       work.reason = which + " off the tray: " + taken.reason;

@@ -31,10 +31,18 @@ struct PickerArmLayout {
   /// bottom centre, base frame, m. Stacked, they would come too near the arm's base column for
   /// the joint limits of [Picker thesis, Table 10]; so a tour carries as many boxes as it has slots.
   std::vector<Eigen::Vector3d> tray{{-0.25, 0.15, 0.40}, {-0.25, -0.15, 0.40}};
-  /// Where a loader sets boxes on the pallet of the transporter behind it, raised to the tray's
-  /// height, its near edge just behind the base (orders::transporter_pose): the row the arm
-  /// reaches, 0.55 m behind the base's centre, three across (pick-eval's loader deck).
-  std::vector<Eigen::Vector3d> deck{{-0.55, 0.25, 0.40}, {-0.55, -0.25, 0.40}, {-0.55, 0.0, 0.40}};
+  /// Boxes set one on the other at each tray slot: 1 on the base's own tray.
+  int tray_layers = 1;
+  /// Where a loader sets boxes on the pallet of the transporter behind it, its near edge just
+  /// behind the base (orders::transporter_pose): the row the arm reaches, 0.55 m behind the base's
+  /// centre, three across (pick-eval's loader deck), the pallet's top raised to 0.30 m (forks at
+  /// 0.156 m under an EPAL).
+  std::vector<Eigen::Vector3d> deck{{-0.55, 0.25, 0.30}, {-0.55, -0.25, 0.30}, {-0.55, 0.0, 0.30}};
+  /// Layers of the deck row: each box of the next layer is set on the one below it, so a pallet
+  /// takes deck.size() x deck_layers boxes (orders::LoaderLayout::pallet_boxes). Behind the base
+  /// the UR5 sets a box's bottom at 0.2 to 0.6 m within the joint limits of [Picker thesis,
+  /// Table 10]: two layers of the plant's boxes (at most 0.30 m high) on a pallet at 0.30 m.
+  int deck_layers = 2;
 };
 
 /// The arm's time for one stop, or why it cannot work there.
@@ -80,8 +88,9 @@ class PickerArmWork {
   /// `work.reason` set when it could not be.
   bool pick_box(const map::BoxStock& stock, const perception::BoxMarker& truth, std::vector<map::BoxStock>& tray,
                 double& t, ArmWork& work);
-  /// Where the box `index` of the tray stands on it: its slot's bottom centre, base frame.
-  Eigen::Vector3d tray_bottom(std::size_t index) const { return layout_.tray.at(index); }
+  /// Where the box `index` of `tray` stands: its slot's bottom centre (slot index % slots), on
+  /// the boxes set at that slot before it, base frame.
+  Eigen::Vector3d tray_bottom(const std::vector<map::BoxStock>& tray, std::size_t index) const;
 
   arm::PickMotionPlanner planner_;
   perception::DepthMarkerCamera camera_;

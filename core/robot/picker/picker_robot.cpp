@@ -31,6 +31,7 @@ std::unique_ptr<Robot> make_picker(const RobotBuild& build) {
   const std::uint64_t seed = build.seed ^ (build.stream * 0x9e3779b97f4a7c15ULL) ^ 0xa7b0ULL;
   PickerArmLayout deck_layout = config.arm_layout;
   deck_layout.tray = deck_layout.deck;
+  deck_layout.tray_layers = deck_layout.deck_layers;
   auto arm = std::make_unique<PickerArmStops>(make_picker_arm_work(config.box_camera, config.arm_layout, seed),
                                               make_picker_arm_work(config.box_camera, deck_layout, seed ^ 0xdec0ULL));
   return std::make_unique<Forklift>(config.base, build.site, build.home, build.seed, build.stream, std::move(arm));

@@ -20,7 +20,8 @@ struct Plant {
   AreaLedger ledger;
   OrderBook book;
   std::map<std::string, RobotEntry> robots;
-  LoaderDesk desk{{.transporter_fleet = "stackers"}};
+  // Three boxes a pallet: a short list fills more than one.
+  LoaderDesk desk{{.pallet_boxes = 3, .transporter_fleet = "stackers"}};
 
   Plant() {
     std::vector<Place> places;
@@ -98,8 +99,8 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   plant.step();
   EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
 
-  // A stacker takes it: sent to stand behind the picker's first stop; the four boxes do not fit
-  // its pallet, so the next transporter is asked for at once, from the next free PK place.
+  // A stacker takes it: sent to stand behind the picker's first stop. The four boxes do not fit
+  // its pallet, but the next transporter is asked for only once this one leaves.
   plant.robot("stacker1", "stackers");
   ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
   plant.step();
@@ -111,12 +112,9 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
       transporter_pose(picker_stop_pose(rb2, layout.item_standoff), layout.deck_x, layout.pallet_x);
   EXPECT_NEAR(t1.stand->x, expected.x, 1e-9);
   EXPECT_NEAR(t1.stand->y, expected.y, 1e-9);
-  transports = transports_of(plant.book, pick);
-  ASSERT_EQ(transports.size(), 2u);
-  const std::int64_t second = transports[1]->id;
-  EXPECT_EQ(transports[1]->pick_area, "PK4");  // PK1 is promised to the first
+  EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
 
-  // Nothing is released before both stand in place.
+  // Nothing is released before the transporter stands behind the stop.
   RobotEntry& picker = plant.robots.at("picker1");
   picker.last.order_id = pick;
   picker.last.walk_stop = 0;
@@ -141,14 +139,21 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   plant.step();
   EXPECT_EQ(plant.book.find(pick)->released_stops, 2u);
 
-  // The pallet is full: it goes to a free expedition place, and the second stacker moves up.
-  plant.robot("stacker2", "stackers");
-  ASSERT_EQ(plant.book.assign(second, "stacker2", 0.0), TransitionResult::kApplied);
+  // The pallet is full: it goes to a free expedition place, and the next transporter is asked
+  // for, from the next free PK place; the picker has no pallet behind it meanwhile.
   picker.last.boxes_loaded = 3;
-  picker.last.walk_stop = 2;
+  picker.last.walk_stop = -1;
   plant.step();
   EXPECT_EQ(plant.book.find(first)->drop_area, "EX1");
   EXPECT_FALSE(plant.book.find(first)->stand.has_value());
+  EXPECT_EQ(plant.book.find(pick)->pallet, 0);
+  transports = transports_of(plant.book, pick);
+  ASSERT_EQ(transports.size(), 2u);
+  const std::int64_t second = transports[1]->id;
+  EXPECT_EQ(transports[1]->pick_area, "PK4");  // PK1 is promised to the first
+  plant.robot("stacker2", "stackers");
+  ASSERT_EQ(plant.book.assign(second, "stacker2", 0.0), TransitionResult::kApplied);
+  plant.step();
   ASSERT_TRUE(plant.book.find(second)->stand.has_value());
   EXPECT_EQ(plant.book.find(pick)->released_stops, 2u);
   plant.holds_at_stand(*plant.book.find(second));
@@ -226,6 +231,7 @@ TEST(LoaderDesk, IntakeMakesOneLoaderWalkOrRefusesWithoutAStackerFleet) {
                   .reject_when_busy = false,
                   .max_pickable_mass = max_pickable_mass(config),
                   .loader_fleet = loader_fleet(config),
+                  .loader_pallet_boxes = 3,
                   .place_distance = {}};
   model::OrderRequest request;
   request.request_id = "r1";

@@ -64,7 +64,7 @@ TEST(LoaderWalk, TransporterStandsFacingAwayWithItsPalletWhereTheArmReachesBehin
 
 TEST(LoaderJob, APickerFillsOneTransporterTheNextMovesUpAndBothDeliver) {
   LoaderJob job({line("A", 2), line("B", 3), line("C", 2)}, 5, "pk1");
-  EXPECT_EQ(of(job), (std::vector<LoaderInstruction>{{"pk1", LoaderTask::kGoToStop, 0, 0}}));
+  EXPECT_EQ(of(job), (std::vector<LoaderInstruction>{{"pk1", LoaderTask::kWait, 0, 0}}));
   EXPECT_TRUE(job.wants_transporter());
   job.add_transporter("st1");
   EXPECT_TRUE(job.wants_transporter()) << "7 boxes left, 5 on a pallet: the next is asked for early";
@@ -73,12 +73,13 @@ TEST(LoaderJob, APickerFillsOneTransporterTheNextMovesUpAndBothDeliver) {
   EXPECT_EQ(for_robot(job, "st1"), (LoaderInstruction{"st1", LoaderTask::kFollow, 0, 0}));
   EXPECT_EQ(for_robot(job, "st2").task, LoaderTask::kWaitBehind);
 
-  job.picker_at("pk1", 0);
-  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kGoToStop) << "no box before the pallet stands behind it";
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait) << "not to the stop before the pallet stands behind it";
   job.transporter_in_place("st1", 0);
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 0, 0}));
+  job.picker_at("pk1", 0);
   EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kLoad, 0, 2}));
   job.loaded(0, 2);
-  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 1, 0}));
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kWait, 1, 0})) << "the pallet moves up first";
   EXPECT_EQ(for_robot(job, "st1"), (LoaderInstruction{"st1", LoaderTask::kFollow, 1, 0}));
   job.picker_at("pk1", 1);
   job.transporter_in_place("st1", 1);
@@ -87,10 +88,11 @@ TEST(LoaderJob, APickerFillsOneTransporterTheNextMovesUpAndBothDeliver) {
   EXPECT_EQ(for_robot(job, "st1"), (LoaderInstruction{"st1", LoaderTask::kDeliver, -1, 5}));
   EXPECT_EQ(for_robot(job, "st2"), (LoaderInstruction{"st2", LoaderTask::kFollow, 2, 0}));
   EXPECT_FALSE(job.wants_transporter());
-  job.picker_at("pk1", 2);
   job.transporter_in_place("st1", 2);  // not the current transporter any more: no effect
-  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kGoToStop);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait);
   job.transporter_in_place("st2", 2);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kGoToStop);
+  job.picker_at("pk1", 2);
   job.loaded(2, 2);
   EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kRelease);
   EXPECT_EQ(for_robot(job, "st2"), (LoaderInstruction{"st2", LoaderTask::kDeliver, -1, 2}));
@@ -111,9 +113,9 @@ TEST(LoaderJob, TheSecondStopOfOnePlaceNeedsNoDrivingButAFreshPallet) {
   job.picker_at("pk1", 0);
   job.transporter_in_place("st1", 0);
   job.loaded(0, 4);
-  // 3 more do not fit beside 4: st1 leaves, st2 moves up; the picker stays where it stands.
+  // 3 more do not fit beside 4: st1 leaves, st2 moves up; the picker waits for it.
   EXPECT_EQ(for_robot(job, "st1").task, LoaderTask::kDeliver);
-  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 1, 0}));
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kWait, 1, 0}));
   job.transporter_in_place("st2", 1);
   EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kLoad, 1, 3}));
 }
@@ -133,7 +135,7 @@ TEST(LoaderJob, ALostTransporterKeepsItsBoxesOnItsPalletAndAnotherTakesOver) {
   EXPECT_EQ(job.runs()[0].boxes, 2) << "the boxes belong to its pallet";
 
   job.add_transporter("st3");
-  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 1, 0}));
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kWait, 1, 0}));
   EXPECT_EQ(for_robot(job, "st3"), (LoaderInstruction{"st3", LoaderTask::kFollow, 1, 0}));
   job.picker_at("pk1", 1);
   job.transporter_in_place("st3", 1);
@@ -172,7 +174,7 @@ TEST(LoaderJob, AStopTheArmCannotDoIsLeftAndTheWalkGoesOn) {
   job.loaded(0, 1);
   job.stop_failed(0);
   EXPECT_EQ(job.next_stop(), 1);
-  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 1, 0}));
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kWait, 1, 0}));
   EXPECT_EQ(job.boxes_loaded(), 1);
   EXPECT_EQ(job.boxes_asked(), 3);
 }

@@ -38,6 +38,36 @@ TEST(PickerArmWork, PicksALinesBoxesOntoTheTrayAndDropsThemOnThePallet) {
   std::printf("per box: pick and stow %.1f s, unstow and drop %.1f s\n", per_box, dropped.duration / 2.0);
 }
 
+TEST(PickerArmWork, ALoaderStacksTwoLayersOnThePalletBehindIt) {
+  // The deck as the loader's tray: the row behind the base, each box set on the one below it.
+  PickerArmLayout layout;
+  layout.tray = layout.deck;
+  layout.tray_layers = layout.deck_layers;
+  perception::DepthMarkerCameraParams camera;
+  camera.mount = {0.25, 0.20, 1.50};
+  PickerArmWork work(arm::PickMotionPlanner(arm::Ur5{}, arm::VacuumGripper{}), camera, layout, 3);
+  // The plant's tallest box the gripper lifts (A4, 0.30 m, is too heavy for it).
+  const map::BoxStock stock{"A1", 12, 0.30, 0.30, 0.25, 3.0};
+  std::vector<map::BoxStock> deck;
+  std::vector<double> per_stop;
+  for (int stop = 0; stop < layout.deck_layers; ++stop) {
+    const ArmWork loaded = work.pick(stock, 3, deck);
+    ASSERT_TRUE(loaded.ok) << "layer " << stop + 1 << ": " << loaded.reason;
+    per_stop.push_back(loaded.duration);
+  }
+  EXPECT_EQ(deck.size(), 6u);
+  const ArmWork full = work.pick(stock, 1, deck);
+  EXPECT_FALSE(full.ok);
+  EXPECT_EQ(full.reason, "the tray holds 6 boxes, 6 on it, 1 more asked for");
+  std::printf("three boxes on layer 1, 2: %.1f s, %.1f s\n", per_stop[0], per_stop[1]);
+  // A third layer is out of the arm's reach.
+  layout.tray_layers = 3;
+  PickerArmWork higher(arm::PickMotionPlanner(arm::Ur5{}, arm::VacuumGripper{}), camera, layout, 3);
+  const ArmWork third = higher.pick(stock, 3, deck);
+  EXPECT_FALSE(third.ok);
+  EXPECT_NE(third.reason.find("outside"), std::string::npos) << third.reason;
+}
+
 TEST(PickerArmWork, TheThousandthBoxTakesAsLongAsTheFirst) {
   // One arm for a robot's life: its camera's clock runs on from stop to stop.
   PickerArmWork work = make_work();

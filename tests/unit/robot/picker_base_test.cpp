@@ -117,6 +117,7 @@ TEST(PickerBase, AsALoaderSetsEachReleasedStopsBoxesBehindItAndEndsAtTheLastPlac
   walk.items = {{"RB1", site.find_area("RB1")->pose, "A1", 2}, {"RB3", site.find_area("RB3")->pose, "A3", 1}};
   walk.loader = true;
   walk.released = 1;
+  walk.pallet = 1;
   std::string why;
   ASSERT_TRUE(picker->submit(walk, &why)) << why;
   bool done = false, waited = false, updated = false;
@@ -127,16 +128,16 @@ TEST(PickerBase, AsALoaderSetsEachReleasedStopsBoxesBehindItAndEndsAtTheLastPlac
     picker->step();
     const std::string state = picker->status().task_state;
     states.insert(state);
-    const bool at_second = geometry::distance(picker->status().truth.position(), {41.2, 10.6}) < 0.15;
-    if (state == "PICK_ITEMS" && picker->status().detail == "waiting for its transporter behind it") {
-      ASSERT_TRUE(at_second) << "it waits at the second place, not the first";
+    const bool at_first = geometry::distance(picker->status().truth.position(), {34.2, 10.6}) < 0.15;
+    if (state == "WAITING" && picking_s > 0.0 && !updated) {
+      // Its pallet moves up behind the second stop: the loader stands where it is meanwhile.
+      ASSERT_TRUE(at_first) << "it waits at the first place, not at the second";
       waited = true;
       waiting_s += picker->step_period();
-      if (waiting_s > 10.0 && !updated) {
-        // Its transporter moved up behind it: the update releases the second stop, on a new pallet.
+      if (waiting_s > 10.0) {
+        // The pallet stands behind the second stop: the update releases it.
         task::TaskOrder update = walk;
         update.released = 2;
-        update.pallet = 1;
         ASSERT_TRUE(picker->submit(update, &why)) << why;
         updated = true;
       }

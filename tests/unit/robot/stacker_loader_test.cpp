@@ -89,8 +89,9 @@ TEST(Stacker, MovesUpStraightBackBehindAPickerThatMovedOn) {
 }
 
 // A loader's transporter: it lifts a pallet with no drop place named, stands with it behind the
-// picker at RB2 (its route, then reversing in), moves up behind RB1 straight back, and takes the
-// pallet to EX1 once the order names it, each step an update of the one transport.
+// picker at RB2 (its route, then reversing in), moves up behind RB1 straight back and behind RB3
+// straight ahead, and takes the pallet to EX1 once the order names it, each step an update of the
+// one transport.
 TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlace) {
   PlantStacker plant;
   auto stacker = plant.make("PT2");
@@ -118,7 +119,8 @@ TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlac
   ASSERT_TRUE(run_until(holding, 200.0)) << stacker->status().task_state << " (" << stacker->status().detail << ")";
   EXPECT_EQ(lifted, plant.load_at.at("FG5"));
 
-  for (const std::string place : {"RB2", "RB1"}) {
+  // RB2, then RB1 straight back, then RB3 straight ahead (the walk down the aisle's lane).
+  for (const std::string place : {"RB2", "RB1", "RB3"}) {
     task::TaskOrder update = order;
     update.stand = behind(place);
     ASSERT_TRUE(stacker->submit(update, &why)) << why;
@@ -130,6 +132,9 @@ TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlac
     EXPECT_EQ(stacker->status().carried_load, lifted) << place;
     if (place == "RB1") {
       EXPECT_LT(stacker->status().time - start, 15.0) << "moved up straight back";
+    }
+    if (place == "RB3") {
+      EXPECT_LT(stacker->status().time - start, 25.0) << "moved up straight ahead, 7 m, not round the loop";
     }
   }
   task::TaskOrder drop = order;

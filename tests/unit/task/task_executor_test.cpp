@@ -189,3 +189,57 @@ TEST(TaskExecutor, FaultStopsAndReportsTheReason) {
 
 }  // namespace
 }  // namespace fleet::task
+
+namespace fleet::task {
+namespace {
+
+using namespace test_world;
+
+TEST(TaskExecutor, ALoaderDrivesOnlyToReleasedStopsAndWaitsForANewPalletAtHome) {
+  World w;
+  TaskOrder walk;
+  walk.order_id = "w1";
+  walk.kind = orders::OrderKind::kPick;
+  walk.loader = true;
+  walk.released = 0;
+  walk.items = {{"A1", kA1, "I1", 3}, {"A2", kA2, "I2", 3}};
+  ASSERT_TRUE(w.exec.submit(walk));
+  // Nothing released: it waits at home, where it is.
+  w.run_until([] { return false; }, 5.0);
+  EXPECT_EQ(w.exec.state(), State::kWaiting);
+  EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.05);
+
+  // Its transporter stands behind A1's stop: the first stop is released.
+  TaskOrder update = walk;
+  update.released = 1;
+  update.pallet = 7;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  const geometry::Pose2 first_stop = w.exec.item_pose(kA1);
+  EXPECT_LT(geometry::distance(w.truth.position(), first_stop.position()), 0.1);
+  w.exec.items_done(true);
+  // The same pallet moves up behind A2's stop: the loader stands where it is meanwhile.
+  w.run_until([] { return false; }, 5.0);
+  EXPECT_EQ(w.exec.state(), State::kWaiting);
+  EXPECT_LT(geometry::distance(w.truth.position(), first_stop.position()), 0.1);
+
+  // That pallet left full and a new one comes: the loader makes way, home.
+  update.pallet = 8;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return geometry::distance(w.truth.position(), kHome.position()) < 0.05; }, 60.0));
+  w.run_until([] { return false; }, 3.0);
+  EXPECT_EQ(w.exec.state(), State::kWaiting) << "it waits at home, not done";
+
+  // The new pallet stands behind A2's stop: on to it, and the walk ends there.
+  update.released = 2;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
+  w.exec.items_done(true);
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0));
+  EXPECT_EQ(w.kinds(), (std::vector<Kind>{Kind::kAccepted, Kind::kDropped, Kind::kHomeReached}));
+  EXPECT_GT(w.t, 20.0) << "home, A1, home, A2, home at a walk's pace";
+}
+
+}  // namespace
+}  // namespace fleet::task

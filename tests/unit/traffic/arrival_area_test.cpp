@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 
 #include "test_grants.hpp"
 #include "test_graphs.hpp"
@@ -39,6 +41,34 @@ struct TwoLanes {
 // Position along the westbound lane after `progress` metres from x = 10.
 double west_x(double progress) {
   return 10.0 - progress;
+}
+
+// A loader's picker arrives at its stop beside the pallet of its transporter, whose body is in
+// the area its arrival sweeps: partners (set_partners) do not wait for each other there, where
+// any other robot would.
+TEST(ArrivalArea, APartnerInTheAreaDoesNotHoldTheArrivalUp) {
+  std::map<bool, bool> arrived;
+  for (const bool partnered : {false, true}) {
+    TwoLanes lanes;
+    TrafficManager m(lanes.b.graph(), lanes.configuration());
+    // Robot 2 stands on the westbound lane beside the turn, holding what its body covers.
+    const std::vector<int> standing(lanes.west.begin() + 38, lanes.west.begin() + 44);
+    ASSERT_EQ(m.submit_route({2, 1, standing}, 0.0), SubmitStatus::kAccepted);
+    if (partnered) m.set_partners({{2, 1}});
+    const std::vector<int> in = lanes.east_until(6.0);
+    ASSERT_EQ(m.submit_route({1, 2, in}, 0.0), SubmitStatus::kAccepted);
+    m.set_arrival_area(1, in.back(), kTurn);
+    double east = 0.0;
+    for (double t = 0.1; t < 20.0; t += 0.1) {
+      const Grant* g1 = grant_of(m.update(t), 1);
+      ASSERT_NE(g1, nullptr);
+      east = std::min(east + 0.1, g1->granted_distance);
+      m.report_progress({1, 2, east, {}}, t);
+    }
+    arrived[partnered] = m.holds_arrival(1) && std::abs(east - 6.0) < 1e-6;
+  }
+  EXPECT_FALSE(arrived[false]) << "a robot beside the turn holds it up";
+  EXPECT_TRUE(arrived[true]) << "its partner does not";
 }
 
 TEST(ArrivalArea, TheLastPointIsGrantedOnlyOnceNobodyDrivesInTheAreaTheTurnSweeps) {
