@@ -244,6 +244,12 @@ bool FleetRun::poll() {
   });
   state_reader_->take_data([&](model::RobotState&& state) {
     progress_.note_state(state.robot_id, state.task_state, state.sim_time);
+    // A loader waiting for its transporter waits for its partner, which the watch follows.
+    if (state.detail == model::kDetailWaitsForTransporter) {
+      waits_for_partner_.insert(state.robot_id);
+    } else {
+      waits_for_partner_.erase(state.robot_id);
+    }
     localization_.note_estimate(state.robot_id, state.pose, state.sim_time);
     if (state.control_period > 0.0) {
       control_lag_[state.robot_id] = {state.robot_id, state.control_lag_p50, state.control_lag_p99,
@@ -267,7 +273,8 @@ bool FleetRun::poll() {
     localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);
     report_far_off_estimates();
     if (aisle_share_) aisle_share_->note(truth.robot_id, truth.pose.position(), truth.sim_time);
-    if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time)) {
+    const std::string& task = waits_for_partner_.contains(truth.robot_id) ? std::string() : task_of_[truth.robot_id];
+    if (progress_.update(truth.robot_id, truth.pose, task, truth.sim_time)) {
       const auto& d = progress_.deadlocks().back();
       std::string waits;
       for (const auto& other : d.waiting_for) waits += (waits.empty() ? "; it waits for " : ", ") + other;
@@ -418,10 +425,10 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                     "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
               : std::string())
       << (options.standby ? "  standby: server-2 mirrors server-1 and takes over when it is gone" +
-                                std::string(options.http_port > 0 ? " (its web view on port " +
-                                                                        std::to_string(options.http_port + 1) +
-                                                                        ", read-only until then)"
-                                                                  : "") +
+                                std::string(options.http_port > 0
+                                                ? " (its web view on port " + std::to_string(options.http_port + 1) +
+                                                      ", read-only until then)"
+                                                : "") +
                                 "; fleetctl --domain " + std::to_string(domain) + " servers\n"
                           : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"

@@ -148,6 +148,10 @@ struct OrderHandover : OrderInfo {
   OrderHandover(OrderInfo info) : OrderInfo(std::move(info)) {}  // implicit: read back from the wire as one
 };
 
+/// RobotState::detail of a loader waiting, by design, for its transporter to stand behind its
+/// next stop (docs/loader.md): it waits for its partner, not for traffic.
+inline constexpr const char* kDetailWaitsForTransporter = "waiting for its transporter behind the next stop";
+
 struct RobotState {
   std::string robot_id;
   std::string fleet_id;

@@ -1,6 +1,7 @@
 #include "orders/auto_orders.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "orders/dispatch.hpp"
 #include "orders/packing_chain.hpp"
@@ -47,8 +48,25 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
   const bool loader = std::holds_alternative<bool>(as_loader) && std::get<bool>(as_loader);
   // A loader walk fills a few pallets; a tray tour carries what the tray holds.
   const int boxes = loader ? kLoaderWalkBoxes : kTourBoxes;
-  const auto lines =
-      choose_auto_pick_list(intake.boxes_left(), place_poses(view.site), view.max_pickable_mass, boxes, rng_);
+  const auto poses = place_poses(view.site);
+  auto stock = intake.boxes_left();
+  if (loader) {
+    // One loader pair to a rack row: a second pair in the same one-way lane could not pass the
+    // first, and neither could its transporter.
+    std::vector<double> rows;
+    for (const Order* open : view.book.open_orders()) {
+      if (!open->loader || open->kind != OrderKind::kPick) continue;
+      for (const PickLine& line : parse_pick_lines(open->lines, "order " + std::to_string(open->id))) {
+        if (const auto pose = poses.find(line.place); pose != poses.end()) rows.push_back(pose->second.y);
+      }
+    }
+    std::erase_if(stock, [&](const auto& entry) {
+      const auto pose = poses.find(entry.first);
+      return pose != poses.end() &&
+             std::any_of(rows.begin(), rows.end(), [&](double y) { return std::abs(pose->second.y - y) < 0.05; });
+    });
+  }
+  const auto lines = choose_auto_pick_list(stock, poses, view.max_pickable_mass, boxes, rng_);
   if (!lines) return {};
   if (loader) return {intake.loader_order(*lines, request)};
   request.drop_area = view.site.packing->stations.front();

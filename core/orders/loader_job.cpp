@@ -10,26 +10,47 @@
 
 namespace fleet::orders {
 
-std::vector<PickLine> loader_walk(const std::vector<PickLine>& lines, int capacity,
-                                  const std::map<std::string, geometry::Pose2>& poses, const PlaceDistance& distance) {
-  std::vector<PickLine> left;
-  for (const PickTour& tour : plan_tours(lines, capacity, poses))
-    left.insert(left.end(), tour.lines.begin(), tour.lines.end());
+namespace {
+
+/// From `left[first]` always on to the nearest by `distance`; `length` is the walk's road length.
+std::vector<PickLine> nearest_next_walk(std::vector<PickLine> left, std::size_t first, const PlaceDistance& distance,
+                                        double& length) {
   std::vector<PickLine> walk;
   walk.reserve(left.size());
+  length = 0.0;
+  std::size_t next = first;
   while (!left.empty()) {
-    std::size_t next = 0;
     if (!walk.empty()) {
       double nearest = std::numeric_limits<double>::infinity();
       for (std::size_t k = 0; k < left.size(); ++k) {
         const double d = left[k].place == walk.back().place ? 0.0 : distance(walk.back().place, left[k].place);
         if (d < nearest) nearest = d, next = k;
       }
+      length += nearest;
     }
     walk.push_back(left[next]);
     left.erase(left.begin() + static_cast<std::ptrdiff_t>(next));
   }
   return walk;
+}
+
+}  // namespace
+
+std::vector<PickLine> loader_walk(const std::vector<PickLine>& lines, int capacity,
+                                  const std::map<std::string, geometry::Pose2>& poses, const PlaceDistance& distance) {
+  std::vector<PickLine> stops;
+  for (const PickTour& tour : plan_tours(lines, capacity, poses))
+    stops.insert(stops.end(), tour.lines.begin(), tour.lines.end());
+  // The shortest of the walks from each start: on a one-way lane that starts at its upstream end,
+  // so that the walk goes down the lane (the first in aisle order when they are as long).
+  std::vector<PickLine> best;
+  double best_length = std::numeric_limits<double>::infinity();
+  for (std::size_t first = 0; first < stops.size(); ++first) {
+    double length = 0.0;
+    std::vector<PickLine> walk = nearest_next_walk(stops, first, distance, length);
+    if (best.empty() || length < best_length - 1e-9) best = std::move(walk), best_length = length;
+  }
+  return best;
 }
 
 geometry::Pose2 transporter_pose(const geometry::Pose2& picker, double deck_x, double pallet_x) {

@@ -20,8 +20,9 @@ using PlaceDistance = std::function<double(const std::string& from, const std::s
 
 /// The lines as one walk, as the picker visits them: merged by place and cut where a pallet of
 /// `capacity` boxes fills in aisle order (plan_tours: no line holds more than a pallet), then from
-/// the first place in aisle order always on to the nearest by `distance`. A walk, not tours: a
-/// loader never goes back to a station between its boxes.
+/// a first stop always on to the nearest by `distance`: of the walks from each first stop, the
+/// shortest by road (on a one-way lane, the one down the lane), the first in aisle order among
+/// equals. A walk, not tours: a loader never goes back to a station between its boxes.
 std::vector<PickLine> loader_walk(const std::vector<PickLine>& lines, int capacity,
                                   const std::map<std::string, geometry::Pose2>& poses, const PlaceDistance& distance);
 

@@ -144,6 +144,8 @@ class TaskExecutor {
   /// The arm finished what PICK_ITEMS or DROP_ITEMS asked of it (the current line's boxes, or
   /// every box of the tour), or could not (`reason`). Ignored in any other state.
   void items_done(bool ok, const std::string& reason = {});
+  /// A loader standing or going home until its next stop is released (TaskOrder::released).
+  bool waits_for_release() const { return waiting_for_release_; }
   /// The line PICK_ITEMS works on (index into the order's items).
   std::size_t item_line() const { return item_line_; }
   /// Where the robot stands to pick or drop items at `place`: side-on, the place on its left.

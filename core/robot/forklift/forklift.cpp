@@ -453,6 +453,9 @@ void Forklift::collect_reports() {
     }
     if (tr.to_phase != tr.from_phase) reports_.phase_changed(order_id().value_or(""), tr.to_phase);
   }
+  if (executor_.waits_for_release() && executor_.state() == task::State::kWaiting) {
+    reports_.set_detail(model::kDetailWaitsForTransporter);
+  }
   for (const task::TaskReport& r : executor_.take_reports()) {
     using K = task::TaskReport::Kind;
     switch (r.kind) {

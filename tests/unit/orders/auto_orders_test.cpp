@@ -111,6 +111,37 @@ TEST(AutoOrders, ASiteWithoutPackingStationsGetsNoPickTours) {
   EXPECT_TRUE(source.pick_tours(yard.view()).empty());
 }
 
+// Loader walks keep to a rack row each: a second pair in the row of an open walk could not pass
+// the first on its one-way lane.
+TEST(AutoOrders, ALoaderWalkTakesARackRowNoOtherOpenWalkWorks) {
+  Yard yard;
+  map::LoadingArea r3;
+  r3.id = "R3";
+  r3.pose = {6.0, 5.0, 0.0};  // a second row
+  r3.boxes = map::BoxStock{"BY", 5};
+  yard.site.loading_areas.push_back(r3);
+  yard.names.areas.push_back("R3");
+  yard.names.robots.push_back("pk2");
+  yard.names.fleet_of_robot["pk2"] = "pickers";
+  yard.free_robots = {"pk1", "pk2"};
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    yard.book = OrderBook();
+    AutoOrders source(true, seed, "loader");
+    IntakeView view = yard.view();
+    view.loader_fleet = "stackers";
+    const auto first = source.pick_tours(view);
+    ASSERT_EQ(first.size(), 1u);
+    ASSERT_TRUE(first[0].loader);
+    const bool in_r3 = first[0].pick_area == "R3";
+    yard.book.create(first[0], 0.0);
+    const auto second = source.pick_tours(view);
+    ASSERT_EQ(second.size(), 1u) << "seed " << seed;
+    for (const PickLine& line : parse_pick_lines(second[0].lines, "second")) {
+      EXPECT_EQ(line.place == "R3", !in_r3) << "seed " << seed << ": " << second[0].lines;
+    }
+  }
+}
+
 TEST(AutoOrders, TheSameSeedDrawsTheSameOrders) {
   Yard yard;
   yard.free_robots = {"fl1", "pk1"};

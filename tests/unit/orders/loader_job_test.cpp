@@ -50,6 +50,17 @@ TEST(LoaderWalk, StartsInAisleOrderGoesOnToTheNearestAndCutsLinesToAPallet) {
   ASSERT_EQ(back.size(), 3u);
   EXPECT_EQ(back[1].place, "C");
   EXPECT_EQ(back[2].place, "B");
+
+  // A one-way lane from D down to A: back up it is a loop of 60 m. The walk starts at D.
+  const auto down = loader_walk({line("A", 1), line("C", 1), line("D", 1)}, 5, kPoses,
+                                [](const std::string& from, const std::string& to) {
+                                  const double d = along(from, to);
+                                  return from > to ? d : 60.0 - d;
+                                });
+  ASSERT_EQ(down.size(), 3u);
+  EXPECT_EQ(down[0].place, "D");
+  EXPECT_EQ(down[1].place, "C");
+  EXPECT_EQ(down[2].place, "A");
 }
 
 TEST(LoaderWalk, TransporterStandsFacingAwayWithItsPalletWhereTheArmReachesBehindThePicker) {
