@@ -244,11 +244,13 @@ bool FleetRun::poll() {
   });
   state_reader_->take_data([&](model::RobotState&& state) {
     progress_.note_state(state.robot_id, state.task_state, state.sim_time);
-    // A loader waiting for its transporter waits for its partner, which the watch follows.
-    if (state.detail == model::kDetailWaitsForTransporter) {
-      waits_for_partner_.insert(state.robot_id);
+    // Standing by design: a loader waiting for its transporter (whose watch goes on), an arm at
+    // work, a stacker holding its pallet where its order has it stand.
+    if (state.detail == model::kDetailWaitsForTransporter || state.detail.starts_with("arm ") ||
+        state.task_state == "HOLDING") {
+      works_standing_.insert(state.robot_id);
     } else {
-      waits_for_partner_.erase(state.robot_id);
+      works_standing_.erase(state.robot_id);
     }
     localization_.note_estimate(state.robot_id, state.pose, state.sim_time);
     if (state.control_period > 0.0) {
@@ -273,8 +275,8 @@ bool FleetRun::poll() {
     localization_.note_truth(truth.robot_id, truth.pose, truth.sim_time);
     report_far_off_estimates();
     if (aisle_share_) aisle_share_->note(truth.robot_id, truth.pose.position(), truth.sim_time);
-    const std::string& task = waits_for_partner_.contains(truth.robot_id) ? std::string() : task_of_[truth.robot_id];
-    if (progress_.update(truth.robot_id, truth.pose, task, truth.sim_time)) {
+    if (progress_.update(truth.robot_id, truth.pose, task_of_[truth.robot_id], truth.sim_time,
+                         works_standing_.contains(truth.robot_id))) {
       const auto& d = progress_.deadlocks().back();
       std::string waits;
       for (const auto& other : d.waiting_for) waits += (waits.empty() ? "; it waits for " : ", ") + other;

@@ -169,7 +169,7 @@ class FleetRun {
   std::map<dds_instance_handle_t, double> grant_writers_;
   monitor::ProgressMonitor progress_;
   std::map<std::string, std::string> task_of_;  ///< robot -> its open order and phase
-  std::set<std::string> waits_for_partner_;     ///< loaders waiting for their transporter
+  std::set<std::string> works_standing_;        ///< robots standing by design (ProgressMonitor::update)
   std::map<std::int64_t, model::OrderInfo> orders_;
   monitor::CollisionMonitor collisions_;
   monitor::LocalizationWatch localization_;

@@ -14,7 +14,7 @@ ProgressMonitor::ProgressMonitor(double timeout_s, double move_threshold, double
       phase_bound_s_(phase_bound_s) {}
 
 bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task,
-                             double t) {
+                             double t, bool working) {
   auto [it, fresh] = watches_.try_emplace(robot_id);
   Watch& w = it->second;
   if (fresh || task != w.task || task.empty()) {
@@ -36,7 +36,7 @@ bool ProgressMonitor::update(const std::string& robot_id, const geometry::Pose2&
   // Moving about without getting anywhere: one phase of its order for longer than any takes.
   if (!task.empty() && !w.task_reported && t - w.task_since >= phase_bound_s_) return report(w.task_since);
   const bool moved = std::hypot(pose.x - w.anchor.x, pose.y - w.anchor.y) > move_threshold_;
-  if (fresh || moved || task != w.task || task.empty()) {
+  if (fresh || moved || working || task != w.task || task.empty()) {
     w.anchor = pose;
     w.task = task;
     w.since = t;

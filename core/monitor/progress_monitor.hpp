@@ -31,8 +31,11 @@ class ProgressMonitor {
                            double phase_bound_s = 900.0);
 
   /// The robot's true pose at sim time `t`; `task` is its open order and phase, empty when it has
-  /// none. Returns true when this update detected a new deadlock (see deadlocks()).
-  bool update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task, double t);
+  /// none. `working`: it stands by design (an arm at work, a loader's transporter holding its
+  /// pallet, a loader waiting for it): that is progress, though its phase stays bounded. Returns
+  /// true when this update detected a new deadlock (see deadlocks()).
+  bool update(const std::string& robot_id, const geometry::Pose2& pose, const std::string& task, double t,
+              bool working = false);
   /// The robots `robot_id` waits for, from its latest traffic grant; empty when none.
   void note_waiting_for(const std::string& robot_id, std::vector<std::string> robots);
   /// The robot's reported task state, for the longest wait.

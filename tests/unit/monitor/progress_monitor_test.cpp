@@ -71,6 +71,20 @@ TEST(ProgressMonitor, ARobotQueuedBehindRobotsThatMoveWaitsItsTurnUpToTheQueueBo
   EXPECT_DOUBLE_EQ(reported_at, 180.0);
 }
 
+// An arm at work, a transporter holding its pallet behind its picker: standing by design is
+// progress, but the phase stays bounded.
+TEST(ProgressMonitor, StandingByDesignIsProgressUpToThePhaseBound) {
+  ProgressMonitor m(60.0, 0.02, 180.0, 900.0);
+  const geometry::Pose2 stop{41.2, 10.6, 3.14};
+  bool counted = false;
+  for (double t = 0.0; t < 899.0; t += 1.0) counted = m.update("pk1", stop, "8/PICKING", t, true) || counted;
+  EXPECT_FALSE(counted);
+  EXPECT_TRUE(m.update("pk1", stop, "8/PICKING", 900.0, true)) << "one phase for the phase bound";
+  EXPECT_FALSE(m.update("st1", stop, "9/TO_DROP", 0.0, true));
+  EXPECT_FALSE(m.update("st1", stop, "9/TO_DROP", 30.0, false));
+  EXPECT_TRUE(m.update("st1", stop, "9/TO_DROP", 90.0, false)) << "standing without a reason counts again";
+}
+
 TEST(ProgressMonitor, ARobotMovingAboutInOnePhaseForThePhaseBoundIsOneDeadlock) {
   // Pushed back and forth, re-routed round and round: it moves, but its order gets nowhere.
   ProgressMonitor m(60.0, 0.02, 180.0, 900.0);
