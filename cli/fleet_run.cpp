@@ -427,10 +427,10 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                     "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
               : std::string())
       << (options.standby ? "  standby: server-2 mirrors server-1 and takes over when it is gone" +
-                                std::string(options.http_port > 0
-                                                ? " (its web view on port " + std::to_string(options.http_port + 1) +
-                                                      ", read-only until then)"
-                                                : "") +
+                                std::string(options.http_port > 0 ? " (its web view on port " +
+                                                                        std::to_string(options.http_port + 1) +
+                                                                        ", read-only until then)"
+                                                                  : "") +
                                 "; fleetctl --domain " + std::to_string(domain) + " servers\n"
                           : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"

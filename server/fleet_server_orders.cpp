@@ -37,18 +37,17 @@ model::RequestReply FleetServer::execute(const model::OrderRequest& request) {
 }
 
 orders::IntakeView FleetServer::intake_view() const {
-  orders::IntakeView view{
-      .book = book_,
-      .ledger = site_keeper_.state().ledger,
-      .names = known_names(),
-      .site = options_.site,
-      .parked_at = site_keeper_.state().parked_at,
-      .registered = robots_.registered_ids(),
-      .free_robots = {},
-      .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
-      .max_pickable_mass = orders::max_pickable_mass(options_.config),
-      .loader_fleet = orders::loader_fleet(options_.config),
-      .loader_pallet_boxes = static_cast<int>(options_.config.settings.get_int("server.loader_pallet_boxes"))};
+  orders::IntakeView view{.book = book_,
+                          .ledger = site_keeper_.state().ledger,
+                          .names = known_names(),
+                          .site = options_.site,
+                          .parked_at = site_keeper_.state().parked_at,
+                          .registered = robots_.registered_ids(),
+                          .free_robots = {},
+                          .reject_when_busy = options_.config.settings.get_bool("server.reject_when_busy"),
+                          .max_pickable_mass = orders::max_pickable_mass(options_.config),
+                          .loader_fleet = orders::loader_fleet(options_.config),
+                          .loader_pallet_boxes = loader_desk_.layout().pallet_boxes};
   // A loader walk goes on to the nearest place by the pickers' roads.
   for (const auto& fleet : options_.config.fleets) {
     const auto roads = travel_.find(fleet.id);
@@ -57,7 +56,7 @@ orders::IntakeView FleetServer::intake_view() const {
       const auto* a = options_.site.find_area(from);
       const auto* b = options_.site.find_area(to);
       if (a == nullptr || b == nullptr) return std::numeric_limits<double>::infinity();
-      const double standoff = orders::LoaderLayout{}.item_standoff;
+      const double standoff = loader_desk_.layout().item_standoff;
       return roads->second.travel(orders::picker_stop_pose(a->pose, standoff),
                                   orders::picker_stop_pose(b->pose, standoff));
     };

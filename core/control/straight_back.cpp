@@ -59,4 +59,8 @@ bool straight_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal, do
          std::abs(geometry::angle_diff(rear.yaw, goal.yaw)) <= max_yaw;
 }
 
+bool goal_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal) {
+  return from_goal(goal, rear).x < 0.0;
+}
+
 }  // namespace fleet::control

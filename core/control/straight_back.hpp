@@ -47,5 +47,7 @@ bool straight_behind(const geometry::Pose2& rear, const geometry::Pose2& goal, d
 /// The same with the goal ahead of the rear axle on its line.
 bool straight_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal, double max_distance,
                     double max_offset = 0.10, double max_yaw = 0.05);
+/// The goal lies ahead of the rear axle along the goal's line (StraightBack's `forward`).
+bool goal_ahead(const geometry::Pose2& rear, const geometry::Pose2& goal);
 
 }  // namespace fleet::control

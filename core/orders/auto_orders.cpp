@@ -1,7 +1,6 @@
 #include "orders/auto_orders.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "orders/dispatch.hpp"
 #include "orders/packing_chain.hpp"
@@ -53,17 +52,18 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
   if (loader) {
     // One loader pair to a rack row: a second pair in the same one-way lane could not pass the
     // first, and neither could its transporter.
-    std::vector<double> rows;
+    std::vector<geometry::Pose2> worked;
     for (const Order* open : view.book.open_orders()) {
       if (!open->loader || open->kind != OrderKind::kPick) continue;
       for (const PickLine& line : parse_pick_lines(open->lines, "order " + std::to_string(open->id))) {
-        if (const auto pose = poses.find(line.place); pose != poses.end()) rows.push_back(pose->second.y);
+        if (const auto pose = poses.find(line.place); pose != poses.end()) worked.push_back(pose->second);
       }
     }
     std::erase_if(stock, [&](const auto& entry) {
       const auto pose = poses.find(entry.first);
-      return pose != poses.end() &&
-             std::any_of(rows.begin(), rows.end(), [&](double y) { return std::abs(pose->second.y - y) < 0.05; });
+      return pose != poses.end() && std::any_of(worked.begin(), worked.end(), [&](const geometry::Pose2& other) {
+               return same_rack_row(pose->second, other);
+             });
     });
   }
   const auto lines = choose_auto_pick_list(stock, poses, view.max_pickable_mass, boxes, rng_);

@@ -74,6 +74,7 @@ class LoaderDesk {
 
   /// The job of pick order `pick_id`, or null (not a loader order, not assigned yet, or over).
   const LoaderJob* job_of(std::int64_t pick_id) const;
+  const LoaderLayout& layout() const { return layout_; }
   /// The robots that work together now, each transporter to its picker: the one behind the
   /// picker, and one leaving with a full pallet until it has delivered it.
   std::map<std::string, std::string> partners() const;

@@ -178,6 +178,10 @@ std::vector<PickTour> plan_tours(const std::vector<PickLine>& lines, int capacit
   return tours;
 }
 
+bool same_rack_row(const geometry::Pose2& a, const geometry::Pose2& b) {
+  return std::abs(a.y - b.y) < 0.05;
+}
+
 std::optional<std::vector<PickLine>> choose_auto_pick_list(const std::map<std::string, map::BoxStock>& stock,
                                                            const std::map<std::string, geometry::Pose2>& poses,
                                                            double max_box_mass, int capacity, std::mt19937_64& rng) {
@@ -194,10 +198,10 @@ std::optional<std::vector<PickLine>> choose_auto_pick_list(const std::map<std::s
   std::vector<PickLine> lines{take(places[rng() % places.size()], capacity)};
   const int room = capacity - lines.front().quantity;
   if (room > 0) {
-    const double row_y = poses.at(lines.front().place).y;
+    const geometry::Pose2& first = poses.at(lines.front().place);
     std::vector<std::string> same_row;
     for (const auto& place : places) {
-      if (place != lines.front().place && std::abs(poses.at(place).y - row_y) < 0.05) same_row.push_back(place);
+      if (place != lines.front().place && same_rack_row(poses.at(place), first)) same_row.push_back(place);
     }
     if (!same_row.empty()) lines.push_back(take(same_row[rng() % same_row.size()], room));
   }

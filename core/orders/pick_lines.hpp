@@ -50,6 +50,10 @@ double max_pickable_mass(const config::FleetConfig& config);
 /// The site's place poses, for plan_tours.
 std::map<std::string, geometry::Pose2> place_poses(const map::Site& site);
 
+/// Two places of one rack row (one face of a rack along one lane): their poses 5 cm apart or
+/// less across the row.
+bool same_rack_row(const geometry::Pose2& a, const geometry::Pose2& b);
+
 /// Boxes a picker carries on one tour: the two slots of its tray (robot::PickerArmLayout).
 inline constexpr int kTourBoxes = 2;
 /// Boxes a loader sets on one transporter's pallet: the row behind its base the arm reaches,

@@ -127,7 +127,6 @@ bool Stacker::submit(const task::TaskOrder& order, std::string* why) {
   order_ = order;
   stood_at_.reset();
   moving_up_ = event == StackerEvent::kMoveUp;
-  moving_up_ahead_ = false;
   fire(event);
   return true;
 }
@@ -361,8 +360,8 @@ void Stacker::hold() {
   // Along its own line to a stand a few metres ahead (the picker's next stop down the aisle) or
   // behind it; anywhere else by road and a docking.
   const Pose2 goal = rear_axle_at(*order_->stand, config_.body.geometry);
-  moving_up_ahead_ = control::straight_ahead(estimate_, goal, kMoveUpM);
-  moving_up_ = moving_up_ahead_ || control::straight_behind(estimate_, goal, kMoveUpM);
+  moving_up_ =
+      control::straight_ahead(estimate_, goal, kMoveUpM) || control::straight_behind(estimate_, goal, kMoveUpM);
   fire(moving_up_ ? StackerEvent::kStandBack : StackerEvent::kStand);
 }
 

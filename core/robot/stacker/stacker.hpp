@@ -157,7 +157,6 @@ class Stacker : public Robot {
   std::optional<control::DockingLaw> law_;
   std::optional<control::StraightBack> back_;  ///< moving up straight back instead of docking
   bool moving_up_ = false;
-  bool moving_up_ahead_ = false;             ///< moving up forwards: the stand lies ahead on its line
   std::optional<geometry::Pose2> stood_at_;  ///< the order's stand it reached last, holding its load ///< the move
                                              ///< order under way is a move up
   std::optional<perception::StackerCameraDetector> detector_;

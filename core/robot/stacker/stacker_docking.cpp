@@ -163,7 +163,7 @@ void Stacker::start_moving_up() {
   const sim::TricycleGeometry& g = config_.body.geometry;
   const Pose2 target = state_ == StackerState::kStanding ? *order_->stand : order_->drop_area;
   const Pose2 goal = rear_axle_at(target, g);
-  back_.emplace(goal, config_.move_up, g.wheelbase, moving_up_ahead_ && state_ == StackerState::kStanding);
+  back_.emplace(goal, config_.move_up, g.wheelbase, control::goal_ahead(estimate_, goal));
   reports_.set_detail("moving up");
   work_area_ = sweeps_.straight_back(estimate_, goal.position(), goal.yaw);
   // Without traffic control nobody holds the area for it: it goes at once.
@@ -182,7 +182,6 @@ void Stacker::move_up() {
   }
   apply({0.0, body_.state().theta_steer});
   moving_up_ = false;
-  moving_up_ahead_ = false;
   if (state_ == StackerState::kStanding) {
     stood_at_ = order_->stand;
   } else {
