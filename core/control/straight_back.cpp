@@ -39,9 +39,13 @@ sim::TricycleCommand StraightBack::update(const geometry::Pose2& rear, double dt
   // Backwards the lateral error y changes at -v sin(heading error): turning the heading towards
   // +y when the axle is off to the left brings it back onto the line; forwards, away from it.
   const double heading_error = geometry::angle_diff(rear.yaw, goal_.yaw);
-  const double towards = std::asin(std::clamp(params_.lateral_gain * off.y, -0.5, 0.5));
+  const double gain = forward_ ? params_.forward_lateral_gain : params_.lateral_gain;
+  const double towards = std::asin(std::clamp(gain * off.y, -0.5, 0.5));
   const double wanted = forward_ ? -towards : towards;
-  const double yaw_rate = params_.heading_gain * (wanted - heading_error);
+  // The wheel kept within max_steer: a yaw rate beyond what the speed allows would pivot the body
+  // on the spot and swing it past the line as it speeds up.
+  const double most = speed_ * std::tan(params_.max_steer) / wheelbase_;
+  const double yaw_rate = std::clamp(params_.heading_gain * (wanted - heading_error), -most, most);
   return sim::inverse_kinematics({forward_ ? speed_ : -speed_, yaw_rate}, wheelbase_);
 }
 

@@ -11,9 +11,13 @@ namespace fleet::control {
 struct StraightBackParams {
   double max_speed = 0.4;     ///< m/s, backwards (the docking law's fork-in goes at 0.2)
   double acceleration = 0.3;  ///< m/s², speeding up and slowing down
-  double lateral_gain = 1.5;  ///< rad of heading towards the line per metre off it
+  double lateral_gain = 1.5;  ///< rad of heading towards the line per metre off it, backwards
+  /// The same forwards, where the front leads: at most 1 / (rear axle to front) so that the front
+  /// corner does not cross the line before the axle comes onto it (a stand beside a rack face).
+  double forward_lateral_gain = 0.6;
   double heading_gain = 2.0;  ///< 1/s: yaw rate per rad of heading error
   double tolerance = 0.01;    ///< m: the rear axle this close to the goal along the line is there
+  double max_steer = 0.6;     ///< rad: the wheel's largest angle while it drives the line
 };
 
 /// Drives the rear axle backwards to `goal` (the rear axle's pose there) along the goal's line:

@@ -22,6 +22,9 @@ constexpr double kSameEnd = 0.05;
 // A place this far straight behind its forks, on its own line, is backed to directly (moving up
 // behind a loader), where a route would take it round the loop to dock again, metres.
 constexpr double kMoveUpM = 8.0;
+// A route to a stand ends in its lane this far short of it, metres: room for the body to come
+// onto the stand's line (off the lane's centre, beside the picker) before it stands there.
+constexpr double kStandLeadM = 5.0;
 
 NavigationParams navigation_params(const StackerConfig& c) {
   return {.grid_resolution = c.grid_resolution,
@@ -219,12 +222,7 @@ bool Stacker::plan_route() {
     reports_.set_detail(permit->siding ? "yielding on a siding" : "re-routed by traffic");
     return true;
   }
-  const Pose2 prior = dock_prior();
-  const Vec2 goal = sweeps_.approach_of(prior);
-  // From the body's centre (the pose the traffic manager knows) to where the rear axle starts the
-  // docking; the rear axle then follows the path from its projection onto it.
-  planning::Route route =
-      nav_.plan(estimate(), {goal.x, goal.y, geometry::normalize_angle(prior.yaw + std::numbers::pi / 2)});
+  planning::Route route = nav_.plan(estimate(), route_goal());
   if (route.status != planning::PlanStatus::kFound || route.points.size() < 2) {
     nav_.follower().drop_path();
     reports_.set_detail(route.status == planning::PlanStatus::kBlockedPartial ? "route blocked by an obstacle"
@@ -243,6 +241,20 @@ bool Stacker::plan_route() {
   note_way_out();
   nav_.safety().clear();
   return true;
+}
+
+Pose2 Stacker::route_goal() const {
+  if (state_ == StackerState::kToStand && order_ && order_->stand) {
+    // The lane the stand lies in, kStandLeadM short of it: the body's centre ends there facing
+    // along the lane, and drives on straight to the stand (start_moving_up).
+    const Vec2 lead = order_->stand->position() - kStandLeadM * heading_of(order_->stand->yaw);
+    return {lead.x, lead.y, order_->stand->yaw};
+  }
+  // From the body's centre (the pose the traffic manager knows) to where the rear axle starts the
+  // docking; the rear axle then follows the path from its projection onto it.
+  const Pose2 prior = dock_prior();
+  const Vec2 goal = sweeps_.approach_of(prior);
+  return {goal.x, goal.y, geometry::normalize_angle(prior.yaw + std::numbers::pi / 2)};
 }
 
 void Stacker::note_way_out() {
@@ -360,9 +372,13 @@ void Stacker::hold() {
   // Along its own line to a stand a few metres ahead (the picker's next stop down the aisle) or
   // behind it; anywhere else by road and a docking.
   const Pose2 goal = rear_axle_at(*order_->stand, config_.body.geometry);
-  moving_up_ =
+  const bool on_its_line =
       control::straight_ahead(estimate_, goal, kMoveUpM) || control::straight_behind(estimate_, goal, kMoveUpM);
-  fire(moving_up_ ? StackerEvent::kStandBack : StackerEvent::kStand);
+  // A stand is always reached along its own line: by road to its lane a few metres short of it
+  // (plan_route), then straight on. Docking onto it would swing the body across the racks beside
+  // the lane.
+  moving_up_ = true;
+  fire(on_its_line ? StackerEvent::kStandBack : StackerEvent::kStand);
 }
 
 void Stacker::update_sensors() {

@@ -132,6 +132,8 @@ class Stacker : public Robot {
   void apply(const sim::TricycleCommand& command);
   /// Where the docking law starts from for the current state: the place (or bay) pose it docks to.
   geometry::Pose2 dock_prior() const;
+  /// Where the route of the current state ends: a docking's approach, or the lane short of a stand.
+  geometry::Pose2 route_goal() const;
   perception::PalletRow pallet_row(const geometry::Pose2& place, double base_height) const;
   void finish_order(RobotEvent event);
   void update_centre();
@@ -156,6 +158,7 @@ class Stacker : public Robot {
   double next_route_try_ = 0.0;
   std::optional<control::DockingLaw> law_;
   std::optional<control::StraightBack> back_;  ///< moving up straight back instead of docking
+  /// The stand or bay ends with a straight run along its line (StraightBack), not a docking.
   bool moving_up_ = false;
   std::optional<geometry::Pose2> stood_at_;  ///< the order's stand it reached last, holding its load ///< the move
                                              ///< order under way is a move up

@@ -33,12 +33,8 @@ Pose2 Stacker::dock_prior() const {
       return order_ ? order_->drop_area : home_;
     default: {
       // A bay is docked to like a pallet place: the pallet that would sit on the forks when the
-      // stacker stands at the bay's pose. A stand with its load is reversed into the same way.
-      const bool standing =
-          (state_ == StackerState::kToStand || state_ == StackerState::kStanding) && order_ && order_->stand;
-      const Pose2 stand = standing                                             ? *order_->stand
-                          : order_ && order_->kind == orders::OrderKind::kMove ? order_->drop_area
-                                                                               : home_;
+      // stacker stands at the bay's pose.
+      const Pose2 stand = order_ && order_->kind == orders::OrderKind::kMove ? order_->drop_area : home_;
       const double back = 0.5 * (config_.body.geometry.front_x() + config_.body.geometry.fork_tip_x()) -
                           carried_offset(config_.docking, config_.body.geometry);
       const Vec2 p = stand.position() - back * heading_of(stand.yaw);

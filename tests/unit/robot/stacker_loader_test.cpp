@@ -14,34 +14,6 @@ using fleet::test::PlantStacker;
 using robot::RobotEvent;
 using robot::StackerState;
 
-// A loader job's transporter stands behind the picker, facing away, its forks towards it
-// (orders::transporter_pose): a move order to that pose reverses it in like into a bay, in the
-// rack aisles' lanes on either face.
-TEST(Stacker, ReversesIntoThePoseBehindAPickerAtARackPlace) {
-  PlantStacker plant;
-  for (const std::string place : {"RB2", "RB7", "RB13"}) {
-    const geometry::Pose2 goal = plant.behind_picker_at(place);
-    auto stacker = plant.make("PT2");
-    stacker->set_standing_loads(plant.loads);
-    task::TaskOrder order;
-    order.order_id = "9";
-    order.kind = orders::OrderKind::kMove;
-    order.drop_area_id = "behind " + place;
-    order.drop_area = goal;
-    std::string why;
-    ASSERT_TRUE(stacker->submit(order, &why)) << why;
-    bool done = false;
-    for (int i = 0; i < 20 * 240 && !done; ++i) {
-      stacker->step();
-      for (const auto& e : stacker->take_events()) done = done || e.kind == RobotEvent::Kind::kDone;
-    }
-    ASSERT_TRUE(done) << place << ": " << stacker->status().task_state << " (" << stacker->status().detail << ")";
-    const geometry::Pose2 at = stacker->status().truth;
-    EXPECT_LT(geometry::distance(at.position(), goal.position()), 0.06) << place;
-    EXPECT_LT(std::abs(geometry::angle_diff(at.yaw, goal.yaw)), 0.035) << place;
-  }
-}
-
 // Behind a picker that moved on to the next place along the aisle, the transporter backs up
 // 3.5 m straight along its line, forks first (StackerEvent::kMoveUp): no route round the loop.
 TEST(Stacker, MovesUpStraightBackBehindAPickerThatMovedOn) {
@@ -144,4 +116,58 @@ TEST(Stacker, HoldsItsPalletWhereTheOrderHasItStandUntilTheOrderNamesTheDropPlac
   ASSERT_TRUE(run_until([&] { return put_down >= 0; }, 300.0))
       << stacker->status().task_state << " (" << stacker->status().detail << ")";
   EXPECT_EQ(put_down, lifted);
+}
+
+// A loader's transporter comes to stand behind the picker at every rack place of the plant: by
+// road into the lane a few metres short of the stand, then straight on along the stand's line, in
+// the lane's direction, its body never over a rack (the stand's side lies 3 cm from the rack face).
+TEST(Stacker, ReachesTheStandBehindAPickerAlongItsLaneAtEveryRackPlace) {
+  PlantStacker plant;
+  const geometry::Vec2 pick_place = plant.site->site.find_area("FG5")->pose.position();
+  for (int n = 1; n <= 24; ++n) {
+    const std::string place = "RB" + std::to_string(n);
+    const geometry::Pose2 stand = plant.behind_picker_at(place);
+    auto stacker = plant.make("PT2");
+    stacker->set_standing_loads(plant.loads);
+    task::TaskOrder order = plant.transport("FG5", "EX1");
+    order.drop_area_id.clear();
+    order.drop_area = {};
+    std::string why;
+    ASSERT_TRUE(stacker->submit(order, &why)) << why;
+    double sent_at = -1.0;
+    bool stood = false;
+    std::string over_rack;
+    for (int i = 0; i < 20 * 400 && !stood; ++i) {
+      stacker->step();
+      for (const auto& e : stacker->take_events()) {
+        if (e.kind == RobotEvent::Kind::kFailed) ADD_FAILURE() << place << ": " << e.text;
+      }
+      if (sent_at < 0.0 && stacker->state() == StackerState::kHolding) {
+        task::TaskOrder update = order;
+        update.stand = stand;
+        ASSERT_TRUE(stacker->submit(update, &why)) << why;
+        sent_at = stacker->status().time;
+        stacker->step();
+        continue;
+      }
+      if (sent_at < 0.0) continue;
+      stood = stacker->state() == StackerState::kHolding;
+      const robot::RobotStatus status = stacker->status();
+      // A centimetre inside its outline: the side at the stand is 3 cm from the rack face.
+      const auto body = geometry::footprint_polygon(status.truth, status.footprint, -0.01);
+      for (const auto& rack : plant.site->site.racks) {
+        // The finished-goods row's edge, which its forks reach over at FG5, is not in its way.
+        if (geometry::segment_polygon_distance(pick_place, pick_place, rack.polygon) < 1.0) continue;
+        if (over_rack.empty() && geometry::polygons_overlap(body, rack.polygon)) {
+          over_rack = rack.id + " at t = " + std::to_string(status.time) + " in " + status.task_state;
+        }
+      }
+    }
+    ASSERT_TRUE(stood) << place << ": " << stacker->status().task_state << " (" << stacker->status().detail << ")";
+    EXPECT_EQ(over_rack, "") << place;
+    const geometry::Pose2 at = stacker->status().truth;
+    EXPECT_LT(geometry::distance(at.position(), stand.position()), 0.04) << place;
+    EXPECT_LT(std::abs(geometry::angle_diff(at.yaw, stand.yaw)), 0.035) << place;
+    EXPECT_LT(stacker->status().time - sent_at, 120.0) << place;
+  }
 }
