@@ -489,10 +489,17 @@ UpdateResult TrafficManager::update(double now) {
         now - robot.last_reroute < configuration_.reroute_wait) {
       continue;
     }
+    // Behind lost robots, or kept out of a corridor closed behind a transporter (which stands
+    // there for minutes), waiting out the whole bound only adds to the wait.
+    const auto closes = [&](int id) {
+      return std::any_of(pair_closures_.begin(), pair_closures_.end(), [&](const PairClosure& closure) {
+        return slots_[static_cast<std::size_t>(closure.transporter)]->id == id;
+      });
+    };
     const bool behind_lost_only =
         !robot.blocked_by.empty() && std::all_of(robot.blocked_by.begin(), robot.blocked_by.end(), [&](int id) {
           const auto it = robots_.find(id);
-          return it != robots_.end() && it->second.lost;
+          return it != robots_.end() && (it->second.lost || closes(id));
         });
     if (now - robot.wait_since < (behind_lost_only ? configuration_.lost_reroute_wait : configuration_.reroute_wait)) {
       continue;

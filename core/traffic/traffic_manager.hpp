@@ -233,6 +233,12 @@ class TrafficManager {
   /// pair once: neither is kept out of a place by what the other holds. The desk that pairs them
   /// orders their moves (the transporter moves up ahead of its picker), the two stand closer than
   /// any two others by design, and each one's own safety check keeps it off the other's body.
+  ///
+  /// Each pair is (transporter, loader). A transporter whose route ends in a one-way corridor and
+  /// that holds places there closes the corridor behind it (upstream) to every robot but its
+  /// partners: its loader comes to stand there, and a third robot in between would wait for the
+  /// transporter, which waits for the loader behind it. A robot kept out waits before the
+  /// corridor and is routed round after `lost_reroute_wait`, as behind a lost robot.
   void set_partners(std::set<std::pair<int, int>> pairs) { partners_ = std::move(pairs); }
   /// The robot turns off its route's last point `goal_point` into a place beside the road (a
   /// forklift into a rack place or its home) and sweeps `area` (convex) doing so: a long body
@@ -498,6 +504,20 @@ class TrafficManager {
   bool partnered(int a, int b) const {
     return partners_.contains({a, b}) || partners_.contains({b, a});
   }  ///< set_partners
+
+  /// A one-way corridor closed behind a loader's transporter (set_partners): indices [lo, hi].
+  struct PairClosure {
+    int corridor = 0;
+    int transporter = 0;  ///< slot
+    int loader_id = 0;
+    int lo = 0;
+    int hi = 0;
+  };
+  std::vector<PairClosure> pair_closures_;  ///< rebuilt with the occupancy
+  void close_behind_transporters();
+  /// Whether a closure keeps the robot in `slot` out of `places[index]`: it enters the corridor
+  /// there, inside the closed stretch, and is no partner of the pair. Adds the transporter.
+  void closure_blockers(int slot, const std::vector<int>& places, int index, std::vector<int>& blockers) const;
 
   /// The stretch of a corridor a robot holds (or has reserved) driving one way along it.
   struct CorridorSpan {

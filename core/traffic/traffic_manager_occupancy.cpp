@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "traffic/traffic_manager.hpp"
 #include "traffic/traffic_manager_detail.hpp"
@@ -86,6 +87,7 @@ void TrafficManager::rebuild_occupancy() {
       for_each_reach(robot, u, [&](int p) { occupancy_[typed(u, p) * words_ + s / 64] |= bit; });
     }
   }
+  close_behind_transporters();
   // Entry claims of robots waiting beside the roads longer than priority_wait.
   entry_closed_.assign(cells, 0);
   for (const auto& [id, claim] : entries_) {
@@ -120,6 +122,54 @@ void TrafficManager::rebuild_occupancy() {
       const int d = direction_at(robot, j);
       if (d != 0) add_span(zones_->corridor(p), s, d, zones_->corridor_index(p), true);
     }
+  }
+}
+
+void TrafficManager::close_behind_transporters() {
+  pair_closures_.clear();
+  if (!configuration_.one_way) return;
+  for (const auto& [transporter_id, loader_id] : partners_) {
+    const int slot = slot_of(transporter_id);
+    if (slot < 0) continue;
+    const Robot& robot = *slots_[static_cast<std::size_t>(slot)];
+    if (robot.route.empty()) continue;
+    // Only the corridor its work is in: driving through others on its way, it closes nothing.
+    const int corridor = zones_->corridor(robot.places.back());
+    if (corridor < 0) continue;
+    const int direction = one_way_.corridor_direction[static_cast<std::size_t>(corridor)];
+    if (direction == 0) continue;
+    int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+    const auto note = [&](int p) {
+      if (zones_->corridor(p) != corridor) return;
+      lo = std::min(lo, zones_->corridor_index(p));
+      hi = std::max(hi, zones_->corridor_index(p));
+    };
+    for (int k = robot.first_held; k <= robot.grant_end; ++k) note(robot.places[static_cast<std::size_t>(k)]);
+    for_each_reach(robot, robot.type, note);
+    if (lo > hi) continue;  // not in it yet
+    if (direction > 0) {
+      pair_closures_.push_back({corridor, slot, loader_id, std::numeric_limits<int>::min(), lo - 1});
+    } else {
+      pair_closures_.push_back({corridor, slot, loader_id, hi + 1, std::numeric_limits<int>::max()});
+    }
+  }
+}
+
+void TrafficManager::closure_blockers(int slot, const std::vector<int>& places, int index,
+                                      std::vector<int>& blockers) const {
+  const int p = places[static_cast<std::size_t>(index)];
+  const int corridor = zones_->corridor(p);
+  if (corridor < 0) return;
+  int before = index - 1;
+  while (before >= 0 && places[static_cast<std::size_t>(before)] == p) --before;
+  // A robot already inside drives on: only one coming in from outside is kept out.
+  if (before < 0 || zones_->corridor(places[static_cast<std::size_t>(before)]) == corridor) return;
+  const int at = zones_->corridor_index(p);
+  const int self = slots_[static_cast<std::size_t>(slot)]->id;
+  for (const PairClosure& closure : pair_closures_) {
+    if (closure.corridor != corridor || closure.transporter == slot || at < closure.lo || at > closure.hi) continue;
+    if (self == closure.loader_id || partnered(self, closure.loader_id)) continue;
+    blockers.push_back(closure.transporter);
   }
 }
 
@@ -259,6 +309,7 @@ bool TrafficManager::place_free_for(int slot, const std::vector<int>& places, in
     }
   }
   if (zones_->has_opposite_lanes()) opposite_lane_blockers(slot, places, index, d, blockers);
+  if (!pair_closures_.empty()) closure_blockers(slot, places, index, blockers);
   // Nothing its partner holds keeps it (set_partners): the two move as one, and each one's own
   // safety check keeps it off the other's body.
   if (!partners_.empty()) {

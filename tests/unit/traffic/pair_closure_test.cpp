@@ -1,0 +1,143 @@
+// A loader's pair in a one-way rack lane of the plant (set_partners): the lane behind the
+// transporter is closed to third robots, so none comes between it and its picker.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "config/fleet_config.hpp"
+#include "map/site_map.hpp"
+#include "test_grants.hpp"
+#include "test_paths.hpp"
+#include "traffic/traffic_manager.hpp"
+#include "traffic/traffic_settings.hpp"
+
+namespace fleet::traffic {
+namespace {
+
+using testing::grant_of;
+
+struct PlantLane {
+  config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
+  map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
+  TrafficManager m{site.graph.graph, configuration_from(config)};
+  int stacker = vehicle_type_of(config, "stackers");
+  int picker = vehicle_type_of(config, "pickers");
+  int forklift = vehicle_type_of(config, "forklifts");
+
+  /// A route along the rack aisle lane at `y` from x = `from` to x = `to`, on `type`'s lanes.
+  std::vector<int> along(int type, double y, double from, double to) {
+    const auto& lanes = m.route_graph(type);
+    return m.search(type).shortest(map::nearest_point(lanes, from, y), map::nearest_point(lanes, to, y));
+  }
+};
+
+// The south lane of the aisle between R1 and R2 runs east. The transporter (1) drives in and
+// stands at x = 45; a forklift (3) coming along the lane from the aisle's west end is kept out of
+// the aisle, waits for the transporter and is routed round within seconds; the picker (2) drives
+// in behind the transporter.
+TEST(PairClosure, AThirdRobotIsKeptOutOfTheLaneBehindATransporterAndGoesRound) {
+  PlantLane plant;
+  TrafficManager& m = plant.m;
+  m.set_robot_type(1, plant.stacker);
+  m.set_robot_type(2, plant.picker);
+  m.set_robot_type(3, plant.forklift);
+  m.set_partners({{1, 2}});
+  constexpr double kLane = 10.945;
+  const auto transporter = plant.along(plant.stacker, kLane, 38.0, 45.0);
+  ASSERT_GT(transporter.size(), 5u) << "the lane runs east";
+  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0, d1 = 0.0;
+  constexpr double kStep = 0.05, kSpeed = 1.0;
+  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+    const auto r = m.update(t);
+    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
+    m.report_progress({1, 1, d1, {}}, t);
+  }
+  ASSERT_GT(d1, 6.5) << "the transporter stands at the end of its route";
+
+  // From the cross aisle west of the racks, through the lane, to the cross aisle east of them.
+  const auto& lanes = m.route_graph(plant.forklift);
+  const auto through =
+      m.search(plant.forklift).shortest(map::nearest_point(lanes, 29.1, 14.0), map::nearest_point(lanes, 58.0, 14.0));
+  ASSERT_GT(through.size(), 10u);
+  ASSERT_TRUE(std::any_of(through.begin(), through.end(), [&](int point) {
+    const auto& q = lanes.points[static_cast<std::size_t>(point)];
+    return std::abs(q.y - kLane) < 0.3 && q.x > 40.0 && q.x < 44.0;
+  })) << "its shortest way leads through the lane";
+  ASSERT_EQ(m.submit_route({3, 1, through}, t), SubmitStatus::kAccepted);
+  const auto in_behind = plant.along(plant.picker, kLane, 33.0, 42.5);
+  ASSERT_GT(in_behind.size(), 5u);
+  ASSERT_EQ(m.submit_route({2, 1, in_behind}, t), SubmitStatus::kAccepted);
+  double d2 = 0.0, d3 = 0.0;
+  bool kept_out = false, rerouted = false;
+  double waited = 0.0;
+  for (int i = 0; i < 20 * 60; ++i, t += kStep) {
+    const auto r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    if (const Grant* g = grant_of(r, 2)) d2 = std::max(d2, std::min(g->granted_distance, d2 + kSpeed * kStep));
+    m.report_progress({2, 1, d2, {}}, t);
+    m.report_progress({1, 1, d1, {}}, t);
+    if (const Grant* g = grant_of(r, 3); g != nullptr && !rerouted) {
+      if (g->instruction == Instruction::kReroute) {
+        rerouted = true;
+        // The way round stays out of the aisle's south lane west of the transporter.
+        for (int point : g->route) {
+          const auto& q = m.route_graph(plant.forklift).points[static_cast<std::size_t>(point)];
+          EXPECT_FALSE(std::abs(q.y - kLane) < 0.3 && q.x > 33.5 && q.x < 44.0) << q.x << ", " << q.y;
+        }
+        continue;
+      }
+      d3 = std::max(d3, std::min(g->granted_distance, d3 + kSpeed * kStep));
+      if (g->status == GrantStatus::kWaiting && g->blocked_by == std::vector<int>{1}) {
+        kept_out = true;
+        waited = g->waited_s;
+      }
+    }
+    if (!rerouted) m.report_progress({3, 1, d3, {}}, t);
+  }
+  EXPECT_TRUE(kept_out) << "the forklift never waited for the transporter";
+  EXPECT_TRUE(rerouted) << "the forklift was not routed round";
+  EXPECT_LT(waited, 10.0);
+  EXPECT_GT(d2, 7.0) << "the picker drives in behind its transporter";
+}
+
+// Without the pair, the same forklift drives into the lane and queues behind the standing stacker.
+TEST(PairClosure, WithoutPartnersTheLaneStaysOpen) {
+  PlantLane plant;
+  TrafficManager& m = plant.m;
+  m.set_robot_type(1, plant.stacker);
+  m.set_robot_type(3, plant.forklift);
+  constexpr double kLane = 10.945;
+  const auto transporter = plant.along(plant.stacker, kLane, 38.0, 45.0);
+  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0, d1 = 0.0, d3 = 0.0;
+  constexpr double kStep = 0.05, kSpeed = 1.0;
+  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+    const auto r = m.update(t);
+    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
+    m.report_progress({1, 1, d1, {}}, t);
+  }
+  const auto& lanes = m.route_graph(plant.forklift);
+  const auto through =
+      m.search(plant.forklift).shortest(map::nearest_point(lanes, 29.1, 14.0), map::nearest_point(lanes, 58.0, 14.0));
+  ASSERT_EQ(m.submit_route({3, 1, through}, t), SubmitStatus::kAccepted);
+  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+    const auto r = m.update(t);
+    if (const Grant* g = grant_of(r, 3)) d3 = std::max(d3, std::min(g->granted_distance, d3 + kSpeed * kStep));
+    m.report_progress({3, 1, d3, {}}, t);
+    m.report_progress({1, 1, d1, {}}, t);
+  }
+  double entered_x = 0.0;
+  for (std::size_t k = 0; k < through.size(); ++k) {
+    const auto& q = m.route_graph(plant.forklift).points[static_cast<std::size_t>(through[k])];
+    if (std::abs(q.y - kLane) < 0.3 && q.x > 34.0) {
+      entered_x = q.x;
+      break;
+    }
+  }
+  EXPECT_GT(entered_x, 0.0);
+  EXPECT_GT(d3, 3.0) << "it drives on into the aisle";
+}
+
+}  // namespace
+}  // namespace fleet::traffic
