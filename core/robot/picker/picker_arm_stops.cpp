@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "model/messages.hpp"
+
 namespace fleet::robot {
 
 void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Site& site, OrderReporter& reports) {
@@ -41,7 +43,7 @@ void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Sit
       return;
     }
     if (order.loader && executor.item_line() >= order.released) {
-      reports.set_detail("waiting for its transporter behind it");
+      reports.set_detail(model::kDetailWaitsForTransporter);
       return;
     }
     if (order.loader && order.pallet != deck_pallet_) {
