@@ -220,7 +220,13 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
           if (revision.drop_area.empty()) continue;  // once a place is free
           revision.stand.reset();
           transport.stand_stop = -1;
-          why = (full ? "deliver the pallet to " : "take the empty pallet back to ") + revision.drop_area;
+          int boxes = 0;
+          for (const PalletRun& run : job.runs()) {
+            if (run.transporter_id == instruction.robot_id && !run.delivered && !run.lost) boxes = run.boxes;
+          }
+          why = full ? "deliver the pallet (" + std::to_string(boxes) + (boxes == 1 ? " box" : " boxes") + ") to " +
+                           revision.drop_area
+                     : "take the empty pallet back to " + revision.drop_area;
           break;
         }
         default:
