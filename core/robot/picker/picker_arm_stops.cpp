@@ -27,7 +27,11 @@ void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Sit
     progress_.walk_stop = static_cast<int>(executor.item_line());
   }
   if (done_at_) {
-    if (t < *done_at_) return;
+    if (t < *done_at_) {
+      // Said again each step: the state change that starts the work clears the robot's detail.
+      reports.set_detail(work_detail_);
+      return;
+    }
     done_at_.reset();
     if (state == task::State::kDropItems) tray_.clear();
     if (order.loader && state == task::State::kPickItems) progress_.boxes_loaded += boxes_at_work_;
@@ -61,9 +65,10 @@ void PickerArmStops::step(double t, task::TaskExecutor& executor, const map::Sit
   }
   done_at_ = t + work.duration;
   boxes_at_work_ = work.boxes;
-  reports.set_detail((state == task::State::kPickItems ? "arm picks " : "arm puts down ") + std::to_string(work.boxes) +
-                     " box" + (work.boxes == 1 ? "" : "es") + " in " +
-                     std::to_string(static_cast<int>(std::lround(work.duration))) + " s");
+  work_detail_ = (state == task::State::kPickItems ? "arm picks " : "arm puts down ") + std::to_string(work.boxes) +
+                 " box" + (work.boxes == 1 ? "" : "es") + " in " +
+                 std::to_string(static_cast<int>(std::lround(work.duration))) + " s";
+  reports.set_detail(work_detail_);
 }
 
 }  // namespace fleet::robot

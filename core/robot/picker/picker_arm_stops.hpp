@@ -30,6 +30,7 @@ class PickerArmStops : public ItemHandler {
   int deck_pallet_ = -1;             ///< whose pallet deck_ is (TaskOrder::pallet)
   std::optional<double> done_at_;    ///< sim time the arm's work at this stop ends
   int boxes_at_work_ = 0;            ///< boxes the arm moves in the work that ends at done_at_
+  std::string work_detail_;          ///< what the robot's detail says while the arm works
   std::string progress_order_;       ///< the loader order progress_ counts for
   LoaderProgress progress_;
 };
