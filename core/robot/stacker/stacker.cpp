@@ -200,7 +200,9 @@ void Stacker::enter(StackerState state) {
   if (state == StackerState::kDocking || state == StackerState::kPlacing || state == StackerState::kParking ||
       state == StackerState::kStanding) {
     if (state != from) dock_attempts_ = 0;
-    if (moving_up_ && (state == StackerState::kParking || state == StackerState::kStanding)) {
+    // A stand is always reached along its own line (hold, route_goal): docking onto it would
+    // swing the body across the racks beside the lane.
+    if (state == StackerState::kStanding || (moving_up_ && state == StackerState::kParking)) {
       start_moving_up();
     } else {
       moving_up_ = false;
@@ -370,14 +372,11 @@ void Stacker::hold() {
   };
   if (!order_->stand || (stood_at_ && same(*stood_at_, *order_->stand))) return;
   // Along its own line to a stand a few metres ahead (the picker's next stop down the aisle) or
-  // behind it; anywhere else by road and a docking.
+  // behind it.
   const Pose2 goal = rear_axle_at(*order_->stand, config_.body.geometry);
+  // Elsewhere by road to its lane a few metres short of it (route_goal), then straight on.
   const bool on_its_line =
       control::straight_ahead(estimate_, goal, kMoveUpM) || control::straight_behind(estimate_, goal, kMoveUpM);
-  // A stand is always reached along its own line: by road to its lane a few metres short of it
-  // (plan_route), then straight on. Docking onto it would swing the body across the racks beside
-  // the lane.
-  moving_up_ = true;
   fire(on_its_line ? StackerEvent::kStandBack : StackerEvent::kStand);
 }
 

@@ -158,10 +158,8 @@ class Stacker : public Robot {
   double next_route_try_ = 0.0;
   std::optional<control::DockingLaw> law_;
   std::optional<control::StraightBack> back_;  ///< moving up straight back instead of docking
-  /// The stand or bay ends with a straight run along its line (StraightBack), not a docking.
-  bool moving_up_ = false;
-  std::optional<geometry::Pose2> stood_at_;  ///< the order's stand it reached last, holding its load ///< the move
-                                             ///< order under way is a move up
+  bool moving_up_ = false;                     ///< the move order under way is a move up
+  std::optional<geometry::Pose2> stood_at_;    ///< the order's stand it reached last, holding its load
   std::optional<perception::StackerCameraDetector> detector_;
   std::optional<geometry::Pose2> detected_pallet_;  ///< the cameras' latest find, until a frame finds nothing
   int dock_attempts_ = 0;

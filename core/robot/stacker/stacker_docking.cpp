@@ -124,8 +124,6 @@ void Stacker::dock() {
       finish_order({RobotEvent::Kind::kDone, order_->order_id, order_->drop_area_id, -1, {}});
     } else if (state_ == StackerState::kParking) {
       reports_.add({RobotEvent::Kind::kHome, "", "", -1, {}});
-    } else if (state_ == StackerState::kStanding) {
-      stood_at_ = order_->stand;
     }
     fire(StackerEvent::kDocked);
     return;

@@ -43,7 +43,6 @@ constexpr std::array kTable{
     StackerTransition{S::kHolding, E::kDrop, S::kToDrop},
     StackerTransition{S::kToStand, E::kRouteEnded, S::kStanding},
     StackerTransition{S::kStanding, E::kDocked, S::kHolding},
-    StackerTransition{S::kStanding, E::kDockFailed, S::kStanding},
 };
 
 }  // namespace
