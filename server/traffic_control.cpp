@@ -407,7 +407,18 @@ void TrafficControl::update(double now_sim, double now_wall) {
   // alone here, the area opened to others between two requests.
   for (const auto& [robot_id, body] : bodies_) {
     const int id = number_of(robot_id);
-    if (heard_.contains(robot_id) && working_.contains(robot_id)) continue;
+    if (heard_.contains(robot_id) && working_.contains(robot_id)) {
+      // Lost during a manoeuvre, it kept the manoeuvre's area (robot_lost). Back with its body
+      // outside that area, its agent started again elsewhere (at its home): the manoeuvre is
+      // over, and it holds what its body stands on, as any robot not working.
+      const auto kept = held_bodies_.find(robot_id);
+      if (kept == held_bodies_.end() || !manager_->frozen(id) ||
+          geometry::contains(kept->second, geometry::vertex_centroid(body))) {
+        continue;
+      }
+      working_.erase(robot_id);
+      log_->info("traffic: {} is back away from the manoeuvre it was lost in; the area it kept is freed", robot_id);
+    }
     if (!heard_.contains(robot_id) || manager_->frozen(id)) hold_body(robot_id, id, body, now_sim);
   }
   const traffic::UpdateResult result = manager_->update(now_sim);
