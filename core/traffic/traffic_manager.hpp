@@ -327,8 +327,9 @@ class TrafficManager {
   /// How a robot beside the roads may enter at `point` now.
   struct Entry {
     std::vector<int> blockers;  ///< sorted; it waits while any is left
-    /// It enters keeping the places under its body (as a robot standing on its route's first
-    /// point): the robots in conflict with its entry all wait for its body.
+    /// It enters keeping what it holds (its body, the area of its way out) until it is past its
+    /// route's first edge: it stands holding the entry's place, and nobody keeps it out or every
+    /// robot in conflict with the entry waits for its body.
     bool as_standing = false;
   };
   /// The robots that keep `robot_id` out: holders of places in conflict with the entry

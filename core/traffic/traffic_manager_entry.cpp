@@ -99,21 +99,21 @@ TrafficManager::Entry TrafficManager::entry_for(int point, int robot_id, double 
   entry.blockers = holders_in_conflict(point, robot_id);
   std::erase_if(entry.blockers, [&](int id) { return partnered(robot_id, id); });
   const auto self = robots_.find(robot_id);
-  if (!entry.blockers.empty() && self != robots_.end() && self->second.frozen) {
-    if (holds_place_of(robot_id, point)) {
-      const auto waits_for_it = [&](int id) {
-        const Robot& holder = robots_.at(id);
-        return !holder.frozen && holder.wait_since >= 0.0 &&
-               std::binary_search(holder.blocked_by.begin(), holder.blocked_by.end(), robot_id);
-      };
-      if (std::all_of(entry.blockers.begin(), entry.blockers.end(), waits_for_it)) {
-        entry.blockers.clear();
-        entry.as_standing = true;
-        return entry;
-      }
-    }
+  const bool holds_entry = self != robots_.end() && self->second.frozen && holds_place_of(robot_id, point);
+  if (holds_entry && !entry.blockers.empty()) {
+    const auto waits_for_it = [&](int id) {
+      const Robot& holder = robots_.at(id);
+      return !holder.frozen && holder.wait_since >= 0.0 &&
+             std::binary_search(holder.blocked_by.begin(), holder.blocked_by.end(), robot_id);
+    };
+    if (std::all_of(entry.blockers.begin(), entry.blockers.end(), waits_for_it)) entry.blockers.clear();
+  } else if (entry.blockers.empty()) {
+    entry.blockers = earlier_entry_claims(point, robot_id, now);
   }
-  if (entry.blockers.empty()) entry.blockers = earlier_entry_claims(point, robot_id, now);
+  // Standing on its entry's place, it enters as it stands: what it holds there (its body, the
+  // area of its way out across the lanes) stays held until it is past its route's first edge, so
+  // nobody is granted into the way it turns out by.
+  entry.as_standing = holds_entry && entry.blockers.empty();
   return entry;
 }
 

@@ -118,5 +118,45 @@ TEST(WorkArea, IsNotHeldByTheRegionsOfARobotWaitingForTheOneAskingOnlyByItsBody)
   EXPECT_NE(std::find(for_another.begin(), for_another.end(), 1), for_another.end());
 }
 
+// A robot leaving a place beside the road turns out across the lane: it holds that way out before
+// it enters (the area of kArea), and it enters as it stands, so the way out stays held until it is
+// past its route's first edge. Dropped at the entry, a robot on the road was granted into the way
+// out while the leaving robot still turned out across it, and each stood in the other's way.
+TEST(WorkArea, AWayOutStaysHeldUntilTheLeavingRobotIsPastItsFirstEdge) {
+  GraphBuilder b;
+  const auto road = b.road(0.0, 0.0, 10.0, 0.0);
+  TrafficManager m(b.graph());
+  ASSERT_TRUE(m.hold_body(3, kArea, 0.0));
+  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+  double progress1 = 0.0, t = 0.0;
+  const auto drive = [&](double until, double progress3) {
+    for (; t < until; t += 0.1) {
+      const auto r = m.update(t);
+      ASSERT_EQ(m.check_invariant(), "");
+      const Grant* g = grant_of(r, 1);
+      ASSERT_NE(g, nullptr);
+      progress1 = std::min(progress1 + 0.1, g->granted_distance);
+      m.report_progress({1, 1, progress1, {}}, t);
+      m.report_progress({3, 1, progress3, {}}, t);
+    }
+  };
+  drive(30.0, 0.0);
+  ASSERT_LT(progress1, 5.0);
+  const int entry = point_at(b.graph(), 6.2, 0.0);
+  const TrafficManager::Entry way_in = m.entry_for(entry, 3, t);
+  EXPECT_TRUE(way_in.blockers.empty());
+  ASSERT_TRUE(way_in.as_standing) << "standing on its entry's place, it enters as it stands";
+  const std::vector<int> onward(road.begin() + (entry - road.front()), road.end());
+  ASSERT_EQ(m.submit_route({3, 1, onward}, t), SubmitStatus::kAccepted);
+  // Turning out, it has not reached the road yet: the way out stays closed to robot 1.
+  drive(45.0, 0.0);
+  EXPECT_LT(progress1, 5.0) << "robot 1 was granted into the way out of a robot turning out across it";
+  EXPECT_EQ(m.holders_in_area(1, kArea), std::vector<int>{3});
+  // On the road and past its first edge, it drives off; robot 1 follows through.
+  for (double progress3 = 0.1; progress3 < 3.8; progress3 += 0.1) drive(t + 0.1, progress3);
+  drive(t + 60.0, 3.8);
+  EXPECT_GT(progress1, 7.0);
+}
+
 }  // namespace
 }  // namespace fleet::traffic
