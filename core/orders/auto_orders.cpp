@@ -1,6 +1,11 @@
 #include "orders/auto_orders.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <utility>
 
 #include "orders/dispatch.hpp"
 #include "orders/packing_chain.hpp"
@@ -8,6 +13,51 @@
 #include "orders/transport_areas.hpp"
 
 namespace fleet::orders {
+
+namespace {
+
+/// A rack row: a rack of the site and the way its places face (the lane they are worked from).
+using RackRow = std::pair<std::size_t, long>;
+
+std::optional<RackRow> rack_row_of(const map::Site& site, const std::string& place,
+                                   const std::map<std::string, geometry::Pose2>& poses) {
+  const auto pose = poses.find(place);
+  if (pose == poses.end()) return std::nullopt;
+  for (std::size_t r = 0; r < site.racks.size(); ++r) {
+    if (geometry::contains(site.racks[r].polygon, pose->second.position())) {
+      const long quarter = std::lround(geometry::normalize_angle(pose->second.yaw) / (std::numbers::pi / 2.0));
+      return RackRow{r, (quarter % 4 + 4) % 4};
+    }
+  }
+  return std::nullopt;
+}
+
+/// The rack rows of open orders' places: of every open loader walk's lines, and with `every_order`
+/// of every other open order's pick and drop places too.
+std::set<RackRow> rows_in_work(const IntakeView& view, const std::map<std::string, geometry::Pose2>& poses,
+                               bool every_order) {
+  std::set<RackRow> rows;
+  const auto add = [&](const std::string& place) {
+    if (const auto row = rack_row_of(view.site, place, poses)) rows.insert(*row);
+  };
+  for (const Order* open : view.book.open_orders()) {
+    if (open->loader && open->kind == OrderKind::kPick) {
+      for (const PickLine& line : parse_pick_lines(open->lines, "order " + std::to_string(open->id))) add(line.place);
+    } else if (every_order) {
+      add(open->pick_area);
+      add(open->drop_area);
+    }
+  }
+  return rows;
+}
+
+bool in_rows(const map::Site& site, const std::string& place, const std::map<std::string, geometry::Pose2>& poses,
+             const std::set<RackRow>& rows) {
+  const auto row = rack_row_of(site, place, poses);
+  return row && rows.contains(*row);
+}
+
+}  // namespace
 
 bool AutoOrders::due(double now_wall) {
   if (!on_ || now_wall - last_round_wall_ < kPeriodWallS) return false;
@@ -50,21 +100,11 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
   const auto poses = place_poses(view.site);
   auto stock = intake.boxes_left();
   if (loader) {
-    // One loader pair to a rack row: a second pair in the same one-way lane could not pass the
-    // first, and neither could its transporter.
-    std::vector<geometry::Pose2> worked;
-    for (const Order* open : view.book.open_orders()) {
-      if (!open->loader || open->kind != OrderKind::kPick) continue;
-      for (const PickLine& line : parse_pick_lines(open->lines, "order " + std::to_string(open->id))) {
-        if (const auto pose = poses.find(line.place); pose != poses.end()) worked.push_back(pose->second);
-      }
-    }
-    std::erase_if(stock, [&](const auto& entry) {
-      const auto pose = poses.find(entry.first);
-      return pose != poses.end() && std::any_of(worked.begin(), worked.end(), [&](const geometry::Pose2& other) {
-               return same_rack_row(pose->second, other);
-             });
-    });
+    // One loader pair to a rack row, and none where another open order has a place: a second
+    // robot in the same one-way lane could not pass the picker nor its transporter, which closes
+    // the lane behind it.
+    const auto taken = rows_in_work(view, poses, /*every_order=*/true);
+    std::erase_if(stock, [&](const auto& entry) { return in_rows(view.site, entry.first, poses, taken); });
   }
   const auto lines = choose_auto_pick_list(stock, poses, view.max_pickable_mass, boxes, rng_);
   if (!lines) return {};
@@ -75,7 +115,13 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
 
 std::optional<Order> AutoOrders::transport(const IntakeView& view) {
   if (!auto_transport_wanted(view.book, free_for(view, OrderKind::kTransport))) return std::nullopt;
+  // Nor to or from a rack row a loader pair works: its transporter closes the one-way lane behind
+  // it, and a robot bound for a place past it would wait on the road before the lane, in the way
+  // of the picker coming to its stop.
+  const auto poses = place_poses(view.site);
+  const auto worked = rows_in_work(view, poses, /*every_order=*/false);
   const auto doable = [&](const std::string& pick, const std::string& drop) {
+    if (in_rows(view.site, pick, poses, worked) || in_rows(view.site, drop, poses, worked)) return false;
     if (const auto& packing = view.site.packing;
         packing && (!open_to_random_transports(*packing, pick) || !open_to_random_transports(*packing, drop))) {
       return false;

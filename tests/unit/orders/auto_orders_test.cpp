@@ -11,7 +11,7 @@ namespace fleet::orders {
 namespace {
 
 /// Loading areas A1 (a pallet on it), A2 and A3 (empty); rack places R1 and R2 with boxes of item
-/// BX; packing station PS1 with a pallet. Forklifts fl1 and fl2 carry pallets, picker pk1 picks
+/// BX, in rack K1; packing station PS1 with a pallet. Forklifts fl1 and fl2 carry pallets, picker pk1 picks
 /// boxes; who is free is set per test.
 struct Yard {
   map::Site site;
@@ -35,6 +35,8 @@ struct Yard {
       names.areas.push_back(area.id);
     }
     site.packing = map::Packing{3, {"PS1"}, {"A3"}, {"A2"}};
+    site.racks = {{"K1", {{5.5, -0.5}, {8.5, -0.5}, {8.5, 0.5}, {5.5, 0.5}}},  // R1 and R2
+                  {"K2", {{5.5, 4.5}, {8.5, 4.5}, {8.5, 5.5}, {5.5, 5.5}}}};
     names.robots = {"fl1", "fl2", "pk1"};
     names.fleets = {"forklifts", "pickers"};
     names.fleet_of_robot = {{"fl1", "forklifts"}, {"fl2", "forklifts"}, {"pk1", "pickers"}};
@@ -138,6 +140,63 @@ TEST(AutoOrders, ALoaderWalkTakesARackRowNoOtherOpenWalkWorks) {
     ASSERT_EQ(second.size(), 1u) << "seed " << seed;
     for (const PickLine& line : parse_pick_lines(second[0].lines, "second")) {
       EXPECT_EQ(line.place == "R3", !in_r3) << "seed " << seed << ": " << second[0].lines;
+    }
+  }
+}
+
+// A loader's transporter closes its lane behind it: no automatic transport goes to or from a
+// place in the rack row of an open walk, where it would wait on the road before the lane, in the
+// way of the picker.
+TEST(AutoOrders, ATransportStaysOutOfTheRackRowOfAnOpenLoaderWalk) {
+  Yard yard;
+  yard.free_robots = {"fl1"};
+  const auto drops_of = [&](const Yard& y) {
+    std::set<std::string> drops;
+    for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+      AutoOrders source(true, seed);
+      if (const auto draft = source.transport(y.view())) drops.insert(draft->drop_area);
+    }
+    return drops;
+  };
+  const auto before = drops_of(yard);
+  ASSERT_TRUE(before.contains("R1") || before.contains("R2")) << "the rack row is a drop like any other";
+  yard.free_robots = {"fl1", "pk1"};
+  IntakeView view = yard.view();
+  view.loader_fleet = "stackers";
+  AutoOrders walks(true, 1, "loader");
+  const auto walk = walks.pick_tours(view);
+  ASSERT_EQ(walk.size(), 1u);
+  ASSERT_TRUE(walk[0].loader);
+  yard.book.create(walk[0], 0.0);
+  yard.free_robots = {"fl1"};
+  const auto after = drops_of(yard);
+  EXPECT_FALSE(after.empty());
+  EXPECT_FALSE(after.contains("R1") || after.contains("R2")) << "a transport into the walk's row";
+}
+
+// Nor does a walk take a row where another open order has a place: that robot would stand in
+// the pair's lane, or wait before it once the transporter closes it.
+TEST(AutoOrders, ALoaderWalkTakesNoRackRowAnOpenTransportGoesTo) {
+  Yard yard;
+  map::LoadingArea r3;
+  r3.id = "R3";
+  r3.pose = {6.0, 5.0, 0.0};  // a second row
+  r3.boxes = map::BoxStock{"BY", 5};
+  yard.site.loading_areas.push_back(r3);
+  yard.names.areas.push_back("R3");
+  Order transport;
+  transport.pick_area = "A1";
+  transport.drop_area = "R2";
+  yard.book.create(transport, 0.0);
+  yard.free_robots = {"pk1"};
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    AutoOrders source(true, seed, "loader");
+    IntakeView view = yard.view();
+    view.loader_fleet = "stackers";
+    const auto walk = source.pick_tours(view);
+    ASSERT_EQ(walk.size(), 1u);
+    for (const PickLine& line : parse_pick_lines(walk[0].lines, "walk")) {
+      EXPECT_EQ(line.place, "R3") << "seed " << seed << ": " << walk[0].lines;
     }
   }
 }
