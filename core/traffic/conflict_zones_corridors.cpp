@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "traffic/conflict_zones.hpp"
@@ -72,9 +73,9 @@ void ConflictZones::build_corridors() {
 
 void ConflictZones::build_opposite_lanes(const map::RoadGraph& graph, const std::vector<std::vector<int>>& members) {
   // Two lanes of one road (OpenDRIVE lane ids of opposite sign) are two corridors. When their
-  // places on that road conflict for a pair of types, the stretch on each side — from the first
-  // to the last place of the corridor in conflict with the other corridor, on the road or on the
-  // lanes leading to it — is recorded, so the manager can keep robots driving towards each other
+  // places on that road conflict for a pair of types, each stretch on each side — a run of
+  // neighbouring places of the corridor in conflict with the other corridor, on the road or on
+  // the lanes leading to it — is recorded, so the manager can keep robots driving towards each other
   // from entering it together (the corridor rule, across the centre line). A robot waiting just
   // before its stretch is then clear of every place of the other corridor.
   const std::size_t places = position_.size();
@@ -92,14 +93,14 @@ void ConflictZones::build_opposite_lanes(const map::RoadGraph& graph, const std:
     return false;
   };
   opposite_.assign(types * types, std::vector<std::vector<OppositeLane>>(corridors));
-  struct Stretch {
-    int lo = 0, hi = 0, other_lo = 0, other_hi = 0;
-    std::size_t lo_place = 0, hi_place = 0, other_lo_place = 0, other_hi_place = 0;
-    bool one_road = false;  ///< some conflicting pair lies on opposite lanes of one road
+  struct Pair {
+    int i = 0, j = 0;
+    std::size_t p = 0, q = 0;
   };
   for (std::size_t t = 0; t < types; ++t) {
     for (std::size_t u = 0; u < types; ++u) {
-      std::map<std::pair<int, int>, Stretch> stretches;  // (corridor, other corridor)
+      std::map<std::pair<int, int>, std::vector<Pair>> pairs;  // (corridor, other corridor)
+      std::set<std::pair<int, int>> one_road;  // some conflicting pair lies on opposite lanes of one road
       for (std::size_t p = 0; p < places; ++p) {
         const int c = corridor_[p];
         if (c < 0 || corridor_loop_[static_cast<std::size_t>(c)]) continue;
@@ -107,26 +108,34 @@ void ConflictZones::build_opposite_lanes(const map::RoadGraph& graph, const std:
           const auto sq = static_cast<std::size_t>(q);
           const int other = corridor_[sq];
           if (other < 0 || other == c || corridor_loop_[static_cast<std::size_t>(other)]) continue;
-          const int i = corridor_index_[p], j = corridor_index_[sq];
-          auto [it, fresh] = stretches.try_emplace({c, other}, Stretch{i, i, j, j, p, p, sq, sq});
-          Stretch& s = it->second;
-          s.one_road = s.one_road || opposite_lane_of_one_road(p, sq);
-          if (fresh) continue;
-          if (i < s.lo) s.lo = i, s.lo_place = p;
-          if (i > s.hi) s.hi = i, s.hi_place = p;
-          if (j < s.other_lo) s.other_lo = j, s.other_lo_place = sq;
-          if (j > s.other_hi) s.other_hi = j, s.other_hi_place = sq;
+          pairs[{c, other}].push_back({corridor_index_[p], corridor_index_[sq], p, sq});
+          if (opposite_lane_of_one_road(p, sq)) one_road.insert({c, other});
         }
       }
       auto& out = opposite_[pair_index(static_cast<int>(t), static_cast<int>(u))];
-      for (const auto& [key, s] : stretches) {
-        if (!s.one_road) continue;
-        const Vec2 along = position_[s.hi_place] - position_[s.lo_place];
-        const Vec2 other_along = position_[s.other_hi_place] - position_[s.other_lo_place];
-        const double d = geometry::dot(along, other_along);
-        const int sign = s.lo == s.hi || s.other_lo == s.other_hi ? 0 : (d > 0.0 ? 1 : (d < 0.0 ? -1 : 0));
-        out[static_cast<std::size_t>(key.first)].push_back({key.second, sign, s.lo, s.hi, s.other_lo, s.other_hi});
-        has_opposite_lanes_ = true;
+      for (auto& [key, found] : pairs) {
+        if (!one_road.contains(key)) continue;
+        // One stretch per run of neighbouring places in conflict: two lanes that meet only at
+        // their ends (where they fan out to a junction) are taken in turn there, and robots pass
+        // each other on the stretch between, where their regions never overlap.
+        std::sort(found.begin(), found.end(), [](const Pair& a, const Pair& b) { return a.i < b.i; });
+        for (std::size_t first = 0; first < found.size();) {
+          std::size_t last = first;
+          while (last + 1 < found.size() && found[last + 1].i <= found[last].i + 1) ++last;
+          Pair lo = found[first], hi = found[first], other_lo = found[first], other_hi = found[first];
+          for (std::size_t k = first; k <= last; ++k) {
+            if (found[k].i > hi.i) hi = found[k];
+            if (found[k].j < other_lo.j) other_lo = found[k];
+            if (found[k].j > other_hi.j) other_hi = found[k];
+          }
+          const Vec2 along = position_[hi.p] - position_[lo.p];
+          const Vec2 other_along = position_[other_hi.q] - position_[other_lo.q];
+          const double d = geometry::dot(along, other_along);
+          const int sign = lo.i == hi.i || other_lo.j == other_hi.j ? 0 : (d > 0.0 ? 1 : (d < 0.0 ? -1 : 0));
+          out[static_cast<std::size_t>(key.first)].push_back({key.second, sign, lo.i, hi.i, other_lo.j, other_hi.j});
+          has_opposite_lanes_ = true;
+          first = last + 1;
+        }
       }
     }
   }

@@ -139,5 +139,49 @@ TEST(PairClosure, WithoutPartnersTheLaneStaysOpen) {
   EXPECT_GT(d3, 3.0) << "it drives on into the aisle";
 }
 
+// The road between R2 and R3 has two lanes that meet only where they fan out at its ends. A
+// transporter stands at a stand in the westbound lane (x = 48.25); a stacker on the eastbound lane
+// from the packaging road passes it on its way round to the aisle south of R2: the two lanes are
+// taken in turn only at their ends, not along the whole road.
+TEST(PairClosure, ARobotOnTheOppositeLanePassesATransporterStandingInItsLane) {
+  PlantLane plant;
+  TrafficManager& m = plant.m;
+  m.set_robot_type(1, plant.stacker);
+  m.set_robot_type(2, plant.picker);
+  m.set_robot_type(3, plant.stacker);
+  m.set_partners({{1, 2}});
+  const auto& lanes = m.route_graph(plant.stacker);
+  const auto transporter =
+      m.search(plant.stacker).shortest(map::nearest_point(lanes, 57.0, 17.85), map::nearest_point(lanes, 48.3, 17.85));
+  ASSERT_GT(transporter.size(), 10u);
+  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0, d1 = 0.0, d3 = 0.0;
+  constexpr double kStep = 0.05, kSpeed = 1.0;
+  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+    const auto r = m.update(t);
+    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
+    m.report_progress({1, 1, d1, {}}, t);
+  }
+  ASSERT_GT(d1, 8.5) << "the transporter stands at the end of its route";
+  // Two stretches of the eastbound lane meet the westbound one: its two ends.
+  const auto& zones = m.zones();
+  const int east = zones.place_of(map::nearest_point(lanes, 45.25, 16.35));
+  const int west = zones.place_of(map::nearest_point(lanes, 45.25, 17.85));
+  EXPECT_EQ(zones.opposite_lanes(plant.stacker, zones.corridor(east), plant.stacker).size(), 2u);
+  EXPECT_FALSE(zones.conflict(plant.stacker, east, plant.stacker, west));
+
+  const auto round =
+      m.search(plant.stacker).shortest(map::nearest_point(lanes, 25.75, 16.35), map::nearest_point(lanes, 47.0, 12.45));
+  ASSERT_EQ(m.submit_route({3, 1, round}, t), SubmitStatus::kAccepted);
+  for (int i = 0; i < 20 * 90; ++i, t += kStep) {
+    const auto r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    if (const Grant* g = grant_of(r, 3)) d3 = std::max(d3, std::min(g->granted_distance, d3 + kSpeed * kStep));
+    m.report_progress({3, 1, d3, {}}, t);
+    m.report_progress({1, 1, d1, {}}, t);
+  }
+  EXPECT_GT(d3, 40.0) << "the stacker waited for the transporter standing in the other lane";
+}
+
 }  // namespace
 }  // namespace fleet::traffic
