@@ -19,26 +19,49 @@ namespace {
 /// A rack row: a rack of the site and the way its places face (the lane they are worked from).
 using RackRow = std::pair<std::size_t, long>;
 
-std::optional<RackRow> rack_row_of(const map::Site& site, const std::string& place,
+/// The rack row of a place, and the row facing it across its aisle (the rack that lies within
+/// kAisleM ahead of it): a robot standing in the aisle is in the way of both rows' lanes.
+std::vector<RackRow> aisle_rows_of(const map::Site& site, const std::string& place,
                                    const std::map<std::string, geometry::Pose2>& poses) {
+  constexpr double kAisleM = 6.0, kStepM = 0.25;
   const auto pose = poses.find(place);
-  if (pose == poses.end()) return std::nullopt;
-  for (std::size_t r = 0; r < site.racks.size(); ++r) {
-    if (geometry::contains(site.racks[r].polygon, pose->second.position())) {
-      const long quarter = std::lround(geometry::normalize_angle(pose->second.yaw) / (std::numbers::pi / 2.0));
-      return RackRow{r, (quarter % 4 + 4) % 4};
+  if (pose == poses.end()) return {};
+  const auto rack_at = [&](geometry::Vec2 point) -> std::optional<std::size_t> {
+    for (std::size_t r = 0; r < site.racks.size(); ++r) {
+      if (geometry::contains(site.racks[r].polygon, point)) return r;
+    }
+    return std::nullopt;
+  };
+  const geometry::Vec2 at = pose->second.position();
+  const auto own = rack_at(at);
+  if (!own) return {};
+  const long quarter = std::lround(geometry::normalize_angle(pose->second.yaw) / (std::numbers::pi / 2.0));
+  const long facing = (quarter % 4 + 4) % 4;
+  std::vector<RackRow> rows{{*own, facing}};
+  const geometry::Vec2 ahead{std::cos(pose->second.yaw), std::sin(pose->second.yaw)};
+  for (double d = kStepM; d <= kAisleM; d += kStepM) {
+    const auto across = rack_at({at.x + d * ahead.x, at.y + d * ahead.y});
+    if (across && *across != *own) {
+      rows.push_back({*across, (facing + 2) % 4});
+      break;
     }
   }
-  return std::nullopt;
+  return rows;
 }
 
-/// The rack rows of open orders' places: of every open loader walk's lines, and with `every_order`
-/// of every other open order's pick and drop places too.
+std::optional<RackRow> rack_row_of(const map::Site& site, const std::string& place,
+                                   const std::map<std::string, geometry::Pose2>& poses) {
+  const auto rows = aisle_rows_of(site, place, poses);
+  return rows.empty() ? std::nullopt : std::optional<RackRow>(rows.front());
+}
+
+/// The rack rows of the aisles of open orders' places: of every open loader walk's lines, and with
+/// `every_order` of every other open order's pick and drop places too.
 std::set<RackRow> rows_in_work(const IntakeView& view, const std::map<std::string, geometry::Pose2>& poses,
                                bool every_order) {
   std::set<RackRow> rows;
   const auto add = [&](const std::string& place) {
-    if (const auto row = rack_row_of(view.site, place, poses)) rows.insert(*row);
+    for (const RackRow& row : aisle_rows_of(view.site, place, poses)) rows.insert(row);
   };
   for (const Order* open : view.book.open_orders()) {
     if (open->loader && open->kind == OrderKind::kPick) {

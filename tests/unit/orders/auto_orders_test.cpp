@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -149,6 +150,21 @@ TEST(AutoOrders, ALoaderWalkTakesARackRowNoOtherOpenWalkWorks) {
 // way of the picker.
 TEST(AutoOrders, ATransportStaysOutOfTheRackRowOfAnOpenLoaderWalk) {
   Yard yard;
+  // R1 and R2 face north onto an aisle; across it, S1 in rack K3 faces south onto the same aisle.
+  for (auto& area : yard.site.loading_areas) {
+    if (area.id[0] == 'R') area.pose.yaw = std::numbers::pi / 2.0;
+  }
+  yard.site.racks.push_back({"K3", {{5.5, 2.5}, {8.5, 2.5}, {8.5, 3.5}, {5.5, 3.5}}});
+  map::LoadingArea s1;
+  s1.id = "S1";
+  s1.pose = {6.0, 3.0, -std::numbers::pi / 2.0};
+  yard.site.loading_areas.push_back(s1);
+  yard.names.areas.push_back("S1");
+  std::vector<Place> places = yard.ledger.places();
+  places.push_back({"S1", s1.pose});
+  yard.ledger = AreaLedger(places);
+  yard.ledger.record({1, "pallet", {}, "A1", ""});
+  yard.ledger.record({2, "pallet", {}, "PS1", ""});
   yard.free_robots = {"fl1"};
   const auto drops_of = [&](const Yard& y) {
     std::set<std::string> drops;
@@ -160,6 +176,7 @@ TEST(AutoOrders, ATransportStaysOutOfTheRackRowOfAnOpenLoaderWalk) {
   };
   const auto before = drops_of(yard);
   ASSERT_TRUE(before.contains("R1") || before.contains("R2")) << "the rack row is a drop like any other";
+  ASSERT_TRUE(before.contains("S1"));
   yard.free_robots = {"fl1", "pk1"};
   IntakeView view = yard.view();
   view.loader_fleet = "stackers";
@@ -172,6 +189,7 @@ TEST(AutoOrders, ATransportStaysOutOfTheRackRowOfAnOpenLoaderWalk) {
   const auto after = drops_of(yard);
   EXPECT_FALSE(after.empty());
   EXPECT_FALSE(after.contains("R1") || after.contains("R2")) << "a transport into the walk's row";
+  EXPECT_FALSE(after.contains("S1")) << "a transport into the row across the walk's aisle";
 }
 
 // Nor does a walk take a row where another open order has a place: that robot would stand in
