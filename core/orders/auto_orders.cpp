@@ -121,15 +121,23 @@ std::vector<Order> AutoOrders::pick_tours(const IntakeView& view) {
   // A loader walk fills a few pallets; a tray tour carries what the tray holds.
   const int boxes = loader ? kLoaderWalkBoxes : kTourBoxes;
   const auto poses = place_poses(view.site);
-  auto stock = intake.boxes_left();
+  const auto stock = intake.boxes_left();
+  std::optional<std::vector<PickLine>> lines;
   if (loader) {
-    // One loader pair to a rack row, and none where another open order has a place: a second
-    // robot in the same one-way lane could not pass the picker nor its transporter, which closes
-    // the lane behind it.
-    const auto taken = rows_in_work(view, poses, /*every_order=*/true);
-    std::erase_if(stock, [&](const auto& entry) { return in_rows(view.site, entry.first, poses, taken); });
+    // One loader pair to an aisle: a second pair in the same one-way lane could not pass the
+    // first, nor its transporter. An aisle where no other open order has a place comes first (a
+    // robot bound there would wait before the lane the transporter closes); when every aisle has
+    // one, any aisle no other walk works.
+    for (const bool every_order : {true, false}) {
+      auto free_stock = stock;
+      const auto taken = rows_in_work(view, poses, every_order);
+      std::erase_if(free_stock, [&](const auto& entry) { return in_rows(view.site, entry.first, poses, taken); });
+      lines = choose_auto_pick_list(free_stock, poses, view.max_pickable_mass, boxes, rng_);
+      if (lines) break;
+    }
+  } else {
+    lines = choose_auto_pick_list(stock, poses, view.max_pickable_mass, boxes, rng_);
   }
-  const auto lines = choose_auto_pick_list(stock, poses, view.max_pickable_mass, boxes, rng_);
   if (!lines) return {};
   if (loader) return {intake.loader_order(*lines, request)};
   request.drop_area = view.site.packing->stations.front();

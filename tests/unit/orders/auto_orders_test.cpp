@@ -47,6 +47,16 @@ struct Yard {
     ledger.record({2, "pallet", {}, "PS1", ""});
   }
 
+  /// Rack place R3 with boxes of item BY, in rack K2: a second rack row.
+  void add_second_row() {
+    map::LoadingArea r3;
+    r3.id = "R3";
+    r3.pose = {6.0, 5.0, 0.0};
+    r3.boxes = map::BoxStock{"BY", 5};
+    site.loading_areas.push_back(r3);
+    names.areas.push_back("R3");
+  }
+
   IntakeView view() const {
     return {.book = book,
             .ledger = ledger,
@@ -118,12 +128,7 @@ TEST(AutoOrders, ASiteWithoutPackingStationsGetsNoPickTours) {
 // the first on its one-way lane.
 TEST(AutoOrders, ALoaderWalkTakesARackRowNoOtherOpenWalkWorks) {
   Yard yard;
-  map::LoadingArea r3;
-  r3.id = "R3";
-  r3.pose = {6.0, 5.0, 0.0};  // a second row
-  r3.boxes = map::BoxStock{"BY", 5};
-  yard.site.loading_areas.push_back(r3);
-  yard.names.areas.push_back("R3");
+  yard.add_second_row();
   yard.names.robots.push_back("pk2");
   yard.names.fleet_of_robot["pk2"] = "pickers";
   yard.free_robots = {"pk1", "pk2"};
@@ -192,16 +197,11 @@ TEST(AutoOrders, ATransportStaysOutOfTheRackRowOfAnOpenLoaderWalk) {
   EXPECT_FALSE(after.contains("S1")) << "a transport into the row across the walk's aisle";
 }
 
-// Nor does a walk take a row where another open order has a place: that robot would stand in
-// the pair's lane, or wait before it once the transporter closes it.
+// Nor does a walk take a row where another open order has a place while another row is free:
+// that robot would stand in the pair's lane, or wait before it once the transporter closes it.
 TEST(AutoOrders, ALoaderWalkTakesNoRackRowAnOpenTransportGoesTo) {
   Yard yard;
-  map::LoadingArea r3;
-  r3.id = "R3";
-  r3.pose = {6.0, 5.0, 0.0};  // a second row
-  r3.boxes = map::BoxStock{"BY", 5};
-  yard.site.loading_areas.push_back(r3);
-  yard.names.areas.push_back("R3");
+  yard.add_second_row();
   Order transport;
   transport.pick_area = "A1";
   transport.drop_area = "R2";
@@ -217,6 +217,15 @@ TEST(AutoOrders, ALoaderWalkTakesNoRackRowAnOpenTransportGoesTo) {
       EXPECT_EQ(line.place, "R3") << "seed " << seed << ": " << walk[0].lines;
     }
   }
+  // With every aisle in use, a walk takes one no other walk works.
+  yard.site.loading_areas.back().boxes->count = 0;
+  AutoOrders source(true, 1, "loader");
+  IntakeView view = yard.view();
+  view.loader_fleet = "stackers";
+  const auto walk = source.pick_tours(view);
+  ASSERT_EQ(walk.size(), 1u) << "no walk while a transport goes to the only rack row with boxes";
+  EXPECT_TRUE(walk[0].lines.find("R1") != std::string::npos || walk[0].lines.find("R2") != std::string::npos)
+      << walk[0].lines;
 }
 
 TEST(AutoOrders, TheSameSeedDrawsTheSameOrders) {

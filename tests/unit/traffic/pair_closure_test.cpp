@@ -16,6 +16,8 @@ namespace {
 
 using testing::grant_of;
 
+constexpr double kStep = 0.05, kSpeed = 1.0;  // s, m/s
+
 struct PlantLane {
   config::FleetConfig config = config::load_fleet_config(fleet::test::source_path("/config/sites/plant.yaml"));
   map::SiteMap site = map::load_site_map(fleet::test::source_path("/maps/plant.yaml"));
@@ -28,6 +30,19 @@ struct PlantLane {
   std::vector<int> along(int type, double y, double from, double to) {
     const auto& lanes = m.route_graph(type);
     return m.search(type).shortest(map::nearest_point(lanes, from, y), map::nearest_point(lanes, to, y));
+  }
+
+  /// Robot 1 drives `route` alone for 30 s from t = 0, at kSpeed within its grants; `t` ends
+  /// after that. How far it got.
+  double drive_alone(const std::vector<int>& route, double& t) {
+    EXPECT_EQ(m.submit_route({1, 1, route}, 0.0), SubmitStatus::kAccepted);
+    double d1 = 0.0;
+    for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+      const auto r = m.update(t);
+      if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
+      m.report_progress({1, 1, d1, {}}, t);
+    }
+    return d1;
   }
 };
 
@@ -45,14 +60,8 @@ TEST(PairClosure, AThirdRobotIsKeptOutOfTheLaneBehindATransporterAndGoesRound) {
   constexpr double kLane = 10.945;
   const auto transporter = plant.along(plant.stacker, kLane, 38.0, 45.0);
   ASSERT_GT(transporter.size(), 5u) << "the lane runs east";
-  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
-  double t = 0.0, d1 = 0.0;
-  constexpr double kStep = 0.05, kSpeed = 1.0;
-  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
-    const auto r = m.update(t);
-    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
-    m.report_progress({1, 1, d1, {}}, t);
-  }
+  double t = 0.0;
+  const double d1 = plant.drive_alone(transporter, t);
   ASSERT_GT(d1, 6.5) << "the transporter stands at the end of its route";
 
   // From the cross aisle west of the racks, through the lane, to the cross aisle east of them.
@@ -109,14 +118,8 @@ TEST(PairClosure, WithoutPartnersTheLaneStaysOpen) {
   m.set_robot_type(3, plant.forklift);
   constexpr double kLane = 10.945;
   const auto transporter = plant.along(plant.stacker, kLane, 38.0, 45.0);
-  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
-  double t = 0.0, d1 = 0.0, d3 = 0.0;
-  constexpr double kStep = 0.05, kSpeed = 1.0;
-  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
-    const auto r = m.update(t);
-    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
-    m.report_progress({1, 1, d1, {}}, t);
-  }
+  double t = 0.0, d3 = 0.0;
+  const double d1 = plant.drive_alone(transporter, t);
   const auto& lanes = m.route_graph(plant.forklift);
   const auto through =
       m.search(plant.forklift).shortest(map::nearest_point(lanes, 29.1, 14.0), map::nearest_point(lanes, 58.0, 14.0));
@@ -154,14 +157,8 @@ TEST(PairClosure, ARobotOnTheOppositeLanePassesATransporterStandingInItsLane) {
   const auto transporter =
       m.search(plant.stacker).shortest(map::nearest_point(lanes, 57.0, 17.85), map::nearest_point(lanes, 48.3, 17.85));
   ASSERT_GT(transporter.size(), 10u);
-  ASSERT_EQ(m.submit_route({1, 1, transporter}, 0.0), SubmitStatus::kAccepted);
-  double t = 0.0, d1 = 0.0, d3 = 0.0;
-  constexpr double kStep = 0.05, kSpeed = 1.0;
-  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
-    const auto r = m.update(t);
-    if (const Grant* g = grant_of(r, 1)) d1 = std::max(d1, std::min(g->granted_distance, d1 + kSpeed * kStep));
-    m.report_progress({1, 1, d1, {}}, t);
-  }
+  double t = 0.0, d3 = 0.0;
+  const double d1 = plant.drive_alone(transporter, t);
   ASSERT_GT(d1, 8.5) << "the transporter stands at the end of its route";
   // Two stretches of the eastbound lane meet the westbound one: its two ends.
   const auto& zones = m.zones();
