@@ -19,40 +19,42 @@ namespace {
 /// A rack row: a rack of the site and the way its places face (the lane they are worked from).
 using RackRow = std::pair<std::size_t, long>;
 
+std::optional<std::size_t> rack_at(const map::Site& site, geometry::Vec2 point) {
+  for (std::size_t r = 0; r < site.racks.size(); ++r) {
+    if (geometry::contains(site.racks[r].polygon, point)) return r;
+  }
+  return std::nullopt;
+}
+
+/// The rack row of a place: the rack it stands in and the quarter it faces.
+std::optional<RackRow> rack_row_of(const map::Site& site, const std::string& place,
+                                   const std::map<std::string, geometry::Pose2>& poses) {
+  const auto pose = poses.find(place);
+  if (pose == poses.end()) return std::nullopt;
+  const auto rack = rack_at(site, pose->second.position());
+  if (!rack) return std::nullopt;
+  const long quarter = std::lround(geometry::normalize_angle(pose->second.yaw) / (std::numbers::pi / 2.0));
+  return RackRow{*rack, (quarter % 4 + 4) % 4};
+}
+
 /// The rack row of a place, and the row facing it across its aisle (the rack that lies within
 /// kAisleM ahead of it): a robot standing in the aisle is in the way of both rows' lanes.
 std::vector<RackRow> aisle_rows_of(const map::Site& site, const std::string& place,
                                    const std::map<std::string, geometry::Pose2>& poses) {
   constexpr double kAisleM = 6.0, kStepM = 0.25;
-  const auto pose = poses.find(place);
-  if (pose == poses.end()) return {};
-  const auto rack_at = [&](geometry::Vec2 point) -> std::optional<std::size_t> {
-    for (std::size_t r = 0; r < site.racks.size(); ++r) {
-      if (geometry::contains(site.racks[r].polygon, point)) return r;
-    }
-    return std::nullopt;
-  };
-  const geometry::Vec2 at = pose->second.position();
-  const auto own = rack_at(at);
+  const auto own = rack_row_of(site, place, poses);
   if (!own) return {};
-  const long quarter = std::lround(geometry::normalize_angle(pose->second.yaw) / (std::numbers::pi / 2.0));
-  const long facing = (quarter % 4 + 4) % 4;
-  std::vector<RackRow> rows{{*own, facing}};
-  const geometry::Vec2 ahead{std::cos(pose->second.yaw), std::sin(pose->second.yaw)};
+  std::vector<RackRow> rows{*own};
+  const geometry::Pose2& pose = poses.at(place);
+  const geometry::Vec2 ahead{std::cos(pose.yaw), std::sin(pose.yaw)};
   for (double d = kStepM; d <= kAisleM; d += kStepM) {
-    const auto across = rack_at({at.x + d * ahead.x, at.y + d * ahead.y});
-    if (across && *across != *own) {
-      rows.push_back({*across, (facing + 2) % 4});
+    const auto across = rack_at(site, {pose.x + d * ahead.x, pose.y + d * ahead.y});
+    if (across && *across != own->first) {
+      rows.push_back({*across, (own->second + 2) % 4});
       break;
     }
   }
   return rows;
-}
-
-std::optional<RackRow> rack_row_of(const map::Site& site, const std::string& place,
-                                   const std::map<std::string, geometry::Pose2>& poses) {
-  const auto rows = aisle_rows_of(site, place, poses);
-  return rows.empty() ? std::nullopt : std::optional<RackRow>(rows.front());
 }
 
 /// The rack rows of the aisles of open orders' places: of every open loader walk's lines, and with
