@@ -107,7 +107,7 @@ TEST(Vda5050, VehiclesOfAnotherMakerAndFleetsOwnAgentsDoOrdersTogether) {
   ASSERT_EQ(init.exit_code, 0) << init.err;
   const auto soak =
       run_command({bin("fleetctl"), "--domain", "111", "--config", kConfig, "--security", security, "soak", "--agents",
-                   "2", "--vda5050-vehicles", "2", "--duration", "80", "--time-scale", "5", "--json"},
+                   "2", "--vda5050-vehicles", "2", "--duration", "60", "--time-scale", "5", "--json"},
                   240);
   std::filesystem::remove_all(security);
   ASSERT_FALSE(soak.out.empty()) << soak.err;
