@@ -463,19 +463,20 @@ void FleetAgent::publish_traffic(double now_sim) {
   // missed it (restarted, or the sample lost under later ones) has it again; between those, only
   // the progress along it, at the state rate (the caller's): a route of a few hundred points at
   // that rate filled a 2 Mbit/s link. A route left (parked off the road) goes out once; a work
-  // area with every sample, until the server has answered and after.
+  // area with every sample, until the server has answered and after; an area to keep clear
+  // (docked) as a route does.
   const bool changed = route.version != last_traffic_.version || route.points != last_traffic_.points ||
                        route.work_area != last_traffic_.work_area || route.arrival_area != last_traffic_.arrival_area ||
-                       map_id_ != last_traffic_map_;
+                       route.keep_clear != last_traffic_.keep_clear || map_id_ != last_traffic_map_;
   if (!changed && now_sim == last_traffic_sim_) return;
-  if (!changed && route.points.empty() && route.work_area.empty() && last_traffic_.points.empty() &&
-      last_traffic_sim_ >= 0.0) {
+  if (!changed && route.points.empty() && route.work_area.empty() && route.keep_clear.empty() &&
+      last_traffic_.points.empty() && last_traffic_sim_ >= 0.0) {
     return;
   }
   const double now_wall = SimClock::wall_now();
   if (changed || now_wall - last_route_sent_wall_ >= model::kRouteRepeatWallS) {
     traffic_writer_.write({options_.robot_id, route.version, route.points, route.progress, route.stopped_for, now_sim,
-                           route.work_area, route.arrival_area, map_id_});
+                           route.work_area, route.arrival_area, route.keep_clear, map_id_});
     last_route_sent_wall_ = now_wall;
   } else {
     progress_writer_.write({options_.robot_id, route.version, route.progress, route.stopped_for, now_sim, map_id_});

@@ -217,7 +217,7 @@ void EmulatedFleet::publish(std::size_t i, double now_sim) {
   if (new_route || route.points != link.sent_points || !route.work_area.empty() ||
       now_wall - link.request_sent_wall >= model::kRouteRepeatWallS) {
     traffic_writer_.write({robot.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
-                           route.work_area, route.arrival_area, options_.map_id});
+                           route.work_area, route.arrival_area, route.keep_clear, options_.map_id});
     link.sent_points = route.points;
     link.request_sent_wall = now_wall;
   } else {

@@ -421,6 +421,7 @@ fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
           v.sim_time,
           s.point_seq(v.work_area),
           s.point_seq(v.arrival_area),
+          s.point_seq(v.keep_clear),
           borrow(v.map_id)};
 }
 model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
@@ -432,6 +433,7 @@ model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
           w.sim_time,
           points_of(w.work_area),
           points_of(w.arrival_area),
+          points_of(w.keep_clear),
           text(w.map_id)};
 }
 

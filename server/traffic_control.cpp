@@ -108,8 +108,11 @@ void TrafficControl::handle_requests(double now_sim, double now_wall) {
       working_.erase(request.robot_id);
       const bool was_on_roads = manager_->has_robot(id);
       if (stand_where_it_is(request.robot_id, id, now_sim)) {
-        log_->debug("{} works beside the roads, holding the {} places its body touches", request.robot_id,
-                    manager_->held_places(id).size());
+        // Docked, it will turn out across the lanes: nobody is to stop in its way meanwhile.
+        manager_->keep_clear(
+            id, request.keep_clear.empty() ? geometry::Polygon{} : traffic::convex_hull(request.keep_clear));
+        log_->debug("{} works beside the roads, holding the {} places its body touches{}", request.robot_id,
+                    manager_->held_places(id).size(), request.keep_clear.empty() ? "" : ", its way out kept clear");
       } else if (was_on_roads) {
         log_->debug("{} left the roads", request.robot_id);
       }

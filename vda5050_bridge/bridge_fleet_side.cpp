@@ -132,8 +132,9 @@ void Bridge::publish(Vehicle& v, double now_sim) {
   const robot::TrafficRoute route = master.traffic_route();
   const bool new_route = route.version != v.sent_version;
   if (!(route.points.empty() && !new_route && v.sent_off_road)) {
-    traffic_writer_.write(partition, {master.id(), route.version, route.points, route.progress, route.stopped_for,
-                                      now_sim, route.work_area, route.arrival_area, options_.site->site.name});
+    traffic_writer_.write(partition,
+                          {master.id(), route.version, route.points, route.progress, route.stopped_for, now_sim,
+                           route.work_area, route.arrival_area, route.keep_clear, options_.site->site.name});
     v.sent_off_road = route.points.empty();
     v.sent_version = route.version;
   }

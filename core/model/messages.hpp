@@ -273,6 +273,11 @@ struct TrafficRequest {
   /// the road, as points whose convex hull it is, map frame; empty when it sweeps nothing beyond
   /// the lane (traffic::TrafficManager::set_arrival_area).
   geometry::Polygon arrival_area;
+  /// Off the roads, standing with its body reaching onto them (a stacker docked at a pallet
+  /// place): the area it will sweep turning out onto the road, to either side, when it leaves, as
+  /// points whose convex hull it is. No other robot is granted to stop in it meanwhile
+  /// (traffic::TrafficManager::keep_clear); empty when it asks for nothing.
+  geometry::Polygon keep_clear;
   /// The map whose road graph numbers `points`. A request for another map than the server's was
   /// sent before the robot heard of a map switch: the server ignores it.
   std::string map_id;

@@ -40,6 +40,8 @@ struct TrafficRoute {
   /// On the road: what the robot sweeps turning off the route's end into its goal beside the road
   /// (model::TrafficRequest::arrival_area).
   geometry::Polygon arrival_area;
+  /// Off the road, docked: the area its way out will sweep (model::TrafficRequest::keep_clear).
+  geometry::Polygon keep_clear;
 };
 
 /// A grant from the traffic manager (see traffic::Grant and model::TrafficGrant).

@@ -173,6 +173,7 @@ SubmitStatus TrafficManager::submit_route(const RouteRequest& request, double no
   const auto& points = request.points;
   if (points.empty()) return SubmitStatus::kInvalid;
   area_waits_.erase(request.robot_id);
+  ways_out_.erase(request.robot_id);
   // Its type's lanes: a route into a lane the vehicle does not fit has an edge missing there.
   const map::RoadGraph& lanes = types_[static_cast<std::size_t>(type_of(request.robot_id))]->lanes;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -336,6 +337,7 @@ bool TrafficManager::hold_body(int robot_id, const geometry::Polygon& body, doub
 
 bool TrafficManager::remove_robot(int robot_id, double now) {
   area_waits_.erase(robot_id);
+  ways_out_.erase(robot_id);
   if (robots_.erase(robot_id) == 0) return false;
   for (auto& [id, robot] : robots_) {
     robot.yield_to.erase(std::remove(robot.yield_to.begin(), robot.yield_to.end(), robot_id), robot.yield_to.end());

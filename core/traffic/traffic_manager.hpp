@@ -251,6 +251,14 @@ class TrafficManager {
   /// elsewhere, asks for nothing. Computing the places is a pass over every place: only when the
   /// area or the point changes.
   void set_arrival_area(int robot_id, int goal_point, const geometry::Polygon& area);
+  /// A robot standing beside the roads whose body reaches onto them (a stacker docked at a pallet
+  /// place) will turn out onto the lane across `area` (convex) when it leaves. Until then no other
+  /// robot is granted to stop in a place whose region touches the area: it is granted through it to
+  /// a place beyond, or up to before it. Robots may pass, so a docked robot whose body leaves the
+  /// lanes free costs nobody anything, and robots held up by its body wait outside its way out
+  /// instead of in it. Asked again with every request; an empty area asks for nothing. Dropped
+  /// when the robot is removed or sends a route.
+  void keep_clear(int robot_id, const geometry::Polygon& area);
   /// Whether the robot holds its arrival area (granted up to its route's last point).
   bool holds_arrival(int robot_id) const;
   /// The area of the robot's turn off the road that it still holds: its arrival area, or the one
@@ -553,6 +561,13 @@ class TrafficManager {
   std::map<int, EntryClaim> entries_;           ///< robots waiting beside the roads, by id
   std::vector<std::uint8_t> entry_closed_;      ///< places closed by an active entry claim
   std::map<int, std::vector<int>> area_waits_;  ///< standing robots waiting for their work area, by id
+  /// Whether a robot may end its grant at `place`: not in another robot's way out (keep_clear).
+  bool stop_kept_clear(const Robot& robot, int place) const;
+  struct WayOut {
+    geometry::Polygon area;
+    std::vector<std::vector<int>> reach;  ///< by vehicle type: the places whose regions touch it, sorted
+  };
+  std::map<int, WayOut> ways_out_;  ///< keep_clear, by id
 };
 
 }  // namespace fleet::traffic

@@ -1,5 +1,6 @@
 // The TrafficManager's arrival areas: what a robot sweeps turning off its route into a place
-// beside the road, held with the route's last point.
+// beside the road, held with the route's last point; and the ways out that docked robots will
+// sweep turning back onto it, kept clear of stopping robots.
 
 #include <algorithm>
 
@@ -97,6 +98,29 @@ std::vector<int> TrafficManager::arrival_blockers(const Robot& robot) const {
   }
   sort_unique(out);
   return out;
+}
+
+void TrafficManager::keep_clear(int robot_id, const geometry::Polygon& area) {
+  const auto it = robots_.find(robot_id);
+  if (area.size() < 3 || it == robots_.end() || !it->second.frozen) {
+    ways_out_.erase(robot_id);
+    return;
+  }
+  auto known = ways_out_.find(robot_id);
+  if (known != ways_out_.end() && same_area(known->second.area, area)) return;
+  WayOut way_out{area, {}};
+  places_under(area, it->second.type, &way_out.reach);
+  for (auto& places : way_out.reach) sort_unique(places);
+  ways_out_[robot_id] = std::move(way_out);
+}
+
+bool TrafficManager::stop_kept_clear(const Robot& robot, int place) const {
+  const auto type = static_cast<std::size_t>(robot.type);
+  return std::any_of(ways_out_.begin(), ways_out_.end(), [&](const auto& entry) {
+    const auto& [id, way_out] = entry;
+    return id != robot.id && type < way_out.reach.size() &&
+           std::binary_search(way_out.reach[type].begin(), way_out.reach[type].end(), place);
+  });
 }
 
 }  // namespace fleet::traffic

@@ -380,7 +380,8 @@ void TrafficManager::extend(Robot& robot, int slot) {
           break;
         }
       }
-      if (j == last || zones_->stoppable(robot.type, robot.places[static_cast<std::size_t>(j)])) break;
+      const int place = robot.places[static_cast<std::size_t>(j)];
+      if (j == last || (zones_->stoppable(robot.type, place) && !stop_kept_clear(robot, place))) break;
     }
     if (!free) {
       robot.blocked = true;

@@ -99,10 +99,9 @@ std::vector<std::uint8_t> TrafficManager::closed_to(const Robot& robot, const st
   auto closed = places_of_others(others, with_next_stretch, 0.0, robot.type);
   const auto towards = towards_stoppers(robot);
   for (std::size_t p = 0; p < closed.size(); ++p) closed[p] = static_cast<std::uint8_t>(closed[p] | towards[p]);
-  // The corridors closed behind the transporters it waits for: a way round leads elsewhere.
+  // Every corridor closed behind a transporter, but its own pair's: a way round leads elsewhere,
+  // not into the lane another pair closes (it would wait there, on the way of that pair's picker).
   for (const PairClosure& closure : pair_closures_) {
-    const int transporter = slots_[static_cast<std::size_t>(closure.transporter)]->id;
-    if (std::find(others.begin(), others.end(), transporter) == others.end()) continue;
     if (robot.id == closure.loader_id || partnered(robot.id, closure.loader_id)) continue;
     for (std::size_t p = 0; p < closed.size(); ++p) {
       const int at = zones_->corridor_index(static_cast<int>(p));

@@ -374,7 +374,7 @@ TEST(TrafficRecovery, RouteReplannedBeforeSettingOffReplacesTheOldOneInTheManage
     fl2.publish_state();
   };
   const auto request = [&](const std::string& robot, std::uint64_t version, const std::vector<int>& points) {
-    requests.write({robot, version, points, 0.0, {}, 0.0, {}, {}, "table_a"});
+    requests.write({robot, version, points, 0.0, {}, 0.0, {}, {}, {}, "table_a"});
   };
   // Waits, both robots answering and `send` repeated as an agent does, for a grant to `robot` that
   // `wanted` accepts; every grant seen on the way goes to `seen`.

@@ -69,7 +69,7 @@ AreaRun run_beside_a_work_area(int domain, bool worker_goes_silent) {
       [&] {
         s.robot.publish_state();
         fl2.publish_state();
-        requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}, "table_a"});
+        requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}, {}, "table_a"});
         grants.take_data([&](model::TrafficGrant&& g) {
           area_clear = area_clear || (g.robot_id == "fl2" && g.status == "AREA_CLEAR");
         });
@@ -88,10 +88,10 @@ AreaRun run_beside_a_work_area(int domain, bool worker_goes_silent) {
     s.robot.publish_state();
     if (!worker_goes_silent) fl2.publish_state();
     if (!worker_goes_silent && std::chrono::steady_clock::now() >= next_work) {
-      requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}, "table_a"});
+      requests.write({"fl2", kWork, {}, 0.0, {}, 0.0, area, {}, {}, "table_a"});
       next_work += 500ms;
     }
-    requests.write({"fl1", kRoute, route, progress, {}, 0.0, {}, {}, "table_a"});
+    requests.write({"fl1", kRoute, route, progress, {}, 0.0, {}, {}, {}, "table_a"});
     grants.take_data([&](model::TrafficGrant&& g) {
       if (g.robot_id != "fl1" || g.version != kRoute || g.granted_index < 0) return;
       furthest = std::max(furthest, g.granted_index);

@@ -169,6 +169,7 @@ TrafficRoute Stacker::traffic_route() const {
   if (nav_.follower().on_road()) r.stopped_for = nav_.safety().stopped_for(time_, estimate().position());
   if (nav_.follower().on_road() && !nav_.follower().in_siding()) r.arrival_area = arrival_area_;
   if (!nav_.follower().on_road() && (law_ || back_)) r.work_area = work_area_;
+  if (!nav_.follower().on_road() && !law_ && !back_ && r.points.empty()) r.keep_clear = keep_clear_;
   if (nav_.follower().before_road() && !way_out_.empty()) r.work_area = way_out_;
   return r;
 }
@@ -210,6 +211,15 @@ void Stacker::enter(StackerState state) {
     }
   }
   if (state == StackerState::kLifting || state == StackerState::kLowering) forks_done_at_ = time_ + config_.lift_time;
+  // Docked at a pallet place, for its forks or with its load until told where to stand, it will
+  // turn out to whichever side its next route leads: over the area it docked by, or its mirror
+  // image. It asks traffic to keep both clear until it sets off (note_way_out).
+  if (state == StackerState::kLifting || state == StackerState::kLowering) {
+    keep_clear_.clear();
+    if (config_.traffic && !work_area_.empty()) keep_clear_ = with_mirror_image(work_area_, estimate_);
+  } else if (state != StackerState::kHolding && !drives_route(state)) {
+    keep_clear_.clear();
+  }
   if (state != from) reports_.state_changed(order_id().value_or(""), to_string(state), false);
   if (phase_of(state) != from_phase && order_) reports_.phase_changed(order_->order_id, phase_of(state));
 }
@@ -263,6 +273,7 @@ void Stacker::note_way_out() {
   // Beside the road (in a dock, in its bay) its way onto the lane sweeps across it; on the road
   // the route's places cover the body.
   constexpr double kBesideTheRoad = 0.3;  // metres of path before the road's first point
+  keep_clear_.clear();
   way_out_.clear();
   if (config_.traffic && nav_.follower().road_start() > kBesideTheRoad) {
     way_out_ = sweeps_.way_out(nav_.follower().path(), estimate_, nav_.follower().road_start());

@@ -165,9 +165,10 @@ class Stacker : public Robot {
   int dock_attempts_ = 0;
   std::optional<control::DockingPhase> shown_phase_;  ///< the docking phase the detail shows
   std::vector<geometry::Vec2> work_area_;             ///< while docking: what the manoeuvre sweeps
-  bool area_clear_ = false;                           ///< traffic holds work_area_ for it (or traffic is off)
-  std::vector<geometry::Vec2> way_out_;               ///< what the way out of a dock or bay onto its route sweeps
-  std::vector<geometry::Vec2> arrival_area_;          ///< what the docking at the end of its route sweeps
+  std::vector<geometry::Vec2> keep_clear_;    ///< docked: both ways out onto the lane (TrafficRoute::keep_clear)
+  bool area_clear_ = false;                   ///< traffic holds work_area_ for it (or traffic is off)
+  std::vector<geometry::Vec2> way_out_;       ///< what the way out of a dock or bay onto its route sweeps
+  std::vector<geometry::Vec2> arrival_area_;  ///< what the docking at the end of its route sweeps
   double forks_done_at_ = 0.0;
   int carried_ = -1;
   bool paused_ = false;

@@ -23,6 +23,18 @@ double carried_offset(const control::DockingParams& docking, const sim::Tricycle
   return geometry.fork_tip_x() + docking.pocket_depth - 0.5 * docking.pallet.depth;
 }
 
+std::vector<Vec2> with_mirror_image(std::vector<Vec2> corners, const Pose2& axis) {
+  const Vec2 along = heading_of(axis.yaw);
+  const std::size_t n = corners.size();
+  corners.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 d = corners[i] - axis.position();
+    const Vec2 on_axis = (d.x * along.x + d.y * along.y) * along;
+    corners.push_back(axis.position() + 2.0 * on_axis - d);
+  }
+  return corners;
+}
+
 StackerSweeps::StackerSweeps(const StackerConfig& config)
     : config_(config), footprint_{config.body.geometry.length, config.body.geometry.width} {}
 

@@ -22,6 +22,11 @@ geometry::Pose2 rear_axle_at(const geometry::Pose2& centre, const sim::TricycleG
 /// depth beyond the entry face.
 double carried_offset(const control::DockingParams& docking, const sim::TricycleGeometry& geometry);
 
+/// `corners` with their mirror image across the line through `axis` along its heading. Docked on
+/// that line, a stacker turns out onto the lane to either side: over the area it docked by or over
+/// its mirror image.
+std::vector<geometry::Vec2> with_mirror_image(std::vector<geometry::Vec2> corners, const geometry::Pose2& axis);
+
 class StackerSweeps {
  public:
   /// `config` must outlive it.

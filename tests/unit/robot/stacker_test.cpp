@@ -196,13 +196,27 @@ TEST(Stacker, DocksOnlyOnceTrafficHoldsTheAreaItsManoeuvreSweeps) {
     EXPECT_TRUE(details.contains(phase)) << phase;
   }
   EXPECT_TRUE(stacker->traffic_route().work_area.empty()) << "the area is let go once docked";
+  // Docked, it asks traffic to keep clear the ways it may turn out by: to either side of the place.
+  const geometry::Polygon keep_clear = traffic::convex_hull(stacker->traffic_route().keep_clear);
+  ASSERT_GE(keep_clear.size(), 3u) << "no way out kept clear while docked";
+  const geometry::Pose2 fg5 = plant.site->site.find_area("FG5")->pose;
+  for (const double side : {-2.0, 2.0}) {
+    EXPECT_TRUE(geometry::contains(keep_clear, {fg5.x + side, start.y})) << side << " m along the lane";
+  }
   // Loaded, it asks for its way out onto the road with its route: from where it stands, turning
-  // onto the lane, to past the route's first point.
+  // onto the lane, to past the route's first point. That lies in what it kept clear.
   for (int i = 0; i < 20 * 30 && stacker->traffic_route().points.empty(); ++i) stacker->step();
   const robot::TrafficRoute out = stacker->traffic_route();
   ASSERT_FALSE(out.points.empty()) << stacker->status().task_state;
+  EXPECT_TRUE(out.keep_clear.empty()) << "on its way, it keeps nothing clear";
   const std::vector<geometry::Vec2> way_out = out.work_area;
   ASSERT_FALSE(way_out.empty()) << "no way out asked for";
+  for (const auto& corner : way_out) {
+    EXPECT_LT(geometry::convex_polygons_distance(
+                  keep_clear, {corner, corner + geometry::Vec2{1e-3, 0.0}, corner + geometry::Vec2{0.0, 1e-3}}),
+              0.15)
+        << "corner (" << corner.x << ", " << corner.y << ") of the way out was not kept clear";
+  }
   const auto in_hull = [&](geometry::Vec2 p) {
     return geometry::convex_polygons_overlap(traffic::convex_hull(way_out),
                                              {p, p + geometry::Vec2{1e-3, 0.0}, p + geometry::Vec2{0.0, 1e-3}});

@@ -180,5 +180,70 @@ TEST(PairClosure, ARobotOnTheOppositeLanePassesATransporterStandingInItsLane) {
   EXPECT_GT(d3, 40.0) << "the stacker waited for the transporter standing in the other lane";
 }
 
+// Two pairs stand in the westbound lanes north and south of R2, each transporter with the lane
+// behind it closed. A reach truck coming up the east loop, bound west through the southern lane,
+// is kept out of it and goes round: not through the other closed lane (where it would stand, kept
+// out again, on the way of that pair's picker) but along the north road.
+TEST(PairClosure, ARobotKeptOutOfAClosedLaneGoesRoundEveryClosedLane) {
+  PlantLane plant;
+  TrafficManager& m = plant.m;
+  const int reach = vehicle_type_of(plant.config, "reach_trucks");
+  for (int transporter : {1, 4}) m.set_robot_type(transporter, plant.stacker);
+  for (int loader : {2, 5}) m.set_robot_type(loader, plant.picker);
+  m.set_robot_type(3, reach);
+  m.set_partners({{1, 2}, {4, 5}});
+  constexpr double kSouth = 12.45, kNorth = 17.85;  // the westbound lanes south and north of R2
+  const auto& lanes = m.route_graph(plant.stacker);
+  const auto north = m.search(plant.stacker)
+                         .shortest(map::nearest_point(lanes, 57.0, kNorth), map::nearest_point(lanes, 39.8, kNorth));
+  const auto south =
+      m.search(plant.stacker).shortest(map::nearest_point(lanes, 58.0, 8.5), map::nearest_point(lanes, 43.3, kSouth));
+  ASSERT_EQ(m.submit_route({4, 1, north}, 0.0), SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({1, 1, south}, 0.0), SubmitStatus::kAccepted);
+  double t = 0.0, d1 = 0.0, d4 = 0.0, d3 = 0.0;
+  const auto drive = [&](int id, double& d, const UpdateResult& r) {
+    if (const Grant* g = grant_of(r, id)) d = std::max(d, std::min(g->granted_distance, d + kSpeed * kStep));
+    m.report_progress({id, 1, d, {}}, t);
+  };
+  for (int i = 0; i < 20 * 30; ++i, t += kStep) {
+    const auto r = m.update(t);
+    drive(1, d1, r);
+    drive(4, d4, r);
+  }
+  ASSERT_GT(d1, 17.0) << "the southern transporter stands at the end of its route";
+  ASSERT_GT(d4, 17.0) << "the northern transporter stands at the end of its route";
+  const auto& truck_lanes = m.route_graph(reach);
+  const auto west = m.search(reach).shortest(map::nearest_point(truck_lanes, 50.0, 6.12),
+                                             map::nearest_point(truck_lanes, 20.0, 16.36));
+  ASSERT_TRUE(std::any_of(west.begin(), west.end(), [&](int point) {
+    const auto& q = truck_lanes.points[static_cast<std::size_t>(point)];
+    return std::abs(q.y - kSouth) < 0.3 && q.x < 43.0;
+  })) << "its shortest way leads through the southern lane";
+  ASSERT_EQ(m.submit_route({3, 1, west}, t), SubmitStatus::kAccepted);
+  bool kept_out = false;
+  std::vector<int> round;
+  for (int i = 0; i < 20 * 60 && round.empty(); ++i, t += kStep) {
+    const auto r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    drive(1, d1, r);
+    drive(4, d4, r);
+    const Grant* g = grant_of(r, 3);
+    ASSERT_NE(g, nullptr);
+    if (g->instruction == Instruction::kReroute) {
+      round = g->route;
+      break;
+    }
+    kept_out = kept_out || (g->status == GrantStatus::kWaiting && g->blocked_by == std::vector<int>{1});
+    drive(3, d3, r);
+  }
+  EXPECT_TRUE(kept_out) << "the truck never waited for the southern transporter";
+  ASSERT_FALSE(round.empty()) << "the truck was not routed round";
+  for (int point : round) {
+    const auto& q = truck_lanes.points[static_cast<std::size_t>(point)];
+    EXPECT_FALSE(std::abs(q.y - kSouth) < 0.3 && q.x > 33.5 && q.x < 56.0) << "south lane " << q.x << ", " << q.y;
+    EXPECT_FALSE(std::abs(q.y - kNorth) < 0.3 && q.x > 33.5 && q.x < 56.0) << "north lane " << q.x << ", " << q.y;
+  }
+}
+
 }  // namespace
 }  // namespace fleet::traffic

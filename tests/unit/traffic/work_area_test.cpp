@@ -158,5 +158,49 @@ TEST(WorkArea, AWayOutStaysHeldUntilTheLeavingRobotIsPastItsFirstEdge) {
   EXPECT_GT(progress1, 7.0);
 }
 
+// A stacker docked beside the road at x = 6 will turn out across the road, west or east of where
+// it stands, when it leaves. Robot 1 comes along the road: held up by the docked body, it waits
+// before the way out, not in it; with the way past free, it drives through.
+TEST(WorkArea, NoRobotStopsInTheWayOutOfADockedRobotButOneMayPassThroughIt) {
+  GraphBuilder b;
+  const auto road = b.one_way_road(0.0, 0.0, 10.0, 0.0);
+  b.one_way_road(0.0, 5.0, 10.0, 5.0);
+  TrafficConfiguration configuration;
+  configuration.resources.footprint = {1.0, 0.6};
+  const geometry::Polygon way_out{{3.0, -1.5}, {9.0, -1.5}, {9.0, 0.6}, {3.0, 0.6}};
+  const auto drive = [&](TrafficManager& m) {
+    double progress = 0.0;
+    for (double t = 0.1; t < 30.0; t += 0.1) {
+      const UpdateResult r = m.update(t);
+      const Grant* g = grant_of(r, 1);
+      if (g == nullptr) return -1.0;
+      progress = std::min(progress + 0.1, g->granted_distance);
+      m.report_progress({1, 1, progress, {}}, t);
+      EXPECT_EQ(m.check_invariant(), "");
+    }
+    return progress;
+  };
+  const geometry::Polygon across_the_road{{5.6, -1.4}, {6.4, -1.4}, {6.4, 0.2}, {5.6, 0.2}};
+  for (const bool keep_clear : {false, true}) {
+    TrafficManager m(b.graph(), configuration);
+    ASSERT_TRUE(m.hold_body(3, across_the_road, 0.0));
+    if (keep_clear) m.keep_clear(3, way_out);
+    ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+    const double stood = drive(m);
+    ASSERT_GT(stood, 1.0) << "robot 1 never came up";
+    if (keep_clear) {
+      EXPECT_LT(stood, 3.0) << "robot 1 stopped in the way out of the docked robot";
+    } else {
+      EXPECT_GT(stood, 3.0) << "without its way out kept, robot 1 drives up to the docked body";
+    }
+  }
+  // Docked by the other road, its way out across this one: robot 1 drives through.
+  TrafficManager m(b.graph(), configuration);
+  ASSERT_TRUE(m.hold_body(3, {{5.6, 4.6}, {6.4, 4.6}, {6.4, 5.4}, {5.6, 5.4}}, 0.0));
+  m.keep_clear(3, way_out);
+  ASSERT_EQ(m.submit_route({1, 1, road}, 0.0), SubmitStatus::kAccepted);
+  EXPECT_GT(drive(m), 9.5) << "robot 1 was kept from passing the way out";
+}
+
 }  // namespace
 }  // namespace fleet::traffic
