@@ -170,7 +170,8 @@ void FleetServer::dispatch() {
       .abilities = known_names().abilities,
       .place_taken = place_taken,
       .cost = [&](const std::string& robot_id, const std::string& area_id) { return travel_cost(robot_id, area_id); },
-      .now_wall = SimClock::wall_now()};
+      .now_wall = SimClock::wall_now(),
+      .held = [&](const Order& order) { return !loader_desk_.ready_for_picker(order); }};
   const auto assignments = dispatcher_.round(round);
   if (assignments.empty()) return;
   for (const auto& assignment : assignments) {

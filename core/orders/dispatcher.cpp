@@ -16,17 +16,18 @@ bool Dispatcher::takes_new_work(const RobotEntry& robot, const OrderBook& book, 
   return book.open_order_of(robot.id) == nullptr;
 }
 
-std::vector<const Order*> Dispatcher::offered(const OrderBook& book, const AreaLedger& ledger,
-                                              const PlaceTaken& taken) {
+std::vector<const Order*> Dispatcher::offered(const OrderBook& book, const AreaLedger& ledger, const PlaceTaken& taken,
+                                              const OrderHeld& held) {
   std::vector<const Order*> queue;
   for (const Order* o : book.queue()) {
+    if (held && held(*o)) continue;
     if (o->kind != OrderKind::kTransport || ready_to_dispatch(ledger, *o, taken)) queue.push_back(o);
   }
   return queue;
 }
 
 std::vector<Assignment> Dispatcher::round(const DispatchRound& in) const {
-  const auto queue = offered(in.book, in.ledger, in.place_taken);
+  const auto queue = offered(in.book, in.ledger, in.place_taken, in.held);
   if (queue.empty()) return {};
   std::vector<FreeRobot> free;
   for (const auto& [id, robot] : in.robots) {

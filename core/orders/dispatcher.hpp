@@ -25,6 +25,9 @@ struct DispatchRound {
   PlaceTaken place_taken;                           ///< whether a robot's body stands on a place
   TravelCost cost;                                  ///< road metres from a robot to an order's first place
   double now_wall = 0.0;
+  /// Orders the round holds back though queued (a loader walk until its first pallet is on a
+  /// transporter's forks: LoaderDesk::ready_for_picker); none when empty.
+  OrderHeld held;
 };
 
 class Dispatcher {
@@ -44,8 +47,10 @@ class Dispatcher {
   bool takes_new_work(const RobotEntry& robot, const OrderBook& book, double now_wall) const;
 
   /// The orders a round offers, in dispatch order: every queued order, less the transports that
-  /// are not ready (ready_to_dispatch: the load at the pick, the drop free, no body on either).
-  static std::vector<const Order*> offered(const OrderBook& book, const AreaLedger& ledger, const PlaceTaken& taken);
+  /// are not ready (ready_to_dispatch: the load at the pick, the drop free, no body on either)
+  /// and the orders `held` holds back.
+  static std::vector<const Order*> offered(const OrderBook& book, const AreaLedger& ledger, const PlaceTaken& taken,
+                                           const OrderHeld& held = {});
 
   /// One round: the offered orders matched by the policy with the robots that take new work and
   /// whose fleet has an ability. Empty when nothing is offered or nobody is free.

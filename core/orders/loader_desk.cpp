@@ -24,6 +24,12 @@ const LoaderJob* LoaderDesk::job_of(std::int64_t pick_id) const {
   return it == jobs_.end() ? nullptr : &it->second.job;
 }
 
+bool LoaderDesk::ready_for_picker(const Order& order) const {
+  if (!order.loader || order.kind != OrderKind::kPick) return true;
+  const auto it = jobs_.find(order.id);
+  return it != jobs_.end() && it->second.pallet_ready;
+}
+
 std::map<std::string, std::string> LoaderDesk::partners() const {
   std::map<std::string, std::string> pairs;
   for (const auto& [id, entry] : jobs_) {
@@ -44,17 +50,16 @@ std::vector<std::int64_t> LoaderDesk::jobs() const {
 
 std::vector<LoaderAction> LoaderDesk::step(const LoaderView& view) {
   std::vector<LoaderAction> actions;
-  // A loader pick order's job begins once a picker has it.
+  // A loader pick order's job begins with the order: its first pallet is fetched before a picker
+  // has it (ready_for_picker).
   for (const Order* order : view.book.open_orders()) {
-    if (!order->loader || order->kind != OrderKind::kPick || !with_a_robot(order->status) ||
-        jobs_.contains(order->id)) {
-      continue;
-    }
+    if (!order->loader || order->kind != OrderKind::kPick || jobs_.contains(order->id)) continue;
     jobs_.emplace(order->id,
                   Entry{LoaderJob(parse_pick_lines(order->lines, "loader order " + std::to_string(order->id)),
-                                  layout_.pallet_boxes, order->robot_id),
+                                  layout_.pallet_boxes, with_a_robot(order->status) ? order->robot_id : ""),
                         {},
-                        false});
+                        false,
+                        with_a_robot(order->status)});
   }
   for (auto it = jobs_.begin(); it != jobs_.end();) {
     Entry& entry = it->second;
@@ -94,6 +99,10 @@ void LoaderDesk::take_picker_facts(Entry& entry, const Order& pick, const Loader
     }
     return;
   }
+  // Its first pallet on the forks, the walk went to a picker.
+  if (job.picker_id().empty() && with_a_robot(pick.status) && !pick.robot_id.empty() && !job.all_loaded()) {
+    job.add_picker(pick.robot_id);
+  }
   const auto robot = view.robots.find(pick.robot_id);
   if (robot == view.robots.end() || pick.robot_id != job.picker_id()) return;
   const model::RobotState& state = robot->second.last;
@@ -125,6 +134,7 @@ void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) cons
       job.delivered(transport.robot_id);
       continue;
     }
+    if (order->phase == OrderPhase::kToDrop) entry.pallet_ready = true;
     const auto robot = view.robots.find(transport.robot_id);
     const bool lost = robot != view.robots.end() && robot->second.lost;
     if (order->status == OrderStatus::kFailed || order->status == OrderStatus::kCancelled || lost) {

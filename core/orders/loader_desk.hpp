@@ -72,8 +72,13 @@ class LoaderDesk {
   /// The server added a kCreate action's draft to the book as `transport`.
   void transport_created(const Order& transport);
 
-  /// The job of pick order `pick_id`, or null (not a loader order, not assigned yet, or over).
+  /// The job of pick order `pick_id`, or null (not a loader order, or over).
   const LoaderJob* job_of(std::int64_t pick_id) const;
+  /// Whether `order` may go to a robot: a loader pick order once its first pallet is on a
+  /// transporter's forks. Until then the walk waits in the queue, not a picker at home: the
+  /// server pairs a picker with a stacker that carries an empty pallet, and the stacker fetches
+  /// the pallet while the pickers do other work. True for any other order.
+  bool ready_for_picker(const Order& order) const;
   const LoaderLayout& layout() const { return layout_; }
   /// The robots that work together now, each transporter to its picker: the one behind the
   /// picker, and one leaving with a full pallet until it has delivered it.
@@ -90,6 +95,7 @@ class LoaderDesk {
     LoaderJob job;
     std::map<std::int64_t, Transport> transports;  ///< the job's transport orders, by id
     bool ended = false;                            ///< the pick order ended: no stop is left to load
+    bool pallet_ready = false;                     ///< a transporter of the job lifted its pallet
   };
 
   /// What the pick order and its robot show: the picker's stop and the boxes it loaded.

@@ -31,6 +31,8 @@ bool body_stands_on(const geometry::Polygon& body, const map::LoadingArea& area,
 /// Whether some robot's body stands on the place `place_id` (body_stands_on); the server answers it
 /// from the robots' last poses.
 using PlaceTaken = std::function<bool(const std::string& place_id)>;
+/// Whether a queued order is held back from dispatch for now.
+using OrderHeld = std::function<bool(const Order& order)>;
 
 /// A queued order goes out only when its load stands at the pick place and the drop place is
 /// free: one chained behind another (A->B, then B->C) waits for the first to finish. It also waits

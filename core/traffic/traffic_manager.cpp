@@ -508,7 +508,19 @@ UpdateResult TrafficManager::update(double now) {
     }
     // A copy: the new route clears blocked_by, and the event names who it went round.
     const std::vector<int> blockers = robot.blocked_by;
-    if (!reroute(robot, blockers, now, out, TrafficEvent::Kind::kRerouted)) robot.last_reroute = now;
+    if (reroute(robot, blockers, now, out, TrafficEvent::Kind::kRerouted)) continue;
+    robot.last_reroute = now;
+    // No way round a closed lane: its goal lies in it. Waiting at the lane's mouth it may stand
+    // where the pair's picker comes by to its stop, and the pair waits for the picker: it waits on
+    // a siding off the ways of the transporter and its picker instead.
+    std::vector<int> pair;
+    for (const PairClosure& closure : pair_closures_) {
+      const int transporter = slots_[static_cast<std::size_t>(closure.transporter)]->id;
+      if (std::find(blockers.begin(), blockers.end(), transporter) == blockers.end()) continue;
+      pair.push_back(transporter);
+      if (robots_.count(closure.loader_id) != 0) pair.push_back(closure.loader_id);
+    }
+    if (pair.size() > 1) send_to_siding(robot, pair, now, out);
   }
 
   out.grants.reserve(slots_.size());

@@ -176,7 +176,7 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
   const auto through = closed_to(robot, everyone, false);
   // ... and must end off the others' remaining routes, or it would stand in their way again; when
   // no such place is reachable, off their next `siding_window` metres (they pass it before it
-  // matters).
+  // matters). Never in a docked robot's way out (keep_clear).
   std::vector<int> path;
   for (double window : {kInfinity, configuration_.siding_window}) {
     auto avoid = places_of_others(others, true, window, robot.type);
@@ -185,7 +185,10 @@ bool TrafficManager::send_to_siding(Robot& robot, const std::vector<int>& others
     }
     path = types_[static_cast<std::size_t>(robot.type)]->search->nearest(
         anchor,
-        [&](int place) { return zones_->stoppable(robot.type, place) && avoid[static_cast<std::size_t>(place)] == 0; },
+        [&](int place) {
+          return zones_->stoppable(robot.type, place) && !stop_kept_clear(robot, place) &&
+                 avoid[static_cast<std::size_t>(place)] == 0;
+        },
         &through);
     if (path.size() >= 2) break;
   }

@@ -58,7 +58,8 @@ struct Yard {
                                  [&](const std::string& robot_id, const std::string& area_id) {
                                    return std::abs(robots.at(robot_id).last.pose.x - area_x.at(area_id));
                                  },
-                             .now_wall = now_wall});
+                             .now_wall = now_wall,
+                             .held = {}});
   }
 };
 
@@ -81,6 +82,8 @@ TEST(Dispatcher, ATransportWaitsForItsLoadItsDropAndBodiesOnEither) {
   yard.taken_places = {"A4"};
   EXPECT_TRUE(yard.round().empty()) << "a robot's body stands on the drop";
   yard.taken_places.clear();
+  const OrderHeld hold_it = [&](const Order& order) { return order.id == ready; };
+  EXPECT_TRUE(Dispatcher::offered(yard.book, yard.ledger, {}, hold_it).empty()) << "an order held back is not offered";
   const auto assignments = yard.round();
   ASSERT_EQ(assignments.size(), 1u);
   EXPECT_EQ(assignments[0].order_id, ready);

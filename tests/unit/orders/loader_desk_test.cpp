@@ -64,6 +64,16 @@ struct Plant {
   }
 };
 
+/// A pick order worked as a loader walk starting at RB2.
+Order walk_draft(const std::string& lines) {
+  Order draft;
+  draft.kind = OrderKind::kPick;
+  draft.loader = true;
+  draft.pick_area = "RB2";
+  draft.lines = lines;
+  return draft;
+}
+
 std::vector<const Order*> transports_of(const OrderBook& book, std::int64_t pick) {
   std::vector<const Order*> out;
   for (const auto& [id, o] : book.all()) {
@@ -75,11 +85,7 @@ std::vector<const Order*> transports_of(const OrderBook& book, std::int64_t pick
 TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   Plant plant;
   // Four boxes at two rack places: three fill the first pallet, the fourth goes on the second.
-  Order draft;
-  draft.kind = OrderKind::kPick;
-  draft.loader = true;
-  draft.pick_area = "RB2";
-  draft.lines = "RB2,A2,2\nRB3,A3,1\nRB3,A3,1\n";
+  const Order draft = walk_draft("RB2,A2,2\nRB3,A3,1\nRB3,A3,1\n");
   const std::int64_t pick = plant.book.create(draft, 0.0).id;
   plant.robot("picker1", "pickers");
   ASSERT_EQ(plant.book.assign(pick, "picker1", 0.0), TransitionResult::kApplied);
@@ -186,11 +192,7 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
 // already on the pallet go to expedition.
 TEST(LoaderDesk, AFailedWalkSendsThePalletItFilledToExpedition) {
   Plant plant;
-  Order draft;
-  draft.kind = OrderKind::kPick;
-  draft.loader = true;
-  draft.pick_area = "RB2";
-  draft.lines = "RB2,A2,1\nRB3,A3,1\n";
+  const Order draft = walk_draft("RB2,A2,1\nRB3,A3,1\n");
   const std::int64_t pick = plant.book.create(draft, 0.0).id;
   plant.robot("picker1", "pickers");
   plant.book.assign(pick, "picker1", 0.0);
@@ -212,6 +214,47 @@ TEST(LoaderDesk, AFailedWalkSendsThePalletItFilledToExpedition) {
   plant.step();
   EXPECT_EQ(plant.book.find(first)->drop_area, "EX1");
   EXPECT_EQ(plant.desk.job_of(pick)->boxes_loaded(), 1);
+}
+
+// A walk placed while every stacker is busy: its first pallet is asked for at once, and the walk
+// goes to a picker only once that pallet is on a stacker's forks; the stacker then stands behind
+// the walk's first stop.
+TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletIsOnTheForks) {
+  Plant plant;
+  const Order draft = walk_draft("RB2,A2,2\n");
+  const std::int64_t pick = plant.book.create(draft, 0.0).id;
+  const Order tray_pick = [&] {
+    Order tray = draft;
+    tray.loader = false;
+    return plant.book.create(tray, 0.0);
+  }();
+  plant.step();
+  const auto transports = transports_of(plant.book, pick);
+  ASSERT_EQ(transports.size(), 1u) << "no pallet asked for a walk no picker has yet";
+  const std::int64_t first = transports[0]->id;
+  EXPECT_FALSE(plant.desk.ready_for_picker(*plant.book.find(pick)));
+  EXPECT_TRUE(plant.desk.ready_for_picker(tray_pick)) << "a tray tour waits for nothing";
+  EXPECT_TRUE(plant.desk.ready_for_picker(*transports[0]));
+  EXPECT_FALSE(plant.desk.ready_for_picker(plant.book.create(draft, 0.0)))
+      << "a walk the desk has not looked at yet waits too";
+
+  plant.robot("stacker1", "stackers");
+  ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
+  plant.step();
+  EXPECT_FALSE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the stacker has no pallet yet";
+  EXPECT_FALSE(plant.book.find(first)->stand.has_value()) << "no stand before a picker has the walk";
+  ASSERT_EQ(plant.book.set_phase(first, OrderPhase::kPicking, 0.0), TransitionResult::kApplied);
+  ASSERT_EQ(plant.book.set_phase(first, OrderPhase::kToDrop, 0.0), TransitionResult::kApplied);
+  plant.step();
+  EXPECT_TRUE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the pallet is on the forks";
+
+  plant.robot("picker1", "pickers");
+  ASSERT_EQ(plant.book.assign(pick, "picker1", 0.0), TransitionResult::kApplied);
+  plant.step();
+  ASSERT_NE(plant.desk.job_of(pick), nullptr);
+  EXPECT_EQ(plant.desk.job_of(pick)->picker_id(), "picker1");
+  EXPECT_TRUE(plant.book.find(first)->stand.has_value()) << "the stacker goes to stand behind the first stop";
+  EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
 }
 
 // The intake works a pick list as one loader walk when asked, with no drop place; and refuses

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -69,69 +70,110 @@ bool stops_for(Point from, Point to, Point body) {
   return ahead > -EmulatedRobot::kBodyGap && ahead < EmulatedRobot::kBodyGap && beside < EmulatedRobot::kBodyWidth;
 }
 
-TEST(BodyStopSiding, ARobotStoppedForABodyIsSentToASidingAwayFromItNotPastIt) {
+// The lane with its two spurs, robot 1 going south from y = 6 and robot 2 north from y = 2.
+struct HeadOn {
   testing::GraphBuilder b;
-  b.road(0.0, 0.0, 0.0, 12.0);
-  b.road(0.0, 4.5, 3.0, 4.5);   // the spur between them
-  b.road(0.0, 9.0, -3.0, 9.0);  // the spur behind the southbound robot
-  const auto& g = b.graph();
+  std::map<int, EmulatedRobot> robots;
+  HeadOn() {
+    b.road(0.0, 0.0, 0.0, 12.0);
+    b.road(0.0, 4.5, 3.0, 4.5);     // the spur between them
+    b.road(0.0, 9.0, -3.0, 9.0);    // the spur behind the southbound robot
+    b.road(0.0, 10.5, -3.0, 10.5);  // a second spur behind it
+    b.road(10.0, 0.0, 10.0, 12.0);  // a lane apart, where a docked robot's body stands
+    const auto& g = b.graph();
+    robots[1].id = 1;
+    for (int k = 60; k >= 0; --k) robots[1].route.push_back(point_at(g, 0.0, 0.1 * k));
+    robots[2].id = 2;
+    for (int k = 20; k <= 120; ++k) robots[2].route.push_back(point_at(g, 0.0, 0.1 * k));
+  }
+
+  /// Drives both robots until both arrive (or 300 s); `siding` sees every siding sent. The number
+  /// of sidings sent, and whether both arrived.
+  std::pair<int, bool> drive(TrafficManager& m, const std::function<void(int id, const Grant&)>& siding) {
+    const auto& g = b.graph();
+    for (auto& [id, robot] : robots) EXPECT_EQ(m.submit_route({id, 1, robot.route}, 0.0), SubmitStatus::kAccepted);
+    double t = 0.0;
+    int sidings = 0;
+    bool both_arrived = false;
+    constexpr double kStep = 0.05, kSpeed = 0.4;
+    for (int i = 0; i < 20 * 300 && !both_arrived; ++i, t += kStep) {
+      const UpdateResult r = m.update(t);
+      EXPECT_EQ(m.check_invariant(), "");
+      both_arrived = true;
+      for (auto& [id, robot] : robots) {
+        sidings += has_event(r, TrafficEvent::Kind::kSidingSent, id) ? 1 : 0;
+        const Grant* grant = grant_of(r, id);
+        if (grant == nullptr) return {sidings, false};
+        if (grant->instruction == Instruction::kSiding && grant->version != robot.version) siding(id, *grant);
+        if (grant->instruction != Instruction::kNone && grant->version != robot.version) {
+          robot.version = grant->version;
+          robot.route = grant->route;
+          robot.driven = 0.0;
+          robot.stopped_since = -1.0;
+        }
+        both_arrived = both_arrived && grant->status == GrantStatus::kArrived;
+        const EmulatedRobot& other = robots[3 - id];
+        const Point here = robot.at(g, robot.driven);
+        const Point there = other.at(g, other.driven);
+        const double next = std::min(robot.driven + kSpeed * kStep, grant->granted_distance);
+        const Point ahead = robot.at(g, next);
+        if (stops_for(here, ahead, there)) {
+          if (robot.stopped_since < 0.0) robot.stopped_since = t;
+        } else {
+          robot.driven = std::max(robot.driven, next);
+          robot.stopped_since = -1.0;
+        }
+        const bool report = robot.stopped_since >= 0.0 && t - robot.stopped_since >= EmulatedRobot::kReportAfter;
+        m.report_progress({id, robot.version, robot.driven, report ? std::vector<int>{3 - id} : std::vector<int>{}}, t);
+      }
+    }
+    return {sidings, both_arrived};
+  }
+};
+
+TrafficConfiguration both_ways() {
   TrafficConfiguration c;
   c.one_way = false;
-  TrafficManager m(g, c);
-  std::map<int, EmulatedRobot> robots;
-  robots[1].id = 1;
-  for (int k = 60; k >= 0; --k) robots[1].route.push_back(point_at(g, 0.0, 0.1 * k));  // south from y = 6
-  robots[2].id = 2;
-  for (int k = 20; k <= 120; ++k) robots[2].route.push_back(point_at(g, 0.0, 0.1 * k));  // north from y = 2
-  for (auto& [id, robot] : robots) ASSERT_EQ(m.submit_route({id, 1, robot.route}, 0.0), SubmitStatus::kAccepted);
+  return c;
+}
 
-  double t = 0.0;
-  int sidings = 0;
-  bool both_arrived = false;
-  constexpr double kStep = 0.05, kSpeed = 0.4;
-  for (int i = 0; i < 20 * 300 && !both_arrived; ++i, t += kStep) {
-    const UpdateResult r = m.update(t);
-    ASSERT_EQ(m.check_invariant(), "");
-    both_arrived = true;
-    for (auto& [id, robot] : robots) {
-      sidings += has_event(r, TrafficEvent::Kind::kSidingSent, id) ? 1 : 0;
-      const Grant* grant = grant_of(r, id);
-      ASSERT_NE(grant, nullptr);
-      if (grant->instruction == Instruction::kSiding && grant->version != robot.version) {
-        // The way to the siding never leads nearer the other robot than this one stands.
-        const EmulatedRobot& other = robots[3 - id];
-        const Point there = other.at(g, other.driven);
-        const double now_apart = gap(robot.at(g, robot.driven), there);
-        for (int p : grant->route) {
-          const Point q{g.points[static_cast<std::size_t>(p)].x, g.points[static_cast<std::size_t>(p)].y};
-          EXPECT_GE(gap(q, there), now_apart - 0.15) << "robot " << id << " sent past robot " << 3 - id
-                                                     << " at t = " << t << " s, through (" << q.x << ", " << q.y << ")";
-        }
-      }
-      if (grant->instruction != Instruction::kNone && grant->version != robot.version) {
-        robot.version = grant->version;
-        robot.route = grant->route;
-        robot.driven = 0.0;
-        robot.stopped_since = -1.0;
-      }
-      both_arrived = both_arrived && grant->status == GrantStatus::kArrived;
-      const EmulatedRobot& other = robots[3 - id];
-      const Point here = robot.at(g, robot.driven);
-      const Point there = other.at(g, other.driven);
-      const double next = std::min(robot.driven + kSpeed * kStep, grant->granted_distance);
-      const Point ahead = robot.at(g, next);
-      if (stops_for(here, ahead, there)) {
-        if (robot.stopped_since < 0.0) robot.stopped_since = t;
-      } else {
-        robot.driven = std::max(robot.driven, next);
-        robot.stopped_since = -1.0;
-      }
-      const bool report = robot.stopped_since >= 0.0 && t - robot.stopped_since >= EmulatedRobot::kReportAfter;
-      m.report_progress({id, robot.version, robot.driven, report ? std::vector<int>{3 - id} : std::vector<int>{}}, t);
+TEST(BodyStopSiding, ARobotStoppedForABodyIsSentToASidingAwayFromItNotPastIt) {
+  HeadOn lane;
+  const auto& g = lane.b.graph();
+  TrafficManager m(g, both_ways());
+  const auto [sidings, both_arrived] = lane.drive(m, [&](int id, const Grant& grant) {
+    // The way to the siding never leads nearer the other robot than this one stands.
+    const EmulatedRobot& robot = lane.robots[id];
+    const EmulatedRobot& other = lane.robots[3 - id];
+    const Point there = other.at(g, other.driven);
+    const double now_apart = gap(robot.at(g, robot.driven), there);
+    for (int p : grant.route) {
+      const Point q{g.points[static_cast<std::size_t>(p)].x, g.points[static_cast<std::size_t>(p)].y};
+      EXPECT_GE(gap(q, there), now_apart - 0.15)
+          << "robot " << id << " sent past robot " << 3 - id << " through (" << q.x << ", " << q.y << ")";
     }
-  }
-  EXPECT_TRUE(both_arrived) << "after " << t << " s, with " << sidings << " sidings sent";
+  });
+  EXPECT_TRUE(both_arrived) << "with " << sidings << " sidings sent";
   EXPECT_LE(sidings, 3);
+}
+
+// A robot docked beside the first spur behind the southbound robot will turn out across it: the
+// siding is the second spur.
+TEST(BodyStopSiding, NoSidingEndsInTheWayOutOfADockedRobot) {
+  HeadOn lane;
+  const auto& g = lane.b.graph();
+  TrafficManager m(g, both_ways());
+  ASSERT_TRUE(m.hold_body(3, {{9.8, 5.8}, {10.2, 5.8}, {10.2, 6.2}, {9.8, 6.2}}, 0.0));
+  m.keep_clear(3, {{-3.5, 8.5}, {-0.3, 8.5}, {-0.3, 9.5}, {-3.5, 9.5}});
+  int sent = 0;
+  const auto [sidings, both_arrived] = lane.drive(m, [&](int id, const Grant& grant) {
+    ++sent;
+    const auto& end = g.points[static_cast<std::size_t>(grant.route.back())];
+    EXPECT_FALSE(end.x < -0.3 && end.y > 8.5 && end.y < 9.5)
+        << "robot " << id << " sent to stand in the way out, at (" << end.x << ", " << end.y << ")";
+  });
+  EXPECT_GT(sent, 0) << "no siding sent";
+  EXPECT_TRUE(both_arrived) << "with " << sidings << " sidings sent";
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "config/fleet_config.hpp"
 #include "map/site_map.hpp"
@@ -243,6 +244,72 @@ TEST(PairClosure, ARobotKeptOutOfAClosedLaneGoesRoundEveryClosedLane) {
     EXPECT_FALSE(std::abs(q.y - kSouth) < 0.3 && q.x > 33.5 && q.x < 56.0) << "south lane " << q.x << ", " << q.y;
     EXPECT_FALSE(std::abs(q.y - kNorth) < 0.3 && q.x > 33.5 && q.x < 56.0) << "north lane " << q.x << ", " << q.y;
   }
+}
+
+// A reach truck bound for a place in the lane behind a standing transporter cannot go round:
+// its goal lies in the closed stretch. It waited at the lane's mouth, on the east loop where the
+// transporter's picker, queued behind it, comes by to its stop, and the three stood for good. It
+// waits on a siding off the pair's ways instead, and the picker reaches its stop.
+TEST(PairClosure, ARobotBoundIntoAClosedLaneWaitsOffThePickersWay) {
+  PlantLane plant;
+  TrafficManager& m = plant.m;
+  const int reach = vehicle_type_of(plant.config, "reach_trucks");
+  m.set_robot_type(1, plant.stacker);
+  m.set_robot_type(2, plant.picker);
+  m.set_robot_type(3, reach);
+  m.set_partners({{1, 2}});
+  constexpr double kLane = 12.45;  // the westbound lane south of R2
+  const auto& lanes = m.route_graph(plant.stacker);
+  const auto transporter =
+      m.search(plant.stacker).shortest(map::nearest_point(lanes, 58.0, 8.5), map::nearest_point(lanes, 43.3, kLane));
+  double t = 0.0;
+  const double d1 = plant.drive_alone(transporter, t);
+  ASSERT_GT(d1, 17.0) << "the transporter stands at the end of its route";
+  const auto& truck_lanes = m.route_graph(reach);
+  const auto into = m.search(reach).shortest(map::nearest_point(truck_lanes, 53.0, 6.12),
+                                             map::nearest_point(truck_lanes, 50.0, kLane));
+  const auto& picker_lanes = m.route_graph(plant.picker);
+  const auto to_stop =
+      m.search(plant.picker)
+          .shortest(map::nearest_point(picker_lanes, 47.0, 6.12), map::nearest_point(picker_lanes, 45.5, kLane));
+  ASSERT_GT(into.size(), 10u);
+  ASSERT_GT(to_stop.size(), 10u);
+  ASSERT_EQ(m.submit_route({3, 1, into}, t), SubmitStatus::kAccepted);
+  ASSERT_EQ(m.submit_route({2, 1, to_stop}, t), SubmitStatus::kAccepted);
+  std::uint64_t v3 = 1;
+  double d2 = 0.0, d3 = 0.0;
+  bool sided = false;
+  for (int i = 0; i < 20 * 120; ++i, t += kStep) {
+    const auto r = m.update(t);
+    ASSERT_EQ(m.check_invariant(), "");
+    if (const Grant* g = grant_of(r, 2)) d2 = std::max(d2, std::min(g->granted_distance, d2 + kSpeed * kStep));
+    if (const Grant* g = grant_of(r, 3)) {
+      if (g->instruction != Instruction::kNone && g->version != v3) {
+        if (g->instruction == Instruction::kSiding) {
+          sided = true;
+          for (int point : g->route) {
+            const auto& q = truck_lanes.points[static_cast<std::size_t>(point)];
+            EXPECT_FALSE(std::abs(q.y - kLane) < 0.3 && q.x > 43.3 && q.x < 56.0) << q.x << ", " << q.y;
+          }
+        }
+        v3 = g->version;
+        d3 = 0.0;
+      } else {
+        d3 = std::max(d3, std::min(g->granted_distance, d3 + kSpeed * kStep));
+      }
+    }
+    m.report_progress({1, 1, d1, {}}, t);
+    m.report_progress({2, 1, d2, {}}, t);
+    m.report_progress({3, v3, d3, {}}, t);
+  }
+  EXPECT_TRUE(sided) << "the truck was not sent off the picker's way";
+  double length = 0.0;
+  for (std::size_t k = 1; k < to_stop.size(); ++k) {
+    const auto& a = picker_lanes.points[static_cast<std::size_t>(to_stop[k - 1])];
+    const auto& b = picker_lanes.points[static_cast<std::size_t>(to_stop[k])];
+    length += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  EXPECT_GT(d2, length - 0.5) << "the picker did not reach its stop behind its transporter";
 }
 
 }  // namespace
