@@ -487,8 +487,16 @@ UpdateResult TrafficManager::update(double now) {
   resolve_cycles(now, out);
   for (int s : order) {
     Robot& robot = *slots_[static_cast<std::size_t>(s)];
-    if (robot.wait_since < 0.0 || robot.frozen || robot.in_siding ||
-        now - robot.last_reroute < configuration_.reroute_wait) {
+    if (robot.wait_since < 0.0 || robot.frozen || now - robot.last_reroute < configuration_.reroute_wait) continue;
+    if (robot.in_siding) {
+      // Held up on its way to a siding (a robot came to stand on that way): another siding, off
+      // the ways of those it yields to and of those that hold it up now.
+      if (now - robot.wait_since < configuration_.reroute_wait) continue;
+      std::vector<int> others = robot.yield_to;
+      others.insert(others.end(), robot.blocked_by.begin(), robot.blocked_by.end());
+      sort_unique(others);
+      send_to_siding(robot, others, now, out);
+      robot.last_reroute = now;
       continue;
     }
     // Behind lost robots, or kept out of a corridor closed behind a transporter (which stands

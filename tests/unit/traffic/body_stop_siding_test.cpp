@@ -176,5 +176,39 @@ TEST(BodyStopSiding, NoSidingEndsInTheWayOutOfADockedRobot) {
   EXPECT_TRUE(both_arrived) << "with " << sidings << " sidings sent";
 }
 
+// A robot comes to stand at the end of the first siding sent (a stacker docking there): the robot
+// sent to it, stopped short of it, is sent to another siding rather than waiting for good.
+TEST(BodyStopSiding, ARobotHeldUpOnItsWayToASidingIsSentToAnother) {
+  HeadOn lane;
+  const auto& g = lane.b.graph();
+  TrafficConfiguration configuration = both_ways();
+  configuration.reroute_wait = 10.0;
+  TrafficManager m(g, configuration);
+  int sent_to = -1;
+  int second = 0;
+  Point first_end{};
+  const auto [sidings, both_arrived] = lane.drive(m, [&](int id, const Grant& grant) {
+    const auto& end = g.points[static_cast<std::size_t>(grant.route.back())];
+    if (sent_to < 0) {
+      sent_to = id;
+      first_end = {end.x, end.y};
+      EXPECT_TRUE(m.hold_body(3,
+                              {{end.x - 0.05, end.y - 0.05},
+                               {end.x + 0.05, end.y - 0.05},
+                               {end.x + 0.05, end.y + 0.05},
+                               {end.x - 0.05, end.y + 0.05}},
+                              0.0));
+      return;
+    }
+    if (id != sent_to) return;
+    ++second;
+    EXPECT_GT(std::hypot(end.x - first_end.x, end.y - first_end.y), 0.3)
+        << "robot " << id << " sent again to where robot 3 stands";
+  });
+  ASSERT_GE(sent_to, 0) << "no siding sent";
+  EXPECT_GT(second, 0) << "robot " << sent_to << " was not sent to another siding";
+  EXPECT_TRUE(both_arrived) << "with " << sidings << " sidings sent";
+}
+
 }  // namespace
 }  // namespace fleet::traffic
