@@ -372,11 +372,14 @@ std::map<std::string, long> FleetRun::done_by_fleet() const {
 }
 
 std::map<std::string, monitor::ErrorFigures> FleetRun::localization_by_fleet() const {
-  std::map<std::string, std::string> fleet_of;
-  for (const auto& robot_id : robot_ids_) {
-    if (const auto robot = config_.find_robot(robot_id)) fleet_of[robot_id] = robot->first->id;
-  }
-  return monitor::error_figures(localization_.errors(), fleet_of);
+  std::map<std::string, std::string> fleets;
+  for (const auto& robot_id : robot_ids_) fleets[robot_id] = fleet_of(robot_id);
+  return monitor::error_figures(localization_.errors(), fleets);
+}
+
+std::string FleetRun::fleet_of(const std::string& robot_id) const {
+  const auto robot = config_.find_robot(robot_id);
+  return robot ? robot->first->id : std::string();
 }
 
 monitor::OrderTally FleetRun::tally() const {
@@ -427,10 +430,10 @@ int demo_command(const CommandArgs& command, std::ostream& out, std::ostream& er
                     "://127.0.0.1:" + std::to_string(options.http_port) + "/?token=" + options.api_token + "\n"
               : std::string())
       << (options.standby ? "  standby: server-2 mirrors server-1 and takes over when it is gone" +
-                                std::string(options.http_port > 0 ? " (its web view on port " +
-                                                                        std::to_string(options.http_port + 1) +
-                                                                        ", read-only until then)"
-                                                                  : "") +
+                                std::string(options.http_port > 0
+                                                ? " (its web view on port " + std::to_string(options.http_port + 1) +
+                                                      ", read-only until then)"
+                                                : "") +
                                 "; fleetctl --domain " + std::to_string(domain) + " servers\n"
                           : std::string())
       << "  watch:   fleetctl --domain " << domain << " robots\n"

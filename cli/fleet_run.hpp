@@ -92,6 +92,8 @@ class FleetRun {
   const std::map<std::int64_t, model::OrderInfo>& orders() const { return orders_; }
   /// Each fleet's localization error: estimates (RobotState) against the simulation's truth.
   std::map<std::string, monitor::ErrorFigures> localization_by_fleet() const;
+  /// The fleet of a robot of the run, empty for one the configuration does not know.
+  std::string fleet_of(const std::string& robot_id) const;
   const monitor::LocalizationWatch& localization() const { return localization_; }
   /// The agent whose control steps run latest at p99 (its last report), with its period;
   /// none before any agent reported.

@@ -105,24 +105,33 @@ nlohmann::json collisions_and_deadlocks(const FleetRun& run) {
           {"deadlock_list", deadlocks}};
 }
 
-/// Each fleet's localization error and the robot whose estimate strayed furthest: where and when,
-/// to read its log there.
+/// Each fleet's localization error with its robot whose estimate strayed furthest, and that of
+/// the whole run: where and when, to read its log there.
 nlohmann::json localization_figures(const FleetRun& run) {
-  nlohmann::json localization = nlohmann::json::object();
-  for (const auto& [fleet, e] : run.localization_by_fleet()) {
-    localization[fleet] = {{"p95_m", round_to(e.p95, 0.001)}, {"max_m", round_to(e.max, 0.001)}};
-  }
-  nlohmann::json worst_localization = nlohmann::json::object();
   const auto& worst = run.localization().worst();
-  if (const auto w = std::max_element(worst.begin(), worst.end(),
-                                      [](const auto& a, const auto& b) { return a.second.error < b.second.error; });
-      w != worst.end()) {
-    const auto& [robot, e] = *w;
-    worst_localization = {{"robot", robot},
+  const auto describe = [&](const std::string& robot, const auto& e) {
+    return nlohmann::json{{"robot", robot},
                           {"error_m", round_to(e.error, 0.001)},
                           {"sim_s", round_to(e.sim_time - run.start_sim(), 0.1)},
                           {"truth", {round_to(e.truth.x, 0.001), round_to(e.truth.y, 0.001)}},
                           {"estimate", {round_to(e.estimate.x, 0.001), round_to(e.estimate.y, 0.001)}}};
+  };
+  nlohmann::json localization = nlohmann::json::object();
+  for (const auto& [fleet, e] : run.localization_by_fleet()) {
+    localization[fleet] = {{"p95_m", round_to(e.p95, 0.001)}, {"max_m", round_to(e.max, 0.001)}};
+    const auto fleet_worst = std::max_element(worst.begin(), worst.end(), [&](const auto& a, const auto& b) {
+      const bool a_in = run.fleet_of(a.first) == fleet, b_in = run.fleet_of(b.first) == fleet;
+      return a_in != b_in ? b_in : a.second.error < b.second.error;
+    });
+    if (fleet_worst != worst.end() && run.fleet_of(fleet_worst->first) == fleet) {
+      localization[fleet]["worst"] = describe(fleet_worst->first, fleet_worst->second);
+    }
+  }
+  nlohmann::json worst_localization = nlohmann::json::object();
+  if (const auto w = std::max_element(worst.begin(), worst.end(),
+                                      [](const auto& a, const auto& b) { return a.second.error < b.second.error; });
+      w != worst.end()) {
+    worst_localization = describe(w->first, w->second);
   }
   return {{"localization_error", localization}, {"localization_worst", worst_localization}};
 }

@@ -48,6 +48,7 @@ orders::IntakeView FleetServer::intake_view() const {
                           .max_pickable_mass = orders::max_pickable_mass(options_.config),
                           .loader_fleet = orders::loader_fleet(options_.config),
                           .loader_pallet_boxes = loader_desk_.layout().pallet_boxes};
+  view.reserved = loader_desk_.reserved_places();
   // A loader walk goes on to the nearest place by the pickers' roads.
   for (const auto& fleet : options_.config.fleets) {
     const auto roads = travel_.find(fleet.id);

@@ -295,7 +295,10 @@ void TrafficControl::set_partners(std::map<std::string, std::string> partners) {
   for (const auto& [a, b] : partners) {
     const auto first = numbers_.find(a);
     const auto second = numbers_.find(b);
-    if (first != numbers_.end() && second != numbers_.end()) pairs.insert({first->second, second->second});
+    // A transporter whose picker is not known yet (empty) pairs with none: -1.
+    if (first != numbers_.end() && (b.empty() || second != numbers_.end())) {
+      pairs.insert({first->second, b.empty() ? -1 : second->second});
+    }
   }
   manager_->set_partners(std::move(pairs));
   TrafficService::set_partners(std::move(partners));

@@ -155,6 +155,7 @@ std::optional<Order> AutoOrders::transport(const IntakeView& view) {
   const auto worked = rows_in_work(view, poses, /*every_order=*/false);
   const auto doable = [&](const std::string& pick, const std::string& drop) {
     if (in_rows(view.site, pick, poses, worked) || in_rows(view.site, drop, poses, worked)) return false;
+    if (view.reserved.contains(drop)) return false;
     if (const auto& packing = view.site.packing;
         packing && (!open_to_random_transports(*packing, pick) || !open_to_random_transports(*packing, drop))) {
       return false;

@@ -38,7 +38,8 @@ class AutoOrders {
   std::vector<Order> pick_tours(const IntakeView& view);
 
   /// A transport from a load standing on a place to a free place, neither promised to an open
-  /// order nor a packing station, that some fleet can do (choose_auto_transport); none while the
+  /// order nor a packing station, nor kept for a loader job's pallet (IntakeView::reserved), that
+  /// some fleet can do (choose_auto_transport); none while the
   /// free robots able to carry do not outnumber the queued transports.
   std::optional<Order> transport(const IntakeView& view);
 

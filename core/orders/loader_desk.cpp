@@ -33,13 +33,36 @@ bool LoaderDesk::ready_for_picker(const Order& order) const {
 std::map<std::string, std::string> LoaderDesk::partners() const {
   std::map<std::string, std::string> pairs;
   for (const auto& [id, entry] : jobs_) {
-    if (entry.job.picker_id().empty()) continue;
-    // The one behind the picker, and one leaving from there: it starts beside the picker.
+    // The one behind the picker, and one leaving from there: it starts beside the picker. A
+    // transporter gone ahead to a stop no picker works yet pairs with none (empty): its lane closes
+    // behind it to every robot until the picker comes.
     for (const PalletRun& run : entry.job.runs()) {
       if (!run.delivered && !run.lost) pairs[run.transporter_id] = entry.job.picker_id();
     }
   }
   return pairs;
+}
+
+std::set<std::string> LoaderDesk::reserved_places() const {
+  std::set<std::string> places;
+  for (const auto& [id, entry] : jobs_) {
+    for (const auto& [order, transport] : entry.transports) {
+      if (!transport.expedition.empty()) places.insert(transport.expedition);
+    }
+  }
+  return places;
+}
+
+void LoaderDesk::keep_expedition_places(Entry& entry, const LoaderView& view) {
+  if (!view.site.packing) return;
+  for (auto& [id, transport] : entry.transports) {
+    const Order* order = view.book.find(id);
+    if (order == nullptr || is_final(order->status)) {
+      transport.expedition.clear();
+    } else if (transport.expedition.empty()) {
+      transport.expedition = free_place(view.site.packing->full_pallets_to, false, view);
+    }
+  }
 }
 
 std::vector<std::int64_t> LoaderDesk::jobs() const {
@@ -50,6 +73,7 @@ std::vector<std::int64_t> LoaderDesk::jobs() const {
 
 std::vector<LoaderAction> LoaderDesk::step(const LoaderView& view) {
   std::vector<LoaderAction> actions;
+  std::vector<std::string> taken;  // places asked for in this look
   // A loader pick order's job begins with the order: its first pallet is fetched before a picker
   // has it (ready_for_picker).
   for (const Order* order : view.book.open_orders()) {
@@ -70,11 +94,12 @@ std::vector<LoaderAction> LoaderDesk::step(const LoaderView& view) {
     }
     take_picker_facts(entry, *pick, view);
     take_transport_facts(entry, view);
+    keep_expedition_places(entry, view);
     if (entry.job.done()) {
       it = jobs_.erase(it);
       continue;
     }
-    ask_for_transporter(entry, *pick, view, actions);
+    ask_for_transporter(entry, *pick, view, actions, taken);
     revise_orders(entry, *pick, view, actions);
     ++it;
   }
@@ -134,7 +159,6 @@ void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) cons
       job.delivered(transport.robot_id);
       continue;
     }
-    if (order->phase == OrderPhase::kToDrop) entry.pallet_ready = true;
     const auto robot = view.robots.find(transport.robot_id);
     const bool lost = robot != view.robots.end() && robot->second.lost;
     if (order->status == OrderStatus::kFailed || order->status == OrderStatus::kCancelled || lost) {
@@ -149,10 +173,11 @@ void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) cons
       job.transporter_in_place(transport.robot_id, transport.stand_stop);
     }
   }
+  if (job.pallet_in_place()) entry.pallet_ready = true;
 }
 
 void LoaderDesk::ask_for_transporter(const Entry& entry, const Order& pick, const LoaderView& view,
-                                     std::vector<LoaderAction>& actions) const {
+                                     std::vector<LoaderAction>& actions, std::vector<std::string>& taken) const {
   if (!entry.job.wants_transporter() || is_final(pick.status)) return;
   // The next pallet is asked for once the current one has left: a stacker holding its empty
   // pallet at its PK place meanwhile keeps the PK row from the stackers behind it.
@@ -162,8 +187,15 @@ void LoaderDesk::ask_for_transporter(const Entry& entry, const Order& pick, cons
     if (order && transport.robot_id.empty() && !is_final(order->status)) return;  // asked already
   }
   if (!view.site.packing) return;
-  const std::string source = free_place(view.site.packing->empty_pallets_from, true, view);
+  const std::string source = free_place(view.site.packing->empty_pallets_from, true, view, {}, taken);
   if (source.empty()) return;  // asked again once an empty pallet stands free
+  // Nor before its full pallet has a place to go (kept from the next look on).
+  const std::string target = free_place(view.site.packing->full_pallets_to, false, view, {}, taken);
+  if (target.empty()) return;
+  // The drafts are not in the book before the server adds them: another job asking in this look
+  // must not count the same places free.
+  taken.push_back(source);
+  taken.push_back(target);
   Order draft;
   draft.request_id = "loader";
   draft.kind = OrderKind::kTransport;
@@ -224,8 +256,9 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
           // A full pallet goes to expedition; an empty one, not needed after all, goes back.
           const bool full = instruction.task == LoaderTask::kDeliver;
           if (revision.drop_area.empty()) {
-            revision.drop_area = free_place(
-                full ? view.site.packing->full_pallets_to : view.site.packing->empty_pallets_from, false, view);
+            revision.drop_area = full
+                                     ? free_place(view.site.packing->full_pallets_to, false, view, transport.expedition)
+                                     : free_place(view.site.packing->empty_pallets_from, false, view);
           }
           if (revision.drop_area.empty()) continue;  // once a place is free
           revision.stand.reset();
@@ -247,11 +280,17 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
   }
 }
 
-std::string LoaderDesk::free_place(const std::vector<std::string>& places, bool with_load,
-                                   const LoaderView& view) const {
+std::string LoaderDesk::free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view,
+                                   const std::string& own, const std::vector<std::string>& taken) const {
   const auto open = view.book.open_orders();
-  for (const std::string& place : places) {
-    if (view.ledger.holds_load(place) != with_load) continue;
+  const auto reserved = reserved_places();
+  // Its own kept place first, while it is free.
+  std::vector<std::string> order;
+  if (!own.empty() && std::find(places.begin(), places.end(), own) != places.end()) order.push_back(own);
+  order.insert(order.end(), places.begin(), places.end());
+  for (const std::string& place : order) {
+    if (view.ledger.holds_load(place) != with_load || (place != own && reserved.contains(place))) continue;
+    if (std::find(taken.begin(), taken.end(), place) != taken.end()) continue;
     if (std::none_of(open.begin(), open.end(),
                      [&](const Order* o) { return o->pick_area == place || o->drop_area == place; })) {
       return place;

@@ -74,41 +74,53 @@ class LoaderDesk {
 
   /// The job of pick order `pick_id`, or null (not a loader order, or over).
   const LoaderJob* job_of(std::int64_t pick_id) const;
-  /// Whether `order` may go to a robot: a loader pick order once its first pallet is on a
-  /// transporter's forks. Until then the walk waits in the queue, not a picker at home: the
-  /// server pairs a picker with a stacker that carries an empty pallet, and the stacker fetches
-  /// the pallet while the pickers do other work. True for any other order.
+  /// Whether `order` may go to a robot: a loader pick order once its first pallet stands behind
+  /// the walk's first stop. Until then the walk waits in the queue, not a picker: the server pairs
+  /// a picker with a stacker that carries an empty pallet, and the stacker fetches the pallet and
+  /// takes it to the first stop while the pickers do other work. True for any other order.
   bool ready_for_picker(const Order& order) const;
   const LoaderLayout& layout() const { return layout_; }
   /// The robots that work together now, each transporter to its picker: the one behind the
-  /// picker, and one leaving with a full pallet until it has delivered it.
+  /// picker, and one leaving with a full pallet until it has delivered it. A transporter of a walk
+  /// no picker works (yet) maps to the empty string.
   std::map<std::string, std::string> partners() const;
   /// Pick orders whose job is under way.
   std::vector<std::int64_t> jobs() const;
+  /// The expedition places kept for the pallets of the jobs' transports: from the moment a pallet
+  /// is asked for it has a place to go once full, so that it never stands full in a rack lane for
+  /// want of one. Random transports leave them alone (IntakeView::reserved).
+  std::set<std::string> reserved_places() const;
 
  private:
   struct Transport {
-    std::string robot_id;  ///< once assigned and added to the job
-    int stand_stop = -1;   ///< the stop behind which its current stand pose lies
+    std::string robot_id;    ///< once assigned and added to the job
+    int stand_stop = -1;     ///< the stop behind which its current stand pose lies
+    std::string expedition;  ///< the full_pallets_to place kept for its pallet
   };
   struct Entry {
     LoaderJob job;
     std::map<std::int64_t, Transport> transports;  ///< the job's transport orders, by id
     bool ended = false;                            ///< the pick order ended: no stop is left to load
-    bool pallet_ready = false;                     ///< a transporter of the job lifted its pallet
+    bool pallet_ready = false;                     ///< its first pallet stood behind the first stop
   };
 
   /// What the pick order and its robot show: the picker's stop and the boxes it loaded.
   void take_picker_facts(Entry& entry, const Order& pick, const LoaderView& view) const;
   /// What the transports and their robots show: joined, in place, delivered, lost.
   void take_transport_facts(Entry& entry, const LoaderView& view) const;
-  /// A transport for the next pallet, when the job wants one and none is waiting for a robot.
+  /// A transport for the next pallet, when the job wants one and none is waiting for a robot;
+  /// the places it counts on go into `taken`.
   void ask_for_transporter(const Entry& entry, const Order& pick, const LoaderView& view,
-                           std::vector<LoaderAction>& actions) const;
+                           std::vector<LoaderAction>& actions, std::vector<std::string>& taken) const;
   /// The revisions the job's instructions ask for.
   void revise_orders(Entry& entry, const Order& pick, const LoaderView& view, std::vector<LoaderAction>& actions) const;
   /// A place of `places` that holds a load (`with_load`) or none, promised to no open order.
-  std::string free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view) const;
+  /// Places kept for a transport's pallet (Transport::expedition) count as taken, but `own`'s, and
+  /// so do those in `taken`.
+  std::string free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view,
+                         const std::string& own = {}, const std::vector<std::string>& taken = {}) const;
+  /// Keeps an expedition place for each transport of the job that has none and is not over.
+  void keep_expedition_places(Entry& entry, const LoaderView& view);
 
   LoaderLayout layout_;
   std::map<std::int64_t, Entry> jobs_;  ///< by pick order id

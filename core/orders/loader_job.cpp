@@ -111,6 +111,11 @@ std::string LoaderJob::current_transporter() const {
   return run ? run->transporter_id : std::string();
 }
 
+bool LoaderJob::pallet_in_place() const {
+  const int stop = next_stop();
+  return current_ && !all_loaded() && transporter_at_ == stop && left_at(stop) <= room();
+}
+
 int LoaderJob::next_stop() const {
   int stop = 0;
   while (stop < static_cast<int>(walk_.size()) && left_at(stop) == 0) ++stop;
@@ -259,7 +264,7 @@ std::vector<LoaderInstruction> LoaderJob::instructions() const {
       picker.task = LoaderTask::kRelease;
     } else if (transporter_lost_) {
       picker.task = LoaderTask::kWait;
-    } else if (transporter_at_ == stop && left_at(stop) <= room()) {
+    } else if (pallet_in_place()) {
       // The stop is released once the pallet stands behind it: the picker drives in behind the
       // transporter, never the other way round (on a one-way lane it could not pass the picker).
       picker = picker_at_ == stop ? LoaderInstruction{picker_id_, LoaderTask::kLoad, stop, left_at(stop)}
@@ -273,13 +278,10 @@ std::vector<LoaderInstruction> LoaderJob::instructions() const {
   for (std::size_t i = 0; i < runs_.size(); ++i) {
     const PalletRun& run = runs_[i];
     if (run.delivered || run.lost) continue;
-    if (run.leaving) {
-      out.push_back({run.transporter_id, LoaderTask::kDeliver, -1, run.boxes});
-    } else if (picker_id_.empty()) {
-      out.push_back({run.transporter_id, LoaderTask::kWait, -1, 0});
-    } else {
-      out.push_back({run.transporter_id, LoaderTask::kFollow, stop, 0});
-    }
+    // With no picker yet (or none since one was lost) the pallet goes ahead to the next stop: the
+    // picker is called once it stands there (pallet_in_place).
+    out.push_back(run.leaving ? LoaderInstruction{run.transporter_id, LoaderTask::kDeliver, -1, run.boxes}
+                              : LoaderInstruction{run.transporter_id, LoaderTask::kFollow, stop, 0});
   }
   if (!next_transporter_.empty()) {
     out.push_back({next_transporter_, loaded_all ? LoaderTask::kRelease : LoaderTask::kWaitBehind, -1, 0});

@@ -40,8 +40,7 @@ enum class LoaderTask {
   kFollow,      ///< transporter: stand behind the picker's stop, its pallet at the arm's height
   kWaitBehind,  ///< next transporter: stand behind the current one, ready to move up
   kDeliver,     ///< transporter: take its pallet to expedition
-  kWait,        ///< picker: until its transporter stands behind `stop` (or, -1, one takes over);
-                ///< transporter: until a picker takes over
+  kWait,        ///< picker: until its transporter stands behind `stop` (or, -1, one takes over)
   kRelease,     ///< out of the job: free for other work
 };
 const char* to_string(LoaderTask task);
@@ -120,6 +119,9 @@ class LoaderJob {
   int room() const;
   /// The transporter whose pallet stands behind the picker, or empty.
   std::string current_transporter() const;
+  /// The current transporter stands behind the next stop with room for its boxes: a picker
+  /// sent now finds its pallet there.
+  bool pallet_in_place() const;
 
  private:
   /// The current run (the pallet behind the picker), or null.

@@ -42,6 +42,9 @@ struct IntakeView {
   /// Road metres between two places for the picker, to order a loader walk; straight metres
   /// when null.
   PlaceDistance place_distance{};
+  /// Places kept free for the pallets of loader jobs (LoaderDesk::reserved_places): random
+  /// transports never go there.
+  std::set<std::string> reserved{};
 };
 
 /// The fleet of `config` whose robots carry a loader job's pallets: the first of robot type

@@ -238,7 +238,8 @@ class TrafficManager {
   /// that holds places there closes the corridor behind it (upstream) to every robot but its
   /// partners: its loader comes to stand there, and a third robot in between would wait for the
   /// transporter, which waits for the loader behind it. A robot kept out waits before the
-  /// corridor and is routed round after `lost_reroute_wait`, as behind a lost robot.
+  /// corridor and is routed round after `lost_reroute_wait`, as behind a lost robot. A
+  /// transporter whose loader is not known yet pairs with -1: its corridor closes to every robot.
   void set_partners(std::set<std::pair<int, int>> pairs) { partners_ = std::move(pairs); }
   /// The robot turns off its route's last point `goal_point` into a place beside the road (a
   /// forklift into a rack place or its home) and sweeps `area` (convex) doing so: a long body

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "map/site_map.hpp"
 #include "orders/order_intake.hpp"
@@ -101,9 +102,11 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   EXPECT_TRUE(transports[0]->drop_area.empty());
   EXPECT_EQ(transports[0]->fleet_id, "stackers");
   EXPECT_TRUE(transports[0]->loader);
-  // Asked once: no second transport while the first waits for a robot.
+  // Asked once: no second transport while the first waits for a robot. Its full pallet has a
+  // place kept at expedition from now on.
   plant.step();
   EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
+  EXPECT_EQ(plant.desk.reserved_places(), (std::set<std::string>{"EX1"}));
 
   // A stacker takes it: sent to stand behind the picker's first stop. The four boxes do not fit
   // its pallet, but the next transporter is asked for only once this one leaves.
@@ -172,6 +175,7 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   picker.last = {};
   plant.step();
   EXPECT_EQ(plant.book.find(second)->drop_area, "EX3");  // EX2 holds a pallet, EX1 is promised
+  EXPECT_EQ(plant.desk.reserved_places(), (std::set<std::string>{"EX1", "EX3"}));
   const LoaderJob* job = plant.desk.job_of(pick);
   ASSERT_NE(job, nullptr);
   EXPECT_EQ(job->boxes_loaded(), 4);
@@ -186,6 +190,34 @@ TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
   }
   plant.step();
   EXPECT_EQ(plant.desk.job_of(pick), nullptr);
+}
+
+// A pallet is not fetched for a walk before expedition has a place for it once full: a full
+// pallet with nowhere to go would stand in its rack lane, closed behind it, for as long.
+TEST(LoaderDesk, APalletIsFetchedOnlyWithAnExpeditionPlaceKeptForIt) {
+  Plant plant;
+  int id = 1000;
+  for (const std::string& place : plant.site.site.packing->full_pallets_to) {
+    if (!plant.ledger.holds_load(place)) {
+      plant.ledger.record({.id = id++, .kind = "pallet", .pose = {}, .place = place, .carried_by = ""});
+    }
+  }
+  const std::int64_t pick = plant.book.create(walk_draft("RB2,A2,2\n"), 0.0).id;
+  const std::int64_t other = plant.book.create(walk_draft("RB3,A3,2\n"), 0.0).id;
+  plant.step();
+  EXPECT_TRUE(transports_of(plant.book, pick).empty()) << "every expedition place holds a pallet";
+  // EX1 and EX3 come free: the two walks, asking in one look, take one each, and empty pallets
+  // from two PK places.
+  plant.ledger.record({.id = 1000, .kind = "pallet", .pose = {}, .place = "PS1", .carried_by = ""});
+  plant.ledger.record({.id = 1001, .kind = "pallet", .pose = {}, .place = "PS2", .carried_by = ""});
+  plant.step();
+  plant.step();
+  const auto first = transports_of(plant.book, pick);
+  const auto second = transports_of(plant.book, other);
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_NE(first[0]->pick_area, second[0]->pick_area);
+  EXPECT_EQ(plant.desk.reserved_places(), (std::set<std::string>{"EX1", "EX3"}));
 }
 
 // A picker whose order fails mid-walk leaves the stops not loaded at their places; the boxes
@@ -216,10 +248,10 @@ TEST(LoaderDesk, AFailedWalkSendsThePalletItFilledToExpedition) {
   EXPECT_EQ(plant.desk.job_of(pick)->boxes_loaded(), 1);
 }
 
-// A walk placed while every stacker is busy: its first pallet is asked for at once, and the walk
-// goes to a picker only once that pallet is on a stacker's forks; the stacker then stands behind
-// the walk's first stop.
-TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletIsOnTheForks) {
+// A loader walk is held back from the pickers until a stacker has taken its first pallet to the
+// first stop: the stacker fetches it and drives there while the pickers do other work, and the
+// picker, sent then, finds its pallet waiting.
+TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletStandsAtTheFirstStop) {
   Plant plant;
   const Order draft = walk_draft("RB2,A2,2\n");
   const std::int64_t pick = plant.book.create(draft, 0.0).id;
@@ -241,19 +273,24 @@ TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletIsOnTheForks) {
   plant.robot("stacker1", "stackers");
   ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
   plant.step();
-  EXPECT_FALSE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the stacker has no pallet yet";
-  EXPECT_FALSE(plant.book.find(first)->stand.has_value()) << "no stand before a picker has the walk";
+  ASSERT_TRUE(plant.book.find(first)->stand.has_value()) << "the stacker goes ahead to the first stop";
+  EXPECT_EQ(plant.desk.partners(), (std::map<std::string, std::string>{{"stacker1", ""}}))
+      << "its lane closes behind it to every robot until a picker comes";
   ASSERT_EQ(plant.book.set_phase(first, OrderPhase::kPicking, 0.0), TransitionResult::kApplied);
   ASSERT_EQ(plant.book.set_phase(first, OrderPhase::kToDrop, 0.0), TransitionResult::kApplied);
   plant.step();
-  EXPECT_TRUE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the pallet is on the forks";
+  EXPECT_FALSE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the pallet is on the forks, not there yet";
+  plant.holds_at_stand(*plant.book.find(first));
+  plant.step();
+  EXPECT_TRUE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "the pallet stands behind the first stop";
 
   plant.robot("picker1", "pickers");
   ASSERT_EQ(plant.book.assign(pick, "picker1", 0.0), TransitionResult::kApplied);
   plant.step();
   ASSERT_NE(plant.desk.job_of(pick), nullptr);
   EXPECT_EQ(plant.desk.job_of(pick)->picker_id(), "picker1");
-  EXPECT_TRUE(plant.book.find(first)->stand.has_value()) << "the stacker goes to stand behind the first stop";
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 1u) << "its first stop is released at once";
+  EXPECT_EQ(plant.desk.partners(), (std::map<std::string, std::string>{{"stacker1", "picker1"}}));
   EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
 }
 

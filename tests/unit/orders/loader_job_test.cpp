@@ -73,6 +73,22 @@ TEST(LoaderWalk, TransporterStandsFacingAwayWithItsPalletWhereTheArmReachesBehin
   EXPECT_NEAR(t.y - 0.6 * std::sin(t.yaw), 1.0 - 0.85, 1e-9);
 }
 
+// Before any picker has the walk its pallet goes ahead to the first stop; a picker added once it
+// stands there drives straight to the stop.
+TEST(LoaderJob, ThePalletGoesAheadToTheFirstStopBeforeAPickerHasTheWalk) {
+  LoaderJob job({line("A", 2), line("B", 1)}, 5, "");
+  EXPECT_TRUE(job.wants_picker());
+  job.add_transporter("st1");
+  EXPECT_EQ(of(job), (std::vector<LoaderInstruction>{{"st1", LoaderTask::kFollow, 0, 0}}));
+  EXPECT_FALSE(job.pallet_in_place());
+  job.transporter_in_place("st1", 1);
+  EXPECT_FALSE(job.pallet_in_place()) << "behind another stop than the next";
+  job.transporter_in_place("st1", 0);
+  EXPECT_TRUE(job.pallet_in_place());
+  job.add_picker("pk1");
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kGoToStop, 0, 0}));
+}
+
 TEST(LoaderJob, APickerFillsOneTransporterTheNextMovesUpAndBothDeliver) {
   LoaderJob job({line("A", 2), line("B", 3), line("C", 2)}, 5, "pk1");
   EXPECT_EQ(of(job), (std::vector<LoaderInstruction>{{"pk1", LoaderTask::kWait, 0, 0}}));
@@ -157,7 +173,7 @@ TEST(LoaderJob, ALostTransporterKeepsItsBoxesOnItsPalletAndAnotherTakesOver) {
   EXPECT_EQ(job.runs()[1].boxes, 2);
 }
 
-TEST(LoaderJob, ALostPickerLeavesItsStopToAnotherAndTheTransporterWaits) {
+TEST(LoaderJob, ALostPickerLeavesItsStopToAnotherAndTheTransporterStaysBehindIt) {
   LoaderJob job({line("A", 3), line("B", 1)}, 5, "pk1");
   job.add_transporter("st1");
   job.picker_at("pk1", 0);
@@ -165,8 +181,9 @@ TEST(LoaderJob, ALostPickerLeavesItsStopToAnotherAndTheTransporterWaits) {
   job.loaded(0, 1);  // one box set, the second in its gripper when it is lost
   job.robot_lost("pk1");
   EXPECT_TRUE(job.wants_picker());
-  EXPECT_EQ(for_robot(job, "st1").task, LoaderTask::kWait);
+  EXPECT_EQ(for_robot(job, "st1"), (LoaderInstruction{"st1", LoaderTask::kFollow, 0, 0}));
   EXPECT_EQ(job.next_stop(), 0);
+  EXPECT_TRUE(job.pallet_in_place()) << "the picker taking over finds the pallet there";
 
   job.add_picker("pk2");
   EXPECT_EQ(for_robot(job, "pk2"), (LoaderInstruction{"pk2", LoaderTask::kGoToStop, 0, 0}));
