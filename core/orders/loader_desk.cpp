@@ -65,6 +65,18 @@ void LoaderDesk::keep_expedition_places(Entry& entry, const LoaderView& view) {
   }
 }
 
+void LoaderDesk::adopt_transports(Entry& entry, std::int64_t pick_id, const LoaderView& view) const {
+  // A desk that starts on a book with the job under way (a restarted server, a standby taking
+  // over) takes on its open transports that still bring or hold a pallet for it: the stacker
+  // with one joins the job again, as when it was assigned. One on its way to expedition ends on
+  // its own.
+  for (const Order* order : view.book.open_orders()) {
+    if (order->kind != OrderKind::kTransport || !order->loader || !order->drop_area.empty()) continue;
+    if (std::find(order->caused_by.begin(), order->caused_by.end(), pick_id) == order->caused_by.end()) continue;
+    entry.transports[order->id] = {};
+  }
+}
+
 std::vector<std::int64_t> LoaderDesk::jobs() const {
   std::vector<std::int64_t> ids;
   for (const auto& [id, entry] : jobs_) ids.push_back(id);
@@ -84,6 +96,7 @@ std::vector<LoaderAction> LoaderDesk::step(const LoaderView& view) {
                         {},
                         false,
                         with_a_robot(order->status)});
+    adopt_transports(jobs_.at(order->id), order->id, view);
   }
   for (auto it = jobs_.begin(); it != jobs_.end();) {
     Entry& entry = it->second;

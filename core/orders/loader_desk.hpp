@@ -119,6 +119,9 @@ class LoaderDesk {
   /// so do those in `taken`.
   std::string free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view,
                          const std::string& own = {}, const std::vector<std::string>& taken = {}) const;
+  /// Takes on the open transports of the book that bring or hold a pallet for pick order
+  /// `pick_id`: its job was under way before this desk started.
+  void adopt_transports(Entry& entry, std::int64_t pick_id, const LoaderView& view) const;
   /// Keeps an expedition place for each transport of the job that has none and is not over.
   void keep_expedition_places(Entry& entry, const LoaderView& view);
 

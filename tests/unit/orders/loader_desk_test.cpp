@@ -294,6 +294,28 @@ TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletStandsAtTheFirstStop) {
   EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
 }
 
+// A desk started on a book with a walk under way (a restarted server, a standby that took over)
+// takes on the walk's transport: the stacker bringing its pallet is not left standing in the rack
+// lane, and no second pallet is fetched.
+TEST(LoaderDesk, ADeskStartedAnewTakesOnTheTransportsOfAWalkUnderWay) {
+  Plant plant;
+  const std::int64_t pick = plant.book.create(walk_draft("RB2,A2,2\n"), 0.0).id;
+  plant.step();
+  const std::int64_t first = transports_of(plant.book, pick).at(0)->id;
+  plant.robot("stacker1", "stackers");
+  ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
+  plant.step();
+  ASSERT_TRUE(plant.book.find(first)->stand.has_value());
+
+  plant.desk = LoaderDesk({.pallet_boxes = 3, .transporter_fleet = "stackers"});
+  plant.step();
+  EXPECT_EQ(transports_of(plant.book, pick).size(), 1u) << "no second pallet fetched";
+  EXPECT_EQ(plant.desk.partners(), (std::map<std::string, std::string>{{"stacker1", ""}}));
+  plant.holds_at_stand(*plant.book.find(first));
+  plant.step();
+  EXPECT_TRUE(plant.desk.ready_for_picker(*plant.book.find(pick))) << "its pallet stands behind the first stop";
+}
+
 // The intake works a pick list as one loader walk when asked, with no drop place; and refuses
 // it, naming the field, where the site has no stacker fleet.
 TEST(LoaderDesk, IntakeMakesOneLoaderWalkOrRefusesWithoutAStackerFleet) {
