@@ -25,8 +25,8 @@ struct DispatchRound {
   PlaceTaken place_taken;                           ///< whether a robot's body stands on a place
   TravelCost cost;                                  ///< road metres from a robot to an order's first place
   double now_wall = 0.0;
-  /// Orders the round holds back though queued (a loader walk until its first pallet is on a
-  /// transporter's forks: LoaderDesk::ready_for_picker); none when empty.
+  /// Orders the round holds back though queued (a loader walk until its first pallet stands
+  /// behind its first stop: LoaderDesk::ready_for_picker); none when empty.
   OrderHeld held;
 };
 

@@ -296,18 +296,16 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
 std::string LoaderDesk::free_place(const std::vector<std::string>& places, bool with_load, const LoaderView& view,
                                    const std::string& own, const std::vector<std::string>& taken) const {
   const auto open = view.book.open_orders();
+  const auto free = [&](const std::string& place) {
+    return view.ledger.holds_load(place) == with_load && std::find(taken.begin(), taken.end(), place) == taken.end() &&
+           std::none_of(open.begin(), open.end(),
+                        [&](const Order* o) { return o->pick_area == place || o->drop_area == place; });
+  };
+  // Its own kept place first, while it is free; then any place nobody keeps.
+  if (!own.empty() && std::find(places.begin(), places.end(), own) != places.end() && free(own)) return own;
   const auto reserved = reserved_places();
-  // Its own kept place first, while it is free.
-  std::vector<std::string> order;
-  if (!own.empty() && std::find(places.begin(), places.end(), own) != places.end()) order.push_back(own);
-  order.insert(order.end(), places.begin(), places.end());
-  for (const std::string& place : order) {
-    if (view.ledger.holds_load(place) != with_load || (place != own && reserved.contains(place))) continue;
-    if (std::find(taken.begin(), taken.end(), place) != taken.end()) continue;
-    if (std::none_of(open.begin(), open.end(),
-                     [&](const Order* o) { return o->pick_area == place || o->drop_area == place; })) {
-      return place;
-    }
+  for (const std::string& place : places) {
+    if (!reserved.contains(place) && free(place)) return place;
   }
   return {};
 }
