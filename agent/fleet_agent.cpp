@@ -147,6 +147,7 @@ void FleetAgent::update_running_order(const model::OrderAssignment& assignment) 
                          loader ? orders::OrderKind::kPick : orders::OrderKind::kTransport};
   update.loader = loader;
   update.released = assignment.released_stops;
+  update.approach = assignment.approach_stops;
   update.pallet = assignment.pallet;
   update.stand = assignment.stand;
   std::string why;
@@ -156,8 +157,9 @@ void FleetAgent::update_running_order(const model::OrderAssignment& assignment) 
   }
   order_->assignment = assignment;
   if (loader) {
-    log_->info("order {} updated: {} stop{} released, pallet {} behind", assignment.order_id, assignment.released_stops,
-               assignment.released_stops == 1 ? "" : "s", assignment.pallet);
+    log_->info("order {} updated: {} stop{} released, {} to drive to, pallet {} behind", assignment.order_id,
+               assignment.released_stops, assignment.released_stops == 1 ? "" : "s",
+               std::max(assignment.released_stops, assignment.approach_stops), assignment.pallet);
   } else {
     log_->info("order {} updated: {}", assignment.order_id,
                assignment.drop_area.empty() ? std::string("stand elsewhere with the load")
@@ -192,6 +194,7 @@ void FleetAgent::consider(const model::OrderAssignment& assignment) {
                              kind.value_or(orders::OrderKind::kTransport)};
   task_order.loader = assignment.loader;
   task_order.released = assignment.released_stops;
+  task_order.approach = assignment.approach_stops;
   task_order.pallet = assignment.pallet;
   task_order.stand = assignment.stand;
   orders::NewOrderChecks checks;

@@ -180,18 +180,27 @@ fleet_msg_Order to_wire(const model::OrderAssignment& v, Scratch&) {
           borrow(v.lines),
           v.loader,
           v.released_stops,
+          v.approach_stops,
           v.pallet,
           v.stand.has_value(),
           wire_pose(v.stand.value_or(geometry::Pose2{}))};
 }
 model::OrderAssignment from_wire(const fleet_msg_Order& w) {
-  return {w.order_id,        text(w.robot_id),
-          text(w.pick_area), model_pose(w.pick_pose),
-          text(w.drop_area), model_pose(w.drop_pose),
-          w.update_id,       w.cancelled,
-          text(w.kind),      text(w.lines),
-          w.loader,          w.released_stops,
-          w.pallet,          w.standing ? std::optional(model_pose(w.stand_pose)) : std::nullopt};
+  return {w.order_id,
+          text(w.robot_id),
+          text(w.pick_area),
+          model_pose(w.pick_pose),
+          text(w.drop_area),
+          model_pose(w.drop_pose),
+          w.update_id,
+          w.cancelled,
+          text(w.kind),
+          text(w.lines),
+          w.loader,
+          w.released_stops,
+          w.approach_stops,
+          w.pallet,
+          w.standing ? std::optional(model_pose(w.stand_pose)) : std::nullopt};
 }
 
 fleet_msg_OrderState to_wire(const model::OrderReport& v, Scratch&) {
@@ -413,28 +422,14 @@ model::NeighbourView from_wire(const fleet_msg_NeighbourView& w) {
 }
 
 fleet_msg_TrafficRequest to_wire(const model::TrafficRequest& v, Scratch& s) {
-  return {borrow(v.robot_id),
-          v.version,
-          int_seq(s, v.points),
-          v.progress,
-          s.string_seq(v.stopped_for),
-          v.sim_time,
-          s.point_seq(v.work_area),
-          s.point_seq(v.arrival_area),
-          s.point_seq(v.keep_clear),
-          borrow(v.map_id)};
+  return {borrow(v.robot_id),          v.version,       int_seq(s, v.points),     v.progress,
+          s.string_seq(v.stopped_for), v.sim_time,      s.point_seq(v.work_area), s.point_seq(v.arrival_area),
+          s.point_seq(v.keep_clear),   borrow(v.map_id)};
 }
 model::TrafficRequest from_wire(const fleet_msg_TrafficRequest& w) {
-  return {text(w.robot_id),
-          w.version,
-          ints_of(w.points),
-          w.progress,
-          strings_of(w.stopped_for),
-          w.sim_time,
-          points_of(w.work_area),
-          points_of(w.arrival_area),
-          points_of(w.keep_clear),
-          text(w.map_id)};
+  return {text(w.robot_id),          w.version,     ints_of(w.points),      w.progress,
+          strings_of(w.stopped_for), w.sim_time,    points_of(w.work_area), points_of(w.arrival_area),
+          points_of(w.keep_clear),   text(w.map_id)};
 }
 
 fleet_msg_TrafficProgress to_wire(const model::TrafficProgress& v, Scratch& s) {

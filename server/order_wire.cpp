@@ -55,6 +55,7 @@ void OrderWire::assign(const orders::Order& order) {
   msg.lines = order.lines;
   msg.loader = order.loader && order.kind == orders::OrderKind::kPick;
   msg.released_stops = order.released_stops;
+  msg.approach_stops = order.approach_stops;
   msg.pallet = order.pallet;
   msg.stand = order.stand;
   msg.update_id = order.update_id;

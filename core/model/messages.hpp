@@ -76,7 +76,9 @@ struct OrderAssignment {
   /// behind the robot; the order ends at the last stop.
   bool loader = false;
   std::uint32_t released_stops = 0;  ///< loader: the arm works the first released_stops stops only
-  int pallet = 0;                    ///< loader: which transporter's pallet stands behind it
+  /// loader: it may drive to the first approach_stops stops; at one not released it waits to load
+  std::uint32_t approach_stops = 0;
+  int pallet = 0;  ///< loader: which transporter's pallet stands behind it
   /// A transport with no drop area yet: where to stand with the load meanwhile (the body's centre).
   std::optional<geometry::Pose2> stand{};
 };

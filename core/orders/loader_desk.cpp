@@ -13,6 +13,19 @@ geometry::Pose2 picker_stop_pose(const geometry::Pose2& place, double standoff) 
           geometry::normalize_angle(place.yaw + std::numbers::pi / 2)};
 }
 
+bool moving_up_straight(const geometry::Pose2& from, const geometry::Pose2& to, const geometry::Pose2& now,
+                        double distance) {
+  constexpr double kOnLine = 0.05;       // m across the line: the stands of one rack row
+  constexpr double kNearLine = 0.30;     // m across the line: a stacker driving along it
+  constexpr double kSameHeading = 0.05;  // rad
+  const double cx = std::cos(from.yaw);
+  const double sy = std::sin(from.yaw);
+  const auto along = [&](const geometry::Pose2& p) { return (p.x - from.x) * cx + (p.y - from.y) * sy; };
+  const auto across = [&](const geometry::Pose2& p) { return -(p.x - from.x) * sy + (p.y - from.y) * cx; };
+  return std::abs(geometry::normalize_angle(to.yaw - from.yaw)) < kSameHeading && std::abs(across(to)) < kOnLine &&
+         along(to) > distance && std::abs(across(now)) < kNearLine && along(now) >= distance && along(now) <= along(to);
+}
+
 void LoaderDesk::transport_created(const Order& transport) {
   for (const std::int64_t pick : transport.caused_by) {
     if (auto it = jobs_.find(pick); it != jobs_.end()) it->second.transports[transport.id] = {};
@@ -181,6 +194,10 @@ void LoaderDesk::take_transport_facts(Entry& entry, const LoaderView& view) cons
     // Standing with its pallet (HOLDING) where it was sent: behind the picker's stop.
     if (robot == view.robots.end() || !order->stand || transport.stand_stop < 0) continue;
     const model::RobotState& state = robot->second.last;
+    if (transport.left_stand && transport.stand_stop == job.next_stop() &&
+        moving_up_straight(*transport.left_stand, *order->stand, state.pose, layout_.follow_after_m)) {
+      job.transporter_moving_up(transport.robot_id, transport.stand_stop);
+    }
     if (state.task_state == "HOLDING" &&
         geometry::distance(state.pose.position(), order->stand->position()) < layout_.in_place_m) {
       job.transporter_in_place(transport.robot_id, transport.stand_stop);
@@ -242,6 +259,9 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
       OrderRevision revision = revision_of(pick);
       const bool released = instruction.task == LoaderTask::kLoad || instruction.task == LoaderTask::kGoToStop;
       if (released) revision.released_stops = std::max<std::uint32_t>(revision.released_stops, instruction.stop + 1);
+      // Open to approach only while its pallet moves up ahead of it: taken back when that changes.
+      revision.approach_stops =
+          instruction.task == LoaderTask::kApproach ? static_cast<std::uint32_t>(instruction.stop + 1) : 0;
       revision.pallet = 0;
       for (const auto& [id, transport] : entry.transports) {
         if (!transport.robot_id.empty() && transport.robot_id == job.current_transporter()) {
@@ -249,7 +269,10 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
         }
       }
       revise(pick, revision,
-             released ? "stop " + std::to_string(instruction.stop + 1) + " released" : "the pallet behind it changed");
+             released ? "stop " + std::to_string(instruction.stop + 1) + " released"
+             : revision.approach_stops > 0
+                 ? "stop " + std::to_string(instruction.stop + 1) + " open to follow its pallet moving up"
+                 : "the pallet behind it changed");
       continue;
     }
     for (auto& [id, transport] : entry.transports) {
@@ -259,6 +282,7 @@ void LoaderDesk::revise_orders(Entry& entry, const Order& pick, const LoaderView
       std::string why;
       switch (instruction.task) {
         case LoaderTask::kFollow:
+          if (transport.stand_stop != instruction.stop) transport.left_stand = revision.stand;
           revision.stand = stand_behind(instruction.stop);
           transport.stand_stop = instruction.stop;
           why = "stand behind the picker at " + job.walk().at(instruction.stop).place;

@@ -5,6 +5,7 @@
 // decides; the server carries its actions out.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ struct LoaderLayout {
   double pallet_x = 0.35;
   /// A transporter STANDING this near the pose it was sent to is in place behind the picker.
   double in_place_m = 0.25;
+  /// A transporter moving up straight ahead along its line this far from the stand it left: the
+  /// picker may follow it to the next stop (LoaderTask::kApproach).
+  double follow_after_m = 0.5;
   /// The fleet whose robots carry the pallets (a stacker fleet).
   std::string transporter_fleet;
 };
@@ -40,6 +44,12 @@ struct LoaderLayout {
 /// Where the picker stands to pick at a rack place whose pose is `place`: `standoff` metres out
 /// towards the road, side-on, the place on its left (as the pick tour's stops).
 geometry::Pose2 picker_stop_pose(const geometry::Pose2& place, double standoff);
+
+/// A transporter standing at `from` and sent to `to` moves up straight ahead along its line (the
+/// same heading, `to` ahead of `from` on the line through it), and at `now` has come at least
+/// `distance` metres along it: a picker behind its pallet can follow it without standing in its way.
+bool moving_up_straight(const geometry::Pose2& from, const geometry::Pose2& to, const geometry::Pose2& now,
+                        double distance);
 
 /// What the desk reads each time it looks.
 struct LoaderView {
@@ -93,9 +103,10 @@ class LoaderDesk {
 
  private:
   struct Transport {
-    std::string robot_id;    ///< once assigned and added to the job
-    int stand_stop = -1;     ///< the stop behind which its current stand pose lies
-    std::string expedition;  ///< the full_pallets_to place kept for its pallet
+    std::string robot_id;                       ///< once assigned and added to the job
+    int stand_stop = -1;                        ///< the stop behind which its current stand pose lies
+    std::optional<geometry::Pose2> left_stand;  ///< the stand it held before that one
+    std::string expedition;                     ///< the full_pallets_to place kept for its pallet
   };
   struct Entry {
     LoaderJob job;

@@ -67,6 +67,8 @@ const char* to_string(LoaderTask task) {
       return "go to stop";
     case LoaderTask::kLoad:
       return "load";
+    case LoaderTask::kApproach:
+      return "approach";
     case LoaderTask::kFollow:
       return "follow";
     case LoaderTask::kWaitBehind:
@@ -144,6 +146,11 @@ void LoaderJob::picker_at(const std::string& robot_id, int stop) {
 
 void LoaderJob::transporter_in_place(const std::string& robot_id, int stop) {
   if (const PalletRun* run = current_run(); run && run->transporter_id == robot_id) transporter_at_ = stop;
+}
+
+void LoaderJob::transporter_moving_up(const std::string& robot_id, int stop) {
+  moving_up_id_ = robot_id;
+  moving_up_to_ = stop;
 }
 
 void LoaderJob::loaded(int stop, int boxes) {
@@ -269,6 +276,10 @@ std::vector<LoaderInstruction> LoaderJob::instructions() const {
       // transporter, never the other way round (on a one-way lane it could not pass the picker).
       picker = picker_at_ == stop ? LoaderInstruction{picker_id_, LoaderTask::kLoad, stop, left_at(stop)}
                                   : LoaderInstruction{picker_id_, LoaderTask::kGoToStop, stop, 0};
+    } else if (const PalletRun* run = current_run(); run && run->boxes > 0 && run->transporter_id == moving_up_id_ &&
+                                                     moving_up_to_ == stop && left_at(stop) <= room()) {
+      // The pallet it loaded moves up ahead of it: it follows, and waits at the stop to load.
+      picker = {picker_id_, LoaderTask::kApproach, stop, 0};
     } else {
       // Where it stands behind the pallet moving up, or out of the aisle for a new one.
       picker = {picker_id_, LoaderTask::kWait, stop, 0};

@@ -36,6 +36,7 @@ geometry::Pose2 transporter_pose(const geometry::Pose2& picker, double deck_x, d
 /// What a robot of a loader job is to do now.
 enum class LoaderTask {
   kGoToStop,    ///< picker: drive to stand beside the stop's place (its transporter stands behind it)
+  kApproach,    ///< picker: follow its transporter moving up to the stop; load once it stands there
   kLoad,        ///< picker: set the stop's boxes on the transporter's pallet (both stand in place)
   kFollow,      ///< transporter: stand behind the picker's stop, its pallet at the arm's height
   kWaitBehind,  ///< next transporter: stand behind the current one, ready to move up
@@ -79,6 +80,10 @@ class LoaderJob {
   /// A transporter stands behind stop `stop` (the current one) or behind the current transporter
   /// (the next one, `stop` -1).
   void transporter_in_place(const std::string& robot_id, int stop);
+  /// The current transporter left its stand and moves up straight ahead along its line to stand
+  /// behind stop `stop`: the picker, ahead of the pallet it loaded, can follow it there and never
+  /// stand in its way.
+  void transporter_moving_up(const std::string& robot_id, int stop);
   /// The arm set `boxes` boxes of stop `stop` on the current transporter's pallet.
   void loaded(int stop, int boxes);
   /// The arm cannot take the rest of stop `stop` (no box found, out of reach): the boxes left
@@ -141,6 +146,8 @@ class LoaderJob {
   std::optional<std::size_t> current_;  ///< index into runs_
   std::string next_transporter_;        ///< waiting behind the current one
   int transporter_at_ = -1;             ///< the stop the current transporter stands behind, -1 while moving
+  std::string moving_up_id_;            ///< the transporter last seen moving up straight ahead
+  int moving_up_to_ = -1;               ///< ... to stand behind this stop
   bool transporter_lost_ = false;       ///< the current transporter was lost and none took over yet
 };
 

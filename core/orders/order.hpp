@@ -85,7 +85,9 @@ struct Order {
   /// A pick order worked as a loader walk, or a transport carrying a loader job's pallet.
   bool loader = false;
   std::uint32_t released_stops = 0;  ///< loader pick: the arm works the first released_stops stops
-  int pallet = 0;                    ///< loader pick: whose pallet stands behind the picker (a transport's id)
+  /// loader pick: the picker may drive to the first approach_stops stops (it loads only the released)
+  std::uint32_t approach_stops = 0;
+  int pallet = 0;  ///< loader pick: whose pallet stands behind the picker (a transport's id)
   /// Loader transport with no drop area yet: where its robot stands with the pallet (its centre).
   std::optional<geometry::Pose2> stand{};
 

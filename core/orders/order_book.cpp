@@ -89,7 +89,7 @@ std::vector<const Order*> OrderBook::open_orders() const {
 }
 
 OrderRevision revision_of(const Order& order) {
-  return {order.released_stops, order.pallet, order.stand, order.drop_area};
+  return {order.released_stops, order.approach_stops, order.pallet, order.stand, order.drop_area};
 }
 
 bool OrderBook::revise(std::int64_t id, const OrderRevision& revision, std::vector<OrderStep> steps) {
@@ -97,6 +97,7 @@ bool OrderBook::revise(std::int64_t id, const OrderRevision& revision, std::vect
   if (it == orders_.end() || !with_a_robot(it->second.status) || revision_of(it->second) == revision) return false;
   Order& order = it->second;
   order.released_stops = revision.released_stops;
+  order.approach_stops = revision.approach_stops;
   order.pallet = revision.pallet;
   order.stand = revision.stand;
   order.drop_area = revision.drop_area;

@@ -17,6 +17,7 @@ enum class TransitionResult { kApplied, kUnknownOrder, kIllegal };
 /// What a loader job may change of an order under way (orders::LoaderDesk).
 struct OrderRevision {
   std::uint32_t released_stops = 0;
+  std::uint32_t approach_stops = 0;
   int pallet = 0;
   std::optional<geometry::Pose2> stand{};
   std::string drop_area;

@@ -56,6 +56,7 @@ bool TaskExecutor::submit(const TaskOrder& order, std::string* why) {
   if (order_ && order_->loader && order.loader && order.order_id == order_->order_id) {
     // An update (VDA 5050 style): the walk stays, more of it is released.
     order_->released = order.released;
+    order_->approach = order.approach;
     order_->pallet = order.pallet;
     return true;
   }
@@ -155,11 +156,27 @@ void TaskExecutor::hold_for_release() {
   fire(Event::kBlocked);
 }
 
+bool TaskExecutor::stop_open() const {
+  return item_line_ < order_->released || item_line_ < order_->approach;
+}
+
 void TaskExecutor::follow_release() {
-  if (!waiting_for_release_ || !order_) return;
+  if (!order_ || !order_->loader) return;
   const State s = machine_.state();
+  if (s == State::kPickItems) {
+    // At a stop it drove to before its release, which the server took back: its transporter was
+    // replaced, and the new one comes in behind the stop, past where the loader stands.
+    if (!stop_open() && !waits_in_place())
+      fire(Event::kStopWithdrawn, "its transporter changed before the stop was released");
+    return;
+  }
   if (s != State::kTrackPath && s != State::kWaiting) return;
-  if (item_line_ < order_->released) {
+  if (!waiting_for_release_) {
+    // On its way to a stop ahead of its release, which the server took back.
+    if (active_purpose_ == PlanPurpose::kToPick && !stop_open()) hold_for_release();
+    return;
+  }
+  if (stop_open()) {
     waiting_for_release_ = false;
     release_wait_home_ = false;
     request_plan(PlanPurpose::kToPick);
@@ -205,7 +222,7 @@ void TaskExecutor::apply(const Transition& tr) {
       waiting_for_plan_ = false;
       // A pick order comes back here for each of its lines; it was accepted once.
       if (item_line_ == 0) report(TaskReport::Kind::kAccepted, order_->pick_area_id);
-      if (order_->loader && item_line_ >= order_->released) {
+      if (order_->loader && !stop_open()) {
         hold_for_release();
         break;
       }

@@ -45,6 +45,10 @@ struct TaskOrder {
   /// stands while the pallet it loaded last moves up; for a new pallet, or none, it waits at home,
   /// out of the aisle the new transporter drives into.
   std::size_t released = std::numeric_limits<std::size_t>::max();
+  /// A loader may drive to the stops before this one though they are not released yet: its
+  /// transporter moves up ahead of it to stand behind the next. It waits at the stop, its arm still,
+  /// until the stop is released.
+  std::size_t approach = 0;
   /// Which transporter's pallet stands behind it: a new one holds no box yet.
   int pallet = 0;
   /// A transport with no drop place yet (a stacker's): where to stand with the load meanwhile, the
@@ -181,6 +185,8 @@ class TaskExecutor {
   /// The pallet the loader set its last boxes on is the one to come behind the next stop: it
   /// moves up, and the loader waits where it stands.
   bool waits_in_place() const;
+  /// A loader may drive to its next stop: it is released, or open to approach (TaskOrder::approach).
+  bool stop_open() const;
   /// Waiting for a release where it stands: no path to follow, nothing to plan.
   bool stands_for_release() const { return waiting_for_release_ && !release_wait_home_; }
   geometry::Pose2 goal_for(PlanPurpose purpose) const;

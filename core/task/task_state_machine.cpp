@@ -44,6 +44,8 @@ constexpr std::array kTable = {
     // the robot for an operator [Picker thesis, section 5.3.3.1.2].
     TransitionRow{S::kTrackPath, kOnly, P::kToPick, E::kAtItems, S::kPickItems, P::kPicking, F::kStartItems},
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kItemsPicked, S::kTrackPath, P::kToPick, F::kPlanToPick},
+    // A loader that drove ahead to a stop not yet released makes way for the transporter to come.
+    TransitionRow{S::kPickItems, kAny, P::kNone, E::kStopWithdrawn, S::kTrackPath, P::kToPick, F::kPlanToPick},
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kTourPicked, S::kTrackPath, P::kToDrop, F::kPlanToDrop},
     // A loader's boxes are on its transporters' pallets: the walk ends at its last place.
     TransitionRow{S::kPickItems, kAny, P::kNone, E::kWalkLoaded, S::kGoHome, P::kNone, F::kFinishOrder},
@@ -154,13 +156,15 @@ const char* to_string(Event e) {
     case E::kItemsPicked:
       return "items_picked";
     case E::kWalkLoaded:
-      return "WALK_LOADED";
+      return "walk_loaded";
     case E::kTourPicked:
       return "tour_picked";
     case E::kItemsDropped:
       return "items_dropped";
     case E::kItemsFailed:
       return "items_failed";
+    case E::kStopWithdrawn:
+      return "stop_withdrawn";
   }
   return "unknown";
 }

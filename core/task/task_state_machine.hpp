@@ -30,30 +30,31 @@ enum class State {
 
 /// Inputs that can move the machine. The agent (or the TaskExecutor on its behalf) raises them.
 enum class Event {
-  kOrder,         ///< a transport order arrived
-  kMoveOrder,     ///< a move order arrived: drive to a parking place and stay there
-  kPathEnded,     ///< the follower reached the end of the planner's path
-  kPalletFound,   ///< the search confirmed the marker
-  kAreaEmpty,     ///< the search swept without seeing the marker
-  kPickDone,      ///< pallet on the forks and lifted
-  kPickFailed,    ///< marker lost or pick timed out; the search runs again
-  kPickGaveUp,    ///< the pick failed too often; the forks are empty, so the order fails and it goes home
-  kDropDone,      ///< pallet lowered on the target area and the forklift backed out
-  kDropFailed,    ///< placement did not converge
-  kHomeReached,   ///< the follower reached the home pose
-  kBlocked,       ///< traffic or no plan: stand still
-  kUnblocked,     ///< go on with what was interrupted
-  kPause,         ///< operator pause
-  kResume,        ///< operator resume
-  kCancel,        ///< operator cancels the order (only before the pallet is lifted)
-  kFault,         ///< something failed beyond recovery; carries a reason
-  kReset,         ///< operator clears an error
-  kAtItems,       ///< a pick order's path ended beside the place of its line, or of its drop
-  kItemsPicked,   ///< the arm took the line's boxes; lines are left
-  kTourPicked,    ///< the arm took the last line's boxes
-  kWalkLoaded,    ///< a loader's arm set the walk's last boxes on the transporter behind it: no station
-  kItemsDropped,  ///< the arm put every box down on the drop place
-  kItemsFailed,   ///< the arm could not pick or drop (no box found, out of reach); carries a reason
+  kOrder,          ///< a transport order arrived
+  kMoveOrder,      ///< a move order arrived: drive to a parking place and stay there
+  kPathEnded,      ///< the follower reached the end of the planner's path
+  kPalletFound,    ///< the search confirmed the marker
+  kAreaEmpty,      ///< the search swept without seeing the marker
+  kPickDone,       ///< pallet on the forks and lifted
+  kPickFailed,     ///< marker lost or pick timed out; the search runs again
+  kPickGaveUp,     ///< the pick failed too often; the forks are empty, so the order fails and it goes home
+  kDropDone,       ///< pallet lowered on the target area and the forklift backed out
+  kDropFailed,     ///< placement did not converge
+  kHomeReached,    ///< the follower reached the home pose
+  kBlocked,        ///< traffic or no plan: stand still
+  kUnblocked,      ///< go on with what was interrupted
+  kPause,          ///< operator pause
+  kResume,         ///< operator resume
+  kCancel,         ///< operator cancels the order (only before the pallet is lifted)
+  kFault,          ///< something failed beyond recovery; carries a reason
+  kReset,          ///< operator clears an error
+  kAtItems,        ///< a pick order's path ended beside the place of its line, or of its drop
+  kItemsPicked,    ///< the arm took the line's boxes; lines are left
+  kTourPicked,     ///< the arm took the last line's boxes
+  kWalkLoaded,     ///< a loader's arm set the walk's last boxes on the transporter behind it: no station
+  kItemsDropped,   ///< the arm put every box down on the drop place
+  kItemsFailed,    ///< the arm could not pick or drop (no box found, out of reach); carries a reason
+  kStopWithdrawn,  ///< a loader at a stop not released may no longer wait there: its transporter changed
 };
 
 /// What the owner must do when a transition fires. One per row, so a test can check it.

@@ -169,11 +169,13 @@ TEST(Topics, AnOrderComesBackWithItsLoaderWalkRelease) {
   sent.update_id = 4;
   sent.loader = true;
   sent.released_stops = 2;
+  sent.approach_stops = 3;
   sent.pallet = 3;
   const auto taken = round_trip(sent, dds::qos::latched_state());
   ASSERT_TRUE(taken);
   EXPECT_TRUE(taken->loader);
   EXPECT_EQ(taken->released_stops, 2u);
+  EXPECT_EQ(taken->approach_stops, 3u);
   EXPECT_EQ(taken->pallet, 3);
   EXPECT_EQ(taken->lines, sent.lines);
   EXPECT_EQ(taken->update_id, 4u);

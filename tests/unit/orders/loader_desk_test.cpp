@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "map/site_map.hpp"
@@ -292,6 +293,61 @@ TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletStandsAtTheFirstStop) {
   EXPECT_EQ(plant.book.find(pick)->released_stops, 1u) << "its first stop is released at once";
   EXPECT_EQ(plant.desk.partners(), (std::map<std::string, std::string>{{"stacker1", "picker1"}}));
   EXPECT_EQ(transports_of(plant.book, pick).size(), 1u);
+}
+
+TEST(LoaderDesk, APickerFollowsItsPalletMovingUpStraightAheadAndLoadsOnceItStands) {
+  Plant plant;
+  const std::int64_t pick = plant.book.create(walk_draft("RB2,A2,1\nRB3,A3,1\n"), 0.0).id;
+  plant.step();
+  const std::int64_t transport = transports_of(plant.book, pick).at(0)->id;
+  plant.robot("stacker1", "stackers");
+  ASSERT_EQ(plant.book.assign(transport, "stacker1", 0.0), TransitionResult::kApplied);
+  plant.step();
+  plant.holds_at_stand(*plant.book.find(transport));
+  plant.step();
+  plant.robot("picker1", "pickers");
+  ASSERT_EQ(plant.book.assign(pick, "picker1", 0.0), TransitionResult::kApplied);
+  RobotEntry& picker = plant.robots.at("picker1");
+  picker.last.order_id = pick;
+  picker.last.walk_stop = 0;
+  plant.step();
+  ASSERT_EQ(plant.book.find(pick)->released_stops, 1u);
+
+  // RB2's box on the pallet: the stacker is sent on to stand behind RB3, 3.5 m on along its line.
+  picker.last.boxes_loaded = 1;
+  plant.step();
+  const geometry::Pose2 behind_rb2 = plant.robots.at("stacker1").last.pose;
+  const geometry::Pose2 behind_rb3 = *plant.book.find(transport)->stand;
+  ASSERT_TRUE(moving_up_straight(behind_rb2, behind_rb3, behind_rb3, 0.5));
+  EXPECT_EQ(plant.book.find(pick)->approach_stops, 0u) << "the stacker stands where it was";
+  RobotEntry& stacker = plant.robots.at("stacker1");
+  stacker.last.task_state = "RUNNING";
+  stacker.last.pose = {behind_rb2.x + 0.2 * std::cos(behind_rb2.yaw), behind_rb2.y + 0.2 * std::sin(behind_rb2.yaw),
+                       behind_rb2.yaw};
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->approach_stops, 0u) << "hardly left its stand";
+  stacker.last.pose = {behind_rb2.x + 1.0 * std::cos(behind_rb2.yaw), behind_rb2.y + 1.0 * std::sin(behind_rb2.yaw),
+                       behind_rb2.yaw};
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->approach_stops, 2u) << "on its way: the picker follows it to RB3";
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 1u) << "but loads there only once the pallet stands";
+  picker.last.walk_stop = 1;
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->approach_stops, 2u);
+  plant.holds_at_stand(*plant.book.find(transport));
+  plant.step();
+  EXPECT_EQ(plant.book.find(pick)->released_stops, 2u);
+  EXPECT_EQ(plant.book.find(pick)->approach_stops, 0u);
+}
+
+TEST(LoaderDesk, APalletMovingUpAnyOtherWayIsNotFollowed) {
+  const geometry::Pose2 from{10.0, 5.0, 0.0};
+  EXPECT_TRUE(moving_up_straight(from, {13.5, 5.0, 0.0}, {11.0, 5.1, 0.0}, 0.5));
+  EXPECT_FALSE(moving_up_straight(from, {6.5, 5.0, 0.0}, {9.0, 5.0, 0.0}, 0.5)) << "backwards";
+  EXPECT_FALSE(moving_up_straight(from, {13.5, 6.0, 0.0}, {11.0, 5.2, 0.0}, 0.5)) << "to another line";
+  EXPECT_FALSE(moving_up_straight(from, {13.5, 5.0, 1.57}, {11.0, 5.0, 0.0}, 0.5)) << "turned";
+  EXPECT_FALSE(moving_up_straight(from, {13.5, 5.0, 0.0}, {11.0, 6.0, 0.0}, 0.5)) << "off its line, going round";
+  EXPECT_FALSE(moving_up_straight(from, {13.5, 5.0, 0.0}, {10.3, 5.0, 0.0}, 0.5)) << "not yet on its way";
 }
 
 // A desk started on a book with a walk under way (a restarted server, a standby that took over)

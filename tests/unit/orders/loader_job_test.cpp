@@ -133,6 +133,42 @@ TEST(LoaderJob, APickerFillsOneTransporterTheNextMovesUpAndBothDeliver) {
   EXPECT_EQ(job.runs()[1].boxes, 2);
 }
 
+TEST(LoaderJob, ThePickerFollowsItsPalletMovingUpAndLoadsOnceItStands) {
+  LoaderJob job({line("A", 2), line("B", 2), line("C", 1)}, 5, "pk1");
+  job.add_transporter("st1");
+  job.transporter_in_place("st1", 0);
+  job.picker_at("pk1", 0);
+  job.loaded(0, 2);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait) << "the pallet has not moved yet";
+  job.transporter_moving_up("st2", 1);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait) << "another transporter moving says nothing of this one";
+  job.transporter_moving_up("st1", 2);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait) << "moving up to another stop";
+  job.transporter_moving_up("st1", 1);
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kApproach, 1, 0}));
+  job.picker_at("pk1", 1);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kApproach) << "at the stop, it waits for the pallet to stand";
+  job.transporter_in_place("st1", 1);
+  EXPECT_EQ(for_robot(job, "pk1"), (LoaderInstruction{"pk1", LoaderTask::kLoad, 1, 2}));
+  job.loaded(1, 2);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait) << "the fact was for the last stop";
+}
+
+TEST(LoaderJob, NoPickerFollowsAPalletItHasNotLoaded) {
+  // The first pallet goes ahead of the picker; a new transporter moves up behind the stop past
+  // where the picker stands: the picker is out of its way, not following it.
+  LoaderJob job({line("A", 2), line("B", 2)}, 2, "pk1");
+  job.add_transporter("st1");
+  job.transporter_moving_up("st1", 0);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait);
+  job.transporter_in_place("st1", 0);
+  job.picker_at("pk1", 0);
+  job.loaded(0, 2);
+  job.add_transporter("st2");
+  job.transporter_moving_up("st2", 1);
+  EXPECT_EQ(for_robot(job, "pk1").task, LoaderTask::kWait);
+}
+
 TEST(LoaderJob, TheSecondStopOfOnePlaceNeedsNoDrivingButAFreshPallet) {
   LoaderJob job({line("A", 4), line("A", 3)}, 5, "pk1");
   job.add_transporter("st1");

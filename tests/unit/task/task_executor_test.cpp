@@ -241,5 +241,45 @@ TEST(TaskExecutor, ALoaderDrivesOnlyToReleasedStopsAndWaitsForANewPalletAtHome) 
   EXPECT_GT(w.t, 20.0) << "home, A1, home, A2, home at a walk's pace";
 }
 
+TEST(TaskExecutor, ALoaderFollowsItsPalletToAStopOpenToApproachAndWaitsThereForTheRelease) {
+  World w;
+  TaskOrder walk;
+  walk.order_id = "w1";
+  walk.kind = orders::OrderKind::kPick;
+  walk.loader = true;
+  walk.released = 1;
+  walk.pallet = 7;
+  walk.items = {{"A1", kA1, "I1", 3}, {"A2", kA2, "I2", 3}};
+  ASSERT_TRUE(w.exec.submit(walk));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  w.exec.items_done(true);
+  w.run_until([] { return false; }, 2.0);
+  EXPECT_EQ(w.exec.state(), State::kWaiting) << "its pallet has not moved yet";
+
+  // The pallet moves up ahead of it: it drives to A2's stop and stands there, its arm still.
+  TaskOrder update = walk;
+  update.approach = 2;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
+  EXPECT_EQ(w.exec.item_line(), 1u);
+  EXPECT_FALSE(w.exec.order()->released > w.exec.item_line()) << "the arm waits for the release";
+
+  // The pallet was lost on its way and another comes in behind the stop: the loader makes way.
+  update.approach = 0;
+  update.pallet = 8;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kWaiting; }, 60.0)) << "it waits at home, not done";
+  EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.05);
+
+  // The new pallet stands behind A2's stop: back to it.
+  update.released = 2;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
+  w.exec.items_done(true);
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0));
+}
+
 }  // namespace
 }  // namespace fleet::task

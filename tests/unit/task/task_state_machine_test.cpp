@@ -112,6 +112,9 @@ TEST(TaskStateMachine, APickTourVisitsEachLineThenDropsEverything) {
   TaskStateMachine loader;
   expect(loader, Event::kOrder, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
   expect(loader, Event::kAtItems, State::kPickItems, OrderPhase::kPicking, Effect::kStartItems);
+  // At a stop it drove to ahead of its release, its transporter replaced: it makes way.
+  expect(loader, Event::kStopWithdrawn, State::kTrackPath, OrderPhase::kToPick, Effect::kPlanToPick);
+  expect(loader, Event::kAtItems, State::kPickItems, OrderPhase::kPicking, Effect::kStartItems);
   expect(loader, Event::kWalkLoaded, State::kGoHome, OrderPhase::kNone, Effect::kFinishOrder);
 
   TaskStateMachine failing = machine_in(State::kDropItems);
