@@ -144,14 +144,16 @@ std::vector<CommandSpec> fleet_starting_commands() {
         number("--duration", "SECONDS=180", 1.0, 1e7), number("--time-scale", "K=10", 0.01, 100.0), process_seed(),
         choice("--traffic", {"on", "off"}), value("--faults", "LIST"), value("--set", "KEY=VALUE"),
         value("--agent-wrap", "WORDS"), integer("--http-port", "P=0", 0, 65535), on_off("--verbose"),
-        integer("--vda5050-vehicles", "N=0", 0, kMaxAgents), on_off("--standby"), value("--standby-wrap", "WORDS")},
+        integer("--vda5050-vehicles", "N=0", 0, kMaxAgents), on_off("--standby"), value("--standby-wrap", "WORDS"),
+        on_off("--keep-tracks")},
        "the demo's fleet under ground-truth watch: collisions, deadlocks (an order\n"
        "without progress for 60 s sim), lost and duplicated orders; --faults all|none|\n"
        "kill-agent,stall-agent,kill-server,obstacles,map-switch,kill-host on a schedule\n"
        "from --seed; exit 0 only when nothing was lost, duplicated, collided or\n"
        "deadlocked; --standby: a second server as standby (--standby-wrap WORDS before its\n"
        "command), kill-host kills the active one, which comes back 5 s later as standby;\n"
-       "--verbose: debug logs of every process in the run directory"},
+       "--verbose: debug logs of every process in the run directory; --keep-tracks: every\n"
+       "robot's track of the whole run in its tracks.csv (fleetctl map render --tracks)"},
       {Group::kStartsFleet,
        "load",
        "",

@@ -57,6 +57,7 @@ std::string random_token() {
 
 FleetRun::FleetRun(RunOptions options, config::FleetConfig config, Logger log)
     : options_(std::move(options)), config_(std::move(config)), log_(std::move(log)) {
+  if (options_.whole_tracks) tracks_ = monitor::TrackRecorder(options_.duration_s * options_.time_scale + 60.0);
   const map::Site site = map::load_site(map::site_path(maps_dir(), options_.site));
   // What the server and agents will do with the same files: robots declared by count need a home
   // each, and a site with too few stops the run here, before any process starts.
@@ -321,6 +322,7 @@ void FleetRun::stop() {
   }
   processes_.reap();
   processes_.stop_all(5.0);
+  if (options_.whole_tracks) write_tracks("tracks", sim_seconds() + 60.0, start_sim_ + sim_seconds());
 }
 
 void FleetRun::report_far_off_estimates() {

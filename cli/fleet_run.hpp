@@ -55,6 +55,9 @@ struct RunOptions {
   bool standby = false;
   /// Words put before the standby server's command line (its own host: "ip netns exec ...").
   std::string standby_wrap;
+  /// Every robot's true and estimated track of the whole run, written to tracks.csv in the run
+  /// directory at its end (`fleetctl map render --tracks`); else only the last 90 s beside a report.
+  bool whole_tracks = false;
 };
 
 /// How late one agent's control steps run against the clock (model::RobotState's control_lag).

@@ -49,6 +49,7 @@ SoakRequest parse_soak(const CommandArgs& command, std::uint32_t domain) {
   options.agent_wrap = args.value("agent-wrap").value_or("");
   options.vda5050_vehicles = static_cast<int>(args.integer("vda5050-vehicles").value_or(0));
   options.standby = args.flag("standby");
+  options.whole_tracks = args.flag("keep-tracks");
   options.standby_wrap = args.value("standby-wrap").value_or("");
   if (!options.standby_wrap.empty() && !options.standby) throw ArgError("--standby-wrap: needs --standby");
   r.traffic = args.value("traffic").value_or(r.config.settings.get_bool("traffic.enabled") ? "on" : "off");

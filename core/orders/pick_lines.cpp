@@ -196,14 +196,21 @@ std::optional<std::vector<PickLine>> choose_auto_pick_list(const std::map<std::s
     return PickLine{place, boxes.item, 1 + static_cast<int>(rng() % static_cast<std::uint64_t>(most)), 0};
   };
   std::vector<PickLine> lines{take(places[rng() % places.size()], capacity)};
-  const int room = capacity - lines.front().quantity;
-  if (room > 0) {
-    const geometry::Pose2& first = poses.at(lines.front().place);
-    std::vector<std::string> same_row;
-    for (const auto& place : places) {
-      if (place != lines.front().place && same_rack_row(poses.at(place), first)) same_row.push_back(place);
-    }
-    if (!same_row.empty()) lines.push_back(take(same_row[rng() % same_row.size()], room));
+  int room = capacity - lines.front().quantity;
+  const geometry::Pose2& first = poses.at(lines.front().place);
+  std::vector<std::string> same_row;
+  for (const auto& place : places) {
+    if (place != lines.front().place && same_rack_row(poses.at(place), first)) same_row.push_back(place);
+  }
+  // Lines from other places of the row until the boxes fill what carries them: a tray's two slots,
+  // or a loader's pallet, which its stacker brought for the walk.
+  while (room > 0 && !same_row.empty()) {
+    const std::size_t pick = rng() % same_row.size();
+    lines.push_back(take(same_row[pick], room));
+    // The row's last place gives all it can.
+    if (same_row.size() == 1) lines.back().quantity = std::min(room, stock.at(same_row[pick]).count);
+    room -= lines.back().quantity;
+    same_row.erase(same_row.begin() + static_cast<std::ptrdiff_t>(pick));
   }
   for (std::size_t i = 0; i < lines.size(); ++i) lines[i].line = static_cast<int>(i) + 1;
   return lines;

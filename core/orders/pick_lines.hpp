@@ -77,8 +77,9 @@ std::vector<PickTour> plan_tours(const std::vector<PickLine>& lines, int capacit
 
 /// A random pick list, as the automatic orders place one for a free picker: a place with boxes
 /// left in `stock`, no heavier than `max_box_mass` kg, and between one box and `capacity` of
-/// them; a second line from another place of the same rack row (the same y in `poses`, so the
-/// tour stays in one aisle) when the first leaves room. Nothing when no place has a box to give.
+/// them; further lines from other places of the same rack row (the same y in `poses`, so the
+/// tour stays in one aisle) while the boxes leave room, so that they fill `capacity` unless the
+/// row runs out of boxes. Nothing when no place has a box to give.
 std::optional<std::vector<PickLine>> choose_auto_pick_list(const std::map<std::string, map::BoxStock>& stock,
                                                            const std::map<std::string, geometry::Pose2>& poses,
                                                            double max_box_mass, int capacity, std::mt19937_64& rng);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/errors.hpp"
 #include "map/site_map.hpp"
 #include "test_paths.hpp"
@@ -122,6 +124,28 @@ TEST(PickLines, AutomaticListsAreValidKeepToOneRackRowAndStopWhenTheBoxesRunOut)
     if (lines->size() == 2) ++two_lines;
   }
   EXPECT_GT(two_lines, 0);
+  // A loader walk's list fills the pallet its stacker brings, from places of one row.
+  int more_lines = 0;
+  for (int i = 0; i < 200; ++i) {
+    const auto lines = choose_auto_pick_list(plant.stock, plant.poses, 5.0, kLoaderWalkBoxes, rng);
+    ASSERT_TRUE(lines.has_value());
+    const auto csv = pick_lines_csv(*lines);
+    EXPECT_EQ(check_pick_lines(*lines, plant.places, plant.stock, 5.0, "auto"), std::nullopt) << csv;
+    int boxes = 0;
+    for (const auto& line : *lines) {
+      boxes += line.quantity;
+      EXPECT_NEAR(plant.poses.at(line.place).y, plant.poses.at(lines->front().place).y, 0.05) << csv;
+    }
+    int row_stock = 0;
+    for (const auto& [place, stock] : plant.stock) {
+      if (stock.mass <= 5.0 && std::abs(plant.poses.at(place).y - plant.poses.at(lines->front().place).y) < 0.05) {
+        row_stock += stock.count;
+      }
+    }
+    EXPECT_EQ(boxes, std::min(kLoaderWalkBoxes, row_stock)) << csv;
+    if (lines->size() > 2) ++more_lines;
+  }
+  EXPECT_GT(more_lines, 0);
   // Only the heavy boxes left: the grippers hold none of them, so there is no list to give.
   for (auto& [place, boxes] : plant.stock) {
     if (boxes.mass <= 5.0) boxes.count = 0;
