@@ -243,8 +243,9 @@ def markers():
     for x in (5.0, 15.0, 25.0, 35.0, 45.0, 55.0):
         out.append((x, NORTH_Y - AISLE_LANE - 0.05, N, 2.0))
         out.append((x, SOUTH_Y + AISLE_LANE + 0.05, S, 2.0))
-    for x in (10.0, 20.0):
-        out.append((x, LIMITER[0] + 0.05, S, 0.3))
+    # On the corridor limiter's south face every 3.5 m (the first two here, the rest below).
+    for x in (5.2, 8.7):
+        out.append((x, LIMITER[0], S, 0.3))
     for y in (10.0, 20.0):
         out.append((0.05, y, E, 2.0))
         out.append((WIDTH - 0.05, y, W, 2.0))
@@ -273,6 +274,14 @@ def markers():
         out.append((x, SOUTH_Y - AISLE_LANE - 0.05, N, 1.0))
     for x in (7.5, 12.5, 17.5, 32.5, 42.5, 47.5, 57.5):
         out.append((x, NORTH_Y + AISLE_LANE + 0.05, S, 2.0))
+    for x in (12.2, 15.7, 19.2, 22.7, 26.2):
+        out.append((x, LIMITER[0], S, 0.3))
+    # The pickers' stalls: the posts beside their spur carry one on the stalls' face too, as the
+    # packing spurs' do. From a stall the south wall's markers alone were in view, all on one
+    # side: the position along the wall was poorly held (a picker's estimate stood 3-4 cm off
+    # while it waited there).
+    for x in (22.5, 25.0):
+        out.append((x, SOUTH_Y - AISLE_LANE - 0.25, S, 1.0))
     numbered = [(k + 1,) + m for k, m in enumerate(out)]
     for k, (row, face_y, into_aisle) in enumerate(rack_faces()):
         for j in range(BAYS + 1):
