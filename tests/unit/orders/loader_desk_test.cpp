@@ -15,6 +15,14 @@
 namespace fleet::orders {
 namespace {
 
+std::vector<const Order*> transports_of(const OrderBook& book, std::int64_t pick) {
+  std::vector<const Order*> out;
+  for (const auto& [id, o] : book.all()) {
+    if (o.kind == OrderKind::kTransport && o.caused_by == std::vector<std::int64_t>{pick}) out.push_back(&o);
+  }
+  return out;
+}
+
 // The plant's site, its pallets where they stand at the start, and a book and robots the test
 // moves on as the server and the agents would.
 struct Plant {
@@ -58,6 +66,17 @@ struct Plant {
     return entry;
   }
 
+  /// The desk asks for the first pallet of walk `pick`, and stacker `robot` takes that transport:
+  /// its id.
+  std::int64_t stacker_takes_the_first_pallet(std::int64_t pick, const std::string& robot) {
+    step();
+    const std::int64_t transport = transports_of(book, pick).at(0)->id;
+    this->robot(robot, "stackers");
+    EXPECT_EQ(book.assign(transport, robot, 0.0), TransitionResult::kApplied);
+    step();
+    return transport;
+  }
+
   /// A transporter standing with its pallet where its order sends it.
   void holds_at_stand(const Order& transport) {
     RobotEntry& s = robots.at(transport.robot_id);
@@ -74,14 +93,6 @@ Order walk_draft(const std::string& lines) {
   draft.pick_area = "RB2";
   draft.lines = lines;
   return draft;
-}
-
-std::vector<const Order*> transports_of(const OrderBook& book, std::int64_t pick) {
-  std::vector<const Order*> out;
-  for (const auto& [id, o] : book.all()) {
-    if (o.kind == OrderKind::kTransport && o.caused_by == std::vector<std::int64_t>{pick}) out.push_back(&o);
-  }
-  return out;
 }
 
 TEST(LoaderDesk, PicksAListOntoTwoPalletsAndSendsEachToExpedition) {
@@ -298,11 +309,7 @@ TEST(LoaderDesk, AWalkGoesToAPickerOnceItsFirstPalletStandsAtTheFirstStop) {
 TEST(LoaderDesk, APickerFollowsItsPalletMovingUpStraightAheadAndLoadsOnceItStands) {
   Plant plant;
   const std::int64_t pick = plant.book.create(walk_draft("RB2,A2,1\nRB3,A3,1\n"), 0.0).id;
-  plant.step();
-  const std::int64_t transport = transports_of(plant.book, pick).at(0)->id;
-  plant.robot("stacker1", "stackers");
-  ASSERT_EQ(plant.book.assign(transport, "stacker1", 0.0), TransitionResult::kApplied);
-  plant.step();
+  const std::int64_t transport = plant.stacker_takes_the_first_pallet(pick, "stacker1");
   plant.holds_at_stand(*plant.book.find(transport));
   plant.step();
   plant.robot("picker1", "pickers");
@@ -356,11 +363,7 @@ TEST(LoaderDesk, APalletMovingUpAnyOtherWayIsNotFollowed) {
 TEST(LoaderDesk, ADeskStartedAnewTakesOnTheTransportsOfAWalkUnderWay) {
   Plant plant;
   const std::int64_t pick = plant.book.create(walk_draft("RB2,A2,2\n"), 0.0).id;
-  plant.step();
-  const std::int64_t first = transports_of(plant.book, pick).at(0)->id;
-  plant.robot("stacker1", "stackers");
-  ASSERT_EQ(plant.book.assign(first, "stacker1", 0.0), TransitionResult::kApplied);
-  plant.step();
+  const std::int64_t first = plant.stacker_takes_the_first_pallet(pick, "stacker1");
   ASSERT_TRUE(plant.book.find(first)->stand.has_value());
 
   plant.desk = LoaderDesk({.pallet_boxes = 3, .transporter_fleet = "stackers"});

@@ -195,14 +195,30 @@ namespace {
 
 using namespace test_world;
 
-TEST(TaskExecutor, ALoaderDrivesOnlyToReleasedStopsAndWaitsForANewPalletAtHome) {
-  World w;
+/// A loader's walk of three boxes at A1 and three at A2, its first `released` stops released.
+TaskOrder loader_walk(std::size_t released) {
   TaskOrder walk;
   walk.order_id = "w1";
   walk.kind = orders::OrderKind::kPick;
   walk.loader = true;
-  walk.released = 0;
+  walk.released = released;
   walk.items = {{"A1", kA1, "I1", 3}, {"A2", kA2, "I2", 3}};
+  return walk;
+}
+
+/// A2's stop of loader_walk released: the loader drives there, loads, and the walk ends.
+void release_a2_and_end_the_walk(World& w, TaskOrder update) {
+  update.released = 2;
+  ASSERT_TRUE(w.exec.submit(update));
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
+  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
+  w.exec.items_done(true);
+  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0));
+}
+
+TEST(TaskExecutor, ALoaderDrivesOnlyToReleasedStopsAndWaitsForANewPalletAtHome) {
+  World w;
+  const TaskOrder walk = loader_walk(0);
   ASSERT_TRUE(w.exec.submit(walk));
   // Nothing released: it waits at home, where it is.
   w.run_until([] { return false; }, 5.0);
@@ -231,25 +247,15 @@ TEST(TaskExecutor, ALoaderDrivesOnlyToReleasedStopsAndWaitsForANewPalletAtHome) 
   EXPECT_EQ(w.exec.state(), State::kWaiting) << "it waits at home, not done";
 
   // The new pallet stands behind A2's stop: on to it, and the walk ends there.
-  update.released = 2;
-  ASSERT_TRUE(w.exec.submit(update));
-  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
-  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
-  w.exec.items_done(true);
-  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0));
+  release_a2_and_end_the_walk(w, update);
   EXPECT_EQ(w.kinds(), (std::vector<Kind>{Kind::kAccepted, Kind::kDropped, Kind::kHomeReached}));
   EXPECT_GT(w.t, 20.0) << "home, A1, home, A2, home at a walk's pace";
 }
 
 TEST(TaskExecutor, ALoaderFollowsItsPalletToAStopOpenToApproachAndWaitsThereForTheRelease) {
   World w;
-  TaskOrder walk;
-  walk.order_id = "w1";
-  walk.kind = orders::OrderKind::kPick;
-  walk.loader = true;
-  walk.released = 1;
+  TaskOrder walk = loader_walk(1);
   walk.pallet = 7;
-  walk.items = {{"A1", kA1, "I1", 3}, {"A2", kA2, "I2", 3}};
   ASSERT_TRUE(w.exec.submit(walk));
   ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
   w.exec.items_done(true);
@@ -273,12 +279,7 @@ TEST(TaskExecutor, ALoaderFollowsItsPalletToAStopOpenToApproachAndWaitsThereForT
   EXPECT_LT(geometry::distance(w.truth.position(), kHome.position()), 0.05);
 
   // The new pallet stands behind A2's stop: back to it.
-  update.released = 2;
-  ASSERT_TRUE(w.exec.submit(update));
-  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kPickItems; }, 60.0));
-  EXPECT_LT(geometry::distance(w.truth.position(), w.exec.item_pose(kA2).position()), 0.1);
-  w.exec.items_done(true);
-  ASSERT_TRUE(w.run_until([&] { return w.exec.state() == State::kIdle; }, 60.0));
+  release_a2_and_end_the_walk(w, update);
 }
 
 }  // namespace
