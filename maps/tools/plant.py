@@ -277,9 +277,8 @@ def markers():
     for x in (12.2, 15.7, 19.2, 22.7, 26.2):
         out.append((x, LIMITER[0], S, 0.3))
     # The pickers' stalls: the posts beside their spur carry one on the stalls' face too, as the
-    # packing spurs' do. From a stall the south wall's markers alone were in view, all on one
-    # side: the position along the wall was poorly held (a picker's estimate stood 3-4 cm off
-    # while it waited there).
+    # packing spurs' do. Without them only the south wall's markers are in view from a stall, all
+    # on one side, and the position along the wall is poorly held while a picker waits there.
     for x in (22.5, 25.0):
         out.append((x, SOUTH_Y - AISLE_LANE - 0.25, S, 1.0))
     numbered = [(k + 1,) + m for k, m in enumerate(out)]
